@@ -1,0 +1,1900 @@
+/* stereoblend.h - v0.1 - variance-guided temporal and stereo reuse for rendered frames
+   No warranty implied; use at your own risk. Licence at the end of this file.
+
+   WHAT IT DOES
+     Per pixel, blends a new noisy estimate Y (this frame / this eye) with another
+     estimate X of the same surface (the reprojected history / the other eye) using the
+     weight that minimises the expected squared error, a = (B^2 + var_X) / (B^2 + var_X
+     + var_Y), estimated from a 3x3 neighbourhood (Philippi et al. 2023), with the
+     classic baselines beside it (constant alpha, progressive 1/(N+1), neighbourhood
+     clamp, variance clip, fixed beta 0.5) so they can be compared like with like.
+     Reprojection is backward: temporal (motion vectors, or camera matrices + depth) and
+     stereo (parallel rig, disparity map, or general matrices, with a back-check).
+
+   USAGE
+     In exactly one C or C++ file:
+         #define STEREOBLEND_IMPLEMENTATION
+         #include "stereoblend.h"
+     Everywhere else just #include "stereoblend.h".
+     #define STEREOBLEND_STATIC before the include to make every function static.
+
+     Per eye, per frame (history is ping-ponged by the caller):
+
+         sbl_temporal_desc desc = {0};           // zeros mean defaults
+         sbl_frame   cur  = {0};                  // this frame
+         sbl_history prev = {0};                  // last frame's output + G-buffer
+         sbl_temporal_output out = {0};
+         cur.color          = sbl_image_make(rgb, w, h, 3);
+         cur.gbuffer.depth  = sbl_image_make(depth, w, h, 1);
+         cur.gbuffer.motion = sbl_image_make(mv, w, h, 2);
+         prev.color  = sbl_image_make(hist_rgb, w, h, 3);
+         prev.length = sbl_image_make(hist_n, w, h, 1);
+         prev.gbuffer.depth = sbl_image_make(prev_depth, w, h, 1);
+         out.color  = sbl_image_make(out_rgb, w, h, 3);
+         out.length = sbl_image_make(out_n, w, h, 1);
+         // whole image, scratch allocated and freed internally:
+         sbl_result r = sbl_temporal_filter_frame(&desc, &cur, &prev, &out);
+         // or from a job system, rows [y0, y1) with caller-owned scratch:
+         //   size_t bytes = sbl_temporal_scratch_size(w, 3);
+         //   r = sbl_temporal_filter(&desc, &cur, &prev, &out, y0, y1, scratch, bytes);
+         if (r != SBL_OK) puts(sbl_result_string(r));
+
+     First frame: pass prev = NULL (or prev->color.data == NULL): every pixel resets.
+
+   CONVENTIONS (see also README.md)
+     Images     float, 1-4 interleaved channels, row 0 = top, stride in floats
+                (0 = width * channels). Pixel (i, j) has its centre at (i + 0.5, j + 0.5).
+     Depth      linear planar view depth (distance along the view axis, > 0); +inf is
+                sky and matches only sky. 0, negative or NaN depth = no valid geometry.
+                Converters from NDC / reversed-Z buffers: sbl_depth_to_linear().
+     Motion     default: pixels, backward (previous position = current + mv), +y down.
+                sbl_motion_convention selects UV / NDC units, forward vectors, +y up
+                (Blender's Vector pass is pixels, forward=0 for its X,Y pair, y_up=1).
+     Cameras    row-major 4x4, column vectors (p' = M p); view space looks down -z;
+                OpenGL-style projection: u = (ndc_x + 1)/2 W, v = (1 - ndc_y)/2 H.
+     Stereo     parallel rig: right eye = left eye moved by +baseline along camera x;
+                the right-eye match of left pixel u at depth z is u - focal_px*baseline/z.
+     Weights    a (alpha, beta) is the weight of the NEW / OWN sample:
+                out = (1 - a) X + a Y.
+     History    N per pixel = effective number of samples (Eq. 5), capped, 1 on reset.
+
+   THREADING AND MEMORY
+     No globals, no threads, no allocation except in the *_frame convenience calls,
+     which use SBL_MALLOC / SBL_FREE (define both or neither; they receive the
+     desc's alloc_context). Row-range calls on disjoint [y0, y1) may run concurrently.
+
+   ERRORS
+     Every call validates all arguments before writing anything and returns an
+     sbl_result; sbl_result_string() names it. Bad input never half-writes an output.
+
+   SECTIONS (data-flow order, same in the implementation)
+     1. Results          2. Views and conventions   3. Reprojection
+     4. Moments          5. Weights                 6. Blend and history length
+     7. Temporal filter  8. Stereo                  9. Fill mode (pixels needing a ray)
+*/
+#ifndef STEREOBLEND_H
+#define STEREOBLEND_H
+
+#include <stddef.h>
+
+#define SBL_VERSION_MAJOR 0
+#define SBL_VERSION_MINOR 1
+
+#ifdef STEREOBLEND_STATIC
+#if defined(__GNUC__) || defined(__clang__)
+#define SBLDEF static __attribute__((unused)) /* a user may call only some of them */
+#else
+#define SBLDEF static
+#endif
+#else
+#ifdef __cplusplus
+#define SBLDEF extern "C"
+#else
+#define SBLDEF extern
+#endif
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ======================================================================== */
+/* 1. Results                                                               */
+/* ======================================================================== */
+
+typedef enum sbl_result {
+    SBL_OK = 0,
+    SBL_ERROR_NULL_POINTER,      /* a required pointer (descriptor, buffer data) is NULL  */
+    SBL_ERROR_INVALID_SIZE,      /* width or height <= 0, or too large to address          */
+    SBL_ERROR_INVALID_CHANNELS,  /* channels outside 1..4, or wrong for the buffer's role  */
+    SBL_ERROR_INVALID_STRIDE,    /* stride < width * channels                              */
+    SBL_ERROR_SIZE_MISMATCH,     /* buffers that must share width/height do not            */
+    SBL_ERROR_CHANNEL_MISMATCH,  /* colour channel counts differ (frame/history/output)    */
+    SBL_ERROR_OVERLAP,           /* an output overlaps an input or another output          */
+    SBL_ERROR_INVALID_ROWS,      /* not 0 <= y0 <= y1 <= height                            */
+    SBL_ERROR_INVALID_PARAM,     /* enum out of range, negative or non-finite parameter    */
+    SBL_ERROR_MISSING_INPUT,     /* the chosen mode needs a buffer/camera that is absent   */
+    SBL_ERROR_SCRATCH_TOO_SMALL, /* scratch smaller than the *_scratch_size() query        */
+    SBL_ERROR_OUT_OF_MEMORY,     /* SBL_MALLOC returned NULL (convenience calls only)      */
+    SBL_RESULT_COUNT
+} sbl_result;
+
+SBLDEF const char *sbl_result_string(sbl_result result);
+
+/* ======================================================================== */
+/* 2. Views and conventions                                                 */
+/* ======================================================================== */
+
+typedef struct sbl_image {
+    float *data;    /* row 0 = top; NULL means "not given" where a buffer is optional */
+    int width;
+    int height;
+    int channels;   /* 1..4, interleaved */
+    int stride;     /* floats between the starts of two rows; 0 means width * channels */
+} sbl_image;
+
+SBLDEF sbl_image sbl_image_make(float *data, int width, int height, int channels);
+
+/* G-buffer of one view. Every member is optional: a NULL data pointer skips the test
+   that buffer feeds (no depth: no depth test; no ids: no id test, ...). Camera-based
+   and parallel-rig reprojection need depth; motion-vector reprojection needs motion. */
+typedef struct sbl_gbuffer {
+    sbl_image depth;    /* 1 channel, linear planar view depth                    */
+    sbl_image normals;  /* 3 channels, any space, same in both views compared     */
+    sbl_image ids;      /* 1 channel, object / mesh / material id (exact compare) */
+    sbl_image motion;   /* 2 channels, see sbl_motion_convention                  */
+} sbl_gbuffer;
+
+typedef enum sbl_motion_units {
+    SBL_MOTION_PIXELS = 0,  /* pixels                                    */
+    SBL_MOTION_UV,          /* fractions of width / height               */
+    SBL_MOTION_NDC          /* NDC units: 2 across the width / height    */
+} sbl_motion_units;
+
+typedef struct sbl_motion_convention {
+    sbl_motion_units units;
+    int forward;  /* 0: mv = p_prev - p_cur (default). 1: mv = p_cur - p_prev      */
+    int y_up;     /* 0: +y goes down the rows (default). 1: +y goes up (NDC, Blender) */
+} sbl_motion_convention;
+
+/* A perspective camera: row-major, column-vector matrices (p' = M * p).
+   View space looks down -z; projection is OpenGL-style (ndc in [-1,1]^2, y up). */
+typedef struct sbl_camera {
+    float world_to_view[16];
+    float view_to_clip[16];
+} sbl_camera;
+
+typedef enum sbl_depth_encoding {
+    SBL_DEPTH_LINEAR = 0,          /* already linear planar depth                         */
+    SBL_DEPTH_NDC_GL,              /* OpenGL window depth mapped to [-1,1] (near -1)      */
+    SBL_DEPTH_NDC_ZERO_ONE,        /* D3D / Vulkan [0,1] (near 0, far 1)                  */
+    SBL_DEPTH_REVERSED,            /* reversed-Z [0,1] (near 1, far 0), finite far plane  */
+    SBL_DEPTH_REVERSED_INFINITE,   /* reversed-Z with infinite far plane: z = near / d    */
+    SBL_DEPTH_ENCODING_COUNT
+} sbl_depth_encoding;
+
+/* Linear planar depth from an encoded depth value (near_z, far_z > 0). Values outside
+   the encoding's range give +inf (sky) or NaN (garbage) rather than a wrong depth. */
+SBLDEF float sbl_depth_to_linear(float encoded, sbl_depth_encoding encoding,
+                                 float near_z, float far_z);
+/* Whole-image form (src and dst may be the same buffer). */
+SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
+                                            sbl_depth_encoding encoding,
+                                            float near_z, float far_z);
+
+/* ======================================================================== */
+/* 3. Reprojection                                                          */
+/* ======================================================================== */
+
+/* Per-tap consistency tests. Zeros mean defaults. */
+typedef struct sbl_reproject_desc {
+    float depth_tolerance;    /* relative depth difference a tap may have; 0 -> 0.05.
+                                 A slope term (the pixel's depth gradient) is added.   */
+    float normal_threshold;   /* min cosine between normals; 0 -> 0.9; < 0 disables    */
+    float back_check_pixels;  /* stereo round-trip tolerance in pixels; 0 -> 1.0        */
+    int   no_fallback;        /* 1 disables the 3x3 fallback search for thin geometry  */
+    sbl_motion_convention motion;
+} sbl_reproject_desc;
+
+typedef enum sbl_temporal_source {
+    SBL_TEMPORAL_MOTION = 0,  /* motion vectors of the current frame                 */
+    SBL_TEMPORAL_CAMERA       /* depth + both frames' cameras (static geometry only) */
+} sbl_temporal_source;
+
+/* The current frame: colour to filter, its G-buffer, its camera (camera mode). */
+typedef struct sbl_frame {
+    sbl_image color;
+    sbl_gbuffer gbuffer;
+    const sbl_camera *camera;
+} sbl_frame;
+
+/* Last frame's filter output and the G-buffer it was made with. */
+typedef struct sbl_history {
+    sbl_image color;          /* previous output colour (same channels as the frame)  */
+    sbl_image length;         /* previous N per pixel, 1 channel; NULL data: N = 1    */
+    sbl_gbuffer gbuffer;      /* previous depth / normals / ids for the tap tests      */
+    const sbl_camera *camera; /* previous camera (camera mode)                         */
+} sbl_history;
+
+/* Reprojected history only (stage 3 on its own): out_color = x*, out_length = N of x*,
+   0 where nothing consistent was found (the pixel must reset). */
+SBLDEF sbl_result sbl_reproject_temporal(const sbl_reproject_desc *desc,
+                                         sbl_temporal_source source,
+                                         const sbl_frame *frame, const sbl_history *history,
+                                         sbl_image out_color, sbl_image out_length,
+                                         int y0, int y1);
+
+/* ======================================================================== */
+/* 4. Moments                                                               */
+/* ======================================================================== */
+
+/* 3x3 mean and population variance per channel (neighbours outside the image or
+   non-finite are left out). Two-pass in double: no m2 - m1^2 cancellation for bright
+   HDR values, never negative. mean/var may be NULL-data to skip. */
+SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image variance,
+                                  int y0, int y1);
+
+/* ======================================================================== */
+/* 5. Weights                                                               */
+/* ======================================================================== */
+
+typedef enum sbl_estimator {
+    SBL_ESTIMATOR_HISTORY_AWARE = 0, /* default: var_X from tracked N, bias from paired
+                                        3x3 differences beyond their noise level       */
+    SBL_ESTIMATOR_PAPER,             /* Philippi Eq. 4 with Eq. 10/11: a = d^2/(d^2+s^2) */
+    SBL_ESTIMATOR_PROGRESSIVE,       /* a = N_Y / (N_X + N_Y): 1/(N+1) for temporal     */
+    SBL_ESTIMATOR_CONSTANT,          /* a = constant (alpha 0.1 / beta 0.5 by default)  */
+    SBL_ESTIMATOR_COUNT
+} sbl_estimator;
+
+typedef enum sbl_rectify {
+    SBL_RECTIFY_NONE = 0,
+    SBL_RECTIFY_CLAMP,          /* clamp x* to the 3x3 min/max box of Y              */
+    SBL_RECTIFY_VARIANCE_CLIP,  /* clip x* towards the mean into mean +- gamma sigma */
+    SBL_RECTIFY_COUNT
+} sbl_rectify;
+
+typedef enum sbl_weight_mode {
+    SBL_WEIGHT_SCALAR = 0,  /* one weight from squares summed over channels (keeps hue) */
+    SBL_WEIGHT_PER_CHANNEL, /* one weight per channel (literal reading of the paper)    */
+    SBL_WEIGHT_MODE_COUNT
+} sbl_weight_mode;
+
+/* The optimal weight of the new estimate (ALGORITHMS.md section 1):
+   a* = (B^2 + var_X) / (B^2 + var_X + var_Y). An infinite var_X or bias gives 1 (no
+   usable history); all zero gives 0.5 (nothing tells the two apart). */
+SBLDEF float sbl_optimal_weight(float bias2, float var_x, float var_y);
+
+/* Effective sample count after out = lerp(X, Y, a) (Eq. 5 as derived):
+   N = N_X N_Y / ((1-a)^2 N_Y + a^2 N_X). */
+SBLDEF float sbl_blend_sample_count(float a, float n_x, float n_y);
+
+/* ======================================================================== */
+/* 6-7. Temporal filter (reproject, moments, weight, rectify, blend, N)     */
+/* ======================================================================== */
+
+typedef struct sbl_temporal_desc {
+    sbl_temporal_source source;
+    sbl_estimator estimator;
+    sbl_rectify rectify;
+    sbl_weight_mode weight_mode;
+    float constant_alpha;   /* SBL_ESTIMATOR_CONSTANT; 0 -> 0.1                        */
+    float alpha_min;        /* lower bound on alpha after estimation; 0 -> none        */
+    float max_history;      /* cap on N; 0 -> 64                                        */
+    float clip_gamma;       /* SBL_RECTIFY_VARIANCE_CLIP box half-width in sigmas; 0 -> 1.25 */
+    float bias_threshold;   /* history-aware: bias counts only beyond this many times its
+                               expected noise level; 0 -> 3                             */
+    sbl_reproject_desc reproject;
+    void *alloc_context;    /* passed to SBL_MALLOC / SBL_FREE in *_frame calls        */
+} sbl_temporal_desc;
+
+typedef struct sbl_temporal_output {
+    sbl_image color;   /* required; same size and channels as the frame colour    */
+    sbl_image length;  /* required; 1 channel: N per pixel for the next frame     */
+    sbl_image alpha;   /* optional; 1 channel: the weight used (mean over channels) */
+} sbl_temporal_output;
+
+/* The descriptor with every zero replaced by its default. */
+SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc);
+
+SBLDEF size_t sbl_temporal_scratch_size(int width, int channels);
+
+/* Filter rows [y0, y1). history may be NULL (reset). Outputs may not overlap any input. */
+SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *desc, const sbl_frame *frame,
+                                      const sbl_history *history,
+                                      const sbl_temporal_output *out, int y0, int y1,
+                                      void *scratch, size_t scratch_bytes);
+
+/* Whole image, scratch through SBL_MALLOC / SBL_FREE. */
+SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
+                                            const sbl_frame *frame,
+                                            const sbl_history *history,
+                                            const sbl_temporal_output *out);
+
+/* ======================================================================== */
+/* 8. Stereo                                                                */
+/* ======================================================================== */
+
+typedef enum sbl_stereo_rig {
+    SBL_RIG_PARALLEL = 0,  /* disparity = focal_px * baseline / depth               */
+    SBL_RIG_DISPARITY,     /* per-eye disparity images (pixels, >= 0)               */
+    SBL_RIG_MATRICES,      /* general rig: both eyes' cameras + depth               */
+    SBL_RIG_COUNT
+} sbl_stereo_rig;
+
+typedef enum sbl_eye_index { SBL_EYE_LEFT = 0, SBL_EYE_RIGHT = 1 } sbl_eye_index;
+
+typedef struct sbl_eye {
+    sbl_image color;          /* this eye's colour (after the temporal filter)        */
+    sbl_image length;         /* optional: this eye's N (history-aware beta uses it)  */
+    sbl_gbuffer gbuffer;      /* depth (parallel, matrices), normals, ids             */
+    sbl_image disparity;      /* SBL_RIG_DISPARITY: 1 channel, pixels                 */
+    const sbl_camera *camera; /* SBL_RIG_MATRICES                                     */
+} sbl_eye;
+
+typedef struct sbl_stereo_desc {
+    sbl_stereo_rig rig;
+    float focal_px;         /* parallel rig: focal length in pixels                     */
+    float baseline;         /* parallel rig: eye separation, same units as depth        */
+    sbl_estimator estimator;/* HISTORY_AWARE (default), PAPER, PROGRESSIVE, CONSTANT    */
+    sbl_rectify rectify;
+    sbl_weight_mode weight_mode;
+    float constant_beta;    /* SBL_ESTIMATOR_CONSTANT; 0 -> 0.5                         */
+    float clip_gamma;       /* 0 -> 1.25                                                 */
+    float bias_threshold;   /* 0 -> 3                                                    */
+    int fill;               /* 1: take the other eye wherever it reprojects (beta = 0)  */
+    sbl_reproject_desc reproject;
+    void *alloc_context;
+} sbl_stereo_desc;
+
+SBLDEF sbl_stereo_desc sbl_stereo_defaults(const sbl_stereo_desc *desc);
+
+/* The other eye reprojected into `target` (rows [y0,y1)): out_color = x*, out_valid =
+   1 where the taps passed the tests and the back-check, else 0 (optional, 1 channel). */
+SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                       const sbl_eye *target, const sbl_eye *source,
+                                       sbl_image out_color, sbl_image out_valid,
+                                       int y0, int y1);
+
+SBLDEF size_t sbl_stereo_scratch_size(int width, int channels);
+
+/* Stereo blend of one eye, rows [y0, y1): out = lerp(other eye reprojected, own, beta).
+   Both eyes are read unblended, so calling it for each eye is symmetric. out_length
+   (optional) receives the effective N of the blend. */
+SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                   const sbl_eye *target, const sbl_eye *source,
+                                   sbl_image out_color, sbl_image out_length,
+                                   int y0, int y1, void *scratch, size_t scratch_bytes);
+
+/* Both eyes, whole images, scratch through SBL_MALLOC / SBL_FREE. */
+SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc,
+                                         const sbl_eye *left, const sbl_eye *right,
+                                         sbl_image out_left, sbl_image out_right);
+
+/* ======================================================================== */
+/* 9. Fill mode: which pixels of the second eye still need a ray            */
+/* ======================================================================== */
+
+/* Reproject `source` (a traced eye) into `target` (rows [y0,y1)): out_color receives
+   the reprojected colour where valid; mask[y * mask_stride + x] = 1 where the pixel
+   still needs a ray, else 0. *needs_ray_count (optional) receives the count of 1s
+   written in these rows. */
+SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                  const sbl_eye *target, const sbl_eye *source,
+                                  sbl_image out_color, unsigned char *mask, int mask_stride,
+                                  int y0, int y1, long *needs_ray_count);
+
+/* Copy traced pixels into dst where mask is 1 (rows [y0, y1)). */
+SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
+                                   const unsigned char *mask, int mask_stride,
+                                   int y0, int y1);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* STEREOBLEND_H */
+
+/* ######################################################################## */
+/*                              IMPLEMENTATION                              */
+/* ######################################################################## */
+#ifdef STEREOBLEND_IMPLEMENTATION
+#ifndef STEREOBLEND_IMPLEMENTATION_DONE
+#define STEREOBLEND_IMPLEMENTATION_DONE
+
+#include <math.h>
+#include <string.h>
+#include <float.h>
+#include <limits.h>
+
+#if defined(SBL_MALLOC) != defined(SBL_FREE)
+#error "define both SBL_MALLOC and SBL_FREE, or neither"
+#endif
+#ifndef SBL_MALLOC
+#include <stdlib.h>
+#define SBL_MALLOC(size, context) ((void)(context), malloc(size))
+#define SBL_FREE(ptr, context) ((void)(context), free(ptr))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------------ */
+/* 1. Results                                                               */
+/* ------------------------------------------------------------------------ */
+
+SBLDEF const char *sbl_result_string(sbl_result result)
+{
+    switch (result) {
+    case SBL_OK: return "ok";
+    case SBL_ERROR_NULL_POINTER: return "a required pointer is NULL";
+    case SBL_ERROR_INVALID_SIZE: return "width or height is not positive or too large";
+    case SBL_ERROR_INVALID_CHANNELS: return "channel count outside 1..4 or wrong for the buffer";
+    case SBL_ERROR_INVALID_STRIDE: return "row stride smaller than width * channels";
+    case SBL_ERROR_SIZE_MISMATCH: return "buffers differ in width or height";
+    case SBL_ERROR_CHANNEL_MISMATCH: return "colour buffers differ in channel count";
+    case SBL_ERROR_OVERLAP: return "an output buffer overlaps an input or another output";
+    case SBL_ERROR_INVALID_ROWS: return "row range is not within 0 <= y0 <= y1 <= height";
+    case SBL_ERROR_INVALID_PARAM: return "a parameter is out of range or not finite";
+    case SBL_ERROR_MISSING_INPUT: return "the chosen mode needs a buffer or camera that is absent";
+    case SBL_ERROR_SCRATCH_TOO_SMALL: return "scratch memory smaller than the size query";
+    case SBL_ERROR_OUT_OF_MEMORY: return "allocation failed";
+    case SBL_RESULT_COUNT: break;
+    }
+    return "unknown sbl_result";
+}
+
+/* ------------------------------------------------------------------------ */
+/* 2. Views and conventions                                                 */
+/* ------------------------------------------------------------------------ */
+
+SBLDEF sbl_image sbl_image_make(float *data, int width, int height, int channels)
+{
+    sbl_image im;
+    im.data = data;
+    im.width = width;
+    im.height = height;
+    im.channels = channels;
+    im.stride = width * channels;
+    return im;
+}
+
+/* Finite test on the bits, so that -ffast-math (which may assume no NaN/inf and fold
+   isfinite() to 1) cannot remove it. */
+static int sbl__finite(float v)
+{
+    unsigned int bits;
+    memcpy(&bits, &v, sizeof bits);
+    return (bits & 0x7f800000u) != 0x7f800000u;
+}
+static int sbl__is_pos_inf(float v)
+{
+    unsigned int bits;
+    memcpy(&bits, &v, sizeof bits);
+    return bits == 0x7f800000u;
+}
+
+static int sbl__stride(const sbl_image *im)
+{
+    return im->stride ? im->stride : im->width * im->channels;
+}
+
+static float *sbl__px(const sbl_image *im, int x, int y)
+{
+    return im->data + (size_t)y * (size_t)sbl__stride(im) + (size_t)x * (size_t)im->channels;
+}
+
+/* Validate one view. want_channels 0 accepts 1..4. */
+static sbl_result sbl__check_image(const sbl_image *im, int want_channels)
+{
+    if (!im->data) return SBL_ERROR_NULL_POINTER;
+    if (im->width <= 0 || im->height <= 0) return SBL_ERROR_INVALID_SIZE;
+    if (im->channels < 1 || im->channels > 4) return SBL_ERROR_INVALID_CHANNELS;
+    if (want_channels && im->channels != want_channels) return SBL_ERROR_INVALID_CHANNELS;
+    /* row and pixel offsets must fit in an int-sized stride and in size_t */
+    if (im->width > INT_MAX / 4 || im->height > INT_MAX / 4) return SBL_ERROR_INVALID_SIZE;
+    if (im->stride != 0 && im->stride < im->width * im->channels) return SBL_ERROR_INVALID_STRIDE;
+    if (im->stride < 0) return SBL_ERROR_INVALID_STRIDE;
+    return SBL_OK;
+}
+
+/* Optional view: NULL data is fine (returns OK), else must be a valid image of the
+   same size as the reference. */
+static sbl_result sbl__check_optional(const sbl_image *im, int want_channels, int w, int h)
+{
+    sbl_result r;
+    if (!im->data) return SBL_OK;
+    r = sbl__check_image(im, want_channels);
+    if (r != SBL_OK) return r;
+    if (im->width != w || im->height != h) return SBL_ERROR_SIZE_MISMATCH;
+    return SBL_OK;
+}
+
+static sbl_result sbl__check_gbuffer(const sbl_gbuffer *g, int w, int h)
+{
+    sbl_result r;
+    if ((r = sbl__check_optional(&g->depth, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&g->normals, 3, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&g->ids, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&g->motion, 2, w, h)) != SBL_OK) return r;
+    return SBL_OK;
+}
+
+/* Byte range an image touches: [begin, end). */
+static void sbl__range(const sbl_image *im, const char **begin, const char **end)
+{
+    size_t floats = (size_t)(im->height - 1) * (size_t)sbl__stride(im) +
+                    (size_t)im->width * (size_t)im->channels;
+    *begin = (const char *)im->data;
+    *end = (const char *)(im->data + floats);
+}
+
+static int sbl__overlap(const sbl_image *a, const sbl_image *b)
+{
+    const char *a0, *a1, *b0, *b1;
+    if (!a->data || !b->data) return 0;
+    sbl__range(a, &a0, &a1);
+    sbl__range(b, &b0, &b1);
+    return a0 < b1 && b0 < a1;
+}
+
+static int sbl__overlap_gbuffer(const sbl_image *a, const sbl_gbuffer *g)
+{
+    return sbl__overlap(a, &g->depth) || sbl__overlap(a, &g->normals) ||
+           sbl__overlap(a, &g->ids) || sbl__overlap(a, &g->motion);
+}
+
+static int sbl__param_ok(float v) /* finite and >= 0 */
+{
+    return sbl__finite(v) && v >= 0.0f;
+}
+
+SBLDEF float sbl_depth_to_linear(float d, sbl_depth_encoding enc, float n, float f)
+{
+    float z;
+    switch (enc) {
+    case SBL_DEPTH_LINEAR: return d;
+    case SBL_DEPTH_NDC_GL: /* d in [-1,1]: z = 2nf / (f + n - d (f - n)) */
+        z = (f + n) - d * (f - n);
+        return z > 0.0f ? 2.0f * n * f / z : (float)HUGE_VAL;
+    case SBL_DEPTH_NDC_ZERO_ONE: /* d in [0,1]: z = nf / (f - d (f - n)) */
+        z = f - d * (f - n);
+        return z > 0.0f ? n * f / z : (float)HUGE_VAL;
+    case SBL_DEPTH_REVERSED: /* d in [0,1], 1 at near: z = nf / (n + d (f - n)) */
+        z = n + d * (f - n);
+        return z > 0.0f ? n * f / z : (float)HUGE_VAL;
+    case SBL_DEPTH_REVERSED_INFINITE: /* z = n / d; d = 0 is the far plane at infinity */
+        return d > 0.0f ? n / d : (float)HUGE_VAL;
+    case SBL_DEPTH_ENCODING_COUNT: break;
+    }
+    return (float)HUGE_VAL;
+}
+
+SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
+                                            sbl_depth_encoding enc, float n, float f)
+{
+    sbl_result r;
+    int x, y;
+    if ((r = sbl__check_image(&src, 1)) != SBL_OK) return r;
+    if ((r = sbl__check_image(&dst, 1)) != SBL_OK) return r;
+    if (src.width != dst.width || src.height != dst.height) return SBL_ERROR_SIZE_MISMATCH;
+    if ((int)enc < 0 || enc >= SBL_DEPTH_ENCODING_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if (enc != SBL_DEPTH_LINEAR) {
+        if (!sbl__finite(n) || n <= 0.0f) return SBL_ERROR_INVALID_PARAM;
+        if (enc != SBL_DEPTH_REVERSED_INFINITE && (!sbl__finite(f) || f <= n))
+            return SBL_ERROR_INVALID_PARAM;
+    }
+    if (src.data != dst.data && sbl__overlap(&src, &dst)) return SBL_ERROR_OVERLAP;
+    for (y = 0; y < src.height; ++y)
+        for (x = 0; x < src.width; ++x)
+            *sbl__px(&dst, x, y) = sbl_depth_to_linear(*sbl__px(&src, x, y), enc, n, f);
+    return SBL_OK;
+}
+
+/* 4x4 helpers, row-major, computed in double. */
+static void sbl__mat_mul(double *out, const double *a, const double *b)
+{
+    int i, j, k;
+    for (i = 0; i < 4; ++i)
+        for (j = 0; j < 4; ++j) {
+            double s = 0.0;
+            for (k = 0; k < 4; ++k) s += a[i * 4 + k] * b[k * 4 + j];
+            out[i * 4 + j] = s;
+        }
+}
+
+/* Gauss-Jordan with partial pivoting; returns 0 if singular or non-finite. */
+static int sbl__mat_invert(double *out, const double *m)
+{
+    double a[16];
+    int i, j, k;
+    memcpy(a, m, sizeof a);
+    for (i = 0; i < 16; ++i) out[i] = (i % 5 == 0) ? 1.0 : 0.0;
+    for (i = 0; i < 4; ++i) {
+        int piv = i;
+        double best = fabs(a[i * 4 + i]), inv;
+        for (k = i + 1; k < 4; ++k)
+            if (fabs(a[k * 4 + i]) > best) { best = fabs(a[k * 4 + i]); piv = k; }
+        if (!(best > 1e-300)) return 0; /* also catches NaN */
+        if (piv != i)
+            for (j = 0; j < 4; ++j) {
+                double t = a[i * 4 + j]; a[i * 4 + j] = a[piv * 4 + j]; a[piv * 4 + j] = t;
+                t = out[i * 4 + j]; out[i * 4 + j] = out[piv * 4 + j]; out[piv * 4 + j] = t;
+            }
+        inv = 1.0 / a[i * 4 + i];
+        for (j = 0; j < 4; ++j) { a[i * 4 + j] *= inv; out[i * 4 + j] *= inv; }
+        for (k = 0; k < 4; ++k) {
+            double fct;
+            if (k == i) continue;
+            fct = a[k * 4 + i];
+            if (fct == 0.0) continue;
+            for (j = 0; j < 4; ++j) {
+                a[k * 4 + j] -= fct * a[i * 4 + j];
+                out[k * 4 + j] -= fct * out[i * 4 + j];
+            }
+        }
+    }
+    for (i = 0; i < 16; ++i)
+        if (out[i] - out[i] != 0.0) return 0; /* non-finite */
+    return 1;
+}
+
+static void sbl__mat_from_float(double *out, const float *m)
+{
+    int i;
+    for (i = 0; i < 16; ++i) out[i] = (double)m[i];
+}
+
+/* Maps a pixel of one camera at linear depth z to the pixel of another camera:
+   precomputed once per call. */
+typedef struct sbl__cam_map {
+    double clip_to_view[16];  /* inverse projection of the source (this) camera      */
+    double view_to_view[16];  /* this view -> other view                             */
+    double other_proj[16];    /* other view -> clip                                   */
+    double width, height;     /* this image (for pixel -> ndc)                        */
+    double other_width, other_height;
+} sbl__cam_map;
+
+static int sbl__cam_map_init(sbl__cam_map *m, const sbl_camera *from, int w, int h,
+                             const sbl_camera *to, int ow, int oh)
+{
+    double proj[16], view[16], inv_view[16], other_view[16];
+    sbl__mat_from_float(proj, from->view_to_clip);
+    sbl__mat_from_float(view, from->world_to_view);
+    sbl__mat_from_float(other_view, to->world_to_view);
+    sbl__mat_from_float(m->other_proj, to->view_to_clip);
+    if (!sbl__mat_invert(m->clip_to_view, proj)) return 0;
+    if (!sbl__mat_invert(inv_view, view)) return 0;
+    sbl__mat_mul(m->view_to_view, other_view, inv_view);
+    m->width = w; m->height = h; m->other_width = ow; m->other_height = oh;
+    return 1;
+}
+
+/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> position in the
+   other image and the point's planar depth there. Returns 0 if behind the camera. */
+static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float z,
+                              double *ox, double *oy, double *oz)
+{
+    double ndc[4], q[4], p[4], v[4], c[4];
+    int i, k;
+    ndc[0] = 2.0 * px / m->width - 1.0;
+    ndc[1] = 1.0 - 2.0 * py / m->height;
+    ndc[2] = 0.0;
+    ndc[3] = 1.0;
+    for (i = 0; i < 4; ++i) {
+        q[i] = 0.0;
+        for (k = 0; k < 4; ++k) q[i] += m->clip_to_view[i * 4 + k] * ndc[k];
+    }
+    /* ray through the pixel, scaled so that its view depth (-z) is 1 */
+    if (q[3] == 0.0 || -q[2] / q[3] <= 0.0) return 0;
+    for (i = 0; i < 3; ++i) q[i] = (q[i] / q[3]) / (-q[2] / q[3]);
+    if (sbl__is_pos_inf(z)) { p[0] = q[0]; p[1] = q[1]; p[2] = q[2]; p[3] = 0.0; }
+    else { p[0] = q[0] * z; p[1] = q[1] * z; p[2] = q[2] * z; p[3] = 1.0; }
+    for (i = 0; i < 4; ++i) {
+        v[i] = 0.0;
+        for (k = 0; k < 4; ++k) v[i] += m->view_to_view[i * 4 + k] * p[k];
+    }
+    for (i = 0; i < 4; ++i) {
+        c[i] = 0.0;
+        for (k = 0; k < 4; ++k) c[i] += m->other_proj[i * 4 + k] * v[k];
+    }
+    if (!(c[3] > 0.0)) return 0;
+    *ox = (c[0] / c[3] + 1.0) * 0.5 * m->other_width;
+    *oy = (1.0 - c[1] / c[3]) * 0.5 * m->other_height;
+    *oz = p[3] == 0.0 ? HUGE_VAL : -v[2];
+    return 1;
+}
+
+/* ------------------------------------------------------------------------ */
+/* 3. Reprojection                                                          */
+/* ------------------------------------------------------------------------ */
+
+/* Everything a gather needs about the target pixel and the source view. */
+typedef struct sbl__tap_ctx {
+    const sbl_image *src_color;   /* source colour                                    */
+    const sbl_image *src_length;  /* source N (NULL data: 1)                           */
+    const sbl_gbuffer *src_g;     /* source G-buffer                                   */
+    float depth;                  /* expected source depth of the target's surface     */
+    float depth_slack;            /* absolute slack from the target's depth slope      */
+    const float *normal;          /* target normal or NULL                             */
+    float id;                     /* target id (if has_id)                             */
+    int has_depth, has_id;
+    float depth_tolerance, normal_threshold;
+} sbl__tap_ctx;
+
+static int sbl__depth_match(float expected, float tap, float tol, float slack)
+{
+    int inf_e = sbl__is_pos_inf(expected), inf_t = sbl__is_pos_inf(tap);
+    if (inf_e || inf_t) return inf_e && inf_t; /* sky matches only sky */
+    if (!sbl__finite(tap) || !(tap > 0.0f)) return 0;
+    return fabsf(tap - expected) <= tol * expected + slack;
+}
+
+/* Every per-tap test; returns 1 if source pixel (x, y) is consistent with the target. */
+static int sbl__tap_ok(const sbl__tap_ctx *t, int x, int y)
+{
+    const sbl_gbuffer *g = t->src_g;
+    const float *c;
+    int k;
+    if (x < 0 || y < 0 || x >= t->src_color->width || y >= t->src_color->height) return 0;
+    if (t->has_depth && g->depth.data &&
+        !sbl__depth_match(t->depth, *sbl__px(&g->depth, x, y), t->depth_tolerance,
+                          t->depth_slack))
+        return 0;
+    if (t->has_id && g->ids.data && *sbl__px(&g->ids, x, y) != t->id) return 0;
+    if (t->normal && g->normals.data) {
+        const float *n = sbl__px(&g->normals, x, y), *m = t->normal;
+        float dot = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
+        float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        float mm = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+        if (!sbl__finite(dot) || !sbl__finite(nn) || !sbl__finite(mm)) return 0;
+        if (nn < 1e-12f || mm < 1e-12f) {
+            if (!(nn < 1e-12f && mm < 1e-12f)) return 0; /* "no normal" only matches itself */
+        } else if (dot < t->normal_threshold * sqrtf(nn * mm)) {
+            return 0;
+        }
+    }
+    c = sbl__px(t->src_color, x, y);
+    for (k = 0; k < t->src_color->channels; ++k)
+        if (!sbl__finite(c[k])) return 0;
+    if (t->src_length && t->src_length->data) {
+        float n = *sbl__px(t->src_length, x, y);
+        if (!sbl__finite(n) || !(n > 0.0f)) return 0;
+    }
+    return 1;
+}
+
+static void sbl__tap_add(const sbl__tap_ctx *t, int x, int y, float w, float *acc,
+                         float *acc_n)
+{
+    const float *c = sbl__px(t->src_color, x, y);
+    int k;
+    for (k = 0; k < t->src_color->channels; ++k) acc[k] += w * c[k];
+    *acc_n += w * ((t->src_length && t->src_length->data) ? *sbl__px(t->src_length, x, y)
+                                                          : 1.0f);
+}
+
+/* Bilinear 2x2 gather at continuous position (sx, sy) with per-tap tests, valid taps
+   renormalised; then the 3x3 fallback; returns N of the result (0: nothing valid). */
+static float sbl__gather(const sbl__tap_ctx *t, double sx, double sy, int fallback,
+                         float *out)
+{
+    float acc[4] = {0, 0, 0, 0}, acc_n = 0.0f, wsum = 0.0f, fx, fy;
+    int ch = t->src_color->channels, k, x0, y0, i, j;
+    double bx = sx - 0.5, by = sy - 0.5;
+    /* far outside (or NaN): no tap can pass; also keeps the int conversion defined */
+    if (!(bx > -2.0 && by > -2.0 && bx < (double)t->src_color->width + 1.0 &&
+          by < (double)t->src_color->height + 1.0))
+        return 0.0f;
+    x0 = (int)floor(bx);
+    y0 = (int)floor(by);
+    fx = (float)(bx - x0);
+    fy = (float)(by - y0);
+    for (j = 0; j < 2; ++j)
+        for (i = 0; i < 2; ++i) {
+            float w = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
+            if (w <= 0.0f) continue;
+            if (!sbl__tap_ok(t, x0 + i, y0 + j)) continue;
+            sbl__tap_add(t, x0 + i, y0 + j, w, acc, &acc_n);
+            wsum += w;
+        }
+    if (wsum < 1e-3f && fallback) {
+        /* thin geometry: the surface may survive only in a neighbour of the nearest
+           pixel; average the consistent ones */
+        int cx = (int)floor(sx), cy = (int)floor(sy);
+        for (k = 0; k < 4; ++k) acc[k] = 0.0f;
+        acc_n = 0.0f;
+        wsum = 0.0f;
+        for (j = -1; j <= 1; ++j)
+            for (i = -1; i <= 1; ++i)
+                if (sbl__tap_ok(t, cx + i, cy + j)) {
+                    sbl__tap_add(t, cx + i, cy + j, 1.0f, acc, &acc_n);
+                    wsum += 1.0f;
+                }
+    }
+    if (wsum < 1e-3f) return 0.0f;
+    for (k = 0; k < ch; ++k) out[k] = acc[k] / wsum;
+    acc_n /= wsum;
+    return acc_n > 0.0f ? acc_n : 0.0f;
+}
+
+/* Slack for the depth test from the target's own depth slope (one-sided minimum so a
+   silhouette next to the pixel does not open the tolerance). */
+static float sbl__depth_slack(const sbl_image *depth, int x, int y, float z)
+{
+    float sx = 0.0f, sy = 0.0f, d;
+    int w = depth->width, h = depth->height;
+    if (!sbl__finite(z)) return 0.0f;
+    if (w > 1) {
+        float a = x > 0 ? *sbl__px(depth, x - 1, y) : z;
+        float b = x + 1 < w ? *sbl__px(depth, x + 1, y) : z;
+        float da = fabsf(z - a), db = fabsf(b - z);
+        if (x == 0) da = db;
+        if (x + 1 == w) db = da;
+        d = da < db ? da : db;
+        if (sbl__finite(d)) sx = d;
+    }
+    if (h > 1) {
+        float a = y > 0 ? *sbl__px(depth, x, y - 1) : z;
+        float b = y + 1 < h ? *sbl__px(depth, x, y + 1) : z;
+        float da = fabsf(z - a), db = fabsf(b - z);
+        if (y == 0) da = db;
+        if (y + 1 == h) db = da;
+        d = da < db ? da : db;
+        if (sbl__finite(d)) sy = d;
+    }
+    return sx + sy;
+}
+
+/* Motion vector (any convention) -> backward displacement in pixels, y down. */
+static void sbl__motion_to_pixels(const sbl_motion_convention *c, const float *mv, int w,
+                                  int h, double *dx, double *dy)
+{
+    double x = mv[0], y = mv[1];
+    if (c->units == SBL_MOTION_UV) { x *= w; y *= h; }
+    else if (c->units == SBL_MOTION_NDC) { x *= 0.5 * w; y *= 0.5 * h; }
+    if (c->y_up) y = -y;
+    if (c->forward) { x = -x; y = -y; }
+    *dx = x;
+    *dy = y;
+}
+
+static sbl_reproject_desc sbl__reproject_defaults(const sbl_reproject_desc *d)
+{
+    sbl_reproject_desc r = *d;
+    if (r.depth_tolerance == 0.0f) r.depth_tolerance = 0.05f;
+    if (r.normal_threshold == 0.0f) r.normal_threshold = 0.9f;
+    if (r.back_check_pixels == 0.0f) r.back_check_pixels = 1.0f;
+    return r;
+}
+
+static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
+{
+    if (!sbl__param_ok(d->depth_tolerance) || !sbl__param_ok(d->back_check_pixels))
+        return SBL_ERROR_INVALID_PARAM;
+    if (!sbl__finite(d->normal_threshold) || d->normal_threshold > 1.0f)
+        return SBL_ERROR_INVALID_PARAM;
+    if ((int)d->motion.units < 0 || (int)d->motion.units > (int)SBL_MOTION_NDC)
+        return SBL_ERROR_INVALID_PARAM;
+    return SBL_OK;
+}
+
+/* Temporal reprojection state shared by the stage call and the fused filter. */
+typedef struct sbl__temporal_rp {
+    sbl_reproject_desc rp;
+    sbl_temporal_source source;
+    const sbl_frame *frame;
+    const sbl_history *history; /* NULL or no colour: everything resets */
+    sbl__cam_map cam;
+} sbl__temporal_rp;
+
+static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject_desc *desc,
+                                        sbl_temporal_source source, const sbl_frame *frame,
+                                        const sbl_history *history)
+{
+    const sbl_gbuffer *g = &frame->gbuffer;
+    sbl_result r;
+    int w = frame->color.width, h = frame->color.height;
+    if ((r = sbl__check_reproject_desc(desc)) != SBL_OK) return r;
+    if ((int)source < 0 || (int)source > (int)SBL_TEMPORAL_CAMERA) return SBL_ERROR_INVALID_PARAM;
+    if ((r = sbl__check_gbuffer(g, w, h)) != SBL_OK) return r;
+    s->rp = sbl__reproject_defaults(desc);
+    s->source = source;
+    s->frame = frame;
+    s->history = (history && history->color.data) ? history : NULL;
+    if (s->history) {
+        const sbl_history *hi = s->history;
+        if ((r = sbl__check_image(&hi->color, 0)) != SBL_OK) return r;
+        if (hi->color.width != w || hi->color.height != h) return SBL_ERROR_SIZE_MISMATCH;
+        if (hi->color.channels != frame->color.channels) return SBL_ERROR_CHANNEL_MISMATCH;
+        if ((r = sbl__check_optional(&hi->length, 1, w, h)) != SBL_OK) return r;
+        if ((r = sbl__check_gbuffer(&hi->gbuffer, w, h)) != SBL_OK) return r;
+    }
+    if (source == SBL_TEMPORAL_MOTION && !g->motion.data) return SBL_ERROR_MISSING_INPUT;
+    if (source == SBL_TEMPORAL_CAMERA) {
+        if (!g->depth.data || !frame->camera) return SBL_ERROR_MISSING_INPUT;
+        if (s->history) {
+            if (!s->history->camera) return SBL_ERROR_MISSING_INPUT;
+            if (!sbl__cam_map_init(&s->cam, frame->camera, w, h, s->history->camera, w, h))
+                return SBL_ERROR_INVALID_PARAM;
+        }
+    }
+    return SBL_OK;
+}
+
+/* x* and its N for target pixel (x, y); returns 0 when the pixel must reset. */
+static float sbl__temporal_rp_pixel(const sbl__temporal_rp *s, int x, int y, float *out)
+{
+    const sbl_gbuffer *g = &s->frame->gbuffer;
+    sbl__tap_ctx t;
+    double sx, sy, sz = 0.0;
+    float z = 0.0f;
+    if (!s->history) return 0.0f;
+    memset(&t, 0, sizeof t);
+    if (g->depth.data) {
+        z = *sbl__px(&g->depth, x, y);
+        if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
+    }
+    if (s->source == SBL_TEMPORAL_MOTION) {
+        const float *mv = sbl__px(&g->motion, x, y);
+        double dx, dy;
+        if (!sbl__finite(mv[0]) || !sbl__finite(mv[1])) return 0.0f;
+        sbl__motion_to_pixels(&s->rp.motion, mv, s->frame->color.width,
+                              s->frame->color.height, &dx, &dy);
+        sx = x + 0.5 + dx;
+        sy = y + 0.5 + dy;
+        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
+    } else {
+        if (!sbl__cam_map_apply(&s->cam, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
+    }
+    t.src_color = &s->history->color;
+    t.src_length = &s->history->length;
+    t.src_g = &s->history->gbuffer;
+    t.has_depth = g->depth.data != NULL;
+    t.depth = (float)sz;
+    t.depth_slack = t.has_depth ? sbl__depth_slack(&g->depth, x, y, z) : 0.0f;
+    t.depth_tolerance = s->rp.depth_tolerance;
+    t.has_id = g->ids.data != NULL;
+    t.id = t.has_id ? *sbl__px(&g->ids, x, y) : 0.0f;
+    t.normal = (g->normals.data && !(s->rp.normal_threshold < 0.0f))
+                   ? sbl__px(&g->normals, x, y) : NULL;
+    t.normal_threshold = s->rp.normal_threshold;
+    return sbl__gather(&t, sx, sy, !s->rp.no_fallback, out);
+}
+
+static sbl_result sbl__check_rows(int y0, int y1, int h)
+{
+    if (y0 < 0 || y1 < y0 || y1 > h) return SBL_ERROR_INVALID_ROWS;
+    return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_reproject_temporal(const sbl_reproject_desc *desc,
+                                         sbl_temporal_source source,
+                                         const sbl_frame *frame, const sbl_history *history,
+                                         sbl_image out_color, sbl_image out_length,
+                                         int y0, int y1)
+{
+    sbl__temporal_rp s;
+    sbl_result r;
+    int x, y, k, ch;
+    if (!desc || !frame) return SBL_ERROR_NULL_POINTER;
+    if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
+    if ((r = sbl__check_image(&out_color, 0)) != SBL_OK) return r;
+    if ((r = sbl__check_image(&out_length, 1)) != SBL_OK) return r;
+    if (out_color.width != frame->color.width || out_color.height != frame->color.height ||
+        out_length.width != frame->color.width || out_length.height != frame->color.height)
+        return SBL_ERROR_SIZE_MISMATCH;
+    if (out_color.channels != frame->color.channels) return SBL_ERROR_CHANNEL_MISMATCH;
+    if ((r = sbl__temporal_rp_init(&s, desc, source, frame, history)) != SBL_OK) return r;
+    if ((r = sbl__check_rows(y0, y1, frame->color.height)) != SBL_OK) return r;
+    if (sbl__overlap(&out_color, &out_length)) return SBL_ERROR_OVERLAP;
+    if (s.history && (sbl__overlap(&out_color, &s.history->color) ||
+                      sbl__overlap(&out_length, &s.history->color) ||
+                      sbl__overlap(&out_color, &s.history->length) ||
+                      sbl__overlap(&out_length, &s.history->length) ||
+                      sbl__overlap_gbuffer(&out_color, &s.history->gbuffer) ||
+                      sbl__overlap_gbuffer(&out_length, &s.history->gbuffer)))
+        return SBL_ERROR_OVERLAP;
+    if (sbl__overlap_gbuffer(&out_color, &frame->gbuffer) ||
+        sbl__overlap_gbuffer(&out_length, &frame->gbuffer))
+        return SBL_ERROR_OVERLAP;
+    ch = frame->color.channels;
+    for (y = y0; y < y1; ++y)
+        for (x = 0; x < frame->color.width; ++x) {
+            float v[4] = {0, 0, 0, 0};
+            float n = sbl__temporal_rp_pixel(&s, x, y, v);
+            float *o = sbl__px(&out_color, x, y);
+            for (k = 0; k < ch; ++k) o[k] = n > 0.0f ? v[k] : 0.0f;
+            *sbl__px(&out_length, x, y) = n;
+        }
+    return SBL_OK;
+}
+
+/* ------------------------------------------------------------------------ */
+/* 4. Moments                                                               */
+/* ------------------------------------------------------------------------ */
+
+/* Statistics of Y's 3x3 neighbourhood and of the paired differences x*_i - y_i. */
+typedef struct sbl__moments {
+    double mean[4], var[4];     /* population mean / variance of Y per channel      */
+    float lo[4], hi[4];         /* min / max of Y per channel                       */
+    double pair_diff[4];        /* mean of (x*_i - y_i) over pixels with both valid */
+    int count, pair_count;
+} sbl__moments;
+
+/* rows[0..2] point at rows y-1, y, y+1 of Y (NULL outside the image); xrows/nrows the
+   same for x* and its N (NULL: no paired statistics). */
+static void sbl__moments_at(sbl__moments *m, const float *const *rows,
+                            const float *const *xrows, const float *const *nrows, int x,
+                            int w, int ch)
+{
+    const float *vals[9];
+    const float *xv[9];
+    int n = 0, i, j, k;
+    for (j = 0; j < 3; ++j) {
+        if (!rows[j]) continue;
+        for (i = x - 1; i <= x + 1; ++i) {
+            const float *p;
+            int finite = 1;
+            if (i < 0 || i >= w) continue;
+            p = rows[j] + (size_t)i * ch;
+            for (k = 0; k < ch; ++k) finite &= sbl__finite(p[k]);
+            if (!finite) continue;
+            vals[n] = p;
+            xv[n] = (xrows && xrows[j] && nrows[j][i] > 0.0f) ? xrows[j] + (size_t)i * ch : NULL;
+            ++n;
+        }
+    }
+    m->count = n;
+    m->pair_count = 0;
+    for (k = 0; k < ch; ++k) {
+        double s = 0.0, v = 0.0, pd = 0.0;
+        float lo = 0.0f, hi = 0.0f;
+        for (i = 0; i < n; ++i) s += vals[i][k];
+        s = n ? s / n : 0.0;
+        for (i = 0; i < n; ++i) {
+            double d = vals[i][k] - s;
+            v += d * d;
+            if (i == 0 || vals[i][k] < lo) lo = vals[i][k];
+            if (i == 0 || vals[i][k] > hi) hi = vals[i][k];
+        }
+        m->mean[k] = s;
+        m->var[k] = n ? v / n : 0.0;
+        m->lo[k] = lo;
+        m->hi[k] = hi;
+        for (i = 0; i < n; ++i)
+            if (xv[i]) pd += (double)xv[i][k] - (double)vals[i][k];
+        m->pair_diff[k] = pd;
+    }
+    for (i = 0; i < n; ++i) m->pair_count += xv[i] != NULL;
+    if (m->pair_count)
+        for (k = 0; k < ch; ++k) m->pair_diff[k] /= m->pair_count;
+}
+
+SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image var, int y0,
+                                  int y1)
+{
+    sbl_result r;
+    int x, y, k, ch;
+    if ((r = sbl__check_image(&src, 0)) != SBL_OK) return r;
+    ch = src.channels;
+    if (!mean.data && !var.data) return SBL_ERROR_NULL_POINTER;
+    if ((r = sbl__check_optional(&mean, ch, src.width, src.height)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&var, ch, src.width, src.height)) != SBL_OK) return r;
+    if ((r = sbl__check_rows(y0, y1, src.height)) != SBL_OK) return r;
+    if (sbl__overlap(&mean, &src) || sbl__overlap(&var, &src) || sbl__overlap(&mean, &var))
+        return SBL_ERROR_OVERLAP;
+    for (y = y0; y < y1; ++y) {
+        const float *rows[3];
+        rows[0] = y > 0 ? sbl__px(&src, 0, y - 1) : NULL;
+        rows[1] = sbl__px(&src, 0, y);
+        rows[2] = y + 1 < src.height ? sbl__px(&src, 0, y + 1) : NULL;
+        for (x = 0; x < src.width; ++x) {
+            sbl__moments m;
+            sbl__moments_at(&m, rows, NULL, NULL, x, src.width, ch);
+            for (k = 0; k < ch; ++k) {
+                if (mean.data) sbl__px(&mean, x, y)[k] = (float)m.mean[k];
+                if (var.data) sbl__px(&var, x, y)[k] = (float)m.var[k];
+            }
+        }
+    }
+    return SBL_OK;
+}
+
+/* ------------------------------------------------------------------------ */
+/* 5. Weights                                                               */
+/* ------------------------------------------------------------------------ */
+
+SBLDEF float sbl_optimal_weight(float bias2, float var_x, float var_y)
+{
+    double num = (double)bias2 + (double)var_x, den = num + (double)var_y;
+    if (sbl__is_pos_inf(var_x) || sbl__is_pos_inf(bias2)) return 1.0f;
+    if (!(den > 0.0)) return 0.5f;
+    return (float)(num / den);
+}
+
+SBLDEF float sbl_blend_sample_count(float a, float n_x, float n_y)
+{
+    double A = a, den = (1.0 - A) * (1.0 - A) * n_y + A * A * n_x;
+    if (!(den > 0.0)) return n_x + n_y; /* only when a blend of nothing: keep the sum */
+    return (float)((double)n_x * (double)n_y / den);
+}
+
+/* Resolved weight parameters shared by temporal and stereo. */
+typedef struct sbl__weight_params {
+    sbl_estimator estimator;
+    sbl_rectify rectify;
+    sbl_weight_mode mode;
+    float constant, alpha_min, gamma, bias_threshold;
+} sbl__weight_params;
+
+/* Estimate the weight of Y for squared quantities summed over `chs` channels. x_dev2 =
+   (x* - mean)^2, s2 = population variance of Y, pd2 = (mean paired difference)^2. */
+static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, double pd2,
+                         int count, int pair_count, float n_x, float n_y)
+{
+    double a;
+    double progressive = (double)n_y / ((double)n_x + (double)n_y);
+    switch (p->estimator) {
+    case SBL_ESTIMATOR_PAPER:
+        /* Eq. 4 with Eq. 10/11: a = 1 - s^2 / D, D = d^2 + s^2 */
+        a = (x_dev2 + s2 > 0.0) ? x_dev2 / (x_dev2 + s2) : progressive;
+        break;
+    case SBL_ESTIMATOR_PROGRESSIVE:
+        a = progressive;
+        break;
+    case SBL_ESTIMATOR_CONSTANT:
+        a = p->constant;
+        break;
+    case SBL_ESTIMATOR_HISTORY_AWARE:
+    default: {
+        /* unbiased per-sample variance of Y; history carries N_X / N_Y times less */
+        double var_y = count > 1 ? s2 * count / (count - 1) : 0.0;
+        double var_x = var_y * (double)n_y / (double)n_x;
+        double bias2 = 0.0;
+        if (pair_count > 0) {
+            /* the mean paired difference has noise (var_X + var_Y) / pairs; only the
+               part beyond bias_threshold times that counts as bias */
+            double noise = (var_x + var_y) / pair_count;
+            bias2 = pd2 - p->bias_threshold * noise;
+            if (bias2 < 0.0) bias2 = 0.0;
+        }
+        a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
+                                          : progressive;
+        break;
+    }
+    }
+    if (a < p->alpha_min) a = p->alpha_min;
+    if (!(a >= 0.0)) a = 0.0; /* NaN lands here too */
+    if (a > 1.0) a = 1.0;
+    return (float)a;
+}
+
+/* Neighbourhood clamp / variance clip of x* in place. The box always contains the
+   pixel's own new sample y, so a history equal to y is never moved. */
+static void sbl__rectify(const sbl__weight_params *p, const sbl__moments *m, const float *y,
+                         float *xs, int ch)
+{
+    int k;
+    if (p->rectify == SBL_RECTIFY_CLAMP) {
+        for (k = 0; k < ch; ++k)
+            xs[k] = xs[k] < m->lo[k] ? m->lo[k] : (xs[k] > m->hi[k] ? m->hi[k] : xs[k]);
+    } else if (p->rectify == SBL_RECTIFY_VARIANCE_CLIP) {
+        /* shrink the segment mean -> x* until it enters the box (keeps hue) */
+        double t = 1.0;
+        for (k = 0; k < ch; ++k) {
+            double half = p->gamma * sqrt(m->var[k]);
+            double d = fabs((double)xs[k] - m->mean[k]);
+            double dy = fabs((double)y[k] - m->mean[k]);
+            if (dy > half) half = dy;
+            if (d > half) {
+                double tk = d > 0.0 ? half / d : 1.0;
+                if (tk < t) t = tk;
+            }
+        }
+        if (t < 1.0)
+            for (k = 0; k < ch; ++k)
+                xs[k] = (float)(m->mean[k] + ((double)xs[k] - m->mean[k]) * t);
+    }
+}
+
+/* ------------------------------------------------------------------------ */
+/* 6. Blend and history length                                              */
+/* ------------------------------------------------------------------------ */
+
+/* Blend one pixel: y = own, xs = other (rectified here), n_x/n_y their sample counts.
+   Writes out[ch], returns the new N; *alpha_out = mean weight over channels. */
+static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m,
+                              const float *y, float *xs, float n_x, float n_y, int ch,
+                              float *out, float *alpha_out)
+{
+    float a[4];
+    float a_mean = 0.0f;
+    int k;
+    sbl__rectify(p, m, y, xs, ch);
+    if (p->mode == SBL_WEIGHT_PER_CHANNEL) {
+        for (k = 0; k < ch; ++k) {
+            double dev = (double)xs[k] - m->mean[k];
+            a[k] = sbl__weight(p, dev * dev, m->var[k], m->pair_diff[k] * m->pair_diff[k],
+                               m->count, m->pair_count, n_x, n_y);
+            a_mean += a[k];
+        }
+        a_mean /= (float)ch;
+    } else {
+        double dev2 = 0.0, s2 = 0.0, pd2 = 0.0;
+        for (k = 0; k < ch; ++k) {
+            double dev = (double)xs[k] - m->mean[k];
+            dev2 += dev * dev;
+            s2 += m->var[k];
+            pd2 += m->pair_diff[k] * m->pair_diff[k];
+        }
+        a_mean = sbl__weight(p, dev2, s2, pd2, m->count, m->pair_count, n_x, n_y);
+        for (k = 0; k < ch; ++k) a[k] = a_mean;
+    }
+    for (k = 0; k < ch; ++k) {
+        float v = xs[k] + a[k] * (y[k] - xs[k]);
+        /* both inputs finite but the lerp overflowed (|x|,|y| near FLT_MAX): form it
+           the other way, which cannot overflow when the inputs are finite */
+        if (!sbl__finite(v)) v = (1.0f - a[k]) * xs[k] + a[k] * y[k];
+        out[k] = v;
+    }
+    *alpha_out = a_mean;
+    return sbl_blend_sample_count(a_mean, n_x, n_y);
+}
+
+/* ------------------------------------------------------------------------ */
+/* 7. Temporal filter                                                       */
+/* ------------------------------------------------------------------------ */
+
+SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
+{
+    sbl_temporal_desc d;
+    if (desc) d = *desc;
+    else memset(&d, 0, sizeof d);
+    if (d.constant_alpha == 0.0f) d.constant_alpha = 0.1f;
+    if (d.max_history == 0.0f) d.max_history = 64.0f;
+    if (d.clip_gamma == 0.0f) d.clip_gamma = 1.25f;
+    if (d.bias_threshold == 0.0f) d.bias_threshold = 3.0f;
+    d.reproject = sbl__reproject_defaults(&d.reproject);
+    return d;
+}
+
+/* Scratch: a ring of 3 rows of x* (channels floats per pixel) and 3 rows of its N,
+   plus 64 bytes for alignment. */
+SBLDEF size_t sbl_temporal_scratch_size(int width, int channels)
+{
+    if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
+    return (size_t)3 * (size_t)width * (size_t)(channels + 1) * sizeof(float) + 64;
+}
+
+static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
+                                           sbl_weight_mode m, float constant,
+                                           float alpha_min, float gamma, float bias)
+{
+    if ((int)e < 0 || e >= SBL_ESTIMATOR_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if ((int)r < 0 || r >= SBL_RECTIFY_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if ((int)m < 0 || m >= SBL_WEIGHT_MODE_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if (!sbl__param_ok(constant) || constant > 1.0f) return SBL_ERROR_INVALID_PARAM;
+    if (!sbl__param_ok(alpha_min) || alpha_min > 1.0f) return SBL_ERROR_INVALID_PARAM;
+    if (!sbl__param_ok(gamma) || !sbl__param_ok(bias)) return SBL_ERROR_INVALID_PARAM;
+    return SBL_OK;
+}
+
+static void *sbl__align64(void *p)
+{
+    size_t a = (size_t)p;
+    return (void *)((char *)p + ((64 - (a & 63)) & 63));
+}
+
+SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
+                                      const sbl_frame *frame, const sbl_history *history,
+                                      const sbl_temporal_output *out, int y0, int y1,
+                                      void *scratch, size_t scratch_bytes)
+{
+    sbl_temporal_desc d;
+    sbl__temporal_rp s;
+    sbl__weight_params wp;
+    sbl_result r;
+    float *xring[3], *nring[3];
+    int w, h, ch, x, y, k;
+    if (!user_desc || !frame || !out) return SBL_ERROR_NULL_POINTER;
+    d = sbl_temporal_defaults(user_desc);
+    if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
+    w = frame->color.width;
+    h = frame->color.height;
+    ch = frame->color.channels;
+    if ((r = sbl__check_image(&out->color, 0)) != SBL_OK) return r;
+    if ((r = sbl__check_image(&out->length, 1)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&out->alpha, 1, w, h)) != SBL_OK) return r;
+    if (out->color.width != w || out->color.height != h || out->length.width != w ||
+        out->length.height != h)
+        return SBL_ERROR_SIZE_MISMATCH;
+    if (out->color.channels != ch) return SBL_ERROR_CHANNEL_MISMATCH;
+    if ((r = sbl__check_weight_params(d.estimator, d.rectify, d.weight_mode,
+                                      d.constant_alpha, d.alpha_min, d.clip_gamma,
+                                      d.bias_threshold)) != SBL_OK)
+        return r;
+    if (!sbl__finite(d.max_history) || d.max_history < 1.0f) return SBL_ERROR_INVALID_PARAM;
+    if ((r = sbl__temporal_rp_init(&s, &d.reproject, d.source, frame, history)) != SBL_OK)
+        return r;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    {   /* outputs: disjoint from each other and from every input */
+        const sbl_image *outs[3];
+        int o;
+        outs[0] = &out->color; outs[1] = &out->length; outs[2] = &out->alpha;
+        if (sbl__overlap(outs[0], outs[1]) || sbl__overlap(outs[0], outs[2]) ||
+            sbl__overlap(outs[1], outs[2]))
+            return SBL_ERROR_OVERLAP;
+        for (o = 0; o < 3; ++o) {
+            if (sbl__overlap(outs[o], &frame->color) ||
+                sbl__overlap_gbuffer(outs[o], &frame->gbuffer))
+                return SBL_ERROR_OVERLAP;
+            if (s.history && (sbl__overlap(outs[o], &s.history->color) ||
+                              sbl__overlap(outs[o], &s.history->length) ||
+                              sbl__overlap_gbuffer(outs[o], &s.history->gbuffer)))
+                return SBL_ERROR_OVERLAP;
+        }
+    }
+    if (!scratch) return SBL_ERROR_NULL_POINTER;
+    if (scratch_bytes < sbl_temporal_scratch_size(w, ch)) return SBL_ERROR_SCRATCH_TOO_SMALL;
+
+    wp.estimator = d.estimator;
+    wp.rectify = d.rectify;
+    wp.mode = d.weight_mode;
+    wp.constant = d.constant_alpha;
+    wp.alpha_min = d.alpha_min;
+    wp.gamma = d.clip_gamma;
+    wp.bias_threshold = d.bias_threshold;
+    {
+        float *base = (float *)sbl__align64(scratch);
+        for (k = 0; k < 3; ++k) {
+            xring[k] = base + (size_t)k * w * ch;
+            nring[k] = base + (size_t)3 * w * ch + (size_t)k * w;
+        }
+    }
+
+    /* Ring of reprojected rows y-1, y, y+1: each row is gathered once per call. */
+    for (k = 0; k < 3; ++k) {
+        int ry = y0 - 1 + k;
+        if (ry < 0 || ry >= h || y0 >= y1) continue;
+        for (x = 0; x < w; ++x)
+            nring[k][x] = sbl__temporal_rp_pixel(&s, x, ry, xring[k] + (size_t)x * ch);
+    }
+    for (y = y0; y < y1; ++y) {
+        const float *rows[3], *xr[3], *nr[3];
+        const float *cur_row = sbl__px(&frame->color, 0, y);
+        for (k = 0; k < 3; ++k) {
+            int ry = y - 1 + k;
+            int in = ry >= 0 && ry < h;
+            rows[k] = in ? sbl__px(&frame->color, 0, ry) : NULL;
+            xr[k] = in ? xring[k] : NULL;
+            nr[k] = in ? nring[k] : NULL;
+        }
+        for (x = 0; x < w; ++x) {
+            const float *yc = cur_row + (size_t)x * ch;
+            float *oc = sbl__px(&out->color, x, y);
+            float n_x = nring[1][x], n_out, a = 1.0f;
+            float xs[4];
+            int finite = 1;
+            for (k = 0; k < ch; ++k) finite &= sbl__finite(yc[k]);
+            if (!finite) {
+                /* no new sample: keep the history if there is one, else black, N = 0 */
+                for (k = 0; k < ch; ++k) oc[k] = n_x > 0.0f ? xring[1][(size_t)x * ch + k] : 0.0f;
+                n_out = n_x > 0.0f ? n_x : 0.0f;
+                a = 0.0f;
+            } else if (!(n_x > 0.0f)) {
+                for (k = 0; k < ch; ++k) oc[k] = yc[k]; /* disocclusion: reset */
+                n_out = 1.0f;
+            } else {
+                sbl__moments m;
+                sbl__moments_at(&m, rows, xr, nr, x, w, ch);
+                for (k = 0; k < ch; ++k) xs[k] = xring[1][(size_t)x * ch + k];
+                if (n_x > d.max_history) n_x = d.max_history;
+                n_out = sbl__blend_pixel(&wp, &m, yc, xs, n_x, 1.0f, ch, oc, &a);
+            }
+            if (!(n_out <= d.max_history)) n_out = d.max_history; /* also NaN */
+            *sbl__px(&out->length, x, y) = n_out;
+            if (out->alpha.data) *sbl__px(&out->alpha, x, y) = a;
+        }
+        /* advance the ring: drop row y-1, gather row y+2 */
+        {
+            float *tx = xring[0], *tn = nring[0];
+            int ry = y + 2;
+            xring[0] = xring[1]; xring[1] = xring[2]; xring[2] = tx;
+            nring[0] = nring[1]; nring[1] = nring[2]; nring[2] = tn;
+            if (y + 1 < y1 && ry < h)
+                for (x = 0; x < w; ++x)
+                    nring[2][x] = sbl__temporal_rp_pixel(&s, x, ry, xring[2] + (size_t)x * ch);
+        }
+    }
+    return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
+                                            const sbl_frame *frame,
+                                            const sbl_history *history,
+                                            const sbl_temporal_output *out)
+{
+    size_t bytes;
+    void *scratch;
+    sbl_result r;
+    if (!desc || !frame || !out) return SBL_ERROR_NULL_POINTER;
+    if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
+    bytes = sbl_temporal_scratch_size(frame->color.width, frame->color.channels);
+    scratch = SBL_MALLOC(bytes, desc->alloc_context);
+    if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
+    r = sbl_temporal_filter(desc, frame, history, out, 0, frame->color.height, scratch, bytes);
+    SBL_FREE(scratch, desc->alloc_context);
+    return r;
+}
+
+/* ------------------------------------------------------------------------ */
+/* 8. Stereo                                                                */
+/* ------------------------------------------------------------------------ */
+
+SBLDEF sbl_stereo_desc sbl_stereo_defaults(const sbl_stereo_desc *desc)
+{
+    sbl_stereo_desc d;
+    if (desc) d = *desc;
+    else memset(&d, 0, sizeof d);
+    if (d.constant_beta == 0.0f) d.constant_beta = 0.5f;
+    if (d.clip_gamma == 0.0f) d.clip_gamma = 1.25f;
+    if (d.bias_threshold == 0.0f) d.bias_threshold = 3.0f;
+    d.reproject = sbl__reproject_defaults(&d.reproject);
+    return d;
+}
+
+typedef struct sbl__stereo_rp {
+    sbl_stereo_desc d;
+    sbl_eye_index target_eye;
+    const sbl_eye *target, *source;
+    sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES */
+} sbl__stereo_rp;
+
+static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_color)
+{
+    sbl_result r;
+    int w, h;
+    if (need_color) {
+        if ((r = sbl__check_image(&e->color, 0)) != SBL_OK) return r;
+        w = e->color.width; h = e->color.height;
+    } else {
+        /* the target of a fill only needs geometry: take the size from depth/disparity */
+        const sbl_image *ref = e->gbuffer.depth.data ? &e->gbuffer.depth : &e->disparity;
+        if ((r = sbl__check_image(ref, 1)) != SBL_OK) return r;
+        w = ref->width; h = ref->height;
+    }
+    if ((r = sbl__check_gbuffer(&e->gbuffer, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&e->length, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&e->disparity, 1, w, h)) != SBL_OK) return r;
+    if (rig == SBL_RIG_PARALLEL && !e->gbuffer.depth.data) return SBL_ERROR_MISSING_INPUT;
+    if (rig == SBL_RIG_DISPARITY && !e->disparity.data) return SBL_ERROR_MISSING_INPUT;
+    if (rig == SBL_RIG_MATRICES && (!e->gbuffer.depth.data || !e->camera))
+        return SBL_ERROR_MISSING_INPUT;
+    return SBL_OK;
+}
+
+static int sbl__eye_width(const sbl_eye *e)
+{
+    return e->color.data ? e->color.width
+                         : (e->gbuffer.depth.data ? e->gbuffer.depth.width : e->disparity.width);
+}
+static int sbl__eye_height(const sbl_eye *e)
+{
+    return e->color.data ? e->color.height
+                         : (e->gbuffer.depth.data ? e->gbuffer.depth.height : e->disparity.height);
+}
+
+static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
+                                      sbl_eye_index target_eye, const sbl_eye *target,
+                                      const sbl_eye *source, int target_needs_color)
+{
+    sbl_result r;
+    if (!desc || !target || !source) return SBL_ERROR_NULL_POINTER;
+    s->d = sbl_stereo_defaults(desc);
+    if ((int)s->d.rig < 0 || s->d.rig >= SBL_RIG_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if ((int)target_eye != 0 && (int)target_eye != 1) return SBL_ERROR_INVALID_PARAM;
+    if ((r = sbl__check_reproject_desc(&s->d.reproject)) != SBL_OK) return r;
+    if (s->d.rig == SBL_RIG_PARALLEL &&
+        (!sbl__finite(s->d.focal_px) || !(s->d.focal_px > 0.0f) ||
+         !sbl__finite(s->d.baseline) || !(s->d.baseline > 0.0f)))
+        return SBL_ERROR_INVALID_PARAM;
+    if ((r = sbl__check_eye(target, s->d.rig, target_needs_color)) != SBL_OK) return r;
+    if ((r = sbl__check_eye(source, s->d.rig, 1)) != SBL_OK) return r;
+    if (sbl__eye_width(target) != source->color.width ||
+        sbl__eye_height(target) != source->color.height)
+        return SBL_ERROR_SIZE_MISMATCH;
+    if (target_needs_color && target->color.channels != source->color.channels)
+        return SBL_ERROR_CHANNEL_MISMATCH;
+    s->target_eye = target_eye;
+    s->target = target;
+    s->source = source;
+    if (s->d.rig == SBL_RIG_MATRICES) {
+        int w = source->color.width, h = source->color.height;
+        if (!sbl__cam_map_init(&s->to_source, target->camera, w, h, source->camera, w, h) ||
+            !sbl__cam_map_init(&s->to_target, source->camera, w, h, target->camera, w, h))
+            return SBL_ERROR_INVALID_PARAM;
+    }
+    return SBL_OK;
+}
+
+/* Horizontal disparity (pixels) of a view's pixel for the parallel / disparity rigs. */
+static float sbl__disparity(const sbl__stereo_rp *s, const sbl_eye *e, int x, int y)
+{
+    if (s->d.rig == SBL_RIG_DISPARITY) return *sbl__px(&e->disparity, x, y);
+    {
+        float z = *sbl__px(&e->gbuffer.depth, x, y);
+        if (sbl__is_pos_inf(z)) return 0.0f;
+        return s->d.focal_px * s->d.baseline / z;
+    }
+}
+
+/* The other eye's colour at target pixel (x, y) after tap tests and back-check;
+   returns its N (0: no valid correspondence). */
+static float sbl__stereo_rp_pixel(const sbl__stereo_rp *s, int x, int y, float *out)
+{
+    const sbl_eye *t = s->target, *src = s->source;
+    const sbl_gbuffer *g = &t->gbuffer;
+    /* target left: the source (right) position is u - disparity; target right: u + d */
+    double dir = s->target_eye == SBL_EYE_LEFT ? -1.0 : 1.0;
+    double sx, sy, sz = 0.0, bx, by, bz;
+    float z = 0.0f, n;
+    sbl__tap_ctx tap;
+    int ix, iy;
+    if (g->depth.data) {
+        z = *sbl__px(&g->depth, x, y);
+        if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
+    }
+    if (s->d.rig == SBL_RIG_MATRICES) {
+        if (!sbl__cam_map_apply(&s->to_source, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
+    } else {
+        float disp = sbl__disparity(s, t, x, y);
+        if (!sbl__finite(disp) || disp < 0.0f) return 0.0f;
+        sx = x + 0.5 + dir * disp;
+        sy = y + 0.5;
+        sz = z;
+    }
+    memset(&tap, 0, sizeof tap);
+    tap.src_color = &src->color;
+    tap.src_length = &src->length;
+    tap.src_g = &src->gbuffer;
+    tap.has_depth = g->depth.data != NULL;
+    tap.depth = (float)sz;
+    tap.depth_slack = tap.has_depth ? sbl__depth_slack(&g->depth, x, y, z) : 0.0f;
+    tap.depth_tolerance = s->d.reproject.depth_tolerance;
+    tap.has_id = g->ids.data != NULL;
+    tap.id = tap.has_id ? *sbl__px(&g->ids, x, y) : 0.0f;
+    tap.normal = (g->normals.data && !(s->d.reproject.normal_threshold < 0.0f))
+                     ? sbl__px(&g->normals, x, y) : NULL;
+    tap.normal_threshold = s->d.reproject.normal_threshold;
+    n = sbl__gather(&tap, sx, sy, !s->d.reproject.no_fallback, out);
+    if (!(n > 0.0f)) return 0.0f;
+
+    /* back-check: from the nearest source pixel, with the source's own geometry, the
+       correspondence must come back to within back_check_pixels of where it started */
+    ix = (int)floor(sx);
+    iy = (int)floor(sy);
+    if (ix < 0) ix = 0;
+    if (iy < 0) iy = 0;
+    if (ix >= src->color.width) ix = src->color.width - 1;
+    if (iy >= src->color.height) iy = src->color.height - 1;
+    if (s->d.rig == SBL_RIG_MATRICES) {
+        float zs = *sbl__px(&src->gbuffer.depth, ix, iy);
+        if (!(zs > 0.0f) || (!sbl__finite(zs) && !sbl__is_pos_inf(zs))) return 0.0f;
+        if (!sbl__cam_map_apply(&s->to_target, sx, sy, zs, &bx, &by, &bz)) return 0.0f;
+    } else {
+        float ds = sbl__disparity(s, src, ix, iy);
+        if (!sbl__finite(ds) || ds < 0.0f) return 0.0f;
+        bx = sx - dir * ds;
+        by = sy;
+    }
+    {
+        double ex = bx - (x + 0.5), ey = by - (y + 0.5);
+        double tol = s->d.reproject.back_check_pixels;
+        if (!(ex * ex + ey * ey <= tol * tol)) return 0.0f;
+    }
+    return n;
+}
+
+SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                       const sbl_eye *target, const sbl_eye *source,
+                                       sbl_image out_color, sbl_image out_valid,
+                                       int y0, int y1)
+{
+    sbl__stereo_rp s;
+    sbl_result r;
+    int x, y, k, w, h, ch;
+    if ((r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0)) != SBL_OK) return r;
+    w = source->color.width; h = source->color.height; ch = source->color.channels;
+    if ((r = sbl__check_image(&out_color, ch)) != SBL_OK)
+        return r == SBL_ERROR_INVALID_CHANNELS && out_color.channels >= 1 &&
+                       out_color.channels <= 4 ? SBL_ERROR_CHANNEL_MISMATCH : r;
+    if ((r = sbl__check_optional(&out_valid, 1, w, h)) != SBL_OK) return r;
+    if (out_color.width != w || out_color.height != h) return SBL_ERROR_SIZE_MISMATCH;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    {
+        const sbl_image *outs[2];
+        int o;
+        outs[0] = &out_color; outs[1] = &out_valid;
+        if (sbl__overlap(outs[0], outs[1])) return SBL_ERROR_OVERLAP;
+        for (o = 0; o < 2; ++o)
+            if (sbl__overlap(outs[o], &target->color) || sbl__overlap(outs[o], &source->color) ||
+                sbl__overlap(outs[o], &target->length) || sbl__overlap(outs[o], &source->length) ||
+                sbl__overlap(outs[o], &target->disparity) ||
+                sbl__overlap(outs[o], &source->disparity) ||
+                sbl__overlap_gbuffer(outs[o], &target->gbuffer) ||
+                sbl__overlap_gbuffer(outs[o], &source->gbuffer))
+                return SBL_ERROR_OVERLAP;
+    }
+    for (y = y0; y < y1; ++y)
+        for (x = 0; x < w; ++x) {
+            float v[4] = {0, 0, 0, 0};
+            float n = sbl__stereo_rp_pixel(&s, x, y, v);
+            float *o = sbl__px(&out_color, x, y);
+            for (k = 0; k < ch; ++k) o[k] = n > 0.0f ? v[k] : 0.0f;
+            if (out_valid.data) *sbl__px(&out_valid, x, y) = n > 0.0f ? 1.0f : 0.0f;
+        }
+    return SBL_OK;
+}
+
+SBLDEF size_t sbl_stereo_scratch_size(int width, int channels)
+{
+    return sbl_temporal_scratch_size(width, channels);
+}
+
+static sbl_result sbl__check_outputs_vs_eyes(const sbl_image *o, const sbl_eye *a,
+                                             const sbl_eye *b)
+{
+    const sbl_eye *e[2];
+    int i;
+    e[0] = a; e[1] = b;
+    for (i = 0; i < 2; ++i)
+        if (sbl__overlap(o, &e[i]->color) || sbl__overlap(o, &e[i]->length) ||
+            sbl__overlap(o, &e[i]->disparity) || sbl__overlap_gbuffer(o, &e[i]->gbuffer))
+            return SBL_ERROR_OVERLAP;
+    return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                   const sbl_eye *target, const sbl_eye *source,
+                                   sbl_image out_color, sbl_image out_length,
+                                   int y0, int y1, void *scratch, size_t scratch_bytes)
+{
+    sbl__stereo_rp s;
+    sbl__weight_params wp;
+    sbl_result r;
+    float *xring[3], *nring[3];
+    int w, h, ch, x, y, k;
+    if ((r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 1)) != SBL_OK) return r;
+    w = target->color.width; h = target->color.height; ch = target->color.channels;
+    if ((r = sbl__check_weight_params(s.d.estimator, s.d.rectify, s.d.weight_mode,
+                                      s.d.constant_beta, 0.0f, s.d.clip_gamma,
+                                      s.d.bias_threshold)) != SBL_OK)
+        return r;
+    if ((r = sbl__check_image(&out_color, 0)) != SBL_OK) return r;
+    if (out_color.width != w || out_color.height != h) return SBL_ERROR_SIZE_MISMATCH;
+    if (out_color.channels != ch) return SBL_ERROR_CHANNEL_MISMATCH;
+    if ((r = sbl__check_optional(&out_length, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    if (sbl__overlap(&out_color, &out_length)) return SBL_ERROR_OVERLAP;
+    if ((r = sbl__check_outputs_vs_eyes(&out_color, target, source)) != SBL_OK) return r;
+    if ((r = sbl__check_outputs_vs_eyes(&out_length, target, source)) != SBL_OK) return r;
+    if (!scratch) return SBL_ERROR_NULL_POINTER;
+    if (scratch_bytes < sbl_stereo_scratch_size(w, ch)) return SBL_ERROR_SCRATCH_TOO_SMALL;
+
+    wp.estimator = s.d.estimator;
+    wp.rectify = s.d.rectify;
+    wp.mode = s.d.weight_mode;
+    wp.constant = s.d.constant_beta;
+    wp.alpha_min = 0.0f;
+    wp.gamma = s.d.clip_gamma;
+    wp.bias_threshold = s.d.bias_threshold;
+    {
+        float *base = (float *)sbl__align64(scratch);
+        for (k = 0; k < 3; ++k) {
+            xring[k] = base + (size_t)k * w * ch;
+            nring[k] = base + (size_t)3 * w * ch + (size_t)k * w;
+        }
+    }
+    for (k = 0; k < 3; ++k) {
+        int ry = y0 - 1 + k;
+        if (ry < 0 || ry >= h || y0 >= y1) continue;
+        for (x = 0; x < w; ++x)
+            nring[k][x] = sbl__stereo_rp_pixel(&s, x, ry, xring[k] + (size_t)x * ch);
+    }
+    for (y = y0; y < y1; ++y) {
+        const float *rows[3], *xr[3], *nr[3];
+        const float *own_row = sbl__px(&target->color, 0, y);
+        for (k = 0; k < 3; ++k) {
+            int ry = y - 1 + k;
+            int in = ry >= 0 && ry < h;
+            rows[k] = in ? sbl__px(&target->color, 0, ry) : NULL;
+            xr[k] = in ? xring[k] : NULL;
+            nr[k] = in ? nring[k] : NULL;
+        }
+        for (x = 0; x < w; ++x) {
+            const float *yc = own_row + (size_t)x * ch;
+            float *oc = sbl__px(&out_color, x, y);
+            float n_x = nring[1][x], a = 1.0f, n_out;
+            float n_y = target->length.data ? *sbl__px(&target->length, x, y) : 1.0f;
+            float xs[4];
+            int finite = 1;
+            for (k = 0; k < ch; ++k) finite &= sbl__finite(yc[k]);
+            if (!sbl__finite(n_y) || !(n_y > 0.0f)) n_y = 1.0f;
+            if (!finite) {
+                for (k = 0; k < ch; ++k) oc[k] = n_x > 0.0f ? xring[1][(size_t)x * ch + k] : 0.0f;
+                n_out = n_x > 0.0f ? n_x : 0.0f;
+            } else if (!(n_x > 0.0f)) {
+                for (k = 0; k < ch; ++k) oc[k] = yc[k]; /* no correspondence: own value */
+                n_out = n_y;
+            } else if (s.d.fill) {
+                for (k = 0; k < ch; ++k) oc[k] = xring[1][(size_t)x * ch + k];
+                n_out = n_x;
+            } else {
+                sbl__moments m;
+                sbl__moments_at(&m, rows, xr, nr, x, w, ch);
+                for (k = 0; k < ch; ++k) xs[k] = xring[1][(size_t)x * ch + k];
+                n_out = sbl__blend_pixel(&wp, &m, yc, xs, n_x, n_y, ch, oc, &a);
+            }
+            if (out_length.data) *sbl__px(&out_length, x, y) = n_out;
+        }
+        {
+            float *tx = xring[0], *tn = nring[0];
+            int ry = y + 2;
+            xring[0] = xring[1]; xring[1] = xring[2]; xring[2] = tx;
+            nring[0] = nring[1]; nring[1] = nring[2]; nring[2] = tn;
+            if (y + 1 < y1 && ry < h)
+                for (x = 0; x < w; ++x)
+                    nring[2][x] = sbl__stereo_rp_pixel(&s, x, ry, xring[2] + (size_t)x * ch);
+        }
+    }
+    return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_eye *left,
+                                         const sbl_eye *right, sbl_image out_left,
+                                         sbl_image out_right)
+{
+    sbl_image none;
+    size_t bytes;
+    void *scratch;
+    sbl_result r;
+    if (!desc || !left || !right) return SBL_ERROR_NULL_POINTER;
+    if ((r = sbl__check_image(&left->color, 0)) != SBL_OK) return r;
+    if ((r = sbl__check_image(&out_left, 0)) != SBL_OK) return r;
+    if ((r = sbl__check_image(&out_right, 0)) != SBL_OK) return r;
+    if (sbl__overlap(&out_left, &out_right)) return SBL_ERROR_OVERLAP;
+    /* validate both eyes before writing either */
+    memset(&none, 0, sizeof none);
+    if ((r = sbl_stereo_blend(desc, SBL_EYE_LEFT, left, right, out_left, none, 0, 0, &none,
+                              (size_t)-1)) != SBL_OK)
+        return r;
+    if ((r = sbl_stereo_blend(desc, SBL_EYE_RIGHT, right, left, out_right, none, 0, 0, &none,
+                              (size_t)-1)) != SBL_OK)
+        return r;
+    if ((r = sbl__check_outputs_vs_eyes(&out_left, left, right)) != SBL_OK) return r;
+    bytes = sbl_stereo_scratch_size(left->color.width, left->color.channels);
+    scratch = SBL_MALLOC(bytes, desc->alloc_context);
+    if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
+    r = sbl_stereo_blend(desc, SBL_EYE_LEFT, left, right, out_left, none, 0,
+                         left->color.height, scratch, bytes);
+    if (r == SBL_OK)
+        r = sbl_stereo_blend(desc, SBL_EYE_RIGHT, right, left, out_right, none, 0,
+                             right->color.height, scratch, bytes);
+    SBL_FREE(scratch, desc->alloc_context);
+    return r;
+}
+
+/* ------------------------------------------------------------------------ */
+/* 9. Fill mode                                                             */
+/* ------------------------------------------------------------------------ */
+
+SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                  const sbl_eye *target, const sbl_eye *source,
+                                  sbl_image out_color, unsigned char *mask, int mask_stride,
+                                  int y0, int y1, long *needs_ray_count)
+{
+    sbl__stereo_rp s;
+    sbl_result r;
+    long count = 0;
+    int x, y, k, w, h, ch;
+    if ((r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0)) != SBL_OK) return r;
+    w = source->color.width; h = source->color.height; ch = source->color.channels;
+    if (!mask) return SBL_ERROR_NULL_POINTER;
+    if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
+    if ((r = sbl__check_image(&out_color, 0)) != SBL_OK) return r;
+    if (out_color.width != w || out_color.height != h) return SBL_ERROR_SIZE_MISMATCH;
+    if (out_color.channels != ch) return SBL_ERROR_CHANNEL_MISMATCH;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    if ((r = sbl__check_outputs_vs_eyes(&out_color, target, source)) != SBL_OK) return r;
+    {
+        const char *m0 = (const char *)mask;
+        const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+        const char *c0, *c1;
+        sbl__range(&out_color, &c0, &c1);
+        if (m0 < c1 && c0 < m1) return SBL_ERROR_OVERLAP;
+    }
+    for (y = y0; y < y1; ++y)
+        for (x = 0; x < w; ++x) {
+            float v[4] = {0, 0, 0, 0};
+            float n = sbl__stereo_rp_pixel(&s, x, y, v);
+            float *o = sbl__px(&out_color, x, y);
+            unsigned char need = n > 0.0f ? 0 : 1;
+            for (k = 0; k < ch; ++k) o[k] = need ? 0.0f : v[k];
+            mask[(size_t)y * (size_t)mask_stride + (size_t)x] = need;
+            count += need;
+        }
+    if (needs_ray_count) *needs_ray_count = count;
+    return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
+                                   const unsigned char *mask, int mask_stride, int y0, int y1)
+{
+    sbl_result r;
+    int x, y, k;
+    if ((r = sbl__check_image(&dst, 0)) != SBL_OK) return r;
+    if ((r = sbl__check_image(&traced, 0)) != SBL_OK) return r;
+    if (!mask) return SBL_ERROR_NULL_POINTER;
+    if (traced.width != dst.width || traced.height != dst.height) return SBL_ERROR_SIZE_MISMATCH;
+    if (traced.channels != dst.channels) return SBL_ERROR_CHANNEL_MISMATCH;
+    if (mask_stride < dst.width) return SBL_ERROR_INVALID_STRIDE;
+    if ((r = sbl__check_rows(y0, y1, dst.height)) != SBL_OK) return r;
+    if (sbl__overlap(&dst, &traced)) return SBL_ERROR_OVERLAP;
+    for (y = y0; y < y1; ++y)
+        for (x = 0; x < dst.width; ++x)
+            if (mask[(size_t)y * (size_t)mask_stride + (size_t)x]) {
+                const float *t = sbl__px(&traced, x, y);
+                float *d = sbl__px(&dst, x, y);
+                for (k = 0; k < dst.channels; ++k) d[k] = t[k];
+            }
+    return SBL_OK;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* STEREOBLEND_IMPLEMENTATION_DONE */
+#endif /* STEREOBLEND_IMPLEMENTATION */
+
+/*
+------------------------------------------------------------------------------
+This software is available under 2 licences -- choose whichever you prefer.
+------------------------------------------------------------------------------
+ALTERNATIVE A - MIT License
+Copyright (c) 2026 the stereoblend.h authors
+Permission is hereby granted, free of charge, to any person obtaining a copy of
+this software and associated documentation files (the "Software"), to deal in
+the Software without restriction, including without limitation the rights to
+use, copy, modify, merge, publish, distribute, sublicense, and/or sell copies
+of the Software, and to permit persons to whom the Software is furnished to do
+so, subject to the following conditions:
+The above copyright notice and this permission notice shall be included in all
+copies or substantial portions of the Software.
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS OR COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER
+LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM,
+OUT OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE
+SOFTWARE.
+------------------------------------------------------------------------------
+ALTERNATIVE B - Public Domain (www.unlicense.org)
+This is free and unencumbered software released into the public domain.
+Anyone is free to copy, modify, publish, use, compile, sell, or distribute this
+software, either in source code form or as a compiled binary, for any purpose,
+commercial or non-commercial, and by any means.
+In jurisdictions that recognize copyright laws, the author or authors of this
+software dedicate any and all copyright interest in the software to the public
+domain. We make this dedication in favor of the public domain to the benefit of
+the public at large and to the detriment of our heirs and successors. We intend
+this dedication to be an overt act of relinquishment in perpetuity of all
+present and future rights to this software under copyright law.
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER LIABILITY, WHETHER IN AN
+ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM, OUT OF OR IN CONNECTION
+WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE SOFTWARE.
+------------------------------------------------------------------------------
+*/
