@@ -1,0 +1,475 @@
+/* sbl_runner.h - runs stereoblend.h methods over a stereo sequence and measures them.
+   Shared by the demo, the bench and the EXR command-line tool so that all three use the
+   same method list, the same pipeline and the same metrics.
+
+   A sequence is loaded whole into memory (synthetic scene or a scene directory in the
+   layout of shared/data/atrium). A method is a temporal descriptor (or none) plus a
+   stereo mode. The pipeline per frame is the paper's order:
+       [fill: right input = left reprojected + traced holes]
+       -> temporal filter per eye (history = temporal output)
+       -> stereo blend for display (fixed / adaptive beta).
+   Metrics over the evaluation frames (frame >= frames / 4, so that accumulating
+   methods are measured after warm-up; both eyes): RMSE (sqrt of the mean MSE), SSIM (on
+   values clamped to [0,1], dynamic range 1), effective spp against the spp ladder,
+   mse(1 spp) / mse(result), and the share of right-eye pixels traced (fill).
+   Time: the library calls only, per stereo frame (both eyes), median over frames.
+
+   Single file: #define SBL_RUNNER_IMPLEMENTATION in one .c (which must also provide the
+   implementations of stereoblend.h, sbl_scene.h and sbl_metrics.h). */
+#ifndef SBL_RUNNER_H
+#define SBL_RUNNER_H
+
+#include "../stereoblend.h"
+#include "sbl_scene.h"
+
+typedef struct sbr_view {          /* one eye of one frame, all W*H*channels floats */
+    float *color, *ref, *depth, *normal, *id, *motion;
+    sbl_camera camera;
+} sbr_view;
+
+#define SBR_MAX_LADDER 8
+typedef struct sbr_ladder {        /* n-spp renders of one frame, both eyes */
+    int frame, count;
+    int spp[SBR_MAX_LADDER];
+    float *img[2][SBR_MAX_LADDER];
+} sbr_ladder;
+
+typedef struct sbr_seq {
+    char name[64];
+    int width, height, frames;
+    float focal_px, baseline;
+    sbr_view *views;               /* [frame * 2 + eye] */
+    int ladder_count;
+    sbr_ladder ladder[SBR_MAX_LADDER];
+} sbr_seq;
+
+typedef enum sbr_stereo_mode {
+    SBR_STEREO_NONE = 0,
+    SBR_STEREO_FILL,      /* trace the left eye; right = left reprojected, holes traced */
+    SBR_STEREO_FIXED,     /* beta 0.5 */
+    SBR_STEREO_ADAPTIVE   /* beta by the chosen estimator */
+} sbr_stereo_mode;
+
+typedef struct sbr_method {
+    char name[48];
+    int temporal;                  /* 0: no temporal filter */
+    sbl_temporal_desc temporal_desc;
+    sbr_stereo_mode stereo;
+    sbl_stereo_desc stereo_desc;   /* rig / focal / baseline filled in by the runner */
+} sbr_method;
+
+typedef struct sbr_result {
+    double ms;          /* median ms per stereo frame (both eyes), library calls only */
+    double rmse, ssim;
+    double eff_spp;     /* against the ladder (mean over ladder frames and eyes); 0 if none */
+    double indep_spp;   /* mse(1 spp) / mse(result): count of independent 1-spp samples */
+    double traced_pct;  /* right-eye pixels that still needed a ray (fill), else 100 */
+    int eval_frames;
+} sbr_result;
+
+/* Called with each displayed image (W*H*3) if not NULL. */
+typedef void (*sbr_frame_fn)(void *ctx, int frame, int eye, const float *rgb, int w, int h);
+
+int  sbr_seq_synthetic(sbr_seq *s, const sbl_scene_desc *desc, const char *name, int with_ladder);
+int  sbr_seq_dataset(sbr_seq *s, const char *dir, int max_frames, char *err, int err_size);
+void sbr_seq_free(sbr_seq *s);
+
+/* The standard method table; returns the count written (at most max). */
+int  sbr_standard_methods(sbr_method *m, int max);
+int  sbr_find_method(const char *name, sbr_method *out);
+
+int  sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx);
+double sbr_now_ms(void);
+
+#endif
+
+#ifdef SBL_RUNNER_IMPLEMENTATION
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <time.h>
+#include "sbl_metrics.h"
+#ifndef SBR_NO_DATASET
+#include "sbl_dataset.h"
+#endif
+
+double sbr_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static float *sbr_alloc(size_t n)
+{
+    float *p = (float *)calloc(n ? n : 1, sizeof(float));
+    if (!p) { fprintf(stderr, "out of memory\n"); exit(2); }
+    return p;
+}
+
+static void sbr_camera_from(sbl_camera *c, const float *world_to_cam, const float *proj)
+{
+    memcpy(c->world_to_view, world_to_cam, sizeof c->world_to_view);
+    memcpy(c->view_to_clip, proj, sizeof c->view_to_clip);
+}
+
+int sbr_seq_synthetic(sbr_seq *s, const sbl_scene_desc *desc_in, const char *name, int with_ladder)
+{
+    sbl_scene_desc d = *desc_in;
+    size_t n;
+    int f, e, i;
+    memset(s, 0, sizeof *s);
+    sbl_scene_defaults(&d);
+    snprintf(s->name, sizeof s->name, "%s", name);
+    s->width = d.width; s->height = d.height; s->frames = d.frames;
+    n = (size_t)d.width * (size_t)d.height;
+    s->views = (sbr_view *)calloc((size_t)d.frames * 2, sizeof(sbr_view));
+    if (!s->views) return 1;
+    for (f = 0; f < d.frames; ++f)
+        for (e = 0; e < 2; ++e) {
+            sbr_view *v = &s->views[f * 2 + e];
+            sbl_scene_view sv;
+            memset(&sv, 0, sizeof sv);
+            v->color = sv.color = sbr_alloc(n * 3);
+            v->ref = sv.reference = sbr_alloc(n * 3);
+            v->depth = sv.depth = sbr_alloc(n);
+            v->normal = sv.normal = sbr_alloc(n * 3);
+            v->id = sv.id = sbr_alloc(n);
+            v->motion = sv.motion = sbr_alloc(n * 2);
+            if (sbl_scene_render(&d, f, e, &sv, 0, d.height) != 0) return 1;
+            sbr_camera_from(&v->camera, sv.world_to_cam, sv.proj);
+            s->focal_px = sv.focal_px;
+            s->baseline = sv.baseline;
+        }
+    if (with_ladder) {
+        /* ladder at a few frames after warm-up: 1..32 spp */
+        static const int spp[] = {1, 2, 4, 8, 16, 32};
+        int lf[3];
+        lf[0] = d.frames / 2; lf[1] = (3 * d.frames) / 4; lf[2] = d.frames - 1;
+        for (i = 0; i < 3; ++i) {
+            sbr_ladder *l = &s->ladder[s->ladder_count++];
+            int k;
+            l->frame = lf[i];
+            l->count = 6;
+            for (k = 0; k < 6; ++k) {
+                l->spp[k] = spp[k];
+                for (e = 0; e < 2; ++e) {
+                    l->img[e][k] = sbr_alloc(n * 3);
+                    sbl_scene_render_spp(&d, lf[i], e, spp[k], l->img[e][k], 0, d.height);
+                }
+            }
+        }
+    }
+    return 0;
+}
+
+#ifndef SBR_NO_DATASET /* needs tools/sbl_dataset.c and tools/sbl_exr.c */
+int sbr_seq_dataset(sbr_seq *s, const char *dir, int max_frames, char *err, int err_size)
+{
+    sbl_dataset ds;
+    size_t n;
+    int f, e, i, k;
+    const char *base;
+    memset(s, 0, sizeof *s);
+    if (sbl_dataset_open(&ds, dir, err, err_size) != 0) return 1;
+    base = strrchr(dir, '/');
+    base = base && base[1] ? base + 1 : dir;
+    snprintf(s->name, sizeof s->name, "%s", base);
+    s->width = ds.width; s->height = ds.height;
+    s->frames = max_frames > 0 && max_frames < ds.frames ? max_frames : ds.frames;
+    s->baseline = ds.baseline;
+    s->focal_px = ds.focal_px[0][0];
+    n = (size_t)ds.width * (size_t)ds.height;
+    s->views = (sbr_view *)calloc((size_t)s->frames * 2, sizeof(sbr_view));
+    if (!s->views) { sbl_dataset_close(&ds); return 1; }
+    for (f = 0; f < s->frames; ++f)
+        for (e = 0; e < 2; ++e) {
+            sbl_dataset_frame fr;
+            sbr_view *v = &s->views[f * 2 + e];
+            if (sbl_dataset_load(&ds, f, e, &fr, err, err_size) != 0) {
+                sbl_dataset_close(&ds);
+                sbr_seq_free(s);
+                return 1;
+            }
+            v->color = fr.noisy; v->ref = fr.ref; v->depth = fr.depth;
+            v->normal = fr.normal; v->id = fr.id; v->motion = fr.motion;
+            sbr_camera_from(&v->camera, ds.world_to_cam[f][e], ds.proj[f][e]);
+        }
+    for (i = 0; i < ds.ladder_frame_count && s->ladder_count < SBR_MAX_LADDER; ++i) {
+        sbr_ladder *l;
+        if (ds.ladder_frames[i] >= s->frames) continue;
+        l = &s->ladder[s->ladder_count];
+        memset(l, 0, sizeof *l);
+        l->frame = ds.ladder_frames[i];
+        /* the 1-spp rung is the noisy frame itself */
+        l->spp[0] = 1;
+        for (e = 0; e < 2; ++e) {
+            l->img[e][0] = sbr_alloc(n * 3);
+            memcpy(l->img[e][0], s->views[l->frame * 2 + e].color, n * 3 * sizeof(float));
+        }
+        l->count = 1;
+        for (k = 0; k < ds.ladder_spp_count && l->count < SBR_MAX_LADDER; ++k) {
+            float *img[2] = {NULL, NULL};
+            if (sbl_dataset_load_ladder(&ds, l->frame, 0, ds.ladder_spp[k], &img[0], NULL, 0) != 0 ||
+                sbl_dataset_load_ladder(&ds, l->frame, 1, ds.ladder_spp[k], &img[1], NULL, 0) != 0) {
+                free(img[0]); free(img[1]);
+                continue;
+            }
+            l->spp[l->count] = ds.ladder_spp[k];
+            l->img[0][l->count] = img[0];
+            l->img[1][l->count] = img[1];
+            l->count++;
+        }
+        s->ladder_count++;
+    }
+    sbl_dataset_close(&ds);
+    return 0;
+}
+#endif
+
+void sbr_seq_free(sbr_seq *s)
+{
+    int i, e, k;
+    if (s->views)
+        for (i = 0; i < s->frames * 2; ++i) {
+            sbr_view *v = &s->views[i];
+            free(v->color); free(v->ref); free(v->depth); free(v->normal); free(v->id); free(v->motion);
+        }
+    free(s->views);
+    for (i = 0; i < s->ladder_count; ++i)
+        for (e = 0; e < 2; ++e)
+            for (k = 0; k < s->ladder[i].count; ++k) free(s->ladder[i].img[e][k]);
+    memset(s, 0, sizeof *s);
+}
+
+/* ---- methods ---------------------------------------------------------------------- */
+
+static sbr_method sbr_method_make(const char *name, int temporal, sbl_estimator e, sbl_rectify r,
+                                  sbl_weight_mode wm, sbr_stereo_mode st, sbl_estimator se)
+{
+    sbr_method m;
+    memset(&m, 0, sizeof m);
+    snprintf(m.name, sizeof m.name, "%s", name);
+    m.temporal = temporal;
+    m.temporal_desc.estimator = e;
+    m.temporal_desc.rectify = r;
+    m.temporal_desc.weight_mode = wm;
+    m.stereo = st;
+    m.stereo_desc.estimator = se;
+    return m;
+}
+
+int sbr_standard_methods(sbr_method *m, int max)
+{
+    sbr_method all[32];
+    int n = 0, i;
+    const sbl_estimator HA = SBL_ESTIMATOR_HISTORY_AWARE, P = SBL_ESTIMATOR_PAPER,
+                        PR = SBL_ESTIMATOR_PROGRESSIVE, C = SBL_ESTIMATOR_CONSTANT;
+    const sbl_rectify RN = SBL_RECTIFY_NONE, RC = SBL_RECTIFY_CLAMP, RV = SBL_RECTIFY_VARIANCE_CLIP;
+    const sbl_weight_mode WS = SBL_WEIGHT_SCALAR, WP = SBL_WEIGHT_PER_CHANNEL;
+    /* temporal only */
+    all[n++] = sbr_method_make("input-1spp", 0, HA, RN, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("const-0.1", 1, C, RN, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("const-0.1+clamp", 1, C, RC, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("const-0.1+varclip", 1, C, RV, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("progressive", 1, PR, RN, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("progressive+varclip", 1, PR, RV, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("paper", 1, P, RN, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("paper-per-channel", 1, P, RN, WP, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("history-aware", 1, HA, RN, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("history-aware-per-ch", 1, HA, RN, WP, SBR_STEREO_NONE, HA);
+    /* stereo alone (on the 1-spp input) */
+    all[n++] = sbr_method_make("stereo-fill", 0, HA, RN, WS, SBR_STEREO_FILL, HA);
+    all[n++] = sbr_method_make("stereo-beta-0.5", 0, HA, RN, WS, SBR_STEREO_FIXED, C);
+    all[n++] = sbr_method_make("stereo-paper", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, P);
+    all[n++] = sbr_method_make("stereo-history-aware", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, HA);
+    /* stereo after the temporal filter (history-aware temporal) */
+    all[n++] = sbr_method_make("ha+stereo-fill", 1, HA, RN, WS, SBR_STEREO_FILL, HA);
+    all[n++] = sbr_method_make("ha+stereo-beta-0.5", 1, HA, RN, WS, SBR_STEREO_FIXED, C);
+    all[n++] = sbr_method_make("ha+stereo-paper", 1, HA, RN, WS, SBR_STEREO_ADAPTIVE, P);
+    all[n++] = sbr_method_make("ha+stereo-ha", 1, HA, RN, WS, SBR_STEREO_ADAPTIVE, HA);
+    /* the paper's pipeline: paper alpha then paper beta */
+    all[n++] = sbr_method_make("paper+stereo-paper", 1, P, RN, WS, SBR_STEREO_ADAPTIVE, P);
+    for (i = 0; i < n && i < max; ++i) m[i] = all[i];
+    return i < n ? i : n;
+}
+
+int sbr_find_method(const char *name, sbr_method *out)
+{
+    sbr_method all[32];
+    int n = sbr_standard_methods(all, 32), i;
+    for (i = 0; i < n; ++i)
+        if (strcmp(all[i].name, name) == 0) { *out = all[i]; return 0; }
+    return 1;
+}
+
+/* ---- running ---------------------------------------------------------------------- */
+
+static int sbr_cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : (x > y ? 1 : 0);
+}
+
+static double sbr_ssim_clamped(const float *a, const float *b, int w, int h, float *tmp_a, float *tmp_b)
+{
+    size_t i, n = (size_t)w * (size_t)h * 3;
+    for (i = 0; i < n; ++i) {
+        float x = a[i], y = b[i];
+        tmp_a[i] = x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x);
+        tmp_b[i] = y < 0.0f ? 0.0f : (y > 1.0f ? 1.0f : y);
+    }
+    return sbl_metric_ssim(tmp_a, w * 3, tmp_b, w * 3, w, h, 3, 1.0);
+}
+
+static sbl_gbuffer sbr_gbuffer(const sbr_view *v, int w, int h, int with_motion)
+{
+    sbl_gbuffer g;
+    memset(&g, 0, sizeof g);
+    g.depth = sbl_image_make(v->depth, w, h, 1);
+    g.normals = sbl_image_make(v->normal, w, h, 3);
+    g.ids = sbl_image_make(v->id, w, h, 1);
+    if (with_motion) g.motion = sbl_image_make(v->motion, w, h, 2);
+    return g;
+}
+
+int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx)
+{
+    const int w = s->width, h = s->height;
+    const size_t n = (size_t)w * (size_t)h;
+    float *hist[2][2], *len[2][2], *input[2], *tout[2], *disp[2], *tmp_a, *tmp_b;
+    unsigned char *mask;
+    double *times, mse_sum = 0, mse1_sum = 0, ssim_sum = 0, eff_sum = 0;
+    long traced = 0, traced_total = 0;
+    int ping[2] = {0, 0}, f, e, i, eval = 0, eff_n = 0, skip = s->frames / 4, rc = 0;
+    sbl_stereo_desc sd = m->stereo_desc;
+    memset(res, 0, sizeof *res);
+    sd.rig = SBL_RIG_PARALLEL;
+    sd.focal_px = s->focal_px;
+    sd.baseline = s->baseline;
+    for (e = 0; e < 2; ++e) {
+        for (i = 0; i < 2; ++i) { hist[e][i] = sbr_alloc(n * 3); len[e][i] = sbr_alloc(n); }
+        input[e] = sbr_alloc(n * 3);
+        disp[e] = sbr_alloc(n * 3);
+    }
+    mask = (unsigned char *)calloc(n, 1);
+    tmp_a = sbr_alloc(n * 3);
+    tmp_b = sbr_alloc(n * 3);
+    times = (double *)calloc((size_t)s->frames, sizeof(double));
+    if (!mask || !times) { fprintf(stderr, "out of memory\n"); exit(2); }
+
+    for (f = 0; f < s->frames && rc == 0; ++f) {
+        const sbr_view *v[2];
+        double t0, t1;
+        v[0] = &s->views[f * 2];
+        v[1] = &s->views[f * 2 + 1];
+        for (e = 0; e < 2; ++e) memcpy(input[e], v[e]->color, n * 3 * sizeof(float));
+        t0 = sbr_now_ms();
+        if (m->stereo == SBR_STEREO_FILL) {
+            /* only the left eye is traced in full; the right eye gets the left one
+               reprojected, and its own (traced) samples where reprojection failed */
+            sbl_eye tgt, src;
+            long cnt = 0;
+            memset(&tgt, 0, sizeof tgt); memset(&src, 0, sizeof src);
+            tgt.gbuffer = sbr_gbuffer(v[1], w, h, 0);
+            src.color = sbl_image_make(v[0]->color, w, h, 3);
+            src.gbuffer = sbr_gbuffer(v[0], w, h, 0);
+            rc = sbl_stereo_fill(&sd, SBL_EYE_RIGHT, &tgt, &src, sbl_image_make(input[1], w, h, 3),
+                                 mask, w, 0, h, &cnt);
+            if (rc == 0)
+                rc = sbl_merge_traced(sbl_image_make(input[1], w, h, 3),
+                                      sbl_image_make(v[1]->color, w, h, 3), mask, w, 0, h);
+            if (f >= skip) { traced += cnt; traced_total += (long)n; }
+        }
+        for (e = 0; e < 2 && rc == 0; ++e) {
+            if (m->temporal) {
+                sbl_frame fr;
+                sbl_history hi;
+                sbl_temporal_output out;
+                const sbr_view *pv = f > 0 ? &s->views[(f - 1) * 2 + e] : NULL;
+                memset(&fr, 0, sizeof fr); memset(&hi, 0, sizeof hi); memset(&out, 0, sizeof out);
+                fr.color = sbl_image_make(input[e], w, h, 3);
+                fr.gbuffer = sbr_gbuffer(v[e], w, h, 1);
+                fr.camera = &v[e]->camera;
+                if (pv) {
+                    hi.color = sbl_image_make(hist[e][ping[e]], w, h, 3);
+                    hi.length = sbl_image_make(len[e][ping[e]], w, h, 1);
+                    hi.gbuffer = sbr_gbuffer(pv, w, h, 0);
+                    hi.camera = &pv->camera;
+                }
+                out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
+                out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
+                rc = sbl_temporal_filter_frame(&m->temporal_desc, &fr, pv ? &hi : NULL, &out);
+                ping[e] = !ping[e];
+                tout[e] = hist[e][ping[e]];
+            } else {
+                tout[e] = input[e];
+            }
+        }
+        if (rc == 0 && (m->stereo == SBR_STEREO_FIXED || m->stereo == SBR_STEREO_ADAPTIVE)) {
+            sbl_eye eye[2];
+            for (e = 0; e < 2; ++e) {
+                memset(&eye[e], 0, sizeof eye[e]);
+                eye[e].color = sbl_image_make(tout[e], w, h, 3);
+                if (m->temporal) eye[e].length = sbl_image_make(len[e][ping[e]], w, h, 1);
+                eye[e].gbuffer = sbr_gbuffer(v[e], w, h, 0);
+            }
+            if (m->stereo == SBR_STEREO_FIXED) sd.estimator = SBL_ESTIMATOR_CONSTANT;
+            rc = sbl_stereo_blend_frame(&sd, &eye[0], &eye[1], sbl_image_make(disp[0], w, h, 3),
+                                        sbl_image_make(disp[1], w, h, 3));
+        } else if (rc == 0) {
+            for (e = 0; e < 2; ++e) memcpy(disp[e], tout[e], n * 3 * sizeof(float));
+        }
+        t1 = sbr_now_ms();
+        if (rc != 0) break;
+        times[f] = t1 - t0;
+        if (fn)
+            for (e = 0; e < 2; ++e) fn(ctx, f, e, disp[e], w, h);
+        if (f >= skip && v[0]->ref) {
+            for (e = 0; e < 2; ++e) {
+                mse_sum += sbl_metric_mse(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3);
+                mse1_sum += sbl_metric_mse(v[e]->color, w * 3, v[e]->ref, w * 3, w, h, 3);
+                ssim_sum += sbr_ssim_clamped(disp[e], v[e]->ref, w, h, tmp_a, tmp_b);
+            }
+            ++eval;
+        }
+        for (i = 0; i < s->ladder_count; ++i) {
+            const sbr_ladder *l = &s->ladder[i];
+            if (l->frame != f || f < skip || !v[0]->ref || l->count < 2) continue;
+            for (e = 0; e < 2; ++e) {
+                double spp[SBR_MAX_LADDER], r[SBR_MAX_LADDER];
+                int k;
+                for (k = 0; k < l->count; ++k) {
+                    spp[k] = l->spp[k];
+                    r[k] = sbl_metric_rmse(l->img[e][k], w * 3, v[e]->ref, w * 3, w, h, 3);
+                }
+                eff_sum += sbl_metric_effective_spp(sbl_metric_rmse(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3),
+                                                    spp, r, l->count);
+                ++eff_n;
+            }
+        }
+    }
+    if (rc == 0) {
+        qsort(times, (size_t)s->frames, sizeof(double), sbr_cmp_double);
+        res->ms = times[s->frames / 2];
+        res->eval_frames = eval;
+        if (eval) {
+            res->rmse = sqrt(mse_sum / (2.0 * eval));
+            res->ssim = ssim_sum / (2.0 * eval);
+            res->indep_spp = mse_sum > 0 ? mse1_sum / mse_sum : 0;
+        }
+        res->eff_spp = eff_n ? eff_sum / eff_n : 0;
+        res->traced_pct = traced_total ? 100.0 * (double)traced / (double)traced_total : 100.0;
+    } else {
+        fprintf(stderr, "%s: %s\n", m->name, sbl_result_string((sbl_result)rc));
+    }
+    for (e = 0; e < 2; ++e) {
+        for (i = 0; i < 2; ++i) { free(hist[e][i]); free(len[e][i]); }
+        free(input[e]); free(disp[e]);
+    }
+    free(mask); free(tmp_a); free(tmp_b); free(times);
+    return rc;
+}
+
+#endif /* SBL_RUNNER_IMPLEMENTATION */
