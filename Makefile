@@ -31,8 +31,8 @@ COMPILERS = cc $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang)
 TEST_BINS = $(foreach c,$(COMPILERS),$(addprefix $(BUILD)/$(c)/,$(TESTS))) \
             $(if $(CXX_TEST),$(addprefix $(BUILD)/cxx/,$(TESTS)))
 
-.PHONY: all check demo clean tests
-all: tests
+.PHONY: all check demo bench bench-quick clean tests
+all: tests $(BUILD)/demo $(BUILD)/sblexr $(BUILD)/bench
 
 tests: $(TEST_BINS)
 
@@ -58,12 +58,31 @@ check: $(TEST_BINS)
 	echo "test binaries: $$((total-fail)) passed, $$fail failed"; \
 	test $$fail -eq 0
 
-$(BUILD)/demo: examples/demo.c $(HEADERS)
+RUNNER = bench/sbl_runner.h
+DATASET_SRC = tools/sbl_dataset.c tools/sbl_exr.c
+
+$(BUILD)/demo: examples/demo.c $(HEADERS) $(RUNNER)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_STRICT) -O2 -Itools $< -o $@ $(LDLIBS)
 
+$(BUILD)/sblexr: examples/sblexr.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+$(BUILD)/bench: bench/bench.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
 demo: $(BUILD)/demo
 	./$(BUILD)/demo
+
+# error against time for every method, synthetic scenes and ../shared/data
+bench: $(BUILD)/bench
+	./$(BUILD)/bench --out bench/out
+
+# the same in under a minute (CI smoke run; never asserts timings)
+bench-quick: $(BUILD)/bench
+	./$(BUILD)/bench --quick --out bench/out
 
 clean:
 	rm -rf $(BUILD)

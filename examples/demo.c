@@ -25,10 +25,10 @@ int main(int argc, char **argv)
     memset(&d, 0, sizeof d);
     d.kind = SBL_SCENE_DYNAMIC;
     d.jitter = 1;
-    d.width = 160;
-    d.height = 90;
-    d.frames = 24;
-    d.ref_spp = 128;
+    d.width = 128;
+    d.height = 72;
+    d.frames = 16;
+    d.ref_spp = 64;
     d.seed = 1;
     if (argc > 1) d.frames = atoi(argv[1]);
     t0 = sbr_now_ms();
