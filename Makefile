@@ -24,14 +24,24 @@ EXR_CFLAGS := $(if $(HAVE_EXR),$(shell pkg-config --cflags OpenEXR),-DSBL_NO_EXR
 EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
 TESTS = test_core test_metrics
+SIMD_TESTS = test_core
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
-# every (compiler, test) pair: build/<compiler>/<test>
+# SIMD paths this CPU can run (the tests compare each against the scalar path)
+CPU_FLAGS := $(shell grep -m1 '^flags' /proc/cpuinfo 2>/dev/null)
+SIMD_VARIANTS = scalar $(if $(filter avx2,$(CPU_FLAGS)),avx2) $(if $(filter avx512f,$(CPU_FLAGS)),avx512)
+FLAGS_scalar = -DSBL_NO_SIMD
+FLAGS_avx2   = -mavx2 -mfma
+FLAGS_avx512 = -mavx512f -mavx2 -mfma
+
+# every (compiler, test) pair: build/<compiler>/<test>; the default SIMD path of each
+# compiler is SSE2 on x86-64 (NEON on AArch64); build/simd-<v>/ are the other paths
 COMPILERS = cc $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang)
 TEST_BINS = $(foreach c,$(COMPILERS),$(addprefix $(BUILD)/$(c)/,$(TESTS))) \
-            $(if $(CXX_TEST),$(addprefix $(BUILD)/cxx/,$(TESTS)))
+            $(if $(CXX_TEST),$(addprefix $(BUILD)/cxx/,$(TESTS))) \
+            $(foreach v,$(SIMD_VARIANTS),$(addprefix $(BUILD)/simd-$(v)/,$(SIMD_TESTS)))
 
-.PHONY: all check demo bench bench-quick clean tests
+.PHONY: all check demo bench bench-quick bench-perf clean tests
 all: tests $(BUILD)/demo $(BUILD)/sblexr $(BUILD)/bench
 
 tests: $(TEST_BINS)
@@ -45,6 +55,9 @@ $(BUILD)/gcc/%: tests/%.c $(HEADERS)
 $(BUILD)/clang/%: tests/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
 	clang $(CFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
+$(BUILD)/simd-%/test_core: tests/test_core.c $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) $(OPT) $(FLAGS_$*) -Itools $< -o $@ $(LDLIBS)
 $(BUILD)/cxx/%: tests/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CXX_TEST) -x c++ $(CXXFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
@@ -79,6 +92,16 @@ demo: $(BUILD)/demo
 # error against time for every method, synthetic scenes and ../shared/data
 bench: $(BUILD)/bench
 	./$(BUILD)/bench --out bench/out
+
+$(BUILD)/perf: bench/perf.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) -std=c99 -Wall -Wextra -O2 $(PERF_FLAGS) $< -o $@ -lpthread $(LDLIBS)
+
+# speed against the memory-bandwidth floor; PERF_FLAGS picks the SIMD path
+# (default: -march=native; PERF_FLAGS=-DSBL_NO_SIMD for the scalar path)
+PERF_FLAGS ?= -march=native
+bench-perf: $(BUILD)/perf
+	./$(BUILD)/perf --out bench/out
 
 # the same in under a minute (CI smoke run; never asserts timings)
 bench-quick: $(BUILD)/bench

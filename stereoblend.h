@@ -709,18 +709,24 @@ static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float
 /* 3. Reprojection                                                          */
 /* ------------------------------------------------------------------------ */
 
-/* Everything a gather needs about the target pixel and the source view. */
-typedef struct sbl__tap_ctx {
-    const sbl_image *src_color;   /* source colour                                    */
-    const sbl_image *src_length;  /* source N (NULL data: 1)                           */
-    const sbl_gbuffer *src_g;     /* source G-buffer                                   */
-    float depth;                  /* expected source depth of the target's surface     */
-    float depth_slack;            /* absolute slack from the target's depth slope      */
-    const float *normal;          /* target normal or NULL                             */
-    float id;                     /* target id (if has_id)                             */
-    int has_depth, has_id;
-    float depth_tolerance, normal_threshold;
-} sbl__tap_ctx;
+/* The source view a gather reads, and the tests it applies: fixed for a call. */
+typedef struct sbl__tap_src {
+    const sbl_image *color;      /* source colour                              */
+    const sbl_image *length;     /* source N (NULL or NULL data: N = 1)         */
+    const sbl_gbuffer *g;        /* source G-buffer                             */
+    int use_depth, use_normal, use_id;
+    float depth_tolerance;
+    float normal_threshold2;     /* threshold^2 (threshold >= 0 when used)      */
+} sbl__tap_src;
+
+/* What the target pixel expects to find. */
+typedef struct sbl__tap_want {
+    float depth;        /* expected planar depth in the source view           */
+    float depth_slack;  /* absolute slack from the target's depth slope       */
+    const float *normal;
+    float normal_len2;
+    float id;
+} sbl__tap_want;
 
 static int sbl__depth_match(float expected, float tap, float tol, float slack)
 {
@@ -730,74 +736,98 @@ static int sbl__depth_match(float expected, float tap, float tol, float slack)
     return fabsf(tap - expected) <= tol * expected + slack;
 }
 
-/* Every per-tap test; returns 1 if source pixel (x, y) is consistent with the target. */
-static int sbl__tap_ok(const sbl__tap_ctx *t, int x, int y)
+#if defined(__GNUC__) || defined(__clang__)
+#define SBL__INLINE static __inline__ __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define SBL__INLINE static __forceinline
+#else
+#define SBL__INLINE static
+#endif
+
+/* Every per-tap test on source pixel (x, y), which must be inside the image; the
+   offsets of that pixel in the 1-channel and 3-channel source buffers are passed in
+   so that the four bilinear taps share one address computation each. */
+SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y)
 {
-    const sbl_gbuffer *g = t->src_g;
     const float *c;
     int k;
-    if (x < 0 || y < 0 || x >= t->src_color->width || y >= t->src_color->height) return 0;
-    if (t->has_depth && g->depth.data &&
-        !sbl__depth_match(t->depth, *sbl__px(&g->depth, x, y), t->depth_tolerance,
+    if (s->use_depth &&
+        !sbl__depth_match(t->depth, *sbl__px(&s->g->depth, x, y), s->depth_tolerance,
                           t->depth_slack))
         return 0;
-    if (t->has_id && g->ids.data && *sbl__px(&g->ids, x, y) != t->id) return 0;
-    if (t->normal && g->normals.data) {
-        const float *n = sbl__px(&g->normals, x, y), *m = t->normal;
+    if (s->use_id && *sbl__px(&s->g->ids, x, y) != t->id) return 0;
+    if (s->use_normal) {
+        const float *n = sbl__px(&s->g->normals, x, y), *m = t->normal;
         float dot = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
         float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        float mm = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
-        if (!sbl__finite(dot) || !sbl__finite(nn) || !sbl__finite(mm)) return 0;
-        if (nn < 1e-12f || mm < 1e-12f) {
-            if (!(nn < 1e-12f && mm < 1e-12f)) return 0; /* "no normal" only matches itself */
-        } else if (dot < t->normal_threshold * sqrtf(nn * mm)) {
-            return 0;
+        if (!sbl__finite(dot) || !sbl__finite(nn)) return 0;
+        if (nn < 1e-12f || t->normal_len2 < 1e-12f) {
+            /* "no normal" (background) only matches itself */
+            if (!(nn < 1e-12f && t->normal_len2 < 1e-12f)) return 0;
+        } else if (dot < 0.0f || dot * dot < s->normal_threshold2 * nn * t->normal_len2) {
+            return 0; /* dot < threshold |n| |m| without a square root */
         }
     }
-    c = sbl__px(t->src_color, x, y);
-    for (k = 0; k < t->src_color->channels; ++k)
+    c = sbl__px(s->color, x, y);
+    for (k = 0; k < s->color->channels; ++k)
         if (!sbl__finite(c[k])) return 0;
-    if (t->src_length && t->src_length->data) {
-        float n = *sbl__px(t->src_length, x, y);
+    if (s->length && s->length->data) {
+        float n = *sbl__px(s->length, x, y);
         if (!sbl__finite(n) || !(n > 0.0f)) return 0;
     }
     return 1;
 }
 
-static void sbl__tap_add(const sbl__tap_ctx *t, int x, int y, float w, float *acc,
-                         float *acc_n)
+static int sbl__tap_ok(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y)
 {
-    const float *c = sbl__px(t->src_color, x, y);
+    if (x < 0 || y < 0 || x >= s->color->width || y >= s->color->height) return 0;
+    return sbl__tap_ok_in(s, t, x, y);
+}
+
+SBL__INLINE void sbl__tap_add(const sbl__tap_src *s, int x, int y, float w, float *acc,
+                              float *acc_n, int ch)
+{
+    const float *c = sbl__px(s->color, x, y);
     int k;
-    for (k = 0; k < t->src_color->channels; ++k) acc[k] += w * c[k];
-    *acc_n += w * ((t->src_length && t->src_length->data) ? *sbl__px(t->src_length, x, y)
-                                                          : 1.0f);
+    for (k = 0; k < ch; ++k) acc[k] += w * c[k];
+    *acc_n += w * ((s->length && s->length->data) ? *sbl__px(s->length, x, y) : 1.0f);
 }
 
 /* Bilinear 2x2 gather at continuous position (sx, sy) with per-tap tests, valid taps
-   renormalised; then the 3x3 fallback; returns N of the result (0: nothing valid). */
-static float sbl__gather(const sbl__tap_ctx *t, double sx, double sy, int fallback,
-                         float *out)
+   renormalised; then the 3x3 fallback; returns N of the result (0: nothing valid).
+   `ch` is a constant at each call site below, so the accumulators stay in registers. */
+SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
+                                 double sy, int fallback, float *out, int ch)
 {
-    float acc[4] = {0, 0, 0, 0}, acc_n = 0.0f, wsum = 0.0f, fx, fy;
-    int ch = t->src_color->channels, k, x0, y0, i, j;
+    float acc[4] = {0, 0, 0, 0}, acc_n = 0.0f, wsum = 0.0f, fx, fy, inv;
+    int k, x0, y0, i, j;
     double bx = sx - 0.5, by = sy - 0.5;
     /* far outside (or NaN): no tap can pass; also keeps the int conversion defined */
-    if (!(bx > -2.0 && by > -2.0 && bx < (double)t->src_color->width + 1.0 &&
-          by < (double)t->src_color->height + 1.0))
+    if (!(bx > -2.0 && by > -2.0 && bx < (double)s->color->width + 1.0 &&
+          by < (double)s->color->height + 1.0))
         return 0.0f;
     x0 = (int)floor(bx);
     y0 = (int)floor(by);
     fx = (float)(bx - x0);
     fy = (float)(by - y0);
-    for (j = 0; j < 2; ++j)
-        for (i = 0; i < 2; ++i) {
-            float w = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
-            if (w <= 0.0f) continue;
-            if (!sbl__tap_ok(t, x0 + i, y0 + j)) continue;
-            sbl__tap_add(t, x0 + i, y0 + j, w, acc, &acc_n);
-            wsum += w;
-        }
+    if (x0 >= 0 && y0 >= 0 && x0 + 1 < s->color->width && y0 + 1 < s->color->height) {
+        /* all four taps inside: no bounds tests (the common case) */
+        for (j = 0; j < 2; ++j)
+            for (i = 0; i < 2; ++i) {
+                float w = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
+                if (w <= 0.0f || !sbl__tap_ok_in(s, t, x0 + i, y0 + j)) continue;
+                sbl__tap_add(s, x0 + i, y0 + j, w, acc, &acc_n, ch);
+                wsum += w;
+            }
+    } else {
+        for (j = 0; j < 2; ++j)
+            for (i = 0; i < 2; ++i) {
+                float w = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
+                if (w <= 0.0f || !sbl__tap_ok(s, t, x0 + i, y0 + j)) continue;
+                sbl__tap_add(s, x0 + i, y0 + j, w, acc, &acc_n, ch);
+                wsum += w;
+            }
+    }
     if (wsum < 1e-3f && fallback) {
         /* thin geometry: the surface may survive only in a neighbour of the nearest
            pixel; average the consistent ones */
@@ -807,15 +837,27 @@ static float sbl__gather(const sbl__tap_ctx *t, double sx, double sy, int fallba
         wsum = 0.0f;
         for (j = -1; j <= 1; ++j)
             for (i = -1; i <= 1; ++i)
-                if (sbl__tap_ok(t, cx + i, cy + j)) {
-                    sbl__tap_add(t, cx + i, cy + j, 1.0f, acc, &acc_n);
+                if (sbl__tap_ok(s, t, cx + i, cy + j)) {
+                    sbl__tap_add(s, cx + i, cy + j, 1.0f, acc, &acc_n, ch);
                     wsum += 1.0f;
                 }
     }
     if (wsum < 1e-3f) return 0.0f;
-    for (k = 0; k < ch; ++k) out[k] = acc[k] / wsum;
-    acc_n /= wsum;
+    inv = 1.0f / wsum;
+    for (k = 0; k < ch; ++k) out[k] = acc[k] * inv;
+    acc_n *= inv;
     return acc_n > 0.0f ? acc_n : 0.0f;
+}
+
+static float sbl__gather(const sbl__tap_src *s, const sbl__tap_want *t, double sx, double sy,
+                         int fallback, float *out)
+{
+    switch (s->color->channels) {
+    case 1: return sbl__gather_ch(s, t, sx, sy, fallback, out, 1);
+    case 2: return sbl__gather_ch(s, t, sx, sy, fallback, out, 2);
+    case 3: return sbl__gather_ch(s, t, sx, sy, fallback, out, 3);
+    default: return sbl__gather_ch(s, t, sx, sy, fallback, out, 4);
+    }
 }
 
 /* Slack for the depth test from the target's own depth slope (one-sided minimum so a
@@ -844,6 +886,45 @@ static float sbl__depth_slack(const sbl_image *depth, int x, int y, float z)
         if (sbl__finite(d)) sy = d;
     }
     return sx + sy;
+}
+
+/* The target pixel's expectations (depth, slack, normal, id) from its G-buffer.
+   Returns 0 if its depth is not valid geometry. */
+static int sbl__tap_want_init(sbl__tap_want *t, const sbl_gbuffer *g, int x, int y,
+                              float *z_out)
+{
+    float z = 0.0f;
+    if (g->depth.data) {
+        z = *sbl__px(&g->depth, x, y);
+        if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0;
+        t->depth_slack = sbl__depth_slack(&g->depth, x, y, z);
+    } else {
+        t->depth_slack = 0.0f;
+    }
+    t->depth = z;
+    t->id = g->ids.data ? *sbl__px(&g->ids, x, y) : 0.0f;
+    t->normal = g->normals.data ? sbl__px(&g->normals, x, y) : NULL;
+    t->normal_len2 = t->normal ? t->normal[0] * t->normal[0] + t->normal[1] * t->normal[1] +
+                                     t->normal[2] * t->normal[2]
+                               : 0.0f;
+    if (t->normal && !sbl__finite(t->normal_len2)) return 0;
+    *z_out = z;
+    return 1;
+}
+
+/* Source side of the tests: a test runs only when both views have the buffer. */
+static void sbl__tap_src_init(sbl__tap_src *s, const sbl_image *color, const sbl_image *length,
+                              const sbl_gbuffer *src_g, const sbl_gbuffer *dst_g,
+                              const sbl_reproject_desc *rp)
+{
+    s->color = color;
+    s->length = length;
+    s->g = src_g;
+    s->use_depth = src_g->depth.data && dst_g->depth.data;
+    s->use_id = src_g->ids.data && dst_g->ids.data;
+    s->use_normal = src_g->normals.data && dst_g->normals.data && !(rp->normal_threshold < 0.0f);
+    s->depth_tolerance = rp->depth_tolerance;
+    s->normal_threshold2 = rp->normal_threshold * rp->normal_threshold;
 }
 
 /* Motion vector (any convention) -> backward displacement in pixels, y down. */
@@ -885,6 +966,7 @@ typedef struct sbl__temporal_rp {
     sbl_temporal_source source;
     const sbl_frame *frame;
     const sbl_history *history; /* NULL or no colour: everything resets */
+    sbl__tap_src src;
     sbl__cam_map cam;
 } sbl__temporal_rp;
 
@@ -909,6 +991,7 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
         if (hi->color.channels != frame->color.channels) return SBL_ERROR_CHANNEL_MISMATCH;
         if ((r = sbl__check_optional(&hi->length, 1, w, h)) != SBL_OK) return r;
         if ((r = sbl__check_gbuffer(&hi->gbuffer, w, h)) != SBL_OK) return r;
+        sbl__tap_src_init(&s->src, &hi->color, &hi->length, &hi->gbuffer, g, &s->rp);
     }
     if (source == SBL_TEMPORAL_MOTION && !g->motion.data) return SBL_ERROR_MISSING_INPUT;
     if (source == SBL_TEMPORAL_CAMERA) {
@@ -923,18 +1006,15 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
 }
 
 /* x* and its N for target pixel (x, y); returns 0 when the pixel must reset. */
-static float sbl__temporal_rp_pixel(const sbl__temporal_rp *s, int x, int y, float *out)
+static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
 {
+    const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
     const sbl_gbuffer *g = &s->frame->gbuffer;
-    sbl__tap_ctx t;
-    double sx, sy, sz = 0.0;
-    float z = 0.0f;
+    sbl__tap_want t;
+    double sx, sy, sz;
+    float z;
     if (!s->history) return 0.0f;
-    memset(&t, 0, sizeof t);
-    if (g->depth.data) {
-        z = *sbl__px(&g->depth, x, y);
-        if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
-    }
+    if (!sbl__tap_want_init(&t, g, x, y, &z)) return 0.0f;
     if (s->source == SBL_TEMPORAL_MOTION) {
         const float *mv = sbl__px(&g->motion, x, y);
         double dx, dy;
@@ -947,19 +1027,8 @@ static float sbl__temporal_rp_pixel(const sbl__temporal_rp *s, int x, int y, flo
     } else {
         if (!sbl__cam_map_apply(&s->cam, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
     }
-    t.src_color = &s->history->color;
-    t.src_length = &s->history->length;
-    t.src_g = &s->history->gbuffer;
-    t.has_depth = g->depth.data != NULL;
     t.depth = (float)sz;
-    t.depth_slack = t.has_depth ? sbl__depth_slack(&g->depth, x, y, z) : 0.0f;
-    t.depth_tolerance = s->rp.depth_tolerance;
-    t.has_id = g->ids.data != NULL;
-    t.id = t.has_id ? *sbl__px(&g->ids, x, y) : 0.0f;
-    t.normal = (g->normals.data && !(s->rp.normal_threshold < 0.0f))
-                   ? sbl__px(&g->normals, x, y) : NULL;
-    t.normal_threshold = s->rp.normal_threshold;
-    return sbl__gather(&t, sx, sy, !s->rp.no_fallback, out);
+    return sbl__gather(&s->src, &t, sx, sy, !s->rp.no_fallback, out);
 }
 
 static sbl_result sbl__check_rows(int y0, int y1, int h)
@@ -1022,31 +1091,16 @@ typedef struct sbl__moments {
     int count, pair_count;
 } sbl__moments;
 
-/* rows[0..2] point at rows y-1, y, y+1 of Y (NULL outside the image); xrows/nrows the
-   same for x* and its N (NULL: no paired statistics). */
-static void sbl__moments_at(sbl__moments *m, const float *const *rows,
-                            const float *const *xrows, const float *const *nrows, int x,
-                            int w, int ch)
+/* vals[i][c]: the n finite neighbours (centre included); xv[i] non-NULL where that
+   neighbour also has a valid x*. Two passes in double: exact enough for any float
+   input, never negative. */
+static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
+                              const float (*xvals)[4], const int *xvalid, int n, int ch)
 {
-    const float *vals[9];
-    const float *xv[9];
-    int n = 0, i, j, k;
-    for (j = 0; j < 3; ++j) {
-        if (!rows[j]) continue;
-        for (i = x - 1; i <= x + 1; ++i) {
-            const float *p;
-            int finite = 1;
-            if (i < 0 || i >= w) continue;
-            p = rows[j] + (size_t)i * ch;
-            for (k = 0; k < ch; ++k) finite &= sbl__finite(p[k]);
-            if (!finite) continue;
-            vals[n] = p;
-            xv[n] = (xrows && xrows[j] && nrows[j][i] > 0.0f) ? xrows[j] + (size_t)i * ch : NULL;
-            ++n;
-        }
-    }
+    int i, k;
     m->count = n;
     m->pair_count = 0;
+    for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
     for (k = 0; k < ch; ++k) {
         double s = 0.0, v = 0.0, pd = 0.0;
         float lo = 0.0f, hi = 0.0f;
@@ -1062,13 +1116,18 @@ static void sbl__moments_at(sbl__moments *m, const float *const *rows,
         m->var[k] = n ? v / n : 0.0;
         m->lo[k] = lo;
         m->hi[k] = hi;
-        for (i = 0; i < n; ++i)
-            if (xv[i]) pd += (double)xv[i][k] - (double)vals[i][k];
-        m->pair_diff[k] = pd;
+        if (xvalid)
+            for (i = 0; i < n; ++i)
+                if (xvalid[i]) pd += (double)xvals[i][k] - (double)vals[i][k];
+        m->pair_diff[k] = m->pair_count ? pd / m->pair_count : 0.0;
     }
-    for (i = 0; i < n; ++i) m->pair_count += xv[i] != NULL;
-    if (m->pair_count)
-        for (k = 0; k < ch; ++k) m->pair_diff[k] /= m->pair_count;
+}
+
+static int sbl__all_finite(const float *p, int ch)
+{
+    int k, ok = 1;
+    for (k = 0; k < ch; ++k) ok &= sbl__finite(p[k]);
+    return ok;
 }
 
 SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image var, int y0,
@@ -1084,20 +1143,26 @@ SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image var, 
     if ((r = sbl__check_rows(y0, y1, src.height)) != SBL_OK) return r;
     if (sbl__overlap(&mean, &src) || sbl__overlap(&var, &src) || sbl__overlap(&mean, &var))
         return SBL_ERROR_OVERLAP;
-    for (y = y0; y < y1; ++y) {
-        const float *rows[3];
-        rows[0] = y > 0 ? sbl__px(&src, 0, y - 1) : NULL;
-        rows[1] = sbl__px(&src, 0, y);
-        rows[2] = y + 1 < src.height ? sbl__px(&src, 0, y + 1) : NULL;
+    for (y = y0; y < y1; ++y)
         for (x = 0; x < src.width; ++x) {
+            float vals[9][4];
             sbl__moments m;
-            sbl__moments_at(&m, rows, NULL, NULL, x, src.width, ch);
+            int n = 0, i, j;
+            for (j = y - 1; j <= y + 1; ++j)
+                for (i = x - 1; i <= x + 1; ++i) {
+                    const float *p;
+                    if (i < 0 || j < 0 || i >= src.width || j >= src.height) continue;
+                    p = sbl__px(&src, i, j);
+                    if (!sbl__all_finite(p, ch)) continue;
+                    for (k = 0; k < ch; ++k) vals[n][k] = p[k];
+                    ++n;
+                }
+            sbl__moments_core(&m, (const float(*)[4])vals, NULL, NULL, n, ch);
             for (k = 0; k < ch; ++k) {
                 if (mean.data) sbl__px(&mean, x, y)[k] = (float)m.mean[k];
                 if (var.data) sbl__px(&var, x, y)[k] = (float)m.var[k];
             }
         }
-    }
     return SBL_OK;
 }
 
@@ -1128,8 +1193,8 @@ typedef struct sbl__weight_params {
     float constant, alpha_min, gamma, bias_threshold;
 } sbl__weight_params;
 
-/* Estimate the weight of Y for squared quantities summed over `chs` channels. x_dev2 =
-   (x* - mean)^2, s2 = population variance of Y, pd2 = (mean paired difference)^2. */
+/* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
+   s2 = population variance of Y, pd2 = (mean paired difference)^2. */
 static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, double pd2,
                          int count, int pair_count, float n_x, float n_y)
 {
@@ -1148,7 +1213,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         break;
     case SBL_ESTIMATOR_HISTORY_AWARE:
     default: {
-        /* unbiased per-sample variance of Y; history carries N_X / N_Y times less */
+        /* unbiased per-sample variance of Y; history carries N_Y / N_X of it */
         double var_y = count > 1 ? s2 * count / (count - 1) : 0.0;
         double var_x = var_y * (double)n_y / (double)n_x;
         double bias2 = 0.0;
@@ -1198,12 +1263,25 @@ static void sbl__rectify(const sbl__weight_params *p, const sbl__moments *m, con
     }
 }
 
+static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
+                                           sbl_weight_mode m, float constant,
+                                           float alpha_min, float gamma, float bias)
+{
+    if ((int)e < 0 || e >= SBL_ESTIMATOR_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if ((int)r < 0 || r >= SBL_RECTIFY_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if ((int)m < 0 || m >= SBL_WEIGHT_MODE_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if (!sbl__param_ok(constant) || constant > 1.0f) return SBL_ERROR_INVALID_PARAM;
+    if (!sbl__param_ok(alpha_min) || alpha_min > 1.0f) return SBL_ERROR_INVALID_PARAM;
+    if (!sbl__param_ok(gamma) || !sbl__param_ok(bias)) return SBL_ERROR_INVALID_PARAM;
+    return SBL_OK;
+}
+
 /* ------------------------------------------------------------------------ */
-/* 6. Blend and history length                                              */
+/* 6. Blend, history length, and the fused row kernel                       */
 /* ------------------------------------------------------------------------ */
 
-/* Blend one pixel: y = own, xs = other (rectified here), n_x/n_y their sample counts.
-   Writes out[ch], returns the new N; *alpha_out = mean weight over channels. */
+/* Reference blend of one pixel (double): y = own, xs = other (rectified here), n_x/n_y
+   their sample counts. Writes out[ch], returns the new N; *alpha_out = mean weight. */
 static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m,
                               const float *y, float *xs, float n_x, float n_y, int ch,
                               float *out, float *alpha_out)
@@ -1242,6 +1320,458 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     return sbl_blend_sample_count(a_mean, n_x, n_y);
 }
 
+/* ---- thin SIMD layer ------------------------------------------------------
+   One lane kernel below is written against these few operations. Chosen at compile
+   time: AVX-512F, AVX2, SSE2, NEON (AArch64), or plain float (SBL_NO_SIMD, or none of
+   them available): the scalar path is the same code with a width of 1. */
+#if !defined(SBL_NO_SIMD) && defined(__AVX512F__)
+#include <immintrin.h>
+#define SBL_SIMD_NAME "avx512"
+#define SBL__VW 16
+typedef __m512 sbl__v;
+typedef __mmask16 sbl__m;
+#define sbl__set1(a) _mm512_set1_ps(a)
+#define sbl__load(p) _mm512_loadu_ps(p)
+#define sbl__store(p, a) _mm512_storeu_ps(p, a)
+#define sbl__add(a, b) _mm512_add_ps(a, b)
+#define sbl__sub(a, b) _mm512_sub_ps(a, b)
+#define sbl__mul(a, b) _mm512_mul_ps(a, b)
+#define sbl__div(a, b) _mm512_div_ps(a, b)
+#define sbl__min(a, b) _mm512_min_ps(a, b)
+#define sbl__max(a, b) _mm512_max_ps(a, b)
+#define sbl__sqrt(a) _mm512_sqrt_ps(a)
+#define sbl__abs(a) _mm512_abs_ps(a)
+#define sbl__gt(a, b) _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
+#define sbl__sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
+#elif !defined(SBL_NO_SIMD) && defined(__AVX2__)
+#include <immintrin.h>
+#define SBL_SIMD_NAME "avx2"
+#define SBL__VW 8
+typedef __m256 sbl__v;
+typedef __m256 sbl__m;
+#define sbl__set1(a) _mm256_set1_ps(a)
+#define sbl__load(p) _mm256_loadu_ps(p)
+#define sbl__store(p, a) _mm256_storeu_ps(p, a)
+#define sbl__add(a, b) _mm256_add_ps(a, b)
+#define sbl__sub(a, b) _mm256_sub_ps(a, b)
+#define sbl__mul(a, b) _mm256_mul_ps(a, b)
+#define sbl__div(a, b) _mm256_div_ps(a, b)
+#define sbl__min(a, b) _mm256_min_ps(a, b)
+#define sbl__max(a, b) _mm256_max_ps(a, b)
+#define sbl__sqrt(a) _mm256_sqrt_ps(a)
+#define sbl__abs(a) _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a)
+#define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
+#define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
+#elif !defined(SBL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || \
+                                (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#include <emmintrin.h>
+#define SBL_SIMD_NAME "sse2"
+#define SBL__VW 4
+typedef __m128 sbl__v;
+typedef __m128 sbl__m;
+#define sbl__set1(a) _mm_set1_ps(a)
+#define sbl__load(p) _mm_loadu_ps(p)
+#define sbl__store(p, a) _mm_storeu_ps(p, a)
+#define sbl__add(a, b) _mm_add_ps(a, b)
+#define sbl__sub(a, b) _mm_sub_ps(a, b)
+#define sbl__mul(a, b) _mm_mul_ps(a, b)
+#define sbl__div(a, b) _mm_div_ps(a, b)
+#define sbl__min(a, b) _mm_min_ps(a, b)
+#define sbl__max(a, b) _mm_max_ps(a, b)
+#define sbl__sqrt(a) _mm_sqrt_ps(a)
+#define sbl__abs(a) _mm_andnot_ps(_mm_set1_ps(-0.0f), a)
+#define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
+#define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
+#elif !defined(SBL_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h>
+#define SBL_SIMD_NAME "neon"
+#define SBL__VW 4
+typedef float32x4_t sbl__v;
+typedef uint32x4_t sbl__m;
+#define sbl__set1(a) vdupq_n_f32(a)
+#define sbl__load(p) vld1q_f32(p)
+#define sbl__store(p, a) vst1q_f32(p, a)
+#define sbl__add(a, b) vaddq_f32(a, b)
+#define sbl__sub(a, b) vsubq_f32(a, b)
+#define sbl__mul(a, b) vmulq_f32(a, b)
+#define sbl__div(a, b) vdivq_f32(a, b)
+#define sbl__min(a, b) vminq_f32(a, b)
+#define sbl__max(a, b) vmaxq_f32(a, b)
+#define sbl__sqrt(a) vsqrtq_f32(a)
+#define sbl__abs(a) vabsq_f32(a)
+#define sbl__gt(a, b) vcgtq_f32(a, b)
+#define sbl__sel(m, a, b) vbslq_f32(m, a, b)
+#else
+#define SBL_SIMD_NAME "scalar"
+#define SBL__VW 1
+typedef float sbl__v;
+typedef int sbl__m;
+#define sbl__set1(a) (a)
+#define sbl__load(p) (*(p))
+#define sbl__store(p, a) (*(p) = (a))
+#define sbl__add(a, b) ((a) + (b))
+#define sbl__sub(a, b) ((a) - (b))
+#define sbl__mul(a, b) ((a) * (b))
+#define sbl__div(a, b) ((a) / (b))
+#define sbl__min(a, b) ((a) < (b) ? (a) : (b))
+#define sbl__max(a, b) ((a) > (b) ? (a) : (b))
+#define sbl__sqrt(a) sqrtf(a)
+#define sbl__abs(a) fabsf(a)
+#define sbl__gt(a, b) ((a) > (b))
+#define sbl__sel(m, a, b) ((m) ? (a) : (b))
+#endif
+
+/* ---- the fused row kernel --------------------------------------------------
+   Shared by the temporal filter and the stereo blend. Rows of the own estimate Y are
+   deinterleaved into planes, and the other estimate x* (reprojected history or other
+   eye) is gathered once per row, into a ring of three rows; the 3x3 statistics, the
+   weight, the rectification, the blend and Eq. 5 then run over those planes:
+   - the lane kernel (SIMD layer above) on interior pixels of rows whose values are
+     finite and within [1e-15, 1e15] in magnitude (or 0), in float;
+   - the reference path (sbl__blend_pixel, double) everywhere else: image borders
+     (fewer than 9 neighbours), non-finite samples, extreme magnitudes or denormals.
+   Each output pixel takes one of the two paths by a rule that depends only on the
+   input, never on the row range, so banded calls reproduce a whole-image call. */
+
+typedef float (*sbl__gather_fn)(const void *ctx, int x, int y, float *out);
+
+typedef struct sbl__ring_row {
+    float *y[4];   /* own colour, one plane per channel                         */
+    float *x[4];   /* x* per channel, 0 where invalid                           */
+    float *n;      /* N of x*, 0 where invalid                                  */
+    float *v;      /* 1 where x* is valid, else 0                               */
+    int row;       /* image row held (-1: none)                                 */
+    int lane_safe; /* every value finite and of moderate magnitude              */
+} sbl__ring_row;
+
+typedef struct sbl__kernel {
+    int w, h, ch;
+    sbl__weight_params wp;
+    float n_cap;             /* cap on N_X and on the output N                    */
+    int temporal;            /* reset writes N = 1 (temporal) or N_Y (stereo)     */
+    int fill;                /* stereo fill: x* wherever it is valid              */
+    const sbl_image *own;    /* Y                                                 */
+    const sbl_image *own_n;  /* N_Y (NULL data: 1)                                */
+    sbl__gather_fn gather;
+    const void *gather_ctx;
+    sbl_image out, out_n, out_a; /* out_n / out_a data may be NULL                */
+    float *stage[4], *stage_n, *stage_a;
+    sbl__ring_row ring[3];
+} sbl__kernel;
+
+/* planes per ring row: 2 * channels + 2; staging: channels + 2; each plane padded */
+static size_t sbl__plane_floats(int width)
+{
+    return ((size_t)width + 15u) & ~(size_t)15u;
+}
+
+static size_t sbl__kernel_scratch_size(int width, int channels)
+{
+    if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
+    return (size_t)(3 * (2 * channels + 2) + channels + 2) * sbl__plane_floats(width) *
+               sizeof(float) + 64;
+}
+
+static void *sbl__align64(void *p)
+{
+    size_t a = (size_t)p;
+    return (void *)((char *)p + ((64 - (a & 63)) & 63));
+}
+
+static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
+{
+    size_t pf = sbl__plane_floats(k->w);
+    float *p = (float *)sbl__align64(scratch);
+    int r, c;
+    for (r = 0; r < 3; ++r) {
+        for (c = 0; c < k->ch; ++c) { k->ring[r].y[c] = p; p += pf; }
+        for (c = 0; c < k->ch; ++c) { k->ring[r].x[c] = p; p += pf; }
+        k->ring[r].n = p; p += pf;
+        k->ring[r].v = p; p += pf;
+        k->ring[r].row = -1;
+        k->ring[r].lane_safe = 0;
+    }
+    for (c = 0; c < k->ch; ++c) { k->stage[c] = p; p += pf; }
+    k->stage_n = p; p += pf;
+    k->stage_a = p;
+}
+
+/* Finite, and 0 or within [1e-15, 1e15] in magnitude: squares and sums of nine of
+   them stay normal floats, so the lane kernel needs no scaling. */
+static int sbl__lane_value_ok(float v)
+{
+    float a = fabsf(v);
+    return sbl__finite(v) && a <= 1e15f && (a >= 1e-15f || a == 0.0f);
+}
+
+static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row)
+{
+    const float *src = sbl__px(k->own, 0, row);
+    int x, c, ch = k->ch, safe = 1;
+    r->row = row;
+    for (x = 0; x < k->w; ++x)
+        for (c = 0; c < ch; ++c) {
+            float v = src[(size_t)x * ch + c];
+            r->y[c][x] = v;
+            safe &= sbl__lane_value_ok(v);
+        }
+    for (x = 0; x < k->w; ++x) {
+        float tmp[4] = {0, 0, 0, 0};
+        float n = k->gather(k->gather_ctx, x, row, tmp);
+        int valid = n > 0.0f;
+        r->n[x] = valid ? n : 0.0f;
+        r->v[x] = valid ? 1.0f : 0.0f;
+        for (c = 0; c < ch; ++c) {
+            r->x[c][x] = valid ? tmp[c] : 0.0f;
+            if (valid) safe &= sbl__lane_value_ok(tmp[c]);
+        }
+        if (valid) safe &= sbl__lane_value_ok(n);
+    }
+    r->lane_safe = safe;
+}
+
+static float sbl__own_n(const sbl__kernel *k, int x, int y)
+{
+    float n;
+    if (!k->own_n || !k->own_n->data) return 1.0f;
+    n = *sbl__px(k->own_n, x, y);
+    return (sbl__finite(n) && n > 0.0f) ? n : 1.0f;
+}
+
+/* Reference path for one pixel: borders, non-finite and extreme values. */
+static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R, int x)
+{
+    const int ch = k->ch, y = R[1]->row;
+    float yc[4], xs[4], out[4], a = 1.0f, n_out;
+    float n_x = R[1]->n[x], n_y = sbl__own_n(k, x, y);
+    int c, finite = 1;
+    for (c = 0; c < ch; ++c) {
+        yc[c] = R[1]->y[c][x];
+        xs[c] = R[1]->x[c][x];
+        finite &= sbl__finite(yc[c]);
+    }
+    if (!finite) {
+        /* no new sample: keep x* if there is one, else black with N = 0 */
+        for (c = 0; c < ch; ++c) out[c] = n_x > 0.0f ? xs[c] : 0.0f;
+        n_out = n_x > 0.0f ? n_x : 0.0f;
+        a = 0.0f;
+    } else if (!(n_x > 0.0f)) {
+        for (c = 0; c < ch; ++c) out[c] = yc[c]; /* disocclusion / no match: reset */
+        n_out = k->temporal ? 1.0f : n_y;
+    } else if (k->fill) {
+        for (c = 0; c < ch; ++c) out[c] = xs[c];
+        n_out = n_x;
+        a = 0.0f;
+    } else {
+        float vals[9][4], xvals[9][4];
+        int xvalid[9], n = 0, i, j;
+        sbl__moments m;
+        for (j = 0; j < 3; ++j) {
+            if (!R[j]) continue;
+            for (i = x - 1; i <= x + 1; ++i) {
+                int ok = 1;
+                if (i < 0 || i >= k->w) continue;
+                for (c = 0; c < ch; ++c) {
+                    vals[n][c] = R[j]->y[c][i];
+                    xvals[n][c] = R[j]->x[c][i];
+                    ok &= sbl__finite(vals[n][c]);
+                }
+                if (!ok) continue;
+                xvalid[n] = R[j]->v[i] > 0.0f;
+                ++n;
+            }
+        }
+        sbl__moments_core(&m, (const float(*)[4])vals, (const float(*)[4])xvals, xvalid, n, ch);
+        if (n_x > k->n_cap) n_x = k->n_cap;
+        n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
+    }
+    if (!(n_out <= k->n_cap)) n_out = k->n_cap; /* also NaN */
+    for (c = 0; c < ch; ++c) k->stage[c][x] = out[c];
+    k->stage_n[x] = n_out;
+    k->stage_a[x] = a;
+}
+
+#define SBL__SUM9(P, X) \
+    sbl__add(sbl__add(sbl__add(sbl__load((P)[0] + (X) - 1), sbl__load((P)[0] + (X))), \
+                      sbl__add(sbl__load((P)[0] + (X) + 1), sbl__load((P)[1] + (X) - 1))), \
+             sbl__add(sbl__add(sbl__add(sbl__load((P)[1] + (X)), sbl__load((P)[1] + (X) + 1)), \
+                               sbl__add(sbl__load((P)[2] + (X) - 1), sbl__load((P)[2] + (X)))), \
+                      sbl__load((P)[2] + (X) + 1)))
+
+/* Lane kernel over pixels [x0, x1) of an interior row (all nine neighbours exist and
+   are lane-safe). Same algebra as the reference path with count = 9, in float.
+   Returns the first pixel it did not process (the tail goes to the reference path). */
+static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int x0, int x1)
+{
+    const int ch = k->ch, y = R[1]->row;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), ninth = sbl__set1(1.0f / 9.0f);
+    const sbl__v tiny = sbl__set1(FLT_MIN), cap = sbl__set1(k->n_cap);
+    const sbl__v amin = sbl__set1(k->wp.alpha_min), konst = sbl__set1(k->wp.constant);
+    const sbl__v thr = sbl__set1(k->wp.bias_threshold), gamma = sbl__set1(k->wp.gamma);
+    const sbl__v bessel = sbl__set1(9.0f / 8.0f);
+    const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
+    const sbl_estimator est = k->wp.estimator;
+    const int per_channel = k->wp.mode == SBL_WEIGHT_PER_CHANNEL;
+    const float *yp[4][3], *xp[4][3], *vp[3];
+    int x, c, j;
+    for (j = 0; j < 3; ++j) {
+        for (c = 0; c < ch; ++c) { yp[c][j] = R[j]->y[c]; xp[c][j] = R[j]->x[c]; }
+        vp[j] = R[j]->v;
+    }
+    for (x = x0; x + SBL__VW <= x1; x += SBL__VW) {
+        sbl__v mean[4], var[4], lo[4], hi[4], pd[4], xs[4], yc[4], a[4];
+        sbl__v cnt = SBL__SUM9(vp, x), inv_cnt, n_x, n_y, n_xc;
+        sbl__m valid, has_pairs;
+        has_pairs = sbl__gt(cnt, zero);
+        inv_cnt = sbl__div(one, sbl__max(cnt, one));
+        n_x = sbl__load(R[1]->n + x);
+        valid = sbl__gt(n_x, zero);
+        n_y = nyrow ? sbl__load(nyrow + x) : one;
+        n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+        n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+        for (c = 0; c < ch; ++c) {
+            const float *const *P = yp[c];
+            sbl__v m = sbl__mul(SBL__SUM9(P, x), ninth), v = zero, d = zero;
+            lo[c] = m; /* the mean lies inside [min, max]: a neutral start */
+            hi[c] = m;
+            for (j = 0; j < 3; ++j) {
+                int i;
+                for (i = -1; i <= 1; ++i) {
+                    sbl__v yy = sbl__load(yp[c][j] + x + i);
+                    sbl__v e = sbl__sub(yy, m);
+                    v = sbl__add(v, sbl__mul(e, e));
+                    d = sbl__add(d, sbl__mul(sbl__load(vp[j] + x + i),
+                                             sbl__sub(sbl__load(xp[c][j] + x + i), yy)));
+                    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+                        lo[c] = sbl__min(lo[c], yy);
+                        hi[c] = sbl__max(hi[c], yy);
+                    }
+                }
+            }
+            mean[c] = m;
+            var[c] = sbl__mul(v, ninth);
+            pd[c] = sbl__mul(d, inv_cnt);
+            xs[c] = sbl__load(xp[c][1] + x);
+            yc[c] = sbl__load(yp[c][1] + x);
+        }
+        if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+            for (c = 0; c < ch; ++c) xs[c] = sbl__min(sbl__max(xs[c], lo[c]), hi[c]);
+        } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
+            sbl__v t = one;
+            for (c = 0; c < ch; ++c) {
+                sbl__v half = sbl__max(sbl__mul(gamma, sbl__sqrt(var[c])),
+                                       sbl__abs(sbl__sub(yc[c], mean[c])));
+                sbl__v dist = sbl__abs(sbl__sub(xs[c], mean[c]));
+                t = sbl__sel(sbl__gt(dist, half), sbl__min(t, sbl__div(half, sbl__max(dist, tiny))), t);
+            }
+            for (c = 0; c < ch; ++c)
+                xs[c] = sbl__sel(sbl__gt(one, t), sbl__add(mean[c], sbl__mul(sbl__sub(xs[c], mean[c]), t)), xs[c]);
+        }
+        {
+            const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
+            const int groups = per_channel ? ch : 1;
+            int g;
+            for (g = 0; g < groups; ++g) {
+                sbl__v dev2 = zero, s2 = zero, pd2 = zero, w;
+                int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
+                for (c = c0; c < c1; ++c) {
+                    sbl__v e = sbl__sub(xs[c], mean[c]);
+                    dev2 = sbl__add(dev2, sbl__mul(e, e));
+                    s2 = sbl__add(s2, var[c]);
+                    pd2 = sbl__add(pd2, sbl__mul(pd[c], pd[c]));
+                }
+                if (est == SBL_ESTIMATOR_PAPER) {
+                    sbl__v den = sbl__add(dev2, s2);
+                    w = sbl__sel(sbl__gt(den, zero), sbl__div(dev2, sbl__max(den, tiny)), prog);
+                } else if (est == SBL_ESTIMATOR_PROGRESSIVE) {
+                    w = prog;
+                } else if (est == SBL_ESTIMATOR_CONSTANT) {
+                    w = konst;
+                } else {
+                    sbl__v vy = sbl__mul(s2, bessel);
+                    sbl__v vx = sbl__div(sbl__mul(vy, n_y), n_xc);
+                    sbl__v noise = sbl__mul(sbl__add(vx, vy), inv_cnt);
+                    sbl__v b2 = sbl__max(sbl__sub(pd2, sbl__mul(thr, noise)), zero);
+                    sbl__v num, den;
+                    b2 = sbl__sel(has_pairs, b2, zero);
+                    num = sbl__add(b2, vx);
+                    den = sbl__add(num, vy);
+                    w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
+                }
+                w = sbl__min(sbl__max(sbl__max(w, amin), zero), one);
+                for (c = c0; c < c1; ++c) a[c] = w;
+            }
+        }
+        {
+            sbl__v a_mean = zero, n_out, one_m, den;
+            for (c = 0; c < ch; ++c) {
+                sbl__v o = sbl__add(xs[c], sbl__mul(a[c], sbl__sub(yc[c], xs[c])));
+                if (k->fill) o = xs[c];
+                sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c]));
+                a_mean = sbl__add(a_mean, a[c]);
+            }
+            a_mean = sbl__mul(a_mean, sbl__set1(1.0f / (float)ch));
+            if (k->fill) a_mean = zero;
+            /* Eq. 5: N = N_X N_Y / ((1-a)^2 N_Y + a^2 N_X) */
+            one_m = sbl__sub(one, a_mean);
+            den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a_mean, a_mean), n_xc));
+            n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
+                             sbl__add(n_xc, n_y));
+            if (k->fill) n_out = n_xc;
+            n_out = sbl__min(n_out, cap);
+            sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
+            sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
+        }
+    }
+    return x;
+}
+
+/* Filter rows [y0, y1) into k->out (and out_n / out_a). */
+static void sbl__kernel_run(sbl__kernel *k, int y0, int y1)
+{
+    int y, x, c, j;
+    if (y0 >= y1) return;
+    for (j = 0; j < 3; ++j) {
+        int ry = y0 - 1 + j;
+        k->ring[j].row = -1;
+        if (ry >= 0 && ry < k->h) sbl__ring_load(k, &k->ring[j], ry);
+    }
+    for (y = y0; y < y1; ++y) {
+        const sbl__ring_row *R[3];
+        int lanes_ok, xs = 0, xe = 0;
+        for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
+        lanes_ok = R[0] && R[2] && R[0]->lane_safe && R[1]->lane_safe && R[2]->lane_safe &&
+                   k->w >= 3;
+        if (lanes_ok) {
+            xs = 1;
+            xe = sbl__kernel_lanes(k, R, 1, k->w - 1);
+        }
+        for (x = 0; x < k->w; ++x)
+            if (x < xs || x >= xe) sbl__kernel_pixel_ref(k, R, x);
+        {   /* interleave the staged row into the outputs */
+            float *o = sbl__px(&k->out, 0, y);
+            for (x = 0; x < k->w; ++x)
+                for (c = 0; c < k->ch; ++c) o[(size_t)x * k->ch + c] = k->stage[c][x];
+            if (k->out_n.data) {
+                float *on = sbl__px(&k->out_n, 0, y);
+                for (x = 0; x < k->w; ++x) on[x] = k->stage_n[x];
+            }
+            if (k->out_a.data) {
+                float *oa = sbl__px(&k->out_a, 0, y);
+                for (x = 0; x < k->w; ++x) oa[x] = k->stage_a[x];
+            }
+        }
+        {   /* advance the ring: drop row y-1, load row y+2 */
+            sbl__ring_row t = k->ring[0];
+            k->ring[0] = k->ring[1];
+            k->ring[1] = k->ring[2];
+            k->ring[2] = t;
+            k->ring[2].row = -1;
+            if (y + 1 < y1 && y + 2 < k->h) sbl__ring_load(k, &k->ring[2], y + 2);
+        }
+    }
+}
+
 /* ------------------------------------------------------------------------ */
 /* 7. Temporal filter                                                       */
 /* ------------------------------------------------------------------------ */
@@ -1259,31 +1789,9 @@ SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
     return d;
 }
 
-/* Scratch: a ring of 3 rows of x* (channels floats per pixel) and 3 rows of its N,
-   plus 64 bytes for alignment. */
 SBLDEF size_t sbl_temporal_scratch_size(int width, int channels)
 {
-    if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
-    return (size_t)3 * (size_t)width * (size_t)(channels + 1) * sizeof(float) + 64;
-}
-
-static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
-                                           sbl_weight_mode m, float constant,
-                                           float alpha_min, float gamma, float bias)
-{
-    if ((int)e < 0 || e >= SBL_ESTIMATOR_COUNT) return SBL_ERROR_INVALID_PARAM;
-    if ((int)r < 0 || r >= SBL_RECTIFY_COUNT) return SBL_ERROR_INVALID_PARAM;
-    if ((int)m < 0 || m >= SBL_WEIGHT_MODE_COUNT) return SBL_ERROR_INVALID_PARAM;
-    if (!sbl__param_ok(constant) || constant > 1.0f) return SBL_ERROR_INVALID_PARAM;
-    if (!sbl__param_ok(alpha_min) || alpha_min > 1.0f) return SBL_ERROR_INVALID_PARAM;
-    if (!sbl__param_ok(gamma) || !sbl__param_ok(bias)) return SBL_ERROR_INVALID_PARAM;
-    return SBL_OK;
-}
-
-static void *sbl__align64(void *p)
-{
-    size_t a = (size_t)p;
-    return (void *)((char *)p + ((64 - (a & 63)) & 63));
+    return sbl__kernel_scratch_size(width, channels);
 }
 
 SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
@@ -1293,10 +1801,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
 {
     sbl_temporal_desc d;
     sbl__temporal_rp s;
-    sbl__weight_params wp;
+    sbl__kernel k;
     sbl_result r;
-    float *xring[3], *nring[3];
-    int w, h, ch, x, y, k;
+    int w, h, ch;
     if (!user_desc || !frame || !out) return SBL_ERROR_NULL_POINTER;
     d = sbl_temporal_defaults(user_desc);
     if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
@@ -1338,75 +1845,26 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     if (!scratch) return SBL_ERROR_NULL_POINTER;
     if (scratch_bytes < sbl_temporal_scratch_size(w, ch)) return SBL_ERROR_SCRATCH_TOO_SMALL;
 
-    wp.estimator = d.estimator;
-    wp.rectify = d.rectify;
-    wp.mode = d.weight_mode;
-    wp.constant = d.constant_alpha;
-    wp.alpha_min = d.alpha_min;
-    wp.gamma = d.clip_gamma;
-    wp.bias_threshold = d.bias_threshold;
-    {
-        float *base = (float *)sbl__align64(scratch);
-        for (k = 0; k < 3; ++k) {
-            xring[k] = base + (size_t)k * w * ch;
-            nring[k] = base + (size_t)3 * w * ch + (size_t)k * w;
-        }
-    }
-
-    /* Ring of reprojected rows y-1, y, y+1: each row is gathered once per call. */
-    for (k = 0; k < 3; ++k) {
-        int ry = y0 - 1 + k;
-        if (ry < 0 || ry >= h || y0 >= y1) continue;
-        for (x = 0; x < w; ++x)
-            nring[k][x] = sbl__temporal_rp_pixel(&s, x, ry, xring[k] + (size_t)x * ch);
-    }
-    for (y = y0; y < y1; ++y) {
-        const float *rows[3], *xr[3], *nr[3];
-        const float *cur_row = sbl__px(&frame->color, 0, y);
-        for (k = 0; k < 3; ++k) {
-            int ry = y - 1 + k;
-            int in = ry >= 0 && ry < h;
-            rows[k] = in ? sbl__px(&frame->color, 0, ry) : NULL;
-            xr[k] = in ? xring[k] : NULL;
-            nr[k] = in ? nring[k] : NULL;
-        }
-        for (x = 0; x < w; ++x) {
-            const float *yc = cur_row + (size_t)x * ch;
-            float *oc = sbl__px(&out->color, x, y);
-            float n_x = nring[1][x], n_out, a = 1.0f;
-            float xs[4];
-            int finite = 1;
-            for (k = 0; k < ch; ++k) finite &= sbl__finite(yc[k]);
-            if (!finite) {
-                /* no new sample: keep the history if there is one, else black, N = 0 */
-                for (k = 0; k < ch; ++k) oc[k] = n_x > 0.0f ? xring[1][(size_t)x * ch + k] : 0.0f;
-                n_out = n_x > 0.0f ? n_x : 0.0f;
-                a = 0.0f;
-            } else if (!(n_x > 0.0f)) {
-                for (k = 0; k < ch; ++k) oc[k] = yc[k]; /* disocclusion: reset */
-                n_out = 1.0f;
-            } else {
-                sbl__moments m;
-                sbl__moments_at(&m, rows, xr, nr, x, w, ch);
-                for (k = 0; k < ch; ++k) xs[k] = xring[1][(size_t)x * ch + k];
-                if (n_x > d.max_history) n_x = d.max_history;
-                n_out = sbl__blend_pixel(&wp, &m, yc, xs, n_x, 1.0f, ch, oc, &a);
-            }
-            if (!(n_out <= d.max_history)) n_out = d.max_history; /* also NaN */
-            *sbl__px(&out->length, x, y) = n_out;
-            if (out->alpha.data) *sbl__px(&out->alpha, x, y) = a;
-        }
-        /* advance the ring: drop row y-1, gather row y+2 */
-        {
-            float *tx = xring[0], *tn = nring[0];
-            int ry = y + 2;
-            xring[0] = xring[1]; xring[1] = xring[2]; xring[2] = tx;
-            nring[0] = nring[1]; nring[1] = nring[2]; nring[2] = tn;
-            if (y + 1 < y1 && ry < h)
-                for (x = 0; x < w; ++x)
-                    nring[2][x] = sbl__temporal_rp_pixel(&s, x, ry, xring[2] + (size_t)x * ch);
-        }
-    }
+    memset(&k, 0, sizeof k);
+    k.w = w; k.h = h; k.ch = ch;
+    k.wp.estimator = d.estimator;
+    k.wp.rectify = d.rectify;
+    k.wp.mode = d.weight_mode;
+    k.wp.constant = d.constant_alpha;
+    k.wp.alpha_min = d.alpha_min;
+    k.wp.gamma = d.clip_gamma;
+    k.wp.bias_threshold = d.bias_threshold;
+    k.n_cap = d.max_history;
+    k.temporal = 1;
+    k.own = &frame->color;
+    k.own_n = NULL;
+    k.gather = sbl__temporal_rp_pixel;
+    k.gather_ctx = &s;
+    k.out = out->color;
+    k.out_n = out->length;
+    k.out_a = out->alpha;
+    sbl__kernel_bind(&k, scratch);
+    sbl__kernel_run(&k, y0, y1);
     return SBL_OK;
 }
 
@@ -1448,6 +1906,7 @@ typedef struct sbl__stereo_rp {
     sbl_stereo_desc d;
     sbl_eye_index target_eye;
     const sbl_eye *target, *source;
+    sbl__tap_src src;
     sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES */
 } sbl__stereo_rp;
 
@@ -1509,6 +1968,8 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->target_eye = target_eye;
     s->target = target;
     s->source = source;
+    sbl__tap_src_init(&s->src, &source->color, &source->length, &source->gbuffer,
+                      &target->gbuffer, &s->d.reproject);
     if (s->d.rig == SBL_RIG_MATRICES) {
         int w = source->color.width, h = source->color.height;
         if (!sbl__cam_map_init(&s->to_source, target->camera, w, h, source->camera, w, h) ||
@@ -1531,20 +1992,17 @@ static float sbl__disparity(const sbl__stereo_rp *s, const sbl_eye *e, int x, in
 
 /* The other eye's colour at target pixel (x, y) after tap tests and back-check;
    returns its N (0: no valid correspondence). */
-static float sbl__stereo_rp_pixel(const sbl__stereo_rp *s, int x, int y, float *out)
+static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 {
+    const sbl__stereo_rp *s = (const sbl__stereo_rp *)ctx;
     const sbl_eye *t = s->target, *src = s->source;
-    const sbl_gbuffer *g = &t->gbuffer;
     /* target left: the source (right) position is u - disparity; target right: u + d */
     double dir = s->target_eye == SBL_EYE_LEFT ? -1.0 : 1.0;
-    double sx, sy, sz = 0.0, bx, by, bz;
-    float z = 0.0f, n;
-    sbl__tap_ctx tap;
+    double sx, sy, sz, bx, by, bz;
+    float z, n;
+    sbl__tap_want want;
     int ix, iy;
-    if (g->depth.data) {
-        z = *sbl__px(&g->depth, x, y);
-        if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
-    }
+    if (!sbl__tap_want_init(&want, &t->gbuffer, x, y, &z)) return 0.0f;
     if (s->d.rig == SBL_RIG_MATRICES) {
         if (!sbl__cam_map_apply(&s->to_source, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
     } else {
@@ -1554,20 +2012,8 @@ static float sbl__stereo_rp_pixel(const sbl__stereo_rp *s, int x, int y, float *
         sy = y + 0.5;
         sz = z;
     }
-    memset(&tap, 0, sizeof tap);
-    tap.src_color = &src->color;
-    tap.src_length = &src->length;
-    tap.src_g = &src->gbuffer;
-    tap.has_depth = g->depth.data != NULL;
-    tap.depth = (float)sz;
-    tap.depth_slack = tap.has_depth ? sbl__depth_slack(&g->depth, x, y, z) : 0.0f;
-    tap.depth_tolerance = s->d.reproject.depth_tolerance;
-    tap.has_id = g->ids.data != NULL;
-    tap.id = tap.has_id ? *sbl__px(&g->ids, x, y) : 0.0f;
-    tap.normal = (g->normals.data && !(s->d.reproject.normal_threshold < 0.0f))
-                     ? sbl__px(&g->normals, x, y) : NULL;
-    tap.normal_threshold = s->d.reproject.normal_threshold;
-    n = sbl__gather(&tap, sx, sy, !s->d.reproject.no_fallback, out);
+    want.depth = (float)sz;
+    n = sbl__gather(&s->src, &want, sx, sy, !s->d.reproject.no_fallback, out);
     if (!(n > 0.0f)) return 0.0f;
 
     /* back-check: from the nearest source pixel, with the source's own geometry, the
@@ -1639,7 +2085,7 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
 
 SBLDEF size_t sbl_stereo_scratch_size(int width, int channels)
 {
-    return sbl_temporal_scratch_size(width, channels);
+    return sbl__kernel_scratch_size(width, channels);
 }
 
 static sbl_result sbl__check_outputs_vs_eyes(const sbl_image *o, const sbl_eye *a,
@@ -1655,99 +2101,65 @@ static sbl_result sbl__check_outputs_vs_eyes(const sbl_image *o, const sbl_eye *
     return SBL_OK;
 }
 
+/* All validation of a stereo blend, without writing anything. */
+static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
+                                          sbl_eye_index target_eye, const sbl_eye *target,
+                                          const sbl_eye *source, const sbl_image *out_color,
+                                          const sbl_image *out_length)
+{
+    sbl_result r;
+    int w, h;
+    if ((r = sbl__stereo_rp_init(s, desc, target_eye, target, source, 1)) != SBL_OK) return r;
+    w = target->color.width; h = target->color.height;
+    if ((r = sbl__check_weight_params(s->d.estimator, s->d.rectify, s->d.weight_mode,
+                                      s->d.constant_beta, 0.0f, s->d.clip_gamma,
+                                      s->d.bias_threshold)) != SBL_OK)
+        return r;
+    if ((r = sbl__check_image(out_color, 0)) != SBL_OK) return r;
+    if (out_color->width != w || out_color->height != h) return SBL_ERROR_SIZE_MISMATCH;
+    if (out_color->channels != target->color.channels) return SBL_ERROR_CHANNEL_MISMATCH;
+    if ((r = sbl__check_optional(out_length, 1, w, h)) != SBL_OK) return r;
+    if (sbl__overlap(out_color, out_length)) return SBL_ERROR_OVERLAP;
+    if ((r = sbl__check_outputs_vs_eyes(out_color, target, source)) != SBL_OK) return r;
+    if ((r = sbl__check_outputs_vs_eyes(out_length, target, source)) != SBL_OK) return r;
+    return SBL_OK;
+}
+
 SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
                                    const sbl_eye *target, const sbl_eye *source,
                                    sbl_image out_color, sbl_image out_length,
                                    int y0, int y1, void *scratch, size_t scratch_bytes)
 {
     sbl__stereo_rp s;
-    sbl__weight_params wp;
+    sbl__kernel k;
     sbl_result r;
-    float *xring[3], *nring[3];
-    int w, h, ch, x, y, k;
-    if ((r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 1)) != SBL_OK) return r;
-    w = target->color.width; h = target->color.height; ch = target->color.channels;
-    if ((r = sbl__check_weight_params(s.d.estimator, s.d.rectify, s.d.weight_mode,
-                                      s.d.constant_beta, 0.0f, s.d.clip_gamma,
-                                      s.d.bias_threshold)) != SBL_OK)
+    if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
+                                     &out_length)) != SBL_OK)
         return r;
-    if ((r = sbl__check_image(&out_color, 0)) != SBL_OK) return r;
-    if (out_color.width != w || out_color.height != h) return SBL_ERROR_SIZE_MISMATCH;
-    if (out_color.channels != ch) return SBL_ERROR_CHANNEL_MISMATCH;
-    if ((r = sbl__check_optional(&out_length, 1, w, h)) != SBL_OK) return r;
-    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
-    if (sbl__overlap(&out_color, &out_length)) return SBL_ERROR_OVERLAP;
-    if ((r = sbl__check_outputs_vs_eyes(&out_color, target, source)) != SBL_OK) return r;
-    if ((r = sbl__check_outputs_vs_eyes(&out_length, target, source)) != SBL_OK) return r;
+    if ((r = sbl__check_rows(y0, y1, target->color.height)) != SBL_OK) return r;
     if (!scratch) return SBL_ERROR_NULL_POINTER;
-    if (scratch_bytes < sbl_stereo_scratch_size(w, ch)) return SBL_ERROR_SCRATCH_TOO_SMALL;
-
-    wp.estimator = s.d.estimator;
-    wp.rectify = s.d.rectify;
-    wp.mode = s.d.weight_mode;
-    wp.constant = s.d.constant_beta;
-    wp.alpha_min = 0.0f;
-    wp.gamma = s.d.clip_gamma;
-    wp.bias_threshold = s.d.bias_threshold;
-    {
-        float *base = (float *)sbl__align64(scratch);
-        for (k = 0; k < 3; ++k) {
-            xring[k] = base + (size_t)k * w * ch;
-            nring[k] = base + (size_t)3 * w * ch + (size_t)k * w;
-        }
-    }
-    for (k = 0; k < 3; ++k) {
-        int ry = y0 - 1 + k;
-        if (ry < 0 || ry >= h || y0 >= y1) continue;
-        for (x = 0; x < w; ++x)
-            nring[k][x] = sbl__stereo_rp_pixel(&s, x, ry, xring[k] + (size_t)x * ch);
-    }
-    for (y = y0; y < y1; ++y) {
-        const float *rows[3], *xr[3], *nr[3];
-        const float *own_row = sbl__px(&target->color, 0, y);
-        for (k = 0; k < 3; ++k) {
-            int ry = y - 1 + k;
-            int in = ry >= 0 && ry < h;
-            rows[k] = in ? sbl__px(&target->color, 0, ry) : NULL;
-            xr[k] = in ? xring[k] : NULL;
-            nr[k] = in ? nring[k] : NULL;
-        }
-        for (x = 0; x < w; ++x) {
-            const float *yc = own_row + (size_t)x * ch;
-            float *oc = sbl__px(&out_color, x, y);
-            float n_x = nring[1][x], a = 1.0f, n_out;
-            float n_y = target->length.data ? *sbl__px(&target->length, x, y) : 1.0f;
-            float xs[4];
-            int finite = 1;
-            for (k = 0; k < ch; ++k) finite &= sbl__finite(yc[k]);
-            if (!sbl__finite(n_y) || !(n_y > 0.0f)) n_y = 1.0f;
-            if (!finite) {
-                for (k = 0; k < ch; ++k) oc[k] = n_x > 0.0f ? xring[1][(size_t)x * ch + k] : 0.0f;
-                n_out = n_x > 0.0f ? n_x : 0.0f;
-            } else if (!(n_x > 0.0f)) {
-                for (k = 0; k < ch; ++k) oc[k] = yc[k]; /* no correspondence: own value */
-                n_out = n_y;
-            } else if (s.d.fill) {
-                for (k = 0; k < ch; ++k) oc[k] = xring[1][(size_t)x * ch + k];
-                n_out = n_x;
-            } else {
-                sbl__moments m;
-                sbl__moments_at(&m, rows, xr, nr, x, w, ch);
-                for (k = 0; k < ch; ++k) xs[k] = xring[1][(size_t)x * ch + k];
-                n_out = sbl__blend_pixel(&wp, &m, yc, xs, n_x, n_y, ch, oc, &a);
-            }
-            if (out_length.data) *sbl__px(&out_length, x, y) = n_out;
-        }
-        {
-            float *tx = xring[0], *tn = nring[0];
-            int ry = y + 2;
-            xring[0] = xring[1]; xring[1] = xring[2]; xring[2] = tx;
-            nring[0] = nring[1]; nring[1] = nring[2]; nring[2] = tn;
-            if (y + 1 < y1 && ry < h)
-                for (x = 0; x < w; ++x)
-                    nring[2][x] = sbl__stereo_rp_pixel(&s, x, ry, xring[2] + (size_t)x * ch);
-        }
-    }
+    if (scratch_bytes < sbl_stereo_scratch_size(target->color.width, target->color.channels))
+        return SBL_ERROR_SCRATCH_TOO_SMALL;
+    memset(&k, 0, sizeof k);
+    k.w = target->color.width; k.h = target->color.height; k.ch = target->color.channels;
+    k.wp.estimator = s.d.estimator;
+    k.wp.rectify = s.d.rectify;
+    k.wp.mode = s.d.weight_mode;
+    k.wp.constant = s.d.constant_beta;
+    k.wp.alpha_min = 0.0f;
+    k.wp.gamma = s.d.clip_gamma;
+    k.wp.bias_threshold = s.d.bias_threshold;
+    k.n_cap = FLT_MAX;
+    k.temporal = 0;
+    k.fill = s.d.fill;
+    k.own = &target->color;
+    k.own_n = &target->length;
+    k.gather = sbl__stereo_rp_pixel;
+    k.gather_ctx = &s;
+    k.out = out_color;
+    k.out_n = out_length;
+    sbl__kernel_bind(&k, scratch);
+    sbl__kernel_run(&k, y0, y1);
     return SBL_OK;
 }
 
@@ -1755,24 +2167,19 @@ SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_
                                          const sbl_eye *right, sbl_image out_left,
                                          sbl_image out_right)
 {
+    sbl__stereo_rp s;
     sbl_image none;
     size_t bytes;
     void *scratch;
     sbl_result r;
     if (!desc || !left || !right) return SBL_ERROR_NULL_POINTER;
-    if ((r = sbl__check_image(&left->color, 0)) != SBL_OK) return r;
-    if ((r = sbl__check_image(&out_left, 0)) != SBL_OK) return r;
-    if ((r = sbl__check_image(&out_right, 0)) != SBL_OK) return r;
-    if (sbl__overlap(&out_left, &out_right)) return SBL_ERROR_OVERLAP;
-    /* validate both eyes before writing either */
     memset(&none, 0, sizeof none);
-    if ((r = sbl_stereo_blend(desc, SBL_EYE_LEFT, left, right, out_left, none, 0, 0, &none,
-                              (size_t)-1)) != SBL_OK)
+    /* validate both eyes, and the outputs against each other, before writing either */
+    if ((r = sbl__stereo_blend_check(&s, desc, SBL_EYE_LEFT, left, right, &out_left, &none)) != SBL_OK)
         return r;
-    if ((r = sbl_stereo_blend(desc, SBL_EYE_RIGHT, right, left, out_right, none, 0, 0, &none,
-                              (size_t)-1)) != SBL_OK)
+    if ((r = sbl__stereo_blend_check(&s, desc, SBL_EYE_RIGHT, right, left, &out_right, &none)) != SBL_OK)
         return r;
-    if ((r = sbl__check_outputs_vs_eyes(&out_left, left, right)) != SBL_OK) return r;
+    if (sbl__overlap(&out_left, &out_right)) return SBL_ERROR_OVERLAP;
     bytes = sbl_stereo_scratch_size(left->color.width, left->color.channels);
     scratch = SBL_MALLOC(bytes, desc->alloc_context);
     if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
@@ -1784,7 +2191,6 @@ SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_
     SBL_FREE(scratch, desc->alloc_context);
     return r;
 }
-
 /* ------------------------------------------------------------------------ */
 /* 9. Fill mode                                                             */
 /* ------------------------------------------------------------------------ */

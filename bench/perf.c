@@ -1,0 +1,294 @@
+/* make bench-perf: speed of the fused pipelines against the memory-bandwidth floor.
+   For 1280x720, 1920x1080 and 3840x2160, mono and stereo, for the temporal, stereo and
+   combined pipelines, on 1 and 2 threads (row bands, pthreads; the header starts none):
+   ms per frame (median), the streaming floor measured in the same run (a plain loop that
+   reads and writes the same number of bytes as the pipeline, split the same way), and
+   their ratio. Rows go to bench/out/perf.csv:
+   width,height,eyes,pipeline,threads,ms,floor_ms,ratio_floor,opencv_ms
+   (opencv_ms is filled in by bench/perf_opencv when OpenCV is present, else empty).
+
+   usage: perf [--quick] [--reps N] [--out DIR] */
+#define _POSIX_C_SOURCE 200809L
+#define STEREOBLEND_IMPLEMENTATION
+#include "../stereoblend.h"
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <time.h>
+#include <sys/stat.h>
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static float *falloc(size_t n)
+{
+    float *p = (float *)malloc(n * sizeof(float));
+    if (!p) { fprintf(stderr, "out of memory\n"); exit(2); }
+    return p;
+}
+
+/* One eye's buffers: frame colour, depth, motion; history (ping-pong); outputs. */
+typedef struct eye_bufs {
+    float *color, *depth, *motion, *hist, *hlen, *out, *olen, *stereo_out;
+} eye_bufs;
+
+typedef struct job {
+    int kind;            /* 0 temporal, 1 stereo, 2 floor */
+    int eye, y0, y1, w, h;
+    eye_bufs *e[2];
+    sbl_temporal_desc td;
+    sbl_stereo_desc sd;
+    void *scratch;
+    size_t scratch_bytes;
+    /* floor */
+    const float *const *in_planes;
+    int in_count;
+    float *const *out_planes;
+    int out_count;
+    const int *in_ch, *out_ch;
+    int result;
+} job;
+
+static void run_temporal(job *j)
+{
+    eye_bufs *b = j->e[j->eye];
+    sbl_frame f;
+    sbl_history hi;
+    sbl_temporal_output o;
+    memset(&f, 0, sizeof f); memset(&hi, 0, sizeof hi); memset(&o, 0, sizeof o);
+    f.color = sbl_image_make(b->color, j->w, j->h, 3);
+    f.gbuffer.depth = sbl_image_make(b->depth, j->w, j->h, 1);
+    f.gbuffer.motion = sbl_image_make(b->motion, j->w, j->h, 2);
+    hi.color = sbl_image_make(b->hist, j->w, j->h, 3);
+    hi.length = sbl_image_make(b->hlen, j->w, j->h, 1);
+    hi.gbuffer.depth = sbl_image_make(b->depth, j->w, j->h, 1);
+    o.color = sbl_image_make(b->out, j->w, j->h, 3);
+    o.length = sbl_image_make(b->olen, j->w, j->h, 1);
+    j->result = sbl_temporal_filter(&j->td, &f, &hi, &o, j->y0, j->y1, j->scratch, j->scratch_bytes);
+}
+
+static void run_stereo(job *j)
+{
+    eye_bufs *t = j->e[j->eye], *s = j->e[!j->eye];
+    sbl_eye te, se;
+    memset(&te, 0, sizeof te); memset(&se, 0, sizeof se);
+    te.color = sbl_image_make(t->out, j->w, j->h, 3);
+    te.length = sbl_image_make(t->olen, j->w, j->h, 1);
+    te.gbuffer.depth = sbl_image_make(t->depth, j->w, j->h, 1);
+    se.color = sbl_image_make(s->out, j->w, j->h, 3);
+    se.length = sbl_image_make(s->olen, j->w, j->h, 1);
+    se.gbuffer.depth = sbl_image_make(s->depth, j->w, j->h, 1);
+    j->result = sbl_stereo_blend(&j->sd, (sbl_eye_index)j->eye, &te, &se,
+                                 sbl_image_make(t->stereo_out, j->w, j->h, 3),
+                                 sbl_image_make(NULL, 0, 0, 1), j->y0, j->y1, j->scratch,
+                                 j->scratch_bytes);
+}
+
+/* The floor: read every input plane once and write every output plane once, in the
+   same row band; the arithmetic is one add per float so that the loop is bound by
+   memory, as the library's pipeline is at best. */
+static void run_floor(job *j)
+{
+    int y, x, k, c;
+    for (y = j->y0; y < j->y1; ++y) {
+        float acc[4096];
+        int n = j->w;
+        for (x = 0; x < n && x < 4096; ++x) acc[x] = 0.0f;
+        for (k = 0; k < j->in_count; ++k) {
+            const float *p = j->in_planes[k] + (size_t)y * j->w * j->in_ch[k];
+            for (x = 0; x < n; ++x)
+                for (c = 0; c < j->in_ch[k]; ++c) acc[x] += p[x * j->in_ch[k] + c];
+        }
+        for (k = 0; k < j->out_count; ++k) {
+            float *p = j->out_planes[k] + (size_t)y * j->w * j->out_ch[k];
+            for (x = 0; x < n; ++x)
+                for (c = 0; c < j->out_ch[k]; ++c) p[x * j->out_ch[k] + c] = acc[x];
+        }
+    }
+    j->result = 0;
+}
+
+static void *job_main(void *arg)
+{
+    job *j = (job *)arg;
+    if (j->kind == 0) run_temporal(j);
+    else if (j->kind == 1) run_stereo(j);
+    else run_floor(j);
+    return NULL;
+}
+
+/* Split rows [0,h) into `threads` bands and run them; thread 0 is the caller. */
+static int run_bands(job *proto, int threads, void **scratch)
+{
+    job jobs[8];
+    pthread_t th[8];
+    int t, rc = 0;
+    for (t = 0; t < threads; ++t) {
+        jobs[t] = *proto;
+        jobs[t].y0 = proto->h * t / threads;
+        jobs[t].y1 = proto->h * (t + 1) / threads;
+        jobs[t].scratch = scratch[t];
+    }
+    for (t = 1; t < threads; ++t) pthread_create(&th[t], NULL, job_main, &jobs[t]);
+    job_main(&jobs[0]);
+    for (t = 1; t < threads; ++t) pthread_join(th[t], NULL);
+    for (t = 0; t < threads; ++t) rc |= jobs[t].result;
+    return rc;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : (x > y ? 1 : 0);
+}
+
+static void fill_eye(eye_bufs *b, int w, int h, int eye)
+{
+    size_t n = (size_t)w * h, i;
+    unsigned s = 12345u + 77u * (unsigned)eye;
+    b->color = falloc(n * 3); b->depth = falloc(n); b->motion = falloc(n * 2);
+    b->hist = falloc(n * 3); b->hlen = falloc(n); b->out = falloc(n * 3); b->olen = falloc(n);
+    b->stereo_out = falloc(n * 3);
+    for (i = 0; i < n; ++i) {
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), c;
+        for (c = 0; c < 3; ++c) {
+            s = s * 1664525u + 1013904223u;
+            b->color[i * 3 + c] = 0.5f + 0.3f * sinf(x * 0.05f + c) + (float)(s >> 8) * (1.0f / 16777216.0f) * 0.2f;
+            b->hist[i * 3 + c] = 0.5f + 0.3f * sinf(x * 0.05f + c);
+        }
+        b->depth[i] = 2.0f + 0.001f * (float)y;
+        b->motion[i * 2] = 0.37f + 0.1f * sinf(y * 0.01f);
+        b->motion[i * 2 + 1] = -0.21f;
+        b->hlen[i] = 8.0f;
+    }
+}
+
+static void free_eye(eye_bufs *b)
+{
+    free(b->color); free(b->depth); free(b->motion); free(b->hist); free(b->hlen);
+    free(b->out); free(b->olen); free(b->stereo_out);
+}
+
+int main(int argc, char **argv)
+{
+    static const int sizes[3][2] = {{1280, 720}, {1920, 1080}, {3840, 2160}};
+    const char *out = "bench/out";
+    int reps = 9, quick = 0, si, eyes, pipe, threads, i, r;
+    char path[1024];
+    FILE *csv;
+    for (i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "--quick") == 0) quick = 1;
+        else if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
+        else { fprintf(stderr, "usage: perf [--quick] [--reps N] [--out DIR]\n"); return 2; }
+    }
+    if (quick) reps = 3;
+    if (reps < 1) reps = 1;
+    mkdir(out, 0777);
+    snprintf(path, sizeof path, "%s/perf.csv", out);
+    csv = fopen(path, "w");
+    if (!csv) { perror(path); return 1; }
+    fprintf(csv, "width,height,eyes,pipeline,threads,ms,floor_ms,ratio_floor,opencv_ms\n");
+    printf("stereoblend.h perf: ms per frame (all eyes), median of %d; floor = plain loop reading\n"
+           "and writing the same bytes, same row split, same run. SIMD path: %s\n\n", reps,
+#if defined(SBL_SIMD_NAME)
+           SBL_SIMD_NAME
+#else
+           "scalar"
+#endif
+    );
+    printf("| %9s | %4s | %-8s | %7s | %9s | %9s | %6s |\n", "size", "eyes", "pipeline", "threads",
+           "ms", "floor ms", "ratio");
+    printf("|-----------|------|----------|--------:|----------:|----------:|-------:|\n");
+    for (si = 0; si < (quick ? 1 : 3); ++si) {
+        int w = sizes[si][0], h = sizes[si][1];
+        eye_bufs e[2];
+        void *scratch[8];
+        size_t bytes = sbl_temporal_scratch_size(w, 3);
+        fill_eye(&e[0], w, h, 0);
+        fill_eye(&e[1], w, h, 1);
+        for (i = 0; i < 8; ++i) scratch[i] = malloc(bytes);
+        for (eyes = 1; eyes <= 2; ++eyes)
+            for (pipe = 0; pipe < 3; ++pipe) {
+                static const char *names[3] = {"temporal", "stereo", "combined"};
+                if (eyes == 1 && pipe != 0) continue; /* stereo needs two eyes */
+                for (threads = 1; threads <= 2; ++threads) {
+                    double t_lib[64], t_floor[64], ms, fms;
+                    /* byte plan for the floor, matching the pipeline's reads / writes */
+                    const float *inp[32];
+                    float *outp[32];
+                    int in_ch[32], out_ch[32], ni = 0, no = 0, ev;
+                    job pj, fj;
+                    for (ev = 0; ev < eyes; ++ev) {
+                        if (pipe == 0 || pipe == 2) {
+                            inp[ni] = e[ev].color; in_ch[ni++] = 3;
+                            inp[ni] = e[ev].depth; in_ch[ni++] = 1;
+                            inp[ni] = e[ev].motion; in_ch[ni++] = 2;
+                            inp[ni] = e[ev].hist; in_ch[ni++] = 3;
+                            inp[ni] = e[ev].hlen; in_ch[ni++] = 1;
+                            inp[ni] = e[ev].depth; in_ch[ni++] = 1; /* previous depth */
+                            outp[no] = e[ev].out; out_ch[no++] = 3;
+                            outp[no] = e[ev].olen; out_ch[no++] = 1;
+                        }
+                        if (pipe == 1 || pipe == 2) {
+                            inp[ni] = e[ev].out; in_ch[ni++] = 3;     /* own colour    */
+                            inp[ni] = e[ev].olen; in_ch[ni++] = 1;    /* own N         */
+                            inp[ni] = e[ev].depth; in_ch[ni++] = 1;   /* own depth     */
+                            inp[ni] = e[!ev].out; in_ch[ni++] = 3;    /* other colour  */
+                            inp[ni] = e[!ev].olen; in_ch[ni++] = 1;   /* other N       */
+                            inp[ni] = e[!ev].depth; in_ch[ni++] = 1;  /* other depth   */
+                            outp[no] = e[ev].stereo_out; out_ch[no++] = 3;
+                        }
+                    }
+                    memset(&pj, 0, sizeof pj);
+                    pj.w = w; pj.h = h; pj.e[0] = &e[0]; pj.e[1] = &e[1];
+                    pj.scratch_bytes = bytes;
+                    pj.sd.focal_px = 800.0f;
+                    pj.sd.baseline = 0.065f;
+                    fj = pj;
+                    fj.kind = 2;
+                    fj.in_planes = inp; fj.in_count = ni; fj.in_ch = in_ch;
+                    fj.out_planes = outp; fj.out_count = no; fj.out_ch = out_ch;
+                    for (r = 0; r < reps + 1 && r < 64; ++r) {
+                        double t0 = now_ms();
+                        if (pipe == 0 || pipe == 2)
+                            for (ev = 0; ev < eyes; ++ev) {
+                                pj.kind = 0; pj.eye = ev;
+                                if (run_bands(&pj, threads, scratch) != 0) { fprintf(stderr, "temporal failed\n"); return 1; }
+                            }
+                        if (pipe == 1 || pipe == 2)
+                            for (ev = 0; ev < eyes; ++ev) {
+                                pj.kind = 1; pj.eye = ev;
+                                if (run_bands(&pj, threads, scratch) != 0) { fprintf(stderr, "stereo failed\n"); return 1; }
+                            }
+                        t_lib[r] = now_ms() - t0;
+                        t0 = now_ms();
+                        run_bands(&fj, threads, scratch);
+                        t_floor[r] = now_ms() - t0;
+                    }
+                    /* the first run warms caches and page tables: dropped */
+                    qsort(t_lib + 1, (size_t)reps, sizeof(double), cmp_double);
+                    qsort(t_floor + 1, (size_t)reps, sizeof(double), cmp_double);
+                    ms = t_lib[1 + reps / 2];
+                    fms = t_floor[1 + reps / 2];
+                    printf("| %4dx%-4d | %4d | %-8s | %7d | %9.3f | %9.3f | %6.2f |\n", w, h, eyes,
+                           names[pipe], threads, ms, fms, ms / fms);
+                    fflush(stdout);
+                    fprintf(csv, "%d,%d,%d,%s,%d,%.4f,%.4f,%.3f,\n", w, h, eyes, names[pipe], threads,
+                            ms, fms, ms / fms);
+                }
+            }
+        for (i = 0; i < 8; ++i) free(scratch[i]);
+        free_eye(&e[0]);
+        free_eye(&e[1]);
+    }
+    fclose(csv);
+    printf("\nwrote %s\n", path);
+    return 0;
+}
