@@ -23,8 +23,8 @@ HAVE_EXR := $(shell pkg-config --exists OpenEXR 2>/dev/null && echo 1)
 EXR_CFLAGS := $(if $(HAVE_EXR),$(shell pkg-config --cflags OpenEXR),-DSBL_NO_EXR)
 EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
-TESTS = test_core test_metrics
-SIMD_TESTS = test_core
+TESTS = test_core test_metrics test_stereo
+SIMD_TESTS = test_core test_stereo
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)
@@ -55,9 +55,12 @@ $(BUILD)/gcc/%: tests/%.c $(HEADERS)
 $(BUILD)/clang/%: tests/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
 	clang $(CFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
-$(BUILD)/simd-%/test_core: tests/test_core.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) $(OPT) $(FLAGS_$*) -Itools $< -o $@ $(LDLIBS)
+define SIMD_RULE
+$(BUILD)/simd-$(1)/%: tests/%.c $(HEADERS)
+	@mkdir -p $$(dir $$@)
+	$(CC) $(CFLAGS_STRICT) $(OPT) $(FLAGS_$(1)) -Itools $$< -o $$@ $(LDLIBS)
+endef
+$(foreach v,scalar avx2 avx512,$(eval $(call SIMD_RULE,$(v))))
 $(BUILD)/cxx/%: tests/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CXX_TEST) -x c++ $(CXXFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)

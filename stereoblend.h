@@ -1027,6 +1027,11 @@ static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
     } else {
         if (!sbl__cam_map_apply(&s->cam, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
     }
+    /* came in from outside the previous image: nothing to reuse (edge pixels would
+       otherwise be replicated by the renormalisation and the 3x3 fallback) */
+    if (!(sx >= 0.0 && sx < (double)s->frame->color.width && sy >= 0.0 &&
+          sy < (double)s->frame->color.height))
+        return 0.0f;
     t.depth = (float)sz;
     return sbl__gather(&s->src, &t, sx, sy, !s->rp.no_fallback, out);
 }
@@ -1920,8 +1925,11 @@ static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_
     } else {
         /* the target of a fill only needs geometry: take the size from depth/disparity */
         const sbl_image *ref = e->gbuffer.depth.data ? &e->gbuffer.depth : &e->disparity;
+        if (!ref->data) return SBL_ERROR_MISSING_INPUT;
         if ((r = sbl__check_image(ref, 1)) != SBL_OK) return r;
         w = ref->width; h = ref->height;
+        /* a colour given anyway is what sbl__eye_width() reports: it must agree */
+        if ((r = sbl__check_optional(&e->color, 0, w, h)) != SBL_OK) return r;
     }
     if ((r = sbl__check_gbuffer(&e->gbuffer, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&e->length, 1, w, h)) != SBL_OK) return r;
@@ -2012,6 +2020,11 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
         sy = y + 0.5;
         sz = z;
     }
+    /* the match must lie inside the source image: outside it, the bilinear
+       renormalisation and the 3x3 fallback would replicate the edge pixels */
+    if (!(sx >= 0.0 && sx < (double)src->color.width && sy >= 0.0 &&
+          sy < (double)src->color.height))
+        return 0.0f;
     want.depth = (float)sz;
     n = sbl__gather(&s->src, &want, sx, sy, !s->d.reproject.no_fallback, out);
     if (!(n > 0.0f)) return 0.0f;
@@ -2195,6 +2208,23 @@ SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_
 /* 9. Fill mode                                                             */
 /* ------------------------------------------------------------------------ */
 
+/* Does the byte range [m0, m1) (a mask) overlap an image / any image of an eye? */
+static int sbl__overlap_bytes(const char *m0, const char *m1, const sbl_image *im)
+{
+    const char *c0, *c1;
+    if (!im->data) return 0;
+    sbl__range(im, &c0, &c1);
+    return m0 < c1 && c0 < m1;
+}
+static int sbl__overlap_bytes_eye(const char *m0, const char *m1, const sbl_eye *e)
+{
+    const sbl_gbuffer *g = &e->gbuffer;
+    return sbl__overlap_bytes(m0, m1, &e->color) || sbl__overlap_bytes(m0, m1, &e->length) ||
+           sbl__overlap_bytes(m0, m1, &e->disparity) || sbl__overlap_bytes(m0, m1, &g->depth) ||
+           sbl__overlap_bytes(m0, m1, &g->normals) || sbl__overlap_bytes(m0, m1, &g->ids) ||
+           sbl__overlap_bytes(m0, m1, &g->motion);
+}
+
 SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
                                   const sbl_eye *target, const sbl_eye *source,
                                   sbl_image out_color, unsigned char *mask, int mask_stride,
@@ -2216,9 +2246,9 @@ SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index tar
     {
         const char *m0 = (const char *)mask;
         const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
-        const char *c0, *c1;
-        sbl__range(&out_color, &c0, &c1);
-        if (m0 < c1 && c0 < m1) return SBL_ERROR_OVERLAP;
+        if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes_eye(m0, m1, target) ||
+            sbl__overlap_bytes_eye(m0, m1, source))
+            return SBL_ERROR_OVERLAP;
     }
     for (y = y0; y < y1; ++y)
         for (x = 0; x < w; ++x) {
@@ -2247,6 +2277,11 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
     if (mask_stride < dst.width) return SBL_ERROR_INVALID_STRIDE;
     if ((r = sbl__check_rows(y0, y1, dst.height)) != SBL_OK) return r;
     if (sbl__overlap(&dst, &traced)) return SBL_ERROR_OVERLAP;
+    {   /* the mask is read while dst is written */
+        const char *m0 = (const char *)mask;
+        const char *m1 = m0 + (size_t)(dst.height - 1) * (size_t)mask_stride + (size_t)dst.width;
+        if (sbl__overlap_bytes(m0, m1, &dst)) return SBL_ERROR_OVERLAP;
+    }
     for (y = y0; y < y1; ++y)
         for (x = 0; x < dst.width; ++x)
             if (mask[(size_t)y * (size_t)mask_stride + (size_t)x]) {
