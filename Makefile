@@ -39,7 +39,8 @@ FLAGS_avx512 = -mavx512f -mavx2 -mfma
 COMPILERS = cc $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang)
 TEST_BINS = $(foreach c,$(COMPILERS),$(addprefix $(BUILD)/$(c)/,$(TESTS))) \
             $(if $(CXX_TEST),$(addprefix $(BUILD)/cxx/,$(TESTS))) \
-            $(foreach v,$(SIMD_VARIANTS),$(addprefix $(BUILD)/simd-$(v)/,$(SIMD_TESTS)))
+            $(foreach v,$(SIMD_VARIANTS),$(addprefix $(BUILD)/simd-$(v)/,$(SIMD_TESTS))) \
+            $(foreach v,default $(filter-out scalar,$(SIMD_VARIANTS)),$(BUILD)/simd-$(v)/test_simd)
 
 .PHONY: all check demo bench bench-quick bench-perf clean tests
 all: tests $(BUILD)/demo $(BUILD)/sblexr $(BUILD)/bench
@@ -61,6 +62,17 @@ $(BUILD)/simd-$(1)/%: tests/%.c $(HEADERS)
 	$(CC) $(CFLAGS_STRICT) $(OPT) $(FLAGS_$(1)) -Itools $$< -o $$@ $(LDLIBS)
 endef
 $(foreach v,scalar avx2 avx512,$(eval $(call SIMD_RULE,$(v))))
+
+# SIMD against scalar in one binary: the scalar path in a translation unit of its own
+$(BUILD)/simd_scalar_tu.o: tests/simd_scalar_tu.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) $(OPT) -DSBL_NO_SIMD -c $< -o $@
+$(BUILD)/simd-%/test_simd: tests/test_simd.c $(BUILD)/simd_scalar_tu.o $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) $(OPT) $(FLAGS_$*) -Itools $< $(BUILD)/simd_scalar_tu.o -o $@ $(LDLIBS)
+$(BUILD)/simd-default/test_simd: tests/test_simd.c $(BUILD)/simd_scalar_tu.o $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) $(OPT) -Itools $< $(BUILD)/simd_scalar_tu.o -o $@ $(LDLIBS)
 $(BUILD)/cxx/%: tests/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CXX_TEST) -x c++ $(CXXFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)

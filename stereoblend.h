@@ -1745,11 +1745,18 @@ static void sbl__kernel_run(sbl__kernel *k, int y0, int y1)
         const sbl__ring_row *R[3];
         int lanes_ok, xs = 0, xe = 0;
         for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
+        /* rows narrower than the widest vector take the reference path on every build,
+           so that no build depends on its vector width for them */
         lanes_ok = R[0] && R[2] && R[0]->lane_safe && R[1]->lane_safe && R[2]->lane_safe &&
-                   k->w >= 3;
+                   k->w - 2 >= 16;
         if (lanes_ok) {
             xs = 1;
             xe = sbl__kernel_lanes(k, R, 1, k->w - 1);
+            /* the tail: one more vector ending at the last interior pixel, overlapping
+               pixels already done (same values), so that every interior pixel takes
+               the same float path whatever the vector width */
+            if (xe < k->w - 1)
+                xe = sbl__kernel_lanes(k, R, k->w - 1 - SBL__VW, k->w - 1);
         }
         for (x = 0; x < k->w; ++x)
             if (x < xs || x >= xe) sbl__kernel_pixel_ref(k, R, x);

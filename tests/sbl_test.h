@@ -7,31 +7,37 @@
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(__GNUC__) || defined(__clang__)
+#define SBT_FN static __attribute__((unused)) /* each test uses a subset */
+#else
+#define SBT_FN static
+#endif
+
 static int sbt_passed, sbt_failed;
 
 #define CHECK(cond) sbt_check((cond) != 0, #cond, __FILE__, __LINE__)
 #define CHECK_EQ(a, b) sbt_check_eq((long)(a), (long)(b), #a " == " #b, __FILE__, __LINE__)
 #define CHECK_NEAR(a, b, tol) sbt_check_near((double)(a), (double)(b), (double)(tol), #a " ~ " #b, __FILE__, __LINE__)
 
-static void sbt_check(int ok, const char *what, const char *file, int line)
+SBT_FN void sbt_check(int ok, const char *what, const char *file, int line)
 {
     if (ok) { ++sbt_passed; return; }
     ++sbt_failed;
     printf("FAIL %s:%d: %s\n", file, line, what);
 }
-static void sbt_check_eq(long a, long b, const char *what, const char *file, int line)
+SBT_FN void sbt_check_eq(long a, long b, const char *what, const char *file, int line)
 {
     if (a == b) { ++sbt_passed; return; }
     ++sbt_failed;
     printf("FAIL %s:%d: %s (%ld vs %ld)\n", file, line, what, a, b);
 }
-static void sbt_check_near(double a, double b, double tol, const char *what, const char *file, int line)
+SBT_FN void sbt_check_near(double a, double b, double tol, const char *what, const char *file, int line)
 {
     if (fabs(a - b) <= tol) { ++sbt_passed; return; }
     ++sbt_failed;
     printf("FAIL %s:%d: %s (%.9g vs %.9g, tol %.3g)\n", file, line, what, a, b, tol);
 }
-static int sbt_finish(const char *name)
+SBT_FN int sbt_finish(const char *name)
 {
     printf("%s: %d passed, %d failed\n", name, sbt_passed, sbt_failed);
     return sbt_failed ? 1 : 0;
@@ -39,12 +45,12 @@ static int sbt_finish(const char *name)
 
 /* Deterministic random numbers (xorshift64*), uniform and Gaussian. */
 typedef struct sbt_rng { unsigned long long s; } sbt_rng;
-static double sbt_uniform(sbt_rng *r)
+SBT_FN double sbt_uniform(sbt_rng *r)
 {
     r->s ^= r->s >> 12; r->s ^= r->s << 25; r->s ^= r->s >> 27;
     return (double)((r->s * 2685821657736338717ULL) >> 11) * (1.0 / 9007199254740992.0);
 }
-static double sbt_gauss(sbt_rng *r)
+SBT_FN double sbt_gauss(sbt_rng *r)
 {
     double u = sbt_uniform(r), v = sbt_uniform(r);
     if (u < 1e-300) u = 1e-300;
@@ -55,7 +61,7 @@ static double sbt_gauss(sbt_rng *r)
    that ASan / valgrind catch any over-read. */
 #define SBT_CANARY 1234567.0f
 typedef struct sbt_img { float *mem; int w, h, c, stride; } sbt_img;
-static sbt_img sbt_img_new(int w, int h, int c, int pad)
+SBT_FN sbt_img sbt_img_new(int w, int h, int c, int pad)
 {
     sbt_img im;
     size_t n = (size_t)(w * c + pad) * (size_t)h, i;
@@ -70,7 +76,7 @@ static sbt_img sbt_img_new(int w, int h, int c, int pad)
     return im;
 }
 static float *sbt_at(const sbt_img *im, int x, int y) { return im->mem + (size_t)y * im->stride + (size_t)x * im->c; }
-static int sbt_canaries_ok(const sbt_img *im)
+SBT_FN int sbt_canaries_ok(const sbt_img *im)
 {
     int x, y;
     for (y = 0; y < im->h; ++y)
