@@ -467,6 +467,18 @@ static int sbl__finite(float v)
     memcpy(&bits, &v, sizeof bits);
     return (bits & 0x7f800000u) != 0x7f800000u;
 }
+/* 1 if any of the n values is NaN or infinite: one branch for a whole pixel. The
+   exponent field plus one overflows into the sign bit exactly when it is all ones. */
+static int sbl__any_nonfinite(const float *v, int n)
+{
+    unsigned int bits, acc = 0;
+    int k;
+    for (k = 0; k < n; ++k) {
+        memcpy(&bits, &v[k], sizeof bits);
+        acc |= (bits & 0x7f800000u) + 0x00800000u;
+    }
+    return (int)(acc >> 31);
+}
 static int sbl__is_pos_inf(float v)
 {
     unsigned int bits;
@@ -747,10 +759,10 @@ static int sbl__depth_match(float expected, float tap, float tol, float slack)
 /* Every per-tap test on source pixel (x, y), which must be inside the image; the
    offsets of that pixel in the 1-channel and 3-channel source buffers are passed in
    so that the four bilinear taps share one address computation each. */
-SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y)
+SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y,
+                               int ch)
 {
     const float *c;
-    int k;
     if (s->use_depth &&
         !sbl__depth_match(t->depth, *sbl__px(&s->g->depth, x, y), s->depth_tolerance,
                           t->depth_slack))
@@ -769,8 +781,7 @@ SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, in
         }
     }
     c = sbl__px(s->color, x, y);
-    for (k = 0; k < s->color->channels; ++k)
-        if (!sbl__finite(c[k])) return 0;
+    if (sbl__any_nonfinite(c, ch)) return 0;
     if (s->length && s->length->data) {
         float n = *sbl__px(s->length, x, y);
         if (!sbl__finite(n) || !(n > 0.0f)) return 0;
@@ -778,10 +789,11 @@ SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, in
     return 1;
 }
 
-static int sbl__tap_ok(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y)
+SBL__INLINE int sbl__tap_ok(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y,
+                            int ch)
 {
     if (x < 0 || y < 0 || x >= s->color->width || y >= s->color->height) return 0;
-    return sbl__tap_ok_in(s, t, x, y);
+    return sbl__tap_ok_in(s, t, x, y, ch);
 }
 
 SBL__INLINE void sbl__tap_add(const sbl__tap_src *s, int x, int y, float w, float *acc,
@@ -815,7 +827,7 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
         for (j = 0; j < 2; ++j)
             for (i = 0; i < 2; ++i) {
                 float w = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
-                if (w <= 0.0f || !sbl__tap_ok_in(s, t, x0 + i, y0 + j)) continue;
+                if (w <= 0.0f || !sbl__tap_ok_in(s, t, x0 + i, y0 + j, ch)) continue;
                 sbl__tap_add(s, x0 + i, y0 + j, w, acc, &acc_n, ch);
                 wsum += w;
             }
@@ -823,7 +835,7 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
         for (j = 0; j < 2; ++j)
             for (i = 0; i < 2; ++i) {
                 float w = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
-                if (w <= 0.0f || !sbl__tap_ok(s, t, x0 + i, y0 + j)) continue;
+                if (w <= 0.0f || !sbl__tap_ok(s, t, x0 + i, y0 + j, ch)) continue;
                 sbl__tap_add(s, x0 + i, y0 + j, w, acc, &acc_n, ch);
                 wsum += w;
             }
@@ -837,7 +849,7 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
         wsum = 0.0f;
         for (j = -1; j <= 1; ++j)
             for (i = -1; i <= 1; ++i)
-                if (sbl__tap_ok(s, t, cx + i, cy + j)) {
+                if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
                     sbl__tap_add(s, cx + i, cy + j, 1.0f, acc, &acc_n, ch);
                     wsum += 1.0f;
                 }
@@ -1432,7 +1444,7 @@ typedef int sbl__m;
    eye) is gathered once per row, into a ring of three rows; the 3x3 statistics, the
    weight, the rectification, the blend and Eq. 5 then run over those planes:
    - the lane kernel (SIMD layer above) on interior pixels of rows whose values are
-     finite and within [1e-15, 1e15] in magnitude (or 0), in float;
+     finite and within about [1e-15, 1e15] in magnitude (or 0), in float;
    - the reference path (sbl__blend_pixel, double) everywhere else: image borders
      (fewer than 9 neighbours), non-finite samples, extreme magnitudes or denormals.
    Each output pixel takes one of the two paths by a rule that depends only on the
@@ -1501,12 +1513,15 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->stage_a = p;
 }
 
-/* Finite, and 0 or within [1e-15, 1e15] in magnitude: squares and sums of nine of
-   them stay normal floats, so the lane kernel needs no scaling. */
+/* 0, or finite with magnitude in [2^-50, 2^50) (about 8.9e-16 .. 1.1e15): squares and
+   sums of nine of them stay normal floats, so the lane kernel needs no scaling. Read
+   off the exponent bits: one test, and immune to -ffast-math. */
 static int sbl__lane_value_ok(float v)
 {
-    float a = fabsf(v);
-    return sbl__finite(v) && a <= 1e15f && (a >= 1e-15f || a == 0.0f);
+    unsigned int bits, e;
+    memcpy(&bits, &v, sizeof bits);
+    e = (bits >> 23) & 0xffu;
+    return (bits & 0x7fffffffu) == 0u || e - 77u < 100u;
 }
 
 static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row)
