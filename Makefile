@@ -108,9 +108,22 @@ demo: $(BUILD)/demo
 bench: $(BUILD)/bench
 	./$(BUILD)/bench --out bench/out
 
+# with OpenCV present (libopencv-dev), the perf bench also times the same filter composed
+# from OpenCV calls (bench/perf_opencv.cpp) in the same run
+HAVE_OPENCV := $(shell pkg-config --exists opencv4 2>/dev/null && echo 1)
+ifeq ($(HAVE_OPENCV),1)
+$(BUILD)/perf_opencv.o: bench/perf_opencv.cpp
+	@mkdir -p $(dir $@)
+	$(CXX_TEST) -std=c++11 -O2 $(PERF_FLAGS) $(shell pkg-config --cflags opencv4) -c $< -o $@
+$(BUILD)/perf: bench/perf.c stereoblend.h $(BUILD)/perf_opencv.o
+	@mkdir -p $(dir $@)
+	$(CC) -std=c99 -Wall -Wextra -O2 $(PERF_FLAGS) -DSBL_PERF_OPENCV -c $< -o $(BUILD)/perf.o
+	$(CXX_TEST) $(BUILD)/perf.o $(BUILD)/perf_opencv.o -o $@ $(shell pkg-config --libs opencv4) -lpthread $(LDLIBS)
+else
 $(BUILD)/perf: bench/perf.c stereoblend.h
 	@mkdir -p $(dir $@)
 	$(CC) -std=c99 -Wall -Wextra -O2 $(PERF_FLAGS) $< -o $@ -lpthread $(LDLIBS)
+endif
 
 # speed against the memory-bandwidth floor; PERF_FLAGS picks the SIMD path
 # (default: -march=native; PERF_FLAGS=-DSBL_NO_SIMD for the scalar path)

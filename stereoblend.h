@@ -721,11 +721,30 @@ static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float
 /* 3. Reprojection                                                          */
 /* ------------------------------------------------------------------------ */
 
-/* The source view a gather reads, and the tests it applies: fixed for a call. */
+/* A view reduced to what addressing needs, so that the inner loops do not reload
+   the descriptor (data, stride, channels) for every tap. p == NULL: absent. */
+typedef struct sbl__flat {
+    const float *p;
+    size_t stride;  /* floats per row */
+    size_t ch;
+} sbl__flat;
+
+static sbl__flat sbl__flatten(const sbl_image *im)
+{
+    sbl__flat f;
+    f.p = im ? im->data : NULL;
+    f.stride = f.p ? (size_t)sbl__stride(im) : 0;
+    f.ch = f.p ? (size_t)im->channels : 0;
+    return f;
+}
+
+#define SBL__AT(f, x, y) ((f).p + (size_t)(y) * (f).stride + (size_t)(x) * (f).ch)
+
+/* The source view a gather reads, and the tests it applies: fixed for a call. A test
+   runs only when both views have its buffer. */
 typedef struct sbl__tap_src {
-    const sbl_image *color;      /* source colour                              */
-    const sbl_image *length;     /* source N (NULL or NULL data: N = 1)         */
-    const sbl_gbuffer *g;        /* source G-buffer                             */
+    sbl__flat color, length, depth, normals, ids;
+    int width, height;
     int use_depth, use_normal, use_id;
     float depth_tolerance;
     float normal_threshold2;     /* threshold^2 (threshold >= 0 when used)      */
@@ -756,20 +775,20 @@ static int sbl__depth_match(float expected, float tap, float tol, float slack)
 #define SBL__INLINE static
 #endif
 
-/* Every per-tap test on source pixel (x, y), which must be inside the image; the
-   offsets of that pixel in the 1-channel and 3-channel source buffers are passed in
-   so that the four bilinear taps share one address computation each. */
+/* Every per-tap test on source pixel (x, y), which must be inside the image. With
+   check_values 0 the colour and N finiteness is left to the caller (the optimistic
+   path of sbl__gather_ch checks the sums instead and redoes the taps if a NaN or
+   inf got in). */
 SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y,
-                               int ch)
+                               int ch, int check_values)
 {
-    const float *c;
     if (s->use_depth &&
-        !sbl__depth_match(t->depth, *sbl__px(&s->g->depth, x, y), s->depth_tolerance,
+        !sbl__depth_match(t->depth, *SBL__AT(s->depth, x, y), s->depth_tolerance,
                           t->depth_slack))
         return 0;
-    if (s->use_id && *sbl__px(&s->g->ids, x, y) != t->id) return 0;
+    if (s->use_id && *SBL__AT(s->ids, x, y) != t->id) return 0;
     if (s->use_normal) {
-        const float *n = sbl__px(&s->g->normals, x, y), *m = t->normal;
+        const float *n = SBL__AT(s->normals, x, y), *m = t->normal;
         float dot = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
         float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
         if (!sbl__finite(dot) || !sbl__finite(nn)) return 0;
@@ -780,11 +799,10 @@ SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, in
             return 0; /* dot < threshold |n| |m| without a square root */
         }
     }
-    c = sbl__px(s->color, x, y);
-    if (sbl__any_nonfinite(c, ch)) return 0;
-    if (s->length && s->length->data) {
-        float n = *sbl__px(s->length, x, y);
-        if (!sbl__finite(n) || !(n > 0.0f)) return 0;
+    if (check_values && sbl__any_nonfinite(SBL__AT(s->color, x, y), ch)) return 0;
+    if (s->length.p) {
+        float n = *SBL__AT(s->length, x, y);
+        if (!(n > 0.0f) || (check_values && !sbl__finite(n))) return 0;
     }
     return 1;
 }
@@ -792,17 +810,85 @@ SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, in
 SBL__INLINE int sbl__tap_ok(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y,
                             int ch)
 {
-    if (x < 0 || y < 0 || x >= s->color->width || y >= s->color->height) return 0;
-    return sbl__tap_ok_in(s, t, x, y, ch);
+    if (x < 0 || y < 0 || x >= s->width || y >= s->height) return 0;
+    return sbl__tap_ok_in(s, t, x, y, ch, 1);
 }
 
 SBL__INLINE void sbl__tap_add(const sbl__tap_src *s, int x, int y, float w, float *acc,
                               float *acc_n, int ch)
 {
-    const float *c = sbl__px(s->color, x, y);
-    int k;
-    for (k = 0; k < ch; ++k) acc[k] += w * c[k];
-    *acc_n += w * ((s->length && s->length->data) ? *sbl__px(s->length, x, y) : 1.0f);
+    const float *c = SBL__AT(s->color, x, y);
+    /* written out: `ch` is a constant where this is inlined, so the unused lines go */
+    acc[0] += w * c[0];
+    if (ch > 1) acc[1] += w * c[1];
+    if (ch > 2) acc[2] += w * c[2];
+    if (ch > 3) acc[3] += w * c[3];
+    *acc_n += w * (s->length.p ? *SBL__AT(s->length, x, y) : 1.0f);
+}
+
+/* The four taps of a bilinear footprint wholly inside the source image (the common
+   case), with the buffers' addresses and the test parameters held in locals: depth and
+   N tests written out, normals and ids through sbl__tap_ok_in. Optimistic about
+   values: the caller checks the sums for NaN / inf and redoes the taps if needed.
+   Returns the summed weight of the taps that passed. */
+SBL__INLINE float sbl__gather_fast(const sbl__tap_src *s, const sbl__tap_want *t, int x0,
+                                   int y0, float fx, float fy, float *acc, float *acc_n, int ch)
+{
+    const float gx = 1.0f - fx, gy = 1.0f - fy;
+    float w[4];
+    int ok[4] = {1, 1, 1, 1}, k;
+    const size_t cs = s->color.stride;
+    const float *c0 = s->color.p + (size_t)y0 * cs + (size_t)x0 * (size_t)ch;
+    const float *cp[4];
+    float wsum = 0.0f;
+    w[0] = gx * gy; w[1] = fx * gy; w[2] = gx * fy; w[3] = fx * fy;
+    cp[0] = c0; cp[1] = c0 + ch; cp[2] = c0 + cs; cp[3] = c0 + cs + ch;
+    if (s->use_depth) {
+        const size_t ds = s->depth.stride;
+        const float *d0 = s->depth.p + (size_t)y0 * ds + (size_t)x0;
+        const float e = t->depth;
+        float d[4];
+        d[0] = d0[0]; d[1] = d0[1]; d[2] = d0[ds]; d[3] = d0[ds + 1];
+        if (sbl__finite(e)) {
+            const float lim = s->depth_tolerance * e + t->depth_slack;
+            for (k = 0; k < 4; ++k)
+                ok[k] = sbl__finite(d[k]) && d[k] > 0.0f && fabsf(d[k] - e) <= lim;
+        } else {
+            for (k = 0; k < 4; ++k) ok[k] = sbl__is_pos_inf(d[k]); /* sky matches sky */
+        }
+    }
+    if (s->use_id || s->use_normal) {
+        /* rarer buffers: the general test, with depth already decided */
+        sbl__tap_src g = *s;
+        g.use_depth = 0;
+        g.length.p = NULL;
+        for (k = 0; k < 4; ++k)
+            if (ok[k]) ok[k] = sbl__tap_ok_in(&g, t, x0 + (k & 1), y0 + (k >> 1), ch, 0);
+    }
+    if (s->length.p) {
+        const size_t ls = s->length.stride;
+        const float *l0 = s->length.p + (size_t)y0 * ls + (size_t)x0;
+        float n[4];
+        n[0] = l0[0]; n[1] = l0[1]; n[2] = l0[ls]; n[3] = l0[ls + 1];
+        for (k = 0; k < 4; ++k) {
+            ok[k] = ok[k] && n[k] > 0.0f && w[k] > 0.0f;
+            if (ok[k]) *acc_n += w[k] * n[k];
+        }
+    } else {
+        for (k = 0; k < 4; ++k) {
+            ok[k] = ok[k] && w[k] > 0.0f;
+            if (ok[k]) *acc_n += w[k];
+        }
+    }
+    for (k = 0; k < 4; ++k) {
+        if (!ok[k]) continue;
+        acc[0] += w[k] * cp[k][0];
+        if (ch > 1) acc[1] += w[k] * cp[k][1];
+        if (ch > 2) acc[2] += w[k] * cp[k][2];
+        if (ch > 3) acc[3] += w[k] * cp[k][3];
+        wsum += w[k];
+    }
+    return wsum;
 }
 
 /* Bilinear 2x2 gather at continuous position (sx, sy) with per-tap tests, valid taps
@@ -812,26 +898,29 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
                                  double sy, int fallback, float *out, int ch)
 {
     float acc[4] = {0, 0, 0, 0}, acc_n = 0.0f, wsum = 0.0f, fx, fy, inv;
-    int k, x0, y0, i, j;
+    int k, x0, y0, i, j, fast;
     double bx = sx - 0.5, by = sy - 0.5;
     /* far outside (or NaN): no tap can pass; also keeps the int conversion defined */
-    if (!(bx > -2.0 && by > -2.0 && bx < (double)s->color->width + 1.0 &&
-          by < (double)s->color->height + 1.0))
+    if (!(bx > -2.0 && by > -2.0 && bx < (double)s->width + 1.0 &&
+          by < (double)s->height + 1.0))
         return 0.0f;
     x0 = (int)floor(bx);
     y0 = (int)floor(by);
     fx = (float)(bx - x0);
     fy = (float)(by - y0);
-    if (x0 >= 0 && y0 >= 0 && x0 + 1 < s->color->width && y0 + 1 < s->color->height) {
-        /* all four taps inside: no bounds tests (the common case) */
-        for (j = 0; j < 2; ++j)
-            for (i = 0; i < 2; ++i) {
-                float w = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
-                if (w <= 0.0f || !sbl__tap_ok_in(s, t, x0 + i, y0 + j, ch)) continue;
-                sbl__tap_add(s, x0 + i, y0 + j, w, acc, &acc_n, ch);
-                wsum += w;
-            }
-    } else {
+    fast = x0 >= 0 && y0 >= 0 && x0 + 1 < s->width && y0 + 1 < s->height;
+    if (fast) {
+        /* all four taps inside (the common case): no bounds tests, and the values'
+           finiteness checked once on the sums */
+        wsum = sbl__gather_fast(s, t, x0, y0, fx, fy, acc, &acc_n, ch);
+        if (sbl__any_nonfinite(acc, ch) || !sbl__finite(acc_n)) {
+            for (k = 0; k < 4; ++k) acc[k] = 0.0f;
+            acc_n = 0.0f;
+            wsum = 0.0f;
+            fast = 0; /* a NaN or inf got in: redo with every check */
+        }
+    }
+    if (!fast) {
         for (j = 0; j < 2; ++j)
             for (i = 0; i < 2; ++i) {
                 float w = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
@@ -864,7 +953,7 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
 static float sbl__gather(const sbl__tap_src *s, const sbl__tap_want *t, double sx, double sy,
                          int fallback, float *out)
 {
-    switch (s->color->channels) {
+    switch (s->color.ch) {
     case 1: return sbl__gather_ch(s, t, sx, sy, fallback, out, 1);
     case 2: return sbl__gather_ch(s, t, sx, sy, fallback, out, 2);
     case 3: return sbl__gather_ch(s, t, sx, sy, fallback, out, 3);
@@ -872,16 +961,34 @@ static float sbl__gather(const sbl__tap_src *s, const sbl__tap_want *t, double s
     }
 }
 
+/* The target side of the tests, flattened once per call. */
+typedef struct sbl__target_geo {
+    sbl__flat depth, normals, ids;
+    int width, height;
+} sbl__target_geo;
+
+static sbl__target_geo sbl__target_geo_make(const sbl_gbuffer *g, int w, int h)
+{
+    sbl__target_geo t;
+    t.depth = sbl__flatten(&g->depth);
+    t.normals = sbl__flatten(&g->normals);
+    t.ids = sbl__flatten(&g->ids);
+    t.width = w;
+    t.height = h;
+    return t;
+}
+
 /* Slack for the depth test from the target's own depth slope (one-sided minimum so a
    silhouette next to the pixel does not open the tolerance). */
-static float sbl__depth_slack(const sbl_image *depth, int x, int y, float z)
+static float sbl__depth_slack(const sbl__target_geo *g, int x, int y, float z)
 {
+    const float *p = SBL__AT(g->depth, x, y);
     float sx = 0.0f, sy = 0.0f, d;
-    int w = depth->width, h = depth->height;
+    int w = g->width, h = g->height;
     if (!sbl__finite(z)) return 0.0f;
     if (w > 1) {
-        float a = x > 0 ? *sbl__px(depth, x - 1, y) : z;
-        float b = x + 1 < w ? *sbl__px(depth, x + 1, y) : z;
+        float a = x > 0 ? p[-1] : z;
+        float b = x + 1 < w ? p[1] : z;
         float da = fabsf(z - a), db = fabsf(b - z);
         if (x == 0) da = db;
         if (x + 1 == w) db = da;
@@ -889,8 +996,8 @@ static float sbl__depth_slack(const sbl_image *depth, int x, int y, float z)
         if (sbl__finite(d)) sx = d;
     }
     if (h > 1) {
-        float a = y > 0 ? *sbl__px(depth, x, y - 1) : z;
-        float b = y + 1 < h ? *sbl__px(depth, x, y + 1) : z;
+        float a = y > 0 ? *(p - g->depth.stride) : z;
+        float b = y + 1 < h ? *(p + g->depth.stride) : z;
         float da = fabsf(z - a), db = fabsf(b - z);
         if (y == 0) da = db;
         if (y + 1 == h) db = da;
@@ -902,20 +1009,20 @@ static float sbl__depth_slack(const sbl_image *depth, int x, int y, float z)
 
 /* The target pixel's expectations (depth, slack, normal, id) from its G-buffer.
    Returns 0 if its depth is not valid geometry. */
-static int sbl__tap_want_init(sbl__tap_want *t, const sbl_gbuffer *g, int x, int y,
+static int sbl__tap_want_init(sbl__tap_want *t, const sbl__target_geo *g, int x, int y,
                               float *z_out)
 {
     float z = 0.0f;
-    if (g->depth.data) {
-        z = *sbl__px(&g->depth, x, y);
+    if (g->depth.p) {
+        z = *SBL__AT(g->depth, x, y);
         if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0;
-        t->depth_slack = sbl__depth_slack(&g->depth, x, y, z);
+        t->depth_slack = sbl__depth_slack(g, x, y, z);
     } else {
         t->depth_slack = 0.0f;
     }
     t->depth = z;
-    t->id = g->ids.data ? *sbl__px(&g->ids, x, y) : 0.0f;
-    t->normal = g->normals.data ? sbl__px(&g->normals, x, y) : NULL;
+    t->id = g->ids.p ? *SBL__AT(g->ids, x, y) : 0.0f;
+    t->normal = g->normals.p ? SBL__AT(g->normals, x, y) : NULL;
     t->normal_len2 = t->normal ? t->normal[0] * t->normal[0] + t->normal[1] * t->normal[1] +
                                      t->normal[2] * t->normal[2]
                                : 0.0f;
@@ -924,14 +1031,17 @@ static int sbl__tap_want_init(sbl__tap_want *t, const sbl_gbuffer *g, int x, int
     return 1;
 }
 
-/* Source side of the tests: a test runs only when both views have the buffer. */
 static void sbl__tap_src_init(sbl__tap_src *s, const sbl_image *color, const sbl_image *length,
                               const sbl_gbuffer *src_g, const sbl_gbuffer *dst_g,
                               const sbl_reproject_desc *rp)
 {
-    s->color = color;
-    s->length = length;
-    s->g = src_g;
+    s->color = sbl__flatten(color);
+    s->length = sbl__flatten(length);
+    s->depth = sbl__flatten(&src_g->depth);
+    s->normals = sbl__flatten(&src_g->normals);
+    s->ids = sbl__flatten(&src_g->ids);
+    s->width = color->width;
+    s->height = color->height;
     s->use_depth = src_g->depth.data && dst_g->depth.data;
     s->use_id = src_g->ids.data && dst_g->ids.data;
     s->use_normal = src_g->normals.data && dst_g->normals.data && !(rp->normal_threshold < 0.0f);
@@ -939,17 +1049,18 @@ static void sbl__tap_src_init(sbl__tap_src *s, const sbl_image *color, const sbl
     s->normal_threshold2 = rp->normal_threshold * rp->normal_threshold;
 }
 
-/* Motion vector (any convention) -> backward displacement in pixels, y down. */
-static void sbl__motion_to_pixels(const sbl_motion_convention *c, const float *mv, int w,
-                                  int h, double *dx, double *dy)
+/* Motion vector convention -> factors that turn a vector into the backward
+   displacement in pixels, y down: dx = kx * mv.x, dy = ky * mv.y. */
+static void sbl__motion_scale(const sbl_motion_convention *c, int w, int h, double *kx,
+                              double *ky)
 {
-    double x = mv[0], y = mv[1];
-    if (c->units == SBL_MOTION_UV) { x *= w; y *= h; }
-    else if (c->units == SBL_MOTION_NDC) { x *= 0.5 * w; y *= 0.5 * h; }
+    double x = 1.0, y = 1.0;
+    if (c->units == SBL_MOTION_UV) { x = w; y = h; }
+    else if (c->units == SBL_MOTION_NDC) { x = 0.5 * w; y = 0.5 * h; }
     if (c->y_up) y = -y;
     if (c->forward) { x = -x; y = -y; }
-    *dx = x;
-    *dy = y;
+    *kx = x;
+    *ky = y;
 }
 
 static sbl_reproject_desc sbl__reproject_defaults(const sbl_reproject_desc *d)
@@ -979,6 +1090,9 @@ typedef struct sbl__temporal_rp {
     const sbl_frame *frame;
     const sbl_history *history; /* NULL or no colour: everything resets */
     sbl__tap_src src;
+    sbl__target_geo geo;
+    sbl__flat motion;
+    double motion_kx, motion_ky; /* see sbl__motion_scale */
     sbl__cam_map cam;
 } sbl__temporal_rp;
 
@@ -995,6 +1109,9 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     s->rp = sbl__reproject_defaults(desc);
     s->source = source;
     s->frame = frame;
+    sbl__motion_scale(&s->rp.motion, w, h, &s->motion_kx, &s->motion_ky);
+    s->geo = sbl__target_geo_make(g, w, h);
+    s->motion = sbl__flatten(&g->motion);
     s->history = (history && history->color.data) ? history : NULL;
     if (s->history) {
         const sbl_history *hi = s->history;
@@ -1021,20 +1138,16 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
 static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
 {
     const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
-    const sbl_gbuffer *g = &s->frame->gbuffer;
     sbl__tap_want t;
     double sx, sy, sz;
     float z;
     if (!s->history) return 0.0f;
-    if (!sbl__tap_want_init(&t, g, x, y, &z)) return 0.0f;
+    if (!sbl__tap_want_init(&t, &s->geo, x, y, &z)) return 0.0f;
     if (s->source == SBL_TEMPORAL_MOTION) {
-        const float *mv = sbl__px(&g->motion, x, y);
-        double dx, dy;
-        if (!sbl__finite(mv[0]) || !sbl__finite(mv[1])) return 0.0f;
-        sbl__motion_to_pixels(&s->rp.motion, mv, s->frame->color.width,
-                              s->frame->color.height, &dx, &dy);
-        sx = x + 0.5 + dx;
-        sy = y + 0.5 + dy;
+        const float *mv = SBL__AT(s->motion, x, y);
+        if (sbl__any_nonfinite(mv, 2)) return 0.0f;
+        sx = x + 0.5 + s->motion_kx * mv[0];
+        sy = y + 0.5 + s->motion_ky * mv[1];
         sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
     } else {
         if (!sbl__cam_map_apply(&s->cam, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
@@ -1934,6 +2047,7 @@ typedef struct sbl__stereo_rp {
     sbl_eye_index target_eye;
     const sbl_eye *target, *source;
     sbl__tap_src src;
+    sbl__target_geo geo;
     sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES */
 } sbl__stereo_rp;
 
@@ -2000,6 +2114,7 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->source = source;
     sbl__tap_src_init(&s->src, &source->color, &source->length, &source->gbuffer,
                       &target->gbuffer, &s->d.reproject);
+    s->geo = sbl__target_geo_make(&target->gbuffer, source->color.width, source->color.height);
     if (s->d.rig == SBL_RIG_MATRICES) {
         int w = source->color.width, h = source->color.height;
         if (!sbl__cam_map_init(&s->to_source, target->camera, w, h, source->camera, w, h) ||
@@ -2032,7 +2147,7 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
     float z, n;
     sbl__tap_want want;
     int ix, iy;
-    if (!sbl__tap_want_init(&want, &t->gbuffer, x, y, &z)) return 0.0f;
+    if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) return 0.0f;
     if (s->d.rig == SBL_RIG_MATRICES) {
         if (!sbl__cam_map_apply(&s->to_source, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
     } else {

@@ -5,7 +5,8 @@
    reads and writes the same number of bytes as the pipeline, split the same way), and
    their ratio. Rows go to bench/out/perf.csv:
    width,height,eyes,pipeline,threads,ms,floor_ms,ratio_floor,opencv_ms
-   (opencv_ms is filled in by bench/perf_opencv when OpenCV is present, else empty).
+   (opencv_ms: the temporal filter composed from OpenCV calls, bench/perf_opencv.cpp,
+   timed in the same run when built with OpenCV; else empty).
 
    usage: perf [--quick] [--reps N] [--out DIR] */
 #define _POSIX_C_SOURCE 200809L
@@ -18,6 +19,13 @@
 #include <math.h>
 #include <time.h>
 #include <sys/stat.h>
+
+#ifdef SBL_PERF_OPENCV
+/* bench/perf_opencv.cpp: the same filter composed from OpenCV calls */
+int sbl_opencv_temporal(int w, int h, const float *color, const float *depth,
+                        const float *motion, const float *hist, const float *hlen,
+                        const float *prev_depth, float *out, float *out_len, int threads);
+#endif
 
 static double now_ms(void)
 {
@@ -203,9 +211,9 @@ int main(int argc, char **argv)
            "scalar"
 #endif
     );
-    printf("| %9s | %4s | %-8s | %7s | %9s | %9s | %6s |\n", "size", "eyes", "pipeline", "threads",
-           "ms", "floor ms", "ratio");
-    printf("|-----------|------|----------|--------:|----------:|----------:|-------:|\n");
+    printf("| %9s | %4s | %-8s | %7s | %9s | %9s | %6s | %9s |\n", "size", "eyes", "pipeline",
+           "threads", "ms", "floor ms", "ratio", "OpenCV ms");
+    printf("|-----------|------|----------|--------:|----------:|----------:|-------:|----------:|\n");
     for (si = 0; si < (quick ? 1 : 3); ++si) {
         int w = sizes[si][0], h = sizes[si][1];
         eye_bufs e[2];
@@ -219,7 +227,7 @@ int main(int argc, char **argv)
                 static const char *names[3] = {"temporal", "stereo", "combined"};
                 if (eyes == 1 && pipe != 0) continue; /* stereo needs two eyes */
                 for (threads = 1; threads <= 2; ++threads) {
-                    double t_lib[64], t_floor[64], ms, fms;
+                    double t_lib[64], t_floor[64], t_cv[64], ms, fms, cvms = -1.0;
                     /* byte plan for the floor, matching the pipeline's reads / writes */
                     const float *inp[32];
                     float *outp[32];
@@ -271,17 +279,39 @@ int main(int argc, char **argv)
                         t0 = now_ms();
                         run_bands(&fj, threads, scratch);
                         t_floor[r] = now_ms() - t0;
+#ifdef SBL_PERF_OPENCV
+                        if (pipe == 0) {
+                            t0 = now_ms();
+                            for (ev = 0; ev < eyes; ++ev)
+                                sbl_opencv_temporal(w, h, e[ev].color, e[ev].depth, e[ev].motion,
+                                                    e[ev].hist, e[ev].hlen, e[ev].depth,
+                                                    e[ev].stereo_out, e[ev].olen, threads);
+                            t_cv[r] = now_ms() - t0;
+                        }
+#endif
                     }
+#ifdef SBL_PERF_OPENCV
+                    if (pipe == 0) {
+                        qsort(t_cv + 1, (size_t)reps, sizeof(double), cmp_double);
+                        cvms = t_cv[1 + reps / 2];
+                    }
+#else
+                    (void)t_cv;
+#endif
                     /* the first run warms caches and page tables: dropped */
                     qsort(t_lib + 1, (size_t)reps, sizeof(double), cmp_double);
                     qsort(t_floor + 1, (size_t)reps, sizeof(double), cmp_double);
                     ms = t_lib[1 + reps / 2];
                     fms = t_floor[1 + reps / 2];
-                    printf("| %4dx%-4d | %4d | %-8s | %7d | %9.3f | %9.3f | %6.2f |\n", w, h, eyes,
+                    printf("| %4dx%-4d | %4d | %-8s | %7d | %9.3f | %9.3f | %6.2f |", w, h, eyes,
                            names[pipe], threads, ms, fms, ms / fms);
+                    if (cvms >= 0) printf(" %9.3f |\n", cvms);
+                    else printf(" %9s |\n", "");
                     fflush(stdout);
-                    fprintf(csv, "%d,%d,%d,%s,%d,%.4f,%.4f,%.3f,\n", w, h, eyes, names[pipe], threads,
+                    fprintf(csv, "%d,%d,%d,%s,%d,%.4f,%.4f,%.3f,", w, h, eyes, names[pipe], threads,
                             ms, fms, ms / fms);
+                    if (cvms >= 0) fprintf(csv, "%.4f", cvms);
+                    fprintf(csv, "\n");
                 }
             }
         for (i = 0; i < 8; ++i) free(scratch[i]);
