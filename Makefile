@@ -23,7 +23,7 @@ HAVE_EXR := $(shell pkg-config --exists OpenEXR 2>/dev/null && echo 1)
 EXR_CFLAGS := $(if $(HAVE_EXR),$(shell pkg-config --cflags OpenEXR),-DSBL_NO_EXR)
 EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
-TESTS = test_core test_metrics test_stereo
+TESTS = test_core test_metrics test_stereo test_robust
 SIMD_TESTS = test_core test_stereo
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
@@ -77,7 +77,12 @@ $(BUILD)/cxx/%: tests/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CXX_TEST) -x c++ $(CXXFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
 
+include mk/robust.mk
+
+# the unit tests built every way, then the robustness runs (-O0, -O3 -march=native,
+# -ffast-math with gcc and clang, scalar; ASan + UBSan; valgrind; fuzz corpus replay)
 check: $(TEST_BINS)
+	@$(MAKE) --no-print-directory check-robust
 	@fail=0; total=0; \
 	for t in $(TEST_BINS); do \
 	  total=$$((total+1)); echo "== $$t"; \

@@ -479,6 +479,18 @@ static int sbl__any_nonfinite(const float *v, int n)
     }
     return (int)(acc >> 31);
 }
+static int sbl__is_zero(float v) /* +-0 on the bits: NaN is not 0 under -ffast-math */
+{
+    unsigned int bits;
+    memcpy(&bits, &v, sizeof bits);
+    return (bits & 0x7fffffffu) == 0u;
+}
+static int sbl__is_nan(float v)
+{
+    unsigned int bits;
+    memcpy(&bits, &v, sizeof bits);
+    return (bits & 0x7fffffffu) > 0x7f800000u;
+}
 static int sbl__is_pos_inf(float v)
 {
     unsigned int bits;
@@ -671,6 +683,11 @@ static int sbl__cam_map_init(sbl__cam_map *m, const sbl_camera *from, int w, int
                              const sbl_camera *to, int ow, int oh)
 {
     double proj[16], view[16], inv_view[16], other_view[16];
+    int i;
+    for (i = 0; i < 16; ++i) /* NaN / inf entries can still "invert" to a finite matrix */
+        if (!sbl__finite(from->world_to_view[i]) || !sbl__finite(from->view_to_clip[i]) ||
+            !sbl__finite(to->world_to_view[i]) || !sbl__finite(to->view_to_clip[i]))
+            return 0;
     sbl__mat_from_float(proj, from->view_to_clip);
     sbl__mat_from_float(view, from->world_to_view);
     sbl__mat_from_float(other_view, to->world_to_view);
@@ -786,7 +803,10 @@ SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, in
         !sbl__depth_match(t->depth, *SBL__AT(s->depth, x, y), s->depth_tolerance,
                           t->depth_slack))
         return 0;
-    if (s->use_id && *SBL__AT(s->ids, x, y) != t->id) return 0;
+    if (s->use_id) {
+        float id = *SBL__AT(s->ids, x, y);
+        if (sbl__is_nan(id) || sbl__is_nan(t->id) || id != t->id) return 0;
+    }
     if (s->use_normal) {
         const float *n = SBL__AT(s->normals, x, y), *m = t->normal;
         float dot = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
@@ -805,6 +825,16 @@ SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, in
         if (!(n > 0.0f) || (check_values && !sbl__finite(n))) return 0;
     }
     return 1;
+}
+
+/* +-inf -> +-FLT_MAX, on the bits (a "v > FLT_MAX" test is folded away by clang
+   -ffast-math, which assumes there are no infinities) */
+static float sbl__sat(float v)
+{
+    unsigned int bits;
+    memcpy(&bits, &v, sizeof bits);
+    if ((bits & 0x7fffffffu) == 0x7f800000u) return (bits >> 31) ? -FLT_MAX : FLT_MAX;
+    return v;
 }
 
 SBL__INLINE int sbl__tap_ok(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y,
@@ -932,21 +962,29 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     if (wsum < 1e-3f && fallback) {
         /* thin geometry: the surface may survive only in a neighbour of the nearest
            pixel; average the consistent ones */
-        int cx = (int)floor(sx), cy = (int)floor(sy);
-        for (k = 0; k < 4; ++k) acc[k] = 0.0f;
-        acc_n = 0.0f;
-        wsum = 0.0f;
+        /* summed in double: up to nine finite values near FLT_MAX (colour or N) must
+           not overflow before the division */
+        int cx = (int)floor(sx), cy = (int)floor(sy), cnt = 0;
+        double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
         for (j = -1; j <= 1; ++j)
             for (i = -1; i <= 1; ++i)
                 if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
-                    sbl__tap_add(s, cx + i, cy + j, 1.0f, acc, &acc_n, ch);
-                    wsum += 1.0f;
+                    const float *c = SBL__AT(s->color, cx + i, cy + j);
+                    for (k = 0; k < ch; ++k) dacc[k] += c[k];
+                    dn += s->length.p ? *SBL__AT(s->length, cx + i, cy + j) : 1.0f;
+                    ++cnt;
                 }
+        if (!cnt) return 0.0f;
+        for (k = 0; k < ch; ++k) out[k] = (float)(dacc[k] / cnt);
+        dn /= cnt;
+        return dn > 0.0 ? (float)dn : 0.0f;
     }
     if (wsum < 1e-3f) return 0.0f;
     inv = 1.0f / wsum;
-    for (k = 0; k < ch; ++k) out[k] = acc[k] * inv;
-    acc_n *= inv;
+    /* the weights sum to 1 within rounding, so a mean of values at +-FLT_MAX can round
+       past it: saturate (a weighted mean of finite values is finite) */
+    for (k = 0; k < ch; ++k) out[k] = sbl__sat(acc[k] * inv);
+    acc_n = sbl__sat(acc_n * inv);
     return acc_n > 0.0f ? acc_n : 0.0f;
 }
 
@@ -1066,9 +1104,9 @@ static void sbl__motion_scale(const sbl_motion_convention *c, int w, int h, doub
 static sbl_reproject_desc sbl__reproject_defaults(const sbl_reproject_desc *d)
 {
     sbl_reproject_desc r = *d;
-    if (r.depth_tolerance == 0.0f) r.depth_tolerance = 0.05f;
-    if (r.normal_threshold == 0.0f) r.normal_threshold = 0.9f;
-    if (r.back_check_pixels == 0.0f) r.back_check_pixels = 1.0f;
+    if (sbl__is_zero(r.depth_tolerance)) r.depth_tolerance = 0.05f;
+    if (sbl__is_zero(r.normal_threshold)) r.normal_threshold = 0.9f;
+    if (sbl__is_zero(r.back_check_pixels)) r.back_check_pixels = 1.0f;
     return r;
 }
 
@@ -1290,7 +1328,9 @@ SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image var, 
             sbl__moments_core(&m, (const float(*)[4])vals, NULL, NULL, n, ch);
             for (k = 0; k < ch; ++k) {
                 if (mean.data) sbl__px(&mean, x, y)[k] = (float)m.mean[k];
-                if (var.data) sbl__px(&var, x, y)[k] = (float)m.var[k];
+                /* beyond float range (|values| > ~1e19): saturate, finite in -> finite out */
+                if (var.data)
+                    sbl__px(&var, x, y)[k] = m.var[k] > FLT_MAX ? FLT_MAX : (float)m.var[k];
             }
         }
     return SBL_OK;
@@ -1310,9 +1350,10 @@ SBLDEF float sbl_optimal_weight(float bias2, float var_x, float var_y)
 
 SBLDEF float sbl_blend_sample_count(float a, float n_x, float n_y)
 {
-    double A = a, den = (1.0 - A) * (1.0 - A) * n_y + A * A * n_x;
-    if (!(den > 0.0)) return n_x + n_y; /* only when a blend of nothing: keep the sum */
-    return (float)((double)n_x * (double)n_y / den);
+    double A = a, den = (1.0 - A) * (1.0 - A) * n_y + A * A * n_x, n;
+    if (!(den > 0.0)) n = (double)n_x + (double)n_y; /* a blend of nothing: the sum */
+    else n = (double)n_x * (double)n_y / den;
+    return n > FLT_MAX ? FLT_MAX : (float)n; /* saturate: finite counts stay finite */
 }
 
 /* Resolved weight parameters shared by temporal and stereo. */
@@ -1440,10 +1481,14 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
         for (k = 0; k < ch; ++k) a[k] = a_mean;
     }
     for (k = 0; k < ch; ++k) {
-        float v = xs[k] + a[k] * (y[k] - xs[k]);
+        /* lerp from the end the weight is nearer: a = 1 gives y and a = 0 gives x*
+           exactly, and a dim y next to a bright x* (|x*| >> |y|) is not cancelled away */
+        float v = a[k] <= 0.5f ? xs[k] + a[k] * (y[k] - xs[k])
+                               : y[k] + (1.0f - a[k]) * (xs[k] - y[k]);
         /* both inputs finite but the lerp overflowed (|x|,|y| near FLT_MAX): form it
            the other way, which cannot overflow when the inputs are finite */
-        if (!sbl__finite(v)) v = (1.0f - a[k]) * xs[k] + a[k] * y[k];
+        if (!sbl__finite(v))
+            v = (float)((1.0 - (double)a[k]) * (double)xs[k] + (double)a[k] * (double)y[k]);
         out[k] = v;
     }
     *alpha_out = a_mean;
@@ -1838,7 +1883,11 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
         {
             sbl__v a_mean = zero, n_out, one_m, den;
             for (c = 0; c < ch; ++c) {
-                sbl__v o = sbl__add(xs[c], sbl__mul(a[c], sbl__sub(yc[c], xs[c])));
+                /* two-sided lerp, as in sbl__blend_pixel */
+                sbl__v o = sbl__sel(sbl__gt(a[c], sbl__set1(0.5f)),
+                                    sbl__add(yc[c], sbl__mul(sbl__sub(one, a[c]),
+                                                             sbl__sub(xs[c], yc[c]))),
+                                    sbl__add(xs[c], sbl__mul(a[c], sbl__sub(yc[c], xs[c]))));
                 if (k->fill) o = xs[c];
                 sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c]));
                 a_mean = sbl__add(a_mean, a[c]);
@@ -1921,10 +1970,10 @@ SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
     sbl_temporal_desc d;
     if (desc) d = *desc;
     else memset(&d, 0, sizeof d);
-    if (d.constant_alpha == 0.0f) d.constant_alpha = 0.1f;
-    if (d.max_history == 0.0f) d.max_history = 64.0f;
-    if (d.clip_gamma == 0.0f) d.clip_gamma = 1.25f;
-    if (d.bias_threshold == 0.0f) d.bias_threshold = 3.0f;
+    if (sbl__is_zero(d.constant_alpha)) d.constant_alpha = 0.1f;
+    if (sbl__is_zero(d.max_history)) d.max_history = 64.0f;
+    if (sbl__is_zero(d.clip_gamma)) d.clip_gamma = 1.25f;
+    if (sbl__is_zero(d.bias_threshold)) d.bias_threshold = 3.0f;
     d.reproject = sbl__reproject_defaults(&d.reproject);
     return d;
 }
@@ -1983,6 +2032,8 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
         }
     }
     if (!scratch) return SBL_ERROR_NULL_POINTER;
+    /* 0 = too wide to size (sbl__check_image accepts up to INT_MAX / 4) */
+    if (sbl_temporal_scratch_size(w, ch) == 0) return SBL_ERROR_INVALID_SIZE;
     if (scratch_bytes < sbl_temporal_scratch_size(w, ch)) return SBL_ERROR_SCRATCH_TOO_SMALL;
 
     memset(&k, 0, sizeof k);
@@ -2019,6 +2070,7 @@ SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
     if (!desc || !frame || !out) return SBL_ERROR_NULL_POINTER;
     if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
     bytes = sbl_temporal_scratch_size(frame->color.width, frame->color.channels);
+    if (bytes == 0) return SBL_ERROR_INVALID_SIZE;
     scratch = SBL_MALLOC(bytes, desc->alloc_context);
     if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
     r = sbl_temporal_filter(desc, frame, history, out, 0, frame->color.height, scratch, bytes);
@@ -2035,9 +2087,9 @@ SBLDEF sbl_stereo_desc sbl_stereo_defaults(const sbl_stereo_desc *desc)
     sbl_stereo_desc d;
     if (desc) d = *desc;
     else memset(&d, 0, sizeof d);
-    if (d.constant_beta == 0.0f) d.constant_beta = 0.5f;
-    if (d.clip_gamma == 0.0f) d.clip_gamma = 1.25f;
-    if (d.bias_threshold == 0.0f) d.bias_threshold = 3.0f;
+    if (sbl__is_zero(d.constant_beta)) d.constant_beta = 0.5f;
+    if (sbl__is_zero(d.clip_gamma)) d.clip_gamma = 1.25f;
+    if (sbl__is_zero(d.bias_threshold)) d.bias_threshold = 3.0f;
     d.reproject = sbl__reproject_defaults(&d.reproject);
     return d;
 }
@@ -2288,6 +2340,8 @@ SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index ta
         return r;
     if ((r = sbl__check_rows(y0, y1, target->color.height)) != SBL_OK) return r;
     if (!scratch) return SBL_ERROR_NULL_POINTER;
+    if (sbl_stereo_scratch_size(target->color.width, target->color.channels) == 0)
+        return SBL_ERROR_INVALID_SIZE; /* too wide to size */
     if (scratch_bytes < sbl_stereo_scratch_size(target->color.width, target->color.channels))
         return SBL_ERROR_SCRATCH_TOO_SMALL;
     memset(&k, 0, sizeof k);
@@ -2331,6 +2385,7 @@ SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_
         return r;
     if (sbl__overlap(&out_left, &out_right)) return SBL_ERROR_OVERLAP;
     bytes = sbl_stereo_scratch_size(left->color.width, left->color.channels);
+    if (bytes == 0) return SBL_ERROR_INVALID_SIZE;
     scratch = SBL_MALLOC(bytes, desc->alloc_context);
     if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
     r = sbl_stereo_blend(desc, SBL_EYE_LEFT, left, right, out_left, none, 0,
