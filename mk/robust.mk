@@ -23,6 +23,14 @@ ROBUST_SAN   := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit
 HAVE_CLANG_ROBUST := $(shell command -v clang 2>/dev/null)
 ROBUST_VARIANTS := O0 O3native fastmath scalar $(if $(HAVE_CLANG_ROBUST),clang_fastmath)
 
+# Prints the first compiler that links and runs a program with the sanitizers (or nothing).
+SAN_PROBE = for c in clang gcc $(CC); do \
+	  command -v $$c >/dev/null 2>&1 || continue; \
+	  printf 'int main(void){return 0;}\n' > $(ROBUST_DIR)/san_probe.c; \
+	  if $$c $(ROBUST_SAN) $(ROBUST_DIR)/san_probe.c -o $(ROBUST_DIR)/san_probe >/dev/null 2>&1 && \
+	     ./$(ROBUST_DIR)/san_probe; then echo $$c; break; fi; \
+	done
+
 .PHONY: check-robust robust-variants robust-sanitize robust-valgrind robust-fuzz-replay fuzz
 
 $(ROBUST_DIR)/test_robust_O0: $(ROBUST_DEPS)
@@ -50,14 +58,9 @@ robust-variants: $(addprefix $(ROBUST_DIR)/test_robust_,$(ROBUST_VARIANTS))
 # Sanitizers: the first compiler that links a trivial program with them.
 robust-sanitize:
 	@mkdir -p $(ROBUST_DIR); \
-	san=""; for c in clang gcc $(CC); do \
-	  command -v $$c >/dev/null 2>&1 || continue; \
-	  printf 'int main(void){return 0;}\n' > $(ROBUST_DIR)/san_probe.c; \
-	  if $$c $(ROBUST_SAN) $(ROBUST_DIR)/san_probe.c -o $(ROBUST_DIR)/san_probe >/dev/null 2>&1 && \
-	     ./$(ROBUST_DIR)/san_probe; then san=$$c; break; fi; \
-	done; \
+	san=$$($(SAN_PROBE)); \
 	if [ -z "$$san" ]; then echo "robust-sanitize: no compiler with -fsanitize=address,undefined, skipped"; exit 0; fi; \
-	fail=0; for t in test_core test_robust; do \
+	fail=0; for t in test_core test_stereo test_robust test_metrics; do \
 	  echo "== $$t under $$san -fsanitize=address,undefined"; \
 	  $$san $(ROBUST_STRICT) -O1 -g $(ROBUST_SAN) -Itools tests/$$t.c -o $(ROBUST_DIR)/$$t-asan -lm || { fail=1; continue; }; \
 	  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
@@ -76,12 +79,7 @@ robust-valgrind:
 # (or plain, when no compiler has them).
 robust-fuzz-replay:
 	@mkdir -p $(ROBUST_DIR); \
-	san=""; for c in clang gcc $(CC); do \
-	  command -v $$c >/dev/null 2>&1 || continue; \
-	  printf 'int main(void){return 0;}\n' > $(ROBUST_DIR)/san_probe.c; \
-	  if $$c $(ROBUST_SAN) $(ROBUST_DIR)/san_probe.c -o $(ROBUST_DIR)/san_probe >/dev/null 2>&1 && \
-	     ./$(ROBUST_DIR)/san_probe; then san=$$c; break; fi; \
-	done; \
+	san=$$($(SAN_PROBE)); \
 	if [ -n "$$san" ]; then flags="$(ROBUST_SAN)"; else san=$(CC); flags=""; fi; \
 	echo "== fuzz_sbl corpus replay ($$san $$flags)"; \
 	$$san $(ROBUST_STRICT) -DSBL_FUZZ_STANDALONE -O1 -g $$flags tests/fuzz_sbl.c -o $(ROBUST_DIR)/fuzz_sbl_replay -lm || exit 1; \
