@@ -100,6 +100,6 @@ fuzz:
 	  tests/fuzz_sbl.c -o $(FUZZ_DIR)/fuzz_sbl -lm || exit 1; \
 	cd $(FUZZ_DIR) && { ./fuzz_sbl corpus $(CURDIR)/tests/fuzz_corpus -max_total_time=$(FUZZ_SECONDS) \
 	  -print_final_stats=1 -artifact_prefix=./ > fuzz.log 2>&1; echo $$? > fuzz.rc; }; \
-	grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::average_exec_per_sec|SUMMARY)' fuzz.log; \
+	grep -a -E '^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::average_exec_per_sec|SUMMARY)' fuzz.log; \
 	rc=$$(cat fuzz.rc); if [ "$$rc" != 0 ]; then tail -40 fuzz.log; \
 	  echo "!! fuzz: crash or property violation, input saved as $(FUZZ_DIR)/crash-*"; fi; exit $$rc
