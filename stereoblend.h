@@ -173,8 +173,9 @@ typedef enum sbl_depth_encoding {
     SBL_DEPTH_ENCODING_COUNT
 } sbl_depth_encoding;
 
-/* Linear planar depth from an encoded depth value (near_z, far_z > 0). Values outside
-   the encoding's range give +inf (sky) or NaN (garbage) rather than a wrong depth. */
+/* Linear planar depth from an encoded depth value (near_z, far_z > 0). Beyond the far
+   plane gives +inf (sky); nearer than the near plane, or NaN, gives NaN (no geometry):
+   never a wrong finite depth. */
 SBLDEF float sbl_depth_to_linear(float encoded, sbl_depth_encoding encoding,
                                  float near_z, float far_z);
 /* Whole-image form (src and dst may be the same buffer). */
@@ -575,23 +576,31 @@ static int sbl__param_ok(float v) /* finite and >= 0 */
 
 SBLDEF float sbl_depth_to_linear(float d, sbl_depth_encoding enc, float n, float f)
 {
-    float z;
+    /* NaN stays NaN ("no geometry"); beyond the far plane is sky (+inf); nearer than
+       the near plane cannot be geometry: NaN. Never a wrong finite depth. */
+    const float nan_value = (float)(HUGE_VAL - HUGE_VAL);
+    if (enc == SBL_DEPTH_LINEAR || !sbl__finite(d)) return d;
     switch (enc) {
-    case SBL_DEPTH_LINEAR: return d;
-    case SBL_DEPTH_NDC_GL: /* d in [-1,1]: z = 2nf / (f + n - d (f - n)) */
-        z = (f + n) - d * (f - n);
-        return z > 0.0f ? 2.0f * n * f / z : (float)HUGE_VAL;
-    case SBL_DEPTH_NDC_ZERO_ONE: /* d in [0,1]: z = nf / (f - d (f - n)) */
-        z = f - d * (f - n);
-        return z > 0.0f ? n * f / z : (float)HUGE_VAL;
-    case SBL_DEPTH_REVERSED: /* d in [0,1], 1 at near: z = nf / (n + d (f - n)) */
-        z = n + d * (f - n);
-        return z > 0.0f ? n * f / z : (float)HUGE_VAL;
+    case SBL_DEPTH_NDC_GL: /* d in [-1,1], -1 near: z = 2nf / (f + n - d (f - n)) */
+        if (d > 1.0f) return (float)HUGE_VAL;
+        if (d < -1.0f) return nan_value;
+        return (float)(2.0 * n * f / ((double)f + n - (double)d * ((double)f - n)));
+    case SBL_DEPTH_NDC_ZERO_ONE: /* d in [0,1], 0 near: z = nf / (f - d (f - n)) */
+        if (d > 1.0f) return (float)HUGE_VAL;
+        if (d < 0.0f) return nan_value;
+        return (float)((double)n * f / ((double)f - (double)d * ((double)f - n)));
+    case SBL_DEPTH_REVERSED: /* d in [0,1], 1 near: z = nf / (n + d (f - n)) */
+        if (d < 0.0f) return (float)HUGE_VAL;
+        if (d > 1.0f) return nan_value;
+        return (float)((double)n * f / ((double)n + (double)d * ((double)f - n)));
     case SBL_DEPTH_REVERSED_INFINITE: /* z = n / d; d = 0 is the far plane at infinity */
-        return d > 0.0f ? n / d : (float)HUGE_VAL;
+        if (!(d > 0.0f)) return (float)HUGE_VAL;
+        if (d > 1.0f) return nan_value;
+        return n / d;
+    case SBL_DEPTH_LINEAR:
     case SBL_DEPTH_ENCODING_COUNT: break;
     }
-    return (float)HUGE_VAL;
+    return nan_value;
 }
 
 SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
@@ -608,7 +617,10 @@ SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
         if (enc != SBL_DEPTH_REVERSED_INFINITE && (!sbl__finite(f) || f <= n))
             return SBL_ERROR_INVALID_PARAM;
     }
-    if (src.data != dst.data && sbl__overlap(&src, &dst)) return SBL_ERROR_OVERLAP;
+    /* in place only with the same layout: otherwise a row could be overwritten
+       before it is read */
+    if (src.data == dst.data ? sbl__stride(&src) != sbl__stride(&dst) : sbl__overlap(&src, &dst))
+        return SBL_ERROR_OVERLAP;
     for (y = 0; y < src.height; ++y)
         for (x = 0; x < src.width; ++x)
             *sbl__px(&dst, x, y) = sbl_depth_to_linear(*sbl__px(&src, x, y), enc, n, f);
@@ -1602,7 +1614,7 @@ typedef int sbl__m;
    eye) is gathered once per row, into a ring of three rows; the 3x3 statistics, the
    weight, the rectification, the blend and Eq. 5 then run over those planes:
    - the lane kernel (SIMD layer above) on interior pixels of rows whose values are
-     finite and within about [1e-15, 1e15] in magnitude (or 0), in float;
+     finite and within about [1e-12, 1e15] in magnitude (or 0), in float;
    - the reference path (sbl__blend_pixel, double) everywhere else: image borders
      (fewer than 9 neighbours), non-finite samples, extreme magnitudes or denormals.
    Each output pixel takes one of the two paths by a rule that depends only on the
@@ -1671,15 +1683,16 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->stage_a = p;
 }
 
-/* 0, or finite with magnitude in [2^-50, 2^50) (about 8.9e-16 .. 1.1e15): squares and
-   sums of nine of them stay normal floats, so the lane kernel needs no scaling. Read
+/* 0, or finite with magnitude in [2^-40, 2^50) (about 9.1e-13 .. 1.1e15): squares and
+   sums of nine of them, and squares of differences down to 2^-24 of them, stay normal
+   floats, so the lane kernel needs no scaling and does no denormal arithmetic. Read
    off the exponent bits: one test, and immune to -ffast-math. */
 static int sbl__lane_value_ok(float v)
 {
     unsigned int bits, e;
     memcpy(&bits, &v, sizeof bits);
     e = (bits >> 23) & 0xffu;
-    return (bits & 0x7fffffffu) == 0u || e - 77u < 100u;
+    return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
 static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row)
@@ -1704,6 +1717,10 @@ static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row)
             if (valid) safe &= sbl__lane_value_ok(tmp[c]);
         }
         if (valid) safe &= sbl__lane_value_ok(n);
+    }
+    if (k->own_n && k->own_n->data) { /* N_Y: the reference path sanitises it */
+        const float *ny = sbl__px(k->own_n, 0, row);
+        for (x = 0; x < k->w; ++x) safe &= sbl__lane_value_ok(ny[x]) && ny[x] <= 1048576.0f;
     }
     r->lane_safe = safe;
 }
@@ -1797,7 +1814,7 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
         vp[j] = R[j]->v;
     }
     for (x = x0; x + SBL__VW <= x1; x += SBL__VW) {
-        sbl__v mean[4], var[4], lo[4], hi[4], pd[4], xs[4], yc[4], a[4];
+        sbl__v mean[4], var[4], lo[4], hi[4], pd[4], xs[4], xr[4], yc[4], a[4];
         sbl__v cnt = SBL__SUM9(vp, x), inv_cnt, n_x, n_y, n_xc;
         sbl__m valid, has_pairs;
         has_pairs = sbl__gt(cnt, zero);
@@ -1829,7 +1846,7 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
             mean[c] = m;
             var[c] = sbl__mul(v, ninth);
             pd[c] = sbl__mul(d, inv_cnt);
-            xs[c] = sbl__load(xp[c][1] + x);
+            xs[c] = xr[c] = sbl__load(xp[c][1] + x);
             yc[c] = sbl__load(yp[c][1] + x);
         }
         if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
@@ -1888,7 +1905,7 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
                                     sbl__add(yc[c], sbl__mul(sbl__sub(one, a[c]),
                                                              sbl__sub(xs[c], yc[c]))),
                                     sbl__add(xs[c], sbl__mul(a[c], sbl__sub(yc[c], xs[c]))));
-                if (k->fill) o = xs[c];
+                if (k->fill) o = xr[c]; /* fill takes x* unrectified, as the reference path */
                 sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c]));
                 a_mean = sbl__add(a_mean, a[c]);
             }

@@ -40,6 +40,7 @@ static int dfin(double d)
     return (u & 0x7ff0000000000000ULL) != 0x7ff0000000000000ULL;
 }
 static int is_pinf(float f) { return bits_f(f) == 0x7f800000u; }
+static int is_nan_bits(float f) { return (bits_f(f) & 0x7fffffffu) > 0x7f800000u; }
 
 /* 1 when the FPU flushes denormal results / inputs to zero (FTZ/DAZ, e.g. gcc's
    -ffast-math start-up code); the volatile keeps the compiler from folding it. */
@@ -806,10 +807,28 @@ static void test_params(void)
         CHECK_EQ(sbl_depth_image_to_linear(vw(&dep), vw(&dep), SBL_DEPTH_REVERSED, 0.1f, f_inf()), SBL_ERROR_INVALID_PARAM);
         CHECK_EQ(sbl_depth_image_to_linear(vw(&dep), vw(&dep), SBL_DEPTH_REVERSED_INFINITE, 0.1f, f_nan()), SBL_OK);
         CHECK(rimg_finite(&dep));
-        /* encoded values outside the range: +inf (sky) or NaN, never a wrong depth */
+        /* encoded values outside the range: beyond far = +inf (sky), nearer than near
+           or NaN = NaN (no geometry), never a wrong finite depth */
         CHECK(is_pinf(sbl_depth_to_linear(1.5f, SBL_DEPTH_NDC_ZERO_ONE, 0.1f, 100.0f)));
+        CHECK(is_pinf(sbl_depth_to_linear(1.001f, SBL_DEPTH_NDC_ZERO_ONE, 0.1f, 100.0f)));
+        CHECK(is_nan_bits(sbl_depth_to_linear(-0.5f, SBL_DEPTH_NDC_ZERO_ONE, 0.1f, 100.0f)));
         CHECK(is_pinf(sbl_depth_to_linear(-0.5f, SBL_DEPTH_REVERSED_INFINITE, 0.1f, 0.0f)));
-        CHECK(is_pinf(sbl_depth_to_linear(0.0f, (sbl_depth_encoding)77, 0.1f, 1.0f)));
+        CHECK(is_nan_bits(sbl_depth_to_linear(1.5f, SBL_DEPTH_REVERSED_INFINITE, 0.1f, 0.0f)));
+        CHECK(is_pinf(sbl_depth_to_linear(-0.1f, SBL_DEPTH_REVERSED, 0.1f, 10.0f)));
+        CHECK(is_nan_bits(sbl_depth_to_linear(1.1f, SBL_DEPTH_REVERSED, 0.1f, 10.0f)));
+        CHECK(is_pinf(sbl_depth_to_linear(1.1f, SBL_DEPTH_NDC_GL, 0.1f, 10.0f)));
+        CHECK(is_nan_bits(sbl_depth_to_linear(-1.1f, SBL_DEPTH_NDC_GL, 0.1f, 10.0f)));
+        CHECK(is_nan_bits(sbl_depth_to_linear(f_nan(), SBL_DEPTH_NDC_ZERO_ONE, 0.1f, 100.0f)));
+        CHECK(is_nan_bits(sbl_depth_to_linear(f_nan(), SBL_DEPTH_REVERSED_INFINITE, 0.1f, 0.0f)));
+        CHECK(is_nan_bits(sbl_depth_to_linear(0.0f, (sbl_depth_encoding)77, 0.1f, 1.0f)));
+        /* in place with another stride would overwrite rows before reading them */
+        {
+            sbl_image src = vw(&dep), dst = vw(&dep);
+            dst.stride = src.stride + 1;
+            dst.width = 4;
+            src.width = 4;
+            CHECK_EQ(sbl_depth_image_to_linear(src, dst, SBL_DEPTH_NDC_GL, 0.1f, 10.0f), SBL_ERROR_OVERLAP);
+        }
         rimg_free(&dep);
     }
     ts_free(&s);
