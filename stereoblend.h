@@ -283,8 +283,9 @@ typedef struct sbl_temporal_desc {
     float alpha_min;        /* lower bound on alpha after estimation; 0 -> none        */
     float max_history;      /* cap on N; 0 -> 64                                        */
     float clip_gamma;       /* SBL_RECTIFY_VARIANCE_CLIP box half-width in sigmas; 0 -> 1.25 */
-    float bias_threshold;   /* history-aware: bias counts only beyond this many times its
-                               expected noise level; 0 -> 3                             */
+    float bias_threshold;   /* history-aware: bias counts only beyond this many standard
+                               errors of the mean paired difference (a paired t-test);
+                               0 -> 3                                                    */
     sbl_reproject_desc reproject;
     void *alloc_context;    /* passed to SBL_MALLOC / SBL_FREE in *_frame calls        */
 } sbl_temporal_desc;
@@ -1268,6 +1269,7 @@ typedef struct sbl__moments {
     double mean[4], var[4];     /* population mean / variance of Y per channel      */
     float lo[4], hi[4];         /* min / max of Y per channel                       */
     double pair_diff[4];        /* mean of (x*_i - y_i) over pixels with both valid */
+    double pair_var[4];         /* sample variance of (x*_i - y_i) (Bessel), 0 if < 2 */
     int count, pair_count;
 } sbl__moments;
 
@@ -1300,6 +1302,16 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
             for (i = 0; i < n; ++i)
                 if (xvalid[i]) pd += (double)xvals[i][k] - (double)vals[i][k];
         m->pair_diff[k] = m->pair_count ? pd / m->pair_count : 0.0;
+        m->pair_var[k] = 0.0;
+        if (xvalid && m->pair_count > 1) {
+            double pv = 0.0;
+            for (i = 0; i < n; ++i)
+                if (xvalid[i]) {
+                    double e = ((double)xvals[i][k] - (double)vals[i][k]) - m->pair_diff[k];
+                    pv += e * e;
+                }
+            m->pair_var[k] = pv / (m->pair_count - 1);
+        }
     }
 }
 
@@ -1377,9 +1389,10 @@ typedef struct sbl__weight_params {
 } sbl__weight_params;
 
 /* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
-   s2 = population variance of Y, pd2 = (mean paired difference)^2. */
+   s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
+   variance of the paired differences x*_i - y_i. */
 static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, double pd2,
-                         int count, int pair_count, float n_x, float n_y)
+                         double pv, int count, int pair_count, float n_x, float n_y)
 {
     double a;
     double progressive = (double)n_y / ((double)n_x + (double)n_y);
@@ -1396,17 +1409,23 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         break;
     case SBL_ESTIMATOR_HISTORY_AWARE:
     default: {
-        /* unbiased per-sample variance of Y; history carries N_Y / N_X of it */
-        double var_y = count > 1 ? s2 * count / (count - 1) : 0.0;
-        double var_x = var_y * (double)n_y / (double)n_x;
-        double bias2 = 0.0;
-        if (pair_count > 0) {
-            /* the mean paired difference has noise (var_X + var_Y) / pairs; only the
-               part beyond bias_threshold times that counts as bias */
-            double noise = (var_x + var_y) / pair_count;
-            bias2 = pd2 - p->bias_threshold * noise;
-            if (bias2 < 0.0) bias2 = 0.0;
+        /* The paired differences x*_i - y_i cancel texture: their variance is
+           var_X + var_Y, with var_X = var_Y N_Y / N_X, and their mean is the bias plus
+           noise of variance pv / pairs. Bias counts only beyond bias_threshold standard
+           errors (a paired t-test), so that noise is not taken for change. With fewer
+           than two pairs, var_Y falls back to the 3x3 variance of Y (Bessel). */
+        double k2 = (double)p->bias_threshold * (double)p->bias_threshold;
+        double var_x, var_y, bias2 = 0.0;
+        if (pair_count > 1) {
+            var_y = pv * (double)n_x / ((double)n_x + (double)n_y);
+            var_x = pv - var_y;
+            bias2 = pd2 - k2 * pv / pair_count;
+        } else {
+            var_y = count > 1 ? s2 * count / (count - 1) : 0.0;
+            var_x = var_y * (double)n_y / (double)n_x;
+            if (pair_count == 1) bias2 = pd2 - k2 * (var_x + var_y);
         }
+        if (bias2 < 0.0) bias2 = 0.0;
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
         break;
@@ -1477,19 +1496,20 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
         for (k = 0; k < ch; ++k) {
             double dev = (double)xs[k] - m->mean[k];
             a[k] = sbl__weight(p, dev * dev, m->var[k], m->pair_diff[k] * m->pair_diff[k],
-                               m->count, m->pair_count, n_x, n_y);
+                               m->pair_var[k], m->count, m->pair_count, n_x, n_y);
             a_mean += a[k];
         }
         a_mean /= (float)ch;
     } else {
-        double dev2 = 0.0, s2 = 0.0, pd2 = 0.0;
+        double dev2 = 0.0, s2 = 0.0, pd2 = 0.0, pv = 0.0;
         for (k = 0; k < ch; ++k) {
             double dev = (double)xs[k] - m->mean[k];
             dev2 += dev * dev;
             s2 += m->var[k];
             pd2 += m->pair_diff[k] * m->pair_diff[k];
+            pv += m->pair_var[k];
         }
-        a_mean = sbl__weight(p, dev2, s2, pd2, m->count, m->pair_count, n_x, n_y);
+        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y);
         for (k = 0; k < ch; ++k) a[k] = a_mean;
     }
     for (k = 0; k < ch; ++k) {
@@ -1802,7 +1822,8 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), ninth = sbl__set1(1.0f / 9.0f);
     const sbl__v tiny = sbl__set1(FLT_MIN), cap = sbl__set1(k->n_cap);
     const sbl__v amin = sbl__set1(k->wp.alpha_min), konst = sbl__set1(k->wp.constant);
-    const sbl__v thr = sbl__set1(k->wp.bias_threshold), gamma = sbl__set1(k->wp.gamma);
+    const sbl__v k2 = sbl__set1(k->wp.bias_threshold * k->wp.bias_threshold);
+    const sbl__v gamma = sbl__set1(k->wp.gamma);
     const sbl__v bessel = sbl__set1(9.0f / 8.0f);
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     const sbl_estimator est = k->wp.estimator;
@@ -1814,11 +1835,13 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
         vp[j] = R[j]->v;
     }
     for (x = x0; x + SBL__VW <= x1; x += SBL__VW) {
-        sbl__v mean[4], var[4], lo[4], hi[4], pd[4], xs[4], xr[4], yc[4], a[4];
-        sbl__v cnt = SBL__SUM9(vp, x), inv_cnt, n_x, n_y, n_xc;
-        sbl__m valid, has_pairs;
+        sbl__v mean[4], var[4], lo[4], hi[4], pd[4], pv[4], xs[4], xr[4], yc[4], a[4];
+        sbl__v cnt = SBL__SUM9(vp, x), inv_cnt, inv_cnt1, n_x, n_y, n_xc;
+        sbl__m valid, has_pairs, two_pairs;
         has_pairs = sbl__gt(cnt, zero);
+        two_pairs = sbl__gt(cnt, one);
         inv_cnt = sbl__div(one, sbl__max(cnt, one));
+        inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
         n_x = sbl__load(R[1]->n + x);
         valid = sbl__gt(n_x, zero);
         n_y = nyrow ? sbl__load(nyrow + x) : one;
@@ -1826,7 +1849,10 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
         n_xc = sbl__max(sbl__min(n_x, cap), tiny);
         for (c = 0; c < ch; ++c) {
             const float *const *P = yp[c];
-            sbl__v m = sbl__mul(SBL__SUM9(P, x), ninth), v = zero, d = zero;
+            sbl__v m = sbl__mul(SBL__SUM9(P, x), ninth), v = zero, d = zero, dd = zero;
+            /* the pairs are summed shifted by the centre's difference, so that a bias
+               well above the noise does not cancel the one-pass variance away */
+            sbl__v shift = sbl__sub(sbl__load(xp[c][1] + x), sbl__load(yp[c][1] + x));
             lo[c] = m; /* the mean lies inside [min, max]: a neutral start */
             hi[c] = m;
             for (j = 0; j < 3; ++j) {
@@ -1835,8 +1861,11 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
                     sbl__v yy = sbl__load(yp[c][j] + x + i);
                     sbl__v e = sbl__sub(yy, m);
                     v = sbl__add(v, sbl__mul(e, e));
-                    d = sbl__add(d, sbl__mul(sbl__load(vp[j] + x + i),
-                                             sbl__sub(sbl__load(xp[c][j] + x + i), yy)));
+                    sbl__v pdiff = sbl__mul(sbl__load(vp[j] + x + i),
+                                            sbl__sub(sbl__sub(sbl__load(xp[c][j] + x + i), yy),
+                                                     shift));
+                    d = sbl__add(d, pdiff);
+                    dd = sbl__add(dd, sbl__mul(pdiff, pdiff));
                     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
                         lo[c] = sbl__min(lo[c], yy);
                         hi[c] = sbl__max(hi[c], yy);
@@ -1846,6 +1875,9 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
             mean[c] = m;
             var[c] = sbl__mul(v, ninth);
             pd[c] = sbl__mul(d, inv_cnt);
+            /* sample variance of the pairs, one pass: (sum d^2 - n mean^2) / (n - 1) */
+            pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, pd[c])), zero), inv_cnt1);
+            pd[c] = sbl__sel(has_pairs, sbl__add(pd[c], shift), zero);
             xs[c] = xr[c] = sbl__load(xp[c][1] + x);
             yc[c] = sbl__load(yp[c][1] + x);
         }
@@ -1867,13 +1899,14 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
             const int groups = per_channel ? ch : 1;
             int g;
             for (g = 0; g < groups; ++g) {
-                sbl__v dev2 = zero, s2 = zero, pd2 = zero, w;
+                sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
                 int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
                 for (c = c0; c < c1; ++c) {
                     sbl__v e = sbl__sub(xs[c], mean[c]);
                     dev2 = sbl__add(dev2, sbl__mul(e, e));
                     s2 = sbl__add(s2, var[c]);
                     pd2 = sbl__add(pd2, sbl__mul(pd[c], pd[c]));
+                    pvs = sbl__add(pvs, pv[c]);
                 }
                 if (est == SBL_ESTIMATOR_PAPER) {
                     sbl__v den = sbl__add(dev2, s2);
@@ -1883,12 +1916,19 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
                 } else if (est == SBL_ESTIMATOR_CONSTANT) {
                     w = konst;
                 } else {
-                    sbl__v vy = sbl__mul(s2, bessel);
-                    sbl__v vx = sbl__div(sbl__mul(vy, n_y), n_xc);
-                    sbl__v noise = sbl__mul(sbl__add(vx, vy), inv_cnt);
-                    sbl__v b2 = sbl__max(sbl__sub(pd2, sbl__mul(thr, noise)), zero);
+                    /* as sbl__weight: pair statistics with two or more pairs, the 3x3
+                       variance of Y otherwise */
+                    sbl__v vy_s = sbl__mul(s2, bessel);
+                    sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
+                    sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
+                    sbl__v vx_p = sbl__sub(pvs, vy_p);
+                    sbl__v b2_p = sbl__sub(pd2, sbl__mul(sbl__mul(k2, pvs), inv_cnt));
+                    sbl__v b2_s = sbl__sub(pd2, sbl__mul(k2, sbl__add(vx_s, vy_s)));
+                    sbl__v vy = sbl__sel(two_pairs, vy_p, vy_s);
+                    sbl__v vx = sbl__sel(two_pairs, vx_p, vx_s);
+                    sbl__v b2 = sbl__sel(two_pairs, b2_p, sbl__sel(has_pairs, b2_s, zero));
                     sbl__v num, den;
-                    b2 = sbl__sel(has_pairs, b2, zero);
+                    b2 = sbl__max(b2, zero);
                     num = sbl__add(b2, vx);
                     den = sbl__add(num, vy);
                     w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);

@@ -1222,19 +1222,27 @@ static double ref_reproject(const refin *in, const refp *p, int x, int y, double
     return accn / wsum > 0 ? accn / wsum : 0.0;
 }
 
-static double ref_weight(const refp *p, double dev2, double s2, double pd2, int count,
-                         int pairs, double nx, double ny)
+static double ref_weight(const refp *p, double dev2, double s2, double pd2, double pv,
+                         int count, int pairs, double nx, double ny)
 {
     double prog = ny / (nx + ny), a;
     if (p->est == SBL_ESTIMATOR_PAPER) a = dev2 + s2 > 0 ? dev2 / (dev2 + s2) : prog;
     else if (p->est == SBL_ESTIMATOR_PROGRESSIVE) a = prog;
     else if (p->est == SBL_ESTIMATOR_CONSTANT) a = p->constant;
     else {
-        double vy = count > 1 ? s2 * count / (count - 1) : 0.0, vx = vy * ny / nx, b2 = 0;
-        if (pairs > 0) {
-            b2 = pd2 - p->bias_thr * (vx + vy) / pairs;
-            if (b2 < 0) b2 = 0;
+        /* paired t-test: with two or more pairs, var_X + var_Y from the pairs' sample
+           variance pv and bias beyond bias_thr standard errors; else the 3x3 variance */
+        double k2 = p->bias_thr * p->bias_thr, vy, vx, b2 = 0;
+        if (pairs > 1) {
+            vy = pv * nx / (nx + ny);
+            vx = pv - vy;
+            b2 = pd2 - k2 * pv / pairs;
+        } else {
+            vy = count > 1 ? s2 * count / (count - 1) : 0.0;
+            vx = vy * ny / nx;
+            if (pairs == 1) b2 = pd2 - k2 * (vx + vy);
         }
+        if (b2 < 0) b2 = 0;
         a = b2 + vx + vy > 0 ? (b2 + vx) / (b2 + vx + vy) : prog;
     }
     if (a < p->alpha_min) a = p->alpha_min;
@@ -1282,7 +1290,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                 for (k = 0; k < c; ++k) o[k] = yv[k];
                 nout = 1;
             } else {
-                double mean[4], var[4], lo[4], hi[4], pd[4], x1[4], ak[4];
+                double mean[4], var[4], lo[4], hi[4], pd[4], pv[4], x1[4], ak[4];
                 int cnt = 0, pairs = 0, idx[9][2], ispair[9];
                 for (j = y - 1; j <= y + 1; ++j)
                     for (i = x - 1; i <= x + 1; ++i) {
@@ -1310,6 +1318,16 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     }
                     var[k] = v / cnt;
                     pd[k] = pairs ? q / pairs : 0.0;
+                    pv[k] = 0.0;
+                    if (pairs > 1) {
+                        for (n = 0; n < cnt; ++n)
+                            if (ispair[n]) {
+                                double e = (xs[(idx[n][1] * w + idx[n][0]) * c + k] -
+                                            px(in->cur, idx[n][0], idx[n][1])[k]) - pd[k];
+                                pv[k] += e * e;
+                            }
+                        pv[k] /= pairs - 1;
+                    }
                     x1[k] = xs[(y * w + x) * c + k];
                 }
                 if (nx > p->max_history) nx = p->max_history;
@@ -1329,18 +1347,19 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     a = 0;
                     for (k = 0; k < c; ++k) {
                         ak[k] = ref_weight(p, (x1[k] - mean[k]) * (x1[k] - mean[k]), var[k],
-                                           pd[k] * pd[k], cnt, pairs, nx, 1.0);
+                                           pd[k] * pd[k], pv[k], cnt, pairs, nx, 1.0);
                         a += ak[k];
                     }
                     a /= c;
                 } else {
-                    double dev2 = 0, s2 = 0, pd2 = 0;
+                    double dev2 = 0, s2 = 0, pd2 = 0, pvs = 0;
                     for (k = 0; k < c; ++k) {
                         dev2 += (x1[k] - mean[k]) * (x1[k] - mean[k]);
                         s2 += var[k];
                         pd2 += pd[k] * pd[k];
+                        pvs += pv[k];
                     }
-                    a = ref_weight(p, dev2, s2, pd2, cnt, pairs, nx, 1.0);
+                    a = ref_weight(p, dev2, s2, pd2, pvs, cnt, pairs, nx, 1.0);
                     for (k = 0; k < c; ++k) ak[k] = a;
                 }
                 for (k = 0; k < c; ++k) o[k] = x1[k] + ak[k] * (yv[k] - x1[k]);
@@ -1517,8 +1536,11 @@ static void test_reference_random(void)
            st.pixels, st.col, st.alpha, st.n);
     CHECK_EQ(st.mismatched_finiteness, 0);
     CHECK(st.col <= 1e-5);
-    CHECK(st.alpha <= 1e-5);
-    CHECK(st.n <= 1e-5);
+    /* the history-aware bias term pd^2 - k^2 pv / n is a difference that can be near 0
+       at the threshold, where it amplifies float rounding about 100x (measured alpha
+       5.8e-6, N 1.6e-5 relative); N inherits about twice the alpha error */
+    CHECK(st.alpha <= 3e-5);
+    CHECK(st.n <= 6e-5);
 }
 
 /* The same reference on an HDR scene: 1e-30 .. 1e30 in one image, values per pixel

@@ -414,7 +414,7 @@ static void test_occlusion(void)
 static double ref_weight(const stereo *s, int est, int x, int y)
 {
     const sbt_img *Y = &s->col[0], *X = &s->col[1];
-    double m = 0, v = 0, pd = 0, xs = *sbt_at(X, x - 4, y);
+    double m = 0, v = 0, pd = 0, pv = 0, xs = *sbt_at(X, x - 4, y);
     int n = 0, np = 0, i, j;
     for (j = y - 1; j <= y + 1; ++j)
         for (i = x - 1; i <= x + 1; ++i) { m += *sbt_at(Y, i, j); ++n; }
@@ -426,12 +426,21 @@ static double ref_weight(const stereo *s, int est, int x, int y)
         }
     v /= n;
     pd /= np;
+    for (j = y - 1; j <= y + 1; ++j)
+        for (i = x - 1; i <= x + 1; ++i)
+            if (i >= 4) {
+                double e = (*sbt_at(X, i - 4, j) - *sbt_at(Y, i, j)) - pd;
+                pv += e * e;
+            }
+    pv /= np - 1;
     if (est == SBL_ESTIMATOR_PAPER) {
         double d2 = (xs - m) * (xs - m);
         return d2 / (d2 + v);
     } else {
-        double var_y = v * n / (n - 1), var_x = var_y; /* N_X = N_Y */
-        double b2 = pd * pd - 3.0 * (var_x + var_y) / np;
+        /* ALGORITHMS.md section 4 with the noise read off the pairs (a paired t-test,
+           threshold 3): var(x_i - y_i) = var_X + var_Y, N_X = N_Y = 1 */
+        double var_y = pv / 2, var_x = pv - var_y;
+        double b2 = pd * pd - 9.0 * pv / np;
         if (b2 < 0.0) b2 = 0.0;
         return (b2 + var_x) / (b2 + var_x + var_y);
     }
