@@ -75,7 +75,7 @@ SBT_FN sbt_img sbt_img_new(int w, int h, int c, int pad)
     }
     return im;
 }
-static float *sbt_at(const sbt_img *im, int x, int y) { return im->mem + (size_t)y * im->stride + (size_t)x * im->c; }
+SBT_FN float *sbt_at(const sbt_img *im, int x, int y) { return im->mem + (size_t)y * im->stride + (size_t)x * im->c; }
 SBT_FN int sbt_canaries_ok(const sbt_img *im)
 {
     int x, y;
