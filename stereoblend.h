@@ -555,13 +555,25 @@ static void sbl__range(const sbl_image *im, const char **begin, const char **end
     *end = (const char *)(im->data + floats);
 }
 
+/* Do two views share a float? Views with the same stride whose rows interleave
+   without touching (the two eyes of a side-by-side texture) do not; other strides are
+   judged by their byte ranges alone (conservative). */
 static int sbl__overlap(const sbl_image *a, const sbl_image *b)
 {
     const char *a0, *a1, *b0, *b1;
     if (!a->data || !b->data) return 0;
     sbl__range(a, &a0, &a1);
     sbl__range(b, &b0, &b1);
-    return a0 < b1 && b0 < a1;
+    if (!(a0 < b1 && b0 < a1)) return 0;
+    if (sbl__stride(a) == sbl__stride(b) && a->height > 1 && b->height > 1) {
+        const size_t period = (size_t)sbl__stride(a) * sizeof(float);
+        const size_t ra = (size_t)a->width * (size_t)a->channels * sizeof(float);
+        const size_t rb = (size_t)b->width * (size_t)b->channels * sizeof(float);
+        size_t d = (size_t)(b0 >= a0 ? b0 - a0 : a0 - b0) % period;
+        if (b0 < a0) d = (period - d) % period; /* offset of b's rows within a's period */
+        return !(d >= ra && d + rb <= period);
+    }
+    return 1;
 }
 
 static int sbl__overlap_gbuffer(const sbl_image *a, const sbl_gbuffer *g)

@@ -741,6 +741,35 @@ static void test_errors(void)
     tf_free(&t);
 }
 
+/* The two eyes of one side-by-side texture share a stride but no float: input in the
+   left half, output in the right half is not an overlap; one pixel further left is. */
+static void test_side_by_side(void)
+{
+    const int w = 16, h = 8;
+    sbt_img tex = sbt_img_new(2 * w, h, 3, 0), d = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 0);
+    sbt_img n = sbt_img_new(2 * w, h, 1, 0);
+    sbl_temporal_desc td;
+    sbl_frame f;
+    sbl_temporal_output o;
+    int i;
+    memset(&td, 0, sizeof td); memset(&f, 0, sizeof f); memset(&o, 0, sizeof o);
+    for (i = 0; i < w * h; ++i) d.mem[i] = 1.0f;
+    for (i = 0; i < 2 * w * h * 3; ++i) tex.mem[i] = 0.25f + (float)(i % 7) * 0.1f;
+    f.color = sbl_image_make(tex.mem, w, h, 3);
+    f.color.stride = 2 * w * 3;
+    f.gbuffer.depth = view(&d);
+    f.gbuffer.motion = view(&mv);
+    o.color = sbl_image_make(tex.mem + w * 3, w, h, 3);
+    o.color.stride = 2 * w * 3;
+    o.length = sbl_image_make(n.mem, w, h, 1);
+    o.length.stride = 2 * w;
+    CHECK_EQ(sbl_temporal_filter_frame(&td, &f, NULL, &o), SBL_OK);
+    CHECK_NEAR(tex.mem[(size_t)3 * 2 * w * 3 + w * 3 + 4], tex.mem[(size_t)3 * 2 * w * 3 + 4], 0); /* copied */
+    o.color.data = tex.mem + w * 3 - 3;
+    CHECK_EQ(sbl_temporal_filter_frame(&td, &f, NULL, &o), SBL_ERROR_OVERLAP);
+    free(tex.mem); free(d.mem); free(mv.mem); free(n.mem);
+}
+
 /* Row ranges: filtering in bands (as a job system would) equals one call. */
 static void test_row_bands(void)
 {
@@ -789,5 +818,6 @@ int main(void)
     test_reacts_to_change();
     test_errors();
     test_row_bands();
+    test_side_by_side();
     return sbt_finish("test_core");
 }
