@@ -56,7 +56,10 @@
                 the right-eye match of left pixel u at depth z is u - focal_px*baseline/z.
      Weights    a (alpha, beta) is the weight of the NEW / OWN sample:
                 out = (1 - a) X + a Y.
-     History    N per pixel = effective number of samples (Eq. 5), capped, 1 on reset.
+     History    N per pixel = effective number of samples (Eq. 5), capped, 1 on reset
+                (0 where the new sample is not finite and there is no history).
+     Defaults   a zero field means its default, so a parameter cannot be set to exactly
+                0: use a tiny positive value (e.g. 1e-6f) for that.
 
    THREADING AND MEMORY
      No globals, no threads, no allocation except in the *_frame convenience calls,
@@ -212,7 +215,9 @@ typedef struct sbl_frame {
 /* Last frame's filter output and the G-buffer it was made with. */
 typedef struct sbl_history {
     sbl_image color;          /* previous output colour (same channels as the frame)  */
-    sbl_image length;         /* previous N per pixel, 1 channel; NULL data: N = 1    */
+    sbl_image length;         /* previous N per pixel, 1 channel. NULL data: N = 1 for
+                                 every pixel, which makes the progressive and
+                                 history-aware estimators blend 1:1 - give it.        */
     sbl_gbuffer gbuffer;      /* previous depth / normals / ids for the tap tests      */
     const sbl_camera *camera; /* previous camera (camera mode)                         */
 } sbl_history;
@@ -821,13 +826,10 @@ static int sbl__depth_match(float expected, float tap, float tol, float slack)
    check_values 0 the colour and N finiteness is left to the caller (the optimistic
    path of sbl__gather_ch checks the sums instead and redoes the taps if a NaN or
    inf got in). */
-SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y,
-                               int ch, int check_values)
+/* The id and normal tests of source pixel (x, y) (inside the image). */
+SBL__INLINE int sbl__tap_ok_id_normal(const sbl__tap_src *s, const sbl__tap_want *t, int x,
+                                      int y)
 {
-    if (s->use_depth &&
-        !sbl__depth_match(t->depth, *SBL__AT(s->depth, x, y), s->depth_tolerance,
-                          t->depth_slack))
-        return 0;
     if (s->use_id) {
         float id = *SBL__AT(s->ids, x, y);
         if (sbl__is_nan(id) || sbl__is_nan(t->id) || id != t->id) return 0;
@@ -844,6 +846,17 @@ SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, in
             return 0; /* dot < threshold |n| |m| without a square root */
         }
     }
+    return 1;
+}
+
+SBL__INLINE int sbl__tap_ok_in(const sbl__tap_src *s, const sbl__tap_want *t, int x, int y,
+                               int ch, int check_values)
+{
+    if (s->use_depth &&
+        !sbl__depth_match(t->depth, *SBL__AT(s->depth, x, y), s->depth_tolerance,
+                          t->depth_slack))
+        return 0;
+    if (!sbl__tap_ok_id_normal(s, t, x, y)) return 0;
     if (check_values && sbl__any_nonfinite(SBL__AT(s->color, x, y), ch)) return 0;
     if (s->length.p) {
         float n = *SBL__AT(s->length, x, y);
@@ -901,25 +914,14 @@ SBL__INLINE float sbl__gather_fast(const sbl__tap_src *s, const sbl__tap_want *t
     if (s->use_depth) {
         const size_t ds = s->depth.stride;
         const float *d0 = s->depth.p + (size_t)y0 * ds + (size_t)x0;
-        const float e = t->depth;
         float d[4];
         d[0] = d0[0]; d[1] = d0[1]; d[2] = d0[ds]; d[3] = d0[ds + 1];
-        if (sbl__finite(e)) {
-            const float lim = s->depth_tolerance * e + t->depth_slack;
-            for (k = 0; k < 4; ++k)
-                ok[k] = sbl__finite(d[k]) && d[k] > 0.0f && fabsf(d[k] - e) <= lim;
-        } else {
-            for (k = 0; k < 4; ++k) ok[k] = sbl__is_pos_inf(d[k]); /* sky matches sky */
-        }
-    }
-    if (s->use_id || s->use_normal) {
-        /* rarer buffers: the general test, with depth already decided */
-        sbl__tap_src g = *s;
-        g.use_depth = 0;
-        g.length.p = NULL;
         for (k = 0; k < 4; ++k)
-            if (ok[k]) ok[k] = sbl__tap_ok_in(&g, t, x0 + (k & 1), y0 + (k >> 1), ch, 0);
+            ok[k] = sbl__depth_match(t->depth, d[k], s->depth_tolerance, t->depth_slack);
     }
+    if (s->use_id || s->use_normal)
+        for (k = 0; k < 4; ++k)
+            if (ok[k]) ok[k] = sbl__tap_ok_id_normal(s, t, x0 + (k & 1), y0 + (k >> 1));
     if (s->length.p) {
         const size_t ls = s->length.stride;
         const float *l0 = s->length.p + (size_t)y0 * ls + (size_t)x0;
