@@ -1479,6 +1479,21 @@ static void sbl__rectify(const sbl__weight_params *p, const sbl__moments *m, con
     }
 }
 
+static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r,
+                                                 sbl_weight_mode m, float constant,
+                                                 float alpha_min, float gamma, float bias)
+{
+    sbl__weight_params p;
+    p.estimator = e;
+    p.rectify = r;
+    p.mode = m;
+    p.constant = constant;
+    p.alpha_min = alpha_min;
+    p.gamma = gamma;
+    p.bias_threshold = bias;
+    return p;
+}
+
 static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
                                            sbl_weight_mode m, float constant,
                                            float alpha_min, float gamma, float bias)
@@ -2109,13 +2124,8 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
 
     memset(&k, 0, sizeof k);
     k.w = w; k.h = h; k.ch = ch;
-    k.wp.estimator = d.estimator;
-    k.wp.rectify = d.rectify;
-    k.wp.mode = d.weight_mode;
-    k.wp.constant = d.constant_alpha;
-    k.wp.alpha_min = d.alpha_min;
-    k.wp.gamma = d.clip_gamma;
-    k.wp.bias_threshold = d.bias_threshold;
+    k.wp = sbl__weight_params_make(d.estimator, d.rectify, d.weight_mode, d.constant_alpha,
+                                   d.alpha_min, d.clip_gamma, d.bias_threshold);
     k.n_cap = d.max_history;
     k.temporal = 1;
     k.own = &frame->color;
@@ -2417,13 +2427,9 @@ SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index ta
         return SBL_ERROR_SCRATCH_TOO_SMALL;
     memset(&k, 0, sizeof k);
     k.w = target->color.width; k.h = target->color.height; k.ch = target->color.channels;
-    k.wp.estimator = s.d.estimator;
-    k.wp.rectify = s.d.rectify;
-    k.wp.mode = s.d.weight_mode;
-    k.wp.constant = s.d.constant_beta;
-    k.wp.alpha_min = 0.0f;
-    k.wp.gamma = s.d.clip_gamma;
-    k.wp.bias_threshold = s.d.bias_threshold;
+    k.wp = sbl__weight_params_make(s.d.estimator, s.d.rectify, s.d.weight_mode,
+                                   s.d.constant_beta, 0.0f, s.d.clip_gamma,
+                                   s.d.bias_threshold);
     k.n_cap = FLT_MAX;
     k.temporal = 0;
     k.fill = s.d.fill;
