@@ -43,7 +43,7 @@ TEST_BINS = $(foreach c,$(COMPILERS),$(addprefix $(BUILD)/$(c)/,$(TESTS))) \
             $(foreach v,default $(filter-out scalar,$(SIMD_VARIANTS)),$(BUILD)/simd-$(v)/test_simd)
 
 .PHONY: all check demo bench bench-quick bench-perf clean tests
-all: tests $(BUILD)/demo $(BUILD)/sblexr $(BUILD)/bench
+all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
 tests: $(TEST_BINS)
 
@@ -97,6 +97,10 @@ DATASET_SRC = tools/sbl_dataset.c tools/sbl_exr.c
 $(BUILD)/demo: examples/demo.c $(HEADERS) $(RUNNER)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_STRICT) -O2 -Itools $< -o $@ $(LDLIBS)
+
+$(BUILD)/minimal: examples/minimal.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 $< -o $@ $(LDLIBS)
 
 $(BUILD)/sblexr: examples/sblexr.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
 	@mkdir -p $(dir $@)
