@@ -378,6 +378,23 @@ SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc,
                                          const sbl_eye *left, const sbl_eye *right,
                                          sbl_image out_left, sbl_image out_right);
 
+/* The combined pipeline in the paper's order, for both eyes and a whole frame:
+   the temporal filter per eye (its output is the next frame's history), then the
+   stereo blend of the two temporal outputs into the display images. */
+typedef struct sbl_stereo_temporal_io {
+    sbl_frame frame[2];               /* this frame, left and right                     */
+    const sbl_history *history[2];    /* last frame's temporal outputs (NULL: reset)    */
+    sbl_temporal_output temporal[2];  /* the new history (colour and length required)   */
+    sbl_image disparity[2];           /* SBL_RIG_DISPARITY only                         */
+    sbl_image display[2];             /* the stereo blend, for display                  */
+} sbl_stereo_temporal_io;
+
+/* Scratch through SBL_MALLOC / SBL_FREE (td->alloc_context). Everything is validated
+   before anything is written. */
+SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
+                                            const sbl_stereo_desc *sd,
+                                            const sbl_stereo_temporal_io *io);
+
 /* ======================================================================== */
 /* 9. Fill mode: which pixels of the second eye still need a ray            */
 /* ======================================================================== */
@@ -2473,6 +2490,84 @@ SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_
     SBL_FREE(scratch, desc->alloc_context);
     return r;
 }
+/* The eye a stereo blend reads: a temporal output with its frame's geometry. */
+static sbl_eye sbl__eye_from_temporal(const sbl_stereo_temporal_io *io, int e)
+{
+    sbl_eye eye;
+    memset(&eye, 0, sizeof eye);
+    eye.color = io->temporal[e].color;
+    eye.length = io->temporal[e].length;
+    eye.gbuffer = io->frame[e].gbuffer;
+    eye.gbuffer.motion.data = NULL; /* not a stereo input */
+    eye.disparity = io->disparity[e];
+    eye.camera = io->frame[e].camera;
+    return eye;
+}
+
+SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
+                                            const sbl_stereo_desc *sd,
+                                            const sbl_stereo_temporal_io *io)
+{
+    sbl__stereo_rp s;
+    sbl_eye eye[2];
+    sbl_image none;
+    size_t bytes, b1;
+    void *scratch;
+    sbl_result r;
+    int e;
+    if (!td || !sd || !io) return SBL_ERROR_NULL_POINTER;
+    memset(&none, 0, sizeof none);
+    /* validate everything first: an empty row range checks all arguments and writes
+       nothing (the scratch is not touched, so any non-NULL pointer will do) */
+    for (e = 0; e < 2; ++e) {
+        if ((r = sbl__check_image(&io->frame[e].color, 0)) != SBL_OK) return r;
+        if ((r = sbl_temporal_filter(td, &io->frame[e], io->history[e], &io->temporal[e], 0, 0,
+                                     &none, (size_t)-1)) != SBL_OK)
+            return r;
+    }
+    if (sbl__overlap(&io->temporal[0].color, &io->temporal[1].color) ||
+        sbl__overlap(&io->temporal[0].length, &io->temporal[1].length) ||
+        sbl__overlap(&io->temporal[0].color, &io->temporal[1].length) ||
+        sbl__overlap(&io->temporal[1].color, &io->temporal[0].length))
+        return SBL_ERROR_OVERLAP;
+    for (e = 0; e < 2; ++e) {
+        /* the temporal outputs of one eye may not overlap the other eye's inputs */
+        const sbl_frame *o = &io->frame[!e];
+        if (sbl__overlap(&io->temporal[e].color, &o->color) ||
+            sbl__overlap(&io->temporal[e].length, &o->color) ||
+            sbl__overlap_gbuffer(&io->temporal[e].color, &o->gbuffer) ||
+            sbl__overlap_gbuffer(&io->temporal[e].length, &o->gbuffer))
+            return SBL_ERROR_OVERLAP;
+        eye[e] = sbl__eye_from_temporal(io, e);
+    }
+    for (e = 0; e < 2; ++e)
+        if ((r = sbl__stereo_blend_check(&s, sd, (sbl_eye_index)e, &eye[e], &eye[!e],
+                                         &io->display[e], &none)) != SBL_OK)
+            return r;
+    if (sbl__overlap(&io->display[0], &io->display[1])) return SBL_ERROR_OVERLAP;
+    for (e = 0; e < 2; ++e)
+        if (sbl__overlap(&io->display[e], &io->frame[0].color) ||
+            sbl__overlap(&io->display[e], &io->frame[1].color) ||
+            (io->history[0] && sbl__overlap(&io->display[e], &io->history[0]->color)) ||
+            (io->history[1] && sbl__overlap(&io->display[e], &io->history[1]->color)))
+            return SBL_ERROR_OVERLAP;
+    bytes = sbl_temporal_scratch_size(io->frame[0].color.width, io->frame[0].color.channels);
+    b1 = sbl_temporal_scratch_size(io->frame[1].color.width, io->frame[1].color.channels);
+    if (b1 > bytes) bytes = b1;
+    if (bytes == 0) return SBL_ERROR_INVALID_SIZE;
+    scratch = SBL_MALLOC(bytes, td->alloc_context);
+    if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
+    r = SBL_OK;
+    for (e = 0; e < 2 && r == SBL_OK; ++e)
+        r = sbl_temporal_filter(td, &io->frame[e], io->history[e], &io->temporal[e], 0,
+                                io->frame[e].color.height, scratch, bytes);
+    for (e = 0; e < 2 && r == SBL_OK; ++e)
+        r = sbl_stereo_blend(sd, (sbl_eye_index)e, &eye[e], &eye[!e], io->display[e], none, 0,
+                             eye[e].color.height, scratch, bytes);
+    SBL_FREE(scratch, td->alloc_context);
+    return r;
+}
+
 /* ------------------------------------------------------------------------ */
 /* 9. Fill mode                                                             */
 /* ------------------------------------------------------------------------ */

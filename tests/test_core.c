@@ -770,6 +770,103 @@ static void test_side_by_side(void)
     free(tex.mem); free(d.mem); free(mv.mem); free(n.mem);
 }
 
+/* The combined call equals its parts: the temporal filter per eye, then the stereo
+   blend of the temporal outputs; a bad display buffer is rejected before anything is
+   written. */
+static void test_stereo_temporal_frame(void)
+{
+    const int w = 21, h = 13;
+    sbt_rng rng = {8};
+    sbt_img col[2], dep[2], mv[2], hc[2], hn[2], oc[2][2], on[2][2], disp[2][2];
+    sbl_temporal_desc td;
+    sbl_stereo_desc sd;
+    sbl_stereo_temporal_io io;
+    sbl_history hist[2];
+    int e, i, x, y, k;
+    memset(&td, 0, sizeof td);
+    memset(&sd, 0, sizeof sd);
+    sd.focal_px = 10.0f;
+    sd.baseline = 0.3f; /* disparity 1.5 px at depth 2 */
+    memset(&io, 0, sizeof io);
+    for (e = 0; e < 2; ++e) {
+        col[e] = sbt_img_new(w, h, 3, 1); dep[e] = sbt_img_new(w, h, 1, 0);
+        mv[e] = sbt_img_new(w, h, 2, 0); hc[e] = sbt_img_new(w, h, 3, 2); hn[e] = sbt_img_new(w, h, 1, 0);
+        for (i = 0; i < 2; ++i) {
+            oc[e][i] = sbt_img_new(w, h, 3, 0); on[e][i] = sbt_img_new(w, h, 1, 1);
+            disp[e][i] = sbt_img_new(w, h, 3, 1);
+        }
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                for (k = 0; k < 3; ++k) {
+                    sbt_at(&col[e], x, y)[k] = (float)(truth(x, y, k) + 0.2 * sbt_gauss(&rng));
+                    sbt_at(&hc[e], x, y)[k] = truth(x, y, k);
+                }
+                *sbt_at(&dep[e], x, y) = 2.0f;
+                sbt_at(&mv[e], x, y)[0] = 0.25f;
+                *sbt_at(&hn[e], x, y) = 6.0f;
+            }
+        memset(&hist[e], 0, sizeof hist[e]);
+        hist[e].color = view(&hc[e]);
+        hist[e].length = view(&hn[e]);
+        hist[e].gbuffer.depth = view(&dep[e]);
+        io.frame[e].color = view(&col[e]);
+        io.frame[e].gbuffer.depth = view(&dep[e]);
+        io.frame[e].gbuffer.motion = view(&mv[e]);
+        io.history[e] = &hist[e];
+        io.temporal[e].color = view(&oc[e][0]);
+        io.temporal[e].length = view(&on[e][0]);
+        io.display[e] = view(&disp[e][0]);
+    }
+    CHECK_EQ(sbl_stereo_temporal_frame(&td, &sd, &io), SBL_OK);
+    {   /* the same by hand */
+        sbl_eye eye[2];
+        for (e = 0; e < 2; ++e) {
+            sbl_temporal_output o;
+            memset(&o, 0, sizeof o);
+            o.color = view(&oc[e][1]);
+            o.length = view(&on[e][1]);
+            CHECK_EQ(sbl_temporal_filter_frame(&td, &io.frame[e], &hist[e], &o), SBL_OK);
+            memset(&eye[e], 0, sizeof eye[e]);
+            eye[e].color = o.color;
+            eye[e].length = o.length;
+            eye[e].gbuffer.depth = view(&dep[e]);
+        }
+        CHECK_EQ(sbl_stereo_blend_frame(&sd, &eye[0], &eye[1], view(&disp[0][1]), view(&disp[1][1])), SBL_OK);
+        for (e = 0; e < 2; ++e) {
+            int same = 1;
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    for (k = 0; k < 3; ++k) {
+                        same &= sbt_at(&oc[e][0], x, y)[k] == sbt_at(&oc[e][1], x, y)[k];
+                        same &= sbt_at(&disp[e][0], x, y)[k] == sbt_at(&disp[e][1], x, y)[k];
+                    }
+                    same &= *sbt_at(&on[e][0], x, y) == *sbt_at(&on[e][1], x, y);
+                }
+            CHECK(same);
+            /* the blend did something: display differs from the temporal output */
+            CHECK(memcmp(disp[e][0].mem, oc[e][0].mem, sizeof(float) * 3) != 0 ||
+                  memcmp(sbt_at(&disp[e][0], 10, 6), sbt_at(&oc[e][0], 10, 6), 3 * sizeof(float)) != 0);
+            CHECK(sbt_canaries_ok(&disp[e][0]) && sbt_canaries_ok(&on[e][0]));
+        }
+    }
+    /* display over the other eye's new history: rejected, nothing written */
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) sbt_at(&oc[0][0], x, y)[0] = -42.0f;
+    io.display[1] = view(&oc[0][0]);
+    CHECK_EQ(sbl_stereo_temporal_frame(&td, &sd, &io), SBL_ERROR_OVERLAP);
+    CHECK_EQ(sbt_at(&oc[0][0], 3, 3)[0], -42);
+    CHECK_EQ(*sbt_at(&on[0][0], 3, 3), *sbt_at(&on[0][1], 3, 3)); /* untouched since */
+    io.display[1] = view(&disp[1][0]);
+    sd.focal_px = -1.0f;
+    CHECK_EQ(sbl_stereo_temporal_frame(&td, &sd, &io), SBL_ERROR_INVALID_PARAM);
+    CHECK_EQ(sbt_at(&oc[0][0], 3, 3)[0], -42);
+    CHECK_EQ(sbl_stereo_temporal_frame(&td, NULL, &io), SBL_ERROR_NULL_POINTER);
+    for (e = 0; e < 2; ++e) {
+        free(col[e].mem); free(dep[e].mem); free(mv[e].mem); free(hc[e].mem); free(hn[e].mem);
+        for (i = 0; i < 2; ++i) { free(oc[e][i].mem); free(on[e][i].mem); free(disp[e][i].mem); }
+    }
+}
+
 /* Row ranges: filtering in bands (as a job system would) equals one call. */
 static void test_row_bands(void)
 {
@@ -819,5 +916,6 @@ int main(void)
     test_errors();
     test_row_bands();
     test_side_by_side();
+    test_stereo_temporal_frame();
     return sbt_finish("test_core");
 }
