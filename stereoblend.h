@@ -1243,6 +1243,17 @@ static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
     return sbl__gather(&s->src, &t, sx, sy, !s->rp.no_fallback, out);
 }
 
+/* An output of a temporal call must not overlap the history it reads (colour, N,
+   G-buffer) nor the frame's G-buffer; with_color: nor the frame's colour. */
+static int sbl__overlaps_temporal_inputs(const sbl_image *o, const sbl_frame *frame,
+                                         const sbl_history *history, int with_color)
+{
+    if (with_color && sbl__overlap(o, &frame->color)) return 1;
+    if (sbl__overlap_gbuffer(o, &frame->gbuffer)) return 1;
+    return history && (sbl__overlap(o, &history->color) || sbl__overlap(o, &history->length) ||
+                       sbl__overlap_gbuffer(o, &history->gbuffer));
+}
+
 static sbl_result sbl__check_rows(int y0, int y1, int h)
 {
     if (y0 < 0 || y1 < y0 || y1 > h) return SBL_ERROR_INVALID_ROWS;
@@ -1268,16 +1279,9 @@ SBLDEF sbl_result sbl_reproject_temporal(const sbl_reproject_desc *desc,
     if (out_color.channels != frame->color.channels) return SBL_ERROR_CHANNEL_MISMATCH;
     if ((r = sbl__temporal_rp_init(&s, desc, source, frame, history)) != SBL_OK) return r;
     if ((r = sbl__check_rows(y0, y1, frame->color.height)) != SBL_OK) return r;
-    if (sbl__overlap(&out_color, &out_length)) return SBL_ERROR_OVERLAP;
-    if (s.history && (sbl__overlap(&out_color, &s.history->color) ||
-                      sbl__overlap(&out_length, &s.history->color) ||
-                      sbl__overlap(&out_color, &s.history->length) ||
-                      sbl__overlap(&out_length, &s.history->length) ||
-                      sbl__overlap_gbuffer(&out_color, &s.history->gbuffer) ||
-                      sbl__overlap_gbuffer(&out_length, &s.history->gbuffer)))
-        return SBL_ERROR_OVERLAP;
-    if (sbl__overlap_gbuffer(&out_color, &frame->gbuffer) ||
-        sbl__overlap_gbuffer(&out_length, &frame->gbuffer))
+    if (sbl__overlap(&out_color, &out_length) ||
+        sbl__overlaps_temporal_inputs(&out_color, frame, s.history, 0) ||
+        sbl__overlaps_temporal_inputs(&out_length, frame, s.history, 0))
         return SBL_ERROR_OVERLAP;
     ch = frame->color.channels;
     for (y = y0; y < y1; ++y)
@@ -2124,15 +2128,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
         if (sbl__overlap(outs[0], outs[1]) || sbl__overlap(outs[0], outs[2]) ||
             sbl__overlap(outs[1], outs[2]))
             return SBL_ERROR_OVERLAP;
-        for (o = 0; o < 3; ++o) {
-            if (sbl__overlap(outs[o], &frame->color) ||
-                sbl__overlap_gbuffer(outs[o], &frame->gbuffer))
+        for (o = 0; o < 3; ++o)
+            if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1))
                 return SBL_ERROR_OVERLAP;
-            if (s.history && (sbl__overlap(outs[o], &s.history->color) ||
-                              sbl__overlap(outs[o], &s.history->length) ||
-                              sbl__overlap_gbuffer(outs[o], &s.history->gbuffer)))
-                return SBL_ERROR_OVERLAP;
-        }
     }
     if (!scratch) return SBL_ERROR_NULL_POINTER;
     /* 0 = too wide to size (sbl__check_image accepts up to INT_MAX / 4) */
@@ -2342,6 +2340,20 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
     return n;
 }
 
+/* An output of a stereo call must not overlap any buffer of either eye. */
+static sbl_result sbl__check_outputs_vs_eyes(const sbl_image *o, const sbl_eye *a,
+                                             const sbl_eye *b)
+{
+    const sbl_eye *e[2];
+    int i;
+    e[0] = a; e[1] = b;
+    for (i = 0; i < 2; ++i)
+        if (sbl__overlap(o, &e[i]->color) || sbl__overlap(o, &e[i]->length) ||
+            sbl__overlap(o, &e[i]->disparity) || sbl__overlap_gbuffer(o, &e[i]->gbuffer))
+            return SBL_ERROR_OVERLAP;
+    return SBL_OK;
+}
+
 SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
                                        const sbl_eye *target, const sbl_eye *source,
                                        sbl_image out_color, sbl_image out_valid,
@@ -2358,20 +2370,9 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
     if ((r = sbl__check_optional(&out_valid, 1, w, h)) != SBL_OK) return r;
     if (out_color.width != w || out_color.height != h) return SBL_ERROR_SIZE_MISMATCH;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
-    {
-        const sbl_image *outs[2];
-        int o;
-        outs[0] = &out_color; outs[1] = &out_valid;
-        if (sbl__overlap(outs[0], outs[1])) return SBL_ERROR_OVERLAP;
-        for (o = 0; o < 2; ++o)
-            if (sbl__overlap(outs[o], &target->color) || sbl__overlap(outs[o], &source->color) ||
-                sbl__overlap(outs[o], &target->length) || sbl__overlap(outs[o], &source->length) ||
-                sbl__overlap(outs[o], &target->disparity) ||
-                sbl__overlap(outs[o], &source->disparity) ||
-                sbl__overlap_gbuffer(outs[o], &target->gbuffer) ||
-                sbl__overlap_gbuffer(outs[o], &source->gbuffer))
-                return SBL_ERROR_OVERLAP;
-    }
+    if (sbl__overlap(&out_color, &out_valid)) return SBL_ERROR_OVERLAP;
+    if ((r = sbl__check_outputs_vs_eyes(&out_color, target, source)) != SBL_OK) return r;
+    if ((r = sbl__check_outputs_vs_eyes(&out_valid, target, source)) != SBL_OK) return r;
     for (y = y0; y < y1; ++y)
         for (x = 0; x < w; ++x) {
             float v[4] = {0, 0, 0, 0};
@@ -2386,19 +2387,6 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
 SBLDEF size_t sbl_stereo_scratch_size(int width, int channels)
 {
     return sbl__kernel_scratch_size(width, channels);
-}
-
-static sbl_result sbl__check_outputs_vs_eyes(const sbl_image *o, const sbl_eye *a,
-                                             const sbl_eye *b)
-{
-    const sbl_eye *e[2];
-    int i;
-    e[0] = a; e[1] = b;
-    for (i = 0; i < 2; ++i)
-        if (sbl__overlap(o, &e[i]->color) || sbl__overlap(o, &e[i]->length) ||
-            sbl__overlap(o, &e[i]->disparity) || sbl__overlap_gbuffer(o, &e[i]->gbuffer))
-            return SBL_ERROR_OVERLAP;
-    return SBL_OK;
 }
 
 /* All validation of a stereo blend, without writing anything. */

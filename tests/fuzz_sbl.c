@@ -187,6 +187,18 @@ static float param(rd *r)
 
 static int enum_val(rd *r, int count) { return (int)(u8(r) % (unsigned)(count + 2)) - 1; }
 
+/* Estimator, rectification, weight mode: out of range sometimes, mostly valid (same
+   byte order as before, so the corpus keeps its meaning). */
+static void weight_enums(rd *r, sbl_estimator *e, sbl_rectify *rc, sbl_weight_mode *m)
+{
+    *e = (sbl_estimator)enum_val(r, SBL_ESTIMATOR_COUNT);
+    *rc = (sbl_rectify)enum_val(r, SBL_RECTIFY_COUNT);
+    *m = (sbl_weight_mode)enum_val(r, SBL_WEIGHT_MODE_COUNT);
+    if ((int)*e < 0 && (u8(r) & 1u)) *e = SBL_ESTIMATOR_HISTORY_AWARE;
+    if ((int)*rc < 0 && (u8(r) & 1u)) *rc = SBL_RECTIFY_NONE;
+    if ((int)*m < 0 && (u8(r) & 1u)) *m = SBL_WEIGHT_SCALAR;
+}
+
 static void perspective(sbl_camera *cam, int w, int h, float f)
 {
     int i;
@@ -356,12 +368,7 @@ static sbl_result fuzz_temporal(rd *r, ctx *cx, int w, int h, int c, int op)
     memset(&o, 0, sizeof o);
     d.source = (sbl_temporal_source)enum_val(r, 2);
     if ((int)d.source < 0) d.source = SBL_TEMPORAL_MOTION; /* mostly valid */
-    d.estimator = (sbl_estimator)enum_val(r, SBL_ESTIMATOR_COUNT);
-    d.rectify = (sbl_rectify)enum_val(r, SBL_RECTIFY_COUNT);
-    d.weight_mode = (sbl_weight_mode)enum_val(r, SBL_WEIGHT_MODE_COUNT);
-    if ((int)d.estimator < 0 && (u8(r) & 1u)) d.estimator = SBL_ESTIMATOR_HISTORY_AWARE;
-    if ((int)d.rectify < 0 && (u8(r) & 1u)) d.rectify = SBL_RECTIFY_NONE;
-    if ((int)d.weight_mode < 0 && (u8(r) & 1u)) d.weight_mode = SBL_WEIGHT_SCALAR;
+    weight_enums(r, &d.estimator, &d.rectify, &d.weight_mode);
     d.constant_alpha = param(r);
     d.alpha_min = param(r);
     d.max_history = param(r);
@@ -493,12 +500,7 @@ static sbl_result fuzz_stereo(rd *r, ctx *cx, int w, int h, int c, int op)
     d.focal_px = param(r);
     d.baseline = param(r);
     if (u8(r) & 1u) { d.focal_px = 8.0f; d.baseline = 0.5f; }
-    d.estimator = (sbl_estimator)enum_val(r, SBL_ESTIMATOR_COUNT);
-    d.rectify = (sbl_rectify)enum_val(r, SBL_RECTIFY_COUNT);
-    d.weight_mode = (sbl_weight_mode)enum_val(r, SBL_WEIGHT_MODE_COUNT);
-    if ((int)d.estimator < 0 && (u8(r) & 1u)) d.estimator = SBL_ESTIMATOR_HISTORY_AWARE;
-    if ((int)d.rectify < 0 && (u8(r) & 1u)) d.rectify = SBL_RECTIFY_NONE;
-    if ((int)d.weight_mode < 0 && (u8(r) & 1u)) d.weight_mode = SBL_WEIGHT_SCALAR;
+    weight_enums(r, &d.estimator, &d.rectify, &d.weight_mode);
     d.constant_beta = param(r);
     d.clip_gamma = param(r);
     d.bias_threshold = param(r);
