@@ -529,7 +529,7 @@ static int sbl__stride(const sbl_image *im)
 
 static float *sbl__px(const sbl_image *im, int x, int y)
 {
-    return im->data + (size_t)y * (size_t)sbl__stride(im) + (size_t)x * (size_t)im->channels;
+    return im->data + (ptrdiff_t)y * (ptrdiff_t)sbl__stride(im) + (ptrdiff_t)x * im->channels;
 }
 
 /* Validate one view. want_channels 0 accepts 1..4. */
@@ -789,20 +789,23 @@ static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float
    the descriptor (data, stride, channels) for every tap. p == NULL: absent. */
 typedef struct sbl__flat {
     const float *p;
-    size_t stride;  /* floats per row */
-    size_t ch;
+    ptrdiff_t stride; /* floats from one row to the next (may be negative: bottom-up) */
+    ptrdiff_t step;   /* floats from one pixel to the next (>= channels)               */
+    int ch;           /* channels                                                      */
 } sbl__flat;
 
 static sbl__flat sbl__flatten(const sbl_image *im)
 {
     sbl__flat f;
     f.p = im ? im->data : NULL;
-    f.stride = f.p ? (size_t)sbl__stride(im) : 0;
-    f.ch = f.p ? (size_t)im->channels : 0;
+    f.stride = f.p ? (ptrdiff_t)sbl__stride(im) : 0;
+    f.step = f.p ? (ptrdiff_t)im->channels : 0;
+    f.ch = f.p ? im->channels : 0;
     return f;
 }
 
-#define SBL__AT(f, x, y) ((f).p + (size_t)(y) * (f).stride + (size_t)(x) * (f).ch)
+/* Every address of a flattened view is formed here (signed: strides may be negative). */
+#define SBL__AT(f, x, y) ((f).p + (ptrdiff_t)(y) * (f).stride + (ptrdiff_t)(x) * (f).step)
 
 /* The source view a gather reads, and the tests it applies: fixed for a call. A test
    runs only when both views have its buffer. */
@@ -922,17 +925,17 @@ SBL__INLINE float sbl__gather_fast(const sbl__tap_src *s, const sbl__tap_want *t
     const float gx = 1.0f - fx, gy = 1.0f - fy;
     float w[4];
     int ok[4] = {1, 1, 1, 1}, k;
-    const size_t cs = s->color.stride;
-    const float *c0 = s->color.p + (size_t)y0 * cs + (size_t)x0 * (size_t)ch;
+    const ptrdiff_t cs = s->color.stride, cx = s->color.step;
+    const float *c0 = SBL__AT(s->color, x0, y0);
     const float *cp[4];
     float wsum = 0.0f;
     w[0] = gx * gy; w[1] = fx * gy; w[2] = gx * fy; w[3] = fx * fy;
-    cp[0] = c0; cp[1] = c0 + ch; cp[2] = c0 + cs; cp[3] = c0 + cs + ch;
+    cp[0] = c0; cp[1] = c0 + cx; cp[2] = c0 + cs; cp[3] = c0 + cs + cx;
     if (s->use_depth) {
-        const size_t ds = s->depth.stride;
-        const float *d0 = s->depth.p + (size_t)y0 * ds + (size_t)x0;
+        const ptrdiff_t ds = s->depth.stride, dx = s->depth.step;
+        const float *d0 = SBL__AT(s->depth, x0, y0);
         float d[4];
-        d[0] = d0[0]; d[1] = d0[1]; d[2] = d0[ds]; d[3] = d0[ds + 1];
+        d[0] = d0[0]; d[1] = d0[dx]; d[2] = d0[ds]; d[3] = d0[ds + dx];
         for (k = 0; k < 4; ++k)
             ok[k] = sbl__depth_match(t->depth, d[k], s->depth_tolerance, t->depth_slack);
     }
@@ -940,10 +943,10 @@ SBL__INLINE float sbl__gather_fast(const sbl__tap_src *s, const sbl__tap_want *t
         for (k = 0; k < 4; ++k)
             if (ok[k]) ok[k] = sbl__tap_ok_id_normal(s, t, x0 + (k & 1), y0 + (k >> 1));
     if (s->length.p) {
-        const size_t ls = s->length.stride;
-        const float *l0 = s->length.p + (size_t)y0 * ls + (size_t)x0;
+        const ptrdiff_t ls = s->length.stride, lx = s->length.step;
+        const float *l0 = SBL__AT(s->length, x0, y0);
         float n[4];
-        n[0] = l0[0]; n[1] = l0[1]; n[2] = l0[ls]; n[3] = l0[ls + 1];
+        n[0] = l0[0]; n[1] = l0[lx]; n[2] = l0[ls]; n[3] = l0[ls + lx];
         for (k = 0; k < 4; ++k) {
             ok[k] = ok[k] && n[k] > 0.0f && w[k] > 0.0f;
             if (ok[k]) *acc_n += w[k] * n[k];
@@ -1069,8 +1072,8 @@ static float sbl__depth_slack(const sbl__target_geo *g, int x, int y, float z)
     int w = g->width, h = g->height;
     if (!sbl__finite(z)) return 0.0f;
     if (w > 1) {
-        float a = x > 0 ? p[-1] : z;
-        float b = x + 1 < w ? p[1] : z;
+        float a = x > 0 ? p[-g->depth.step] : z;
+        float b = x + 1 < w ? p[g->depth.step] : z;
         float da = fabsf(z - a), db = fabsf(b - z);
         if (x == 0) da = db;
         if (x + 1 == w) db = da;
@@ -1765,17 +1768,29 @@ static int sbl__lane_value_ok(float v)
     return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
-static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row)
+/* Own colour Y of one row, deinterleaved into planes; returns 1 if lane-safe. */
+static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row)
 {
     const float *src = sbl__px(k->own, 0, row);
     int x, c, ch = k->ch, safe = 1;
-    r->row = row;
     for (x = 0; x < k->w; ++x)
         for (c = 0; c < ch; ++c) {
-            float v = src[(size_t)x * ch + c];
+            float v = src[(ptrdiff_t)x * ch + c];
             r->y[c][x] = v;
             safe &= sbl__lane_value_ok(v);
         }
+    if (k->own_n && k->own_n->data) { /* N_Y: the reference path sanitises it */
+        const float *ny = sbl__px(k->own_n, 0, row);
+        for (x = 0; x < k->w; ++x) safe &= sbl__lane_value_ok(ny[x]) && ny[x] <= 1048576.0f;
+    }
+    return safe;
+}
+
+/* The other estimate x* of one row (reprojected history or other eye), its N and
+   validity, into planes; returns 1 if lane-safe. */
+static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row)
+{
+    int x, c, ch = k->ch, safe = 1;
     for (x = 0; x < k->w; ++x) {
         float tmp[4] = {0, 0, 0, 0};
         float n = k->gather(k->gather_ctx, x, row, tmp);
@@ -1788,11 +1803,15 @@ static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row)
         }
         if (valid) safe &= sbl__lane_value_ok(n);
     }
-    if (k->own_n && k->own_n->data) { /* N_Y: the reference path sanitises it */
-        const float *ny = sbl__px(k->own_n, 0, row);
-        for (x = 0; x < k->w; ++x) safe &= sbl__lane_value_ok(ny[x]) && ny[x] <= 1048576.0f;
-    }
-    r->lane_safe = safe;
+    return safe;
+}
+
+static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row)
+{
+    int safe_own = sbl__ring_load_own(k, r, row);
+    int safe_other = sbl__ring_gather(k, r, row);
+    r->row = row;
+    r->lane_safe = safe_own && safe_other;
 }
 
 static float sbl__own_n(const sbl__kernel *k, int x, int y)
@@ -1863,20 +1882,170 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
                                sbl__add(sbl__load((P)[2] + (X) - 1), sbl__load((P)[2] + (X)))), \
                       sbl__load((P)[2] + (X) + 1)))
 
+/* The lane kernel, as stages named like their reference-path counterparts:
+   sbl__lanes_moments (sbl__moments_core), sbl__lanes_rectify (sbl__rectify),
+   sbl__lanes_weight (sbl__weight) and sbl__lanes_blend (the rest of sbl__blend_pixel
+   and Eq. 5). Same algebra as the reference path with count = 9, in float. */
+
+/* Statistics of one vector of pixels: Y's 3x3 moments and the paired differences. */
+typedef struct sbl__lane_stats {
+    sbl__v mean[4], var[4], lo[4], hi[4], pd[4], pv[4];
+    sbl__v xs[4];   /* x* (rectified by sbl__lanes_rectify)                         */
+    sbl__v xr[4];   /* x* as gathered                                               */
+    sbl__v yc[4];   /* own sample                                                   */
+    sbl__v inv_cnt; /* 1 / max(pairs, 1)                                            */
+    sbl__m has_pairs, two_pairs;
+} sbl__lane_stats;
+
+SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*yp)[3],
+                                    const float *const (*xp)[3], const float *const *vp, int x,
+                                    sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), ninth = sbl__set1(1.0f / 9.0f);
+    sbl__v cnt = SBL__SUM9(vp, x), inv_cnt1;
+    int c, j;
+    st->has_pairs = sbl__gt(cnt, zero);
+    st->two_pairs = sbl__gt(cnt, one);
+    st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
+    inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
+    for (c = 0; c < k->ch; ++c) {
+        const float *const *P = yp[c];
+        sbl__v m = sbl__mul(SBL__SUM9(P, x), ninth), v = zero, d = zero, dd = zero;
+        /* the pairs are summed shifted by the centre's difference, so that a bias
+           well above the noise does not cancel the one-pass variance away */
+        sbl__v shift = sbl__sub(sbl__load(xp[c][1] + x), sbl__load(yp[c][1] + x));
+        sbl__v lo = m, hi = m; /* the mean lies inside [min, max]: a neutral start */
+        for (j = 0; j < 3; ++j) {
+            int i;
+            for (i = -1; i <= 1; ++i) {
+                sbl__v yy = sbl__load(yp[c][j] + x + i);
+                sbl__v e = sbl__sub(yy, m);
+                sbl__v pdiff;
+                v = sbl__add(v, sbl__mul(e, e));
+                pdiff = sbl__mul(sbl__load(vp[j] + x + i),
+                                 sbl__sub(sbl__sub(sbl__load(xp[c][j] + x + i), yy), shift));
+                d = sbl__add(d, pdiff);
+                dd = sbl__add(dd, sbl__mul(pdiff, pdiff));
+                if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+                    lo = sbl__min(lo, yy);
+                    hi = sbl__max(hi, yy);
+                }
+            }
+        }
+        st->mean[c] = m;
+        st->var[c] = sbl__mul(v, ninth);
+        st->lo[c] = lo;
+        st->hi[c] = hi;
+        st->pd[c] = sbl__mul(d, st->inv_cnt);
+        /* sample variance of the pairs, one pass: (sum d^2 - n mean^2) / (n - 1) */
+        st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
+        st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], shift), zero);
+        st->xs[c] = st->xr[c] = sbl__load(xp[c][1] + x);
+        st->yc[c] = sbl__load(yp[c][1] + x);
+    }
+}
+
+/* Neighbourhood clamp / variance clip of x*, as sbl__rectify. */
+SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
+{
+    const sbl__v one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v gamma = sbl__set1(k->wp.gamma);
+    int c, ch = k->ch;
+    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+        for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
+    } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
+        sbl__v t = one;
+        for (c = 0; c < ch; ++c) {
+            sbl__v half = sbl__max(sbl__mul(gamma, sbl__sqrt(st->var[c])),
+                                   sbl__abs(sbl__sub(st->yc[c], st->mean[c])));
+            sbl__v dist = sbl__abs(sbl__sub(st->xs[c], st->mean[c]));
+            t = sbl__sel(sbl__gt(dist, half), sbl__min(t, sbl__div(half, sbl__max(dist, tiny))), t);
+        }
+        for (c = 0; c < ch; ++c)
+            st->xs[c] = sbl__sel(sbl__gt(one, t),
+                                 sbl__add(st->mean[c], sbl__mul(sbl__sub(st->xs[c], st->mean[c]), t)),
+                                 st->xs[c]);
+    }
+}
+
+/* Weight of Y from the squares summed over one group of channels, as sbl__weight:
+   dev2 = (x* - mean)^2, s2 = variance of Y, pd2 = (mean paired difference)^2, pvs =
+   variance of the paired differences; n_xc = capped N_X, n_y = N_Y. */
+SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lane_stats *st,
+                                     sbl__v dev2, sbl__v s2, sbl__v pd2, sbl__v pvs,
+                                     sbl__v n_xc, sbl__v n_y)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
+    sbl__v w;
+    if (p->estimator == SBL_ESTIMATOR_PAPER) {
+        sbl__v den = sbl__add(dev2, s2);
+        w = sbl__sel(sbl__gt(den, zero), sbl__div(dev2, sbl__max(den, tiny)), prog);
+    } else if (p->estimator == SBL_ESTIMATOR_PROGRESSIVE) {
+        w = prog;
+    } else if (p->estimator == SBL_ESTIMATOR_CONSTANT) {
+        w = sbl__set1(p->constant);
+    } else {
+        /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
+        const sbl__v k2 = sbl__set1(p->bias_threshold * p->bias_threshold);
+        sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
+        sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
+        sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
+        sbl__v vx_p = sbl__sub(pvs, vy_p);
+        sbl__v b2_p = sbl__sub(pd2, sbl__mul(sbl__mul(k2, pvs), st->inv_cnt));
+        sbl__v b2_s = sbl__sub(pd2, sbl__mul(k2, sbl__add(vx_s, vy_s)));
+        sbl__v vy = sbl__sel(st->two_pairs, vy_p, vy_s);
+        sbl__v vx = sbl__sel(st->two_pairs, vx_p, vx_s);
+        sbl__v b2 = sbl__sel(st->two_pairs, b2_p, sbl__sel(st->has_pairs, b2_s, zero));
+        sbl__v num, den;
+        b2 = sbl__max(b2, zero);
+        num = sbl__add(b2, vx);
+        den = sbl__add(num, vy);
+        w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
+    }
+    return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
+}
+
+/* The blend, Eq. 5 and the staged outputs of pixels [x, x + VW); invalid x* resets. */
+SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *st,
+                                  const sbl__v *a, sbl__m valid, sbl__v n_xc, sbl__v n_y)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap);
+    sbl__v a_mean = zero, n_out, one_m, den;
+    int c;
+    for (c = 0; c < k->ch; ++c) {
+        /* two-sided lerp, as in sbl__blend_pixel */
+        sbl__v o = sbl__sel(sbl__gt(a[c], sbl__set1(0.5f)),
+                            sbl__add(st->yc[c], sbl__mul(sbl__sub(one, a[c]),
+                                                         sbl__sub(st->xs[c], st->yc[c]))),
+                            sbl__add(st->xs[c], sbl__mul(a[c], sbl__sub(st->yc[c], st->xs[c]))));
+        if (k->fill) o = st->xr[c]; /* fill takes x* unrectified, as the reference path */
+        sbl__store(k->stage[c] + x, sbl__sel(valid, o, st->yc[c]));
+        a_mean = sbl__add(a_mean, a[c]);
+    }
+    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / (float)k->ch));
+    if (k->fill) a_mean = zero;
+    /* Eq. 5: N = N_X N_Y / ((1-a)^2 N_Y + a^2 N_X) */
+    one_m = sbl__sub(one, a_mean);
+    den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a_mean, a_mean), n_xc));
+    n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
+                     sbl__add(n_xc, n_y));
+    if (k->fill) n_out = n_xc;
+    n_out = sbl__min(n_out, cap);
+    sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
+    sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
+}
+
 /* Lane kernel over pixels [x0, x1) of an interior row (all nine neighbours exist and
-   are lane-safe). Same algebra as the reference path with count = 9, in float.
-   Returns the first pixel it did not process (the tail goes to the reference path). */
+   are lane-safe). Returns the first pixel it did not process (the tail goes to the
+   reference path). */
 static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int x0, int x1)
 {
     const int ch = k->ch, y = R[1]->row;
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), ninth = sbl__set1(1.0f / 9.0f);
-    const sbl__v tiny = sbl__set1(FLT_MIN), cap = sbl__set1(k->n_cap);
-    const sbl__v amin = sbl__set1(k->wp.alpha_min), konst = sbl__set1(k->wp.constant);
-    const sbl__v k2 = sbl__set1(k->wp.bias_threshold * k->wp.bias_threshold);
-    const sbl__v gamma = sbl__set1(k->wp.gamma);
-    const sbl__v bessel = sbl__set1(9.0f / 8.0f);
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap);
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
-    const sbl_estimator est = k->wp.estimator;
     const int per_channel = k->wp.mode == SBL_WEIGHT_PER_CHANNEL;
     const float *yp[4][3], *xp[4][3], *vp[3];
     int x, c, j;
@@ -1885,132 +2054,33 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
         vp[j] = R[j]->v;
     }
     for (x = x0; x + SBL__VW <= x1; x += SBL__VW) {
-        sbl__v mean[4], var[4], lo[4], hi[4], pd[4], pv[4], xs[4], xr[4], yc[4], a[4];
-        sbl__v cnt = SBL__SUM9(vp, x), inv_cnt, inv_cnt1, n_x, n_y, n_xc;
-        sbl__m valid, has_pairs, two_pairs;
-        has_pairs = sbl__gt(cnt, zero);
-        two_pairs = sbl__gt(cnt, one);
-        inv_cnt = sbl__div(one, sbl__max(cnt, one));
-        inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
+        sbl__lane_stats st;
+        sbl__v a[4], n_x, n_y, n_xc;
+        sbl__m valid;
+        const int groups = per_channel ? ch : 1;
+        int g;
         n_x = sbl__load(R[1]->n + x);
         valid = sbl__gt(n_x, zero);
         n_y = nyrow ? sbl__load(nyrow + x) : one;
         n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
         n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-        for (c = 0; c < ch; ++c) {
-            const float *const *P = yp[c];
-            sbl__v m = sbl__mul(SBL__SUM9(P, x), ninth), v = zero, d = zero, dd = zero;
-            /* the pairs are summed shifted by the centre's difference, so that a bias
-               well above the noise does not cancel the one-pass variance away */
-            sbl__v shift = sbl__sub(sbl__load(xp[c][1] + x), sbl__load(yp[c][1] + x));
-            lo[c] = m; /* the mean lies inside [min, max]: a neutral start */
-            hi[c] = m;
-            for (j = 0; j < 3; ++j) {
-                int i;
-                for (i = -1; i <= 1; ++i) {
-                    sbl__v yy = sbl__load(yp[c][j] + x + i);
-                    sbl__v e = sbl__sub(yy, m);
-                    v = sbl__add(v, sbl__mul(e, e));
-                    sbl__v pdiff = sbl__mul(sbl__load(vp[j] + x + i),
-                                            sbl__sub(sbl__sub(sbl__load(xp[c][j] + x + i), yy),
-                                                     shift));
-                    d = sbl__add(d, pdiff);
-                    dd = sbl__add(dd, sbl__mul(pdiff, pdiff));
-                    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
-                        lo[c] = sbl__min(lo[c], yy);
-                        hi[c] = sbl__max(hi[c], yy);
-                    }
-                }
+        sbl__lanes_moments(k, (const float *const(*)[3])yp, (const float *const(*)[3])xp,
+                           vp, x, &st);
+        sbl__lanes_rectify(k, &st);
+        for (g = 0; g < groups; ++g) {
+            sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
+            int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
+            for (c = c0; c < c1; ++c) {
+                sbl__v e = sbl__sub(st.xs[c], st.mean[c]);
+                dev2 = sbl__add(dev2, sbl__mul(e, e));
+                s2 = sbl__add(s2, st.var[c]);
+                pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
+                pvs = sbl__add(pvs, st.pv[c]);
             }
-            mean[c] = m;
-            var[c] = sbl__mul(v, ninth);
-            pd[c] = sbl__mul(d, inv_cnt);
-            /* sample variance of the pairs, one pass: (sum d^2 - n mean^2) / (n - 1) */
-            pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, pd[c])), zero), inv_cnt1);
-            pd[c] = sbl__sel(has_pairs, sbl__add(pd[c], shift), zero);
-            xs[c] = xr[c] = sbl__load(xp[c][1] + x);
-            yc[c] = sbl__load(yp[c][1] + x);
+            w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
+            for (c = c0; c < c1; ++c) a[c] = w;
         }
-        if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
-            for (c = 0; c < ch; ++c) xs[c] = sbl__min(sbl__max(xs[c], lo[c]), hi[c]);
-        } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
-            sbl__v t = one;
-            for (c = 0; c < ch; ++c) {
-                sbl__v half = sbl__max(sbl__mul(gamma, sbl__sqrt(var[c])),
-                                       sbl__abs(sbl__sub(yc[c], mean[c])));
-                sbl__v dist = sbl__abs(sbl__sub(xs[c], mean[c]));
-                t = sbl__sel(sbl__gt(dist, half), sbl__min(t, sbl__div(half, sbl__max(dist, tiny))), t);
-            }
-            for (c = 0; c < ch; ++c)
-                xs[c] = sbl__sel(sbl__gt(one, t), sbl__add(mean[c], sbl__mul(sbl__sub(xs[c], mean[c]), t)), xs[c]);
-        }
-        {
-            const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
-            const int groups = per_channel ? ch : 1;
-            int g;
-            for (g = 0; g < groups; ++g) {
-                sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
-                int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
-                for (c = c0; c < c1; ++c) {
-                    sbl__v e = sbl__sub(xs[c], mean[c]);
-                    dev2 = sbl__add(dev2, sbl__mul(e, e));
-                    s2 = sbl__add(s2, var[c]);
-                    pd2 = sbl__add(pd2, sbl__mul(pd[c], pd[c]));
-                    pvs = sbl__add(pvs, pv[c]);
-                }
-                if (est == SBL_ESTIMATOR_PAPER) {
-                    sbl__v den = sbl__add(dev2, s2);
-                    w = sbl__sel(sbl__gt(den, zero), sbl__div(dev2, sbl__max(den, tiny)), prog);
-                } else if (est == SBL_ESTIMATOR_PROGRESSIVE) {
-                    w = prog;
-                } else if (est == SBL_ESTIMATOR_CONSTANT) {
-                    w = konst;
-                } else {
-                    /* as sbl__weight: pair statistics with two or more pairs, the 3x3
-                       variance of Y otherwise */
-                    sbl__v vy_s = sbl__mul(s2, bessel);
-                    sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
-                    sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
-                    sbl__v vx_p = sbl__sub(pvs, vy_p);
-                    sbl__v b2_p = sbl__sub(pd2, sbl__mul(sbl__mul(k2, pvs), inv_cnt));
-                    sbl__v b2_s = sbl__sub(pd2, sbl__mul(k2, sbl__add(vx_s, vy_s)));
-                    sbl__v vy = sbl__sel(two_pairs, vy_p, vy_s);
-                    sbl__v vx = sbl__sel(two_pairs, vx_p, vx_s);
-                    sbl__v b2 = sbl__sel(two_pairs, b2_p, sbl__sel(has_pairs, b2_s, zero));
-                    sbl__v num, den;
-                    b2 = sbl__max(b2, zero);
-                    num = sbl__add(b2, vx);
-                    den = sbl__add(num, vy);
-                    w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
-                }
-                w = sbl__min(sbl__max(sbl__max(w, amin), zero), one);
-                for (c = c0; c < c1; ++c) a[c] = w;
-            }
-        }
-        {
-            sbl__v a_mean = zero, n_out, one_m, den;
-            for (c = 0; c < ch; ++c) {
-                /* two-sided lerp, as in sbl__blend_pixel */
-                sbl__v o = sbl__sel(sbl__gt(a[c], sbl__set1(0.5f)),
-                                    sbl__add(yc[c], sbl__mul(sbl__sub(one, a[c]),
-                                                             sbl__sub(xs[c], yc[c]))),
-                                    sbl__add(xs[c], sbl__mul(a[c], sbl__sub(yc[c], xs[c]))));
-                if (k->fill) o = xr[c]; /* fill takes x* unrectified, as the reference path */
-                sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c]));
-                a_mean = sbl__add(a_mean, a[c]);
-            }
-            a_mean = sbl__mul(a_mean, sbl__set1(1.0f / (float)ch));
-            if (k->fill) a_mean = zero;
-            /* Eq. 5: N = N_X N_Y / ((1-a)^2 N_Y + a^2 N_X) */
-            one_m = sbl__sub(one, a_mean);
-            den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a_mean, a_mean), n_xc));
-            n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
-                             sbl__add(n_xc, n_y));
-            if (k->fill) n_out = n_xc;
-            n_out = sbl__min(n_out, cap);
-            sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
-            sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
-        }
+        sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
     }
     return x;
 }
