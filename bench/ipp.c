@@ -53,16 +53,16 @@ static void fill_eye(eye_bufs *b, int eye, int kind)
         b->motion[i * 2 + 1] = -0.21f;
         b->hlen[i] = 8.0f;
         if (kind == 1) {
-            /* random sub-pixel motion; a nearer object (a disc of ~10 % of the pixels)
-               moved 12 px since the last frame: where it was, history depth is the
-               object's, where it is now, history depth is the background's */
-            int dx = x - W / 2, dy = y - H / 2, dxp = x - (W / 2 - 12), inside, was;
+            /* random sub-pixel motion; a nearer disc of radius 110 moved 50 px since
+               the last frame: where it was, history depth is the object's, where it
+               is now, history depth is the background's (~9 % of the pixels) */
+            int dx = x - W / 2, dy = y - H / 2, dxp = x - (W / 2 - 50), inside, was;
             s = s * 1664525u + 1013904223u;
             b->motion[i * 2] = ((float)(s >> 8) * (1.0f / 16777216.0f) - 0.5f) * 1.8f;
             s = s * 1664525u + 1013904223u;
             b->motion[i * 2 + 1] = ((float)(s >> 8) * (1.0f / 16777216.0f) - 0.5f) * 1.8f;
-            inside = dx * dx + dy * dy < 76 * 76;
-            was = dxp * dxp + dy * dy < 76 * 76;
+            inside = dx * dx + dy * dy < 110 * 110;
+            was = dxp * dxp + dy * dy < 110 * 110;
             if (inside) b->depth[i] = 1.0f;
             if (was) b->prev_depth[i] = 1.0f;
         } else if (kind == 3) {
