@@ -1219,30 +1219,41 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     return SBL_OK;
 }
 
+/* Where target pixel (x, y) finds its history: the source position (*sx, *sy) and what
+   the taps must match (*t). Returns 0 when the pixel must reset. Shared by the pixel
+   gather below and the row gather (sbl__temporal_rp_row). */
+SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sbl__tap_want *t,
+                                     double *sx, double *sy)
+{
+    double sz;
+    float z;
+    if (!sbl__tap_want_init(t, &s->geo, x, y, &z)) return 0;
+    if (s->source == SBL_TEMPORAL_MOTION) {
+        const float *mv = SBL__AT(s->motion, x, y);
+        if (sbl__any_nonfinite(mv, 2)) return 0;
+        *sx = x + 0.5 + s->motion_kx * mv[0];
+        *sy = y + 0.5 + s->motion_ky * mv[1];
+        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
+    } else {
+        if (!sbl__cam_map_apply(&s->cam, x + 0.5, y + 0.5, z, sx, sy, &sz)) return 0;
+    }
+    /* came in from outside the previous image: nothing to reuse (edge pixels would
+       otherwise be replicated by the renormalisation and the 3x3 fallback) */
+    if (!(*sx >= 0.0 && *sx < (double)s->frame->color.width && *sy >= 0.0 &&
+          *sy < (double)s->frame->color.height))
+        return 0;
+    t->depth = (float)sz;
+    return 1;
+}
+
 /* x* and its N for target pixel (x, y); returns 0 when the pixel must reset. */
 static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
 {
     const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
     sbl__tap_want t;
-    double sx, sy, sz;
-    float z;
+    double sx, sy;
     if (!s->history) return 0.0f;
-    if (!sbl__tap_want_init(&t, &s->geo, x, y, &z)) return 0.0f;
-    if (s->source == SBL_TEMPORAL_MOTION) {
-        const float *mv = SBL__AT(s->motion, x, y);
-        if (sbl__any_nonfinite(mv, 2)) return 0.0f;
-        sx = x + 0.5 + s->motion_kx * mv[0];
-        sy = y + 0.5 + s->motion_ky * mv[1];
-        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
-    } else {
-        if (!sbl__cam_map_apply(&s->cam, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
-    }
-    /* came in from outside the previous image: nothing to reuse (edge pixels would
-       otherwise be replicated by the renormalisation and the 3x3 fallback) */
-    if (!(sx >= 0.0 && sx < (double)s->frame->color.width && sy >= 0.0 &&
-          sy < (double)s->frame->color.height))
-        return 0.0f;
-    t.depth = (float)sz;
+    if (!sbl__temporal_rp_pos(s, x, y, &t, &sx, &sy)) return 0.0f;
     return sbl__gather(&s->src, &t, sx, sy, !s->rp.no_fallback, out);
 }
 
@@ -1583,7 +1594,11 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
 /* ---- thin SIMD layer ------------------------------------------------------
    One lane kernel below is written against these few operations. Chosen at compile
    time: AVX-512F, AVX2, SSE2, NEON (AArch64), or plain float (SBL_NO_SIMD, or none of
-   them available): the scalar path is the same code with a width of 1. */
+   them available): the scalar path is the same code with a width of 1.
+   The row gather (SBL__ROW_GATHER) adds tap loads at int offsets (hardware gathers on
+   AVX2 / AVX-512, emulated on SSE2), mask logic and bit tests that -ffast-math cannot
+   fold. The scalar build and NEON gather one pixel at a time with the reference
+   gather, which the row gather must equal bit for bit (test_simd, test_paths). */
 #if !defined(SBL_NO_SIMD) && defined(__AVX512F__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx512"
@@ -1603,6 +1618,21 @@ typedef __mmask16 sbl__m;
 #define sbl__abs(a) _mm512_abs_ps(a)
 #define sbl__gt(a, b) _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
+/* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm512_i32gather_ps(_mm512_loadu_si512((const void *)(idx)), base, 4)
+#define sbl__le(a, b) _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
+#define sbl__mand(a, b) ((__mmask16)((a) & (b)))
+#define sbl__mor(a, b) ((__mmask16)((a) | (b)))
+#define sbl__mandnot(a, b) ((__mmask16)((a) & ~(b))) /* a and not b */
+#define sbl__mbits(m) ((int)(m))
+#define sbl__nonfinite(a) \
+    _mm512_cmpeq_epi32_mask(_mm512_and_si512(_mm512_castps_si512(a), \
+                                             _mm512_set1_epi32(0x7f800000)), \
+                            _mm512_set1_epi32(0x7f800000))
+#define sbl__posinf(a) \
+    _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
 #elif !defined(SBL_NO_SIMD) && defined(__AVX2__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx2"
@@ -1622,6 +1652,21 @@ typedef __m256 sbl__m;
 #define sbl__abs(a) _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a)
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm256_i32gather_ps(base, _mm256_loadu_si256((const __m256i *)(const void *)(idx)), 4)
+#define sbl__le(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
+#define sbl__mand(a, b) _mm256_and_ps(a, b)
+#define sbl__mor(a, b) _mm256_or_ps(a, b)
+#define sbl__mandnot(a, b) _mm256_andnot_ps(b, a)
+#define sbl__mbits(m) _mm256_movemask_ps(m)
+#define sbl__nonfinite(a) \
+    _mm256_castsi256_ps(_mm256_cmpeq_epi32( \
+        _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7f800000)), \
+        _mm256_set1_epi32(0x7f800000)))
+#define sbl__posinf(a) \
+    _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
+                                           _mm256_set1_epi32(0x7f800000)))
 #elif !defined(SBL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || \
                                 (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
@@ -1642,6 +1687,20 @@ typedef __m128 sbl__m;
 #define sbl__abs(a) _mm_andnot_ps(_mm_set1_ps(-0.0f), a)
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm_setr_ps((base)[(idx)[0]], (base)[(idx)[1]], (base)[(idx)[2]], (base)[(idx)[3]])
+#define sbl__le(a, b) _mm_cmple_ps(a, b)
+#define sbl__mand(a, b) _mm_and_ps(a, b)
+#define sbl__mor(a, b) _mm_or_ps(a, b)
+#define sbl__mandnot(a, b) _mm_andnot_ps(b, a)
+#define sbl__mbits(m) _mm_movemask_ps(m)
+#define sbl__nonfinite(a) \
+    _mm_castsi128_ps(_mm_cmpeq_epi32( \
+        _mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)), \
+        _mm_set1_epi32(0x7f800000)))
+#define sbl__posinf(a) \
+    _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)))
 #elif !defined(SBL_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h>
 #define SBL_SIMD_NAME "neon"
@@ -1697,6 +1756,11 @@ typedef int sbl__m;
    tiled calls reproduce a whole-image call and every SIMD build the scalar one. */
 
 typedef float (*sbl__gather_fn)(const void *ctx, int x, int y, float *out);
+struct sbl__ring_row;
+/* x*, N and validity of columns [xa, xb) of row y straight into a ring row, equal bit
+   for bit to calling the pixel gather on each (one call per row: no pointer per pixel) */
+typedef void (*sbl__row_gather_fn)(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                   int xb);
 
 typedef struct sbl__ring_row {
     float *y[4];   /* own colour, one plane per channel                         */
@@ -1718,6 +1782,7 @@ typedef struct sbl__kernel {
     const sbl_image *own_n;  /* N_Y (NULL data: 1)                                */
     sbl__gather_fn gather;
     const void *gather_ctx;
+    sbl__row_gather_fn gather_row; /* NULL: `gather` one pixel at a time          */
     sbl_image out, out_n, out_a; /* out_n / out_a data may be NULL                */
     float *stage[4], *stage_n, *stage_a;
     unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
@@ -1780,6 +1845,221 @@ static int sbl__lane_value_ok(float v)
     return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
+/* One gathered x* (N > 0: valid) into ring column x. */
+SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v, int ch)
+{
+    int c, valid = n > 0.0f;
+    r->n[x] = valid ? n : 0.0f;
+    r->v[x] = valid ? 1.0f : 0.0f;
+    for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f;
+}
+
+#ifdef SBL__ROW_GATHER
+/* ---- the row gather ---------------------------------------------------------
+   A scalar pass plans a block of pixels (target tests, source position, floor and
+   fraction, the offset of the first tap in each source view; the same code as the
+   pixel gather); the taps, their tests and the renormalised bilinear weights then run
+   in lanes. Lanes the pixel gather would send anywhere but its fast path (a tap
+   outside the image, a rejected footprint that needs the 3x3 fallback, a NaN or inf
+   in a sum) are redone by the pixel gather. */
+#define SBL__BLOCK 64
+
+typedef struct sbl__tap_plan {
+    int ci[SBL__BLOCK], di[SBL__BLOCK], li[SBL__BLOCK]; /* tap (x0, y0) in colour, depth, N */
+    float fx[SBL__BLOCK], fy[SBL__BLOCK];               /* bilinear fractions              */
+    float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
+    float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
+    unsigned char redo[SBL__BLOCK]; /* 1: the pixel gather decides                          */
+} sbl__tap_plan;
+
+static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
+{
+    p->ci[i] = p->di[i] = p->li[i] = 0; /* tap (0, 0): a valid address, result unused */
+    p->fx[i] = p->fy[i] = 0.0f;
+    p->depth[i] = 1.0f;
+    p->slack[i] = 0.0f;
+    p->fast[i] = 0.0f;
+    p->redo[i] = 0;
+}
+
+/* Plan entry i from a source position, as sbl__gather_ch decides: 0 reset, else the
+   fast path or (p->redo) the pixel gather. */
+SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+                                   const sbl__tap_want *t, double sx, double sy)
+{
+    double bx = sx - 0.5, by = sy - 0.5;
+    int x0, y0;
+    if (!(bx > -2.0 && by > -2.0 && bx < (double)s->width + 1.0 &&
+          by < (double)s->height + 1.0))
+        return;
+    x0 = (int)floor(bx);
+    y0 = (int)floor(by);
+    if (!(x0 >= 0 && y0 >= 0 && x0 + 1 < s->width && y0 + 1 < s->height)) {
+        p->redo[i] = 1;
+        return;
+    }
+    p->fx[i] = (float)(bx - x0);
+    p->fy[i] = (float)(by - y0);
+    p->depth[i] = t->depth;
+    p->slack[i] = t->depth_slack;
+    p->ci[i] = (int)((ptrdiff_t)y0 * s->color.stride + (ptrdiff_t)x0 * s->color.step);
+    if (s->use_depth)
+        p->di[i] = (int)((ptrdiff_t)y0 * s->depth.stride + (ptrdiff_t)x0 * s->depth.step);
+    if (s->length.p)
+        p->li[i] = (int)((ptrdiff_t)y0 * s->length.stride + (ptrdiff_t)x0 * s->length.step);
+    p->fast[i] = 1.0f;
+}
+
+/* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
+   renormalisation and saturation) for plan entries [i, i + VW), into ring columns
+   [x, x + VW): the same float operations in the same order per lane (a skipped tap
+   adds +0 to a sum that cannot be -0), hence the same bits. Lanes whose sums are not
+   finite, or whose weight is below 1e-3 with the fallback on, are marked for redo. */
+SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
+                                 sbl__ring_row *r, int x, int ch)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
+    const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
+    const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
+    const sbl__m fast = sbl__gt(sbl__load(p->fast + i), zero);
+    sbl__v w[4], acc[4], accn = zero, wsum = zero, inv, n;
+    sbl__m ok[4], redo, lo, valid;
+    ptrdiff_t off[4];
+    int t, c, bits;
+    w[0] = sbl__mul(gx, gy);
+    w[1] = sbl__mul(fx, gy);
+    w[2] = sbl__mul(gx, fy);
+    w[3] = sbl__mul(fx, fy);
+    for (t = 0; t < 4; ++t) ok[t] = sbl__gt(w[t], zero);
+    if (s->use_depth) {
+        const sbl__v ze = sbl__load(p->depth + i), sl = sbl__load(p->slack + i);
+        const sbl__v lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sl);
+        const sbl__m inf_e = sbl__posinf(ze);
+        off[0] = 0; off[1] = s->depth.step; off[2] = s->depth.stride;
+        off[3] = s->depth.stride + s->depth.step;
+        for (t = 0; t < 4; ++t) {
+            /* sbl__depth_match: sky matches only sky; else a finite, positive depth
+               within the tolerance */
+            const sbl__v d = sbl__gatheri(s->depth.p + off[t], p->di + i);
+            const sbl__m inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
+                                          sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
+            ok[t] = sbl__mand(ok[t], match);
+        }
+    }
+    if (s->length.p) {
+        off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
+        off[3] = s->length.stride + s->length.step;
+        for (t = 0; t < 4; ++t) {
+            const sbl__v nt = sbl__gatheri(s->length.p + off[t], p->li + i);
+            ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
+            accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+        }
+    } else {
+        for (t = 0; t < 4; ++t) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
+    }
+    off[0] = 0; off[1] = s->color.step; off[2] = s->color.stride;
+    off[3] = s->color.stride + s->color.step;
+    for (c = 0; c < ch; ++c) acc[c] = zero;
+    for (t = 0; t < 4; ++t) {
+        for (c = 0; c < ch; ++c) {
+            const sbl__v v = sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
+            acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
+        }
+        wsum = sbl__add(wsum, sbl__sel(ok[t], w[t], zero));
+    }
+    redo = sbl__nonfinite(accn);
+    for (c = 0; c < ch; ++c) redo = sbl__mor(redo, sbl__nonfinite(acc[c]));
+    lo = sbl__gt(sbl__set1(1e-3f), wsum);
+    if (fallback) redo = sbl__mor(redo, lo);
+    redo = sbl__mand(redo, fast);
+    inv = sbl__div(one, wsum);
+    n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
+    valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
+    sbl__store(r->n + x, sbl__sel(valid, n, zero));
+    sbl__store(r->v + x, sbl__sel(valid, one, zero));
+    for (c = 0; c < ch; ++c) {
+        const sbl__v o = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax);
+        sbl__store(r->x[c] + x, sbl__sel(valid, o, zero));
+    }
+    bits = sbl__mbits(redo);
+    for (t = 0; bits; ++t, bits >>= 1)
+        if (bits & 1) p->redo[i + t] = 1;
+}
+
+/* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
+   last vector overlaps the one before rather than running past the block. */
+static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+                          sbl__ring_row *r, int x)
+{
+    int i = 0;
+    for (;;) {
+        if (i + SBL__VW > n) i = n - SBL__VW;
+        switch (s->color.ch) {
+        case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1); break;
+        case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2); break;
+        case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3); break;
+        default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4); break;
+        }
+        if (i + SBL__VW >= n) break;
+        i += SBL__VW;
+    }
+}
+
+/* Can the row gather address every tap of this source with int offsets, and does it
+   run the tests the lanes implement (not ids nor normals)? */
+static int sbl__row_gather_ok(const sbl__tap_src *s)
+{
+    const sbl__flat *f[3];
+    int i;
+    if (s->use_id || s->use_normal || s->width < 2 || s->height < 2) return 0;
+    f[0] = &s->color; f[1] = &s->depth; f[2] = &s->length;
+    for (i = 0; i < 3; ++i) {
+        double span;
+        if (!f[i]->p) continue;
+        span = (double)(s->height - 1) * fabs((double)f[i]->stride) +
+               (double)s->width * (double)f[i]->step;
+        if (!(span < (double)INT_MAX / 2)) return 0;
+    }
+    return 1;
+}
+
+/* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
+static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                 int xb)
+{
+    const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
+    const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
+    sbl__tap_plan p;
+    int x0, i;
+    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
+        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
+        if (n < SBL__VW) {
+            for (i = 0; i < n; ++i) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+            continue;
+        }
+        for (i = 0; i < n; ++i) {
+            sbl__tap_want t;
+            double sx, sy;
+            sbl__tap_plan_reset(&p, i);
+            if (sbl__temporal_rp_pos(s, x0 + i, y, &t, &sx, &sy))
+                sbl__tap_plan_set(&s->src, &p, i, &t, sx, sy);
+        }
+        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
+        for (i = 0; i < n; ++i)
+            if (p.redo[i]) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+    }
+}
+#endif
+
 /* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
    pixels holding a value outside the lane range. Returns the number flagged. */
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
@@ -1808,17 +2088,19 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
 static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
     int x, c, ch = k->ch, count = 0;
-    for (x = xa; x < xb; ++x) {
-        float tmp[4] = {0, 0, 0, 0};
-        float n = k->gather(k->gather_ctx, x, row, tmp);
-        int valid = n > 0.0f, safe = 1;
-        r->n[x] = valid ? n : 0.0f;
-        r->v[x] = valid ? 1.0f : 0.0f;
-        for (c = 0; c < ch; ++c) {
-            r->x[c][x] = valid ? tmp[c] : 0.0f;
-            if (valid) safe &= sbl__lane_value_ok(tmp[c]);
+    if (k->gather_row) {
+        k->gather_row(k->gather_ctx, r, row, xa, xb);
+    } else {
+        for (x = xa; x < xb; ++x) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, k->gather(k->gather_ctx, x, row, tmp), tmp, ch);
         }
-        if (valid) safe &= sbl__lane_value_ok(n);
+    }
+    for (x = xa; x < xb; ++x) {
+        int safe = 1;
+        if (!(r->v[x] > 0.0f)) continue;
+        for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(r->x[c][x]);
+        safe &= sbl__lane_value_ok(r->n[x]);
         if (!safe && !r->unsafe[x]) { r->unsafe[x] = 1; ++count; }
     }
     return count;
@@ -2305,6 +2587,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.own_n = NULL;
     k.gather = sbl__temporal_rp_pixel;
     k.gather_ctx = &s;
+#ifdef SBL__ROW_GATHER
+    if (s.history && sbl__row_gather_ok(&s.src)) k.gather_row = sbl__temporal_rp_row;
+#endif
     k.out = out->color;
     k.out_n = out->length;
     k.out_a = out->alpha;
