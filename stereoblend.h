@@ -1633,6 +1633,7 @@ typedef __mmask16 sbl__m;
                             _mm512_set1_epi32(0x7f800000))
 #define sbl__posinf(a) \
     _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
+#define sbl__floor(a) _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
 #elif !defined(SBL_NO_SIMD) && defined(__AVX2__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx2"
@@ -1667,6 +1668,7 @@ typedef __m256 sbl__m;
 #define sbl__posinf(a) \
     _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
                                            _mm256_set1_epi32(0x7f800000)))
+#define sbl__floor(a) _mm256_floor_ps(a)
 #elif !defined(SBL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || \
                                 (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
@@ -1701,6 +1703,12 @@ typedef __m128 sbl__m;
         _mm_set1_epi32(0x7f800000)))
 #define sbl__posinf(a) \
     _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)))
+/* floor of |a| < 2^31 (SSE2 has no rounding mode op): truncate, then step down */
+SBL__INLINE __m128 sbl__floor(__m128 a)
+{
+    const __m128 t = _mm_cvtepi32_ps(_mm_cvttps_epi32(a));
+    return _mm_sub_ps(t, _mm_and_ps(_mm_cmpgt_ps(t, a), _mm_set1_ps(1.0f)));
+}
 #elif !defined(SBL_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h>
 #define SBL_SIMD_NAME "neon"
@@ -1914,9 +1922,13 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
    renormalisation and saturation) for plan entries [i, i + VW), into ring columns
    [x, x + VW): the same float operations in the same order per lane (a skipped tap
    adds +0 to a sum that cannot be -0), hence the same bits. Lanes whose sums are not
-   finite, or whose weight is below 1e-3 with the fallback on, are marked for redo. */
+   finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
+   contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
+   rest), read with plain vector loads where a view has one channel. When no lane has
+   a fraction (a camera at rest), the three taps of weight 0 are skipped: they would
+   add +0 everywhere. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
-                                 sbl__ring_row *r, int x, int ch)
+                                 sbl__ring_row *r, int x, int ch, int contiguous)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -1925,7 +1937,9 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     sbl__v w[4], acc[4], accn = zero, wsum = zero, inv, n;
     sbl__m ok[4], redo, lo, valid;
     ptrdiff_t off[4];
-    int t, c, bits;
+    int t, c, bits, taps;
+    /* fractions are >= 0: none above 0 means every lane reads its pixel (x0, y0) */
+    taps = sbl__mbits(sbl__mor(sbl__gt(fx, zero), sbl__gt(fy, zero))) ? 4 : 1;
     w[0] = sbl__mul(gx, gy);
     w[1] = sbl__mul(fx, gy);
     w[2] = sbl__mul(gx, fy);
@@ -1937,10 +1951,11 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         const sbl__m inf_e = sbl__posinf(ze);
         off[0] = 0; off[1] = s->depth.step; off[2] = s->depth.stride;
         off[3] = s->depth.stride + s->depth.step;
-        for (t = 0; t < 4; ++t) {
+        for (t = 0; t < taps; ++t) {
             /* sbl__depth_match: sky matches only sky; else a finite, positive depth
                within the tolerance */
-            const sbl__v d = sbl__gatheri(s->depth.p + off[t], p->di + i);
+            const sbl__v d = contiguous ? sbl__load(s->depth.p + off[t] + p->di[i])
+                                        : sbl__gatheri(s->depth.p + off[t], p->di + i);
             const sbl__m inf_t = sbl__posinf(d);
             const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
                                           sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
@@ -1952,20 +1967,22 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     if (s->length.p) {
         off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
         off[3] = s->length.stride + s->length.step;
-        for (t = 0; t < 4; ++t) {
-            const sbl__v nt = sbl__gatheri(s->length.p + off[t], p->li + i);
+        for (t = 0; t < taps; ++t) {
+            const sbl__v nt = contiguous ? sbl__load(s->length.p + off[t] + p->li[i])
+                                         : sbl__gatheri(s->length.p + off[t], p->li + i);
             ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
             accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
         }
     } else {
-        for (t = 0; t < 4; ++t) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
+        for (t = 0; t < taps; ++t) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
     }
     off[0] = 0; off[1] = s->color.step; off[2] = s->color.stride;
     off[3] = s->color.stride + s->color.step;
     for (c = 0; c < ch; ++c) acc[c] = zero;
-    for (t = 0; t < 4; ++t) {
+    for (t = 0; t < taps; ++t) {
         for (c = 0; c < ch; ++c) {
-            const sbl__v v = sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
+            const sbl__v v = contiguous && ch == 1 ? sbl__load(s->color.p + off[t] + p->ci[i])
+                                                   : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
             acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
         }
         wsum = sbl__add(wsum, sbl__sel(ok[t], w[t], zero));
@@ -1996,12 +2013,20 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
 {
     int i = 0;
     for (;;) {
+        int l, contiguous = 1;
         if (i + SBL__VW > n) i = n - SBL__VW;
+        /* every lane's first tap one pixel after the previous lane's, in every view
+           (each lane's index is a valid one, so the vector load reads exactly the
+           addresses the gather would) */
+        for (l = 1; l < SBL__VW; ++l)
+            contiguous &= (p->ci[i + l] - p->ci[i] == l * (int)s->color.step) &
+                          (!s->use_depth || p->di[i + l] - p->di[i] == l) &
+                          (!s->length.p || p->li[i + l] - p->li[i] == l);
         switch (s->color.ch) {
-        case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1); break;
-        case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2); break;
-        case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3); break;
-        default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4); break;
+        case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
+        case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
+        case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous); break;
+        default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous); break;
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
@@ -2026,12 +2051,109 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
     return 1;
 }
 
+/* Can sbl__temporal_plan_lanes plan row y of this call? Motion vectors in pixels
+   (|k| = 1: the products are exact), images up to 2^15 pixels (positions exact in
+   float), no target normals or ids (their tests stay in sbl__tap_want_init), and an
+   interior row (the depth slack reads both neighbours). */
+static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+{
+    const int w = s->src.width, h = s->src.height;
+    return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
+           fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && !s->geo.normals.p &&
+           !s->geo.ids.p && y >= 1 && y + 1 < h;
+}
+
+/* sbl__temporal_rp_pos and sbl__tap_plan_set for the VW pixels x .. x + VW - 1 (all
+   with both horizontal neighbours) in float lanes, with the same results: for a
+   motion m in pixels with |m| = 0 or in [2^-8, 2^15), x + 0.5 + m is exact in double,
+   so the reference's floor and fraction are floor(m) and the correctly rounded
+   m - floor(m), and its bounds tests are exact float comparisons of m. Lanes with any
+   other motion are left to the scalar plan (returned as bits). */
+SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                         int x, int y)
+{
+    static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+    static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    const sbl__tap_src *src = &s->src;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
+    const sbl__v lo = sbl__set1(1.0f / 256.0f), hi = sbl__set1(32768.0f);
+    const sbl__v wf = sbl__set1((float)src->width), hf = sbl__set1((float)src->height);
+    const sbl__v xf = sbl__add(sbl__set1((float)x), sbl__load(lane)), yf = sbl__set1((float)y);
+    const float *mvp = SBL__AT(s->motion, x, y);
+    sbl__v z = zero, slack = zero, mx, my, ax, ay, fmx, fmy, x0f, y0f;
+    sbl__m keep, exact, inside, fast;
+    int l, bits_scalar, bits_fast;
+    float x0s[SBL__VW], y0s[SBL__VW];
+    if (s->geo.depth.p) {
+        /* sbl__tap_want_init / sbl__depth_slack: valid geometry is z > 0 (NaN, -inf
+           fail; +inf is sky); slack = min one-sided difference per axis, if finite */
+        const float *dp = SBL__AT(s->geo.depth, x, y);
+        const ptrdiff_t ds = s->geo.depth.stride;
+        sbl__v da, db, sx, sy;
+        z = sbl__load(dp);
+        da = sbl__abs(sbl__sub(z, sbl__load(dp - 1)));
+        db = sbl__abs(sbl__sub(sbl__load(dp + 1), z));
+        sx = sbl__min(da, db);
+        sx = sbl__sel(sbl__nonfinite(sx), zero, sx);
+        da = sbl__abs(sbl__sub(z, sbl__load(dp - ds)));
+        db = sbl__abs(sbl__sub(sbl__load(dp + ds), z));
+        sy = sbl__min(da, db);
+        sy = sbl__sel(sbl__nonfinite(sy), zero, sy);
+        slack = sbl__sel(sbl__nonfinite(z), zero, sbl__add(sx, sy));
+        keep = sbl__gt(z, zero);
+    } else {
+        keep = sbl__gt(one, zero);
+    }
+    mx = sbl__gatheri(mvp, pair);
+    my = sbl__gatheri(mvp + 1, pair);
+    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+    if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
+    if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
+    ax = sbl__abs(mx);
+    ay = sbl__abs(my);
+    exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
+                      sbl__mor(sbl__le(ay, zero), sbl__mand(sbl__le(lo, ay), sbl__gt(hi, ay))));
+    bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
+    /* x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
+    inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
+                       sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
+    inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
+                                         sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
+    keep = sbl__mand(sbl__mand(keep, exact), inside);
+    fmx = sbl__floor(mx);
+    fmy = sbl__floor(my);
+    x0f = sbl__add(xf, fmx);
+    y0f = sbl__add(yf, fmy);
+    /* the four taps inside the image, else the pixel gather decides */
+    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__gt(wf, sbl__add(x0f, one))),
+                     sbl__mand(sbl__le(zero, y0f), sbl__gt(hf, sbl__add(y0f, one))));
+    fast = sbl__mand(fast, keep);
+    /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
+    sbl__store(p->fx + i, sbl__sel(fast, sbl__add(sbl__sub(mx, fmx), zero), zero));
+    sbl__store(p->fy + i, sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
+    sbl__store(p->depth + i, sbl__sel(fast, z, one));
+    sbl__store(p->slack + i, sbl__sel(fast, slack, zero));
+    sbl__store(p->fast + i, sbl__sel(fast, one, zero));
+    sbl__store(x0s, x0f);
+    sbl__store(y0s, y0f);
+    bits_fast = sbl__mbits(fast);
+    for (l = 0; l < SBL__VW; ++l) {
+        const int f = (bits_fast >> l) & 1, x0 = f ? (int)x0s[l] : 0, y0 = f ? (int)y0s[l] : 0;
+        p->redo[i + l] = (unsigned char)(((sbl__mbits(keep) >> l) & 1) & !f);
+        p->ci[i + l] = (int)((ptrdiff_t)y0 * src->color.stride + (ptrdiff_t)x0 * src->color.step);
+        p->di[i + l] = src->use_depth ? (int)((ptrdiff_t)y0 * src->depth.stride + x0) : 0;
+        p->li[i + l] = src->length.p ? (int)((ptrdiff_t)y0 * src->length.stride + x0) : 0;
+    }
+    return bits_scalar;
+}
+
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
 {
     const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
     const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
+    const int lanes = sbl__temporal_plan_lanes_ok(s, y);
     sbl__tap_plan p;
     int x0, i;
     for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
@@ -2043,12 +2165,23 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
             }
             continue;
         }
-        for (i = 0; i < n; ++i) {
-            sbl__tap_want t;
-            double sx, sy;
-            sbl__tap_plan_reset(&p, i);
-            if (sbl__temporal_rp_pos(s, x0 + i, y, &t, &sx, &sy))
-                sbl__tap_plan_set(&s->src, &p, i, &t, sx, sy);
+        for (i = 0; i < n;) {
+            int bits = 1, l;
+            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width && i + SBL__VW <= n) {
+                bits = sbl__temporal_plan_lanes(s, &p, i, x0 + i, y);
+                l = SBL__VW;
+            } else {
+                l = 1;
+            }
+            for (; bits; ++i, --l, bits >>= 1) {
+                sbl__tap_want t;
+                double sx, sy;
+                if (!(bits & 1)) continue;
+                sbl__tap_plan_reset(&p, i);
+                if (sbl__temporal_rp_pos(s, x0 + i, y, &t, &sx, &sy))
+                    sbl__tap_plan_set(&s->src, &p, i, &t, sx, sy);
+            }
+            i += l;
         }
         sbl__row_taps(&s->src, &p, n, fallback, r, x0);
         for (i = 0; i < n; ++i)

@@ -214,6 +214,12 @@ static void test_row_gather(void)
                 if (sbt_uniform(&rng) < 0.01) sbt_at(&mv, x, y)[1] = (float)HUGE_VAL - (float)HUGE_VAL;
                 if (sbt_uniform(&rng) < 0.01) sbt_at(&mv, x, y)[0] = 1e30f;
                 if (sbt_uniform(&rng) < 0.01) sbt_at(&mv, x, y)[0] = 1e-40f;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&depth, x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.01) *sbt_at(&depth, x, y) = -(float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) /* x + 0.5 + m not exact in double */
+                    sbt_at(&mv, x, y)[(x + y) & 1] = (float)(sbt_uniform(&rng) * 3e-8);
+                if (sbt_uniform(&rng) < 0.05) /* small motions, some below 2^-8 */
+                    sbt_at(&mv, x, y)[(x + y) & 1] = (float)((sbt_uniform(&rng) - 0.5) * 1e-2 * pow(10.0, -4.0 * sbt_uniform(&rng)));
             }
         memset(&f, 0, sizeof f);
         memset(&hi, 0, sizeof hi);
