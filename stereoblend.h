@@ -128,15 +128,32 @@ SBLDEF const char *sbl_result_string(sbl_result result);
 /* 2. Views and conventions                                                 */
 /* ======================================================================== */
 
+/* A view of fp32 pixels: interleaved channels, any row and pixel stride. The library
+   writes outputs through `data` (const only so that const inputs need no cast).
+   Layouts: tight rows (sbl_image_make); a row pitch in bytes as engines give it
+   (D3D RowPitch, Vulkan rowPitch, stb stride_in_bytes); bottom-up memory such as a
+   glReadPixels buffer: data = the TOP row (the last in memory), stride_bytes = -pitch;
+   a channel view into a wider interleaved buffer: e.g. the XY of an RGBA motion
+   target is data = rgba, channels = 2, pixel_bytes = 16 (ZW: data = rgba + 2). */
 typedef struct sbl_image {
-    float *data;    /* row 0 = top; NULL means "not given" where a buffer is optional */
+    const float *data;  /* pixel (0, 0) = top left; NULL = "not given" where optional   */
     int width;
     int height;
-    int channels;   /* 1..4, interleaved */
-    int stride;     /* floats between the starts of two rows; 0 means width * channels */
+    int channels;       /* 1..4, interleaved                                            */
+    int stride;         /* row stride in floats (may be negative); 0: see stride_bytes  */
+    int stride_bytes;   /* row stride in bytes, a multiple of sizeof(float), may be
+                           negative; 0: `stride`, or tight rows if both are 0. If both
+                           are given they must agree. |row stride| must cover a row.   */
+    int pixel_bytes;    /* bytes from one pixel to the next, a multiple of sizeof(float)
+                           and >= channels * sizeof(float); 0: channels * sizeof(float) */
+    size_t size_bytes;  /* optional: bytes readable from the lowest address the view
+                           touches (the allocation's size for a view at its start);
+                           0: not checked. A layout that does not fit is refused
+                           (SBL_ERROR_INVALID_SIZE) before any read.                    */
 } sbl_image;
 
-SBLDEF sbl_image sbl_image_make(float *data, int width, int height, int channels);
+/* A tight view (rows of width * channels floats, top row first). */
+SBLDEF sbl_image sbl_image_make(const float *data, int width, int height, int channels);
 
 /* G-buffer of one view. Every member is optional: a NULL data pointer skips the test
    that buffer feeds (no depth: no depth test; no ids: no id test, ...). Camera-based
@@ -229,7 +246,19 @@ SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
 /* 3. Reprojection                                                          */
 /* ======================================================================== */
 
-/* Per-tap consistency tests. Zeros mean defaults. */
+/* Tests that sbl_reproject_desc.disabled_tests can switch off explicitly (a zero
+   tolerance means "default", so switching off is a flag, never a magic value). */
+typedef enum sbl_test_flags {
+    SBL_TEST_DEPTH = 1,       /* depth test of every tap                                */
+    SBL_TEST_NORMAL = 2,      /* normal test of every tap                               */
+    SBL_TEST_ID = 4,          /* id test of every tap                                   */
+    SBL_TEST_BACK_CHECK = 8,  /* stereo round trip                                      */
+    SBL_TEST_FALLBACK = 16,   /* the 3x3 search for thin geometry (same as no_fallback) */
+    SBL_TEST_ALL = 31
+} sbl_test_flags;
+
+/* Per-tap consistency tests. Zeros mean defaults; a test runs when both views have its
+   buffer and its bit is not in disabled_tests. */
 typedef struct sbl_reproject_desc {
     float depth_tolerance;    /* relative depth difference a tap may have; 0 -> 0.05.
                                  A slope term (the pixel's depth gradient) is added.   */
@@ -237,6 +266,7 @@ typedef struct sbl_reproject_desc {
     float back_check_pixels;  /* stereo round-trip tolerance in pixels; 0 -> 1.0        */
     int   no_fallback;        /* 1 disables the 3x3 fallback search for thin geometry  */
     sbl_motion_convention motion;
+    int   disabled_tests;     /* SBL_TEST_* bits to switch off; 0: every test on        */
 } sbl_reproject_desc;
 
 typedef enum sbl_temporal_source {
@@ -489,6 +519,7 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
 #include <string.h>
 #include <float.h>
 #include <limits.h>
+#include <stdint.h>
 
 #if defined(SBL_MALLOC) != defined(SBL_FREE)
 #error "define both SBL_MALLOC and SBL_FREE, or neither"
@@ -532,15 +563,15 @@ SBLDEF const char *sbl_result_string(sbl_result result)
 /* 2. Views and conventions                                                 */
 /* ------------------------------------------------------------------------ */
 
-SBLDEF sbl_image sbl_image_make(float *data, int width, int height, int channels)
+SBLDEF sbl_image sbl_image_make(const float *data, int width, int height, int channels)
 {
     sbl_image im;
+    memset(&im, 0, sizeof im);
     im.data = data;
     im.width = width;
     im.height = height;
     im.channels = channels;
-    im.stride = width * channels;
-    return im;
+    return im; /* stride 0: tight rows and pixels */
 }
 
 /* Finite test on the bits, so that -ffast-math (which may assume no NaN/inf and fold
@@ -582,27 +613,66 @@ static int sbl__is_pos_inf(float v)
     return bits == 0x7f800000u;
 }
 
-static int sbl__stride(const sbl_image *im)
+/* Row and pixel steps in floats (signed; validated by sbl__check_image first). */
+static int sbl__step_of(const sbl_image *im)
 {
-    return im->stride ? im->stride : im->width * im->channels;
+    return im->pixel_bytes ? im->pixel_bytes / (int)sizeof(float) : im->channels;
+}
+static ptrdiff_t sbl__stride(const sbl_image *im)
+{
+    if (im->stride_bytes) return (ptrdiff_t)(im->stride_bytes / (int)sizeof(float));
+    if (im->stride) return (ptrdiff_t)im->stride;
+    return (ptrdiff_t)sbl__step_of(im) * (ptrdiff_t)im->width;
 }
 
+/* Pixel (x, y) of a view, writable: inputs and outputs share sbl_image, whose data is
+   const so that const inputs need no cast; an output's memory is the caller's writable
+   buffer, and this is the one place the qualifier is dropped. */
 static float *sbl__px(const sbl_image *im, int x, int y)
 {
-    return im->data + (ptrdiff_t)y * (ptrdiff_t)sbl__stride(im) + (ptrdiff_t)x * im->channels;
+    float *base;
+    memcpy(&base, &im->data, sizeof base);
+    return base + (ptrdiff_t)y * sbl__stride(im) + (ptrdiff_t)x * sbl__step_of(im);
+}
+
+/* Bytes from the lowest to one past the highest byte a view touches (after
+   sbl__check_image's limits this fits in ptrdiff_t). */
+static size_t sbl__footprint(const sbl_image *im)
+{
+    ptrdiff_t rs = sbl__stride(im);
+    size_t rows = (size_t)(rs < 0 ? -rs : rs);
+    return ((size_t)(im->height - 1) * rows + (size_t)(im->width - 1) * (size_t)sbl__step_of(im) +
+            (size_t)im->channels) * sizeof(float);
 }
 
 /* Validate one view. want_channels 0 accepts 1..4. */
 static sbl_result sbl__check_image(const sbl_image *im, int want_channels)
 {
+    const int fs = (int)sizeof(float);
+    ptrdiff_t rs, row_floats;
     if (!im->data) return SBL_ERROR_NULL_POINTER;
     if (im->width <= 0 || im->height <= 0) return SBL_ERROR_INVALID_SIZE;
     if (im->channels < 1 || im->channels > 4) return SBL_ERROR_INVALID_CHANNELS;
     if (want_channels && im->channels != want_channels) return SBL_ERROR_INVALID_CHANNELS;
     /* row and pixel offsets must fit in an int-sized stride and in size_t */
     if (im->width > INT_MAX / 4 || im->height > INT_MAX / 4) return SBL_ERROR_INVALID_SIZE;
-    if (im->stride != 0 && im->stride < im->width * im->channels) return SBL_ERROR_INVALID_STRIDE;
-    if (im->stride < 0) return SBL_ERROR_INVALID_STRIDE;
+    /* byte steps address whole floats; the two row strides must agree if both given */
+    if (im->stride_bytes % fs != 0 || im->pixel_bytes % fs != 0) return SBL_ERROR_INVALID_STRIDE;
+    if (im->pixel_bytes != 0 && im->pixel_bytes < im->channels * fs) return SBL_ERROR_INVALID_STRIDE;
+    if (im->stride_bytes != 0 && im->stride != 0 && im->stride_bytes / fs != im->stride)
+        return SBL_ERROR_INVALID_STRIDE;
+    if (im->stride_bytes == 0 && im->stride < 0 && im->stride < -(INT_MAX / fs))
+        return SBL_ERROR_INVALID_STRIDE;
+    /* rows may not overlap each other: |row stride| covers a row's last pixel */
+    rs = sbl__stride(im);
+    if (rs < 0) rs = -rs;
+    row_floats = (ptrdiff_t)(im->width - 1) * (ptrdiff_t)sbl__step_of(im) + im->channels;
+    if (rs < row_floats) return SBL_ERROR_INVALID_STRIDE;
+    /* the whole footprint must be addressable: (h - 1) |stride| + row <= PTRDIFF_MAX */
+    if ((size_t)rs > ((size_t)PTRDIFF_MAX / sizeof(float) - (size_t)row_floats) /
+                         (size_t)im->height)
+        return SBL_ERROR_INVALID_SIZE;
+    if (im->size_bytes != 0 && sbl__footprint(im) > im->size_bytes) return SBL_ERROR_INVALID_SIZE;
     return SBL_OK;
 }
 
@@ -628,32 +698,43 @@ static sbl_result sbl__check_gbuffer(const sbl_gbuffer *g, int w, int h)
     return SBL_OK;
 }
 
-/* Byte range an image touches: [begin, end). */
+/* Byte range an image touches: [begin, end), from its lowest address (the last row in
+   memory order first when the row stride is negative). */
 static void sbl__range(const sbl_image *im, const char **begin, const char **end)
 {
-    size_t floats = (size_t)(im->height - 1) * (size_t)sbl__stride(im) +
-                    (size_t)im->width * (size_t)im->channels;
-    *begin = (const char *)im->data;
-    *end = (const char *)(im->data + floats);
+    ptrdiff_t rs = sbl__stride(im);
+    const float *lo = im->data + (rs < 0 ? (ptrdiff_t)(im->height - 1) * rs : 0);
+    *begin = (const char *)lo;
+    *end = *begin + sbl__footprint(im);
 }
 
-/* Do two views share a float? Views with the same stride whose rows interleave
-   without touching (the two eyes of a side-by-side texture) do not; other strides are
-   judged by their byte ranges alone (conservative). */
+/* Do two views share a float? Views with the same row period whose rows interleave
+   without touching (the two eyes of a side-by-side texture) do not, nor do views with
+   the same pixel step whose channels interleave (the colour and a 4th-channel weight
+   of one RGBA buffer); anything else is judged by the byte ranges (conservative). */
 static int sbl__overlap(const sbl_image *a, const sbl_image *b)
 {
     const char *a0, *a1, *b0, *b1;
+    ptrdiff_t sa, sb;
     if (!a->data || !b->data) return 0;
     sbl__range(a, &a0, &a1);
     sbl__range(b, &b0, &b1);
     if (!(a0 < b1 && b0 < a1)) return 0;
-    if (sbl__stride(a) == sbl__stride(b) && a->height > 1 && b->height > 1) {
-        const size_t period = (size_t)sbl__stride(a) * sizeof(float);
-        const size_t ra = (size_t)a->width * (size_t)a->channels * sizeof(float);
-        const size_t rb = (size_t)b->width * (size_t)b->channels * sizeof(float);
+    sa = sbl__stride(a); if (sa < 0) sa = -sa;
+    sb = sbl__stride(b); if (sb < 0) sb = -sb;
+    if (sa == sb && (a->height > 1 || b->height > 1)) {
+        const size_t period = (size_t)sa * sizeof(float), fs = sizeof(float);
+        const size_t pa = (size_t)sbl__step_of(a) * fs, pb = (size_t)sbl__step_of(b) * fs;
+        const size_t ra = (size_t)(a->width - 1) * pa + (size_t)a->channels * fs;
+        const size_t rb = (size_t)(b->width - 1) * pb + (size_t)b->channels * fs;
         size_t d = (size_t)(b0 >= a0 ? b0 - a0 : a0 - b0) % period;
         if (b0 < a0) d = (period - d) % period; /* offset of b's rows within a's period */
-        return !(d >= ra && d + rb <= period);
+        if (d >= ra && d + rb <= period) return 0;
+        if (pa == pb && period % pa == 0) { /* channels interleaved within the pixels */
+            size_t e = d % pa;
+            if (e >= (size_t)a->channels * fs && e + (size_t)b->channels * fs <= pa) return 0;
+        }
+        return 1;
     }
     return 1;
 }
@@ -714,7 +795,9 @@ SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
     }
     /* in place only with the same layout: otherwise a row could be overwritten
        before it is read */
-    if (src.data == dst.data ? sbl__stride(&src) != sbl__stride(&dst) : sbl__overlap(&src, &dst))
+    if (src.data == dst.data ? sbl__stride(&src) != sbl__stride(&dst) ||
+                                   sbl__step_of(&src) != sbl__step_of(&dst)
+                             : sbl__overlap(&src, &dst))
         return SBL_ERROR_OVERLAP;
     for (y = 0; y < src.height; ++y)
         for (x = 0; x < src.width; ++x)
@@ -981,8 +1064,8 @@ static sbl__flat sbl__flatten(const sbl_image *im)
 {
     sbl__flat f;
     f.p = im ? im->data : NULL;
-    f.stride = f.p ? (ptrdiff_t)sbl__stride(im) : 0;
-    f.step = f.p ? (ptrdiff_t)im->channels : 0;
+    f.stride = f.p ? sbl__stride(im) : 0;
+    f.step = f.p ? (ptrdiff_t)sbl__step_of(im) : 0;
     f.ch = f.p ? im->channels : 0;
     return f;
 }
@@ -1310,9 +1393,11 @@ static void sbl__tap_src_init(sbl__tap_src *s, const sbl_image *color, const sbl
     s->ids = sbl__flatten(&src_g->ids);
     s->width = color->width;
     s->height = color->height;
-    s->use_depth = src_g->depth.data && dst_g->depth.data;
-    s->use_id = src_g->ids.data && dst_g->ids.data;
-    s->use_normal = src_g->normals.data && dst_g->normals.data && !(rp->normal_threshold < 0.0f);
+    s->use_depth = src_g->depth.data && dst_g->depth.data &&
+                   !(rp->disabled_tests & SBL_TEST_DEPTH);
+    s->use_id = src_g->ids.data && dst_g->ids.data && !(rp->disabled_tests & SBL_TEST_ID);
+    s->use_normal = src_g->normals.data && dst_g->normals.data &&
+                    !(rp->normal_threshold < 0.0f) && !(rp->disabled_tests & SBL_TEST_NORMAL);
     s->depth_tolerance = rp->depth_tolerance;
     s->normal_threshold2 = rp->normal_threshold * rp->normal_threshold;
 }
@@ -1334,6 +1419,7 @@ static void sbl__motion_scale(const sbl_motion_convention *c, int w, int h, doub
 static sbl_reproject_desc sbl__reproject_defaults(const sbl_reproject_desc *d)
 {
     sbl_reproject_desc r = *d;
+    if (r.disabled_tests & SBL_TEST_FALLBACK) r.no_fallback = 1;
     if (sbl__is_zero(r.depth_tolerance)) r.depth_tolerance = 0.05f;
     if (sbl__is_zero(r.normal_threshold)) r.normal_threshold = 0.9f;
     if (sbl__is_zero(r.back_check_pixels)) r.back_check_pixels = 1.0f;
@@ -1348,6 +1434,7 @@ static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
         return SBL_ERROR_INVALID_PARAM;
     if ((int)d->motion.units < 0 || (int)d->motion.units > (int)SBL_MOTION_NDC)
         return SBL_ERROR_INVALID_PARAM;
+    if (d->disabled_tests & ~(int)SBL_TEST_ALL) return SBL_ERROR_INVALID_PARAM;
     return SBL_OK;
 }
 
@@ -1955,16 +2042,18 @@ static int sbl__lane_value_ok(float v)
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row)
 {
     const float *src = sbl__px(k->own, 0, row);
+    const ptrdiff_t step = sbl__step_of(k->own);
     int x, c, ch = k->ch, safe = 1;
     for (x = 0; x < k->w; ++x)
         for (c = 0; c < ch; ++c) {
-            float v = src[(ptrdiff_t)x * ch + c];
+            float v = src[(ptrdiff_t)x * step + c];
             r->y[c][x] = v;
             safe &= sbl__lane_value_ok(v);
         }
     if (k->own_n && k->own_n->data) { /* N_Y: the reference path sanitises it */
         const float *ny = sbl__px(k->own_n, 0, row);
-        for (x = 0; x < k->w; ++x) safe &= sbl__lane_value_ok(ny[x]) && ny[x] <= 1048576.0f;
+        safe &= sbl__step_of(k->own_n) == 1; /* the lanes load N_Y contiguously */
+        for (x = 0; x < k->w && safe; ++x) safe &= sbl__lane_value_ok(ny[x]) && ny[x] <= 1048576.0f;
     }
     return safe;
 }
@@ -2299,15 +2388,14 @@ static void sbl__kernel_run(sbl__kernel *k, int y0, int y1)
             if (x < xs || x >= xe) sbl__kernel_pixel_ref(k, R, x);
         {   /* interleave the staged row into the outputs */
             float *o = sbl__px(&k->out, 0, y);
+            const ptrdiff_t step = sbl__step_of(&k->out);
             for (x = 0; x < k->w; ++x)
-                for (c = 0; c < k->ch; ++c) o[(size_t)x * k->ch + c] = k->stage[c][x];
+                for (c = 0; c < k->ch; ++c) o[(ptrdiff_t)x * step + c] = k->stage[c][x];
             if (k->out_n.data) {
-                float *on = sbl__px(&k->out_n, 0, y);
-                for (x = 0; x < k->w; ++x) on[x] = k->stage_n[x];
+                for (x = 0; x < k->w; ++x) *sbl__px(&k->out_n, x, y) = k->stage_n[x];
             }
             if (k->out_a.data) {
-                float *oa = sbl__px(&k->out_a, 0, y);
-                for (x = 0; x < k->w; ++x) oa[x] = k->stage_a[x];
+                for (x = 0; x < k->w; ++x) *sbl__px(&k->out_a, x, y) = k->stage_a[x];
             }
         }
         {   /* advance the ring: drop row y-1, load row y+2 */
@@ -2646,6 +2734,7 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 
     /* back-check: from the nearest source pixel, with the source's own geometry, the
        correspondence must come back to within back_check_pixels of where it started */
+    if (s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK) return n;
     ix = (int)floor(sx);
     iy = (int)floor(sy);
     if (!s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)) return 0.0f;
