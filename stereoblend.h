@@ -455,9 +455,22 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
 
 SBLDEF size_t sbl_stereo_scratch_size(int width, int channels);
 
-/* Stereo blend of one eye, rows [y0, y1): out = lerp(other eye reprojected, own, beta).
-   Both eyes are read unblended, so calling it for each eye is symmetric. out_length
-   (optional) receives the effective N of the blend. */
+typedef struct sbl_stereo_output {
+    sbl_image color;   /* required; same size and channels as the target eye's colour */
+    sbl_image length;  /* optional; 1 channel: the effective N of the blend            */
+    sbl_image beta;    /* optional; 1 channel: the weight of the own eye used (mean
+                          over channels; 1 where the other eye did not reproject)     */
+} sbl_stereo_output;
+
+/* Stereo blend of one eye, rows [y0, y1): out = lerp(other eye reprojected, own, beta),
+   with beta and N returned like the temporal filter's alpha and N. Both eyes are read
+   unblended, so calling it for each eye is symmetric. */
+SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                    const sbl_eye *target, const sbl_eye *source,
+                                    const sbl_stereo_output *out, int y0, int y1,
+                                    void *scratch, size_t scratch_bytes);
+
+/* sbl_stereo_filter with the outputs colour and length (optional) only. */
 SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
                                    const sbl_eye *target, const sbl_eye *source,
                                    sbl_image out_color, sbl_image out_length,
@@ -2795,11 +2808,12 @@ SBLDEF size_t sbl_stereo_scratch_size(int width, int channels)
     return sbl__kernel_scratch_size(width, channels);
 }
 
-/* All validation of a stereo blend, without writing anything. */
-static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
-                                          sbl_eye_index target_eye, const sbl_eye *target,
-                                          const sbl_eye *source, const sbl_image *out_color,
-                                          const sbl_image *out_length)
+/* All validation of a stereo blend with its outputs, without writing anything. */
+static sbl_result sbl__stereo_output_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
+                                           sbl_eye_index target_eye, const sbl_eye *target,
+                                           const sbl_eye *source, const sbl_image *out_color,
+                                           const sbl_image *out_length,
+                                           const sbl_image *out_beta)
 {
     sbl_result r;
     int w, h;
@@ -2813,22 +2827,39 @@ static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_de
     if (out_color->width != w || out_color->height != h) return SBL_ERROR_SIZE_MISMATCH;
     if (out_color->channels != target->color.channels) return SBL_ERROR_CHANNEL_MISMATCH;
     if ((r = sbl__check_optional(out_length, 1, w, h)) != SBL_OK) return r;
-    if (sbl__overlap(out_color, out_length)) return SBL_ERROR_OVERLAP;
+    if ((r = sbl__check_optional(out_beta, 1, w, h)) != SBL_OK) return r;
+    if (sbl__overlap(out_color, out_length) || sbl__overlap(out_color, out_beta) ||
+        sbl__overlap(out_length, out_beta))
+        return SBL_ERROR_OVERLAP;
     if ((r = sbl__check_outputs_vs_eyes(out_color, target, source)) != SBL_OK) return r;
     if ((r = sbl__check_outputs_vs_eyes(out_length, target, source)) != SBL_OK) return r;
+    if ((r = sbl__check_outputs_vs_eyes(out_beta, target, source)) != SBL_OK) return r;
     return SBL_OK;
 }
 
-SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
-                                   const sbl_eye *target, const sbl_eye *source,
-                                   sbl_image out_color, sbl_image out_length,
-                                   int y0, int y1, void *scratch, size_t scratch_bytes)
+/* All validation of a stereo blend, without writing anything. */
+static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
+                                          sbl_eye_index target_eye, const sbl_eye *target,
+                                          const sbl_eye *source, const sbl_image *out_color,
+                                          const sbl_image *out_length)
+{
+    sbl_image none;
+    memset(&none, 0, sizeof none);
+    return sbl__stereo_output_check(s, desc, target_eye, target, source, out_color,
+                                    out_length, &none);
+}
+
+SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                    const sbl_eye *target, const sbl_eye *source,
+                                    const sbl_stereo_output *out, int y0, int y1,
+                                    void *scratch, size_t scratch_bytes)
 {
     sbl__stereo_rp s;
     sbl__kernel k;
     sbl_result r;
-    if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
-                                     &out_length)) != SBL_OK)
+    if (!out) return SBL_ERROR_NULL_POINTER;
+    if ((r = sbl__stereo_output_check(&s, desc, target_eye, target, source, &out->color,
+                                      &out->length, &out->beta)) != SBL_OK)
         return r;
     if ((r = sbl__check_rows(y0, y1, target->color.height)) != SBL_OK) return r;
     if (!scratch) return SBL_ERROR_NULL_POINTER;
@@ -2848,11 +2879,25 @@ SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index ta
     k.own_n = &target->length;
     k.gather = sbl__stereo_rp_pixel;
     k.gather_ctx = &s;
-    k.out = out_color;
-    k.out_n = out_length;
+    k.out = out->color;
+    k.out_n = out->length;
+    k.out_a = out->beta;
     sbl__kernel_bind(&k, scratch);
     sbl__kernel_run(&k, y0, y1);
     return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                   const sbl_eye *target, const sbl_eye *source,
+                                   sbl_image out_color, sbl_image out_length,
+                                   int y0, int y1, void *scratch, size_t scratch_bytes)
+{
+    sbl_stereo_output out;
+    memset(&out, 0, sizeof out);
+    out.color = out_color;
+    out.length = out_length;
+    return sbl_stereo_filter(desc, target_eye, target, source, &out, y0, y1, scratch,
+                             scratch_bytes);
 }
 
 SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_eye *left,
