@@ -23,8 +23,8 @@ HAVE_EXR := $(shell pkg-config --exists OpenEXR 2>/dev/null && echo 1)
 EXR_CFLAGS := $(if $(HAVE_EXR),$(shell pkg-config --cflags OpenEXR),-DSBL_NO_EXR)
 EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
-TESTS = test_core test_metrics test_stereo test_robust test_paths
-SIMD_TESTS = test_core test_stereo test_paths
+TESTS = test_core test_metrics test_stereo test_robust test_paths test_adaptive
+SIMD_TESTS = test_core test_stereo test_paths test_adaptive
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)

@@ -74,6 +74,7 @@
      1. Results          2. Views and conventions   3. Reprojection
      4. Moments          5. Weights                 6. Blend and history length
      7. Temporal filter  8. Stereo                  9. Fill mode (pixels needing a ray)
+    10. Adaptive computation (stereo consistency mask, stereo blend where it is needed)
 */
 #ifndef STEREOBLEND_H
 #define STEREOBLEND_H
@@ -412,6 +413,50 @@ SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index tar
 SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
                                    const unsigned char *mask, int mask_stride,
                                    int y0, int y1);
+
+/* ======================================================================== */
+/* 10. Adaptive computation                                                 */
+/* ======================================================================== */
+
+/* Stereo consistency (Wu, after Weber's law): a value A(p) of the target eye and the
+   value A(p*) of the other eye at p's back-checked match p* differ visibly when their
+   Weber ratio reaches the threshold:
+       r = |A(p) - A(p*)| / max(|A(p)|, |A(p*)|)     (per channel; the largest counts)
+   The two images are any per-eye quantity (filtered colour, luminance, AO), 1..4
+   channels, the same in both eyes; p* is found by the stereo reprojection of
+   sbl_reproject_stereo (tap tests, back-check) with `source_value` in place of the
+   source eye's colour, so A(p*) is its bilinear value over the taps that pass.
+   Defined cases:
+     - both values 0: r = 0 (equal); one 0, the other not: r = 1;
+     - negative values: the magnitudes in the denominator, so -a against a gives r = 2;
+     - NaN or +-inf in target_value at p: inconsistent (nothing finite can agree);
+     - NaN or +-inf in source_value: such taps are dropped as by every reprojection; if
+       no tap remains the pixel has no correspondence.
+   The eyes' colour and length are not read (only their geometry); the rig, focal
+   length, baseline and tap tests are those of `desc`. */
+typedef enum sbl_consistency_class {
+    SBL_CONSISTENT = 0,         /* r < threshold                                      */
+    SBL_INCONSISTENT = 1,       /* r >= threshold, or a non-finite target value       */
+    SBL_NO_CORRESPONDENCE = 2   /* no back-checked match (occluded, outside, no depth) */
+} sbl_consistency_class;
+
+typedef struct sbl_consistency_counts {
+    long consistent, inconsistent, no_correspondence; /* pixels of the rows written    */
+    double inconsistent_ratio; /* inconsistent / (consistent + inconsistent); 0 if none.
+                                  For row bands sum the counts and divide again.      */
+} sbl_consistency_counts;
+
+#define SBL_WEBER_THRESHOLD 0.02f /* Walter et al. (Lightcuts), used by Wu */
+
+/* Classify rows [y0, y1) of `target_eye`: mask[y * mask_stride + x] receives an
+   sbl_consistency_class. threshold 0 -> SBL_WEBER_THRESHOLD; negative or non-finite is
+   SBL_ERROR_INVALID_PARAM. counts (optional) receives the counts of these rows. */
+SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
+                                         sbl_eye_index target_eye, const sbl_eye *target,
+                                         const sbl_eye *source, sbl_image target_value,
+                                         sbl_image source_value, unsigned char *mask,
+                                         int mask_stride, int y0, int y1,
+                                         sbl_consistency_counts *counts);
 
 #ifdef __cplusplus
 }
@@ -2711,6 +2756,94 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
                 float *d = sbl__px(&dst, x, y);
                 for (k = 0; k < dst.channels; ++k) d[k] = t[k];
             }
+    return SBL_OK;
+}
+
+/* ------------------------------------------------------------------------ */
+/* 10. Adaptive computation                                                 */
+/* ------------------------------------------------------------------------ */
+
+/* Weber ratio of two values of one channel (the cases are documented at the
+   declaration); in double so that |a - b| of two finite floats cannot overflow. */
+static double sbl__weber_ratio(float a, float b)
+{
+    double da = fabs((double)a), db = fabs((double)b);
+    double m = da > db ? da : db;
+    if (!(m > 0.0)) return 0.0; /* both +-0 */
+    return fabs((double)a - (double)b) / m;
+}
+
+/* Does the byte mask [mask, mask + (h-1)*stride + w) overlap any image of the eyes or
+   either value image? */
+static int sbl__mask_overlaps(const unsigned char *mask, int mask_stride, int w, int h,
+                              const sbl_eye *a, const sbl_eye *b)
+{
+    const char *m0 = (const char *)mask;
+    const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+    return sbl__overlap_bytes_eye(m0, m1, a) || sbl__overlap_bytes_eye(m0, m1, b);
+}
+
+SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
+                                         sbl_eye_index target_eye, const sbl_eye *target,
+                                         const sbl_eye *source, sbl_image target_value,
+                                         sbl_image source_value, unsigned char *mask,
+                                         int mask_stride, int y0, int y1,
+                                         sbl_consistency_counts *counts)
+{
+    sbl__stereo_rp s;
+    sbl_eye t, o; /* the eyes with the value images as their colour, without N */
+    sbl_result r;
+    long n_ok = 0, n_bad = 0, n_none = 0;
+    int x, y, k, w, h, ch;
+    if (!target || !source) return SBL_ERROR_NULL_POINTER;
+    t = *target;
+    o = *source;
+    t.color = target_value;
+    o.color = source_value;
+    memset(&t.length, 0, sizeof t.length);
+    memset(&o.length, 0, sizeof o.length);
+    /* validates the rig, both eyes' geometry and both value images (size, channels) */
+    if ((r = sbl__stereo_rp_init(&s, desc, target_eye, &t, &o, 1)) != SBL_OK) return r;
+    if (sbl__is_zero(threshold)) threshold = SBL_WEBER_THRESHOLD;
+    if (!sbl__finite(threshold) || !(threshold > 0.0f)) return SBL_ERROR_INVALID_PARAM;
+    w = target_value.width; h = target_value.height; ch = target_value.channels;
+    if (!mask) return SBL_ERROR_NULL_POINTER;
+    if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    if (sbl__mask_overlaps(mask, mask_stride, w, h, &t, &o) ||
+        sbl__mask_overlaps(mask, mask_stride, w, h, target, source))
+        return SBL_ERROR_OVERLAP;
+    for (y = y0; y < y1; ++y) {
+        unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        for (x = 0; x < w; ++x) {
+            float other[4] = {0, 0, 0, 0};
+            const float *own = sbl__px(&target_value, x, y);
+            unsigned char cls;
+            if (!(sbl__stereo_rp_pixel(&s, x, y, other) > 0.0f)) {
+                cls = SBL_NO_CORRESPONDENCE;
+            } else if (sbl__any_nonfinite(own, ch)) {
+                cls = SBL_INCONSISTENT;
+            } else {
+                double worst = 0.0;
+                for (k = 0; k < ch; ++k) {
+                    double q = sbl__weber_ratio(own[k], other[k]);
+                    if (q > worst) worst = q;
+                }
+                cls = worst >= (double)threshold ? SBL_INCONSISTENT : SBL_CONSISTENT;
+            }
+            m[x] = cls;
+            n_ok += cls == SBL_CONSISTENT;
+            n_bad += cls == SBL_INCONSISTENT;
+            n_none += cls == SBL_NO_CORRESPONDENCE;
+        }
+    }
+    if (counts) {
+        counts->consistent = n_ok;
+        counts->inconsistent = n_bad;
+        counts->no_correspondence = n_none;
+        counts->inconsistent_ratio =
+            n_ok + n_bad > 0 ? (double)n_bad / (double)(n_ok + n_bad) : 0.0;
+    }
     return SBL_OK;
 }
 
