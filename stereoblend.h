@@ -458,6 +458,21 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
                                          int mask_stride, int y0, int y1,
                                          sbl_consistency_counts *counts);
 
+/* Adaptive stereo blend (Wu's adaptive pass): rows [y0, y1) of out_color / out_length
+   receive sbl_stereo_blend's result (bit for bit) where mask[y * mask_stride + x] is
+   SBL_INCONSISTENT, and the target eye's own colour and N (1 where it has no length)
+   everywhere else. The blend runs on tiles of 16 x 16 pixels that hold a marked pixel,
+   so its time follows the marked share. The mask is typically sbl_stereo_consistency's
+   on the two eyes' per-eye results (it is read whole, so compute all of it first).
+   Scratch: sbl_stereo_scratch_size(). blended_count (optional): marked pixels of these
+   rows. Arguments are checked as by sbl_stereo_blend, before anything is written. */
+SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                          const sbl_eye *target, const sbl_eye *source,
+                                          const unsigned char *mask, int mask_stride,
+                                          sbl_image out_color, sbl_image out_length,
+                                          int y0, int y1, void *scratch,
+                                          size_t scratch_bytes, long *blended_count);
+
 #ifdef __cplusplus
 }
 #endif
@@ -2844,6 +2859,85 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
         counts->inconsistent_ratio =
             n_ok + n_bad > 0 ? (double)n_bad / (double)(n_ok + n_bad) : 0.0;
     }
+    return SBL_OK;
+}
+
+/* Tiles of the adaptive pass: the blend runs on row bands of this height, on the column
+   spans of the tiles that hold a marked pixel. Each band reloads the two rows around it
+   (the 3x3 window), so taller tiles waste less; narrower ones follow the mask closer. */
+#define SBL__ADAPTIVE_TILE 16
+
+SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                          const sbl_eye *target, const sbl_eye *source,
+                                          const unsigned char *mask, int mask_stride,
+                                          sbl_image out_color, sbl_image out_length,
+                                          int y0, int y1, void *scratch,
+                                          size_t scratch_bytes, long *blended_count)
+{
+    sbl__stereo_rp s;
+    sbl__kernel k;
+    sbl_result r;
+    long marked = 0;
+    int w, h, ch, x, y, c, by;
+    /* every check of the full blend: an empty row range validates and writes nothing */
+    if ((r = sbl_stereo_blend(desc, target_eye, target, source, out_color, out_length, y0, y0,
+                              scratch, scratch_bytes)) != SBL_OK)
+        return r;
+    w = target->color.width; h = target->color.height; ch = target->color.channels;
+    if (!mask) return SBL_ERROR_NULL_POINTER;
+    if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    {   /* the mask is read while the outputs are written */
+        const char *m0 = (const char *)mask;
+        const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+        if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes(m0, m1, &out_length))
+            return SBL_ERROR_OVERLAP;
+    }
+    if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
+                                     &out_length)) != SBL_OK)
+        return r;
+    memset(&k, 0, sizeof k); /* the kernel as sbl_stereo_blend sets it up */
+    k.w = w; k.h = h; k.ch = ch;
+    k.wp = sbl__weight_params_make(s.d.estimator, s.d.rectify, s.d.weight_mode,
+                                   s.d.constant_beta, 0.0f, s.d.clip_gamma,
+                                   s.d.bias_threshold);
+    k.n_cap = FLT_MAX;
+    k.temporal = 0;
+    k.fill = s.d.fill;
+    k.own = &target->color;
+    k.own_n = &target->length;
+    k.gather = sbl__stereo_rp_pixel;
+    k.gather_ctx = &s;
+    k.out = out_color;
+    k.out_n = out_length;
+    sbl__kernel_bind(&k, scratch);
+    /* bands on the absolute tile grid, clipped to [y0, y1) */
+    for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
+        int b0 = by > y0 ? by : y0, b1 = by + SBL__ADAPTIVE_TILE < y1 ? by + SBL__ADAPTIVE_TILE : y1;
+        int tx, any = 0;
+        for (tx = 0; tx < w && !any; tx += SBL__ADAPTIVE_TILE) {
+            int x1 = tx + SBL__ADAPTIVE_TILE < w ? tx + SBL__ADAPTIVE_TILE : w;
+            for (y = b0; y < b1 && !any; ++y) {
+                const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+                for (x = tx; x < x1; ++x)
+                    if (m[x] == SBL_INCONSISTENT) { any = 1; break; }
+            }
+        }
+        if (any) sbl__kernel_run(&k, b0, b1);
+        /* the own result wherever the mask does not ask for the blend */
+        for (y = b0; y < b1; ++y) {
+            const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+            const float *own = sbl__px(&target->color, 0, y);
+            float *o = sbl__px(&out_color, 0, y);
+            float *on = out_length.data ? sbl__px(&out_length, 0, y) : NULL;
+            for (x = 0; x < w; ++x) {
+                if (m[x] == SBL_INCONSISTENT) { ++marked; continue; }
+                for (c = 0; c < ch; ++c) o[(size_t)x * ch + c] = own[(size_t)x * ch + c];
+                if (on) on[x] = sbl__own_n(&k, x, y);
+            }
+        }
+    }
+    if (blended_count) *blended_count = marked;
     return SBL_OK;
 }
 

@@ -345,11 +345,164 @@ static void test_errors(void)
     rig_free(&r);
 }
 
+/* ---- 5. the adaptive blend: the full blend on marked pixels, the own result elsewhere */
+
+static void test_blend_masked(void)
+{
+    const int w = 61, h = 37, ch = 3;
+    rig r;
+    sbt_img col[2], len[2], full = sbt_img_new(w, h, ch, 1), fulln = sbt_img_new(w, h, 1, 2);
+    sbt_img out = sbt_img_new(w, h, ch, 3), outn = sbt_img_new(w, h, 1, 1);
+    sbt_img band = sbt_img_new(w, h, ch, 0), bandn = sbt_img_new(w, h, 1, 0);
+    unsigned char *mask = (unsigned char *)malloc((size_t)(w + 3) * h);
+    size_t bytes = sbl_stereo_scratch_size(w, ch);
+    void *scratch = malloc(bytes);
+    sbt_rng rng = {99};
+    long cnt, expect_cnt, cnt_sum;
+    int t, x, y, k, e, pass, bad_col, bad_n, y0, ok;
+    const int ms = w + 3;
+    rig_init(&r, w, h, ch, 6.0f, 20, 34, 8, 25);
+    for (e = 0; e < 2; ++e) {
+        col[e] = sbt_img_new(w, h, ch, e);
+        len[e] = sbt_img_new(w, h, 1, 1);
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                for (k = 0; k < ch; ++k)
+                    sbt_at(&col[e], x, y)[k] = (float)(0.4 + 0.1 * k + 0.05 * sbt_gauss(&rng));
+                *sbt_at(&len[e], x, y) = (float)(1 + (int)(sbt_uniform(&rng) * 8));
+            }
+        r.eye[e].color = view(&col[e]);
+        r.eye[e].length = view(&len[e]);
+    }
+    /* one own value is NaN and one N is 0: the own result keeps the colour, N -> 1 */
+    sbt_at(&col[0], 3, 3)[1] = (float)(HUGE_VAL - HUGE_VAL);
+    *sbt_at(&len[0], 4, 3) = 0.0f;
+    *sbt_at(&len[1], 4, 3) = 0.0f;
+    for (pass = 0; pass < 3; ++pass)
+        for (t = 0; t < 2; ++t) {
+            /* masks: sparse random (with other byte values, which are not "marked"), one
+               marked block, everything marked */
+            expect_cnt = 0;
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < ms; ++x) {
+                    unsigned char m;
+                    double u = sbt_uniform(&rng);
+                    if (pass == 0) m = u < 0.05 ? SBL_INCONSISTENT : (u < 0.5 ? SBL_CONSISTENT : (u < 0.9 ? SBL_NO_CORRESPONDENCE : 7));
+                    else if (pass == 1) m = (x >= 17 && x < 23 && y >= 30) ? SBL_INCONSISTENT : SBL_CONSISTENT;
+                    else m = SBL_INCONSISTENT;
+                    mask[(size_t)y * ms + x] = m;
+                }
+            mask[(size_t)3 * ms + 3] = SBL_CONSISTENT;
+            mask[(size_t)3 * ms + 4] = SBL_CONSISTENT;
+            expect_cnt = 0;
+            for (y = 0; y < h; ++y)
+                    for (x = 0; x < w; ++x) expect_cnt += mask[(size_t)y * ms + x] == SBL_INCONSISTENT;
+            CHECK_EQ(sbl_stereo_blend(&r.d, (sbl_eye_index)t, &r.eye[t], &r.eye[!t], view(&full),
+                                      view(&fulln), 0, h, scratch, bytes), SBL_OK);
+            CHECK_EQ(sbl_stereo_blend_masked(&r.d, (sbl_eye_index)t, &r.eye[t], &r.eye[!t], mask, ms,
+                                             view(&out), view(&outn), 0, h, scratch, bytes, &cnt),
+                     SBL_OK);
+            CHECK_EQ(cnt, expect_cnt);
+            bad_col = bad_n = 0;
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    int marked = mask[(size_t)y * ms + x] == SBL_INCONSISTENT;
+                    const float *want = marked ? sbt_at(&full, x, y) : sbt_at(&col[t], x, y);
+                    float want_n = marked ? *sbt_at(&fulln, x, y)
+                                          : (*sbt_at(&len[t], x, y) > 0.0f ? *sbt_at(&len[t], x, y) : 1.0f);
+                    bad_col += memcmp(want, sbt_at(&out, x, y), sizeof(float) * ch) != 0;
+                    bad_n += memcmp(&want_n, sbt_at(&outn, x, y), sizeof(float)) != 0;
+                }
+            CHECK_EQ(bad_col, 0);
+            CHECK_EQ(bad_n, 0);
+            CHECK(sbt_canaries_ok(&out) && sbt_canaries_ok(&outn));
+            /* the blend changed the marked pixels (not a copy of the own result) */
+            if (pass == 2) {
+                int changed = 0;
+                for (y = 0; y < h; ++y)
+                    for (x = 0; x < w; ++x)
+                        changed += sbt_at(&out, x, y)[0] != sbt_at(&col[t], x, y)[0];
+                CHECK(changed > w * h / 2);
+            }
+            /* row bands of random heights equal the whole call */
+            memset(band.mem, 0, sizeof(float) * (size_t)band.stride * h);
+            cnt_sum = 0;
+            for (y0 = 0; y0 < h;) {
+                int y1 = y0 + 1 + (int)(sbt_uniform(&rng) * 20.0);
+                if (y1 > h) y1 = h;
+                CHECK_EQ(sbl_stereo_blend_masked(&r.d, (sbl_eye_index)t, &r.eye[t], &r.eye[!t], mask,
+                                                 ms, view(&band), view(&bandn), y0, y1, scratch,
+                                                 bytes, &cnt), SBL_OK);
+                cnt_sum += cnt;
+                y0 = y1;
+            }
+            CHECK_EQ(cnt_sum, expect_cnt);
+            ok = 1;
+            for (y = 0; y < h; ++y)
+                ok &= memcmp(sbt_at(&band, 0, y), sbt_at(&out, 0, y), sizeof(float) * w * ch) == 0 &&
+                      memcmp(sbt_at(&bandn, 0, y), sbt_at(&outn, 0, y), sizeof(float) * w) == 0;
+            CHECK(ok);
+        }
+
+    {   /* rejected calls write nothing */
+        sbl_result got;
+        size_t nf = (size_t)out.stride * h;
+        float *keep = (float *)malloc(nf * sizeof(float));
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) for (k = 0; k < ch; ++k) sbt_at(&out, x, y)[k] = -7.0f;
+        memcpy(keep, out.mem, nf * sizeof(float));
+#define REJECT_B(call, code)                                                  \
+        do {                                                                  \
+            got = (call);                                                     \
+            CHECK_EQ(got, code);                                              \
+            CHECK(memcmp(keep, out.mem, nf * sizeof(float)) == 0);            \
+        } while (0)
+        REJECT_B(sbl_stereo_blend_masked(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], NULL, ms,
+                                         view(&out), view(&outn), 0, h, scratch, bytes, NULL),
+                 SBL_ERROR_NULL_POINTER);
+        REJECT_B(sbl_stereo_blend_masked(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], mask, w - 1,
+                                         view(&out), view(&outn), 0, h, scratch, bytes, NULL),
+                 SBL_ERROR_INVALID_STRIDE);
+        REJECT_B(sbl_stereo_blend_masked(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], mask, ms,
+                                         view(&out), view(&outn), 0, h + 1, scratch, bytes, NULL),
+                 SBL_ERROR_INVALID_ROWS);
+        REJECT_B(sbl_stereo_blend_masked(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], mask, ms,
+                                         view(&out), view(&outn), 0, h, scratch, bytes - 1, NULL),
+                 SBL_ERROR_SCRATCH_TOO_SMALL);
+        REJECT_B(sbl_stereo_blend_masked(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], mask, ms,
+                                         view(&out), view(&outn), 0, h, NULL, bytes, NULL),
+                 SBL_ERROR_NULL_POINTER);
+        REJECT_B(sbl_stereo_blend_masked(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], mask, ms,
+                                         view(&out), view(&col[0]), 0, h, scratch, bytes, NULL),
+                 SBL_ERROR_INVALID_CHANNELS);
+        /* the mask inside an output */
+        REJECT_B(sbl_stereo_blend_masked(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1],
+                                         (const unsigned char *)outn.mem, w, view(&out), view(&outn),
+                                         0, h, scratch, bytes, NULL),
+                 SBL_ERROR_OVERLAP);
+        REJECT_B(sbl_stereo_blend_masked(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1],
+                                         (const unsigned char *)out.mem, w, view(&out), view(&outn),
+                                         0, h, scratch, bytes, NULL),
+                 SBL_ERROR_OVERLAP);
+        /* an output over an input */
+        REJECT_B(sbl_stereo_blend_masked(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], mask, ms,
+                                         view(&out), view(&r.dep[0]), 0, h, scratch, bytes, NULL),
+                 SBL_ERROR_OVERLAP);
+#undef REJECT_B
+        free(keep);
+    }
+    for (e = 0; e < 2; ++e) { free(col[e].mem); free(len[e].mem); }
+    free(full.mem); free(fulln.mem); free(out.mem); free(outn.mem); free(band.mem); free(bandn.mem);
+    free(mask); free(scratch);
+    rig_free(&r);
+}
+
 int main(void)
 {
     test_hand_case();
     test_occlusion_channels();
     test_bands();
     test_errors();
+    test_blend_masked();
     return sbt_finish("test_adaptive");
 }
