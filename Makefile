@@ -118,6 +118,14 @@ $(BUILD)/bench-adaptive: bench/adaptive.c $(DATASET_SRC) $(HEADERS) $(RUNNER) to
 bench-adaptive: $(BUILD)/bench-adaptive
 	./$(BUILD)/bench-adaptive --out bench/out
 
+$(BUILD)/ao_stereo: examples/ao_stereo.c $(DATASET_SRC) $(HEADERS) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+# Wu's stereo-consistent SSAO (Mono / FSA / Variant 1 / Variant 2) on the consistency mask
+ao: $(BUILD)/ao_stereo
+	./$(BUILD)/ao_stereo
+
 demo: $(BUILD)/demo
 	./$(BUILD)/demo
 
