@@ -27,7 +27,7 @@ EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
 # the unit tests (tests/<name>.c): append new ones here; mk/check.mk builds and runs
 # each in every configuration
-TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine
+TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)
@@ -37,7 +37,7 @@ FLAGS_scalar = -DSBL_NO_SIMD
 FLAGS_avx2   = -mavx2 -mfma
 FLAGS_avx512 = -mavx512f -mavx2 -mfma
 
-.PHONY: all check demo bench bench-quick bench-perf bench-ipp clean tests
+.PHONY: all check demo bench bench-quick bench-perf bench-ipp bench-adaptive ao clean tests
 all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
 # make check / make tests / make check-robust: the configurations and the quiet runner
@@ -62,6 +62,22 @@ $(BUILD)/sblexr: examples/sblexr.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl
 $(BUILD)/bench: bench/bench.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+$(BUILD)/bench-adaptive: bench/adaptive.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+# Mono / FSA / adaptive stereo blend: ms, RMSE, eff spp, stereo inconsistency ratio
+bench-adaptive: $(BUILD)/bench-adaptive
+	./$(BUILD)/bench-adaptive --out bench/out
+
+$(BUILD)/ao_stereo: examples/ao_stereo.c $(DATASET_SRC) $(HEADERS) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+# Wu's stereo-consistent SSAO (Mono / FSA / Variant 1 / Variant 2) on the consistency mask
+ao: $(BUILD)/ao_stereo
+	./$(BUILD)/ao_stereo
 
 demo: $(BUILD)/demo
 	./$(BUILD)/demo
