@@ -1977,6 +1977,15 @@ typedef __mmask16 sbl__m;
 #define sbl__posinf(a) \
     _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
 #define sbl__floor(a) _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
+SBL__INLINE __m512 sbl__recip(__m512 a) /* see the SSE2 version */
+{
+    const __m512d one = _mm512_set1_pd(1.0);
+    const __m256 lo = _mm512_cvtpd_ps(_mm512_div_pd(one, _mm512_cvtps_pd(_mm512_castps512_ps256(a))));
+    const __m256 hi = _mm512_cvtpd_ps(_mm512_div_pd(
+        one, _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(a), 1)))));
+    return _mm512_castpd_ps(
+        _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1));
+}
 #elif !defined(SBL_NO_SIMD) && defined(__AVX2__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx2"
@@ -1993,7 +2002,8 @@ typedef __m256 sbl__m;
 #define sbl__min(a, b) _mm256_min_ps(a, b)
 #define sbl__max(a, b) _mm256_max_ps(a, b)
 #define sbl__sqrt(a) _mm256_sqrt_ps(a)
-#define sbl__abs(a) _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a)
+/* abs on the bits: -ffast-math (no signed zeros) may fold a -0.0f mask to +0 */
+#define sbl__abs(a) _mm256_and_ps(a, _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
 #define SBL__ROW_GATHER 1
@@ -2012,6 +2022,13 @@ typedef __m256 sbl__m;
     _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
                                            _mm256_set1_epi32(0x7f800000)))
 #define sbl__floor(a) _mm256_floor_ps(a)
+SBL__INLINE __m256 sbl__recip(__m256 a) /* see the SSE2 version */
+{
+    const __m256d one = _mm256_set1_pd(1.0);
+    const __m128 lo = _mm256_cvtpd_ps(_mm256_div_pd(one, _mm256_cvtps_pd(_mm256_castps256_ps128(a))));
+    const __m128 hi = _mm256_cvtpd_ps(_mm256_div_pd(one, _mm256_cvtps_pd(_mm256_extractf128_ps(a, 1))));
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
+}
 #elif !defined(SBL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || \
                                 (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
@@ -2029,7 +2046,8 @@ typedef __m128 sbl__m;
 #define sbl__min(a, b) _mm_min_ps(a, b)
 #define sbl__max(a, b) _mm_max_ps(a, b)
 #define sbl__sqrt(a) _mm_sqrt_ps(a)
-#define sbl__abs(a) _mm_andnot_ps(_mm_set1_ps(-0.0f), a)
+/* abs on the bits: -ffast-math (no signed zeros) may fold a -0.0f mask to +0 */
+#define sbl__abs(a) _mm_and_ps(a, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
 #define SBL__ROW_GATHER 1
@@ -2046,6 +2064,16 @@ typedef __m128 sbl__m;
         _mm_set1_epi32(0x7f800000)))
 #define sbl__posinf(a) \
     _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)))
+/* 1 / a as the float division gives it, also under -ffast-math (which lets gcc replace
+   a float vector division by a reciprocal estimate): divided in double and rounded once
+   more, which for a quotient of floats is the correctly rounded float (53 >= 2 * 24 + 2) */
+SBL__INLINE __m128 sbl__recip(__m128 a)
+{
+    const __m128d one = _mm_set1_pd(1.0);
+    const __m128 lo = _mm_cvtpd_ps(_mm_div_pd(one, _mm_cvtps_pd(a)));
+    const __m128 hi = _mm_cvtpd_ps(_mm_div_pd(one, _mm_cvtps_pd(_mm_movehl_ps(a, a))));
+    return _mm_movelh_ps(lo, hi);
+}
 /* floor of |a| < 2^31 (SSE2 has no rounding mode op): truncate, then step down */
 SBL__INLINE __m128 sbl__floor(__m128 a)
 {
@@ -2297,7 +2325,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         for (t = 0; t < taps; ++t) {
             /* sbl__depth_match: sky matches only sky; else a finite, positive depth
                within the tolerance */
-            const sbl__v d = contiguous ? sbl__load(s->depth.p + off[t] + p->di[i])
+            const sbl__v d = contiguous && s->depth.step == 1
+                                 ? sbl__load(s->depth.p + off[t] + p->di[i])
                                         : sbl__gatheri(s->depth.p + off[t], p->di + i);
             const sbl__m inf_t = sbl__posinf(d);
             const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
@@ -2311,7 +2340,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
         off[3] = s->length.stride + s->length.step;
         for (t = 0; t < taps; ++t) {
-            const sbl__v nt = contiguous ? sbl__load(s->length.p + off[t] + p->li[i])
+            const sbl__v nt = contiguous && s->length.step == 1
+                                  ? sbl__load(s->length.p + off[t] + p->li[i])
                                          : sbl__gatheri(s->length.p + off[t], p->li + i);
             ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
             accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
@@ -2324,7 +2354,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     for (c = 0; c < ch; ++c) acc[c] = zero;
     for (t = 0; t < taps; ++t) {
         for (c = 0; c < ch; ++c) {
-            const sbl__v v = contiguous && ch == 1 ? sbl__load(s->color.p + off[t] + p->ci[i])
+            const sbl__v v = contiguous && s->color.step == 1
+                                 ? sbl__load(s->color.p + off[t] + p->ci[i])
                                                    : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
             acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
         }
@@ -2335,7 +2366,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
     if (fallback) redo = sbl__mor(redo, lo);
     redo = sbl__mand(redo, fast);
-    inv = sbl__div(one, wsum);
+    inv = sbl__recip(wsum);
     n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
     valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
     sbl__store(r->n + x, sbl__sel(valid, n, zero));
@@ -2363,8 +2394,8 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
            addresses the gather would) */
         for (l = 1; l < SBL__VW; ++l)
             contiguous &= (p->ci[i + l] - p->ci[i] == l * (int)s->color.step) &
-                          (!s->use_depth || p->di[i + l] - p->di[i] == l) &
-                          (!s->length.p || p->li[i + l] - p->li[i] == l);
+                          (!s->use_depth || p->di[i + l] - p->di[i] == l * (int)s->depth.step) &
+                          (!s->length.p || p->li[i + l] - p->li[i] == l * (int)s->length.step);
         switch (s->color.ch) {
         case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
         case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
@@ -2397,13 +2428,15 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
 /* Can sbl__temporal_plan_lanes plan row y of this call? Motion vectors in pixels
    (|k| = 1: the products are exact), images up to 2^15 pixels (positions exact in
    float), no target normals or ids (their tests stay in sbl__tap_want_init), and an
-   interior row (the depth slack reads both neighbours). */
+   interior row (the depth slack reads both neighbours); motion and target depth packed
+   (pixel steps 2 and 1). */
 static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     const int w = s->src.width, h = s->src.height;
     return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
            fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && !s->geo.normals.p &&
-           !s->geo.ids.p && y >= 1 && y + 1 < h;
+           !s->geo.ids.p && y >= 1 && y + 1 < h && s->motion.step == 2 &&
+           (!s->geo.depth.p || s->geo.depth.step == 1);
 }
 
 /* sbl__temporal_rp_pos and sbl__tap_plan_set for the VW pixels x .. x + VW - 1 (all
@@ -2484,8 +2517,12 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
         const int f = (bits_fast >> l) & 1, x0 = f ? (int)x0s[l] : 0, y0 = f ? (int)y0s[l] : 0;
         p->redo[i + l] = (unsigned char)(((sbl__mbits(keep) >> l) & 1) & !f);
         p->ci[i + l] = (int)((ptrdiff_t)y0 * src->color.stride + (ptrdiff_t)x0 * src->color.step);
-        p->di[i + l] = src->use_depth ? (int)((ptrdiff_t)y0 * src->depth.stride + x0) : 0;
-        p->li[i + l] = src->length.p ? (int)((ptrdiff_t)y0 * src->length.stride + x0) : 0;
+        p->di[i + l] = src->use_depth
+                           ? (int)((ptrdiff_t)y0 * src->depth.stride + (ptrdiff_t)x0 * src->depth.step)
+                           : 0;
+        p->li[i + l] = src->length.p ? (int)((ptrdiff_t)y0 * src->length.stride +
+                                             (ptrdiff_t)x0 * src->length.step)
+                                     : 0;
     }
     return bits_scalar;
 }
