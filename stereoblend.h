@@ -1977,6 +1977,14 @@ typedef __mmask16 sbl__m;
 #define sbl__posinf(a) \
     _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
 #define sbl__floor(a) _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
+SBL__INLINE __mmask16 sbl__lane_ok(__m512 a) /* sbl__lane_value_ok per lane */
+{
+    const __m512i b = _mm512_and_si512(_mm512_castps_si512(a), _mm512_set1_epi32(0x7fffffff));
+    const __m512i e = _mm512_srli_epi32(b, 23);
+    return (__mmask16)(_mm512_cmpeq_epi32_mask(b, _mm512_setzero_si512()) |
+                       (_mm512_cmpgt_epi32_mask(e, _mm512_set1_epi32(86)) &
+                        _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(177), e)));
+}
 SBL__INLINE __m512 sbl__recip(__m512 a) /* see the SSE2 version */
 {
     const __m512d one = _mm512_set1_pd(1.0);
@@ -2022,6 +2030,15 @@ typedef __m256 sbl__m;
     _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
                                            _mm256_set1_epi32(0x7f800000)))
 #define sbl__floor(a) _mm256_floor_ps(a)
+SBL__INLINE __m256 sbl__lane_ok(__m256 a) /* sbl__lane_value_ok per lane */
+{
+    const __m256i b = _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7fffffff));
+    const __m256i e = _mm256_srli_epi32(b, 23);
+    return _mm256_castsi256_ps(_mm256_or_si256(
+        _mm256_cmpeq_epi32(b, _mm256_setzero_si256()),
+        _mm256_and_si256(_mm256_cmpgt_epi32(e, _mm256_set1_epi32(86)),
+                         _mm256_cmpgt_epi32(_mm256_set1_epi32(177), e))));
+}
 SBL__INLINE __m256 sbl__recip(__m256 a) /* see the SSE2 version */
 {
     const __m256d one = _mm256_set1_pd(1.0);
@@ -2073,6 +2090,16 @@ SBL__INLINE __m128 sbl__recip(__m128 a)
     const __m128 lo = _mm_cvtpd_ps(_mm_div_pd(one, _mm_cvtps_pd(a)));
     const __m128 hi = _mm_cvtpd_ps(_mm_div_pd(one, _mm_cvtps_pd(_mm_movehl_ps(a, a))));
     return _mm_movelh_ps(lo, hi);
+}
+/* sbl__lane_value_ok per lane, on the bits (exponent in [87, 177), or +-0) */
+SBL__INLINE __m128 sbl__lane_ok(__m128 a)
+{
+    const __m128i b = _mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7fffffff));
+    const __m128i e = _mm_srli_epi32(b, 23);
+    return _mm_castsi128_ps(_mm_or_si128(
+        _mm_cmpeq_epi32(b, _mm_setzero_si128()),
+        _mm_and_si128(_mm_cmpgt_epi32(e, _mm_set1_epi32(86)),
+                      _mm_cmplt_epi32(e, _mm_set1_epi32(177)))));
 }
 /* floor of |a| < 2^31 (SSE2 has no rounding mode op): truncate, then step down */
 SBL__INLINE __m128 sbl__floor(__m128 a)
@@ -2584,7 +2611,30 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     /* the lanes load N_Y contiguously: another pixel step takes the reference path */
     const int ny_lanes = !ny || ny_step == 1;
     int x, c, ch = k->ch, count = 0;
-    for (x = xa; x < xb; ++x) {
+    x = xa;
+#ifdef SBL__ROW_GATHER
+    if (ny_lanes) {
+        /* deinterleave, then flag a vector at a time */
+        for (x = xa; x < xb; ++x)
+            for (c = 0; c < ch; ++c) r->y[c][x] = src[(ptrdiff_t)x * step + c];
+        for (x = xa; x + SBL__VW <= xb; x += SBL__VW) {
+            sbl__m ok = sbl__lane_ok(sbl__load(r->y[0] + x));
+            int bits, l;
+            for (c = 1; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->y[c] + x)));
+            if (ny) {
+                const sbl__v n = sbl__load(ny + x);
+                ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
+            }
+            bits = sbl__mbits(ok);
+            for (l = 0; l < SBL__VW; ++l) {
+                const int bad = !((bits >> l) & 1);
+                r->unsafe[x + l] = (unsigned char)bad;
+                count += bad;
+            }
+        }
+    }
+#endif
+    for (; x < xb; ++x) {
         int safe = ny_lanes;
         for (c = 0; c < ch; ++c) {
             float v = src[(ptrdiff_t)x * step + c];
@@ -2616,7 +2666,18 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
             sbl__ring_put(r, x, k->gather(k->gather_ctx, x, row, tmp), tmp, ch);
         }
     }
-    for (x = xa; x < xb; ++x) {
+    x = xa;
+#ifdef SBL__ROW_GATHER
+    for (; x + SBL__VW <= xb; x += SBL__VW) {
+        sbl__m ok = sbl__lane_ok(sbl__load(r->n + x));
+        int bits, l;
+        for (c = 0; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[c] + x)));
+        bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), sbl__set1(0.0f)), ok));
+        for (l = 0; bits; ++l, bits >>= 1)
+            if ((bits & 1) && !r->unsafe[x + l]) { r->unsafe[x + l] = 1; ++count; }
+    }
+#endif
+    for (; x < xb; ++x) {
         int safe = 1;
         if (!(r->v[x] > 0.0f)) continue;
         for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(r->x[c][x]);
@@ -3002,10 +3063,16 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 const ptrdiff_t step = sbl__step_of(&k->out);
                 for (x = x0; x < x1; ++x)
                     for (c = 0; c < k->ch; ++c) o[(ptrdiff_t)x * step + c] = k->stage[c][x];
-                if (k->out_n.data)
-                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_n, x, y) = k->stage_n[x];
-                if (k->out_a.data)
-                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_a, x, y) = k->stage_a[x];
+                if (k->out_n.data) {
+                    float *on = sbl__px(&k->out_n, 0, y);
+                    const ptrdiff_t ns = sbl__step_of(&k->out_n);
+                    for (x = x0; x < x1; ++x) on[(ptrdiff_t)x * ns] = k->stage_n[x];
+                }
+                if (k->out_a.data) {
+                    float *oa = sbl__px(&k->out_a, 0, y);
+                    const ptrdiff_t as = sbl__step_of(&k->out_a);
+                    for (x = x0; x < x1; ++x) oa[(ptrdiff_t)x * as] = k->stage_a[x];
+                }
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
                 sbl__ring_row t = k->ring[0];
