@@ -2257,7 +2257,7 @@ SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v,
     int c, valid = n > 0.0f;
     r->n[x] = valid ? n : 0.0f;
     r->v[x] = valid ? 1.0f : 0.0f;
-    for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f;
+    for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f; /* v may be NULL if n <= 0 */
 }
 
 #ifdef SBL__ROW_GATHER
@@ -3432,6 +3432,79 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
     return n;
 }
 
+#ifdef SBL__ROW_GATHER
+/* sbl__stereo_rp_pixel for columns [xa, xb) of row y through the row gather (plan in
+   scalar with the rig's map called directly, taps in lanes, back-check in scalar on the
+   matches the lanes kept); `map` is a constant where this is inlined. */
+SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *r, int y,
+                                        int xa, int xb, sbl__stereo_map_fn map)
+{
+    const int sw = s->source->color.width, sh = s->source->color.height;
+    const int fallback = !s->d.reproject.no_fallback, ch = s->src.color.ch;
+    const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
+    const double tol = s->d.reproject.back_check_pixels;
+    sbl__tap_plan p;
+    double psx[SBL__BLOCK], psy[SBL__BLOCK];
+    int x0, i;
+    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
+        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
+        if (n < SBL__VW) {
+            for (i = 0; i < n; ++i) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__stereo_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+            continue;
+        }
+        for (i = 0; i < n; ++i) {
+            const int x = x0 + i;
+            sbl__tap_want want;
+            double sx, sy, sz;
+            float z;
+            sbl__tap_plan_reset(&p, i);
+            psx[i] = psy[i] = 0.0;
+            if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
+            if (!map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
+            if (!(sx >= 0.0 && sx < (double)sw && sy >= 0.0 && sy < (double)sh)) continue;
+            want.depth = (float)sz;
+            psx[i] = sx;
+            psy[i] = sy;
+            sbl__tap_plan_set(&s->src, &p, i, &want, sx, sy);
+        }
+        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
+        for (i = 0; i < n; ++i) {
+            const int x = x0 + i;
+            if (p.redo[i]) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, y, tmp), tmp, ch);
+            } else if (back_check && r->v[x] > 0.0f) {
+                /* as sbl__stereo_rp_pixel: from the nearest source pixel back */
+                double bx, by, bz, ex, ey;
+                int ok = map(s, 1, (int)floor(psx[i]), (int)floor(psy[i]), psx[i], psy[i], &bx,
+                             &by, &bz);
+                if (ok) {
+                    ex = bx - (x + 0.5);
+                    ey = by - (y + 0.5);
+                    ok = ex * ex + ey * ey <= tol * tol;
+                }
+                if (!ok) sbl__ring_put(r, x, 0.0f, NULL, ch);
+            }
+        }
+    }
+}
+
+/* The stereo reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
+static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa, int xb)
+{
+    const sbl__stereo_rp *s = (const sbl__stereo_rp *)ctx;
+    if (s->map == sbl__stereo_map_parallel)
+        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_parallel);
+    else if (s->map == sbl__stereo_map_disparity)
+        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_disparity);
+    else
+        sbl__stereo_rp_row_map(s, r, y, xa, xb, s->map);
+}
+#endif
+
 /* An output of a stereo call must not overlap any buffer of either eye. */
 static sbl_result sbl__check_outputs_vs_eyes(const sbl_image *o, const sbl_eye *a,
                                              const sbl_eye *b)
@@ -3552,6 +3625,9 @@ SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index t
     k.own_n = &target->length;
     k.gather = sbl__stereo_rp_pixel;
     k.gather_ctx = &s;
+#ifdef SBL__ROW_GATHER
+    if (sbl__row_gather_ok(&s.src)) k.gather_row = sbl__stereo_rp_row;
+#endif
     k.out = out->color;
     k.out_n = out->length;
     k.out_a = out->beta;
@@ -3904,6 +3980,9 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     k.own_n = &target->length;
     k.gather = sbl__stereo_rp_pixel;
     k.gather_ctx = &s;
+#ifdef SBL__ROW_GATHER
+    if (sbl__row_gather_ok(&s.src)) k.gather_row = sbl__stereo_rp_row;
+#endif
     k.out = out_color;
     k.out_n = out_length;
     sbl__kernel_bind(&k, scratch);

@@ -295,6 +295,96 @@ static void test_row_gather(void)
 #endif
 }
 
+/* The stereo row gather against sbl__stereo_rp_pixel, bit for bit (or within the
+   contraction tolerance): parallel and disparity rigs (one and two channels), both
+   eyes as target, back-check on and off, hostile depth / disparity / colour / N. */
+static void test_stereo_row_gather(void)
+{
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+    sbt_rng rng = {123};
+    int it, pixels = 0, mismatches = 0, none = 0;
+    for (it = 0; it < 300; ++it) {
+        int w = 2 + (int)(sbt_uniform(&rng) * 80), h = 2 + (int)(sbt_uniform(&rng) * 8);
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i, e;
+        int rig = it % 3, dch = 1 + (it / 3) % 2;
+        sbt_img col[2], len[2], dep[2], disp[2];
+        sbl_stereo_desc sd;
+        sbl_eye eye[2];
+        sbl__stereo_rp rp;
+        float planes[2][7][96];
+        unsigned char unsafe[96];
+        sbl__ring_row ra, rb;
+        for (e = 0; e < 2; ++e) {
+            col[e] = sbt_img_new(w, h, ch, 1);
+            len[e] = sbt_img_new(w, h, 1, 0);
+            dep[e] = sbt_img_new(w, h, 1, 1);
+            disp[e] = sbt_img_new(w, h, dch, 0);
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    float u = (float)sbt_uniform(&rng);
+                    for (c = 0; c < ch; ++c) sbt_at(&col[e], x, y)[c] = (float)sbt_uniform(&rng);
+                    *sbt_at(&len[e], x, y) = (float)(sbt_uniform(&rng) * 20);
+                    *sbt_at(&dep[e], x, y) = u < 0.1f ? 2.0f : 4.0f;
+                    sbt_at(&disp[e], x, y)[0] = u < 0.1f ? 5.0f : 2.5f + 0.01f * x;
+                    if (dch > 1) sbt_at(&disp[e], x, y)[1] = (float)(sbt_uniform(&rng) * 0.6 - 0.3);
+                    if (sbt_uniform(&rng) < 0.03) *sbt_at(&dep[e], x, y) = (float)HUGE_VAL;
+                    if (sbt_uniform(&rng) < 0.02) *sbt_at(&dep[e], x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                    if (sbt_uniform(&rng) < 0.02) sbt_at(&disp[e], x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+                    if (sbt_uniform(&rng) < 0.02) sbt_at(&col[e], x, y)[0] = (float)HUGE_VAL;
+                    if (sbt_uniform(&rng) < 0.02) *sbt_at(&len[e], x, y) = 0.0f;
+                }
+            memset(&eye[e], 0, sizeof eye[e]);
+            eye[e].color = view(&col[e]);
+            eye[e].length = view(&len[e]);
+            eye[e].gbuffer.depth = view(&dep[e]);
+            eye[e].disparity = view(&disp[e]);
+        }
+        memset(&sd, 0, sizeof sd);
+        sd.rig = rig == 2 ? SBL_RIG_DISPARITY : SBL_RIG_PARALLEL;
+        sd.focal_px = 10.0f;
+        sd.baseline = 1.0f;
+        if (rig == 1) sd.disparity_offset = 0.75f;
+        if (it % 4 == 3) sd.reproject.disabled_tests = SBL_TEST_BACK_CHECK;
+        sd.reproject.no_fallback = it % 5 == 1;
+        e = it & 1;
+        CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+        CHECK(sbl__row_gather_ok(&rp.src));
+        for (i = 0; i < 2; ++i) {
+            sbl__ring_row *r = i ? &rb : &ra;
+            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
+            r->n = planes[i][4];
+            r->v = planes[i][5];
+            r->y[0] = planes[i][6];
+            r->unsafe = unsafe;
+            memset(planes[i], 0xff, sizeof planes[i]);
+        }
+        for (y = 0; y < h; ++y) {
+            sbl__stereo_rp_row(&rp, &ra, y, 0, w);
+            for (x = 0; x < w; ++x) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(&rb, x, sbl__stereo_rp_pixel(&rp, x, y, tmp), tmp, ch);
+            }
+            for (x = 0; x < w; ++x) {
+                int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
+                for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
+                if (bad && mismatches < 5)
+                    printf("  stereo row gather case %d (rig %d) pixel (%d,%d): n %.9g vs %.9g\n", it,
+                           rig, x, y, ra.n[x], rb.n[x]);
+                mismatches += bad;
+                none += !(rb.n[x] > 0.0f);
+                ++pixels;
+            }
+        }
+        for (e = 0; e < 2; ++e) { free(col[e].mem); free(len[e].mem); free(dep[e].mem); free(disp[e].mem); }
+    }
+    printf("  %s stereo row gather vs pixel gather: %d pixels (%d without a match), %d differ\n",
+           SBL_SIMD_NAME, pixels, none, mismatches);
+    CHECK(mismatches == 0);
+    CHECK(none > pixels / 20 && none < pixels / 2);
+#endif
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -384,5 +474,6 @@ int main(void)
     CHECK(refused > 0);
     test_spans();
     test_row_gather();
+    test_stereo_row_gather();
     return sbt_finish("test_paths");
 }
