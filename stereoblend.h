@@ -2322,9 +2322,8 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
    adds +0 to a sum that cannot be -0), hence the same bits. Lanes whose sums are not
    finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
    contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
-   rest), read with plain vector loads where a view has one channel. When no lane has
-   a fraction (a camera at rest), the three taps of weight 0 are skipped: they would
-   add +0 everywhere. */
+   rest), read with plain vector loads where a view has one channel. Taps of weight 0
+   in every lane are skipped: they would add +0 everywhere. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                  sbl__ring_row *r, int x, int ch, int contiguous)
 {
@@ -2335,9 +2334,11 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     sbl__v w[4], acc[4], accn = zero, wsum = zero, inv, n;
     sbl__m ok[4], redo, lo, valid;
     ptrdiff_t off[4];
-    int t, c, bits, taps;
-    /* fractions are >= 0: none above 0 means every lane reads its pixel (x0, y0) */
-    taps = sbl__mbits(sbl__mor(sbl__gt(fx, zero), sbl__gt(fy, zero))) ? 4 : 1;
+    int t, c, bits, skip = 0;
+    /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
+       in every lane (a camera at rest; the rows of a parallel stereo rig) */
+    if (!sbl__mbits(sbl__gt(fx, zero))) skip |= 1;
+    if (!sbl__mbits(sbl__gt(fy, zero))) skip |= 2;
     w[0] = sbl__mul(gx, gy);
     w[1] = sbl__mul(fx, gy);
     w[2] = sbl__mul(gx, fy);
@@ -2349,7 +2350,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         const sbl__m inf_e = sbl__posinf(ze);
         off[0] = 0; off[1] = s->depth.step; off[2] = s->depth.stride;
         off[3] = s->depth.stride + s->depth.step;
-        for (t = 0; t < taps; ++t) {
+        for (t = 0; t < 4; ++t) {
+            if (t & skip) continue;
             /* sbl__depth_match: sky matches only sky; else a finite, positive depth
                within the tolerance */
             const sbl__v d = contiguous && s->depth.step == 1
@@ -2366,7 +2368,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     if (s->length.p) {
         off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
         off[3] = s->length.stride + s->length.step;
-        for (t = 0; t < taps; ++t) {
+        for (t = 0; t < 4; ++t) {
+            if (t & skip) continue;
             const sbl__v nt = contiguous && s->length.step == 1
                                   ? sbl__load(s->length.p + off[t] + p->li[i])
                                          : sbl__gatheri(s->length.p + off[t], p->li + i);
@@ -2374,16 +2377,18 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
             accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
         }
     } else {
-        for (t = 0; t < taps; ++t) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
+        for (t = 0; t < 4; ++t)
+            if (!(t & skip)) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
     }
     off[0] = 0; off[1] = s->color.step; off[2] = s->color.stride;
     off[3] = s->color.stride + s->color.step;
     for (c = 0; c < ch; ++c) acc[c] = zero;
-    for (t = 0; t < taps; ++t) {
+    for (t = 0; t < 4; ++t) {
+        if (t & skip) continue;
         for (c = 0; c < ch; ++c) {
             const sbl__v v = contiguous && s->color.step == 1
                                  ? sbl__load(s->color.p + off[t] + p->ci[i])
-                                                   : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
+                                 : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
             acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
         }
         wsum = sbl__add(wsum, sbl__sel(ok[t], w[t], zero));
