@@ -1985,12 +1985,14 @@ SBL__INLINE __mmask16 sbl__lane_ok(__m512 a) /* sbl__lane_value_ok per lane */
                        (_mm512_cmpgt_epi32_mask(e, _mm512_set1_epi32(86)) &
                         _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(177), e)));
 }
-SBL__INLINE __m512 sbl__recip(__m512 a) /* see the SSE2 version */
+SBL__INLINE __m512 sbl__div_exact(__m512 n, __m512 a) /* see the SSE2 version */
 {
-    const __m512d one = _mm512_set1_pd(1.0);
-    const __m256 lo = _mm512_cvtpd_ps(_mm512_div_pd(one, _mm512_cvtps_pd(_mm512_castps512_ps256(a))));
-    const __m256 hi = _mm512_cvtpd_ps(_mm512_div_pd(
-        one, _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(a), 1)))));
+#define SBL__HI256(v) _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(v), 1))
+    const __m256 lo = _mm512_cvtpd_ps(_mm512_div_pd(_mm512_cvtps_pd(_mm512_castps512_ps256(n)),
+                                                    _mm512_cvtps_pd(_mm512_castps512_ps256(a))));
+    const __m256 hi = _mm512_cvtpd_ps(_mm512_div_pd(_mm512_cvtps_pd(SBL__HI256(n)),
+                                                    _mm512_cvtps_pd(SBL__HI256(a))));
+#undef SBL__HI256
     return _mm512_castpd_ps(
         _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1));
 }
@@ -2039,11 +2041,12 @@ SBL__INLINE __m256 sbl__lane_ok(__m256 a) /* sbl__lane_value_ok per lane */
         _mm256_and_si256(_mm256_cmpgt_epi32(e, _mm256_set1_epi32(86)),
                          _mm256_cmpgt_epi32(_mm256_set1_epi32(177), e))));
 }
-SBL__INLINE __m256 sbl__recip(__m256 a) /* see the SSE2 version */
+SBL__INLINE __m256 sbl__div_exact(__m256 n, __m256 a) /* see the SSE2 version */
 {
-    const __m256d one = _mm256_set1_pd(1.0);
-    const __m128 lo = _mm256_cvtpd_ps(_mm256_div_pd(one, _mm256_cvtps_pd(_mm256_castps256_ps128(a))));
-    const __m128 hi = _mm256_cvtpd_ps(_mm256_div_pd(one, _mm256_cvtps_pd(_mm256_extractf128_ps(a, 1))));
+    const __m128 lo = _mm256_cvtpd_ps(_mm256_div_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(n)),
+                                                    _mm256_cvtps_pd(_mm256_castps256_ps128(a))));
+    const __m128 hi = _mm256_cvtpd_ps(_mm256_div_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(n, 1)),
+                                                    _mm256_cvtps_pd(_mm256_extractf128_ps(a, 1))));
     return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
 }
 #elif !defined(SBL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || \
@@ -2081,14 +2084,14 @@ typedef __m128 sbl__m;
         _mm_set1_epi32(0x7f800000)))
 #define sbl__posinf(a) \
     _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)))
-/* 1 / a as the float division gives it, also under -ffast-math (which lets gcc replace
+/* n / a as the float division gives it, also under -ffast-math (which lets gcc replace
    a float vector division by a reciprocal estimate): divided in double and rounded once
    more, which for a quotient of floats is the correctly rounded float (53 >= 2 * 24 + 2) */
-SBL__INLINE __m128 sbl__recip(__m128 a)
+SBL__INLINE __m128 sbl__div_exact(__m128 n, __m128 a)
 {
-    const __m128d one = _mm_set1_pd(1.0);
-    const __m128 lo = _mm_cvtpd_ps(_mm_div_pd(one, _mm_cvtps_pd(a)));
-    const __m128 hi = _mm_cvtpd_ps(_mm_div_pd(one, _mm_cvtps_pd(_mm_movehl_ps(a, a))));
+    const __m128 lo = _mm_cvtpd_ps(_mm_div_pd(_mm_cvtps_pd(n), _mm_cvtps_pd(a)));
+    const __m128 hi = _mm_cvtpd_ps(_mm_div_pd(_mm_cvtps_pd(_mm_movehl_ps(n, n)),
+                                              _mm_cvtps_pd(_mm_movehl_ps(a, a))));
     return _mm_movelh_ps(lo, hi);
 }
 /* sbl__lane_value_ok per lane, on the bits (exponent in [87, 177), or +-0) */
@@ -2398,7 +2401,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
     if (fallback) redo = sbl__mor(redo, lo);
     redo = sbl__mand(redo, fast);
-    inv = sbl__recip(wsum);
+    inv = sbl__div_exact(one, wsum);
     n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
     valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
     sbl__store(r->n + x, sbl__sel(valid, n, zero));
@@ -2471,52 +2474,49 @@ static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
            (!s->geo.depth.p || s->geo.depth.step == 1);
 }
 
-/* sbl__temporal_rp_pos and sbl__tap_plan_set for the VW pixels x .. x + VW - 1 (all
-   with both horizontal neighbours) in float lanes, with the same results: for a
-   motion m in pixels with |m| = 0 or in [2^-8, 2^15), x + 0.5 + m is exact in double,
-   so the reference's floor and fraction are floor(m) and the correctly rounded
-   m - floor(m), and its bounds tests are exact float comparisons of m. Lanes with any
-   other motion are left to the scalar plan (returned as bits). */
-SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
-                                         int x, int y)
+/* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 of an interior
+   row (all with both neighbours), when the target has depth and no normals or ids:
+   valid geometry is z > 0 (NaN and -inf fail, +inf is sky); the slack is the smaller
+   one-sided difference per axis where finite (x86 min returns its second operand
+   when one is NaN, as `da < db ? da : db` does), 0 for a non-finite z. */
+SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int x, int y, sbl__v *z,
+                                   sbl__v *slack)
 {
-    static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+    const sbl__v zero = sbl__set1(0.0f);
+    const float *dp = SBL__AT(*depth, x, y);
+    const ptrdiff_t ds = depth->stride;
+    sbl__v da, db, sx, sy;
+    *z = sbl__load(dp);
+    da = sbl__abs(sbl__sub(*z, sbl__load(dp - 1)));
+    db = sbl__abs(sbl__sub(sbl__load(dp + 1), *z));
+    sx = sbl__min(da, db);
+    sx = sbl__sel(sbl__nonfinite(sx), zero, sx);
+    da = sbl__abs(sbl__sub(*z, sbl__load(dp - ds)));
+    db = sbl__abs(sbl__sub(sbl__load(dp + ds), *z));
+    sy = sbl__min(da, db);
+    sy = sbl__sel(sbl__nonfinite(sy), zero, sy);
+    *slack = sbl__sel(sbl__nonfinite(*z), zero, sbl__add(sx, sy));
+    return sbl__gt(*z, zero);
+}
+
+/* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
+   (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
+   results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
+   exact in double, so the reference's floor and fraction are floor(m) and the
+   correctly rounded m - floor(m), and its bounds tests are exact float comparisons of
+   m. Lanes with any other m are left to the scalar plan (returned as bits). */
+SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i, int x, int y,
+                                sbl__m keep, sbl__v z, sbl__v slack, sbl__v mx, sbl__v my)
+{
     static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-    const sbl__tap_src *src = &s->src;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
     const sbl__v lo = sbl__set1(1.0f / 256.0f), hi = sbl__set1(32768.0f);
     const sbl__v wf = sbl__set1((float)src->width), hf = sbl__set1((float)src->height);
     const sbl__v xf = sbl__add(sbl__set1((float)x), sbl__load(lane)), yf = sbl__set1((float)y);
-    const float *mvp = SBL__AT(s->motion, x, y);
-    sbl__v z = zero, slack = zero, mx, my, ax, ay, fmx, fmy, x0f, y0f;
-    sbl__m keep, exact, inside, fast;
-    int l, bits_scalar, bits_fast;
+    sbl__v ax, ay, fmx, fmy, x0f, y0f;
+    sbl__m exact, inside, fast;
+    int l, bits_scalar, bits_fast, bits_keep;
     float x0s[SBL__VW], y0s[SBL__VW];
-    if (s->geo.depth.p) {
-        /* sbl__tap_want_init / sbl__depth_slack: valid geometry is z > 0 (NaN, -inf
-           fail; +inf is sky); slack = min one-sided difference per axis, if finite */
-        const float *dp = SBL__AT(s->geo.depth, x, y);
-        const ptrdiff_t ds = s->geo.depth.stride;
-        sbl__v da, db, sx, sy;
-        z = sbl__load(dp);
-        da = sbl__abs(sbl__sub(z, sbl__load(dp - 1)));
-        db = sbl__abs(sbl__sub(sbl__load(dp + 1), z));
-        sx = sbl__min(da, db);
-        sx = sbl__sel(sbl__nonfinite(sx), zero, sx);
-        da = sbl__abs(sbl__sub(z, sbl__load(dp - ds)));
-        db = sbl__abs(sbl__sub(sbl__load(dp + ds), z));
-        sy = sbl__min(da, db);
-        sy = sbl__sel(sbl__nonfinite(sy), zero, sy);
-        slack = sbl__sel(sbl__nonfinite(z), zero, sbl__add(sx, sy));
-        keep = sbl__gt(z, zero);
-    } else {
-        keep = sbl__gt(one, zero);
-    }
-    mx = sbl__gatheri(mvp, pair);
-    my = sbl__gatheri(mvp + 1, pair);
-    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
-    if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
-    if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
     ax = sbl__abs(mx);
     ay = sbl__abs(my);
     exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
@@ -2545,9 +2545,10 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
     sbl__store(x0s, x0f);
     sbl__store(y0s, y0f);
     bits_fast = sbl__mbits(fast);
+    bits_keep = sbl__mbits(keep);
     for (l = 0; l < SBL__VW; ++l) {
         const int f = (bits_fast >> l) & 1, x0 = f ? (int)x0s[l] : 0, y0 = f ? (int)y0s[l] : 0;
-        p->redo[i + l] = (unsigned char)(((sbl__mbits(keep) >> l) & 1) & !f);
+        p->redo[i + l] = (unsigned char)(((bits_keep >> l) & 1) & !f);
         p->ci[i + l] = (int)((ptrdiff_t)y0 * src->color.stride + (ptrdiff_t)x0 * src->color.step);
         p->di[i + l] = src->use_depth
                            ? (int)((ptrdiff_t)y0 * src->depth.stride + (ptrdiff_t)x0 * src->depth.step)
@@ -2557,6 +2558,25 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
                                      : 0;
     }
     return bits_scalar;
+}
+
+/* sbl__temporal_rp_pos and sbl__tap_plan_set in lanes (motion vectors in pixels) */
+SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                         int x, int y)
+{
+    static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const float *mvp = SBL__AT(s->motion, x, y);
+    sbl__v z = zero, slack = zero, mx, my;
+    sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+                                 : sbl__gt(one, zero);
+    mx = sbl__gatheri(mvp, pair);
+    my = sbl__gatheri(mvp + 1, pair);
+    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+    if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
+    if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
+    /* motion carries no depth change: the expected depth is z (sz = z) */
+    return sbl__plan_lanes(&s->src, p, i, x, y, keep, z, slack, mx, my);
 }
 
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
@@ -3448,6 +3468,13 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
     const int fallback = !s->d.reproject.no_fallback, ch = s->src.color.ch;
     const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
     const double tol = s->d.reproject.back_check_pixels;
+    /* the plan in lanes: parallel rig without a disparity offset (the lane plan's
+       positions are exact for m = +-f b / z), target depth packed and of the source's
+       size, no target normals / ids, an interior row, images up to 2^15 */
+    const int lanes = map == sbl__stereo_map_parallel && s->offset == 0.0 && s->geo.depth.p &&
+                      s->geo.depth.step == 1 && !s->geo.normals.p && !s->geo.ids.p &&
+                      s->geo.width == sw && s->geo.height == sh && sw <= 32768 &&
+                      sh <= 32768 && y >= 1 && y + 1 < sh;
     sbl__tap_plan p;
     double psx[SBL__BLOCK], psy[SBL__BLOCK];
     int x0, i;
@@ -3460,20 +3487,42 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
             }
             continue;
         }
-        for (i = 0; i < n; ++i) {
-            const int x = x0 + i;
-            sbl__tap_want want;
-            double sx, sy, sz;
-            float z;
-            sbl__tap_plan_reset(&p, i);
-            psx[i] = psy[i] = 0.0;
-            if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
-            if (!map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
-            if (!(sx >= 0.0 && sx < (double)sw && sy >= 0.0 && sy < (double)sh)) continue;
-            want.depth = (float)sz;
-            psx[i] = sx;
-            psy[i] = sy;
-            sbl__tap_plan_set(&s->src, &p, i, &want, sx, sy);
+        for (i = 0; i < n;) {
+            int bits = 1, l = 1;
+            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
+                /* the parallel rig in lanes: m = dir f b / z */
+                const sbl__v zero = sbl__set1(0.0f);
+                float fbz[SBL__VW];
+                sbl__v z, slack, m;
+                sbl__m keep = sbl__lanes_want(&s->geo.depth, x0 + i, y, &z, &slack);
+                m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
+                keep = sbl__mandnot(keep, sbl__nonfinite(m));
+                sbl__store(fbz, m);
+                if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
+                bits = sbl__plan_lanes(&s->src, &p, i, x0 + i, y, keep, z, slack, m, zero);
+                for (l = 0; l < SBL__VW; ++l) {
+                    psx[i + l] = x0 + i + l + 0.5 + s->dir[0] * ((double)fbz[l] - s->offset);
+                    psy[i + l] = y + 0.5;
+                }
+                l = SBL__VW;
+            }
+            for (; bits; ++i, --l, bits >>= 1) {
+                const int x = x0 + i;
+                sbl__tap_want want;
+                double sx, sy, sz;
+                float z;
+                if (!(bits & 1)) continue;
+                sbl__tap_plan_reset(&p, i);
+                psx[i] = psy[i] = 0.0;
+                if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
+                if (!map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
+                if (!(sx >= 0.0 && sx < (double)sw && sy >= 0.0 && sy < (double)sh)) continue;
+                want.depth = (float)sz;
+                psx[i] = sx;
+                psy[i] = sy;
+                sbl__tap_plan_set(&s->src, &p, i, &want, sx, sy);
+            }
+            i += l;
         }
         sbl__row_taps(&s->src, &p, n, fallback, r, x0);
         for (i = 0; i < n; ++i) {
