@@ -42,7 +42,7 @@ TEST_BINS = $(foreach c,$(COMPILERS),$(addprefix $(BUILD)/$(c)/,$(TESTS))) \
             $(foreach v,$(SIMD_VARIANTS),$(addprefix $(BUILD)/simd-$(v)/,$(SIMD_TESTS))) \
             $(foreach v,default $(filter-out scalar,$(SIMD_VARIANTS)),$(BUILD)/simd-$(v)/test_simd)
 
-.PHONY: all check demo bench bench-quick bench-perf clean tests
+.PHONY: all check demo bench bench-quick bench-perf bench-ipp clean tests
 all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
 tests: $(TEST_BINS)
@@ -139,6 +139,18 @@ endif
 PERF_FLAGS ?= -march=native
 bench-perf: $(BUILD)/perf
 	./$(BUILD)/perf --out bench/out
+
+# instructions per pixel (callgrind, inside the public call only) on the SSE2 and the
+# AVX2 build: the noise-free speed figure (valgrind cannot run AVX-512 code)
+IPP_CASES ?= easy hard tiny static
+$(BUILD)/ipp-sse2: bench/ipp.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) -std=c99 -Wall -Wextra -O2 -g $< -o $@ $(LDLIBS)
+$(BUILD)/ipp-avx2: bench/ipp.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) -std=c99 -Wall -Wextra -O2 -g -mavx2 -mfma $< -o $@ $(LDLIBS)
+bench-ipp: $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2
+	@sh bench/ipp.sh $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2 -- $(IPP_CASES)
 
 # the same in under a minute (CI smoke run; never asserts timings)
 bench-quick: $(BUILD)/bench

@@ -1969,12 +1969,15 @@ typedef int sbl__m;
    deinterleaved into planes, and the other estimate x* (reprojected history or other
    eye) is gathered once per row, into a ring of three rows; the 3x3 statistics, the
    weight, the rectification, the blend and Eq. 5 then run over those planes:
-   - the lane kernel (SIMD layer above) on interior pixels of rows whose values are
-     finite and within about [1e-12, 1e15] in magnitude (or 0), in float;
+   - the lane kernel (SIMD layer above) on interior pixels whose 3x3 window holds only
+     values that are finite and within about [1e-12, 1e15] in magnitude (or 0), in
+     float;
    - the reference path (sbl__blend_pixel, double) everywhere else: image borders
-     (fewer than 9 neighbours), non-finite samples, extreme magnitudes or denormals.
+     (fewer than 9 neighbours), and pixels with a non-finite sample, an extreme
+     magnitude or a denormal in their window ("unsafe", flagged per pixel at load).
    Each output pixel takes one of the two paths by a rule that depends only on the
-   input, never on the row range, so banded calls reproduce a whole-image call. */
+   input, never on the row or column range nor on the vector width, so banded and
+   tiled calls reproduce a whole-image call and every SIMD build the scalar one. */
 
 typedef float (*sbl__gather_fn)(const void *ctx, int x, int y, float *out);
 
@@ -1983,8 +1986,9 @@ typedef struct sbl__ring_row {
     float *x[4];   /* x* per channel, 0 where invalid                           */
     float *n;      /* N of x*, 0 where invalid                                  */
     float *v;      /* 1 where x* is valid, else 0                               */
+    unsigned char *unsafe; /* 1 where a value of the pixel is outside the lane range */
     int row;       /* image row held (-1: none)                                 */
-    int lane_safe; /* every value finite and of moderate magnitude              */
+    int unsafe_count; /* pixels flagged unsafe among the columns loaded          */
 } sbl__ring_row;
 
 typedef struct sbl__kernel {
@@ -1999,10 +2003,12 @@ typedef struct sbl__kernel {
     const void *gather_ctx;
     sbl_image out, out_n, out_a; /* out_n / out_a data may be NULL                */
     float *stage[4], *stage_n, *stage_a;
+    unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
     sbl__ring_row ring[3];
 } sbl__kernel;
 
-/* planes per ring row: 2 * channels + 2; staging: channels + 2; each plane padded */
+/* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
+   channels + 2 float planes and one byte plane; each plane padded to 64 bytes */
 static size_t sbl__plane_floats(int width)
 {
     return ((size_t)width + 15u) & ~(size_t)15u;
@@ -2010,9 +2016,10 @@ static size_t sbl__plane_floats(int width)
 
 static size_t sbl__kernel_scratch_size(int width, int channels)
 {
+    size_t pf;
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
-    return (size_t)(3 * (2 * channels + 2) + channels + 2) * sbl__plane_floats(width) *
-               sizeof(float) + 64;
+    pf = sbl__plane_floats(width);
+    return (size_t)(3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 4 * pf + 64;
 }
 
 static void *sbl__align64(void *p)
@@ -2032,11 +2039,16 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
         k->ring[r].n = p; p += pf;
         k->ring[r].v = p; p += pf;
         k->ring[r].row = -1;
-        k->ring[r].lane_safe = 0;
+        k->ring[r].unsafe_count = 0;
     }
     for (c = 0; c < k->ch; ++c) { k->stage[c] = p; p += pf; }
     k->stage_n = p; p += pf;
-    k->stage_a = p;
+    k->stage_a = p; p += pf;
+    {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
+        unsigned char *b = (unsigned char *)p;
+        for (r = 0; r < 3; ++r) { k->ring[r].unsafe = b; b += pf; }
+        k->window_unsafe = b;
+    }
 }
 
 /* 0, or finite with magnitude in [2^-40, 2^50) (about 9.1e-13 .. 1.1e15): squares and
@@ -2051,35 +2063,41 @@ static int sbl__lane_value_ok(float v)
     return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
-/* Own colour Y of one row, deinterleaved into planes; returns 1 if lane-safe. */
-static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row)
+/* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
+   pixels holding a value outside the lane range. Returns the number flagged. */
+static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
     const float *src = sbl__px(k->own, 0, row);
     const ptrdiff_t step = sbl__step_of(k->own);
-    int x, c, ch = k->ch, safe = 1;
-    for (x = 0; x < k->w; ++x)
+    const float *ny = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, row) : NULL;
+    const ptrdiff_t ny_step = ny ? sbl__step_of(k->own_n) : 0;
+    int x, c, ch = k->ch, count = 0;
+    for (x = xa; x < xb; ++x) {
+        int safe = 1;
         for (c = 0; c < ch; ++c) {
             float v = src[(ptrdiff_t)x * step + c];
             r->y[c][x] = v;
             safe &= sbl__lane_value_ok(v);
         }
-    if (k->own_n && k->own_n->data) { /* N_Y: the reference path sanitises it */
-        const float *ny = sbl__px(k->own_n, 0, row);
-        safe &= sbl__step_of(k->own_n) == 1; /* the lanes load N_Y contiguously */
-        for (x = 0; x < k->w && safe; ++x) safe &= sbl__lane_value_ok(ny[x]) && ny[x] <= 1048576.0f;
+        /* N_Y: the reference path sanitises it */
+        if (ny) safe &= sbl__lane_value_ok(ny[x * ny_step]) && ny[x * ny_step] <= 1048576.0f &&
+                        ny_step == 1; /* the lanes load N_Y contiguously */
+        r->unsafe[x] = (unsigned char)!safe;
+        count += !safe;
     }
-    return safe;
+    return count;
 }
 
-/* The other estimate x* of one row (reprojected history or other eye), its N and
-   validity, into planes; returns 1 if lane-safe. */
-static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row)
+/* The other estimate x* of columns [xa, xb) of one row (reprojected history or other
+   eye), its N and validity, into planes; adds its own unsafe values to the flags (the
+   own colour is loaded first). Returns the number of pixels newly flagged. */
+static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
-    int x, c, ch = k->ch, safe = 1;
-    for (x = 0; x < k->w; ++x) {
+    int x, c, ch = k->ch, count = 0;
+    for (x = xa; x < xb; ++x) {
         float tmp[4] = {0, 0, 0, 0};
         float n = k->gather(k->gather_ctx, x, row, tmp);
-        int valid = n > 0.0f;
+        int valid = n > 0.0f, safe = 1;
         r->n[x] = valid ? n : 0.0f;
         r->v[x] = valid ? 1.0f : 0.0f;
         for (c = 0; c < ch; ++c) {
@@ -2087,16 +2105,17 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row)
             if (valid) safe &= sbl__lane_value_ok(tmp[c]);
         }
         if (valid) safe &= sbl__lane_value_ok(n);
+        if (!safe && !r->unsafe[x]) { r->unsafe[x] = 1; ++count; }
     }
-    return safe;
+    return count;
 }
 
-static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row)
+static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
-    int safe_own = sbl__ring_load_own(k, r, row);
-    int safe_other = sbl__ring_gather(k, r, row);
+    int count = sbl__ring_load_own(k, r, row, xa, xb);
+    count += sbl__ring_gather(k, r, row, xa, xb);
     r->row = row;
-    r->lane_safe = safe_own && safe_other;
+    r->unsafe_count = count;
 }
 
 static float sbl__own_n(const sbl__kernel *k, int x, int y)
@@ -2370,56 +2389,124 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
     return x;
 }
 
+/* Lane kernel over the pixels of [xa, xb) (interior columns of an interior row) whose
+   3x3 window holds no unsafe value; the others are left to the reference path. A run
+   of such pixels narrower than a vector is computed by a vector widened inside
+   [la, lb) (loaded columns, at least 16 wide), whose extra lanes are either recomputed
+   identically or overwritten by the reference path afterwards: lanes are independent,
+   so no result depends on the vector width. */
+static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
+                                   int xb, int la, int lb, const unsigned char *win)
+{
+    int a = xa;
+    while (a < xb) {
+        int b;
+        if (win) {
+            while (a < xb && win[a]) ++a;
+            if (a >= xb) break;
+        }
+        b = a + 1;
+        if (win) { while (b < xb && !win[b]) ++b; }
+        else b = xb;
+        if (b - a >= SBL__VW) {
+            int e = sbl__kernel_lanes(k, R, a, b);
+            /* the tail: one more vector ending at b, overlapping pixels already done
+               (same values), so that every pixel takes the same float path */
+            if (e < b) sbl__kernel_lanes(k, R, b - SBL__VW, b);
+        } else {
+            int s0 = a + SBL__VW <= lb ? a : lb - SBL__VW;
+            if (s0 < la) s0 = la;
+            sbl__kernel_lanes(k, R, s0, s0 + SBL__VW);
+        }
+        a = b;
+    }
+}
+
+/* Filter columns [x0, x1) of rows [y0, y1) into k->out (and out_n / out_a); nothing
+   else of the outputs is written. Every written pixel equals the one a whole-image run
+   gives, bit for bit: the ring holds the columns [x0 - 1, x1 + 1) (clamped), widened
+   to 18 inside the image when the span is narrower, so that a whole vector fits. */
+static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
+{
+    /* rows narrower than the widest vector (plus the two border pixels) take the
+       reference path on every build, so that no build depends on its vector width */
+    const int lanes_w = k->w - 2 >= 16;
+    int y, x, c, j, la = x0, lb = x1, xa, xb;
+    if (x0 < 0) x0 = 0;
+    if (x1 > k->w) x1 = k->w;
+    if (y0 >= y1 || x0 >= x1) return;
+    /* lane columns: the span's interior part, widened to 16 inside [1, w - 1) */
+    xa = x0 > 1 ? x0 : 1;
+    xb = x1 < k->w - 1 ? x1 : k->w - 1;
+    la = xa; lb = xb;
+    if (lanes_w && lb - la < 16) {
+        lb = la + 16;
+        if (lb > k->w - 1) { lb = k->w - 1; la = lb - 16; }
+    }
+    {   /* ring columns: the lane columns and the span, each with its neighbours */
+        int ra = (la < x0 ? la : x0) - 1, rb = (lb > x1 ? lb : x1) + 1;
+        if (ra < 0) ra = 0;
+        if (rb > k->w) rb = k->w;
+        if (!lanes_w) { ra = x0 > 0 ? x0 - 1 : 0; rb = x1 < k->w ? x1 + 1 : k->w; }
+        for (j = 0; j < 3; ++j) {
+            int ry = y0 - 1 + j;
+            k->ring[j].row = -1;
+            if (ry >= 0 && ry < k->h) sbl__ring_load(k, &k->ring[j], ry, ra, rb);
+        }
+        for (y = y0; y < y1; ++y) {
+            const sbl__ring_row *R[3];
+            const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
+            const unsigned char *win = NULL;
+            for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
+            if (lanes_ok) {
+                if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
+                    /* per pixel: 1 if any of the nine values of its window is unsafe */
+                    unsigned char *w = k->window_unsafe;
+                    const unsigned char *u0 = R[0]->unsafe, *u1 = R[1]->unsafe,
+                                        *u2 = R[2]->unsafe;
+                    for (x = xa - 1; x <= xb; ++x) w[x] = (unsigned char)(u0[x] | u1[x] | u2[x]);
+                    {
+                        unsigned char prev = w[xa - 1], cur = w[xa];
+                        for (x = xa; x < xb; ++x) {
+                            unsigned char next = w[x + 1];
+                            w[x] = (unsigned char)(prev | cur | next);
+                            prev = cur;
+                            cur = next;
+                        }
+                    }
+                    win = w;
+                }
+                sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
+            }
+            for (x = x0; x < x1; ++x)
+                if (!lanes_ok || x < xa || x >= xb || (win && win[x]))
+                    sbl__kernel_pixel_ref(k, R, x);
+            {   /* interleave the staged row into the outputs */
+                float *o = sbl__px(&k->out, 0, y);
+                const ptrdiff_t step = sbl__step_of(&k->out);
+                for (x = x0; x < x1; ++x)
+                    for (c = 0; c < k->ch; ++c) o[(ptrdiff_t)x * step + c] = k->stage[c][x];
+                if (k->out_n.data)
+                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_n, x, y) = k->stage_n[x];
+                if (k->out_a.data)
+                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_a, x, y) = k->stage_a[x];
+            }
+            {   /* advance the ring: drop row y-1, load row y+2 */
+                sbl__ring_row t = k->ring[0];
+                k->ring[0] = k->ring[1];
+                k->ring[1] = k->ring[2];
+                k->ring[2] = t;
+                k->ring[2].row = -1;
+                if (y + 1 < y1 && y + 2 < k->h) sbl__ring_load(k, &k->ring[2], y + 2, ra, rb);
+            }
+        }
+    }
+}
+
 /* Filter rows [y0, y1) into k->out (and out_n / out_a). */
 static void sbl__kernel_run(sbl__kernel *k, int y0, int y1)
 {
-    int y, x, c, j;
-    if (y0 >= y1) return;
-    for (j = 0; j < 3; ++j) {
-        int ry = y0 - 1 + j;
-        k->ring[j].row = -1;
-        if (ry >= 0 && ry < k->h) sbl__ring_load(k, &k->ring[j], ry);
-    }
-    for (y = y0; y < y1; ++y) {
-        const sbl__ring_row *R[3];
-        int lanes_ok, xs = 0, xe = 0;
-        for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
-        /* rows narrower than the widest vector take the reference path on every build,
-           so that no build depends on its vector width for them */
-        lanes_ok = R[0] && R[2] && R[0]->lane_safe && R[1]->lane_safe && R[2]->lane_safe &&
-                   k->w - 2 >= 16;
-        if (lanes_ok) {
-            xs = 1;
-            xe = sbl__kernel_lanes(k, R, 1, k->w - 1);
-            /* the tail: one more vector ending at the last interior pixel, overlapping
-               pixels already done (same values), so that every interior pixel takes
-               the same float path whatever the vector width */
-            if (xe < k->w - 1)
-                xe = sbl__kernel_lanes(k, R, k->w - 1 - SBL__VW, k->w - 1);
-        }
-        for (x = 0; x < k->w; ++x)
-            if (x < xs || x >= xe) sbl__kernel_pixel_ref(k, R, x);
-        {   /* interleave the staged row into the outputs */
-            float *o = sbl__px(&k->out, 0, y);
-            const ptrdiff_t step = sbl__step_of(&k->out);
-            for (x = 0; x < k->w; ++x)
-                for (c = 0; c < k->ch; ++c) o[(ptrdiff_t)x * step + c] = k->stage[c][x];
-            if (k->out_n.data) {
-                for (x = 0; x < k->w; ++x) *sbl__px(&k->out_n, x, y) = k->stage_n[x];
-            }
-            if (k->out_a.data) {
-                for (x = 0; x < k->w; ++x) *sbl__px(&k->out_a, x, y) = k->stage_a[x];
-            }
-        }
-        {   /* advance the ring: drop row y-1, load row y+2 */
-            sbl__ring_row t = k->ring[0];
-            k->ring[0] = k->ring[1];
-            k->ring[1] = k->ring[2];
-            k->ring[2] = t;
-            k->ring[2].row = -1;
-            if (y + 1 < y1 && y + 2 < k->h) sbl__ring_load(k, &k->ring[2], y + 2);
-        }
-    }
+    sbl__kernel_run_span(k, y0, y1, 0, k->w);
 }
 
 /* ------------------------------------------------------------------------ */
