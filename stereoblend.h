@@ -499,6 +499,36 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
                                             const sbl_stereo_temporal_io *io);
 
 /* ======================================================================== */
+/* Diagnostics: which field, and why                                        */
+/* ======================================================================== */
+
+/* Filled by the validate calls (no globals: the caller owns it). A validate call runs
+   the checks of its filter call and names the culprit the way the caller spells it,
+   e.g. field "frame->gbuffer.depth.stride_bytes", message "-5 is not a multiple of
+   sizeof(float)". It also reports the first input that is legal but probably not what
+   was meant (e.g. a history without depth while the frame has depth, which turns the
+   depth test off, or a stereo pair whose target_eye looks swapped). */
+typedef struct sbl_diag {
+    sbl_result result;  /* what the filter call returns for these arguments            */
+    char field[80];     /* the culprit; empty when result is SBL_OK                    */
+    char message[200];  /* why, in words; empty when result is SBL_OK                  */
+    char warning[240];  /* legal but suspicious (the first found); empty if none        */
+} sbl_diag;
+
+/* The checks of sbl_temporal_filter (any row range, scratch given) without writing any
+   output. diag may be NULL (then this is a plain validation). */
+SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl_frame *frame,
+                                        const sbl_history *history,
+                                        const sbl_temporal_output *out, sbl_diag *diag);
+
+/* The checks of sbl_stereo_filter (out given) or of sbl_reproject_stereo /
+   sbl_stereo_fill's eyes (out NULL: the target needs no colour). Warns when the
+   correspondences of a sample of pixels work far better with target_eye swapped. */
+SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                      const sbl_eye *target, const sbl_eye *source,
+                                      const sbl_stereo_output *out, sbl_diag *diag);
+
+/* ======================================================================== */
 /* 9. Fill mode: which pixels of the second eye still need a ray            */
 /* ======================================================================== */
 
@@ -533,6 +563,7 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
 #include <float.h>
 #include <limits.h>
 #include <stdint.h>
+#include <stdio.h> /* snprintf: diagnostics */
 
 #if defined(SBL_MALLOC) != defined(SBL_FREE)
 #error "define both SBL_MALLOC and SBL_FREE, or neither"
@@ -2985,6 +3016,504 @@ SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index ta
     out.length = out_length;
     return sbl_stereo_filter(desc, target_eye, target, source, &out, y0, y1, scratch,
                              scratch_bytes);
+}
+
+/* ------------------------------------------------------------------------ */
+/* Diagnostics                                                              */
+/* ------------------------------------------------------------------------ */
+
+/* The walk over named arguments: the first check that fails with the code the call
+   returns is the culprit, so the named field always explains the actual result. */
+typedef struct sbl__walk {
+    sbl_diag *d;
+    sbl_result want;
+    int found;
+} sbl__walk;
+
+static void sbl__diag_copy(char *dst, size_t n, const char *a, const char *b)
+{
+    size_t i = 0, j;
+    for (j = 0; a && a[j] && i + 1 < n; ++j) dst[i++] = a[j];
+    for (j = 0; b && b[j] && i + 1 < n; ++j) dst[i++] = b[j];
+    dst[i] = '\0';
+}
+
+/* Records field (name + suffix) and message if r is the code looked for. */
+static int sbl__blame(sbl__walk *w, sbl_result r, const char *name, const char *suffix,
+                      const char *message)
+{
+    if (w->found || r == SBL_OK || r != w->want) return 0;
+    w->found = 1;
+    sbl__diag_copy(w->d->field, sizeof w->d->field, name, suffix);
+    sbl__diag_copy(w->d->message, sizeof w->d->message, message, NULL);
+    return 1;
+}
+
+static void sbl__warn(sbl_diag *d, const char *name, const char *message)
+{
+    if (d->warning[0]) return;
+    sbl__diag_copy(d->warning, sizeof d->warning, name, message);
+}
+
+/* A named view: why sbl__check_image / sbl__check_optional refuse it. w = 0: no size
+   to match. Returns the code. */
+static sbl_result sbl__walk_image(sbl__walk *wk, const char *name, const sbl_image *im,
+                                  int want_ch, int w, int h, int optional)
+{
+    sbl_result r;
+    char msg[160];
+    if (!im->data) {
+        if (optional) return SBL_OK;
+        sbl__blame(wk, SBL_ERROR_NULL_POINTER, name, ".data", "is NULL: the buffer is required");
+        return SBL_ERROR_NULL_POINTER;
+    }
+    r = sbl__check_image(im, want_ch);
+    switch (r) {
+    case SBL_ERROR_INVALID_SIZE:
+        if (im->width <= 0 || im->height <= 0) {
+            snprintf(msg, sizeof msg, "%d x %d: width and height must be > 0", im->width, im->height);
+            sbl__blame(wk, r, name, ".width", msg);
+        } else if (im->size_bytes != 0 && im->width <= INT_MAX / 4 && im->height <= INT_MAX / 4) {
+            snprintf(msg, sizeof msg, "%lu bytes, but the layout (rows, strides) reaches over "
+                     "%lu bytes: is a pitch in bytes given in the float field `stride`?",
+                     (unsigned long)im->size_bytes, (unsigned long)sbl__footprint(im));
+            sbl__blame(wk, r, name, ".size_bytes", msg);
+        } else {
+            sbl__blame(wk, r, name, ".width", "too large to address");
+        }
+        break;
+    case SBL_ERROR_INVALID_CHANNELS:
+        if (want_ch) snprintf(msg, sizeof msg, "%d, this buffer needs %d", im->channels, want_ch);
+        else snprintf(msg, sizeof msg, "%d, outside 1..4", im->channels);
+        sbl__blame(wk, r, name, ".channels", msg);
+        break;
+    case SBL_ERROR_INVALID_STRIDE:
+        if (im->stride_bytes % (int)sizeof(float) != 0) {
+            snprintf(msg, sizeof msg, "%d is not a multiple of sizeof(float)", im->stride_bytes);
+            sbl__blame(wk, r, name, ".stride_bytes", msg);
+        } else if (im->pixel_bytes % (int)sizeof(float) != 0 ||
+                   (im->pixel_bytes != 0 && im->pixel_bytes < im->channels * (int)sizeof(float))) {
+            snprintf(msg, sizeof msg, "%d: must be a multiple of sizeof(float) and hold %d channels",
+                     im->pixel_bytes, im->channels);
+            sbl__blame(wk, r, name, ".pixel_bytes", msg);
+        } else if (im->stride_bytes != 0 && im->stride != 0) {
+            snprintf(msg, sizeof msg, "%d bytes disagrees with stride = %d floats (give one)",
+                     im->stride_bytes, im->stride);
+            sbl__blame(wk, r, name, ".stride_bytes", msg);
+        } else {
+            snprintf(msg, sizeof msg, "a row of %d pixels does not fit in |row stride| (%ld floats): "
+                     "rows would overlap", im->width, (long)sbl__stride(im));
+            sbl__blame(wk, r, name, im->stride_bytes ? ".stride_bytes" : ".stride", msg);
+        }
+        break;
+    default:
+        sbl__blame(wk, r, name, "", sbl_result_string(r));
+        break;
+    }
+    if (r == SBL_OK && w > 0 && (im->width != w || im->height != h)) {
+        r = SBL_ERROR_SIZE_MISMATCH;
+        snprintf(msg, sizeof msg, "%d x %d, expected %d x %d", im->width, im->height, w, h);
+        sbl__blame(wk, r, name, ".width", msg);
+    }
+    return r;
+}
+
+static void sbl__walk_gbuffer(sbl__walk *wk, const char *name, const sbl_gbuffer *g, int w, int h)
+{
+    char f[64];
+    sbl__diag_copy(f, sizeof f, name, ".depth");
+    sbl__walk_image(wk, f, &g->depth, 1, w, h, 1);
+    sbl__diag_copy(f, sizeof f, name, ".normals");
+    sbl__walk_image(wk, f, &g->normals, 3, w, h, 1);
+    sbl__diag_copy(f, sizeof f, name, ".ids");
+    sbl__walk_image(wk, f, &g->ids, 1, w, h, 1);
+    sbl__diag_copy(f, sizeof f, name, ".motion");
+    sbl__walk_image(wk, f, &g->motion, 2, w, h, 1);
+}
+
+/* An output against a named list of views it may not share a float with. */
+static void sbl__walk_overlap(sbl__walk *wk, const char *name, const sbl_image *o,
+                              const sbl_image *const *in, const char *const *in_names, int n)
+{
+    int i;
+    for (i = 0; i < n; ++i)
+        if (in[i] && sbl__overlap(o, in[i]))
+            sbl__blame(wk, SBL_ERROR_OVERLAP, name, "", in_names[i]);
+}
+
+/* The G-buffer tests a pair of views runs: warn where one side has a buffer the other
+   lacks (the test is then silently off). */
+static void sbl__warn_gbuffers(sbl_diag *d, const char *a_name, const sbl_gbuffer *a,
+                               const char *b_name, const sbl_gbuffer *b)
+{
+    const sbl_image *ai[3], *bi[3];
+    const char *what[3] = {".depth", ".normals", ".ids"};
+    const char *test[3] = {": absent while the other view has it, so the depth test is off",
+                           ": absent while the other view has it, so the normal test is off",
+                           ": absent while the other view has it, so the id test is off"};
+    int i;
+    char f[96];
+    ai[0] = &a->depth; ai[1] = &a->normals; ai[2] = &a->ids;
+    bi[0] = &b->depth; bi[1] = &b->normals; bi[2] = &b->ids;
+    for (i = 0; i < 3; ++i) {
+        if (!ai[i]->data == !bi[i]->data) continue;
+        sbl__diag_copy(f, sizeof f, ai[i]->data ? b_name : a_name, what[i]);
+        sbl__warn(d, f, test[i]);
+    }
+}
+
+SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl_frame *frame,
+                                        const sbl_history *history,
+                                        const sbl_temporal_output *out, sbl_diag *diag)
+{
+    sbl_diag local;
+    sbl__walk wk;
+    sbl_result r;
+    int w, h;
+    if (!diag) diag = &local;
+    memset(diag, 0, sizeof *diag);
+    /* scratch NULL: the filter runs every other check first, so NULL_POINTER with every
+       required pointer present means the arguments are valid */
+    r = sbl_temporal_filter(desc, frame, history, out, 0, 0, NULL, 0);
+    wk.d = diag; wk.want = r; wk.found = 0;
+    if (!desc) sbl__blame(&wk, r, "desc", "", "is NULL");
+    if (!frame) sbl__blame(&wk, r, "frame", "", "is NULL");
+    if (!out) sbl__blame(&wk, r, "out", "", "is NULL");
+    if (!desc || !frame || !out) { diag->result = r; return r; }
+    w = frame->color.width; h = frame->color.height;
+    sbl__walk_image(&wk, "frame->color", &frame->color, 0, 0, 0, 0);
+    sbl__walk_image(&wk, "out->color", &out->color, 0, w, h, 0);
+    sbl__walk_image(&wk, "out->length", &out->length, 1, w, h, 0);
+    sbl__walk_image(&wk, "out->alpha", &out->alpha, 1, w, h, 1);
+    if (r == SBL_ERROR_NULL_POINTER && !wk.found) r = wk.want = SBL_OK; /* the scratch */
+    if (out->color.data && out->color.channels != frame->color.channels)
+        sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "out->color", ".channels",
+                   "differs from frame->color.channels");
+    {   /* parameters, one at a time against the defaults */
+        sbl_temporal_desc z = sbl_temporal_defaults(NULL), u = sbl_temporal_defaults(desc), t;
+        char msg[96];
+#define SBL__TRY_WEIGHT(fieldname)                                                          \
+        t = z; t.fieldname = u.fieldname;                                                   \
+        if (sbl__check_weight_params(t.estimator, t.rectify, t.weight_mode, t.constant_alpha, \
+                                     t.alpha_min, t.clip_gamma, t.bias_threshold) != SBL_OK) { \
+            snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
+                     (double)(float)u.fieldname);                                           \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
+        }
+        SBL__TRY_WEIGHT(estimator)
+        SBL__TRY_WEIGHT(rectify)
+        SBL__TRY_WEIGHT(weight_mode)
+        SBL__TRY_WEIGHT(constant_alpha)
+        SBL__TRY_WEIGHT(alpha_min)
+        SBL__TRY_WEIGHT(clip_gamma)
+        SBL__TRY_WEIGHT(bias_threshold)
+#undef SBL__TRY_WEIGHT
+        if (!sbl__finite(u.max_history) || u.max_history < 1.0f)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->max_history", "",
+                       "must be finite and >= 1");
+#define SBL__TRY_RP(fieldname)                                                              \
+        t = z; t.reproject.fieldname = u.reproject.fieldname;                               \
+        if (sbl__check_reproject_desc(&t.reproject) != SBL_OK)                              \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->reproject." #fieldname, "",    \
+                       "out of range or not finite");
+        SBL__TRY_RP(depth_tolerance)
+        SBL__TRY_RP(normal_threshold)
+        SBL__TRY_RP(back_check_pixels)
+        SBL__TRY_RP(motion.units)
+        SBL__TRY_RP(disabled_tests)
+#undef SBL__TRY_RP
+        if ((int)u.source < 0 || (int)u.source > (int)SBL_TEMPORAL_CAMERA)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->source", "", "not an sbl_temporal_source");
+        sbl__walk_gbuffer(&wk, "frame->gbuffer", &frame->gbuffer, w, h);
+        if (history && history->color.data) {
+            sbl__walk_image(&wk, "history->color", &history->color, 0, w, h, 0);
+            if (history->color.channels != frame->color.channels)
+                sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "history->color", ".channels",
+                           "differs from frame->color.channels");
+            sbl__walk_image(&wk, "history->length", &history->length, 1, w, h, 1);
+            sbl__walk_gbuffer(&wk, "history->gbuffer", &history->gbuffer, w, h);
+        }
+        if (u.source == SBL_TEMPORAL_MOTION && !frame->gbuffer.motion.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->gbuffer.motion", "",
+                       "is absent: SBL_TEMPORAL_MOTION needs motion vectors");
+        if (u.source == SBL_TEMPORAL_CAMERA) {
+            if (!frame->gbuffer.depth.data)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->gbuffer.depth", "",
+                           "is absent: SBL_TEMPORAL_CAMERA needs depth");
+            if (!frame->camera)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->camera", "",
+                           "is NULL: SBL_TEMPORAL_CAMERA needs both frames' cameras");
+            if (history && history->color.data && !history->camera)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "history->camera", "",
+                           "is NULL: SBL_TEMPORAL_CAMERA needs both frames' cameras");
+            if (frame->camera && history && history->color.data && history->camera) {
+                sbl__cam_map m;
+                if (!sbl__cam_map_init(&m, frame->camera, w, h, history->camera, w, h))
+                    sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "frame->camera / history->camera",
+                               "", "a matrix is not finite, or a projection or view matrix "
+                               "is singular");
+            }
+        }
+    }
+    {   /* outputs: disjoint from each other and from every input */
+        const sbl_image *o[3], *in[11];
+        const char *on[3] = {"out->color", "out->length", "out->alpha"};
+        const char *names[11] = {
+            "overlaps frame->color", "overlaps frame->gbuffer.depth",
+            "overlaps frame->gbuffer.normals", "overlaps frame->gbuffer.ids",
+            "overlaps frame->gbuffer.motion", "overlaps history->color",
+            "overlaps history->length", "overlaps history->gbuffer.depth",
+            "overlaps history->gbuffer.normals", "overlaps history->gbuffer.ids",
+            "overlaps history->gbuffer.motion"};
+        int i, j;
+        const sbl_history *hi = history && history->color.data ? history : NULL;
+        o[0] = &out->color; o[1] = &out->length; o[2] = &out->alpha;
+        in[0] = &frame->color; in[1] = &frame->gbuffer.depth; in[2] = &frame->gbuffer.normals;
+        in[3] = &frame->gbuffer.ids; in[4] = &frame->gbuffer.motion;
+        in[5] = hi ? &hi->color : NULL; in[6] = hi ? &hi->length : NULL;
+        in[7] = hi ? &hi->gbuffer.depth : NULL; in[8] = hi ? &hi->gbuffer.normals : NULL;
+        in[9] = hi ? &hi->gbuffer.ids : NULL; in[10] = hi ? &hi->gbuffer.motion : NULL;
+        for (i = 0; i < 3; ++i)
+            for (j = i + 1; j < 3; ++j)
+                if (sbl__overlap(o[i], o[j])) sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
+        for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 11);
+    }
+    if (r != SBL_OK && !wk.found) {
+        sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);
+        sbl__diag_copy(diag->message, sizeof diag->message, sbl_result_string(r), NULL);
+    }
+    /* legal but probably unintended */
+    if (history && history->color.data) {
+        sbl__warn_gbuffers(diag, "frame->gbuffer", &frame->gbuffer, "history->gbuffer",
+                           &history->gbuffer);
+        if (!history->length.data)
+            sbl__warn(diag, "history->length",
+                      ": absent, so N = 1 everywhere (the progressive and history-aware "
+                      "estimators then blend 1:1): pass last frame's out->length");
+    }
+    diag->result = r;
+    return r;
+}
+
+/* Round-trip error of the rig's correspondence over a sample of target pixels (a grid
+   of at most ~64 x 64): target -> source -> back from the nearest source pixel. With the
+   right eye assignment it is the error of a nearest-pixel lookup; with the eyes swapped
+   the match lands on another point and the error grows with the disparity gradient
+   (zero only where the disparity is constant, where a swap cannot be seen). */
+static double sbl__sample_roundtrip(const sbl__stereo_rp *s, int w, int h, long *count)
+{
+    int stx = w / 64 + 1, sty = h / 64 + 1, x, y;
+    double sum = 0.0;
+    long n = 0;
+    for (y = sty / 2; y < h; y += sty)
+        for (x = stx / 2; x < w; x += stx) {
+            double sx, sy, sz, bx, by, bz, ex, ey;
+            float z;
+            sbl__tap_want want;
+            if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
+            if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
+            if (!(sx >= 0.0 && sx < (double)w && sy >= 0.0 && sy < (double)h)) continue;
+            if (!s->map(s, 1, (int)floor(sx), (int)floor(sy), sx, sy, &bx, &by, &bz)) continue;
+            ex = bx - (x + 0.5);
+            ey = by - (y + 0.5);
+            if (!(ex * ex + ey * ey < 1e6)) continue;
+            sum += sqrt(ex * ex + ey * ey);
+            ++n;
+        }
+    *count = n;
+    return n ? sum / (double)n : 0.0;
+}
+
+SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                      const sbl_eye *target, const sbl_eye *source,
+                                      const sbl_stereo_output *out, sbl_diag *diag)
+{
+    sbl_diag local;
+    sbl__walk wk;
+    sbl__stereo_rp s;
+    sbl_result r;
+    int e, w, h;
+    if (!diag) diag = &local;
+    memset(diag, 0, sizeof *diag);
+    if (out) {
+        r = sbl_stereo_filter(desc, target_eye, target, source, out, 0, 0, NULL, 0);
+    } else {
+        r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0);
+        if (r == SBL_OK) r = SBL_ERROR_NULL_POINTER; /* as the filter reports a NULL scratch */
+    }
+    wk.d = diag; wk.want = r; wk.found = 0;
+    if (!desc) sbl__blame(&wk, r, "desc", "", "is NULL");
+    if (!target) sbl__blame(&wk, r, "target", "", "is NULL");
+    if (!source) sbl__blame(&wk, r, "source", "", "is NULL");
+    if (!desc || !target || !source) { diag->result = r; return r; }
+    w = source->color.width; h = source->color.height;
+    for (e = 0; e < 2; ++e) {
+        const sbl_eye *eye = e ? source : target;
+        const char *nm = e ? "source" : "target";
+        int need = e || out;
+        char f[64];
+        sbl__diag_copy(f, sizeof f, nm, "->color");
+        sbl__walk_image(&wk, f, &eye->color, 0, e ? 0 : w, h, !need);
+        sbl__diag_copy(f, sizeof f, nm, "->gbuffer");
+        sbl__walk_gbuffer(&wk, f, &eye->gbuffer, w, h);
+        sbl__diag_copy(f, sizeof f, nm, "->length");
+        sbl__walk_image(&wk, f, &eye->length, 1, w, h, 1);
+        sbl__diag_copy(f, sizeof f, nm, "->disparity");
+        sbl__walk_image(&wk, f, &eye->disparity, 0, w, h, 1);
+        if (eye->disparity.data && eye->disparity.channels > 2)
+            sbl__blame(&wk, SBL_ERROR_INVALID_CHANNELS, f, ".channels",
+                       "a disparity map has 1 (d_x) or 2 (d_x, d_y) channels");
+        if (!need && !eye->gbuffer.depth.data && !eye->disparity.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, nm, "->gbuffer.depth",
+                       "is absent: the target's geometry (depth or disparity) is required");
+        sbl__diag_copy(f, sizeof f, nm, "->gbuffer.depth");
+        if (desc->rig != SBL_RIG_DISPARITY && !eye->gbuffer.depth.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is absent: this rig needs both eyes' depth");
+        sbl__diag_copy(f, sizeof f, nm, "->disparity");
+        if (desc->rig == SBL_RIG_DISPARITY && !eye->disparity.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is absent: SBL_RIG_DISPARITY needs both eyes' maps");
+        sbl__diag_copy(f, sizeof f, nm, "->camera");
+        if (desc->rig == SBL_RIG_MATRICES && !eye->camera)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is NULL: SBL_RIG_MATRICES needs both eyes' cameras");
+    }
+    if (desc->rig == SBL_RIG_MATRICES && target->camera && source->camera) {
+        sbl__cam_map m;
+        if (!sbl__cam_map_init(&m, target->camera, w, h, source->camera, w, h))
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "target->camera / source->camera", "",
+                       "a matrix is not finite, or a projection or view matrix is singular");
+    }
+    if (r == SBL_ERROR_NULL_POINTER && !wk.found) r = wk.want = SBL_OK; /* the scratch */
+    if (out) {
+        sbl__walk_image(&wk, "out->color", &out->color, 0, w, h, 0);
+        sbl__walk_image(&wk, "out->length", &out->length, 1, w, h, 1);
+        sbl__walk_image(&wk, "out->beta", &out->beta, 1, w, h, 1);
+        if (out->color.data && out->color.channels != target->color.channels)
+            sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "out->color", ".channels",
+                       "differs from target->color.channels");
+    }
+    if (target->color.data && source->color.data &&
+        target->color.channels != source->color.channels)
+        sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "target->color", ".channels",
+                   "differs from source->color.channels");
+    if (sbl__eye_width(target) != w || sbl__eye_height(target) != h)
+        sbl__blame(&wk, SBL_ERROR_SIZE_MISMATCH, "target", "", "differs in size from source");
+    {
+        sbl_stereo_desc z = sbl_stereo_defaults(NULL), u = sbl_stereo_defaults(desc), t;
+        char msg[96];
+        if ((int)u.rig < 0 || u.rig >= SBL_RIG_COUNT)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->rig", "", "not an sbl_stereo_rig");
+        if ((int)target_eye != 0 && (int)target_eye != 1)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "target_eye", "", "must be SBL_EYE_LEFT or SBL_EYE_RIGHT");
+        if (u.rig == SBL_RIG_PARALLEL) {
+            if (!sbl__finite(u.focal_px) || !(u.focal_px > 0.0f))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->focal_px", "",
+                           "must be finite and > 0 for SBL_RIG_PARALLEL");
+            if (!sbl__finite(u.baseline) || !(u.baseline > 0.0f))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->baseline", "",
+                           "must be finite and > 0 for SBL_RIG_PARALLEL");
+            if (!sbl__finite(u.disparity_offset))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->disparity_offset", "", "not finite");
+        }
+        if (u.rig == SBL_RIG_PINHOLE) {
+            double v[16], p[16], inv[16];
+            float id[16];
+            int i;
+            for (i = 0; i < 16; ++i) id[i] = (i % 5 == 0) ? 1.0f : 0.0f;
+            for (e = 0; e < 2; ++e)
+                if (!sbl__pinhole_gl(&u.pinhole.eye[e], id, u.pinhole.axes, 0, w > 0 ? w : 1,
+                                     h > 0 ? h : 1, v, p))
+                    sbl__blame(&wk, SBL_ERROR_INVALID_PARAM,
+                               e ? "desc->pinhole.eye[1]" : "desc->pinhole.eye[0]", "",
+                               "fx, fy must be > 0 and everything finite (or axes invalid)");
+            for (i = 0; i < 16; ++i) v[i] = u.pinhole.right_from_left[i];
+            if (!sbl__mat_invert(inv, v))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->pinhole.right_from_left", "",
+                           "not finite or singular (a zero-initialised pose is singular: "
+                           "set at least the identity)");
+        }
+#define SBL__TRY_WEIGHT(fieldname)                                                          \
+        t = z; t.fieldname = u.fieldname;                                                   \
+        if (out && sbl__check_weight_params(t.estimator, t.rectify, t.weight_mode,           \
+                                            t.constant_beta,                                \
+                                     0.0f, t.clip_gamma, t.bias_threshold) != SBL_OK) {     \
+            snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
+                     (double)(float)u.fieldname);                                           \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
+        }
+        SBL__TRY_WEIGHT(estimator)
+        SBL__TRY_WEIGHT(rectify)
+        SBL__TRY_WEIGHT(weight_mode)
+        SBL__TRY_WEIGHT(constant_beta)
+        SBL__TRY_WEIGHT(clip_gamma)
+        SBL__TRY_WEIGHT(bias_threshold)
+#undef SBL__TRY_WEIGHT
+#define SBL__TRY_RP(fieldname)                                                              \
+        t = z; t.reproject.fieldname = u.reproject.fieldname;                               \
+        if (sbl__check_reproject_desc(&t.reproject) != SBL_OK)                              \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->reproject." #fieldname, "",    \
+                       "out of range or not finite");
+        SBL__TRY_RP(depth_tolerance)
+        SBL__TRY_RP(normal_threshold)
+        SBL__TRY_RP(back_check_pixels)
+        SBL__TRY_RP(disabled_tests)
+#undef SBL__TRY_RP
+    }
+    if (out) {
+        const sbl_image *o[3], *in[14];
+        const char *on[3] = {"out->color", "out->length", "out->beta"};
+        const char *names[14] = {
+            "overlaps target->color", "overlaps target->length", "overlaps target->disparity",
+            "overlaps target->gbuffer.depth", "overlaps target->gbuffer.normals",
+            "overlaps target->gbuffer.ids", "overlaps target->gbuffer.motion",
+            "overlaps source->color", "overlaps source->length", "overlaps source->disparity",
+            "overlaps source->gbuffer.depth", "overlaps source->gbuffer.normals",
+            "overlaps source->gbuffer.ids", "overlaps source->gbuffer.motion"};
+        int i, j;
+        for (e = 0; e < 2; ++e) {
+            const sbl_eye *eye = e ? source : target;
+            in[e * 7 + 0] = &eye->color; in[e * 7 + 1] = &eye->length;
+            in[e * 7 + 2] = &eye->disparity; in[e * 7 + 3] = &eye->gbuffer.depth;
+            in[e * 7 + 4] = &eye->gbuffer.normals; in[e * 7 + 5] = &eye->gbuffer.ids;
+            in[e * 7 + 6] = &eye->gbuffer.motion;
+        }
+        o[0] = &out->color; o[1] = &out->length; o[2] = &out->beta;
+        for (i = 0; i < 3; ++i)
+            for (j = i + 1; j < 3; ++j)
+                if (sbl__overlap(o[i], o[j])) sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
+        for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 14);
+    }
+    if (r != SBL_OK && !wk.found) {
+        sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);
+        sbl__diag_copy(diag->message, sizeof diag->message, sbl_result_string(r), NULL);
+    }
+    /* legal but probably unintended */
+    if (r == SBL_OK) {
+        sbl__warn_gbuffers(diag, "target->gbuffer", &target->gbuffer, "source->gbuffer",
+                           &source->gbuffer);
+        if (desc->rig != SBL_RIG_MATRICES) {
+            /* target_eye decides the direction of the correspondence (and the pinhole
+               rig's cameras): with it swapped, the matches land on other surfaces; the
+               depth, id and normal tests and the back-check then reject most of them */
+            sbl__stereo_rp swapped;
+            long n_this, n_swap;
+            if (sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0) == SBL_OK &&
+                sbl__stereo_rp_init(&swapped, desc, target_eye == SBL_EYE_LEFT ? SBL_EYE_RIGHT
+                                                                              : SBL_EYE_LEFT,
+                                    target, source, 0) == SBL_OK) {
+                double e_this = sbl__sample_roundtrip(&s, w, h, &n_this);
+                double e_swap = sbl__sample_roundtrip(&swapped, w, h, &n_swap);
+                if (n_this > 0 && n_swap > 0 && e_swap > 4.0 * e_this && e_swap > 0.05) {
+                    char msg[200];
+                    snprintf(msg, sizeof msg, ": the correspondence comes back %.3g px off on "
+                             "average, %.3g px with the other eye: are target_eye, or target "
+                             "and source, swapped?", e_this, e_swap);
+                    sbl__warn(diag, "target_eye", msg);
+                }
+            }
+        }
+    }
+    diag->result = r;
+    return r;
 }
 
 SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_eye *left,

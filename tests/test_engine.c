@@ -963,6 +963,167 @@ static void test_buffers(void)
     free(col); free(hist); free(hn); free(dep); free(mv); free(ref_c); free(ref_n); free(ref_a); free(got);
 }
 
+/* ---- 5. diagnostics name the culprit ------------------------------------------- */
+
+static void expect_diag(const sbl_diag *d, sbl_result r, const char *field, const char *msg_part,
+                        int line)
+{
+    int ok = d->result == r && strcmp(d->field, field) == 0 &&
+             (!msg_part || strstr(d->message, msg_part) != NULL);
+    if (!ok) printf("  line %d: diag %d '%s' '%s', expected %d '%s'\n", line, (int)d->result, d->field,
+                    d->message, (int)r, field);
+    CHECK(ok);
+}
+#define EXPECT_DIAG(d, r, field, part) expect_diag(&(d), (r), (field), (part), __LINE__)
+
+static void test_diagnostics(void)
+{
+    const int w = 24, h = 16, c = 3;
+    const size_t np = (size_t)w * h;
+    float *col = (float *)calloc(np * c, sizeof(float)), *hist = (float *)calloc(np * c, sizeof(float));
+    float *hn = (float *)calloc(np, sizeof(float)), *dep = (float *)calloc(np, sizeof(float));
+    float *pdep = (float *)calloc(np, sizeof(float)), *mv = (float *)calloc(np * 2, sizeof(float));
+    float *oc = (float *)calloc(np * c, sizeof(float)), *on = (float *)calloc(np, sizeof(float));
+    float *oa = (float *)calloc(np, sizeof(float));
+    sbl_temporal_desc d, d0;
+    sbl_frame fr, fr0;
+    sbl_history hi, hi0;
+    sbl_temporal_output out, out0;
+    sbl_diag dg;
+    size_t i;
+    for (i = 0; i < np; ++i) { dep[i] = 2.0f; pdep[i] = 2.0f; hn[i] = 1.0f; }
+    memset(&d0, 0, sizeof d0); memset(&fr0, 0, sizeof fr0); memset(&hi0, 0, sizeof hi0); memset(&out0, 0, sizeof out0);
+    fr0.color = sbl_image_make(col, w, h, c);
+    fr0.gbuffer.depth = sbl_image_make(dep, w, h, 1);
+    fr0.gbuffer.motion = sbl_image_make(mv, w, h, 2);
+    hi0.color = sbl_image_make(hist, w, h, c);
+    hi0.length = sbl_image_make(hn, w, h, 1);
+    hi0.gbuffer.depth = sbl_image_make(pdep, w, h, 1);
+    out0.color = sbl_image_make(oc, w, h, c);
+    out0.length = sbl_image_make(on, w, h, 1);
+    out0.alpha = sbl_image_make(oa, w, h, 1);
+#define RESET() (d = d0, fr = fr0, hi = hi0, out = out0)
+#define VALIDATE_T(r, field, part)                                                            \
+    do {                                                                                      \
+        sbl_result vr = sbl_temporal_validate(&d, &fr, &hi, &out, &dg);                       \
+        oc[7] = 12345.0f;                                                                     \
+        CHECK_EQ(vr, (r));                                                                    \
+        CHECK_EQ(sbl_temporal_filter_frame(&d, &fr, &hi, &out), (r));                         \
+        if ((r) != SBL_OK) CHECK(oc[7] == 12345.0f);                                          \
+        EXPECT_DIAG(dg, (r), (field), (part));                                                \
+    } while (0)
+    RESET();
+    VALIDATE_T(SBL_OK, "", NULL);
+    CHECK(dg.warning[0] == '\0');
+    RESET(); hi.gbuffer.depth.data = NULL;   /* silent case: the depth test is off */
+    VALIDATE_T(SBL_OK, "", NULL);
+    CHECK(strstr(dg.warning, "history->gbuffer.depth") == dg.warning && strstr(dg.warning, "depth test is off"));
+    RESET(); hi.length.data = NULL;          /* silent case: N = 1 */
+    VALIDATE_T(SBL_OK, "", NULL);
+    CHECK(strstr(dg.warning, "history->length") == dg.warning);
+    RESET(); fr.gbuffer.depth.stride_bytes = 6;
+    VALIDATE_T(SBL_ERROR_INVALID_STRIDE, "frame->gbuffer.depth.stride_bytes", "multiple");
+    RESET(); out.color.stride = w * c * 4; out.color.size_bytes = np * c * sizeof(float); /* a byte pitch in floats */
+    VALIDATE_T(SBL_ERROR_INVALID_SIZE, "out->color.size_bytes", "pitch in bytes");
+    RESET(); out.color.stride = w * c - 1;
+    VALIDATE_T(SBL_ERROR_INVALID_STRIDE, "out->color.stride", "rows would overlap");
+    RESET(); d.max_history = 0.5f;
+    VALIDATE_T(SBL_ERROR_INVALID_PARAM, "desc->max_history", NULL);
+    RESET(); d.clip_gamma = -1.0f;
+    VALIDATE_T(SBL_ERROR_INVALID_PARAM, "desc->clip_gamma", "-1");
+    RESET(); d.reproject.depth_tolerance = (float)(HUGE_VAL - HUGE_VAL);
+    VALIDATE_T(SBL_ERROR_INVALID_PARAM, "desc->reproject.depth_tolerance", NULL);
+    RESET(); d.reproject.disabled_tests = 1 << 10;
+    VALIDATE_T(SBL_ERROR_INVALID_PARAM, "desc->reproject.disabled_tests", NULL);
+    RESET(); d.estimator = (sbl_estimator)77;
+    VALIDATE_T(SBL_ERROR_INVALID_PARAM, "desc->estimator", "77");
+    RESET(); fr.gbuffer.motion.data = NULL;
+    VALIDATE_T(SBL_ERROR_MISSING_INPUT, "frame->gbuffer.motion", "motion vectors");
+    RESET(); d.source = SBL_TEMPORAL_CAMERA;
+    VALIDATE_T(SBL_ERROR_MISSING_INPUT, "frame->camera", NULL);
+    RESET(); out.alpha.data = hist + 5;
+    VALIDATE_T(SBL_ERROR_OVERLAP, "out->alpha", "overlaps history->color");
+    RESET(); out.length.data = oc;
+    VALIDATE_T(SBL_ERROR_OVERLAP, "out->length", "out->color");
+    RESET(); hi.color.channels = 2; hi.color.stride = w * c;
+    VALIDATE_T(SBL_ERROR_CHANNEL_MISMATCH, "history->color.channels", NULL);
+    RESET(); hi.length.width = w - 1;
+    VALIDATE_T(SBL_ERROR_SIZE_MISMATCH, "history->length.width", "23 x 16");
+    RESET(); out.length.data = NULL;
+    VALIDATE_T(SBL_ERROR_NULL_POINTER, "out->length.data", NULL);
+    RESET(); fr.gbuffer.normals = sbl_image_make(col, w, h, 4);
+    VALIDATE_T(SBL_ERROR_INVALID_CHANNELS, "frame->gbuffer.normals.channels", "needs 3");
+    fr = fr0;
+    CHECK_EQ(sbl_temporal_validate(NULL, &fr, &hi, &out, &dg), SBL_ERROR_NULL_POINTER);
+    EXPECT_DIAG(dg, SBL_ERROR_NULL_POINTER, "desc", NULL);
+    CHECK_EQ(sbl_temporal_validate(&d, &fr, &hi, &out, NULL), SBL_OK);
+#undef VALIDATE_T
+#undef RESET
+    free(col); free(hist); free(hn); free(dep); free(pdep); free(mv); free(oc); free(on); free(oa);
+
+    {   /* stereo */
+        pair p;
+        rig_setup r;
+        sbl_stereo_output so;
+        sbt_img o = sbt_img_new(40, 24, 3, 0), b2 = sbt_img_new(40, 24, 2, 0);
+        unsigned char *mask = (unsigned char *)malloc(40 * 24);
+        long need_right, need_wrong;
+        pair_init(&p, 40, 24);
+        pair_render(&p);
+        memset(&so, 0, sizeof so);
+        so.color = view(&o);
+        pair_rig(&p, FORM_PARALLEL, &r);
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_OK);
+        EXPECT_DIAG(dg, SBL_OK, "", NULL);
+        CHECK(dg.warning[0] == '\0');
+        memset(&r.d, 0, sizeof r.d);                     /* the all-zero desc */
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_INVALID_PARAM);
+        EXPECT_DIAG(dg, SBL_ERROR_INVALID_PARAM, "desc->focal_px", "SBL_RIG_PARALLEL");
+        pair_rig(&p, FORM_PIN_CV, &r);
+        memset(r.d.pinhole.right_from_left, 0, sizeof r.d.pinhole.right_from_left);
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_INVALID_PARAM);
+        EXPECT_DIAG(dg, SBL_ERROR_INVALID_PARAM, "desc->pinhole.right_from_left", "singular");
+        pair_rig(&p, FORM_PIN_CV, &r);
+        r.d.pinhole.eye[1].fy = 0.0f;
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_INVALID_PARAM);
+        EXPECT_DIAG(dg, SBL_ERROR_INVALID_PARAM, "desc->pinhole.eye[1]", NULL);
+        pair_rig(&p, FORM_PARALLEL, &r);
+        r.eye[0].gbuffer.depth.data = NULL;
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_MISSING_INPUT);
+        EXPECT_DIAG(dg, SBL_ERROR_MISSING_INPUT, "target->gbuffer.depth", NULL);
+        pair_rig(&p, FORM_PARALLEL, &r);
+        so.beta = view(&b2);
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_INVALID_CHANNELS);
+        EXPECT_DIAG(dg, SBL_ERROR_INVALID_CHANNELS, "out->beta.channels", NULL);
+        so.beta.data = NULL;
+        so.color = r.eye[1].gbuffer.depth; so.color.channels = 3; so.color.stride = p.dep[1].stride;
+        so.color.width = 40 / 3; /* a size mismatch comes first */
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_SIZE_MISMATCH);
+        EXPECT_DIAG(dg, SBL_ERROR_SIZE_MISMATCH, "out->color.width", NULL);
+        so.color = view(&o);
+        so.length = r.eye[1].gbuffer.depth;
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_OVERLAP);
+        EXPECT_DIAG(dg, SBL_ERROR_OVERLAP, "out->length", "source->gbuffer.depth");
+        so.length.data = NULL;
+        /* the wrong target_eye of the issue: the fill call cannot know, the validation warns */
+        CHECK_EQ(sbl_stereo_fill(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], view(&o), mask, 40, 0, 24, &need_right), SBL_OK);
+        CHECK_EQ(sbl_stereo_fill(&r.d, SBL_EYE_RIGHT, &r.eye[0], &r.eye[1], view(&o), mask, 40, 0, 24, &need_wrong), SBL_OK);
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], NULL, &dg), SBL_OK);
+        CHECK(dg.warning[0] == '\0');
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_RIGHT, &r.eye[0], &r.eye[1], NULL, &dg), SBL_OK);
+        printf("  wrong target_eye in a fill: %ld pixels need a ray (right eye: %ld); warning: %s\n",
+               need_wrong, need_right, dg.warning);
+        CHECK(strstr(dg.warning, "target_eye") == dg.warning);
+        pair_rig(&p, FORM_PIN_CV, &r); /* the pinhole rig: the eyes' intrinsics differ */
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], NULL, &dg), SBL_OK);
+        CHECK(dg.warning[0] == '\0');
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_RIGHT, &r.eye[0], &r.eye[1], NULL, &dg), SBL_OK);
+        CHECK(strstr(dg.warning, "target_eye") == dg.warning);
+        free(mask); free(o.mem); free(b2.mem);
+        pair_free(&p);
+    }
+}
+
 int main(void)
 {
     test_disparity_sign();
@@ -972,5 +1133,6 @@ int main(void)
     test_disabled_tests();
     test_beta();
     test_buffers();
+    test_diagnostics();
     return sbt_finish("test_engine");
 }
