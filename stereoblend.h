@@ -3502,7 +3502,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
                                     target, source, 0) == SBL_OK) {
                 double e_this = sbl__sample_roundtrip(&s, w, h, &n_this);
                 double e_swap = sbl__sample_roundtrip(&swapped, w, h, &n_swap);
-                if (n_this > 0 && n_swap > 0 && e_swap > 4.0 * e_this && e_swap > 0.05) {
+                if (n_this > 0 && n_swap > 0 && e_this > 4.0 * e_swap && e_this > 0.05) {
                     char msg[200];
                     snprintf(msg, sizeof msg, ": the correspondence comes back %.3g px off on "
                              "average, %.3g px with the other eye: are target_eye, or target "

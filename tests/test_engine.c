@@ -1075,6 +1075,7 @@ static void test_diagnostics(void)
         pair_rig(&p, FORM_PARALLEL, &r);
         CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_OK);
         EXPECT_DIAG(dg, SBL_OK, "", NULL);
+        if (dg.warning[0]) printf("  unexpected warning: %s\n", dg.warning);
         CHECK(dg.warning[0] == '\0');
         memset(&r.d, 0, sizeof r.d);                     /* the all-zero desc */
         CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_INVALID_PARAM);
