@@ -270,15 +270,30 @@ typedef struct sbl_reproject_desc {
 } sbl_reproject_desc;
 
 typedef enum sbl_temporal_source {
-    SBL_TEMPORAL_MOTION = 0,  /* motion vectors of the current frame                 */
-    SBL_TEMPORAL_CAMERA       /* depth + both frames' cameras (static geometry only) */
+    SBL_TEMPORAL_MOTION = 0,  /* motion vectors of the current frame                   */
+    SBL_TEMPORAL_CAMERA       /* depth + both frames' cameras; static geometry, and the
+                                 objects of sbl_frame.objects by their own transforms  */
 } sbl_temporal_source;
+
+/* An object that moves by its own transform (camera mode): the pixels whose id (the
+   G-buffer's ids, exact compare) is `id` are carried back to the previous frame by
+   prev_object_to_world * inverse(object_to_world) before the previous camera sees
+   them. Any invertible affine transform (rigid, scaled, sheared). */
+typedef struct sbl_object_motion {
+    float id;                       /* its value in the id buffer                       */
+    float object_to_world[16];      /* this frame (row-major, p' = M p)                 */
+    float prev_object_to_world[16]; /* the history's frame                              */
+} sbl_object_motion;
 
 /* The current frame: colour to filter, its G-buffer, its camera (camera mode). */
 typedef struct sbl_frame {
     sbl_image color;
     sbl_gbuffer gbuffer;
     const sbl_camera *camera;
+    const sbl_object_motion *objects; /* camera mode, optional: moving objects, sorted by
+                                         id (ascending, distinct); needs gbuffer.ids.
+                                         Pixels whose id is not listed are static.     */
+    int object_count;
 } sbl_frame;
 
 /* Last frame's filter output and the G-buffer it was made with. */
@@ -909,8 +924,12 @@ typedef struct sbl__cam_map {
     double clip_to_view[16];  /* inverse projection of the source (this) camera      */
     double view_to_view[16];  /* this view -> other view                             */
     double other_proj[16];    /* other view -> clip                                   */
+    double view_to_world[16]; /* this view -> world (objects that move)               */
+    double world_to_other[16];/* world -> other view (objects that move)              */
     double width, height;     /* this image (for pixel -> ndc)                        */
     double other_width, other_height;
+    const sbl_object_motion *objects; /* sorted by id; NULL: everything static        */
+    int object_count;
 } sbl__cam_map;
 
 /* The other camera forms as the equivalent OpenGL pair (double): a view space with the
@@ -1031,11 +1050,13 @@ static int sbl__cam_map_init_gl(sbl__cam_map *m, const double *view, const doubl
                                 int w, int h, const double *other_view,
                                 const double *other_proj, int ow, int oh)
 {
-    double inv_view[16];
     memcpy(m->other_proj, other_proj, sizeof m->other_proj);
+    memcpy(m->world_to_other, other_view, sizeof m->world_to_other);
+    m->objects = NULL;
+    m->object_count = 0;
     if (!sbl__mat_invert(m->clip_to_view, proj)) return 0;
-    if (!sbl__mat_invert(inv_view, view)) return 0;
-    sbl__mat_mul(m->view_to_view, other_view, inv_view);
+    if (!sbl__mat_invert(m->view_to_world, view)) return 0;
+    sbl__mat_mul(m->view_to_view, other_view, m->view_to_world);
     m->width = w; m->height = h; m->other_width = ow; m->other_height = oh;
     return 1;
 }
@@ -1056,12 +1077,11 @@ static int sbl__cam_map_init(sbl__cam_map *m, const sbl_camera *from, int w, int
     return sbl__cam_map_init_gl(m, view, proj, w, h, other_view, other_proj, ow, oh);
 }
 
-/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> position in the
-   other image and the point's planar depth there. Returns 0 if behind the camera. */
-static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float z,
-                              double *ox, double *oy, double *oz)
+/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> the point in this
+   camera's view space (p[3] = 0 for a direction). Returns 0 if the ray is degenerate. */
+static int sbl__cam_map_point(const sbl__cam_map *m, double px, double py, float z, double *p)
 {
-    double ndc[4], q[4], p[4], v[4], c[4];
+    double ndc[4], q[4];
     int i, k;
     ndc[0] = 2.0 * px / m->width - 1.0;
     ndc[1] = 1.0 - 2.0 * py / m->height;
@@ -1076,10 +1096,15 @@ static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float
     for (i = 0; i < 3; ++i) q[i] = (q[i] / q[3]) / (-q[2] / q[3]);
     if (sbl__is_pos_inf(z)) { p[0] = q[0]; p[1] = q[1]; p[2] = q[2]; p[3] = 0.0; }
     else { p[0] = q[0] * z; p[1] = q[1] * z; p[2] = q[2] * z; p[3] = 1.0; }
-    for (i = 0; i < 4; ++i) {
-        v[i] = 0.0;
-        for (k = 0; k < 4; ++k) v[i] += m->view_to_view[i * 4 + k] * p[k];
-    }
+    return 1;
+}
+
+/* A point of the other camera's view space -> its pixel position and planar depth. */
+static int sbl__cam_map_project(const sbl__cam_map *m, const double *v, double *ox, double *oy,
+                                double *oz)
+{
+    double c[4];
+    int i, k;
     for (i = 0; i < 4; ++i) {
         c[i] = 0.0;
         for (k = 0; k < 4; ++k) c[i] += m->other_proj[i * 4 + k] * v[k];
@@ -1087,7 +1112,109 @@ static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float
     if (!(c[3] > 0.0)) return 0;
     *ox = (c[0] / c[3] + 1.0) * 0.5 * m->other_width;
     *oy = (1.0 - c[1] / c[3]) * 0.5 * m->other_height;
-    *oz = p[3] == 0.0 ? HUGE_VAL : -v[2];
+    *oz = v[3] == 0.0 ? HUGE_VAL : -v[2];
+    return 1;
+}
+
+static void sbl__mat_apply(double *out, const double *m, const double *p)
+{
+    int i, k;
+    for (i = 0; i < 4; ++i) {
+        out[i] = 0.0;
+        for (k = 0; k < 4; ++k) out[i] += m[i * 4 + k] * p[k];
+    }
+}
+
+/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> position in the
+   other image and the point's planar depth there. Returns 0 if behind the camera. */
+static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float z,
+                              double *ox, double *oy, double *oz)
+{
+    double p[4], v[4];
+    if (!sbl__cam_map_point(m, px, py, z, p)) return 0;
+    sbl__mat_apply(v, m->view_to_view, p);
+    return sbl__cam_map_project(m, v, ox, oy, oz);
+}
+
+/* Solves M q = p for an object_to_world M (float, row-major) in double with partial
+   pivoting. Returns 0 if M is singular or not finite. */
+static int sbl__mat_solve(const float *mf, const double *p, double *q)
+{
+    double a[4][5];
+    int i, j, k;
+    for (i = 0; i < 4; ++i) {
+        for (j = 0; j < 4; ++j) a[i][j] = (double)mf[i * 4 + j];
+        a[i][4] = p[i];
+    }
+    for (i = 0; i < 4; ++i) {
+        int piv = i;
+        for (k = i + 1; k < 4; ++k)
+            if (fabs(a[k][i]) > fabs(a[piv][i])) piv = k;
+        if (!(fabs(a[piv][i]) > 1e-300)) return 0;
+        if (piv != i)
+            for (j = 0; j < 5; ++j) { double t = a[i][j]; a[i][j] = a[piv][j]; a[piv][j] = t; }
+        for (k = i + 1; k < 4; ++k) {
+            double f = a[k][i] / a[i][i];
+            for (j = i; j < 5; ++j) a[k][j] -= f * a[i][j];
+        }
+    }
+    for (i = 3; i >= 0; --i) {
+        double v = a[i][4];
+        for (j = i + 1; j < 4; ++j) v -= a[i][j] * q[j];
+        q[i] = v / a[i][i];
+    }
+    return q[0] - q[0] == 0.0 && q[1] - q[1] == 0.0 && q[2] - q[2] == 0.0 && q[3] - q[3] == 0.0;
+}
+
+/* The moving object with this id (binary search; ids sorted ascending), or NULL. */
+static const sbl_object_motion *sbl__find_object(const sbl__cam_map *m, float id)
+{
+    int lo = 0, hi = m->object_count - 1;
+    while (lo <= hi) {
+        int mid = lo + (hi - lo) / 2;
+        float v = m->objects[mid].id;
+        if (v == id) return &m->objects[mid];
+        if (v < id) lo = mid + 1;
+        else hi = mid - 1;
+    }
+    return NULL;
+}
+
+/* sbl__cam_map_apply for a pixel with object id `id`: a listed (moving) object is carried
+   back by prev_object_to_world * inverse(object_to_world) in world space; anything else
+   is static. */
+static int sbl__cam_map_apply_id(const sbl__cam_map *m, float id, double px, double py, float z,
+                                 double *ox, double *oy, double *oz)
+{
+    const sbl_object_motion *o;
+    double p[4], w[4], q[4], v[4];
+    if (!m->object_count || !(o = sbl__find_object(m, id)))
+        return sbl__cam_map_apply(m, px, py, z, ox, oy, oz);
+    if (!sbl__cam_map_point(m, px, py, z, p)) return 0;
+    sbl__mat_apply(w, m->view_to_world, p);
+    if (!sbl__mat_solve(o->object_to_world, w, q)) return 0;
+    {
+        double prev[16];
+        sbl__mat_from_float(prev, o->prev_object_to_world);
+        sbl__mat_apply(w, prev, q);
+    }
+    sbl__mat_apply(v, m->world_to_other, w);
+    return sbl__cam_map_project(m, v, ox, oy, oz);
+}
+
+/* Objects of a frame: finite, invertible, sorted by distinct ids. */
+static int sbl__objects_ok(const sbl_object_motion *o, int n)
+{
+    int i, k;
+    if (n < 0 || (n > 0 && !o)) return 0;
+    for (i = 0; i < n; ++i) {
+        double t[4] = {0, 0, 0, 1}, q[4];
+        if (!sbl__finite(o[i].id) || (i > 0 && !(o[i - 1].id < o[i].id))) return 0;
+        for (k = 0; k < 16; ++k)
+            if (!sbl__finite(o[i].object_to_world[k]) || !sbl__finite(o[i].prev_object_to_world[k]))
+                return 0;
+        if (!sbl__mat_solve(o[i].object_to_world, t, q)) return 0;
+    }
     return 1;
 }
 
@@ -1524,10 +1651,14 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     if (source == SBL_TEMPORAL_MOTION && !g->motion.data) return SBL_ERROR_MISSING_INPUT;
     if (source == SBL_TEMPORAL_CAMERA) {
         if (!g->depth.data || !frame->camera) return SBL_ERROR_MISSING_INPUT;
+        if (frame->object_count && !g->ids.data) return SBL_ERROR_MISSING_INPUT;
+        if (!sbl__objects_ok(frame->objects, frame->object_count)) return SBL_ERROR_INVALID_PARAM;
         if (s->history) {
             if (!s->history->camera) return SBL_ERROR_MISSING_INPUT;
             if (!sbl__cam_map_init(&s->cam, frame->camera, w, h, s->history->camera, w, h))
                 return SBL_ERROR_INVALID_PARAM;
+            s->cam.objects = frame->objects;
+            s->cam.object_count = frame->object_count;
         }
     }
     return SBL_OK;
@@ -1549,7 +1680,9 @@ static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
         sy = y + 0.5 + s->motion_ky * mv[1];
         sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
     } else {
-        if (!sbl__cam_map_apply(&s->cam, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
+        if (!sbl__cam_map_apply_id(&s->cam, s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f,
+                                   x + 0.5, y + 0.5, z, &sx, &sy, &sz))
+            return 0.0f;
     }
     /* came in from outside the previous image: nothing to reuse (edge pixels would
        otherwise be replicated by the renormalisation and the 3x3 fallback) */
@@ -3243,6 +3376,13 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
             if (!frame->camera)
                 sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->camera", "",
                            "is NULL: SBL_TEMPORAL_CAMERA needs both frames' cameras");
+            if (frame->object_count && !frame->gbuffer.ids.data)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->gbuffer.ids", "",
+                           "is absent: frame->objects are found through the id buffer");
+            if (!sbl__objects_ok(frame->objects, frame->object_count))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "frame->objects", "",
+                           "need finite, invertible transforms, sorted by distinct ids "
+                           "(and object_count >= 0)");
             if (history && history->color.data && !history->camera)
                 sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "history->camera", "",
                            "is NULL: SBL_TEMPORAL_CAMERA needs both frames' cameras");
