@@ -2874,7 +2874,7 @@ static int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, in
     if (!sbl__finite(fbz)) return 0;
     *ox = px + s->dir[back] * ((double)fbz - s->offset);
     *oy = py;
-    *oz = z;
+    *oz = (double)z;
     return 1;
 }
 
@@ -2886,9 +2886,9 @@ static int sbl__stereo_map_disparity(const struct sbl__stereo_rp *s, int back, i
     const float *d = SBL__AT(*m, ix, iy);
     float dy = m->ch > 1 ? d[1] : 0.0f;
     if (!sbl__finite(d[0]) || !sbl__finite(dy)) return 0;
-    *ox = px + s->dir[back] * d[0];
-    *oy = py + s->dir[back] * dy;
-    *oz = s->depth[back].p ? *SBL__AT(s->depth[back], ix, iy) : 0.0f;
+    *ox = px + s->dir[back] * (double)d[0];
+    *oy = py + s->dir[back] * (double)dy;
+    *oz = s->depth[back].p ? (double)*SBL__AT(s->depth[back], ix, iy) : 0.0;
     return 1;
 }
 
@@ -2958,7 +2958,7 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->dir[0] = target_eye == SBL_EYE_LEFT ? -1.0 : 1.0;
     s->dir[1] = -s->dir[0];
     s->fb = s->d.focal_px * s->d.baseline;
-    s->offset = s->d.disparity_offset;
+    s->offset = (double)s->d.disparity_offset;
     switch (s->d.rig) {
     case SBL_RIG_PARALLEL: s->map = sbl__stereo_map_parallel; break;
     case SBL_RIG_DISPARITY: s->map = sbl__stereo_map_disparity; break;
@@ -3565,7 +3565,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
                     sbl__blame(&wk, SBL_ERROR_INVALID_PARAM,
                                e ? "desc->pinhole.eye[1]" : "desc->pinhole.eye[0]", "",
                                "fx, fy must be > 0 and everything finite (or axes invalid)");
-            for (i = 0; i < 16; ++i) v[i] = u.pinhole.right_from_left[i];
+            for (i = 0; i < 16; ++i) v[i] = (double)u.pinhole.right_from_left[i];
             if (!sbl__mat_invert(inv, v))
                 sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->pinhole.right_from_left", "",
                            "not finite or singular (a zero-initialised pose is singular: "
