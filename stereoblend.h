@@ -74,6 +74,7 @@
      1. Results          2. Views and conventions   3. Reprojection
      4. Moments          5. Weights                 6. Blend and history length
      7. Temporal filter  8. Stereo                  9. Fill mode (pixels needing a ray)
+    10. Adaptive computation (stereo consistency mask, stereo blend where it is needed)
 */
 #ifndef STEREOBLEND_H
 #define STEREOBLEND_H
@@ -560,6 +561,65 @@ SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index tar
 SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
                                    const unsigned char *mask, int mask_stride,
                                    int y0, int y1);
+
+/* ======================================================================== */
+/* 10. Adaptive computation                                                 */
+/* ======================================================================== */
+
+/* Stereo consistency (Wu, after Weber's law): a value A(p) of the target eye and the
+   value A(p*) of the other eye at p's back-checked match p* differ visibly when their
+   Weber ratio reaches the threshold:
+       r = |A(p) - A(p*)| / max(|A(p)|, |A(p*)|)     (per channel; the largest counts)
+   The two images are any per-eye quantity (filtered colour, luminance, AO), 1..4
+   channels, the same in both eyes; p* is found by the stereo reprojection of
+   sbl_reproject_stereo (tap tests, back-check) with `source_value` in place of the
+   source eye's colour, so A(p*) is its bilinear value over the taps that pass.
+   Defined cases:
+     - both values 0: r = 0 (equal); one 0, the other not: r = 1;
+     - negative values: the magnitudes in the denominator, so -a against a gives r = 2;
+     - NaN or +-inf in target_value at p: inconsistent (nothing finite can agree);
+     - NaN or +-inf in source_value: such taps are dropped as by every reprojection; if
+       no tap remains the pixel has no correspondence.
+   The eyes' colour and length are not read (only their geometry); the rig, focal
+   length, baseline and tap tests are those of `desc`. */
+typedef enum sbl_consistency_class {
+    SBL_CONSISTENT = 0,         /* r < threshold                                      */
+    SBL_INCONSISTENT = 1,       /* r >= threshold, or a non-finite target value       */
+    SBL_NO_CORRESPONDENCE = 2   /* no back-checked match (occluded, outside, no depth) */
+} sbl_consistency_class;
+
+typedef struct sbl_consistency_counts {
+    long consistent, inconsistent, no_correspondence; /* pixels of the rows written    */
+    double inconsistent_ratio; /* inconsistent / (consistent + inconsistent); 0 if none.
+                                  For row bands sum the counts and divide again.      */
+} sbl_consistency_counts;
+
+#define SBL_WEBER_THRESHOLD 0.02f /* Walter et al. (Lightcuts), used by Wu */
+
+/* Classify rows [y0, y1) of `target_eye`: mask[y * mask_stride + x] receives an
+   sbl_consistency_class. threshold 0 -> SBL_WEBER_THRESHOLD; negative or non-finite is
+   SBL_ERROR_INVALID_PARAM. counts (optional) receives the counts of these rows. */
+SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
+                                         sbl_eye_index target_eye, const sbl_eye *target,
+                                         const sbl_eye *source, sbl_image target_value,
+                                         sbl_image source_value, unsigned char *mask,
+                                         int mask_stride, int y0, int y1,
+                                         sbl_consistency_counts *counts);
+
+/* Adaptive stereo blend (Wu's adaptive pass): rows [y0, y1) of out_color / out_length
+   receive sbl_stereo_blend's result (bit for bit) where mask[y * mask_stride + x] is
+   SBL_INCONSISTENT, and the target eye's own colour and N (1 where it has no length)
+   everywhere else. The blend runs on tiles of 16 x 16 pixels that hold a marked pixel,
+   so its time follows the marked share. The mask is typically sbl_stereo_consistency's
+   on the two eyes' per-eye results (it is read whole, so compute all of it first).
+   Scratch: sbl_stereo_scratch_size(). blended_count (optional): marked pixels of these
+   rows. Arguments are checked as by sbl_stereo_blend, before anything is written. */
+SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                          const sbl_eye *target, const sbl_eye *source,
+                                          const unsigned char *mask, int mask_stride,
+                                          sbl_image out_color, sbl_image out_length,
+                                          int y0, int y1, void *scratch,
+                                          size_t scratch_bytes, long *blended_count);
 
 #ifdef __cplusplus
 }
@@ -2234,18 +2294,22 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     const float *src = sbl__px(k->own, 0, row);
     const ptrdiff_t step = sbl__step_of(k->own);
     const float *ny = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, row) : NULL;
-    const ptrdiff_t ny_step = ny ? sbl__step_of(k->own_n) : 0;
+    const ptrdiff_t ny_step = ny ? (ptrdiff_t)sbl__step_of(k->own_n) : 0;
+    /* the lanes load N_Y contiguously: another pixel step takes the reference path */
+    const int ny_lanes = !ny || ny_step == 1;
     int x, c, ch = k->ch, count = 0;
     for (x = xa; x < xb; ++x) {
-        int safe = 1;
+        int safe = ny_lanes;
         for (c = 0; c < ch; ++c) {
             float v = src[(ptrdiff_t)x * step + c];
             r->y[c][x] = v;
             safe &= sbl__lane_value_ok(v);
         }
         /* N_Y: the reference path sanitises it */
-        if (ny) safe &= sbl__lane_value_ok(ny[x * ny_step]) && ny[x * ny_step] <= 1048576.0f &&
-                        ny_step == 1; /* the lanes load N_Y contiguously */
+        if (ny) {
+            float n = ny[(ptrdiff_t)x * ny_step];
+            safe &= sbl__lane_value_ok(n) && n <= 1048576.0f;
+        }
         r->unsafe[x] = (unsigned char)!safe;
         count += !safe;
     }
@@ -3848,6 +3912,183 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
                 float *d = sbl__px(&dst, x, y);
                 for (k = 0; k < dst.channels; ++k) d[k] = t[k];
             }
+    return SBL_OK;
+}
+
+/* ------------------------------------------------------------------------ */
+/* 10. Adaptive computation                                                 */
+/* ------------------------------------------------------------------------ */
+
+/* Weber ratio of two values of one channel (the cases are documented at the
+   declaration); in double so that |a - b| of two finite floats cannot overflow. */
+static double sbl__weber_ratio(float a, float b)
+{
+    double da = fabs((double)a), db = fabs((double)b);
+    double m = da > db ? da : db;
+    if (!(m > 0.0)) return 0.0; /* both +-0 */
+    return fabs((double)a - (double)b) / m;
+}
+
+/* Does the byte mask [mask, mask + (h-1)*stride + w) overlap any image of the eyes or
+   either value image? */
+static int sbl__mask_overlaps(const unsigned char *mask, int mask_stride, int w, int h,
+                              const sbl_eye *a, const sbl_eye *b)
+{
+    const char *m0 = (const char *)mask;
+    const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+    return sbl__overlap_bytes_eye(m0, m1, a) || sbl__overlap_bytes_eye(m0, m1, b);
+}
+
+SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
+                                         sbl_eye_index target_eye, const sbl_eye *target,
+                                         const sbl_eye *source, sbl_image target_value,
+                                         sbl_image source_value, unsigned char *mask,
+                                         int mask_stride, int y0, int y1,
+                                         sbl_consistency_counts *counts)
+{
+    sbl__stereo_rp s;
+    sbl_eye t, o; /* the eyes with the value images as their colour, without N */
+    sbl_result r;
+    long n_ok = 0, n_bad = 0, n_none = 0;
+    int x, y, k, w, h, ch;
+    if (!target || !source) return SBL_ERROR_NULL_POINTER;
+    t = *target;
+    o = *source;
+    t.color = target_value;
+    o.color = source_value;
+    memset(&t.length, 0, sizeof t.length);
+    memset(&o.length, 0, sizeof o.length);
+    /* validates the rig, both eyes' geometry and both value images (size, channels) */
+    if ((r = sbl__stereo_rp_init(&s, desc, target_eye, &t, &o, 1)) != SBL_OK) return r;
+    if (sbl__is_zero(threshold)) threshold = SBL_WEBER_THRESHOLD;
+    if (!sbl__finite(threshold) || !(threshold > 0.0f)) return SBL_ERROR_INVALID_PARAM;
+    w = target_value.width; h = target_value.height; ch = target_value.channels;
+    if (!mask) return SBL_ERROR_NULL_POINTER;
+    if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    if (sbl__mask_overlaps(mask, mask_stride, w, h, &t, &o) ||
+        sbl__mask_overlaps(mask, mask_stride, w, h, target, source))
+        return SBL_ERROR_OVERLAP;
+    for (y = y0; y < y1; ++y) {
+        unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        for (x = 0; x < w; ++x) {
+            float other[4] = {0, 0, 0, 0};
+            const float *own = sbl__px(&target_value, x, y);
+            unsigned char cls;
+            if (!(sbl__stereo_rp_pixel(&s, x, y, other) > 0.0f)) {
+                cls = SBL_NO_CORRESPONDENCE;
+            } else if (sbl__any_nonfinite(own, ch)) {
+                cls = SBL_INCONSISTENT;
+            } else {
+                double worst = 0.0;
+                for (k = 0; k < ch; ++k) {
+                    double q = sbl__weber_ratio(own[k], other[k]);
+                    if (q > worst) worst = q;
+                }
+                cls = worst >= (double)threshold ? SBL_INCONSISTENT : SBL_CONSISTENT;
+            }
+            m[x] = cls;
+            n_ok += cls == SBL_CONSISTENT;
+            n_bad += cls == SBL_INCONSISTENT;
+            n_none += cls == SBL_NO_CORRESPONDENCE;
+        }
+    }
+    if (counts) {
+        counts->consistent = n_ok;
+        counts->inconsistent = n_bad;
+        counts->no_correspondence = n_none;
+        counts->inconsistent_ratio =
+            n_ok + n_bad > 0 ? (double)n_bad / (double)(n_ok + n_bad) : 0.0;
+    }
+    return SBL_OK;
+}
+
+/* Tiles of the adaptive pass: the blend runs on row bands of this height, on the column
+   spans of the tiles that hold a marked pixel (sbl__kernel_run_span, bit-identical to the
+   whole run there). Each band reloads the two rows around it and each span its two
+   border columns (the 3x3 window), so larger tiles waste less; smaller ones follow the
+   mask closer. */
+#define SBL__ADAPTIVE_TILE 16
+
+SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                          const sbl_eye *target, const sbl_eye *source,
+                                          const unsigned char *mask, int mask_stride,
+                                          sbl_image out_color, sbl_image out_length,
+                                          int y0, int y1, void *scratch,
+                                          size_t scratch_bytes, long *blended_count)
+{
+    sbl__stereo_rp s;
+    sbl__kernel k;
+    sbl_result r;
+    long marked = 0;
+    int w, h, ch, x, y, c, by;
+    /* every check of the full blend: an empty row range validates and writes nothing */
+    if ((r = sbl_stereo_blend(desc, target_eye, target, source, out_color, out_length, y0, y0,
+                              scratch, scratch_bytes)) != SBL_OK)
+        return r;
+    w = target->color.width; h = target->color.height; ch = target->color.channels;
+    if (!mask) return SBL_ERROR_NULL_POINTER;
+    if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    {   /* the mask is read while the outputs are written */
+        const char *m0 = (const char *)mask;
+        const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+        if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes(m0, m1, &out_length))
+            return SBL_ERROR_OVERLAP;
+    }
+    if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
+                                     &out_length)) != SBL_OK)
+        return r;
+    memset(&k, 0, sizeof k); /* the kernel as sbl_stereo_blend sets it up */
+    k.w = w; k.h = h; k.ch = ch;
+    k.wp = sbl__weight_params_make(s.d.estimator, s.d.rectify, s.d.weight_mode,
+                                   s.d.constant_beta, 0.0f, s.d.clip_gamma,
+                                   s.d.bias_threshold);
+    k.n_cap = FLT_MAX;
+    k.temporal = 0;
+    k.fill = s.d.fill;
+    k.own = &target->color;
+    k.own_n = &target->length;
+    k.gather = sbl__stereo_rp_pixel;
+    k.gather_ctx = &s;
+    k.out = out_color;
+    k.out_n = out_length;
+    sbl__kernel_bind(&k, scratch);
+    /* bands on the absolute tile grid, clipped to [y0, y1) */
+    for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
+        int b0 = by > y0 ? by : y0, b1 = by + SBL__ADAPTIVE_TILE < y1 ? by + SBL__ADAPTIVE_TILE : y1;
+        int tx, span0 = -1;
+        /* runs of marked tiles along the band become one span each */
+        for (tx = 0; tx < w + SBL__ADAPTIVE_TILE; tx += SBL__ADAPTIVE_TILE) {
+            int marked_tile = 0; /* the step past the last tile closes an open span */
+            if (tx < w) {
+                int x1 = tx + SBL__ADAPTIVE_TILE < w ? tx + SBL__ADAPTIVE_TILE : w;
+                for (y = b0; y < b1 && !marked_tile; ++y) {
+                    const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+                    for (x = tx; x < x1; ++x)
+                        if (m[x] == SBL_INCONSISTENT) { marked_tile = 1; break; }
+                }
+            }
+            if (marked_tile && span0 < 0) span0 = tx;
+            if (!marked_tile && span0 >= 0) {
+                sbl__kernel_run_span(&k, b0, b1, span0, tx < w ? tx : w);
+                span0 = -1;
+            }
+        }
+        /* the own result wherever the mask does not ask for the blend */
+        for (y = b0; y < b1; ++y) {
+            const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+            const float *own = sbl__px(&target->color, 0, y);
+            float *o = sbl__px(&out_color, 0, y);
+            float *on = out_length.data ? sbl__px(&out_length, 0, y) : NULL;
+            for (x = 0; x < w; ++x) {
+                if (m[x] == SBL_INCONSISTENT) { ++marked; continue; }
+                for (c = 0; c < ch; ++c) o[(size_t)x * ch + c] = own[(size_t)x * ch + c];
+                if (on) on[x] = sbl__own_n(&k, x, y);
+            }
+        }
+    }
+    if (blended_count) *blended_count = marked;
     return SBL_OK;
 }
 

@@ -16,6 +16,7 @@
 #include "../stereoblend.h"
 #include "sbl_test.h"
 #include <float.h>
+#include <limits.h>
 #include <time.h>
 
 #ifdef __FAST_MATH__
