@@ -42,24 +42,54 @@
      First frame: pass prev = NULL (or prev->color.data == NULL): every pixel resets.
 
    CONVENTIONS (see also README.md)
-     Images     float, 1-4 interleaved channels, row 0 = top, stride in floats
-                (0 = width * channels). Pixel (i, j) has its centre at (i + 0.5, j + 0.5).
+     Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
+                (i + 0.5, j + 0.5). sbl_image_make() gives tight rows; otherwise
+                stride_bytes (any sign: negative = bottom-up memory, data = the top row)
+                and pixel_bytes (a channel view into a wider interleaved buffer), both
+                multiples of sizeof(float) (else SBL_ERROR_INVALID_STRIDE). The legacy
+                `stride` is in floats; give one of the two. size_bytes (optional) makes
+                a layout that reaches past the buffer an error (SBL_ERROR_INVALID_SIZE)
+                before anything is read. data is const (const inputs need no cast);
+                outputs are written through it. Zero-initialise views built by hand.
      Depth      linear planar view depth (distance along the view axis, > 0); +inf is
                 sky and matches only sky. 0, negative or NaN depth = no valid geometry.
                 Converters from NDC / reversed-Z buffers: sbl_depth_to_linear().
      Motion     default: pixels, backward (previous position = current + mv), +y down.
                 sbl_motion_convention selects UV / NDC units, forward vectors, +y up
                 (Blender's Vector pass is pixels, forward=0 for its X,Y pair, y_up=1).
-     Cameras    row-major 4x4, column vectors (p' = M p); view space looks down -z;
-                OpenGL-style projection: u = (ndc_x + 1)/2 W, v = (1 - ndc_y)/2 H.
-     Stereo     parallel rig: right eye = left eye moved by +baseline along camera x;
-                the right-eye match of left pixel u at depth z is u - focal_px*baseline/z.
+                Motion vectors carry no depth change: the depth test compares the
+                previous depth with the current one (camera mode knows the change).
+     Cameras    sbl_camera: row-major 4x4, column vectors (p' = M p); OpenGL view space
+                (x right, y up, looks down -z); OpenGL-style projection, u = (ndc_x + 1)/2 W,
+                v = (1 - ndc_y)/2 H, off-axis allowed; near / far do not matter. Other
+                forms: sbl_camera_from_pinhole (fx fy cx cy + a pose in OpenCV axes, x
+                right, y down, +z forward, or OpenGL axes) and
+                sbl_camera_from_world_to_pixel (one 3x4 P = K [R | t]); integer_pixel_centers
+                = 1 for calibrations that centre pixel (i, j) at (i, j) (OpenCV, Middlebury).
+                Moving objects: sbl_frame.objects (object-to-world now and before, per id).
+     Stereo     disparity d = u_left - u_right (pixels). Parallel rig: d = focal_px *
+                baseline / z - disparity_offset (Middlebury doffs = cx_right - cx_left;
+                d may be negative); the right-eye match of left pixel u is u - d.
+                Disparity maps: 1 channel (d_x) or 2 (d_x, d_y = v_left - v_right), the
+                same sign in both eyes' maps. Pinhole rig: intrinsics per eye + the right
+                eye's pose relative to the left (x_r = R x_l + T; parallel: T = (-b,0,0)).
+                The library cannot know which image is left: a swapped target_eye passes
+                (symmetric rigs give consistent round trips); sbl_stereo_validate warns
+                when the round trips say so. sbl_stereo_desc.fill (take the other eye
+                wherever it reprojects, in a blend) is unrelated to sbl_stereo_fill() (the
+                mask of pixels that still need a ray).
      Weights    a (alpha, beta) is the weight of the NEW / OWN sample:
-                out = (1 - a) X + a Y.
+                out = (1 - a) X + a Y. Both are returned on request (sbl_temporal_output
+                .alpha, sbl_stereo_output.beta).
      History    N per pixel = effective number of samples (Eq. 5), capped, 1 on reset
-                (0 where the new sample is not finite and there is no history).
+                (0 where the new sample is not finite and there is no history). A
+                history without length means N = 1 everywhere; a history without depth
+                (normals, ids) while the frame has it switches that test off silently:
+                sbl_temporal_validate warns about both.
      Defaults   a zero field means its default, so a parameter cannot be set to exactly
-                0: use a tiny positive value (e.g. 1e-6f) for that.
+                0: use a tiny positive value (e.g. 1e-6f) for that. Tests are switched
+                off by flags, never by values: sbl_reproject_desc.disabled_tests
+                (SBL_TEST_DEPTH, _NORMAL, _ID, _BACK_CHECK, _FALLBACK).
 
    THREADING AND MEMORY
      No globals, no threads, no allocation except in the *_frame convenience calls,
@@ -69,6 +99,9 @@
    ERRORS
      Every call validates all arguments before writing anything and returns an
      sbl_result; sbl_result_string() names it. Bad input never half-writes an output.
+     sbl_temporal_validate / sbl_stereo_validate return the same code and fill a
+     caller-owned sbl_diag with the culprit field ("frame->gbuffer.depth.stride_bytes")
+     and the reason, plus a warning for legal but suspicious input.
 
    SECTIONS (data-flow order, same in the implementation)
      1. Results          2. Views and conventions   3. Reprojection
