@@ -3304,9 +3304,9 @@ static sbl_result sbl__walk_image(sbl__walk *wk, const char *name, const sbl_ima
             snprintf(msg, sizeof msg, "%d x %d: width and height must be > 0", im->width, im->height);
             sbl__blame(wk, r, name, ".width", msg);
         } else if (im->size_bytes != 0 && im->width <= INT_MAX / 4 && im->height <= INT_MAX / 4) {
-            snprintf(msg, sizeof msg, "%lu bytes, but the layout (rows, strides) reaches over "
-                     "%lu bytes: is a pitch in bytes given in the float field `stride`?",
-                     (unsigned long)im->size_bytes, (unsigned long)sbl__footprint(im));
+            snprintf(msg, sizeof msg, "%zu bytes, but the layout (rows, strides) reaches over "
+                     "%zu bytes: is a pitch in bytes given in the float field `stride`?",
+                     im->size_bytes, sbl__footprint(im));
             sbl__blame(wk, r, name, ".size_bytes", msg);
         } else {
             sbl__blame(wk, r, name, ".width", "too large to address");
@@ -3331,8 +3331,8 @@ static sbl_result sbl__walk_image(sbl__walk *wk, const char *name, const sbl_ima
                      im->stride_bytes, im->stride);
             sbl__blame(wk, r, name, ".stride_bytes", msg);
         } else {
-            snprintf(msg, sizeof msg, "a row of %d pixels does not fit in |row stride| (%ld floats): "
-                     "rows would overlap", im->width, (long)sbl__stride(im));
+            snprintf(msg, sizeof msg, "a row of %d pixels does not fit in |row stride| (%td floats): "
+                     "rows would overlap", im->width, sbl__stride(im));
             sbl__blame(wk, r, name, im->stride_bytes ? ".stride_bytes" : ".stride", msg);
         }
         break;
@@ -3427,7 +3427,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         if (sbl__check_weight_params(t.estimator, t.rectify, t.weight_mode, t.constant_alpha, \
                                      t.alpha_min, t.clip_gamma, t.bias_threshold) != SBL_OK) { \
             snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
-                     (double)(float)u.fieldname);                                           \
+                     (double)u.fieldname);                                           \
             sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
         }
         SBL__TRY_WEIGHT(estimator)
@@ -3674,7 +3674,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
                                             t.constant_beta,                                \
                                      0.0f, t.clip_gamma, t.bias_threshold) != SBL_OK) {     \
             snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
-                     (double)(float)u.fieldname);                                           \
+                     (double)u.fieldname);                                           \
             sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
         }
         SBL__TRY_WEIGHT(estimator)

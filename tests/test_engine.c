@@ -1329,6 +1329,76 @@ static void test_temporal_cameras(void)
     free(mv.mem); free(len.mem);
 }
 
+/* The stereo blend on every layout: bit-identical to tight buffers, except that an own N
+   with a pixel step takes the (double) reference path everywhere: equal within float
+   rounding. */
+static void test_buffers_stereo(void)
+{
+    const int w = 40, h = 24;
+    const size_t np = (size_t)w * h;
+    pair p;
+    float *tight[2][3], *ref[3], *got = (float *)malloc(np * 3 * sizeof(float));
+    int e, mode, k;
+    size_t i;
+    sbt_rng rng = {3};
+    pair_init(&p, w, h);
+    pair_render(&p);
+    for (e = 0; e < 2; ++e) {
+        tight[e][0] = (float *)malloc(np * 3 * sizeof(float));
+        tight[e][1] = (float *)malloc(np * sizeof(float));
+        tight[e][2] = (float *)malloc(np * sizeof(float));
+        for (i = 0; i < np; ++i) {
+            int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
+            for (k = 0; k < 3; ++k) tight[e][0][i * 3 + k] = sbt_at(&p.col[e], x, y)[k] + (float)(0.05 * sbt_gauss(&rng));
+            tight[e][1][i] = (float)(1 + (int)(sbt_uniform(&rng) * 6));
+            tight[e][2][i] = *sbt_at(&p.dep[e], x, y);
+        }
+    }
+    for (k = 0; k < 3; ++k) ref[k] = (float *)malloc(np * 3 * sizeof(float));
+    for (mode = 0; mode < LAY_COUNT; ++mode) {
+        lay in[2][3], out[3];
+        sbl_stereo_desc d;
+        sbl_eye eye[2];
+        sbl_stereo_output so;
+        size_t bytes = sbl_stereo_scratch_size(w, 3);
+        void *scratch = malloc(bytes);
+        memset(&d, 0, sizeof d); memset(eye, 0, sizeof eye); memset(&so, 0, sizeof so);
+        d.rig = SBL_RIG_PARALLEL; d.focal_px = (float)p.f; d.baseline = (float)p.b;
+        d.disparity_offset = (float)(p.cx[1] - p.cx[0]);
+        for (e = 0; e < 2; ++e) {
+            in[e][0] = lay_new(w, h, 3, mode, tight[e][0]);
+            in[e][1] = lay_new(w, h, 1, mode, tight[e][1]);
+            in[e][2] = lay_new(w, h, 1, mode, tight[e][2]);
+            eye[e].color = in[e][0].im; eye[e].length = in[e][1].im; eye[e].gbuffer.depth = in[e][2].im;
+        }
+        out[0] = lay_new(w, h, 3, mode, NULL); out[1] = lay_new(w, h, 1, mode, NULL); out[2] = lay_new(w, h, 1, mode, NULL);
+        so.color = out[0].im; so.length = out[1].im; so.beta = out[2].im;
+        CHECK_EQ(sbl_stereo_filter(&d, SBL_EYE_LEFT, &eye[0], &eye[1], &so, 0, h, scratch, bytes), SBL_OK);
+        for (k = 0; k < 3; ++k) {
+            size_t n = np * (k ? 1u : 3u), j;
+            if (mode == 0) { lay_read(&out[k], ref[k]); continue; }
+            lay_read(&out[k], got);
+            if (mode == LAY_CHANNEL || mode == LAY_CHANNEL_BOTTOM_UP) {
+                double md = 0.0;
+                for (j = 0; j < n; ++j) {
+                    double dd = fabs(got[j] - ref[k][j]) / (fabs(ref[k][j]) + 1.0);
+                    if (dd > md) md = dd;
+                }
+                CHECK(md < 1e-5);
+            } else {
+                CHECK(memcmp(got, ref[k], n * sizeof(float)) == 0);
+            }
+        }
+        for (e = 0; e < 2; ++e) for (k = 0; k < 3; ++k) free(in[e][k].mem);
+        for (k = 0; k < 3; ++k) free(out[k].mem);
+        free(scratch);
+    }
+    for (e = 0; e < 2; ++e) for (k = 0; k < 3; ++k) free(tight[e][k]);
+    for (k = 0; k < 3; ++k) free(ref[k]);
+    free(got);
+    pair_free(&p);
+}
+
 int main(void)
 {
     test_disparity_sign();
@@ -1338,6 +1408,7 @@ int main(void)
     test_disabled_tests();
     test_beta();
     test_buffers();
+    test_buffers_stereo();
     test_diagnostics();
     test_temporal_cameras();
     return sbt_finish("test_engine");
