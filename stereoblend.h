@@ -3361,13 +3361,21 @@ static void sbl__walk_gbuffer(sbl__walk *wk, const char *name, const sbl_gbuffer
     sbl__walk_image(wk, f, &g->motion, 2, w, h, 1);
 }
 
+/* Overlap of two views that may not have passed validation (the walk goes on after a
+   failure): only valid views have a meaningful footprint. */
+static int sbl__overlap_checked(const sbl_image *a, const sbl_image *b)
+{
+    return a->data && b->data && sbl__check_image(a, 0) == SBL_OK &&
+           sbl__check_image(b, 0) == SBL_OK && sbl__overlap(a, b);
+}
+
 /* An output against a named list of views it may not share a float with. */
 static void sbl__walk_overlap(sbl__walk *wk, const char *name, const sbl_image *o,
                               const sbl_image *const *in, const char *const *in_names, int n)
 {
     int i;
     for (i = 0; i < n; ++i)
-        if (in[i] && sbl__overlap(o, in[i]))
+        if (in[i] && sbl__overlap_checked(o, in[i]))
             sbl__blame(wk, SBL_ERROR_OVERLAP, name, "", in_names[i]);
 }
 
@@ -3512,7 +3520,8 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         in[9] = hi ? &hi->gbuffer.ids : NULL; in[10] = hi ? &hi->gbuffer.motion : NULL;
         for (i = 0; i < 3; ++i)
             for (j = i + 1; j < 3; ++j)
-                if (sbl__overlap(o[i], o[j])) sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
+                if (sbl__overlap_checked(o[i], o[j]))
+                    sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
         for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 11);
     }
     if (r != SBL_OK && !wk.found) {
@@ -3716,7 +3725,8 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
         o[0] = &out->color; o[1] = &out->length; o[2] = &out->beta;
         for (i = 0; i < 3; ++i)
             for (j = i + 1; j < 3; ++j)
-                if (sbl__overlap(o[i], o[j])) sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
+                if (sbl__overlap_checked(o[i], o[j]))
+                    sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
         for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 14);
     }
     if (r != SBL_OK && !wk.found) {
