@@ -765,12 +765,21 @@ static int sbl__is_pos_inf(float v)
     return bits == 0x7f800000u;
 }
 
+/* Views are addressed in per-pixel loops of the stage calls: keep these inlined. */
+#if defined(__GNUC__) || defined(__clang__)
+#define SBL__VIEW_FN static __inline__ __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define SBL__VIEW_FN static __forceinline
+#else
+#define SBL__VIEW_FN static
+#endif
+
 /* Row and pixel steps in floats (signed; validated by sbl__check_image first). */
-static int sbl__step_of(const sbl_image *im)
+SBL__VIEW_FN int sbl__step_of(const sbl_image *im)
 {
     return im->pixel_bytes ? im->pixel_bytes / (int)sizeof(float) : im->channels;
 }
-static ptrdiff_t sbl__stride(const sbl_image *im)
+SBL__VIEW_FN ptrdiff_t sbl__stride(const sbl_image *im)
 {
     if (im->stride_bytes) return (ptrdiff_t)(im->stride_bytes / (int)sizeof(float));
     if (im->stride) return (ptrdiff_t)im->stride;
@@ -780,7 +789,7 @@ static ptrdiff_t sbl__stride(const sbl_image *im)
 /* Pixel (x, y) of a view, writable: inputs and outputs share sbl_image, whose data is
    const so that const inputs need no cast; an output's memory is the caller's writable
    buffer, and this is the one place the qualifier is dropped. */
-static float *sbl__px(const sbl_image *im, int x, int y)
+SBL__VIEW_FN float *sbl__px(const sbl_image *im, int x, int y)
 {
     float *base;
     memcpy(&base, &im->data, sizeof base);
