@@ -45,6 +45,7 @@ all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 include mk/check.mk
 include mk/robust.mk
 include mk/strict.mk
+include mk/install.mk
 
 RUNNER = bench/sbl_runner.h
 DATASET_SRC = tools/sbl_dataset.c tools/sbl_exr.c
@@ -55,7 +56,7 @@ $(BUILD)/demo: examples/demo.c $(HEADERS) $(RUNNER)
 
 $(BUILD)/minimal: examples/minimal.c stereoblend.h
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) -O2 $< -o $@ $(LDLIBS)
+	$(CC) $(CFLAGS_STRICT) -O2 -I. $< -o $@ $(LDLIBS)
 
 $(BUILD)/sblexr: examples/sblexr.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
 	@mkdir -p $(dir $@)
