@@ -28,7 +28,7 @@ EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
 # the unit tests (tests/<name>.c): append new ones here; mk/check.mk builds and runs
 # each in every configuration
-TESTS = test_core test_metrics test_stereo test_robust test_paths
+TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)
@@ -38,7 +38,7 @@ FLAGS_scalar = -DSBL_NO_SIMD
 FLAGS_avx2   = -mavx2 -mfma
 FLAGS_avx512 = -mavx512f -mavx2 -mfma
 
-.PHONY: all check demo bench bench-quick bench-perf clean tests
+.PHONY: all check demo bench bench-quick bench-perf bench-ipp bench-adaptive ao clean tests
 all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
 # make check / make tests / make check-robust: the configurations and the quiet runner
@@ -65,6 +65,22 @@ $(BUILD)/sblexr: examples/sblexr.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl
 $(BUILD)/bench: bench/bench.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+$(BUILD)/bench-adaptive: bench/adaptive.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+# Mono / FSA / adaptive stereo blend: ms, RMSE, eff spp, stereo inconsistency ratio
+bench-adaptive: $(BUILD)/bench-adaptive
+	./$(BUILD)/bench-adaptive --out bench/out
+
+$(BUILD)/ao_stereo: examples/ao_stereo.c $(DATASET_SRC) $(HEADERS) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+# Wu's stereo-consistent SSAO (Mono / FSA / Variant 1 / Variant 2) on the consistency mask
+ao: $(BUILD)/ao_stereo
+	./$(BUILD)/ao_stereo
 
 demo: $(BUILD)/demo
 	./$(BUILD)/demo
@@ -95,6 +111,18 @@ endif
 PERF_FLAGS ?= -march=native
 bench-perf: $(BUILD)/perf
 	./$(BUILD)/perf --out bench/out
+
+# instructions per pixel (callgrind, inside the public call only) on the SSE2 and the
+# AVX2 build: the noise-free speed figure (valgrind cannot run AVX-512 code)
+IPP_CASES ?= easy hard tiny static
+$(BUILD)/ipp-sse2: bench/ipp.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) -std=c99 -Wall -Wextra -O2 -g $< -o $@ $(LDLIBS)
+$(BUILD)/ipp-avx2: bench/ipp.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) -std=c99 -Wall -Wextra -O2 -g -mavx2 -mfma $< -o $@ $(LDLIBS)
+bench-ipp: $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2
+	@sh bench/ipp.sh $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2 -- $(IPP_CASES)
 
 # the same in under a minute (CI smoke run; never asserts timings)
 bench-quick: $(BUILD)/bench
