@@ -384,7 +384,7 @@ typedef enum sbl_weight_mode {
     SBL_WEIGHT_MODE_COUNT
 } sbl_weight_mode;
 
-/* The optimal weight of the new estimate (ALGORITHMS.md section 1):
+/* The optimal weight of the new estimate (docs/ALGORITHMS.md section 1):
    a* = (B^2 + var_X) / (B^2 + var_X + var_Y). An infinite var_X or bias gives 1 (no
    usable history); all zero gives 0.5 (nothing tells the two apart). */
 SBLDEF float sbl_optimal_weight(float bias2, float var_x, float var_y);
