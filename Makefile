@@ -23,7 +23,7 @@ HAVE_EXR := $(shell pkg-config --exists OpenEXR 2>/dev/null && echo 1)
 EXR_CFLAGS := $(if $(HAVE_EXR),$(shell pkg-config --cflags OpenEXR),-DSBL_NO_EXR)
 EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
-TESTS = test_core test_metrics test_stereo test_robust test_paths
+TESTS = test_core test_metrics test_stereo test_robust test_paths test_accuracy
 SIMD_TESTS = test_core test_stereo test_paths
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
