@@ -368,6 +368,9 @@ typedef enum sbl_estimator {
     SBL_ESTIMATOR_PAPER,             /* Philippi Eq. 4 with Eq. 10/11: a = d^2/(d^2+s^2) */
     SBL_ESTIMATOR_PROGRESSIVE,       /* a = N_Y / (N_X + N_Y): 1/(N+1) for temporal     */
     SBL_ESTIMATOR_CONSTANT,          /* a = constant (alpha 0.1 / beta 0.5 by default)  */
+    SBL_ESTIMATOR_ROBUST,            /* history-aware with a soft (Student-t) bias test
+                                        and a firefly limit on the new sample; see
+                                        docs/ESTIMATORS.md                               */
     SBL_ESTIMATOR_COUNT
 } sbl_estimator;
 
@@ -1868,16 +1871,32 @@ typedef struct sbl__moments {
     float lo[4], hi[4];         /* min / max of Y per channel                       */
     double pair_diff[4];        /* mean of (x*_i - y_i) over pixels with both valid */
     double pair_var[4];         /* sample variance of (x*_i - y_i) (Bessel), 0 if < 2 */
+    double mean8[4], var8[4];   /* mean / population variance of Y without the centre
+                                   sample (firefly limit); 0 without a centre         */
     int count, pair_count;
 } sbl__moments;
 
-/* vals[i][c]: the n finite neighbours (centre included); xv[i] non-NULL where that
-   neighbour also has a valid x*. Two passes in double: exact enough for any float
-   input, never negative. */
+/* vals[i][c]: the n finite neighbours (centre included, at index `centre`, or -1);
+   xv[i] non-NULL where that neighbour also has a valid x*. Two passes in double: exact
+   enough for any float input, never negative. */
 static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
-                              const float (*xvals)[4], const int *xvalid, int n, int ch)
+                              const float (*xvals)[4], const int *xvalid, int n, int ch,
+                              int centre)
 {
     int i, k;
+    for (k = 0; k < ch; ++k) {
+        /* the window without its centre, centred on its own mean (a firefly at the
+           centre cannot cancel the others' spread away) */
+        double s8 = 0.0, v8 = 0.0;
+        m->mean8[k] = m->var8[k] = 0.0;
+        if (centre < 0 || n < 2) continue;
+        for (i = 0; i < n; ++i) if (i != centre) s8 += vals[i][k];
+        s8 /= n - 1;
+        for (i = 0; i < n; ++i)
+            if (i != centre) v8 += ((double)vals[i][k] - s8) * ((double)vals[i][k] - s8);
+        m->mean8[k] = s8;
+        m->var8[k] = v8 / (n - 1);
+    }
     m->count = n;
     m->pair_count = 0;
     for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
@@ -1947,7 +1966,7 @@ SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image var, 
                     for (k = 0; k < ch; ++k) vals[n][k] = p[k];
                     ++n;
                 }
-            sbl__moments_core(&m, (const float(*)[4])vals, NULL, NULL, n, ch);
+            sbl__moments_core(&m, (const float(*)[4])vals, NULL, NULL, n, ch, -1);
             for (k = 0; k < ch; ++k) {
                 if (mean.data) sbl__px(&mean, x, y)[k] = (float)m.mean[k];
                 /* beyond float range (|values| > ~1e19): saturate, finite in -> finite out */
@@ -1986,6 +2005,25 @@ typedef struct sbl__weight_params {
     float constant, alpha_min, gamma, bias_threshold;
 } sbl__weight_params;
 
+/* Firefly limit of the robust estimator: the new sample may exceed the larger of the
+   neighbours' mean and the history by at most this many neighbour standard deviations
+   (summed over channels; see docs/ESTIMATORS.md). */
+#ifndef SBL_FIREFLY_SIGMAS
+#define SBL_FIREFLY_SIGMAS 4.0
+#endif
+
+/* Posterior probability that a window changed, from the squared mean paired difference
+   pd2 and its squared standard error se2 (robust estimator): 1 / (1 + rho^4.5), rho =
+   (1 + k2/8) / (1 + t^2/8), t^2 = pd2 / se2. 0.5 at t^2 = k2, about 0.03 at t = 0 and
+   k = 3, tending to 1 as t grows. */
+static double sbl__change_posterior(double pd2, double se2, double k2)
+{
+    double t2 = se2 > 0.0 ? pd2 / se2 : (pd2 > 0.0 ? HUGE_VAL : 0.0);
+    double rho = (1.0 + k2 * 0.125) / (1.0 + t2 * 0.125);
+    double r2 = rho * rho;
+    return 1.0 / (1.0 + r2 * r2 * sqrt(rho));
+}
+
 /* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
    variance of the paired differences x*_i - y_i. */
@@ -2005,6 +2043,29 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
     case SBL_ESTIMATOR_CONSTANT:
         a = p->constant;
         break;
+    case SBL_ESTIMATOR_ROBUST: {
+        /* As history-aware, but the bias enters with the posterior probability that
+           the window changed: t = mean paired difference / its standard error is
+           Student-t with 8 degrees of freedom if nothing changed; against a flat
+           alternative the odds of change grow as (1 + t^2/8)^4.5, set to 1 at t^2 = k^2
+           (bias_threshold). Soft, and polynomial rather than exponential in t^2, so
+           heavy-tailed noise cannot make a near-certain change out of one sample. */
+        double k2 = (double)p->bias_threshold * (double)p->bias_threshold;
+        double var_x, var_y, se2, bias2 = 0.0;
+        if (pair_count > 1) {
+            var_y = pv * (double)n_x / ((double)n_x + (double)n_y);
+            var_x = pv - var_y;
+            se2 = pv / pair_count;
+        } else {
+            var_y = count > 1 ? s2 * count / (count - 1) : 0.0;
+            var_x = var_y * (double)n_y / (double)n_x;
+            se2 = pair_count == 1 ? var_x + var_y : 0.0;
+        }
+        if (pair_count > 0) bias2 = sbl__change_posterior(pd2, se2, k2) * pd2;
+        a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
+                                          : progressive;
+        break;
+    }
     case SBL_ESTIMATOR_HISTORY_AWARE:
     default: {
         /* The paired differences x*_i - y_i cancel texture: their variance is
@@ -2095,6 +2156,28 @@ static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
 /* 6. Blend, history length, and the fused row kernel                       */
 /* ------------------------------------------------------------------------ */
 
+/* Firefly limit (robust estimator): the new sample y is scaled down (hue kept) so that
+   its channel sum exceeds max(neighbours' mean, x*) by at most SBL_FIREFLY_SIGMAS
+   neighbour standard deviations (the window without y, summed over channels). Only the
+   sample that enters the blend is limited; the window statistics keep it (with a
+   firefly in them they drive the weight towards 1/(N+1), see docs/ESTIMATORS.md). */
+static void sbl__firefly_limit(const sbl__moments *m, const float *y, const float *xs, int ch,
+                               float *ylim)
+{
+    double sum_y = 0.0, sum_m8 = 0.0, sum_x = 0.0, v8 = 0.0, bound, t = 1.0;
+    int k;
+    for (k = 0; k < ch; ++k) {
+        sum_y += y[k];
+        sum_m8 += m->mean8[k];
+        sum_x += xs[k];
+        v8 += m->var8[k];
+    }
+    bound = (sum_m8 > sum_x ? sum_m8 : sum_x) + SBL_FIREFLY_SIGMAS * sqrt(v8);
+    if (bound < 0.0) bound = 0.0;
+    if (sum_y > bound) t = bound / sum_y;
+    for (k = 0; k < ch; ++k) ylim[k] = t < 1.0 ? (float)((double)y[k] * t) : y[k];
+}
+
 /* Reference blend of one pixel (double): y = own, xs = other (rectified here), n_x/n_y
    their sample counts. Writes out[ch], returns the new N; *alpha_out = mean weight. */
 static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m,
@@ -2104,6 +2187,11 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     float a[4];
     float a_mean = 0.0f;
     int k;
+    float ylim[4];
+    if (p->estimator == SBL_ESTIMATOR_ROBUST && m->count > 1) {
+        sbl__firefly_limit(m, y, xs, ch, ylim);
+        y = ylim;
+    }
     sbl__rectify(p, m, y, xs, ch);
     if (p->mode == SBL_WEIGHT_PER_CHANNEL) {
         for (k = 0; k < ch; ++k) {
@@ -2837,7 +2925,7 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
         a = 0.0f;
     } else {
         float vals[9][4], xvals[9][4];
-        int xvalid[9], n = 0, i, j;
+        int xvalid[9], n = 0, i, j, centre = -1;
         sbl__moments m;
         for (j = 0; j < 3; ++j) {
             if (!R[j]) continue;
@@ -2851,10 +2939,12 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
                 }
                 if (!ok) continue;
                 xvalid[n] = R[j]->v[i] > 0.0f;
+                if (j == 1 && i == x) centre = n;
                 ++n;
             }
         }
-        sbl__moments_core(&m, (const float(*)[4])vals, (const float(*)[4])xvals, xvalid, n, ch);
+        sbl__moments_core(&m, (const float(*)[4])vals, (const float(*)[4])xvals, xvalid, n, ch,
+                          centre);
         if (n_x > k->n_cap) n_x = k->n_cap;
         n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
     }
@@ -2882,6 +2972,8 @@ typedef struct sbl__lane_stats {
     sbl__v xs[4];   /* x* (rectified by sbl__lanes_rectify)                         */
     sbl__v xr[4];   /* x* as gathered                                               */
     sbl__v yc[4];   /* own sample                                                   */
+    sbl__v yb[4];   /* own sample as blended (firefly-limited by the robust estimator) */
+    sbl__v m8[4], v8[4]; /* mean / population variance of Y without the centre (robust) */
     sbl__v inv_cnt; /* 1 / max(pairs, 1)                                            */
     sbl__m has_pairs, two_pairs;
 } sbl__lane_stats;
@@ -2904,13 +2996,17 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
            well above the noise does not cancel the one-pass variance away */
         sbl__v shift = sbl__sub(sbl__load(xp[c][1] + x), sbl__load(yp[c][1] + x));
         sbl__v lo = m, hi = m; /* the mean lies inside [min, max]: a neutral start */
+        /* robust estimator: Y without the centre, centred on its own mean */
+        sbl__v m8 = sbl__mul(sbl__sub(sbl__mul(m, sbl__set1(9.0f)), sbl__load(yp[c][1] + x)),
+                             sbl__set1(0.125f)), v8 = zero;
         for (j = 0; j < 3; ++j) {
             int i;
             for (i = -1; i <= 1; ++i) {
                 sbl__v yy = sbl__load(yp[c][j] + x + i);
-                sbl__v e = sbl__sub(yy, m);
+                sbl__v e = sbl__sub(yy, m), e8 = sbl__sub(yy, m8);
                 sbl__v pdiff;
                 v = sbl__add(v, sbl__mul(e, e));
+                if (j != 1 || i != 0) v8 = sbl__add(v8, sbl__mul(e8, e8));
                 pdiff = sbl__mul(sbl__load(vp[j] + x + i),
                                  sbl__sub(sbl__sub(sbl__load(xp[c][j] + x + i), yy), shift));
                 d = sbl__add(d, pdiff);
@@ -2923,6 +3019,8 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
         }
         st->mean[c] = m;
         st->var[c] = sbl__mul(v, ninth);
+        st->m8[c] = m8;
+        st->v8[c] = sbl__mul(v8, sbl__set1(0.125f));
         st->lo[c] = lo;
         st->hi[c] = hi;
         st->pd[c] = sbl__mul(d, st->inv_cnt);
@@ -2934,19 +3032,41 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
     }
 }
 
-/* Neighbourhood clamp / variance clip of x*, as sbl__rectify. */
+/* Firefly limit of the own sample, as sbl__firefly_limit. */
+SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, v8 = zero, bound, t;
+    int c, ch = k->ch;
+    for (c = 0; c < ch; ++c) {
+        sum_y = sbl__add(sum_y, st->yc[c]);
+        sum_m8 = sbl__add(sum_m8, st->m8[c]);
+        sum_x = sbl__add(sum_x, st->xr[c]);
+        v8 = sbl__add(v8, st->v8[c]);
+    }
+    bound = sbl__add(sbl__max(sum_m8, sum_x),
+                     sbl__mul(sbl__set1((float)SBL_FIREFLY_SIGMAS), sbl__sqrt(v8)));
+    bound = sbl__max(bound, zero);
+    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    for (c = 0; c < ch; ++c) st->yb[c] = sbl__sel(sbl__gt(one, t), sbl__mul(st->yc[c], t), st->yc[c]);
+}
+
+/* Neighbourhood clamp / variance clip of x*, as sbl__rectify (after the firefly limit
+   of the robust estimator, as in sbl__blend_pixel). */
 SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
 {
     const sbl__v one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v gamma = sbl__set1(k->wp.gamma);
     int c, ch = k->ch;
+    for (c = 0; c < ch; ++c) st->yb[c] = st->yc[c];
+    if (k->wp.estimator == SBL_ESTIMATOR_ROBUST) sbl__lanes_firefly(k, st);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
     } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
         sbl__v t = one;
         for (c = 0; c < ch; ++c) {
             sbl__v half = sbl__max(sbl__mul(gamma, sbl__sqrt(st->var[c])),
-                                   sbl__abs(sbl__sub(st->yc[c], st->mean[c])));
+                                   sbl__abs(sbl__sub(st->yb[c], st->mean[c])));
             sbl__v dist = sbl__abs(sbl__sub(st->xs[c], st->mean[c]));
             t = sbl__sel(sbl__gt(dist, half), sbl__min(t, sbl__div(half, sbl__max(dist, tiny))), t);
         }
@@ -2974,6 +3094,24 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         w = prog;
     } else if (p->estimator == SBL_ESTIMATOR_CONSTANT) {
         w = sbl__set1(p->constant);
+    } else if (p->estimator == SBL_ESTIMATOR_ROBUST) {
+        /* as sbl__weight: the bias enters with its posterior (sbl__change_posterior) */
+        const sbl__v k2e = sbl__set1(1.0f + p->bias_threshold * p->bias_threshold * 0.125f);
+        sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
+        sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
+        sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
+        sbl__v vx_p = sbl__sub(pvs, vy_p);
+        sbl__v vy = sbl__sel(st->two_pairs, vy_p, vy_s);
+        sbl__v vx = sbl__sel(st->two_pairs, vx_p, vx_s);
+        sbl__v se2 = sbl__sel(st->two_pairs, sbl__mul(pvs, st->inv_cnt),
+                              sbl__sel(st->has_pairs, sbl__add(vx_s, vy_s), zero));
+        sbl__v t2 = sbl__div(pd2, sbl__max(se2, tiny));
+        sbl__v rho = sbl__div(k2e, sbl__add(one, sbl__mul(t2, sbl__set1(0.125f))));
+        sbl__v r2 = sbl__mul(rho, rho);
+        sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho))));
+        sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
+        sbl__v num = sbl__add(b2, vx), den = sbl__add(num, vy);
+        w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
         const sbl__v k2 = sbl__set1(p->bias_threshold * p->bias_threshold);
@@ -3006,9 +3144,9 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
     for (c = 0; c < k->ch; ++c) {
         /* two-sided lerp, as in sbl__blend_pixel */
         sbl__v o = sbl__sel(sbl__gt(a[c], sbl__set1(0.5f)),
-                            sbl__add(st->yc[c], sbl__mul(sbl__sub(one, a[c]),
-                                                         sbl__sub(st->xs[c], st->yc[c]))),
-                            sbl__add(st->xs[c], sbl__mul(a[c], sbl__sub(st->yc[c], st->xs[c]))));
+                            sbl__add(st->yb[c], sbl__mul(sbl__sub(one, a[c]),
+                                                         sbl__sub(st->xs[c], st->yb[c]))),
+                            sbl__add(st->xs[c], sbl__mul(a[c], sbl__sub(st->yb[c], st->xs[c]))));
         if (k->fill) o = st->xr[c]; /* fill takes x* unrectified, as the reference path */
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, st->yc[c]));
         a_mean = sbl__add(a_mean, a[c]);
