@@ -426,13 +426,22 @@ static double make_mask(const pair *p, maps *m, float threshold)
     return matched ? 100.0 * (double)bad / (double)matched : 0.0;
 }
 
-/* One configuration on one stereo frame; the AO maps end in m->A. Returns ms. */
-static double run_config(const pair *p, maps *m, int config, float threshold, double *marked)
+/* Stages of the seed's Table 3. */
+enum { ST_EST, ST_FILTER, ST_MAP, ST_AEST, ST_AFILTER, STAGES };
+static const char *const stage_name[STAGES] = {"obscur. est.", "filtering", "adaptive map",
+                                               "adaptive est.", "adaptive filtering"};
+
+/* One configuration on one stereo frame; the AO maps end in m->A. Returns ms; stage[]
+   receives the ms of each stage. */
+static double run_config(const pair *p, maps *m, int config, float threshold, double *marked,
+                         double *stage)
 {
     const int w = p->w, h = p->h;
-    double t0 = now_ms();
+    double t0 = now_ms(), t = t0, t1;
     int e, x, y;
     *marked = 0;
+    memset(stage, 0, sizeof(double) * STAGES);
+#define STAGE_END(s) (t1 = now_ms(), stage[s] = t1 - t, t = t1)
     for (e = 0; e < 2; ++e)
         for (y = 0; y < h; ++y)
             for (x = 0; x < w; ++x) {
@@ -440,12 +449,16 @@ static double run_config(const pair *p, maps *m, int config, float threshold, do
                 m->raw[e][i] = (config == MONO || config == VAR1) ? raw_ao(p, e, x, y, 0)
                                                                   : raw_stereo(p, e, x, y);
             }
+    STAGE_END(ST_EST);
     if (config == FSA) {
         filter_stereo(p, m, 1, 1);
+        STAGE_END(ST_FILTER);
     } else {
         for (e = 0; e < 2; ++e) filter_mono(p, m, e);
+        STAGE_END(ST_FILTER);
         if (config != MONO) {
             *marked = make_mask(p, m, threshold);
+            STAGE_END(ST_MAP);
             if (config == VAR1)
                 for (e = 0; e < 2; ++e)
                     for (y = 0; y < h; ++y)
@@ -453,11 +466,14 @@ static double run_config(const pair *p, maps *m, int config, float threshold, do
                             size_t i = (size_t)y * w + x;
                             if (m->mask[e][i] == SBL_INCONSISTENT) m->raw[e][i] = raw_stereo(p, e, x, y);
                         }
+            STAGE_END(ST_AEST);
             /* Variant 2 keeps its raw map, so F and W of the mono pass stand: only the
                combination with the other view is left */
             filter_stereo(p, m, 0, config == VAR1);
+            STAGE_END(ST_AFILTER);
         }
     }
+#undef STAGE_END
     return now_ms() - t0;
 }
 
@@ -566,7 +582,7 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : (x > y ? 1 : 0);
 }
 
-typedef struct row { double ratio, mae, ms, marked; } row;
+typedef struct row { double ratio, mae, ms, marked, stage[STAGES]; } row;
 
 /* Every configuration on every frame of the scene at threshold T: ratio (2 %) of the
    final pair, MAE against FSA (pixels with geometry, both eyes), median ms. */
@@ -578,7 +594,8 @@ static void measure(const scene *s, float threshold, int reps, row *out)
     for (c = 0; c < CONFIGS; ++c) {
         int nt = 0;
         long bad = 0, matched = 0;
-        double mae = 0.0, marked_sum = 0.0;
+        double mae = 0.0, marked_sum = 0.0, stage_sum[STAGES], st[STAGES];
+        int k;
         long mae_n = 0;
         for (f = 0; f < s->count; ++f) {
             const pair *p = &s->frame[f];
@@ -587,9 +604,13 @@ static void measure(const scene *s, float threshold, int reps, row *out)
             double marked = 0.0;
             maps_alloc(&m, n);
             maps_alloc(&ref, n);
-            for (r = 0; r < reps; ++r) times[nt++] = run_config(p, &m, c, threshold, &marked);
+            if (f == 0) memset(stage_sum, 0, sizeof stage_sum);
+            for (r = 0; r < reps; ++r) {
+                times[nt++] = run_config(p, &m, c, threshold, &marked, st);
+                for (k = 0; k < STAGES; ++k) stage_sum[k] += st[k];
+            }
             marked_sum += marked;
-            (void)run_config(p, &ref, FSA, threshold, &marked);
+            (void)run_config(p, &ref, FSA, threshold, &marked, st);
             {   /* consistency of the final pair at 2 % */
                 sbl_stereo_desc d = lib_desc(p);
                 sbl_eye eye[2];
@@ -619,6 +640,7 @@ static void measure(const scene *s, float threshold, int reps, row *out)
         out[c].ratio = matched ? 100.0 * (double)bad / (double)matched : 0.0;
         out[c].mae = mae_n ? mae / (double)mae_n : 0.0;
         out[c].marked = marked_sum / s->count;
+        for (k = 0; k < STAGES; ++k) out[c].stage[k] = stage_sum[k] / nt;
     }
     free(times);
 }
@@ -636,6 +658,16 @@ static void report(const scene *s, int reps, int sweep)
     for (c = 0; c < CONFIGS; ++c)
         printf("| %-8s | %20.2f | %10.5f | %11.2f | %6.2f | %8.2f |\n", config_name[c], r[c].ratio,
                r[c].mae, r[c].ms, r[MONO].ms > 0 ? r[c].ms / r[MONO].ms : 0.0, r[c].marked);
+    printf("\nstages, mean ms per stereo frame (the seed's Table 3):\n\n| config   |");
+    for (c = 0; c < STAGES; ++c) printf(" %s |", stage_name[c]);
+    printf(" total |\n|----------|---:|---:|---:|---:|---:|---:|\n");
+    for (c = 0; c < CONFIGS; ++c) {
+        int k;
+        double tot = 0;
+        printf("| %-8s |", config_name[c]);
+        for (k = 0; k < STAGES; ++k) { printf(" %.2f |", r[c].stage[k]); tot += r[c].stage[k]; }
+        printf(" %.2f |\n", tot);
+    }
     fflush(stdout);
     if (sweep) {
         static const float T[] = {0.01f, 0.02f, 0.03f, 0.05f, 0.07f, 0.1f};
