@@ -35,7 +35,12 @@
    both eyes, over pixels with a correspondence; sky has none), MAE against FSA, and ms
    per stereo frame (median); then ms against the threshold (0.01 .. 0.1, Figure 11).
 
-   usage: ao_stereo [--quick] [--data DIR] [--frames N] [--reps N] [--samples N] */
+   With --only CONFIG [--scene NAME] it runs just that configuration once per frame (no
+   tables): the run to count instructions under callgrind, which does not drift with the
+   machine's load (bench/ao_ipp.sh).
+
+   usage: ao_stereo [--quick] [--data DIR] [--frames N] [--reps N] [--samples N]
+                    [--only Mono|FSA|Variant1|Variant2 [--scene NAME] [--threshold T]] */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
@@ -686,10 +691,30 @@ static void report(const scene *s, int reps, int sweep)
     }
 }
 
+/* One configuration on every frame, nothing else (for callgrind --toggle-collect). */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static void count_config(const scene *s, int config, float threshold)
+{
+    int f;
+    for (f = 0; f < s->count; ++f) {
+        const pair *p = &s->frame[f];
+        maps m;
+        double marked, st[STAGES];
+        maps_alloc(&m, (size_t)p->w * p->h);
+        (void)run_config(p, &m, config, threshold, &marked, st);
+        printf("%s %s frame %d: marked %.2f %%\n", s->name, config_name[config], f, marked);
+        maps_free(&m);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const char *data = "../shared/data";
-    int quick = 0, frames = 3, reps = 3, samples = 8, i, k;
+    int quick = 0, frames = 3, reps = 3, samples = 8, i, k, only = -1;
+    const char *only_scene = "atrium";
+    float only_threshold = 0.0f;
     char path[1024];
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0) quick = 1;
@@ -697,6 +722,13 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--frames") == 0 && i + 1 < argc) frames = atoi(argv[++i]);
         else if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = atoi(argv[++i]);
         else if (strcmp(argv[i], "--samples") == 0 && i + 1 < argc) samples = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc) only_scene = argv[++i];
+        else if (strcmp(argv[i], "--threshold") == 0 && i + 1 < argc) only_threshold = (float)atof(argv[++i]);
+        else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
+            ++i;
+            for (only = 0; only < CONFIGS && strcmp(argv[i], config_name[only]) != 0; ++only) {}
+            if (only == CONFIGS) { fprintf(stderr, "unknown configuration %s\n", argv[i]); return 2; }
+        }
         else { fprintf(stderr, "usage: ao_stereo [--quick] [--data DIR] [--frames N] [--reps N] [--samples N]\n"); return 2; }
     }
     if (quick) { frames = 1; reps = 1; }
@@ -707,6 +739,22 @@ int main(int argc, char **argv)
     for (k = 0; k <= 2 * BF_RADIUS; ++k) {
         float d = (float)(k - BF_RADIUS);
         bf_spatial[k] = expf(-d * d / (2.0f * BF_SIGMA * BF_SIGMA));
+    }
+    if (only >= 0) {
+        scene s;
+        int bad;
+        if (strncmp(only_scene, "synthetic", 9) == 0)
+            bad = scene_synthetic(&s, only_scene, strcmp(only_scene, "synthetic-static") == 0
+                                                      ? SBL_SCENE_STATIC : SBL_SCENE_DYNAMIC,
+                                  320, 180, frames, samples);
+        else {
+            snprintf(path, sizeof path, "%s/%s", data, only_scene);
+            bad = scene_dataset(&s, path, frames, samples);
+        }
+        if (bad) return 1;
+        count_config(&s, only, only_threshold);
+        scene_free(&s);
+        return 0;
     }
     printf("# stereo-consistent SSAO (Wu's Mono / FSA / Variant 1 / Variant 2) on stereoblend.h's\n"
            "# consistency mask; ms = median per stereo frame (both eyes), single thread, %d run%s per frame\n",
