@@ -1,7 +1,9 @@
 # stereoblend.h - build, test, demo, bench.
 #   make          build tests, demo and tools
-#   make check    run every test, built with every compiler present (C99 pedantic
-#                 -Werror with cc / gcc / clang, and once as C++)
+#   make check    every test in every configuration (C99 pedantic -Werror with gcc and
+#                 clang, C++, scalar and each SIMD path, -O0, -O3 -march=native,
+#                 -ffast-math, ASan + UBSan, valgrind, fuzz corpus replay): one line per
+#                 run, failures in full, "N passed, N failed" last (mk/check.mk)
 #   make demo     the temporal filter on a built-in synthetic scene: RMSE and ms/frame
 
 CC      ?= cc
@@ -23,8 +25,9 @@ HAVE_EXR := $(shell pkg-config --exists OpenEXR 2>/dev/null && echo 1)
 EXR_CFLAGS := $(if $(HAVE_EXR),$(shell pkg-config --cflags OpenEXR),-DSBL_NO_EXR)
 EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
-TESTS = test_core test_metrics test_stereo test_robust test_paths test_adaptive
-SIMD_TESTS = test_core test_stereo test_paths test_adaptive
+# the unit tests (tests/<name>.c): append new ones here; mk/check.mk builds and runs
+# each in every configuration
+TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)
@@ -34,62 +37,12 @@ FLAGS_scalar = -DSBL_NO_SIMD
 FLAGS_avx2   = -mavx2 -mfma
 FLAGS_avx512 = -mavx512f -mavx2 -mfma
 
-# every (compiler, test) pair: build/<compiler>/<test>; the default SIMD path of each
-# compiler is SSE2 on x86-64 (NEON on AArch64); build/simd-<v>/ are the other paths
-COMPILERS = cc $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang)
-TEST_BINS = $(foreach c,$(COMPILERS),$(addprefix $(BUILD)/$(c)/,$(TESTS))) \
-            $(if $(CXX_TEST),$(addprefix $(BUILD)/cxx/,$(TESTS))) \
-            $(foreach v,$(SIMD_VARIANTS),$(addprefix $(BUILD)/simd-$(v)/,$(SIMD_TESTS))) \
-            $(foreach v,default $(filter-out scalar,$(SIMD_VARIANTS)),$(BUILD)/simd-$(v)/test_simd)
-
 .PHONY: all check demo bench bench-quick bench-perf bench-ipp bench-adaptive ao clean tests
 all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
-tests: $(TEST_BINS)
-
-$(BUILD)/cc/%: tests/%.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	cc $(CFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
-$(BUILD)/gcc/%: tests/%.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	gcc $(CFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
-$(BUILD)/clang/%: tests/%.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	clang $(CFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
-define SIMD_RULE
-$(BUILD)/simd-$(1)/%: tests/%.c $(HEADERS)
-	@mkdir -p $$(dir $$@)
-	$(CC) $(CFLAGS_STRICT) $(OPT) $(FLAGS_$(1)) -Itools $$< -o $$@ $(LDLIBS)
-endef
-$(foreach v,scalar avx2 avx512,$(eval $(call SIMD_RULE,$(v))))
-
-# SIMD against scalar in one binary: the scalar path in a translation unit of its own
-$(BUILD)/simd_scalar_tu.o: tests/simd_scalar_tu.c stereoblend.h
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) $(OPT) -DSBL_NO_SIMD -c $< -o $@
-$(BUILD)/simd-%/test_simd: tests/test_simd.c $(BUILD)/simd_scalar_tu.o $(HEADERS)
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) $(OPT) $(FLAGS_$*) -Itools $< $(BUILD)/simd_scalar_tu.o -o $@ $(LDLIBS)
-$(BUILD)/simd-default/test_simd: tests/test_simd.c $(BUILD)/simd_scalar_tu.o $(HEADERS)
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) $(OPT) -Itools $< $(BUILD)/simd_scalar_tu.o -o $@ $(LDLIBS)
-$(BUILD)/cxx/%: tests/%.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	$(CXX_TEST) -x c++ $(CXXFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
-
+# make check / make tests / make check-robust: the configurations and the quiet runner
+include mk/check.mk
 include mk/robust.mk
-
-# the unit tests built every way, then the robustness runs (-O0, -O3 -march=native,
-# -ffast-math with gcc and clang, scalar; ASan + UBSan; valgrind; fuzz corpus replay)
-check: $(TEST_BINS)
-	@$(MAKE) --no-print-directory check-robust
-	@fail=0; total=0; \
-	for t in $(TEST_BINS); do \
-	  total=$$((total+1)); echo "== $$t"; \
-	  if ! ./$$t; then fail=$$((fail+1)); echo "!! $$t FAILED"; fi; \
-	done; \
-	echo "test binaries: $$((total-fail)) passed, $$fail failed"; \
-	test $$fail -eq 0
 
 RUNNER = bench/sbl_runner.h
 DATASET_SRC = tools/sbl_dataset.c tools/sbl_exr.c

@@ -129,15 +129,32 @@ SBLDEF const char *sbl_result_string(sbl_result result);
 /* 2. Views and conventions                                                 */
 /* ======================================================================== */
 
+/* A view of fp32 pixels: interleaved channels, any row and pixel stride. The library
+   writes outputs through `data` (const only so that const inputs need no cast).
+   Layouts: tight rows (sbl_image_make); a row pitch in bytes as engines give it
+   (D3D RowPitch, Vulkan rowPitch, stb stride_in_bytes); bottom-up memory such as a
+   glReadPixels buffer: data = the TOP row (the last in memory), stride_bytes = -pitch;
+   a channel view into a wider interleaved buffer: e.g. the XY of an RGBA motion
+   target is data = rgba, channels = 2, pixel_bytes = 16 (ZW: data = rgba + 2). */
 typedef struct sbl_image {
-    float *data;    /* row 0 = top; NULL means "not given" where a buffer is optional */
+    const float *data;  /* pixel (0, 0) = top left; NULL = "not given" where optional   */
     int width;
     int height;
-    int channels;   /* 1..4, interleaved */
-    int stride;     /* floats between the starts of two rows; 0 means width * channels */
+    int channels;       /* 1..4, interleaved                                            */
+    int stride;         /* row stride in floats (may be negative); 0: see stride_bytes  */
+    int stride_bytes;   /* row stride in bytes, a multiple of sizeof(float), may be
+                           negative; 0: `stride`, or tight rows if both are 0. If both
+                           are given they must agree. |row stride| must cover a row.   */
+    int pixel_bytes;    /* bytes from one pixel to the next, a multiple of sizeof(float)
+                           and >= channels * sizeof(float); 0: channels * sizeof(float) */
+    size_t size_bytes;  /* optional: bytes readable from the lowest address the view
+                           touches (the allocation's size for a view at its start);
+                           0: not checked. A layout that does not fit is refused
+                           (SBL_ERROR_INVALID_SIZE) before any read.                    */
 } sbl_image;
 
-SBLDEF sbl_image sbl_image_make(float *data, int width, int height, int channels);
+/* A tight view (rows of width * channels floats, top row first). */
+SBLDEF sbl_image sbl_image_make(const float *data, int width, int height, int channels);
 
 /* G-buffer of one view. Every member is optional: a NULL data pointer skips the test
    that buffer feeds (no depth: no depth test; no ids: no id test, ...). Camera-based
@@ -161,12 +178,51 @@ typedef struct sbl_motion_convention {
     int y_up;     /* 0: +y goes down the rows (default). 1: +y goes up (NDC, Blender) */
 } sbl_motion_convention;
 
-/* A perspective camera: row-major, column-vector matrices (p' = M * p).
-   View space looks down -z; projection is OpenGL-style (ndc in [-1,1]^2, y up). */
+/* A perspective camera: row-major, column-vector matrices (p' = M * p). View space has
+   OpenGL axes (x right, y up, the camera looks down -z); the projection is OpenGL-style:
+   u = (ndc_x + 1)/2 W, v = (1 - ndc_y)/2 H; off-axis (asymmetric) frusta are fine. Near
+   and far do not matter: any invertible projection with w_clip = -z_view works, since
+   only planar depth (from the depth buffer) places points along the rays.
+   Calibrations and other engines give cameras in other forms: the constructors below
+   convert them (sbl_camera_from_pinhole, sbl_camera_from_world_to_pixel). */
 typedef struct sbl_camera {
     float world_to_view[16];
     float view_to_clip[16];
 } sbl_camera;
+
+/* View-space axes of a pose (a world_to_view, or the stereo rig's relative pose). */
+typedef enum sbl_view_axes {
+    SBL_AXES_OPENGL = 0, /* x right, y up, the camera looks down -z (OpenGL, Vulkan and
+                            Blender view space; sbl_camera's convention)               */
+    SBL_AXES_OPENCV      /* x right, y down, the camera looks down +z (OpenCV, COLMAP,
+                            Middlebury, most calibrations)                             */
+} sbl_view_axes;
+
+/* Pinhole intrinsics in pixels: u = fx x/z + cx, v = fy y/z + cy in OpenCV axes
+   (u right, v down). */
+typedef struct sbl_intrinsics {
+    float fx, fy, cx, cy;
+} sbl_intrinsics;
+
+/* integer_pixel_centers: 1 if the calibration puts pixel (i, j)'s centre at (i, j)
+   (OpenCV, Middlebury, most calibration tools); 0 if at (i + 0.5, j + 0.5), this
+   library's convention. */
+
+/* Camera from intrinsics and a pose (world_to_view in the given axes) for a width x
+   height image. Writes *out only on SBL_OK (fx, fy > 0, everything finite). */
+SBLDEF sbl_result sbl_camera_from_pinhole(sbl_camera *out, const sbl_intrinsics *k,
+                                          const float *world_to_view /* 16 */,
+                                          sbl_view_axes axes, int integer_pixel_centers,
+                                          int width, int height);
+
+/* Camera from one world-to-pixel matrix P (3 rows of 4): (u w, v w, w) = P (x, y, z, 1)
+   with u right and v down, as P = K [R | t] (any scale; -P is the same camera). w is
+   proportional to planar depth, so the camera is recovered exactly without factoring K
+   out. Fails (SBL_ERROR_INVALID_PARAM) if the left 3x3 block is singular. */
+SBLDEF sbl_result sbl_camera_from_world_to_pixel(sbl_camera *out,
+                                                 const float *world_to_pixel /* 12 */,
+                                                 int integer_pixel_centers,
+                                                 int width, int height);
 
 typedef enum sbl_depth_encoding {
     SBL_DEPTH_LINEAR = 0,          /* already linear planar depth                         */
@@ -191,7 +247,19 @@ SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
 /* 3. Reprojection                                                          */
 /* ======================================================================== */
 
-/* Per-tap consistency tests. Zeros mean defaults. */
+/* Tests that sbl_reproject_desc.disabled_tests can switch off explicitly (a zero
+   tolerance means "default", so switching off is a flag, never a magic value). */
+typedef enum sbl_test_flags {
+    SBL_TEST_DEPTH = 1,       /* depth test of every tap                                */
+    SBL_TEST_NORMAL = 2,      /* normal test of every tap                               */
+    SBL_TEST_ID = 4,          /* id test of every tap                                   */
+    SBL_TEST_BACK_CHECK = 8,  /* stereo round trip                                      */
+    SBL_TEST_FALLBACK = 16,   /* the 3x3 search for thin geometry (same as no_fallback) */
+    SBL_TEST_ALL = 31
+} sbl_test_flags;
+
+/* Per-tap consistency tests. Zeros mean defaults; a test runs when both views have its
+   buffer and its bit is not in disabled_tests. */
 typedef struct sbl_reproject_desc {
     float depth_tolerance;    /* relative depth difference a tap may have; 0 -> 0.05.
                                  A slope term (the pixel's depth gradient) is added.   */
@@ -199,6 +267,7 @@ typedef struct sbl_reproject_desc {
     float back_check_pixels;  /* stereo round-trip tolerance in pixels; 0 -> 1.0        */
     int   no_fallback;        /* 1 disables the 3x3 fallback search for thin geometry  */
     sbl_motion_convention motion;
+    int   disabled_tests;     /* SBL_TEST_* bits to switch off; 0: every test on        */
 } sbl_reproject_desc;
 
 typedef enum sbl_temporal_source {
@@ -323,20 +392,38 @@ SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
 /* 8. Stereo                                                                */
 /* ======================================================================== */
 
+/* Stereo rigs. Disparity d = (position in the left image) - (position in the right
+   image) of one surface point, in pixels: the right-eye match of left pixel (u, v) is
+   (u - d, v), the left-eye match of right pixel (u, v) is (u + d, v). */
 typedef enum sbl_stereo_rig {
-    SBL_RIG_PARALLEL = 0,  /* disparity = focal_px * baseline / depth               */
-    SBL_RIG_DISPARITY,     /* per-eye disparity images (pixels, >= 0)               */
-    SBL_RIG_MATRICES,      /* general rig: both eyes' cameras + depth               */
+    SBL_RIG_PARALLEL = 0,  /* rectified pair: d = focal_px * baseline / depth
+                              - disparity_offset (Middlebury: doffs = cx_right - cx_left) */
+    SBL_RIG_DISPARITY,     /* per-eye disparity images: 1 channel (d_x, rows aligned) or 2
+                              channels (d_x, d_y), both left minus right, in both eyes'
+                              maps; non-finite = no match                               */
+    SBL_RIG_MATRICES,      /* general rig: each eye's sbl_camera (any model) + depth    */
+    SBL_RIG_PINHOLE,       /* calibration: intrinsics per eye + the right eye's pose
+                              relative to the left (sbl_pinhole_rig) + depth           */
     SBL_RIG_COUNT
 } sbl_stereo_rig;
+
+/* A calibrated pair (SBL_RIG_PINHOLE). right_from_left maps a point from the left eye's
+   view space to the right eye's (OpenCV stereoCalibrate's R, T: x_r = R x_l + T; a
+   parallel rig with baseline b in OpenCV or OpenGL axes: T = (-b, 0, 0)). */
+typedef struct sbl_pinhole_rig {
+    sbl_intrinsics eye[2];        /* left, right                                         */
+    float right_from_left[16];    /* rigid pose, row-major 4x4                           */
+    sbl_view_axes axes;           /* axes of both view spaces                            */
+    int integer_pixel_centers;    /* 1: cx, cy put pixel (i, j)'s centre at (i, j)       */
+} sbl_pinhole_rig;
 
 typedef enum sbl_eye_index { SBL_EYE_LEFT = 0, SBL_EYE_RIGHT = 1 } sbl_eye_index;
 
 typedef struct sbl_eye {
     sbl_image color;          /* this eye's colour (after the temporal filter)        */
     sbl_image length;         /* optional: this eye's N (history-aware beta uses it)  */
-    sbl_gbuffer gbuffer;      /* depth (parallel, matrices), normals, ids             */
-    sbl_image disparity;      /* SBL_RIG_DISPARITY: 1 channel, pixels                 */
+    sbl_gbuffer gbuffer;      /* depth (parallel, matrices, pinhole), normals, ids    */
+    sbl_image disparity;      /* SBL_RIG_DISPARITY: 1 (d_x) or 2 (d_x, d_y) channels  */
     const sbl_camera *camera; /* SBL_RIG_MATRICES                                     */
 } sbl_eye;
 
@@ -344,6 +431,9 @@ typedef struct sbl_stereo_desc {
     sbl_stereo_rig rig;
     float focal_px;         /* parallel rig: focal length in pixels                     */
     float baseline;         /* parallel rig: eye separation, same units as depth        */
+    float disparity_offset; /* parallel rig: cx_right - cx_left in pixels (Middlebury
+                               doffs; asymmetric per-eye frusta); 0: same principal point */
+    sbl_pinhole_rig pinhole;/* SBL_RIG_PINHOLE                                           */
     sbl_estimator estimator;/* HISTORY_AWARE (default), PAPER, PROGRESSIVE, CONSTANT    */
     sbl_rectify rectify;
     sbl_weight_mode weight_mode;
@@ -366,9 +456,22 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
 
 SBLDEF size_t sbl_stereo_scratch_size(int width, int channels);
 
-/* Stereo blend of one eye, rows [y0, y1): out = lerp(other eye reprojected, own, beta).
-   Both eyes are read unblended, so calling it for each eye is symmetric. out_length
-   (optional) receives the effective N of the blend. */
+typedef struct sbl_stereo_output {
+    sbl_image color;   /* required; same size and channels as the target eye's colour */
+    sbl_image length;  /* optional; 1 channel: the effective N of the blend            */
+    sbl_image beta;    /* optional; 1 channel: the weight of the own eye used (mean
+                          over channels; 1 where the other eye did not reproject)     */
+} sbl_stereo_output;
+
+/* Stereo blend of one eye, rows [y0, y1): out = lerp(other eye reprojected, own, beta),
+   with beta and N returned like the temporal filter's alpha and N. Both eyes are read
+   unblended, so calling it for each eye is symmetric. */
+SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                    const sbl_eye *target, const sbl_eye *source,
+                                    const sbl_stereo_output *out, int y0, int y1,
+                                    void *scratch, size_t scratch_bytes);
+
+/* sbl_stereo_filter with the outputs colour and length (optional) only. */
 SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
                                    const sbl_eye *target, const sbl_eye *source,
                                    sbl_image out_color, sbl_image out_length,
@@ -489,6 +592,7 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
 #include <string.h>
 #include <float.h>
 #include <limits.h>
+#include <stdint.h>
 
 #if defined(SBL_MALLOC) != defined(SBL_FREE)
 #error "define both SBL_MALLOC and SBL_FREE, or neither"
@@ -532,15 +636,15 @@ SBLDEF const char *sbl_result_string(sbl_result result)
 /* 2. Views and conventions                                                 */
 /* ------------------------------------------------------------------------ */
 
-SBLDEF sbl_image sbl_image_make(float *data, int width, int height, int channels)
+SBLDEF sbl_image sbl_image_make(const float *data, int width, int height, int channels)
 {
     sbl_image im;
+    memset(&im, 0, sizeof im);
     im.data = data;
     im.width = width;
     im.height = height;
     im.channels = channels;
-    im.stride = width * channels;
-    return im;
+    return im; /* stride 0: tight rows and pixels */
 }
 
 /* Finite test on the bits, so that -ffast-math (which may assume no NaN/inf and fold
@@ -582,27 +686,66 @@ static int sbl__is_pos_inf(float v)
     return bits == 0x7f800000u;
 }
 
-static int sbl__stride(const sbl_image *im)
+/* Row and pixel steps in floats (signed; validated by sbl__check_image first). */
+static int sbl__step_of(const sbl_image *im)
 {
-    return im->stride ? im->stride : im->width * im->channels;
+    return im->pixel_bytes ? im->pixel_bytes / (int)sizeof(float) : im->channels;
+}
+static ptrdiff_t sbl__stride(const sbl_image *im)
+{
+    if (im->stride_bytes) return (ptrdiff_t)(im->stride_bytes / (int)sizeof(float));
+    if (im->stride) return (ptrdiff_t)im->stride;
+    return (ptrdiff_t)sbl__step_of(im) * (ptrdiff_t)im->width;
 }
 
+/* Pixel (x, y) of a view, writable: inputs and outputs share sbl_image, whose data is
+   const so that const inputs need no cast; an output's memory is the caller's writable
+   buffer, and this is the one place the qualifier is dropped. */
 static float *sbl__px(const sbl_image *im, int x, int y)
 {
-    return im->data + (ptrdiff_t)y * (ptrdiff_t)sbl__stride(im) + (ptrdiff_t)x * im->channels;
+    float *base;
+    memcpy(&base, &im->data, sizeof base);
+    return base + (ptrdiff_t)y * sbl__stride(im) + (ptrdiff_t)x * sbl__step_of(im);
+}
+
+/* Bytes from the lowest to one past the highest byte a view touches (after
+   sbl__check_image's limits this fits in ptrdiff_t). */
+static size_t sbl__footprint(const sbl_image *im)
+{
+    ptrdiff_t rs = sbl__stride(im);
+    size_t rows = (size_t)(rs < 0 ? -rs : rs);
+    return ((size_t)(im->height - 1) * rows + (size_t)(im->width - 1) * (size_t)sbl__step_of(im) +
+            (size_t)im->channels) * sizeof(float);
 }
 
 /* Validate one view. want_channels 0 accepts 1..4. */
 static sbl_result sbl__check_image(const sbl_image *im, int want_channels)
 {
+    const int fs = (int)sizeof(float);
+    ptrdiff_t rs, row_floats;
     if (!im->data) return SBL_ERROR_NULL_POINTER;
     if (im->width <= 0 || im->height <= 0) return SBL_ERROR_INVALID_SIZE;
     if (im->channels < 1 || im->channels > 4) return SBL_ERROR_INVALID_CHANNELS;
     if (want_channels && im->channels != want_channels) return SBL_ERROR_INVALID_CHANNELS;
     /* row and pixel offsets must fit in an int-sized stride and in size_t */
     if (im->width > INT_MAX / 4 || im->height > INT_MAX / 4) return SBL_ERROR_INVALID_SIZE;
-    if (im->stride != 0 && im->stride < im->width * im->channels) return SBL_ERROR_INVALID_STRIDE;
-    if (im->stride < 0) return SBL_ERROR_INVALID_STRIDE;
+    /* byte steps address whole floats; the two row strides must agree if both given */
+    if (im->stride_bytes % fs != 0 || im->pixel_bytes % fs != 0) return SBL_ERROR_INVALID_STRIDE;
+    if (im->pixel_bytes != 0 && im->pixel_bytes < im->channels * fs) return SBL_ERROR_INVALID_STRIDE;
+    if (im->stride_bytes != 0 && im->stride != 0 && im->stride_bytes / fs != im->stride)
+        return SBL_ERROR_INVALID_STRIDE;
+    if (im->stride_bytes == 0 && im->stride < 0 && im->stride < -(INT_MAX / fs))
+        return SBL_ERROR_INVALID_STRIDE;
+    /* rows may not overlap each other: |row stride| covers a row's last pixel */
+    rs = sbl__stride(im);
+    if (rs < 0) rs = -rs;
+    row_floats = (ptrdiff_t)(im->width - 1) * (ptrdiff_t)sbl__step_of(im) + im->channels;
+    if (rs < row_floats) return SBL_ERROR_INVALID_STRIDE;
+    /* the whole footprint must be addressable: (h - 1) |stride| + row <= PTRDIFF_MAX */
+    if ((size_t)rs > ((size_t)PTRDIFF_MAX / sizeof(float) - (size_t)row_floats) /
+                         (size_t)im->height)
+        return SBL_ERROR_INVALID_SIZE;
+    if (im->size_bytes != 0 && sbl__footprint(im) > im->size_bytes) return SBL_ERROR_INVALID_SIZE;
     return SBL_OK;
 }
 
@@ -628,32 +771,43 @@ static sbl_result sbl__check_gbuffer(const sbl_gbuffer *g, int w, int h)
     return SBL_OK;
 }
 
-/* Byte range an image touches: [begin, end). */
+/* Byte range an image touches: [begin, end), from its lowest address (the last row in
+   memory order first when the row stride is negative). */
 static void sbl__range(const sbl_image *im, const char **begin, const char **end)
 {
-    size_t floats = (size_t)(im->height - 1) * (size_t)sbl__stride(im) +
-                    (size_t)im->width * (size_t)im->channels;
-    *begin = (const char *)im->data;
-    *end = (const char *)(im->data + floats);
+    ptrdiff_t rs = sbl__stride(im);
+    const float *lo = im->data + (rs < 0 ? (ptrdiff_t)(im->height - 1) * rs : 0);
+    *begin = (const char *)lo;
+    *end = *begin + sbl__footprint(im);
 }
 
-/* Do two views share a float? Views with the same stride whose rows interleave
-   without touching (the two eyes of a side-by-side texture) do not; other strides are
-   judged by their byte ranges alone (conservative). */
+/* Do two views share a float? Views with the same row period whose rows interleave
+   without touching (the two eyes of a side-by-side texture) do not, nor do views with
+   the same pixel step whose channels interleave (the colour and a 4th-channel weight
+   of one RGBA buffer); anything else is judged by the byte ranges (conservative). */
 static int sbl__overlap(const sbl_image *a, const sbl_image *b)
 {
     const char *a0, *a1, *b0, *b1;
+    ptrdiff_t sa, sb;
     if (!a->data || !b->data) return 0;
     sbl__range(a, &a0, &a1);
     sbl__range(b, &b0, &b1);
     if (!(a0 < b1 && b0 < a1)) return 0;
-    if (sbl__stride(a) == sbl__stride(b) && a->height > 1 && b->height > 1) {
-        const size_t period = (size_t)sbl__stride(a) * sizeof(float);
-        const size_t ra = (size_t)a->width * (size_t)a->channels * sizeof(float);
-        const size_t rb = (size_t)b->width * (size_t)b->channels * sizeof(float);
+    sa = sbl__stride(a); if (sa < 0) sa = -sa;
+    sb = sbl__stride(b); if (sb < 0) sb = -sb;
+    if (sa == sb && (a->height > 1 || b->height > 1)) {
+        const size_t period = (size_t)sa * sizeof(float), fs = sizeof(float);
+        const size_t pa = (size_t)sbl__step_of(a) * fs, pb = (size_t)sbl__step_of(b) * fs;
+        const size_t ra = (size_t)(a->width - 1) * pa + (size_t)a->channels * fs;
+        const size_t rb = (size_t)(b->width - 1) * pb + (size_t)b->channels * fs;
         size_t d = (size_t)(b0 >= a0 ? b0 - a0 : a0 - b0) % period;
         if (b0 < a0) d = (period - d) % period; /* offset of b's rows within a's period */
-        return !(d >= ra && d + rb <= period);
+        if (d >= ra && d + rb <= period) return 0;
+        if (pa == pb && period % pa == 0) { /* channels interleaved within the pixels */
+            size_t e = d % pa;
+            if (e >= (size_t)a->channels * fs && e + (size_t)b->channels * fs <= pa) return 0;
+        }
+        return 1;
     }
     return 1;
 }
@@ -714,7 +868,9 @@ SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
     }
     /* in place only with the same layout: otherwise a row could be overwritten
        before it is read */
-    if (src.data == dst.data ? sbl__stride(&src) != sbl__stride(&dst) : sbl__overlap(&src, &dst))
+    if (src.data == dst.data ? sbl__stride(&src) != sbl__stride(&dst) ||
+                                   sbl__step_of(&src) != sbl__step_of(&dst)
+                             : sbl__overlap(&src, &dst))
         return SBL_ERROR_OVERLAP;
     for (y = 0; y < src.height; ++y)
         for (x = 0; x < src.width; ++x)
@@ -786,10 +942,137 @@ typedef struct sbl__cam_map {
     double other_width, other_height;
 } sbl__cam_map;
 
+/* The other camera forms as the equivalent OpenGL pair (double): a view space with the
+   camera looking down -z (its z is minus the planar depth; x and y need not be metric)
+   and a clip matrix whose NDC maps to pixels as u = (ndc_x + 1)/2 W, v = (1 - ndc_y)/2 H.
+   The depth rows only need to be invertible: rays are cast through ndc z = 0 and
+   scaled to the given planar depth. Return 0 if the input is not usable. */
+static void sbl__proj_depth_rows(double *proj)
+{
+    int i;
+    for (i = 0; i < 16; ++i) proj[i] = 0.0;
+    proj[10] = -1.0; proj[11] = -2.0; proj[14] = -1.0;
+}
+
+static int sbl__pinhole_gl(const sbl_intrinsics *k, const float *world_to_view,
+                           sbl_view_axes axes, int integer_pixel_centers, int w, int h,
+                           double *view, double *proj)
+{
+    const double half = integer_pixel_centers ? 0.5 : 0.0; /* to centres at i + 0.5 */
+    double cx, cy;
+    int i;
+    if ((int)axes != (int)SBL_AXES_OPENGL && (int)axes != (int)SBL_AXES_OPENCV) return 0;
+    if (w <= 0 || h <= 0) return 0;
+    if (!sbl__finite(k->fx) || !sbl__finite(k->fy) || !sbl__finite(k->cx) ||
+        !sbl__finite(k->cy) || !(k->fx > 0.0f) || !(k->fy > 0.0f))
+        return 0;
+    for (i = 0; i < 16; ++i)
+        if (!sbl__finite(world_to_view[i])) return 0;
+    sbl__mat_from_float(view, world_to_view);
+    if (axes == SBL_AXES_OPENCV) /* (x, y, z) -> (x, -y, -z) */
+        for (i = 4; i < 12; ++i) view[i] = -view[i];
+    cx = (double)k->cx + half;
+    cy = (double)k->cy + half;
+    sbl__proj_depth_rows(proj);
+    /* u = fx x / d + cx with d = -z: ndc_x d = (2 fx / W) x + (1 - 2 cx / W) z */
+    proj[0] = 2.0 * (double)k->fx / w;
+    proj[2] = 1.0 - 2.0 * cx / w;
+    /* v = -fy y / d + cy: ndc_y d = (2 fy / H) y + (2 cy / H - 1) z */
+    proj[5] = 2.0 * (double)k->fy / h;
+    proj[6] = 2.0 * cy / h - 1.0;
+    return 1;
+}
+
+static int sbl__world_to_pixel_gl(const float *P, int integer_pixel_centers, int w, int h,
+                                  double *view, double *proj)
+{
+    /* P = [M | p]: once det M > 0 (else use -P), w = |row 2 of M| * planar depth > 0 in
+       front. View space: (u w, v w, -depth). */
+    const double half = integer_pixel_centers ? 0.5 : 0.0;
+    double m[12], det, s;
+    int i;
+    if (w <= 0 || h <= 0) return 0;
+    for (i = 0; i < 12; ++i) {
+        if (!sbl__finite(P[i])) return 0;
+        m[i] = (double)P[i];
+    }
+    det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+          m[2] * (m[4] * m[9] - m[5] * m[8]);
+    if (!(fabs(det) > 1e-300) || det - det != 0.0) return 0;
+    if (det < 0.0)
+        for (i = 0; i < 12; ++i) m[i] = -m[i];
+    s = sqrt(m[8] * m[8] + m[9] * m[9] + m[10] * m[10]);
+    for (i = 0; i < 8; ++i) view[i] = m[i];
+    for (i = 8; i < 12; ++i) view[i] = -m[i] / s;
+    view[12] = 0.0; view[13] = 0.0; view[14] = 0.0; view[15] = 1.0;
+    sbl__proj_depth_rows(proj);
+    /* u = U / (s d) + half with U = view x, d = -view z */
+    proj[0] = 2.0 / (w * s);
+    proj[2] = 1.0 - 2.0 * half / w;
+    proj[5] = -2.0 / (h * s);
+    proj[6] = 2.0 * half / h - 1.0;
+    return 1;
+}
+
+static void sbl__camera_store(sbl_camera *out, const double *view, const double *proj)
+{
+    int i;
+    for (i = 0; i < 16; ++i) {
+        out->world_to_view[i] = (float)view[i];
+        out->view_to_clip[i] = (float)proj[i];
+    }
+}
+
+SBLDEF sbl_result sbl_camera_from_pinhole(sbl_camera *out, const sbl_intrinsics *k,
+                                          const float *world_to_view, sbl_view_axes axes,
+                                          int integer_pixel_centers, int width, int height)
+{
+    double view[16], proj[16];
+    if (!out || !k || !world_to_view) return SBL_ERROR_NULL_POINTER;
+    if (width <= 0 || height <= 0) return SBL_ERROR_INVALID_SIZE;
+    if (!sbl__pinhole_gl(k, world_to_view, axes, integer_pixel_centers, width, height, view,
+                         proj))
+        return SBL_ERROR_INVALID_PARAM;
+    sbl__camera_store(out, view, proj);
+    return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_camera_from_world_to_pixel(sbl_camera *out, const float *world_to_pixel,
+                                                 int integer_pixel_centers, int width,
+                                                 int height)
+{
+    double view[16], proj[16];
+    int i;
+    if (!out || !world_to_pixel) return SBL_ERROR_NULL_POINTER;
+    if (width <= 0 || height <= 0) return SBL_ERROR_INVALID_SIZE;
+    if (!sbl__world_to_pixel_gl(world_to_pixel, integer_pixel_centers, width, height, view,
+                                proj))
+        return SBL_ERROR_INVALID_PARAM;
+    for (i = 0; i < 16; ++i) /* the float matrices must stay finite */
+        if (!sbl__finite((float)view[i]) || !sbl__finite((float)proj[i]))
+            return SBL_ERROR_INVALID_PARAM;
+    sbl__camera_store(out, view, proj);
+    return SBL_OK;
+}
+
+/* From view / projection pairs in double (the other camera forms). */
+static int sbl__cam_map_init_gl(sbl__cam_map *m, const double *view, const double *proj,
+                                int w, int h, const double *other_view,
+                                const double *other_proj, int ow, int oh)
+{
+    double inv_view[16];
+    memcpy(m->other_proj, other_proj, sizeof m->other_proj);
+    if (!sbl__mat_invert(m->clip_to_view, proj)) return 0;
+    if (!sbl__mat_invert(inv_view, view)) return 0;
+    sbl__mat_mul(m->view_to_view, other_view, inv_view);
+    m->width = w; m->height = h; m->other_width = ow; m->other_height = oh;
+    return 1;
+}
+
 static int sbl__cam_map_init(sbl__cam_map *m, const sbl_camera *from, int w, int h,
                              const sbl_camera *to, int ow, int oh)
 {
-    double proj[16], view[16], inv_view[16], other_view[16];
+    double proj[16], view[16], other_view[16], other_proj[16];
     int i;
     for (i = 0; i < 16; ++i) /* NaN / inf entries can still "invert" to a finite matrix */
         if (!sbl__finite(from->world_to_view[i]) || !sbl__finite(from->view_to_clip[i]) ||
@@ -798,12 +1081,8 @@ static int sbl__cam_map_init(sbl__cam_map *m, const sbl_camera *from, int w, int
     sbl__mat_from_float(proj, from->view_to_clip);
     sbl__mat_from_float(view, from->world_to_view);
     sbl__mat_from_float(other_view, to->world_to_view);
-    sbl__mat_from_float(m->other_proj, to->view_to_clip);
-    if (!sbl__mat_invert(m->clip_to_view, proj)) return 0;
-    if (!sbl__mat_invert(inv_view, view)) return 0;
-    sbl__mat_mul(m->view_to_view, other_view, inv_view);
-    m->width = w; m->height = h; m->other_width = ow; m->other_height = oh;
-    return 1;
+    sbl__mat_from_float(other_proj, to->view_to_clip);
+    return sbl__cam_map_init_gl(m, view, proj, w, h, other_view, other_proj, ow, oh);
 }
 
 /* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> position in the
@@ -858,8 +1137,8 @@ static sbl__flat sbl__flatten(const sbl_image *im)
 {
     sbl__flat f;
     f.p = im ? im->data : NULL;
-    f.stride = f.p ? (ptrdiff_t)sbl__stride(im) : 0;
-    f.step = f.p ? (ptrdiff_t)im->channels : 0;
+    f.stride = f.p ? sbl__stride(im) : 0;
+    f.step = f.p ? (ptrdiff_t)sbl__step_of(im) : 0;
     f.ch = f.p ? im->channels : 0;
     return f;
 }
@@ -1187,9 +1466,11 @@ static void sbl__tap_src_init(sbl__tap_src *s, const sbl_image *color, const sbl
     s->ids = sbl__flatten(&src_g->ids);
     s->width = color->width;
     s->height = color->height;
-    s->use_depth = src_g->depth.data && dst_g->depth.data;
-    s->use_id = src_g->ids.data && dst_g->ids.data;
-    s->use_normal = src_g->normals.data && dst_g->normals.data && !(rp->normal_threshold < 0.0f);
+    s->use_depth = src_g->depth.data && dst_g->depth.data &&
+                   !(rp->disabled_tests & SBL_TEST_DEPTH);
+    s->use_id = src_g->ids.data && dst_g->ids.data && !(rp->disabled_tests & SBL_TEST_ID);
+    s->use_normal = src_g->normals.data && dst_g->normals.data &&
+                    !(rp->normal_threshold < 0.0f) && !(rp->disabled_tests & SBL_TEST_NORMAL);
     s->depth_tolerance = rp->depth_tolerance;
     s->normal_threshold2 = rp->normal_threshold * rp->normal_threshold;
 }
@@ -1211,6 +1492,7 @@ static void sbl__motion_scale(const sbl_motion_convention *c, int w, int h, doub
 static sbl_reproject_desc sbl__reproject_defaults(const sbl_reproject_desc *d)
 {
     sbl_reproject_desc r = *d;
+    if (r.disabled_tests & SBL_TEST_FALLBACK) r.no_fallback = 1;
     if (sbl__is_zero(r.depth_tolerance)) r.depth_tolerance = 0.05f;
     if (sbl__is_zero(r.normal_threshold)) r.normal_threshold = 0.9f;
     if (sbl__is_zero(r.back_check_pixels)) r.back_check_pixels = 1.0f;
@@ -1225,6 +1507,7 @@ static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
         return SBL_ERROR_INVALID_PARAM;
     if ((int)d->motion.units < 0 || (int)d->motion.units > (int)SBL_MOTION_NDC)
         return SBL_ERROR_INVALID_PARAM;
+    if (d->disabled_tests & ~(int)SBL_TEST_ALL) return SBL_ERROR_INVALID_PARAM;
     return SBL_OK;
 }
 
@@ -1845,17 +2128,24 @@ static int sbl__lane_value_ok(float v)
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
     const float *src = sbl__px(k->own, 0, row);
+    const ptrdiff_t step = sbl__step_of(k->own);
     const float *ny = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, row) : NULL;
+    const ptrdiff_t ny_step = ny ? (ptrdiff_t)sbl__step_of(k->own_n) : 0;
+    /* the lanes load N_Y contiguously: another pixel step takes the reference path */
+    const int ny_lanes = !ny || ny_step == 1;
     int x, c, ch = k->ch, count = 0;
     for (x = xa; x < xb; ++x) {
-        int safe = 1;
+        int safe = ny_lanes;
         for (c = 0; c < ch; ++c) {
-            float v = src[(ptrdiff_t)x * ch + c];
+            float v = src[(ptrdiff_t)x * step + c];
             r->y[c][x] = v;
             safe &= sbl__lane_value_ok(v);
         }
         /* N_Y: the reference path sanitises it */
-        if (ny) safe &= sbl__lane_value_ok(ny[x]) && ny[x] <= 1048576.0f;
+        if (ny) {
+            float n = ny[(ptrdiff_t)x * ny_step];
+            safe &= sbl__lane_value_ok(n) && n <= 1048576.0f;
+        }
         r->unsafe[x] = (unsigned char)!safe;
         count += !safe;
     }
@@ -2257,16 +2547,13 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                     sbl__kernel_pixel_ref(k, R, x);
             {   /* interleave the staged row into the outputs */
                 float *o = sbl__px(&k->out, 0, y);
+                const ptrdiff_t step = sbl__step_of(&k->out);
                 for (x = x0; x < x1; ++x)
-                    for (c = 0; c < k->ch; ++c) o[(size_t)x * k->ch + c] = k->stage[c][x];
-                if (k->out_n.data) {
-                    float *on = sbl__px(&k->out_n, 0, y);
-                    for (x = x0; x < x1; ++x) on[x] = k->stage_n[x];
-                }
-                if (k->out_a.data) {
-                    float *oa = sbl__px(&k->out_a, 0, y);
-                    for (x = x0; x < x1; ++x) oa[x] = k->stage_a[x];
-                }
+                    for (c = 0; c < k->ch; ++c) o[(ptrdiff_t)x * step + c] = k->stage[c][x];
+                if (k->out_n.data)
+                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_n, x, y) = k->stage_n[x];
+                if (k->out_a.data)
+                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_a, x, y) = k->stage_a[x];
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
                 sbl__ring_row t = k->ring[0];
@@ -2408,13 +2695,25 @@ SBLDEF sbl_stereo_desc sbl_stereo_defaults(const sbl_stereo_desc *desc)
     return d;
 }
 
+struct sbl__stereo_rp;
+/* A rig's correspondence: pixel (ix, iy) of the target eye (back = 0) or of the source
+   eye (back = 1), at continuous position (px, py), to its position (ox, oy) in the other
+   eye and its planar depth oz there (0 if unknown). Returns 0 if there is none. */
+typedef int (*sbl__stereo_map_fn)(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                  double px, double py, double *ox, double *oy, double *oz);
+
 typedef struct sbl__stereo_rp {
     sbl_stereo_desc d;
     sbl_eye_index target_eye;
     const sbl_eye *target, *source;
     sbl__tap_src src;
     sbl__target_geo geo;
-    sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES */
+    sbl__stereo_map_fn map;
+    sbl__flat depth[2], disparity[2];  /* [0] target, [1] source                      */
+    double dir[2];            /* -1 for the left eye, +1 for the right: other = p + dir d */
+    float fb;                 /* parallel: focal_px * baseline                          */
+    double offset;            /* parallel: disparity_offset                             */
+    sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES, SBL_RIG_PINHOLE             */
 } sbl__stereo_rp;
 
 static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_color)
@@ -2428,18 +2727,21 @@ static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_
         /* the target of a fill only needs geometry: take the size from depth/disparity */
         const sbl_image *ref = e->gbuffer.depth.data ? &e->gbuffer.depth : &e->disparity;
         if (!ref->data) return SBL_ERROR_MISSING_INPUT;
-        if ((r = sbl__check_image(ref, 1)) != SBL_OK) return r;
+        if ((r = sbl__check_image(ref, ref == &e->disparity ? 0 : 1)) != SBL_OK) return r;
+        if (ref->channels > 2) return SBL_ERROR_INVALID_CHANNELS;
         w = ref->width; h = ref->height;
         /* a colour given anyway is what sbl__eye_width() reports: it must agree */
         if ((r = sbl__check_optional(&e->color, 0, w, h)) != SBL_OK) return r;
     }
     if ((r = sbl__check_gbuffer(&e->gbuffer, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&e->length, 1, w, h)) != SBL_OK) return r;
-    if ((r = sbl__check_optional(&e->disparity, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&e->disparity, 0, w, h)) != SBL_OK) return r;
+    if (e->disparity.data && e->disparity.channels > 2) return SBL_ERROR_INVALID_CHANNELS;
     if (rig == SBL_RIG_PARALLEL && !e->gbuffer.depth.data) return SBL_ERROR_MISSING_INPUT;
     if (rig == SBL_RIG_DISPARITY && !e->disparity.data) return SBL_ERROR_MISSING_INPUT;
     if (rig == SBL_RIG_MATRICES && (!e->gbuffer.depth.data || !e->camera))
         return SBL_ERROR_MISSING_INPUT;
+    if (rig == SBL_RIG_PINHOLE && !e->gbuffer.depth.data) return SBL_ERROR_MISSING_INPUT;
     return SBL_OK;
 }
 
@@ -2454,11 +2756,75 @@ static int sbl__eye_height(const sbl_eye *e)
                          : (e->gbuffer.depth.data ? e->gbuffer.depth.height : e->disparity.height);
 }
 
+/* Planar depth of pixel (ix, iy) of an eye's depth view; 0 if not valid geometry. */
+static float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
+{
+    float z = *SBL__AT(*depth, ix, iy);
+    if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
+    return z;
+}
+
+/* SBL_RIG_PARALLEL: d = f b / z - offset (sky: -offset), rows aligned. */
+static int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                    double px, double py, double *ox, double *oy, double *oz)
+{
+    float z = sbl__valid_depth(&s->depth[back], ix, iy), fbz;
+    if (z == 0.0f) return 0;
+    fbz = sbl__is_pos_inf(z) ? 0.0f : s->fb / z;
+    if (!sbl__finite(fbz)) return 0;
+    *ox = px + s->dir[back] * ((double)fbz - s->offset);
+    *oy = py;
+    *oz = z;
+    return 1;
+}
+
+/* SBL_RIG_DISPARITY: the eye's own map, (d_x[, d_y]) left minus right. */
+static int sbl__stereo_map_disparity(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                     double px, double py, double *ox, double *oy, double *oz)
+{
+    const sbl__flat *m = &s->disparity[back];
+    const float *d = SBL__AT(*m, ix, iy);
+    float dy = m->ch > 1 ? d[1] : 0.0f;
+    if (!sbl__finite(d[0]) || !sbl__finite(dy)) return 0;
+    *ox = px + s->dir[back] * d[0];
+    *oy = py + s->dir[back] * dy;
+    *oz = s->depth[back].p ? *SBL__AT(s->depth[back], ix, iy) : 0.0f;
+    return 1;
+}
+
+/* SBL_RIG_MATRICES, SBL_RIG_PINHOLE: unproject at the eye's depth, project into the
+   other eye. */
+static int sbl__stereo_map_cameras(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                   double px, double py, double *ox, double *oy, double *oz)
+{
+    float z = sbl__valid_depth(&s->depth[back], ix, iy);
+    if (z == 0.0f) return 0;
+    return sbl__cam_map_apply(back ? &s->to_target : &s->to_source, px, py, z, ox, oy, oz);
+}
+
+/* The pinhole rig as two cameras (the left eye's view space is the world). */
+static int sbl__pinhole_rig_maps(sbl__stereo_rp *s, const sbl_pinhole_rig *p, int w, int h)
+{
+    double view[2][16], proj[2][16];
+    float identity[16];
+    int e, i, t = (int)s->target_eye;
+    for (i = 0; i < 16; ++i) identity[i] = (i % 5 == 0) ? 1.0f : 0.0f;
+    for (e = 0; e < 2; ++e)
+        if (!sbl__pinhole_gl(&p->eye[e], e ? p->right_from_left : identity, p->axes,
+                             p->integer_pixel_centers, w, h, view[e], proj[e]))
+            return 0;
+    return sbl__cam_map_init_gl(&s->to_source, view[t], proj[t], w, h, view[!t], proj[!t],
+                                w, h) &&
+           sbl__cam_map_init_gl(&s->to_target, view[!t], proj[!t], w, h, view[t], proj[t],
+                                w, h);
+}
+
 static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
                                       sbl_eye_index target_eye, const sbl_eye *target,
                                       const sbl_eye *source, int target_needs_color)
 {
     sbl_result r;
+    int w, h, e;
     if (!desc || !target || !source) return SBL_ERROR_NULL_POINTER;
     s->d = sbl_stereo_defaults(desc);
     if ((int)s->d.rig < 0 || s->d.rig >= SBL_RIG_COUNT) return SBL_ERROR_INVALID_PARAM;
@@ -2466,7 +2832,8 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     if ((r = sbl__check_reproject_desc(&s->d.reproject)) != SBL_OK) return r;
     if (s->d.rig == SBL_RIG_PARALLEL &&
         (!sbl__finite(s->d.focal_px) || !(s->d.focal_px > 0.0f) ||
-         !sbl__finite(s->d.baseline) || !(s->d.baseline > 0.0f)))
+         !sbl__finite(s->d.baseline) || !(s->d.baseline > 0.0f) ||
+         !sbl__finite(s->d.disparity_offset)))
         return SBL_ERROR_INVALID_PARAM;
     if ((r = sbl__check_eye(target, s->d.rig, target_needs_color)) != SBL_OK) return r;
     if ((r = sbl__check_eye(source, s->d.rig, 1)) != SBL_OK) return r;
@@ -2480,25 +2847,34 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->source = source;
     sbl__tap_src_init(&s->src, &source->color, &source->length, &source->gbuffer,
                       &target->gbuffer, &s->d.reproject);
-    s->geo = sbl__target_geo_make(&target->gbuffer, source->color.width, source->color.height);
-    if (s->d.rig == SBL_RIG_MATRICES) {
-        int w = source->color.width, h = source->color.height;
+    w = source->color.width; h = source->color.height;
+    s->geo = sbl__target_geo_make(&target->gbuffer, w, h);
+    for (e = 0; e < 2; ++e) {
+        const sbl_eye *eye = e ? source : target;
+        s->depth[e] = sbl__flatten(&eye->gbuffer.depth);
+        s->disparity[e] = sbl__flatten(&eye->disparity);
+    }
+    /* left eye: the other eye's position is p - d; right eye: p + d */
+    s->dir[0] = target_eye == SBL_EYE_LEFT ? -1.0 : 1.0;
+    s->dir[1] = -s->dir[0];
+    s->fb = s->d.focal_px * s->d.baseline;
+    s->offset = s->d.disparity_offset;
+    switch (s->d.rig) {
+    case SBL_RIG_PARALLEL: s->map = sbl__stereo_map_parallel; break;
+    case SBL_RIG_DISPARITY: s->map = sbl__stereo_map_disparity; break;
+    case SBL_RIG_PINHOLE:
+        s->map = sbl__stereo_map_cameras;
+        if (!sbl__pinhole_rig_maps(s, &s->d.pinhole, w, h)) return SBL_ERROR_INVALID_PARAM;
+        break;
+    case SBL_RIG_MATRICES:
+    case SBL_RIG_COUNT:
+        s->map = sbl__stereo_map_cameras;
         if (!sbl__cam_map_init(&s->to_source, target->camera, w, h, source->camera, w, h) ||
             !sbl__cam_map_init(&s->to_target, source->camera, w, h, target->camera, w, h))
             return SBL_ERROR_INVALID_PARAM;
+        break;
     }
     return SBL_OK;
-}
-
-/* Horizontal disparity (pixels) of a view's pixel for the parallel / disparity rigs. */
-static float sbl__disparity(const sbl__stereo_rp *s, const sbl_eye *e, int x, int y)
-{
-    if (s->d.rig == SBL_RIG_DISPARITY) return *sbl__px(&e->disparity, x, y);
-    {
-        float z = *sbl__px(&e->gbuffer.depth, x, y);
-        if (sbl__is_pos_inf(z)) return 0.0f;
-        return s->d.focal_px * s->d.baseline / z;
-    }
 }
 
 /* The other eye's colour at target pixel (x, y) after tap tests and back-check;
@@ -2506,50 +2882,26 @@ static float sbl__disparity(const sbl__stereo_rp *s, const sbl_eye *e, int x, in
 static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 {
     const sbl__stereo_rp *s = (const sbl__stereo_rp *)ctx;
-    const sbl_eye *t = s->target, *src = s->source;
-    /* target left: the source (right) position is u - disparity; target right: u + d */
-    double dir = s->target_eye == SBL_EYE_LEFT ? -1.0 : 1.0;
+    const int sw = s->source->color.width, sh = s->source->color.height;
     double sx, sy, sz, bx, by, bz;
     float z, n;
     sbl__tap_want want;
     int ix, iy;
     if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) return 0.0f;
-    if (s->d.rig == SBL_RIG_MATRICES) {
-        if (!sbl__cam_map_apply(&s->to_source, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
-    } else {
-        float disp = sbl__disparity(s, t, x, y);
-        if (!sbl__finite(disp) || disp < 0.0f) return 0.0f;
-        sx = x + 0.5 + dir * disp;
-        sy = y + 0.5;
-        sz = z;
-    }
+    if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) return 0.0f;
     /* the match must lie inside the source image: outside it, the bilinear
        renormalisation and the 3x3 fallback would replicate the edge pixels */
-    if (!(sx >= 0.0 && sx < (double)src->color.width && sy >= 0.0 &&
-          sy < (double)src->color.height))
-        return 0.0f;
+    if (!(sx >= 0.0 && sx < (double)sw && sy >= 0.0 && sy < (double)sh)) return 0.0f;
     want.depth = (float)sz;
     n = sbl__gather(&s->src, &want, sx, sy, !s->d.reproject.no_fallback, out);
     if (!(n > 0.0f)) return 0.0f;
 
     /* back-check: from the nearest source pixel, with the source's own geometry, the
        correspondence must come back to within back_check_pixels of where it started */
+    if (s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK) return n;
     ix = (int)floor(sx);
     iy = (int)floor(sy);
-    if (ix < 0) ix = 0;
-    if (iy < 0) iy = 0;
-    if (ix >= src->color.width) ix = src->color.width - 1;
-    if (iy >= src->color.height) iy = src->color.height - 1;
-    if (s->d.rig == SBL_RIG_MATRICES) {
-        float zs = *sbl__px(&src->gbuffer.depth, ix, iy);
-        if (!(zs > 0.0f) || (!sbl__finite(zs) && !sbl__is_pos_inf(zs))) return 0.0f;
-        if (!sbl__cam_map_apply(&s->to_target, sx, sy, zs, &bx, &by, &bz)) return 0.0f;
-    } else {
-        float ds = sbl__disparity(s, src, ix, iy);
-        if (!sbl__finite(ds) || ds < 0.0f) return 0.0f;
-        bx = sx - dir * ds;
-        by = sy;
-    }
+    if (!s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)) return 0.0f;
     {
         double ex = bx - (x + 0.5), ey = by - (y + 0.5);
         double tol = s->d.reproject.back_check_pixels;
@@ -2607,11 +2959,12 @@ SBLDEF size_t sbl_stereo_scratch_size(int width, int channels)
     return sbl__kernel_scratch_size(width, channels);
 }
 
-/* All validation of a stereo blend, without writing anything. */
-static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
-                                          sbl_eye_index target_eye, const sbl_eye *target,
-                                          const sbl_eye *source, const sbl_image *out_color,
-                                          const sbl_image *out_length)
+/* All validation of a stereo blend with its outputs, without writing anything. */
+static sbl_result sbl__stereo_output_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
+                                           sbl_eye_index target_eye, const sbl_eye *target,
+                                           const sbl_eye *source, const sbl_image *out_color,
+                                           const sbl_image *out_length,
+                                           const sbl_image *out_beta)
 {
     sbl_result r;
     int w, h;
@@ -2625,22 +2978,39 @@ static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_de
     if (out_color->width != w || out_color->height != h) return SBL_ERROR_SIZE_MISMATCH;
     if (out_color->channels != target->color.channels) return SBL_ERROR_CHANNEL_MISMATCH;
     if ((r = sbl__check_optional(out_length, 1, w, h)) != SBL_OK) return r;
-    if (sbl__overlap(out_color, out_length)) return SBL_ERROR_OVERLAP;
+    if ((r = sbl__check_optional(out_beta, 1, w, h)) != SBL_OK) return r;
+    if (sbl__overlap(out_color, out_length) || sbl__overlap(out_color, out_beta) ||
+        sbl__overlap(out_length, out_beta))
+        return SBL_ERROR_OVERLAP;
     if ((r = sbl__check_outputs_vs_eyes(out_color, target, source)) != SBL_OK) return r;
     if ((r = sbl__check_outputs_vs_eyes(out_length, target, source)) != SBL_OK) return r;
+    if ((r = sbl__check_outputs_vs_eyes(out_beta, target, source)) != SBL_OK) return r;
     return SBL_OK;
 }
 
-SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
-                                   const sbl_eye *target, const sbl_eye *source,
-                                   sbl_image out_color, sbl_image out_length,
-                                   int y0, int y1, void *scratch, size_t scratch_bytes)
+/* All validation of a stereo blend, without writing anything. */
+static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
+                                          sbl_eye_index target_eye, const sbl_eye *target,
+                                          const sbl_eye *source, const sbl_image *out_color,
+                                          const sbl_image *out_length)
+{
+    sbl_image none;
+    memset(&none, 0, sizeof none);
+    return sbl__stereo_output_check(s, desc, target_eye, target, source, out_color,
+                                    out_length, &none);
+}
+
+SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                    const sbl_eye *target, const sbl_eye *source,
+                                    const sbl_stereo_output *out, int y0, int y1,
+                                    void *scratch, size_t scratch_bytes)
 {
     sbl__stereo_rp s;
     sbl__kernel k;
     sbl_result r;
-    if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
-                                     &out_length)) != SBL_OK)
+    if (!out) return SBL_ERROR_NULL_POINTER;
+    if ((r = sbl__stereo_output_check(&s, desc, target_eye, target, source, &out->color,
+                                      &out->length, &out->beta)) != SBL_OK)
         return r;
     if ((r = sbl__check_rows(y0, y1, target->color.height)) != SBL_OK) return r;
     if (!scratch) return SBL_ERROR_NULL_POINTER;
@@ -2660,11 +3030,25 @@ SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index ta
     k.own_n = &target->length;
     k.gather = sbl__stereo_rp_pixel;
     k.gather_ctx = &s;
-    k.out = out_color;
-    k.out_n = out_length;
+    k.out = out->color;
+    k.out_n = out->length;
+    k.out_a = out->beta;
     sbl__kernel_bind(&k, scratch);
     sbl__kernel_run(&k, y0, y1);
     return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                   const sbl_eye *target, const sbl_eye *source,
+                                   sbl_image out_color, sbl_image out_length,
+                                   int y0, int y1, void *scratch, size_t scratch_bytes)
+{
+    sbl_stereo_output out;
+    memset(&out, 0, sizeof out);
+    out.color = out_color;
+    out.length = out_length;
+    return sbl_stereo_filter(desc, target_eye, target, source, &out, y0, y1, scratch,
+                             scratch_bytes);
 }
 
 SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_eye *left,

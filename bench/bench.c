@@ -1,10 +1,12 @@
 /* make bench / make bench-quick: error against time for every method of the standard
    table, on the synthetic scenes and on the rendered sequences in ../shared/data.
    Prints one table per scene, writes the rows to bench/out/bench.csv (quick.csv) with
-   the header scene,method,ms,rmse,ssim,eff_spp,traced_pct, and plots ms against RMSE
+   the header scene,method,ms,rmse,ssim,eff_spp,indep_spp,oracle_pct,traced_pct
+   (oracle_pct: eff spp as a percentage of the oracle of the same pipeline), and plots ms against RMSE
    (bench/out/bench.svg, written here; plus bench.png through gnuplot when present).
 
-   usage: bench [--quick] [--reps N] [--data DIR] [--out DIR] */
+   usage: bench [--quick] [--reps N] [--data DIR] [--out DIR] [--methods A,B,..]
+                [--scenes S,T,..]   (the oracle rows always run) */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
@@ -19,9 +21,25 @@
 #include <sys/stat.h>
 
 #define MAX_ROWS 512
-typedef struct row { char scene[64]; char method[48]; sbr_result r; } row;
+typedef struct row { char scene[64]; char method[48]; sbr_result r; double oracle_pct; } row;
 static row rows[MAX_ROWS];
 static int row_count;
+static const char *only_methods, *only_scenes; /* comma lists; NULL: all */
+
+static int in_list(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    const char *p = list;
+    if (!list) return 1;
+    while (*p) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == n && strncmp(p, name, n) == 0) return 1;
+        if (!e) break;
+        p = e + 1;
+    }
+    return 0;
+}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -29,15 +47,24 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : (x > y ? 1 : 0);
 }
 
+/* The oracle a method is measured against: the oracle of the same pipeline (temporal
+   only, stereo blend only, or temporal then stereo blend). */
+static const char *oracle_of(const sbr_method *m)
+{
+    int blend = m->stereo == SBR_STEREO_FIXED || m->stereo == SBR_STEREO_ADAPTIVE;
+    if (blend) return m->temporal ? "oracle+stereo-oracle" : "stereo-oracle";
+    return "oracle";
+}
+
 static void bench_scene(const sbr_seq *seq, int reps)
 {
-    sbr_method m[32];
-    int n = sbr_standard_methods(m, 32), i, k;
+    sbr_method m[SBR_MAX_METHODS];
+    int n = sbr_standard_methods(m, SBR_MAX_METHODS), i, k, first_row = row_count, kept = 0;
+    for (i = 0; i < n; ++i) /* the oracles always run: the other rows are measured against them */
+        if (in_list(only_methods, m[i].name) || m[i].oracle) m[kept++] = m[i];
+    n = kept;
     printf("\n## %s (%dx%d, %d frames, stereo; metrics over frames %d..%d, both eyes)\n\n",
            seq->name, seq->width, seq->height, seq->frames, seq->frames / 4, seq->frames - 1);
-    printf("| %-22s | %8s | %8s | %7s | %8s | %9s | %8s |\n", "method", "ms", "RMSE", "SSIM",
-           "eff spp", "indep spp", "traced %");
-    printf("|------------------------|---------:|---------:|--------:|---------:|----------:|---------:|\n");
     for (i = 0; i < n && row_count < MAX_ROWS; ++i) {
         double ms[16];
         sbr_result r, first;
@@ -51,10 +78,22 @@ static void bench_scene(const sbr_seq *seq, int reps)
         snprintf(rows[row_count].scene, sizeof rows[row_count].scene, "%s", seq->name);
         memcpy(rows[row_count].method, m[i].name, sizeof rows[row_count].method);
         rows[row_count++].r = first;
-        printf("| %-22s | %8.3f | %8.5f | %7.4f | %8.2f | %9.2f | %8.2f |\n", m[i].name, first.ms,
-               first.rmse, first.ssim, first.eff_spp, first.indep_spp, first.traced_pct);
-        fflush(stdout);
     }
+    printf("| %-24s | %8s | %8s | %7s | %8s | %9s | %8s | %8s |\n", "method", "ms", "RMSE", "SSIM",
+           "eff spp", "indep spp", "% oracle", "traced %");
+    printf("|--------------------------|---------:|---------:|--------:|---------:|----------:|---------:|---------:|\n");
+    for (i = first_row; i < row_count; ++i) {
+        const sbr_result *r = &rows[i].r;
+        const char *o = oracle_of(&m[i - first_row]);
+        int j;
+        rows[i].oracle_pct = 0.0;
+        for (j = first_row; j < row_count; ++j)
+            if (strcmp(rows[j].method, o) == 0 && rows[j].r.eff_spp > 0)
+                rows[i].oracle_pct = 100.0 * r->eff_spp / rows[j].r.eff_spp;
+        printf("| %-24s | %8.3f | %8.5f | %7.4f | %8.2f | %9.2f | %8.1f | %8.2f |\n", rows[i].method,
+               r->ms, r->rmse, r->ssim, r->eff_spp, r->indep_spp, rows[i].oracle_pct, r->traced_pct);
+    }
+    fflush(stdout);
 }
 
 static void write_csv(const char *path)
@@ -62,10 +101,11 @@ static void write_csv(const char *path)
     FILE *f = fopen(path, "w");
     int i;
     if (!f) { perror(path); return; }
-    fprintf(f, "scene,method,ms,rmse,ssim,eff_spp,traced_pct\n");
+    fprintf(f, "scene,method,ms,rmse,ssim,eff_spp,indep_spp,oracle_pct,traced_pct\n");
     for (i = 0; i < row_count; ++i)
-        fprintf(f, "%s,%s,%.4f,%.6f,%.5f,%.3f,%.3f\n", rows[i].scene, rows[i].method, rows[i].r.ms,
-                rows[i].r.rmse, rows[i].r.ssim, rows[i].r.eff_spp, rows[i].r.traced_pct);
+        fprintf(f, "%s,%s,%.4f,%.6f,%.5f,%.3f,%.3f,%.1f,%.3f\n", rows[i].scene, rows[i].method,
+                rows[i].r.ms, rows[i].r.rmse, rows[i].r.ssim, rows[i].r.eff_spp, rows[i].r.indep_spp,
+                rows[i].oracle_pct, rows[i].r.traced_pct);
     fclose(f);
     printf("\nwrote %s\n", path);
 }
@@ -147,7 +187,13 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = atoi(argv[++i]);
         else if (strcmp(argv[i], "--data") == 0 && i + 1 < argc) data = argv[++i];
         else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
-        else { fprintf(stderr, "usage: bench [--quick] [--reps N] [--data DIR] [--out DIR]\n"); return 2; }
+        else if (strcmp(argv[i], "--methods") == 0 && i + 1 < argc) only_methods = argv[++i];
+        else if (strcmp(argv[i], "--scenes") == 0 && i + 1 < argc) only_scenes = argv[++i];
+        else {
+            fprintf(stderr, "usage: bench [--quick] [--reps N] [--data DIR] [--out DIR] "
+                            "[--methods A,B,..] [--scenes S,T,..]\n");
+            return 2;
+        }
     }
     if (quick) reps = 1;
     if (reps < 1) reps = 1;
@@ -160,6 +206,7 @@ int main(int argc, char **argv)
     for (i = 0; i < (quick ? 1 : 4); ++i) {
         sbl_scene_desc d;
         sbr_seq seq;
+        if (!in_list(only_scenes, synth[i].name)) continue;
         memset(&d, 0, sizeof d);
         d.kind = synth[i].kind;
         d.jitter = synth[i].jitter;
@@ -175,9 +222,10 @@ int main(int argc, char **argv)
     if (!sbl_exr_available()) {
         printf("\n(real renders skipped: built without OpenEXR; install libopenexr-dev)\n");
     } else {
-        static const char *const scenes[] = {"atrium"};
-        for (i = 0; i < 1; ++i) {
+        static const char *const scenes[] = {"atrium", "gallery"};
+        for (i = 0; i < 2; ++i) {
             sbr_seq seq;
+            if (!in_list(only_scenes, scenes[i])) continue;
             snprintf(path, sizeof path, "%s/%s", data, scenes[i]);
             if (sbr_seq_dataset(&seq, path, quick ? 8 : 0, err, sizeof err) != 0) {
                 printf("\n(%s skipped: %s)\n", path, err);

@@ -52,9 +52,15 @@ typedef enum sbr_stereo_mode {
                              the Weber threshold (sbl_stereo_consistency), else own */
 } sbr_stereo_mode;
 
+/* Oracle weights (bench only): the library's reprojection stage, then
+   a = E_X / (E_X + E_Y), E_X and E_Y the 3x3-averaged squared errors of x* and of the
+   own sample against the reference: what the blend could reach with the reference known. */
+enum { SBR_ORACLE_TEMPORAL = 1, SBR_ORACLE_STEREO = 2 };
+
 typedef struct sbr_method {
     char name[48];
     int temporal;                  /* 0: no temporal filter */
+    int oracle;                    /* SBR_ORACLE_* bits: that stage uses oracle weights */
     sbl_temporal_desc temporal_desc;
     sbr_stereo_mode stereo;
     sbl_stereo_desc stereo_desc;   /* rig / focal / baseline filled in by the runner */
@@ -78,6 +84,7 @@ int  sbr_seq_dataset(sbr_seq *s, const char *dir, int max_frames, char *err, int
 void sbr_seq_free(sbr_seq *s);
 
 /* The standard method table; returns the count written (at most max). */
+#define SBR_MAX_METHODS 48
 int  sbr_standard_methods(sbr_method *m, int max);
 int  sbr_find_method(const char *name, sbr_method *out);
 
@@ -93,6 +100,7 @@ double sbr_now_ms(void);
 #include <string.h>
 #include <math.h>
 #include <time.h>
+#include <float.h>
 #include "sbl_metrics.h"
 #ifndef SBR_NO_DATASET
 #include "sbl_dataset.h"
@@ -264,9 +272,28 @@ static sbr_method sbr_method_make(const char *name, int temporal, sbl_estimator 
     return m;
 }
 
+static sbr_method sbr_method_oracle(const char *name, int temporal, sbr_stereo_mode st, int bits)
+{
+    sbr_method m = sbr_method_make(name, temporal, SBL_ESTIMATOR_HISTORY_AWARE, SBL_RECTIFY_NONE,
+                                   SBL_WEIGHT_SCALAR, st, SBL_ESTIMATOR_HISTORY_AWARE);
+    m.oracle = bits;
+    return m;
+}
+
+/* The library's defaults: every field of both descriptors zero. */
+static sbr_method sbr_method_default(const char *name, sbr_stereo_mode st)
+{
+    sbr_method m;
+    memset(&m, 0, sizeof m);
+    snprintf(m.name, sizeof m.name, "%s", name);
+    m.temporal = 1;
+    m.stereo = st;
+    return m;
+}
+
 int sbr_standard_methods(sbr_method *m, int max)
 {
-    sbr_method all[32];
+    sbr_method all[48];
     int n = 0, i;
     const sbl_estimator HA = SBL_ESTIMATOR_HISTORY_AWARE, P = SBL_ESTIMATOR_PAPER,
                         PR = SBL_ESTIMATOR_PROGRESSIVE, C = SBL_ESTIMATOR_CONSTANT;
@@ -277,17 +304,22 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n++] = sbr_method_make("const-0.1", 1, C, RN, WS, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_make("const-0.1+clamp", 1, C, RC, WS, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_make("const-0.1+varclip", 1, C, RV, WS, SBR_STEREO_NONE, HA);
+    all[n] = sbr_method_make("ema-0.2", 1, C, RN, WS, SBR_STEREO_NONE, HA);
+    all[n++].temporal_desc.constant_alpha = 0.2f;
     all[n++] = sbr_method_make("progressive", 1, PR, RN, WS, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_make("progressive+varclip", 1, PR, RV, WS, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_make("paper", 1, P, RN, WS, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_make("paper-per-channel", 1, P, RN, WP, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_make("history-aware", 1, HA, RN, WS, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_make("history-aware-per-ch", 1, HA, RN, WP, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_default("default", SBR_STEREO_NONE);
+    all[n++] = sbr_method_oracle("oracle", 1, SBR_STEREO_NONE, SBR_ORACLE_TEMPORAL);
     /* stereo alone (on the 1-spp input) */
     all[n++] = sbr_method_make("stereo-fill", 0, HA, RN, WS, SBR_STEREO_FILL, HA);
     all[n++] = sbr_method_make("stereo-beta-0.5", 0, HA, RN, WS, SBR_STEREO_FIXED, C);
     all[n++] = sbr_method_make("stereo-paper", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, P);
     all[n++] = sbr_method_make("stereo-history-aware", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, HA);
+    all[n++] = sbr_method_oracle("stereo-oracle", 0, SBR_STEREO_ADAPTIVE, SBR_ORACLE_STEREO);
     /* stereo after the temporal filter (history-aware temporal) */
     all[n++] = sbr_method_make("ha+stereo-fill", 1, HA, RN, WS, SBR_STEREO_FILL, HA);
     all[n++] = sbr_method_make("ha+stereo-beta-0.5", 1, HA, RN, WS, SBR_STEREO_FIXED, C);
@@ -295,14 +327,21 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n++] = sbr_method_make("ha+stereo-ha", 1, HA, RN, WS, SBR_STEREO_ADAPTIVE, HA);
     /* the paper's pipeline: paper alpha then paper beta */
     all[n++] = sbr_method_make("paper+stereo-paper", 1, P, RN, WS, SBR_STEREO_ADAPTIVE, P);
+    /* the strongest one-line baseline with the stereo blend after it */
+    all[n] = sbr_method_make("ema-0.2+stereo-beta-0.5", 1, C, RN, WS, SBR_STEREO_FIXED, C);
+    all[n++].temporal_desc.constant_alpha = 0.2f;
+    /* the library's default combined pipeline, and the oracle of the same pipeline */
+    all[n++] = sbr_method_default("default-stereo", SBR_STEREO_ADAPTIVE);
+    all[n++] = sbr_method_oracle("oracle+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,
+                                 SBR_ORACLE_TEMPORAL | SBR_ORACLE_STEREO);
     for (i = 0; i < n && i < max; ++i) m[i] = all[i];
     return i < n ? i : n;
 }
 
 int sbr_find_method(const char *name, sbr_method *out)
 {
-    sbr_method all[32];
-    int n = sbr_standard_methods(all, 32), i;
+    sbr_method all[SBR_MAX_METHODS];
+    int n = sbr_standard_methods(all, SBR_MAX_METHODS), i;
     for (i = 0; i < n; ++i)
         if (strcmp(all[i].name, name) == 0) { *out = all[i]; return 0; }
     return 1;
@@ -336,6 +375,48 @@ static sbl_gbuffer sbr_gbuffer(const sbr_view *v, int w, int h, int with_motion)
     g.ids = sbl_image_make(v->id, w, h, 1);
     if (with_motion) g.motion = sbl_image_make(v->motion, w, h, 2);
     return g;
+}
+
+/* The oracle blend of one eye: y = own estimate (N_Y = ny, NULL: 1), xs / nx = the other
+   estimate from the library's reprojection stage (nx <= 0: invalid), ref = reference.
+   a = E_X / (E_X + E_Y) over the 3x3 pixels whose x* is valid, squared errors summed
+   over the channels (one weight per pixel, like the scalar weight mode). */
+static void sbr_oracle_blend(int w, int h, const float *y, const float *ny, const float *xs,
+                             const float *nx, const float *ref, float cap, int temporal,
+                             float *out, float *nout)
+{
+    int px, py, i, j, c;
+    for (py = 0; py < h; ++py)
+        for (px = 0; px < w; ++px) {
+            size_t p = (size_t)py * (size_t)w + (size_t)px;
+            double ex = 0.0, ey = 0.0, a;
+            float n_y = ny ? ny[p] : 1.0f, n_x = nx[p];
+            if (!(n_y > 0.0f)) n_y = 1.0f;
+            if (!(n_x > 0.0f)) {
+                for (c = 0; c < 3; ++c) out[p * 3 + c] = y[p * 3 + c];
+                nout[p] = temporal ? 1.0f : n_y;
+                continue;
+            }
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    q = (size_t)j * (size_t)w + (size_t)i;
+                    if (!(nx[q] > 0.0f)) continue;
+                    for (c = 0; c < 3; ++c) {
+                        double dx = (double)xs[q * 3 + c] - ref[q * 3 + c];
+                        double dy = (double)y[q * 3 + c] - ref[q * 3 + c];
+                        ex += dx * dx;
+                        ey += dy * dy;
+                    }
+                }
+            a = ex + ey > 0.0 ? ex / (ex + ey) : 0.5;
+            for (c = 0; c < 3; ++c)
+                out[p * 3 + c] = (float)((1.0 - a) * xs[p * 3 + c] + a * y[p * 3 + c]);
+            if (n_x > cap) n_x = cap;
+            nout[p] = sbl_blend_sample_count((float)a, n_x, n_y);
+            if (nout[p] > cap) nout[p] = cap;
+        }
 }
 
 /* Rec. 709 luminance of an RGB image (the quantity Weber's law is about). */
@@ -381,6 +462,7 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
     const int w = s->width, h = s->height;
     const size_t n = (size_t)w * (size_t)h;
     float *hist[2][2], *len[2][2], *input[2], *tout[2], *disp[2], *tmp_a, *tmp_b;
+    float *ox, *onx, *onx2; /* oracle: x*, its N (or validity), the blend's N */
     unsigned char *mask;
     double *times, mse_sum = 0, mse1_sum = 0, ssim_sum = 0, eff_sum = 0;
     long traced = 0, traced_total = 0;
@@ -398,8 +480,15 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
     mask = (unsigned char *)calloc(n, 1);
     tmp_a = sbr_alloc(n * 3); /* also the luminance planes of SBR_STEREO_MASKED */
     tmp_b = sbr_alloc(n * 3);
+    ox = sbr_alloc(n * 3);
+    onx = sbr_alloc(n);
+    onx2 = sbr_alloc(n);
     times = (double *)calloc((size_t)s->frames, sizeof(double));
     if (!mask || !times) { fprintf(stderr, "out of memory\n"); exit(2); }
+    if (m->oracle && !s->views[0].ref) {
+        fprintf(stderr, "%s: needs the reference images\n", m->name);
+        rc = SBL_ERROR_MISSING_INPUT;
+    }
 
     for (f = 0; f < s->frames && rc == 0; ++f) {
         const sbr_view *v[2];
@@ -442,7 +531,17 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
                 }
                 out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
                 out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
-                rc = sbl_temporal_filter_frame(&m->temporal_desc, &fr, pv ? &hi : NULL, &out);
+                if (m->oracle & SBR_ORACLE_TEMPORAL) {
+                    sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
+                    rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
+                                                sbl_image_make(ox, w, h, 3),
+                                                sbl_image_make(onx, w, h, 1), 0, h);
+                    if (rc == 0)
+                        sbr_oracle_blend(w, h, input[e], NULL, ox, onx, v[e]->ref, td.max_history,
+                                         1, hist[e][!ping[e]], len[e][!ping[e]]);
+                } else {
+                    rc = sbl_temporal_filter_frame(&m->temporal_desc, &fr, pv ? &hi : NULL, &out);
+                }
                 ping[e] = !ping[e];
                 tout[e] = hist[e][ping[e]];
             } else {
@@ -458,8 +557,19 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
                 eye[e].gbuffer = sbr_gbuffer(v[e], w, h, 0);
             }
             if (m->stereo == SBR_STEREO_FIXED) sd.estimator = SBL_ESTIMATOR_CONSTANT;
-            rc = sbl_stereo_blend_frame(&sd, &eye[0], &eye[1], sbl_image_make(disp[0], w, h, 3),
-                                        sbl_image_make(disp[1], w, h, 3));
+            if (m->oracle & SBR_ORACLE_STEREO) {
+                for (e = 0; e < 2 && rc == 0; ++e) {
+                    rc = sbl_reproject_stereo(&sd, (sbl_eye_index)e, &eye[e], &eye[!e],
+                                              sbl_image_make(ox, w, h, 3),
+                                              sbl_image_make(onx, w, h, 1), 0, h);
+                    if (rc == 0)
+                        sbr_oracle_blend(w, h, tout[e], m->temporal ? len[e][ping[e]] : NULL, ox,
+                                         onx, v[e]->ref, FLT_MAX, 0, disp[e], onx2);
+                }
+            } else {
+                rc = sbl_stereo_blend_frame(&sd, &eye[0], &eye[1], sbl_image_make(disp[0], w, h, 3),
+                                            sbl_image_make(disp[1], w, h, 3));
+            }
         } else if (rc == 0 && m->stereo == SBR_STEREO_MASKED) {
             sbl_eye eye[2];
             for (e = 0; e < 2; ++e) {
@@ -519,7 +629,7 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
         for (i = 0; i < 2; ++i) { free(hist[e][i]); free(len[e][i]); }
         free(input[e]); free(disp[e]);
     }
-    free(mask); free(tmp_a); free(tmp_b); free(times);
+    free(mask); free(tmp_a); free(tmp_b); free(times); free(ox); free(onx); free(onx2);
     return rc;
 }
 

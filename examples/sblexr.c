@@ -4,6 +4,9 @@
    Prints RMSE / SSIM / effective spp where references exist.
 
    usage: sblexr SCENE_DIR OUT_DIR [--method NAME] [--frames N] [--list]
+   No --method: the library's default temporal filter (every descriptor field zero);
+   --method default-stereo: the default combined pipeline (temporal per eye, then the
+   default stereo blend for display). These two names stay stable.
 */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
@@ -42,12 +45,14 @@ static int make_dir(const char *p)
 static void usage(void)
 {
     fprintf(stderr, "usage: sblexr SCENE_DIR OUT_DIR [--method NAME] [--frames N]\n"
+                    "       (no --method: the default temporal filter; default-stereo: the\n"
+                    "       default temporal filter then the default stereo blend)\n"
                     "       sblexr --list        (the method names)\n");
 }
 
 int main(int argc, char **argv)
 {
-    const char *scene = NULL, *out = NULL, *method = "history-aware";
+    const char *scene = NULL, *out = NULL, *method = "default";
     int frames = 0, i;
     sbr_seq seq;
     sbr_method m;
@@ -56,8 +61,8 @@ int main(int argc, char **argv)
     char err[512], dir[2048];
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--list") == 0) {
-            sbr_method all[32];
-            int n = sbr_standard_methods(all, 32), k;
+            sbr_method all[SBR_MAX_METHODS];
+            int n = sbr_standard_methods(all, SBR_MAX_METHODS), k;
             for (k = 0; k < n; ++k) printf("%s\n", all[k].name);
             return 0;
         } else if (strcmp(argv[i], "--method") == 0 && i + 1 < argc) method = argv[++i];

@@ -141,13 +141,18 @@ static sbl_image make_image(rd *r, ctx *cx, enum role role, int w, int h, int c,
     b = new_buf(cx, w, h, c, pad);
     b->is_output = output;
     if ((flags & 8u) && pad == 0) b->im.stride = 0;
+    if ((flags & 8u) && pad != 0) { /* the same layout also in bytes, with its size */
+        b->im.stride_bytes = b->stride * (int)sizeof(float);
+        b->im.size_bytes = b->n * sizeof(float);
+    }
     mut = flags >> 4;
     if (mut == 13u) b->im.width = (u8(r) & 1u) ? 0 : -w;
     else if (mut == 14u) b->im.channels = (u8(r) & 1u) ? 0 : 5;
     else if (mut == 15u && !(flags & 1u)) {
         unsigned m2 = u8(r) % 4u;
         if (m2 == 0 && w * c > 1) b->im.stride = w * c - 1;       /* INVALID_STRIDE  */
-        else if (m2 == 1) b->im.stride = -b->stride;              /* INVALID_STRIDE  */
+        else if (m2 == 1 && (flags & 2u)) b->im.stride_bytes = b->stride * 4 + 2; /* INVALID_STRIDE */
+        else if (m2 == 1) b->im.size_bytes = b->n * sizeof(float) - 1;  /* INVALID_SIZE */
         else if (m2 == 2 && h > 1) b->im.height = h - 1;          /* shrink: mismatch */
         else if (w > 1) b->im.width = w - 1;                      /* shrink: mismatch */
     }

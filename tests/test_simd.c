@@ -25,6 +25,7 @@ sbl_result scalar_stereo_blend(const sbl_stereo_desc *d, const sbl_eye *l, const
 static sbl_image view(const sbt_img *im)
 {
     sbl_image v;
+    memset(&v, 0, sizeof v);
     v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
     return v;
 }
