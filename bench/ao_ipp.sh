@@ -1,19 +1,23 @@
 #!/bin/sh
 # Instructions per stereo frame of each SSAO configuration of examples/ao_stereo.c
 # (callgrind, which does not drift with the machine's load), and of the library's
-# consistency mask alone. usage: bench/ao_ipp.sh [scene] [frames] [thresholds...]
+# consistency mask alone.
+# usage: [SAMPLES=N] bench/ao_ipp.sh [scene] [frames] [thresholds...]
 #   make build/ao_stereo && sh bench/ao_ipp.sh atrium 1 0.01 0.02 0.05 0.1
+#   SAMPLES=16 sh bench/ao_ipp.sh gallery 1 0.02   (obscurance samples per pixel, default 8)
 set -e
 scene=${1:-atrium}; frames=${2:-1}; shift 2 2>/dev/null || true
 thresholds=${*:-0.02}
+samples=${SAMPLES:-8}
 bin=./build/ao_stereo
 out=$(mktemp -d)
 count() { # config threshold function
     valgrind --tool=callgrind --callgrind-out-file="$out/cg" --toggle-collect="$3" \
-        $bin --only "$1" --scene "$scene" --frames "$frames" --threshold "$2" 2>&1 |
+        $bin --only "$1" --scene "$scene" --frames "$frames" --threshold "$2" --samples "$samples" 2>&1 |
         sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
 }
-printf '| %s | threshold | Minstr / stereo frame | x Mono | of which the mask (Minstr) |\n' "$scene"
+printf '%s, %s obscurance samples per pixel, %s frame(s)\n\n' "$scene" "$samples" "$frames"
+printf '| config | threshold | Minstr / stereo frame | x Mono | of which the mask (Minstr) |\n'
 printf '|---|---:|---:|---:|---:|\n'
 mono=$(count Mono 0.02 count_config)
 for t in $thresholds; do
