@@ -525,7 +525,8 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
    value A(p*) of the other eye at p's back-checked match p* differ visibly when their
    Weber ratio reaches the threshold:
        r = |A(p) - A(p*)| / max(|A(p)|, |A(p*)|)     (per channel; the largest counts)
-   The two images are any per-eye quantity (filtered colour, luminance, AO), 1..4
+   (Wu's Eq. 2 divides by A(p) alone; the larger magnitude makes r symmetric, so the two
+   eyes' masks agree pair by pair.) The two images are any per-eye quantity (filtered colour, luminance, AO), 1..4
    channels, the same in both eyes; p* is found by the stereo reprojection of
    sbl_reproject_stereo (tap tests, back-check) with `source_value` in place of the
    source eye's colour, so A(p*) is its bilinear value over the taps that pass.
@@ -534,9 +535,13 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
      - negative values: the magnitudes in the denominator, so -a against a gives r = 2;
      - NaN or +-inf in target_value at p: inconsistent (nothing finite can agree);
      - NaN or +-inf in source_value: such taps are dropped as by every reprojection; if
-       no tap remains the pixel has no correspondence.
+       no tap remains the pixel has no correspondence;
+     - a pixel without a correspondence is SBL_NO_CORRESPONDENCE whatever its values.
    The eyes' colour and length are not read (only their geometry); the rig, focal
-   length, baseline and tap tests are those of `desc`. */
+   length, baseline and tap tests are those of `desc`.
+   Cost: one stereo reprojection per pixel, about 70 % of a stereo blend's instructions,
+   so the mask pays where the work it lets skip costs more than that (Wu's stereo-aware
+   SSAO), or where most pixels are already consistent. */
 typedef enum sbl_consistency_class {
     SBL_CONSISTENT = 0,         /* r < threshold                                      */
     SBL_INCONSISTENT = 1,       /* r >= threshold, or a non-finite target value       */
@@ -564,8 +569,8 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
 /* Adaptive stereo blend (Wu's adaptive pass): rows [y0, y1) of out_color / out_length
    receive sbl_stereo_blend's result (bit for bit) where mask[y * mask_stride + x] is
    SBL_INCONSISTENT, and the target eye's own colour and N (1 where it has no length)
-   everywhere else. The blend runs on tiles of 16 x 16 pixels that hold a marked pixel,
-   so its time follows the marked share. The mask is typically sbl_stereo_consistency's
+   everywhere else. The blend runs only on the tiles of 16 x 16 pixels that hold a
+   marked pixel, so its time follows the share of such tiles. The mask is typically sbl_stereo_consistency's
    on the two eyes' per-eye results (it is read whole, so compute all of it first).
    Scratch: sbl_stereo_scratch_size(). blended_count (optional): marked pixels of these
    rows. Arguments are checked as by sbl_stereo_blend, before anything is written. */

@@ -203,8 +203,8 @@ int main(int argc, char **argv)
         memset(&d, 0, sizeof d);
         d.kind = synth[i].kind;
         d.jitter = synth[i].jitter;
-        d.width = quick ? 96 : 320;
-        d.height = quick ? 54 : 180;
+        d.width = quick ? 96 : 160;   /* as make bench */
+        d.height = quick ? 54 : 90;
         d.frames = quick ? 8 : 16;
         d.ref_spp = quick ? 16 : 64;
         d.seed = 7;
