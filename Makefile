@@ -71,6 +71,10 @@ $(BUILD)/bench-adaptive: bench/adaptive.c $(DATASET_SRC) $(HEADERS) $(RUNNER) to
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
 
+$(BUILD)/adaptive_ipp: bench/adaptive_ipp.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -g -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
 # Mono / FSA / adaptive stereo blend: ms, RMSE, eff spp, stereo inconsistency ratio
 bench-adaptive: $(BUILD)/bench-adaptive
 	./$(BUILD)/bench-adaptive --out bench/out

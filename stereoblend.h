@@ -606,7 +606,8 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
    value A(p*) of the other eye at p's back-checked match p* differ visibly when their
    Weber ratio reaches the threshold:
        r = |A(p) - A(p*)| / max(|A(p)|, |A(p*)|)     (per channel; the largest counts)
-   The two images are any per-eye quantity (filtered colour, luminance, AO), 1..4
+   (Wu's Eq. 2 divides by A(p) alone; the larger magnitude makes r symmetric, so the two
+   eyes' masks agree pair by pair.) The two images are any per-eye quantity (filtered colour, luminance, AO), 1..4
    channels, the same in both eyes; p* is found by the stereo reprojection of
    sbl_reproject_stereo (tap tests, back-check) with `source_value` in place of the
    source eye's colour, so A(p*) is its bilinear value over the taps that pass.
@@ -615,9 +616,13 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
      - negative values: the magnitudes in the denominator, so -a against a gives r = 2;
      - NaN or +-inf in target_value at p: inconsistent (nothing finite can agree);
      - NaN or +-inf in source_value: such taps are dropped as by every reprojection; if
-       no tap remains the pixel has no correspondence.
+       no tap remains the pixel has no correspondence;
+     - a pixel without a correspondence is SBL_NO_CORRESPONDENCE whatever its values.
    The eyes' colour and length are not read (only their geometry); the rig, focal
-   length, baseline and tap tests are those of `desc`. */
+   length, baseline and tap tests are those of `desc`.
+   Cost: one stereo reprojection per pixel, about 70 % of a stereo blend's instructions,
+   so the mask pays where the work it lets skip costs more than that (Wu's stereo-aware
+   SSAO), or where most pixels are already consistent. */
 typedef enum sbl_consistency_class {
     SBL_CONSISTENT = 0,         /* r < threshold                                      */
     SBL_INCONSISTENT = 1,       /* r >= threshold, or a non-finite target value       */
@@ -645,8 +650,8 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
 /* Adaptive stereo blend (Wu's adaptive pass): rows [y0, y1) of out_color / out_length
    receive sbl_stereo_blend's result (bit for bit) where mask[y * mask_stride + x] is
    SBL_INCONSISTENT, and the target eye's own colour and N (1 where it has no length)
-   everywhere else. The blend runs on tiles of 16 x 16 pixels that hold a marked pixel,
-   so its time follows the marked share. The mask is typically sbl_stereo_consistency's
+   everywhere else. The blend runs only on the tiles of 16 x 16 pixels that hold a
+   marked pixel, so its time follows the share of such tiles. The mask is typically sbl_stereo_consistency's
    on the two eyes' per-eye results (it is read whole, so compute all of it first).
    Scratch: sbl_stereo_scratch_size(). blended_count (optional): marked pixels of these
    rows. Arguments are checked as by sbl_stereo_blend, before anything is written. */
@@ -4618,6 +4623,41 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
    mask closer. */
 #define SBL__ADAPTIVE_TILE 16
 
+/* Does the tile of columns [x0, min(x1, w)) and rows [y0, y1) hold a marked pixel? */
+static int sbl__tile_marked(const unsigned char *mask, int mask_stride, int x0, int x1, int w,
+                            int y0, int y1)
+{
+    int x, y;
+    if (x1 > w) x1 = w;
+    for (y = y0; y < y1; ++y) {
+        const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        for (x = x0; x < x1; ++x)
+            if (m[x] == SBL_INCONSISTENT) return 1;
+    }
+    return 0;
+}
+
+/* The own colour and N on the unmarked pixels of rows [y0, y1) (after the blend ran on
+   their tiles); returns the count of marked pixels. */
+static long sbl__keep_own(const sbl__kernel *k, const unsigned char *mask, int mask_stride,
+                          int y0, int y1)
+{
+    long marked = 0;
+    int x, y, c;
+    for (y = y0; y < y1; ++y) {
+        const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        const float *own = sbl__px(k->own, 0, y);
+        float *o = sbl__px(&k->out, 0, y);
+        float *on = k->out_n.data ? sbl__px(&k->out_n, 0, y) : NULL;
+        for (x = 0; x < k->w; ++x) {
+            if (m[x] == SBL_INCONSISTENT) { ++marked; continue; }
+            for (c = 0; c < k->ch; ++c) o[(size_t)x * k->ch + c] = own[(size_t)x * k->ch + c];
+            if (on) on[x] = sbl__own_n(k, x, y);
+        }
+    }
+    return marked;
+}
+
 SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
                                           const sbl_eye *target, const sbl_eye *source,
                                           const unsigned char *mask, int mask_stride,
@@ -4629,7 +4669,7 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     sbl__kernel k;
     sbl_result r;
     long marked = 0;
-    int w, h, ch, x, y, c, by;
+    int w, h, ch, by, full0 = -1;
     /* every check of the full blend: an empty row range validates and writes nothing */
     if ((r = sbl_stereo_blend(desc, target_eye, target, source, out_color, out_length, y0, y0,
                               scratch, scratch_bytes)) != SBL_OK)
@@ -4662,39 +4702,38 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     k.out = out_color;
     k.out_n = out_length;
     sbl__kernel_bind(&k, scratch);
-    /* bands on the absolute tile grid, clipped to [y0, y1) */
+    /* bands on the absolute tile grid, clipped to [y0, y1); consecutive bands marked
+       across the whole width run as one (no ring reload between them) */
     for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
         int b0 = by > y0 ? by : y0, b1 = by + SBL__ADAPTIVE_TILE < y1 ? by + SBL__ADAPTIVE_TILE : y1;
-        int tx, span0 = -1;
-        /* runs of marked tiles along the band become one span each */
+        int tx, span0 = -1, full = 1;
+        for (tx = 0; tx < w && full; tx += SBL__ADAPTIVE_TILE)
+            full = sbl__tile_marked(mask, mask_stride, tx, tx + SBL__ADAPTIVE_TILE, w, b0, b1);
+        if (full) {
+            if (full0 < 0) full0 = b0;
+            continue;
+        }
+        if (full0 >= 0) {
+            sbl__kernel_run(&k, full0, b0);
+            marked += sbl__keep_own(&k, mask, mask_stride, full0, b0);
+            full0 = -1;
+        }
+        /* runs of marked tiles along the band become one span each; the step past the
+           last tile closes an open span */
         for (tx = 0; tx < w + SBL__ADAPTIVE_TILE; tx += SBL__ADAPTIVE_TILE) {
-            int marked_tile = 0; /* the step past the last tile closes an open span */
-            if (tx < w) {
-                int x1 = tx + SBL__ADAPTIVE_TILE < w ? tx + SBL__ADAPTIVE_TILE : w;
-                for (y = b0; y < b1 && !marked_tile; ++y) {
-                    const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
-                    for (x = tx; x < x1; ++x)
-                        if (m[x] == SBL_INCONSISTENT) { marked_tile = 1; break; }
-                }
-            }
+            int marked_tile = tx < w && sbl__tile_marked(mask, mask_stride, tx,
+                                                         tx + SBL__ADAPTIVE_TILE, w, b0, b1);
             if (marked_tile && span0 < 0) span0 = tx;
             if (!marked_tile && span0 >= 0) {
                 sbl__kernel_run_span(&k, b0, b1, span0, tx < w ? tx : w);
                 span0 = -1;
             }
         }
-        /* the own result wherever the mask does not ask for the blend */
-        for (y = b0; y < b1; ++y) {
-            const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
-            const float *own = sbl__px(&target->color, 0, y);
-            float *o = sbl__px(&out_color, 0, y);
-            float *on = out_length.data ? sbl__px(&out_length, 0, y) : NULL;
-            for (x = 0; x < w; ++x) {
-                if (m[x] == SBL_INCONSISTENT) { ++marked; continue; }
-                for (c = 0; c < ch; ++c) o[(size_t)x * ch + c] = own[(size_t)x * ch + c];
-                if (on) on[x] = sbl__own_n(&k, x, y);
-            }
-        }
+        marked += sbl__keep_own(&k, mask, mask_stride, b0, b1);
+    }
+    if (full0 >= 0) {
+        sbl__kernel_run(&k, full0, y1);
+        marked += sbl__keep_own(&k, mask, mask_stride, full0, y1);
     }
     if (blended_count) *blended_count = marked;
     return SBL_OK;
