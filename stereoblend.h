@@ -2700,9 +2700,14 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
 static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     const int w = s->src.width, h = s->src.height;
+    /* the lanes read the target depth, the source depth and N one float per pixel and
+       the motion two: other pixel steps (channel views) take the scalar plan */
+    const int steps = s->motion.step == 2 && (!s->geo.depth.p || s->geo.depth.step == 1) &&
+                      (!s->src.use_depth || s->src.depth.step == 1) &&
+                      (!s->src.length.p || s->src.length.step == 1);
     return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
            fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && !s->geo.normals.p &&
-           !s->geo.ids.p && y >= 1 && y + 1 < h;
+           !s->geo.ids.p && y >= 1 && y + 1 < h && steps;
 }
 
 /* sbl__temporal_rp_pos and sbl__tap_plan_set for the VW pixels x .. x + VW - 1 (all
