@@ -1040,7 +1040,7 @@ static int sbl__mat_invert(double *out, const double *m)
 static void sbl__mat_from_float(double *out, const float *m)
 {
     int i;
-    for (i = 0; i < 16; ++i) out[i] = (double)m[i];
+    for (i = 0; i < 16; ++i) out[i] = SBL__CAST(double, m[i]);
 }
 
 /* Maps a pixel of one camera at linear depth z to the pixel of another camera:
@@ -1363,13 +1363,14 @@ static sbl__flat sbl__flatten(const sbl_image *im)
     sbl__flat f;
     f.p = im ? im->data : NULL;
     f.stride = f.p ? sbl__stride(im) : 0;
-    f.step = f.p ? (ptrdiff_t)sbl__step_of(im) : 0;
+    f.step = f.p ? SBL__CAST(ptrdiff_t, sbl__step_of(im)) : 0;
     f.ch = f.p ? im->channels : 0;
     return f;
 }
 
 /* Every address of a flattened view is formed here (signed: strides may be negative). */
-#define SBL__AT(f, x, y) ((f).p + (ptrdiff_t)(y) * (f).stride + (ptrdiff_t)(x) * (f).step)
+#define SBL__AT(f, x, y) \
+    ((f).p + SBL__CAST(ptrdiff_t, y) * (f).stride + SBL__CAST(ptrdiff_t, x) * (f).step)
 
 /* The source view a gather reads, and the tests it applies: fixed for a call. A test
    runs only when both views have its buffer. */
@@ -1732,7 +1733,7 @@ static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
         return SBL_ERROR_INVALID_PARAM;
     if ((int)d->motion.units < 0 || (int)d->motion.units > (int)SBL_MOTION_NDC)
         return SBL_ERROR_INVALID_PARAM;
-    if (d->disabled_tests & ~(int)SBL_TEST_ALL) return SBL_ERROR_INVALID_PARAM;
+    if (d->disabled_tests & ~SBL__CAST(int, SBL_TEST_ALL)) return SBL_ERROR_INVALID_PARAM;
     return SBL_OK;
 }
 
