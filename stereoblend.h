@@ -368,6 +368,9 @@ typedef enum sbl_estimator {
     SBL_ESTIMATOR_PAPER,             /* Philippi Eq. 4 with Eq. 10/11: a = d^2/(d^2+s^2) */
     SBL_ESTIMATOR_PROGRESSIVE,       /* a = N_Y / (N_X + N_Y): 1/(N+1) for temporal     */
     SBL_ESTIMATOR_CONSTANT,          /* a = constant (alpha 0.1 / beta 0.5 by default)  */
+    SBL_ESTIMATOR_ROBUST,            /* history-aware with a soft (Student-t) bias test
+                                        and a firefly limit on the new sample; see
+                                        docs/ESTIMATORS.md                               */
     SBL_ESTIMATOR_COUNT
 } sbl_estimator;
 
@@ -384,7 +387,7 @@ typedef enum sbl_weight_mode {
     SBL_WEIGHT_MODE_COUNT
 } sbl_weight_mode;
 
-/* The optimal weight of the new estimate (ALGORITHMS.md section 1):
+/* The optimal weight of the new estimate (docs/ALGORITHMS.md section 1):
    a* = (B^2 + var_X) / (B^2 + var_X + var_Y). An infinite var_X or bias gives 1 (no
    usable history); all zero gives 0.5 (nothing tells the two apart). */
 SBLDEF float sbl_optimal_weight(float bias2, float var_x, float var_y);
@@ -603,7 +606,8 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
    value A(p*) of the other eye at p's back-checked match p* differ visibly when their
    Weber ratio reaches the threshold:
        r = |A(p) - A(p*)| / max(|A(p)|, |A(p*)|)     (per channel; the largest counts)
-   The two images are any per-eye quantity (filtered colour, luminance, AO), 1..4
+   (Wu's Eq. 2 divides by A(p) alone; the larger magnitude makes r symmetric, so the two
+   eyes' masks agree pair by pair.) The two images are any per-eye quantity (filtered colour, luminance, AO), 1..4
    channels, the same in both eyes; p* is found by the stereo reprojection of
    sbl_reproject_stereo (tap tests, back-check) with `source_value` in place of the
    source eye's colour, so A(p*) is its bilinear value over the taps that pass.
@@ -612,9 +616,13 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
      - negative values: the magnitudes in the denominator, so -a against a gives r = 2;
      - NaN or +-inf in target_value at p: inconsistent (nothing finite can agree);
      - NaN or +-inf in source_value: such taps are dropped as by every reprojection; if
-       no tap remains the pixel has no correspondence.
+       no tap remains the pixel has no correspondence;
+     - a pixel without a correspondence is SBL_NO_CORRESPONDENCE whatever its values.
    The eyes' colour and length are not read (only their geometry); the rig, focal
-   length, baseline and tap tests are those of `desc`. */
+   length, baseline and tap tests are those of `desc`.
+   Cost: one stereo reprojection per pixel, about 70 % of a stereo blend's instructions,
+   so the mask pays where the work it lets skip costs more than that (Wu's stereo-aware
+   SSAO), or where most pixels are already consistent. */
 typedef enum sbl_consistency_class {
     SBL_CONSISTENT = 0,         /* r < threshold                                      */
     SBL_INCONSISTENT = 1,       /* r >= threshold, or a non-finite target value       */
@@ -642,8 +650,8 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
 /* Adaptive stereo blend (Wu's adaptive pass): rows [y0, y1) of out_color / out_length
    receive sbl_stereo_blend's result (bit for bit) where mask[y * mask_stride + x] is
    SBL_INCONSISTENT, and the target eye's own colour and N (1 where it has no length)
-   everywhere else. The blend runs on tiles of 16 x 16 pixels that hold a marked pixel,
-   so its time follows the marked share. The mask is typically sbl_stereo_consistency's
+   everywhere else. The blend runs only on the tiles of 16 x 16 pixels that hold a
+   marked pixel, so its time follows the share of such tiles. The mask is typically sbl_stereo_consistency's
    on the two eyes' per-eye results (it is read whole, so compute all of it first).
    Scratch: sbl_stereo_scratch_size(). blended_count (optional): marked pixels of these
    rows. Arguments are checked as by sbl_stereo_blend, before anything is written. */
@@ -1792,32 +1800,43 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     return SBL_OK;
 }
 
+/* Where target pixel (x, y) finds its history: the source position (*sx, *sy) and what
+   the taps must match (*t). Returns 0 when the pixel must reset. Shared by the pixel
+   gather below and the row gather (sbl__temporal_rp_row). */
+SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sbl__tap_want *t,
+                                     double *sx, double *sy)
+{
+    double sz;
+    float z;
+    if (!sbl__tap_want_init(t, &s->geo, x, y, &z)) return 0;
+    if (s->source == SBL_TEMPORAL_MOTION) {
+        const float *mv = SBL__AT(s->motion, x, y);
+        if (sbl__any_nonfinite(mv, 2)) return 0;
+        *sx = x + 0.5 + s->motion_kx * mv[0];
+        *sy = y + 0.5 + s->motion_ky * mv[1];
+        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
+    } else {
+        if (!sbl__cam_map_apply_id(&s->cam, s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f,
+                                   x + 0.5, y + 0.5, z, sx, sy, &sz))
+            return 0;
+    }
+    /* came in from outside the previous image: nothing to reuse (edge pixels would
+       otherwise be replicated by the renormalisation and the 3x3 fallback) */
+    if (!(*sx >= 0.0 && *sx < (double)s->frame->color.width && *sy >= 0.0 &&
+          *sy < (double)s->frame->color.height))
+        return 0;
+    t->depth = (float)sz;
+    return 1;
+}
+
 /* x* and its N for target pixel (x, y); returns 0 when the pixel must reset. */
 static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
 {
     const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
     sbl__tap_want t;
-    double sx, sy, sz;
-    float z;
+    double sx, sy;
     if (!s->history) return 0.0f;
-    if (!sbl__tap_want_init(&t, &s->geo, x, y, &z)) return 0.0f;
-    if (s->source == SBL_TEMPORAL_MOTION) {
-        const float *mv = SBL__AT(s->motion, x, y);
-        if (sbl__any_nonfinite(mv, 2)) return 0.0f;
-        sx = x + 0.5 + s->motion_kx * mv[0];
-        sy = y + 0.5 + s->motion_ky * mv[1];
-        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
-    } else {
-        if (!sbl__cam_map_apply_id(&s->cam, s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f,
-                                   x + 0.5, y + 0.5, z, &sx, &sy, &sz))
-            return 0.0f;
-    }
-    /* came in from outside the previous image: nothing to reuse (edge pixels would
-       otherwise be replicated by the renormalisation and the 3x3 fallback) */
-    if (!(sx >= 0.0 && sx < (double)s->frame->color.width && sy >= 0.0 &&
-          sy < (double)s->frame->color.height))
-        return 0.0f;
-    t.depth = (float)sz;
+    if (!sbl__temporal_rp_pos(s, x, y, &t, &sx, &sy)) return 0.0f;
     return sbl__gather(&s->src, &t, sx, sy, !s->rp.no_fallback, out);
 }
 
@@ -1883,16 +1902,32 @@ typedef struct sbl__moments {
     float lo[4], hi[4];         /* min / max of Y per channel                       */
     double pair_diff[4];        /* mean of (x*_i - y_i) over pixels with both valid */
     double pair_var[4];         /* sample variance of (x*_i - y_i) (Bessel), 0 if < 2 */
+    double mean8[4], var8[4];   /* mean / population variance of Y without the centre
+                                   sample (firefly limit); 0 without a centre         */
     int count, pair_count;
 } sbl__moments;
 
-/* vals[i][c]: the n finite neighbours (centre included); xv[i] non-NULL where that
-   neighbour also has a valid x*. Two passes in double: exact enough for any float
-   input, never negative. */
+/* vals[i][c]: the n finite neighbours (centre included, at index `centre`, or -1);
+   xv[i] non-NULL where that neighbour also has a valid x*. Two passes in double: exact
+   enough for any float input, never negative. */
 static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
-                              const float (*xvals)[4], const int *xvalid, int n, int ch)
+                              const float (*xvals)[4], const int *xvalid, int n, int ch,
+                              int centre)
 {
     int i, k;
+    for (k = 0; k < ch; ++k) {
+        /* the window without its centre, centred on its own mean (a firefly at the
+           centre cannot cancel the others' spread away) */
+        double s8 = 0.0, v8 = 0.0;
+        m->mean8[k] = m->var8[k] = 0.0;
+        if (centre < 0 || n < 2) continue;
+        for (i = 0; i < n; ++i) if (i != centre) s8 += vals[i][k];
+        s8 /= n - 1;
+        for (i = 0; i < n; ++i)
+            if (i != centre) v8 += ((double)vals[i][k] - s8) * ((double)vals[i][k] - s8);
+        m->mean8[k] = s8;
+        m->var8[k] = v8 / (n - 1);
+    }
     m->count = n;
     m->pair_count = 0;
     for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
@@ -1962,7 +1997,7 @@ SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image var, 
                     for (k = 0; k < ch; ++k) vals[n][k] = p[k];
                     ++n;
                 }
-            sbl__moments_core(&m, (const float(*)[4])vals, NULL, NULL, n, ch);
+            sbl__moments_core(&m, (const float(*)[4])vals, NULL, NULL, n, ch, -1);
             for (k = 0; k < ch; ++k) {
                 if (mean.data) sbl__px(&mean, x, y)[k] = (float)m.mean[k];
                 /* beyond float range (|values| > ~1e19): saturate, finite in -> finite out */
@@ -2001,6 +2036,25 @@ typedef struct sbl__weight_params {
     float constant, alpha_min, gamma, bias_threshold;
 } sbl__weight_params;
 
+/* Firefly limit of the robust estimator: the new sample may exceed the larger of the
+   neighbours' mean and the history by at most this many neighbour standard deviations
+   (summed over channels; see docs/ESTIMATORS.md). */
+#ifndef SBL_FIREFLY_SIGMAS
+#define SBL_FIREFLY_SIGMAS 4.0
+#endif
+
+/* Posterior probability that a window changed, from the squared mean paired difference
+   pd2 and its squared standard error se2 (robust estimator): 1 / (1 + rho^4.5), rho =
+   (1 + k2/8) / (1 + t^2/8), t^2 = pd2 / se2. 0.5 at t^2 = k2, about 0.03 at t = 0 and
+   k = 3, tending to 1 as t grows. */
+static double sbl__change_posterior(double pd2, double se2, double k2)
+{
+    double t2 = se2 > 0.0 ? pd2 / se2 : (pd2 > 0.0 ? HUGE_VAL : 0.0);
+    double rho = (1.0 + k2 * 0.125) / (1.0 + t2 * 0.125);
+    double r2 = rho * rho;
+    return 1.0 / (1.0 + r2 * r2 * sqrt(rho));
+}
+
 /* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
    variance of the paired differences x*_i - y_i. */
@@ -2020,6 +2074,29 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
     case SBL_ESTIMATOR_CONSTANT:
         a = p->constant;
         break;
+    case SBL_ESTIMATOR_ROBUST: {
+        /* As history-aware, but the bias enters with the posterior probability that
+           the window changed: t = mean paired difference / its standard error is
+           Student-t with 8 degrees of freedom if nothing changed; against a flat
+           alternative the odds of change grow as (1 + t^2/8)^4.5, set to 1 at t^2 = k^2
+           (bias_threshold). Soft, and polynomial rather than exponential in t^2, so
+           heavy-tailed noise cannot make a near-certain change out of one sample. */
+        double k2 = (double)p->bias_threshold * (double)p->bias_threshold;
+        double var_x, var_y, se2, bias2 = 0.0;
+        if (pair_count > 1) {
+            var_y = pv * (double)n_x / ((double)n_x + (double)n_y);
+            var_x = pv - var_y;
+            se2 = pv / pair_count;
+        } else {
+            var_y = count > 1 ? s2 * count / (count - 1) : 0.0;
+            var_x = var_y * (double)n_y / (double)n_x;
+            se2 = pair_count == 1 ? var_x + var_y : 0.0;
+        }
+        if (pair_count > 0) bias2 = sbl__change_posterior(pd2, se2, k2) * pd2;
+        a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
+                                          : progressive;
+        break;
+    }
     case SBL_ESTIMATOR_HISTORY_AWARE:
     default: {
         /* The paired differences x*_i - y_i cancel texture: their variance is
@@ -2110,6 +2187,28 @@ static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
 /* 6. Blend, history length, and the fused row kernel                       */
 /* ------------------------------------------------------------------------ */
 
+/* Firefly limit (robust estimator): the new sample y is scaled down (hue kept) so that
+   its channel sum exceeds max(neighbours' mean, x*) by at most SBL_FIREFLY_SIGMAS
+   neighbour standard deviations (the window without y, summed over channels). Only the
+   sample that enters the blend is limited; the window statistics keep it (with a
+   firefly in them they drive the weight towards 1/(N+1), see docs/ESTIMATORS.md). */
+static void sbl__firefly_limit(const sbl__moments *m, const float *y, const float *xs, int ch,
+                               float *ylim)
+{
+    double sum_y = 0.0, sum_m8 = 0.0, sum_x = 0.0, v8 = 0.0, bound, t = 1.0;
+    int k;
+    for (k = 0; k < ch; ++k) {
+        sum_y += y[k];
+        sum_m8 += m->mean8[k];
+        sum_x += xs[k];
+        v8 += m->var8[k];
+    }
+    bound = (sum_m8 > sum_x ? sum_m8 : sum_x) + SBL_FIREFLY_SIGMAS * sqrt(v8);
+    if (bound < 0.0) bound = 0.0;
+    if (sum_y > bound) t = bound / sum_y;
+    for (k = 0; k < ch; ++k) ylim[k] = t < 1.0 ? (float)((double)y[k] * t) : y[k];
+}
+
 /* Reference blend of one pixel (double): y = own, xs = other (rectified here), n_x/n_y
    their sample counts. Writes out[ch], returns the new N; *alpha_out = mean weight. */
 static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m,
@@ -2119,6 +2218,11 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     float a[4];
     float a_mean = 0.0f;
     int k;
+    float ylim[4];
+    if (p->estimator == SBL_ESTIMATOR_ROBUST && m->count > 1) {
+        sbl__firefly_limit(m, y, xs, ch, ylim);
+        y = ylim;
+    }
     sbl__rectify(p, m, y, xs, ch);
     if (p->mode == SBL_WEIGHT_PER_CHANNEL) {
         for (k = 0; k < ch; ++k) {
@@ -2158,7 +2262,11 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
 /* ---- thin SIMD layer ------------------------------------------------------
    One lane kernel below is written against these few operations. Chosen at compile
    time: AVX-512F, AVX2, SSE2, NEON (AArch64), or plain float (SBL_NO_SIMD, or none of
-   them available): the scalar path is the same code with a width of 1. */
+   them available): the scalar path is the same code with a width of 1.
+   The row gather (SBL__ROW_GATHER) adds tap loads at int offsets (hardware gathers on
+   AVX2 / AVX-512, emulated on SSE2), mask logic and bit tests that -ffast-math cannot
+   fold. The scalar build and NEON gather one pixel at a time with the reference
+   gather, which the row gather must equal bit for bit (test_simd, test_paths). */
 #if !defined(SBL_NO_SIMD) && defined(__AVX512F__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx512"
@@ -2178,6 +2286,22 @@ typedef __mmask16 sbl__m;
 #define sbl__abs(a) _mm512_abs_ps(a)
 #define sbl__gt(a, b) _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
+/* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm512_i32gather_ps(_mm512_loadu_si512((const void *)(idx)), base, 4)
+#define sbl__le(a, b) _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
+#define sbl__mand(a, b) ((__mmask16)((a) & (b)))
+#define sbl__mor(a, b) ((__mmask16)((a) | (b)))
+#define sbl__mandnot(a, b) ((__mmask16)((a) & ~(b))) /* a and not b */
+#define sbl__mbits(m) ((int)(m))
+#define sbl__nonfinite(a) \
+    _mm512_cmpeq_epi32_mask(_mm512_and_si512(_mm512_castps_si512(a), \
+                                             _mm512_set1_epi32(0x7f800000)), \
+                            _mm512_set1_epi32(0x7f800000))
+#define sbl__posinf(a) \
+    _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
+#define sbl__floor(a) _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
 #elif !defined(SBL_NO_SIMD) && defined(__AVX2__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx2"
@@ -2197,6 +2321,22 @@ typedef __m256 sbl__m;
 #define sbl__abs(a) _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a)
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm256_i32gather_ps(base, _mm256_loadu_si256((const __m256i *)(const void *)(idx)), 4)
+#define sbl__le(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
+#define sbl__mand(a, b) _mm256_and_ps(a, b)
+#define sbl__mor(a, b) _mm256_or_ps(a, b)
+#define sbl__mandnot(a, b) _mm256_andnot_ps(b, a)
+#define sbl__mbits(m) _mm256_movemask_ps(m)
+#define sbl__nonfinite(a) \
+    _mm256_castsi256_ps(_mm256_cmpeq_epi32( \
+        _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7f800000)), \
+        _mm256_set1_epi32(0x7f800000)))
+#define sbl__posinf(a) \
+    _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
+                                           _mm256_set1_epi32(0x7f800000)))
+#define sbl__floor(a) _mm256_floor_ps(a)
 #elif !defined(SBL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || \
                                 (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
@@ -2217,6 +2357,26 @@ typedef __m128 sbl__m;
 #define sbl__abs(a) _mm_andnot_ps(_mm_set1_ps(-0.0f), a)
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm_setr_ps((base)[(idx)[0]], (base)[(idx)[1]], (base)[(idx)[2]], (base)[(idx)[3]])
+#define sbl__le(a, b) _mm_cmple_ps(a, b)
+#define sbl__mand(a, b) _mm_and_ps(a, b)
+#define sbl__mor(a, b) _mm_or_ps(a, b)
+#define sbl__mandnot(a, b) _mm_andnot_ps(b, a)
+#define sbl__mbits(m) _mm_movemask_ps(m)
+#define sbl__nonfinite(a) \
+    _mm_castsi128_ps(_mm_cmpeq_epi32( \
+        _mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)), \
+        _mm_set1_epi32(0x7f800000)))
+#define sbl__posinf(a) \
+    _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)))
+/* floor of |a| < 2^31 (SSE2 has no rounding mode op): truncate, then step down */
+SBL__INLINE __m128 sbl__floor(__m128 a)
+{
+    const __m128 t = _mm_cvtepi32_ps(_mm_cvttps_epi32(a));
+    return _mm_sub_ps(t, _mm_and_ps(_mm_cmpgt_ps(t, a), _mm_set1_ps(1.0f)));
+}
 #elif !defined(SBL_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h>
 #define SBL_SIMD_NAME "neon"
@@ -2272,6 +2432,11 @@ typedef int sbl__m;
    tiled calls reproduce a whole-image call and every SIMD build the scalar one. */
 
 typedef float (*sbl__gather_fn)(const void *ctx, int x, int y, float *out);
+struct sbl__ring_row;
+/* x*, N and validity of columns [xa, xb) of row y straight into a ring row, equal bit
+   for bit to calling the pixel gather on each (one call per row: no pointer per pixel) */
+typedef void (*sbl__row_gather_fn)(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                   int xb);
 
 typedef struct sbl__ring_row {
     float *y[4];   /* own colour, one plane per channel                         */
@@ -2293,6 +2458,7 @@ typedef struct sbl__kernel {
     const sbl_image *own_n;  /* N_Y (NULL data: 1)                                */
     sbl__gather_fn gather;
     const void *gather_ctx;
+    sbl__row_gather_fn gather_row; /* NULL: `gather` one pixel at a time          */
     sbl_image out, out_n, out_a; /* out_n / out_a data may be NULL                */
     float *stage[4], *stage_n, *stage_a;
     unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
@@ -2355,6 +2521,351 @@ static int sbl__lane_value_ok(float v)
     return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
+/* One gathered x* (N > 0: valid) into ring column x. */
+SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v, int ch)
+{
+    int c, valid = n > 0.0f;
+    r->n[x] = valid ? n : 0.0f;
+    r->v[x] = valid ? 1.0f : 0.0f;
+    for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f;
+}
+
+#ifdef SBL__ROW_GATHER
+/* ---- the row gather ---------------------------------------------------------
+   A scalar pass plans a block of pixels (target tests, source position, floor and
+   fraction, the offset of the first tap in each source view; the same code as the
+   pixel gather); the taps, their tests and the renormalised bilinear weights then run
+   in lanes. Lanes the pixel gather would send anywhere but its fast path (a tap
+   outside the image, a rejected footprint that needs the 3x3 fallback, a NaN or inf
+   in a sum) are redone by the pixel gather. */
+#define SBL__BLOCK 64
+
+typedef struct sbl__tap_plan {
+    int ci[SBL__BLOCK], di[SBL__BLOCK], li[SBL__BLOCK]; /* tap (x0, y0) in colour, depth, N */
+    float fx[SBL__BLOCK], fy[SBL__BLOCK];               /* bilinear fractions              */
+    float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
+    float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
+    unsigned char redo[SBL__BLOCK]; /* 1: the pixel gather decides                          */
+} sbl__tap_plan;
+
+static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
+{
+    p->ci[i] = p->di[i] = p->li[i] = 0; /* tap (0, 0): a valid address, result unused */
+    p->fx[i] = p->fy[i] = 0.0f;
+    p->depth[i] = 1.0f;
+    p->slack[i] = 0.0f;
+    p->fast[i] = 0.0f;
+    p->redo[i] = 0;
+}
+
+/* Plan entry i from a source position, as sbl__gather_ch decides: 0 reset, else the
+   fast path or (p->redo) the pixel gather. */
+SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+                                   const sbl__tap_want *t, double sx, double sy)
+{
+    double bx = sx - 0.5, by = sy - 0.5;
+    int x0, y0;
+    if (!(bx > -2.0 && by > -2.0 && bx < (double)s->width + 1.0 &&
+          by < (double)s->height + 1.0))
+        return;
+    x0 = (int)floor(bx);
+    y0 = (int)floor(by);
+    if (!(x0 >= 0 && y0 >= 0 && x0 + 1 < s->width && y0 + 1 < s->height)) {
+        p->redo[i] = 1;
+        return;
+    }
+    p->fx[i] = (float)(bx - x0);
+    p->fy[i] = (float)(by - y0);
+    p->depth[i] = t->depth;
+    p->slack[i] = t->depth_slack;
+    p->ci[i] = (int)((ptrdiff_t)y0 * s->color.stride + (ptrdiff_t)x0 * s->color.step);
+    if (s->use_depth)
+        p->di[i] = (int)((ptrdiff_t)y0 * s->depth.stride + (ptrdiff_t)x0 * s->depth.step);
+    if (s->length.p)
+        p->li[i] = (int)((ptrdiff_t)y0 * s->length.stride + (ptrdiff_t)x0 * s->length.step);
+    p->fast[i] = 1.0f;
+}
+
+/* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
+   renormalisation and saturation) for plan entries [i, i + VW), into ring columns
+   [x, x + VW): the same float operations in the same order per lane (a skipped tap
+   adds +0 to a sum that cannot be -0), hence the same bits. Lanes whose sums are not
+   finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
+   contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
+   rest), read with plain vector loads where a view has one channel. When no lane has
+   a fraction (a camera at rest), the three taps of weight 0 are skipped: they would
+   add +0 everywhere. */
+SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
+                                 sbl__ring_row *r, int x, int ch, int contiguous)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
+    const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
+    const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
+    const sbl__m fast = sbl__gt(sbl__load(p->fast + i), zero);
+    sbl__v w[4], acc[4], accn = zero, wsum = zero, inv, n;
+    sbl__m ok[4], redo, lo, valid;
+    ptrdiff_t off[4];
+    int t, c, bits, taps;
+    /* fractions are >= 0: none above 0 means every lane reads its pixel (x0, y0) */
+    taps = sbl__mbits(sbl__mor(sbl__gt(fx, zero), sbl__gt(fy, zero))) ? 4 : 1;
+    w[0] = sbl__mul(gx, gy);
+    w[1] = sbl__mul(fx, gy);
+    w[2] = sbl__mul(gx, fy);
+    w[3] = sbl__mul(fx, fy);
+    for (t = 0; t < 4; ++t) ok[t] = sbl__gt(w[t], zero);
+    if (s->use_depth) {
+        const sbl__v ze = sbl__load(p->depth + i), sl = sbl__load(p->slack + i);
+        const sbl__v lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sl);
+        const sbl__m inf_e = sbl__posinf(ze);
+        off[0] = 0; off[1] = s->depth.step; off[2] = s->depth.stride;
+        off[3] = s->depth.stride + s->depth.step;
+        for (t = 0; t < taps; ++t) {
+            /* sbl__depth_match: sky matches only sky; else a finite, positive depth
+               within the tolerance */
+            const sbl__v d = contiguous ? sbl__load(s->depth.p + off[t] + p->di[i])
+                                        : sbl__gatheri(s->depth.p + off[t], p->di + i);
+            const sbl__m inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
+                                          sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
+            ok[t] = sbl__mand(ok[t], match);
+        }
+    }
+    if (s->length.p) {
+        off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
+        off[3] = s->length.stride + s->length.step;
+        for (t = 0; t < taps; ++t) {
+            const sbl__v nt = contiguous ? sbl__load(s->length.p + off[t] + p->li[i])
+                                         : sbl__gatheri(s->length.p + off[t], p->li + i);
+            ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
+            accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+        }
+    } else {
+        for (t = 0; t < taps; ++t) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
+    }
+    off[0] = 0; off[1] = s->color.step; off[2] = s->color.stride;
+    off[3] = s->color.stride + s->color.step;
+    for (c = 0; c < ch; ++c) acc[c] = zero;
+    for (t = 0; t < taps; ++t) {
+        for (c = 0; c < ch; ++c) {
+            const sbl__v v = contiguous && ch == 1 ? sbl__load(s->color.p + off[t] + p->ci[i])
+                                                   : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
+            acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
+        }
+        wsum = sbl__add(wsum, sbl__sel(ok[t], w[t], zero));
+    }
+    redo = sbl__nonfinite(accn);
+    for (c = 0; c < ch; ++c) redo = sbl__mor(redo, sbl__nonfinite(acc[c]));
+    lo = sbl__gt(sbl__set1(1e-3f), wsum);
+    if (fallback) redo = sbl__mor(redo, lo);
+    redo = sbl__mand(redo, fast);
+    inv = sbl__div(one, wsum);
+    n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
+    valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
+    sbl__store(r->n + x, sbl__sel(valid, n, zero));
+    sbl__store(r->v + x, sbl__sel(valid, one, zero));
+    for (c = 0; c < ch; ++c) {
+        const sbl__v o = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax);
+        sbl__store(r->x[c] + x, sbl__sel(valid, o, zero));
+    }
+    bits = sbl__mbits(redo);
+    for (t = 0; bits; ++t, bits >>= 1)
+        if (bits & 1) p->redo[i + t] = 1;
+}
+
+/* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
+   last vector overlaps the one before rather than running past the block. */
+static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+                          sbl__ring_row *r, int x)
+{
+    int i = 0;
+    for (;;) {
+        int l, contiguous = 1;
+        if (i + SBL__VW > n) i = n - SBL__VW;
+        /* every lane's first tap one pixel after the previous lane's, in every view
+           (each lane's index is a valid one, so the vector load reads exactly the
+           addresses the gather would) */
+        for (l = 1; l < SBL__VW; ++l)
+            contiguous &= (p->ci[i + l] - p->ci[i] == l * (int)s->color.step) &
+                          (!s->use_depth || p->di[i + l] - p->di[i] == l) &
+                          (!s->length.p || p->li[i + l] - p->li[i] == l);
+        switch (s->color.ch) {
+        case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
+        case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
+        case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous); break;
+        default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous); break;
+        }
+        if (i + SBL__VW >= n) break;
+        i += SBL__VW;
+    }
+}
+
+/* Can the row gather address every tap of this source with int offsets, and does it
+   run the tests the lanes implement (not ids nor normals)? */
+static int sbl__row_gather_ok(const sbl__tap_src *s)
+{
+    const sbl__flat *f[3];
+    int i;
+    if (s->use_id || s->use_normal || s->width < 2 || s->height < 2) return 0;
+    f[0] = &s->color; f[1] = &s->depth; f[2] = &s->length;
+    for (i = 0; i < 3; ++i) {
+        double span;
+        if (!f[i]->p) continue;
+        span = (double)(s->height - 1) * fabs((double)f[i]->stride) +
+               (double)s->width * (double)f[i]->step;
+        if (!(span < (double)INT_MAX / 2)) return 0;
+    }
+    return 1;
+}
+
+/* Can sbl__temporal_plan_lanes plan row y of this call? Motion vectors in pixels
+   (|k| = 1: the products are exact), images up to 2^15 pixels (positions exact in
+   float), no target normals or ids (their tests stay in sbl__tap_want_init), and an
+   interior row (the depth slack reads both neighbours). */
+static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+{
+    const int w = s->src.width, h = s->src.height;
+    /* the lanes read the target depth, the source depth and N one float per pixel and
+       the motion two: other pixel steps (channel views) take the scalar plan */
+    const int steps = s->motion.step == 2 && (!s->geo.depth.p || s->geo.depth.step == 1) &&
+                      (!s->src.use_depth || s->src.depth.step == 1) &&
+                      (!s->src.length.p || s->src.length.step == 1);
+    return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
+           fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && !s->geo.normals.p &&
+           !s->geo.ids.p && y >= 1 && y + 1 < h && steps;
+}
+
+/* sbl__temporal_rp_pos and sbl__tap_plan_set for the VW pixels x .. x + VW - 1 (all
+   with both horizontal neighbours) in float lanes, with the same results: for a
+   motion m in pixels with |m| = 0 or in [2^-8, 2^15), x + 0.5 + m is exact in double,
+   so the reference's floor and fraction are floor(m) and the correctly rounded
+   m - floor(m), and its bounds tests are exact float comparisons of m. Lanes with any
+   other motion are left to the scalar plan (returned as bits). */
+SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                         int x, int y)
+{
+    static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+    static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    const sbl__tap_src *src = &s->src;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
+    const sbl__v lo = sbl__set1(1.0f / 256.0f), hi = sbl__set1(32768.0f);
+    const sbl__v wf = sbl__set1((float)src->width), hf = sbl__set1((float)src->height);
+    const sbl__v xf = sbl__add(sbl__set1((float)x), sbl__load(lane)), yf = sbl__set1((float)y);
+    const float *mvp = SBL__AT(s->motion, x, y);
+    sbl__v z = zero, slack = zero, mx, my, ax, ay, fmx, fmy, x0f, y0f;
+    sbl__m keep, exact, inside, fast;
+    int l, bits_scalar, bits_fast;
+    float x0s[SBL__VW], y0s[SBL__VW];
+    if (s->geo.depth.p) {
+        /* sbl__tap_want_init / sbl__depth_slack: valid geometry is z > 0 (NaN, -inf
+           fail; +inf is sky); slack = min one-sided difference per axis, if finite */
+        const float *dp = SBL__AT(s->geo.depth, x, y);
+        const ptrdiff_t ds = s->geo.depth.stride;
+        sbl__v da, db, sx, sy;
+        z = sbl__load(dp);
+        da = sbl__abs(sbl__sub(z, sbl__load(dp - 1)));
+        db = sbl__abs(sbl__sub(sbl__load(dp + 1), z));
+        sx = sbl__min(da, db);
+        sx = sbl__sel(sbl__nonfinite(sx), zero, sx);
+        da = sbl__abs(sbl__sub(z, sbl__load(dp - ds)));
+        db = sbl__abs(sbl__sub(sbl__load(dp + ds), z));
+        sy = sbl__min(da, db);
+        sy = sbl__sel(sbl__nonfinite(sy), zero, sy);
+        slack = sbl__sel(sbl__nonfinite(z), zero, sbl__add(sx, sy));
+        keep = sbl__gt(z, zero);
+    } else {
+        keep = sbl__gt(one, zero);
+    }
+    mx = sbl__gatheri(mvp, pair);
+    my = sbl__gatheri(mvp + 1, pair);
+    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+    if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
+    if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
+    ax = sbl__abs(mx);
+    ay = sbl__abs(my);
+    exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
+                      sbl__mor(sbl__le(ay, zero), sbl__mand(sbl__le(lo, ay), sbl__gt(hi, ay))));
+    bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
+    /* x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
+    inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
+                       sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
+    inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
+                                         sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
+    keep = sbl__mand(sbl__mand(keep, exact), inside);
+    fmx = sbl__floor(mx);
+    fmy = sbl__floor(my);
+    x0f = sbl__add(xf, fmx);
+    y0f = sbl__add(yf, fmy);
+    /* the four taps inside the image, else the pixel gather decides */
+    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__gt(wf, sbl__add(x0f, one))),
+                     sbl__mand(sbl__le(zero, y0f), sbl__gt(hf, sbl__add(y0f, one))));
+    fast = sbl__mand(fast, keep);
+    /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
+    sbl__store(p->fx + i, sbl__sel(fast, sbl__add(sbl__sub(mx, fmx), zero), zero));
+    sbl__store(p->fy + i, sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
+    sbl__store(p->depth + i, sbl__sel(fast, z, one));
+    sbl__store(p->slack + i, sbl__sel(fast, slack, zero));
+    sbl__store(p->fast + i, sbl__sel(fast, one, zero));
+    sbl__store(x0s, x0f);
+    sbl__store(y0s, y0f);
+    bits_fast = sbl__mbits(fast);
+    for (l = 0; l < SBL__VW; ++l) {
+        const int f = (bits_fast >> l) & 1, x0 = f ? (int)x0s[l] : 0, y0 = f ? (int)y0s[l] : 0;
+        p->redo[i + l] = (unsigned char)(((sbl__mbits(keep) >> l) & 1) & !f);
+        p->ci[i + l] = (int)((ptrdiff_t)y0 * src->color.stride + (ptrdiff_t)x0 * src->color.step);
+        p->di[i + l] = src->use_depth ? (int)((ptrdiff_t)y0 * src->depth.stride + x0) : 0;
+        p->li[i + l] = src->length.p ? (int)((ptrdiff_t)y0 * src->length.stride + x0) : 0;
+    }
+    return bits_scalar;
+}
+
+/* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
+static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                 int xb)
+{
+    const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
+    const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
+    const int lanes = sbl__temporal_plan_lanes_ok(s, y);
+    sbl__tap_plan p;
+    int x0, i;
+    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
+        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
+        if (n < SBL__VW) {
+            for (i = 0; i < n; ++i) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+            continue;
+        }
+        for (i = 0; i < n;) {
+            int bits = 1, l;
+            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width && i + SBL__VW <= n) {
+                bits = sbl__temporal_plan_lanes(s, &p, i, x0 + i, y);
+                l = SBL__VW;
+            } else {
+                l = 1;
+            }
+            for (; bits; ++i, --l, bits >>= 1) {
+                sbl__tap_want t;
+                double sx, sy;
+                if (!(bits & 1)) continue;
+                sbl__tap_plan_reset(&p, i);
+                if (sbl__temporal_rp_pos(s, x0 + i, y, &t, &sx, &sy))
+                    sbl__tap_plan_set(&s->src, &p, i, &t, sx, sy);
+            }
+            i += l;
+        }
+        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
+        for (i = 0; i < n; ++i)
+            if (p.redo[i]) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+    }
+}
+#endif
+
 /* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
    pixels holding a value outside the lane range. Returns the number flagged. */
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
@@ -2390,17 +2901,19 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
 static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
     int x, c, ch = k->ch, count = 0;
-    for (x = xa; x < xb; ++x) {
-        float tmp[4] = {0, 0, 0, 0};
-        float n = k->gather(k->gather_ctx, x, row, tmp);
-        int valid = n > 0.0f, safe = 1;
-        r->n[x] = valid ? n : 0.0f;
-        r->v[x] = valid ? 1.0f : 0.0f;
-        for (c = 0; c < ch; ++c) {
-            r->x[c][x] = valid ? tmp[c] : 0.0f;
-            if (valid) safe &= sbl__lane_value_ok(tmp[c]);
+    if (k->gather_row) {
+        k->gather_row(k->gather_ctx, r, row, xa, xb);
+    } else {
+        for (x = xa; x < xb; ++x) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, k->gather(k->gather_ctx, x, row, tmp), tmp, ch);
         }
-        if (valid) safe &= sbl__lane_value_ok(n);
+    }
+    for (x = xa; x < xb; ++x) {
+        int safe = 1;
+        if (!(r->v[x] > 0.0f)) continue;
+        for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(r->x[c][x]);
+        safe &= sbl__lane_value_ok(r->n[x]);
         if (!safe && !r->unsafe[x]) { r->unsafe[x] = 1; ++count; }
     }
     return count;
@@ -2448,7 +2961,7 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
         a = 0.0f;
     } else {
         float vals[9][4], xvals[9][4];
-        int xvalid[9], n = 0, i, j;
+        int xvalid[9], n = 0, i, j, centre = -1;
         sbl__moments m;
         for (j = 0; j < 3; ++j) {
             if (!R[j]) continue;
@@ -2462,10 +2975,12 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
                 }
                 if (!ok) continue;
                 xvalid[n] = R[j]->v[i] > 0.0f;
+                if (j == 1 && i == x) centre = n;
                 ++n;
             }
         }
-        sbl__moments_core(&m, (const float(*)[4])vals, (const float(*)[4])xvals, xvalid, n, ch);
+        sbl__moments_core(&m, (const float(*)[4])vals, (const float(*)[4])xvals, xvalid, n, ch,
+                          centre);
         if (n_x > k->n_cap) n_x = k->n_cap;
         n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
     }
@@ -2493,6 +3008,8 @@ typedef struct sbl__lane_stats {
     sbl__v xs[4];   /* x* (rectified by sbl__lanes_rectify)                         */
     sbl__v xr[4];   /* x* as gathered                                               */
     sbl__v yc[4];   /* own sample                                                   */
+    sbl__v yb[4];   /* own sample as blended (firefly-limited by the robust estimator) */
+    sbl__v m8[4], v8[4]; /* mean / population variance of Y without the centre (robust) */
     sbl__v inv_cnt; /* 1 / max(pairs, 1)                                            */
     sbl__m has_pairs, two_pairs;
 } sbl__lane_stats;
@@ -2515,13 +3032,17 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
            well above the noise does not cancel the one-pass variance away */
         sbl__v shift = sbl__sub(sbl__load(xp[c][1] + x), sbl__load(yp[c][1] + x));
         sbl__v lo = m, hi = m; /* the mean lies inside [min, max]: a neutral start */
+        /* robust estimator: Y without the centre, centred on its own mean */
+        sbl__v m8 = sbl__mul(sbl__sub(sbl__mul(m, sbl__set1(9.0f)), sbl__load(yp[c][1] + x)),
+                             sbl__set1(0.125f)), v8 = zero;
         for (j = 0; j < 3; ++j) {
             int i;
             for (i = -1; i <= 1; ++i) {
                 sbl__v yy = sbl__load(yp[c][j] + x + i);
-                sbl__v e = sbl__sub(yy, m);
+                sbl__v e = sbl__sub(yy, m), e8 = sbl__sub(yy, m8);
                 sbl__v pdiff;
                 v = sbl__add(v, sbl__mul(e, e));
+                if (j != 1 || i != 0) v8 = sbl__add(v8, sbl__mul(e8, e8));
                 pdiff = sbl__mul(sbl__load(vp[j] + x + i),
                                  sbl__sub(sbl__sub(sbl__load(xp[c][j] + x + i), yy), shift));
                 d = sbl__add(d, pdiff);
@@ -2534,6 +3055,8 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
         }
         st->mean[c] = m;
         st->var[c] = sbl__mul(v, ninth);
+        st->m8[c] = m8;
+        st->v8[c] = sbl__mul(v8, sbl__set1(0.125f));
         st->lo[c] = lo;
         st->hi[c] = hi;
         st->pd[c] = sbl__mul(d, st->inv_cnt);
@@ -2545,19 +3068,41 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
     }
 }
 
-/* Neighbourhood clamp / variance clip of x*, as sbl__rectify. */
+/* Firefly limit of the own sample, as sbl__firefly_limit. */
+SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, v8 = zero, bound, t;
+    int c, ch = k->ch;
+    for (c = 0; c < ch; ++c) {
+        sum_y = sbl__add(sum_y, st->yc[c]);
+        sum_m8 = sbl__add(sum_m8, st->m8[c]);
+        sum_x = sbl__add(sum_x, st->xr[c]);
+        v8 = sbl__add(v8, st->v8[c]);
+    }
+    bound = sbl__add(sbl__max(sum_m8, sum_x),
+                     sbl__mul(sbl__set1((float)SBL_FIREFLY_SIGMAS), sbl__sqrt(v8)));
+    bound = sbl__max(bound, zero);
+    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    for (c = 0; c < ch; ++c) st->yb[c] = sbl__sel(sbl__gt(one, t), sbl__mul(st->yc[c], t), st->yc[c]);
+}
+
+/* Neighbourhood clamp / variance clip of x*, as sbl__rectify (after the firefly limit
+   of the robust estimator, as in sbl__blend_pixel). */
 SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
 {
     const sbl__v one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v gamma = sbl__set1(k->wp.gamma);
     int c, ch = k->ch;
+    for (c = 0; c < ch; ++c) st->yb[c] = st->yc[c];
+    if (k->wp.estimator == SBL_ESTIMATOR_ROBUST) sbl__lanes_firefly(k, st);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
     } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
         sbl__v t = one;
         for (c = 0; c < ch; ++c) {
             sbl__v half = sbl__max(sbl__mul(gamma, sbl__sqrt(st->var[c])),
-                                   sbl__abs(sbl__sub(st->yc[c], st->mean[c])));
+                                   sbl__abs(sbl__sub(st->yb[c], st->mean[c])));
             sbl__v dist = sbl__abs(sbl__sub(st->xs[c], st->mean[c]));
             t = sbl__sel(sbl__gt(dist, half), sbl__min(t, sbl__div(half, sbl__max(dist, tiny))), t);
         }
@@ -2585,6 +3130,24 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         w = prog;
     } else if (p->estimator == SBL_ESTIMATOR_CONSTANT) {
         w = sbl__set1(p->constant);
+    } else if (p->estimator == SBL_ESTIMATOR_ROBUST) {
+        /* as sbl__weight: the bias enters with its posterior (sbl__change_posterior) */
+        const sbl__v k2e = sbl__set1(1.0f + p->bias_threshold * p->bias_threshold * 0.125f);
+        sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
+        sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
+        sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
+        sbl__v vx_p = sbl__sub(pvs, vy_p);
+        sbl__v vy = sbl__sel(st->two_pairs, vy_p, vy_s);
+        sbl__v vx = sbl__sel(st->two_pairs, vx_p, vx_s);
+        sbl__v se2 = sbl__sel(st->two_pairs, sbl__mul(pvs, st->inv_cnt),
+                              sbl__sel(st->has_pairs, sbl__add(vx_s, vy_s), zero));
+        sbl__v t2 = sbl__div(pd2, sbl__max(se2, tiny));
+        sbl__v rho = sbl__div(k2e, sbl__add(one, sbl__mul(t2, sbl__set1(0.125f))));
+        sbl__v r2 = sbl__mul(rho, rho);
+        sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho))));
+        sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
+        sbl__v num = sbl__add(b2, vx), den = sbl__add(num, vy);
+        w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
         const sbl__v k2 = sbl__set1(p->bias_threshold * p->bias_threshold);
@@ -2617,9 +3180,9 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
     for (c = 0; c < k->ch; ++c) {
         /* two-sided lerp, as in sbl__blend_pixel */
         sbl__v o = sbl__sel(sbl__gt(a[c], sbl__set1(0.5f)),
-                            sbl__add(st->yc[c], sbl__mul(sbl__sub(one, a[c]),
-                                                         sbl__sub(st->xs[c], st->yc[c]))),
-                            sbl__add(st->xs[c], sbl__mul(a[c], sbl__sub(st->yc[c], st->xs[c]))));
+                            sbl__add(st->yb[c], sbl__mul(sbl__sub(one, a[c]),
+                                                         sbl__sub(st->xs[c], st->yb[c]))),
+                            sbl__add(st->xs[c], sbl__mul(a[c], sbl__sub(st->yb[c], st->xs[c]))));
         if (k->fill) o = st->xr[c]; /* fill takes x* unrectified, as the reference path */
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, st->yc[c]));
         a_mean = sbl__add(a_mean, a[c]);
@@ -2884,6 +3447,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.own_n = NULL;
     k.gather = sbl__temporal_rp_pixel;
     k.gather_ctx = &s;
+#ifdef SBL__ROW_GATHER
+    if (s.history && sbl__row_gather_ok(&s.src)) k.gather_row = sbl__temporal_rp_row;
+#endif
     k.out = out->color;
     k.out_n = out->length;
     k.out_a = out->alpha;
@@ -4104,6 +4670,40 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
    mask closer. */
 #define SBL__ADAPTIVE_TILE 16
 
+/* Does the tile of columns [x0, min(x1, w)) and rows [y0, y1) hold a marked pixel? */
+static int sbl__tile_marked(const unsigned char *mask, int mask_stride, int x0, int x1, int w,
+                            int y0, int y1)
+{
+    int x, y;
+    if (x1 > w) x1 = w;
+    for (y = y0; y < y1; ++y) {
+        const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        for (x = x0; x < x1; ++x)
+            if (m[x] == SBL_INCONSISTENT) return 1;
+    }
+    return 0;
+}
+
+/* The own colour and N on the unmarked pixels of rows [y0, y1) (after the blend ran on
+   their tiles); returns the count of marked pixels. */
+static long sbl__keep_own(const sbl__kernel *k, const unsigned char *mask, int mask_stride,
+                          int y0, int y1)
+{
+    long marked = 0;
+    int x, y, c;
+    for (y = y0; y < y1; ++y) {
+        const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        for (x = 0; x < k->w; ++x) { /* per pixel: views may have pixel steps */
+            const float *own = sbl__px(k->own, x, y);
+            float *o = sbl__px(&k->out, x, y);
+            if (m[x] == SBL_INCONSISTENT) { ++marked; continue; }
+            for (c = 0; c < k->ch; ++c) o[c] = own[c];
+            if (k->out_n.data) *sbl__px(&k->out_n, x, y) = sbl__own_n(k, x, y);
+        }
+    }
+    return marked;
+}
+
 SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
                                           const sbl_eye *target, const sbl_eye *source,
                                           const unsigned char *mask, int mask_stride,
@@ -4115,7 +4715,7 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     sbl__kernel k;
     sbl_result r;
     long marked = 0;
-    int w, h, ch, x, y, c, by;
+    int w, h, ch, by, full0 = -1;
     /* every check of the full blend: an empty row range validates and writes nothing */
     if ((r = sbl_stereo_blend(desc, target_eye, target, source, out_color, out_length, y0, y0,
                               scratch, scratch_bytes)) != SBL_OK)
@@ -4148,38 +4748,38 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     k.out = out_color;
     k.out_n = out_length;
     sbl__kernel_bind(&k, scratch);
-    /* bands on the absolute tile grid, clipped to [y0, y1) */
+    /* bands on the absolute tile grid, clipped to [y0, y1); consecutive bands marked
+       across the whole width run as one (no ring reload between them) */
     for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
         int b0 = by > y0 ? by : y0, b1 = by + SBL__ADAPTIVE_TILE < y1 ? by + SBL__ADAPTIVE_TILE : y1;
-        int tx, span0 = -1;
-        /* runs of marked tiles along the band become one span each */
+        int tx, span0 = -1, full = 1;
+        for (tx = 0; tx < w && full; tx += SBL__ADAPTIVE_TILE)
+            full = sbl__tile_marked(mask, mask_stride, tx, tx + SBL__ADAPTIVE_TILE, w, b0, b1);
+        if (full) {
+            if (full0 < 0) full0 = b0;
+            continue;
+        }
+        if (full0 >= 0) {
+            sbl__kernel_run(&k, full0, b0);
+            marked += sbl__keep_own(&k, mask, mask_stride, full0, b0);
+            full0 = -1;
+        }
+        /* runs of marked tiles along the band become one span each; the step past the
+           last tile closes an open span */
         for (tx = 0; tx < w + SBL__ADAPTIVE_TILE; tx += SBL__ADAPTIVE_TILE) {
-            int marked_tile = 0; /* the step past the last tile closes an open span */
-            if (tx < w) {
-                int x1 = tx + SBL__ADAPTIVE_TILE < w ? tx + SBL__ADAPTIVE_TILE : w;
-                for (y = b0; y < b1 && !marked_tile; ++y) {
-                    const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
-                    for (x = tx; x < x1; ++x)
-                        if (m[x] == SBL_INCONSISTENT) { marked_tile = 1; break; }
-                }
-            }
+            int marked_tile = tx < w && sbl__tile_marked(mask, mask_stride, tx,
+                                                         tx + SBL__ADAPTIVE_TILE, w, b0, b1);
             if (marked_tile && span0 < 0) span0 = tx;
             if (!marked_tile && span0 >= 0) {
                 sbl__kernel_run_span(&k, b0, b1, span0, tx < w ? tx : w);
                 span0 = -1;
             }
         }
-        /* the own result wherever the mask does not ask for the blend */
-        for (y = b0; y < b1; ++y) {
-            const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
-            for (x = 0; x < w; ++x) { /* per pixel: views may have pixel steps */
-                const float *own = sbl__px(&target->color, x, y);
-                float *o = sbl__px(&out_color, x, y);
-                if (m[x] == SBL_INCONSISTENT) { ++marked; continue; }
-                for (c = 0; c < ch; ++c) o[c] = own[c];
-                if (out_length.data) *sbl__px(&out_length, x, y) = sbl__own_n(&k, x, y);
-            }
-        }
+        marked += sbl__keep_own(&k, mask, mask_stride, b0, b1);
+    }
+    if (full0 >= 0) {
+        sbl__kernel_run(&k, full0, y1);
+        marked += sbl__keep_own(&k, mask, mask_stride, full0, y1);
     }
     if (blended_count) *blended_count = marked;
     return SBL_OK;
