@@ -1230,7 +1230,10 @@ static int sbl__cam_map_point(const sbl__cam_map *m, double px, double py, float
     if (q[3] == 0.0 || -q[2] / q[3] <= 0.0) return 0;
     for (i = 0; i < 3; ++i) q[i] = (q[i] / q[3]) / (-q[2] / q[3]);
     if (sbl__is_pos_inf(z)) { p[0] = q[0]; p[1] = q[1]; p[2] = q[2]; p[3] = 0.0; }
-    else { p[0] = q[0] * z; p[1] = q[1] * z; p[2] = q[2] * z; p[3] = 1.0; }
+    else {
+        const double zd = SBL__CAST(double, z);
+        p[0] = q[0] * zd; p[1] = q[1] * zd; p[2] = q[2] * zd; p[3] = 1.0;
+    }
     return 1;
 }
 
@@ -3704,7 +3707,7 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
     if (!s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)) return 0.0f;
     {
         double ex = bx - (x + 0.5), ey = by - (y + 0.5);
-        double tol = s->d.reproject.back_check_pixels;
+        double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
         if (!(ex * ex + ey * ey <= tol * tol)) return 0.0f;
     }
     return n;
