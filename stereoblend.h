@@ -694,6 +694,16 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
 extern "C" {
 #endif
 
+/* Casts that C++ -Wold-style-cast accepts: value conversions and pointer
+   reinterpretations (C: plain casts). */
+#ifdef __cplusplus
+#define SBL__CAST(T, v) (static_cast<T>(v))
+#define SBL__PCAST(T, v) (reinterpret_cast<T>(v))
+#else
+#define SBL__CAST(T, v) ((T)(v))
+#define SBL__PCAST(T, v) ((T)(v))
+#endif
+
 /* ------------------------------------------------------------------------ */
 /* 1. Results                                                               */
 /* ------------------------------------------------------------------------ */
@@ -785,13 +795,14 @@ static int sbl__is_pos_inf(float v)
 /* Row and pixel steps in floats (signed; validated by sbl__check_image first). */
 SBL__VIEW_FN int sbl__step_of(const sbl_image *im)
 {
-    return im->pixel_bytes ? im->pixel_bytes / (int)sizeof(float) : im->channels;
+    return im->pixel_bytes ? im->pixel_bytes / SBL__CAST(int, sizeof(float)) : im->channels;
 }
 SBL__VIEW_FN ptrdiff_t sbl__stride(const sbl_image *im)
 {
-    if (im->stride_bytes) return (ptrdiff_t)(im->stride_bytes / (int)sizeof(float));
-    if (im->stride) return (ptrdiff_t)im->stride;
-    return (ptrdiff_t)sbl__step_of(im) * (ptrdiff_t)im->width;
+    if (im->stride_bytes)
+        return SBL__CAST(ptrdiff_t, im->stride_bytes / SBL__CAST(int, sizeof(float)));
+    if (im->stride) return SBL__CAST(ptrdiff_t, im->stride);
+    return SBL__CAST(ptrdiff_t, sbl__step_of(im)) * SBL__CAST(ptrdiff_t, im->width);
 }
 
 /* Pixel (x, y) of a view, writable: inputs and outputs share sbl_image, whose data is
@@ -801,7 +812,8 @@ SBL__VIEW_FN float *sbl__px(const sbl_image *im, int x, int y)
 {
     float *base;
     memcpy(&base, &im->data, sizeof base);
-    return base + (ptrdiff_t)y * sbl__stride(im) + (ptrdiff_t)x * sbl__step_of(im);
+    return base + SBL__CAST(ptrdiff_t, y) * sbl__stride(im) +
+           SBL__CAST(ptrdiff_t, x) * sbl__step_of(im);
 }
 
 /* Bytes from the lowest to one past the highest byte a view touches (after
@@ -809,15 +821,16 @@ SBL__VIEW_FN float *sbl__px(const sbl_image *im, int x, int y)
 static size_t sbl__footprint(const sbl_image *im)
 {
     ptrdiff_t rs = sbl__stride(im);
-    size_t rows = (size_t)(rs < 0 ? -rs : rs);
-    return ((size_t)(im->height - 1) * rows + (size_t)(im->width - 1) * (size_t)sbl__step_of(im) +
-            (size_t)im->channels) * sizeof(float);
+    size_t rows = SBL__CAST(size_t, (rs < 0 ? -rs : rs));
+    return (SBL__CAST(size_t, im->height - 1) * rows +
+            SBL__CAST(size_t, im->width - 1) * SBL__CAST(size_t, sbl__step_of(im)) +
+            SBL__CAST(size_t, im->channels)) * sizeof(float);
 }
 
 /* Validate one view. want_channels 0 accepts 1..4. */
 static sbl_result sbl__check_image(const sbl_image *im, int want_channels)
 {
-    const int fs = (int)sizeof(float);
+    const int fs = SBL__CAST(int, sizeof(float));
     ptrdiff_t rs, row_floats;
     if (!im->data) return SBL_ERROR_NULL_POINTER;
     if (im->width <= 0 || im->height <= 0) return SBL_ERROR_INVALID_SIZE;
@@ -827,19 +840,26 @@ static sbl_result sbl__check_image(const sbl_image *im, int want_channels)
     if (im->width > INT_MAX / 4 || im->height > INT_MAX / 4) return SBL_ERROR_INVALID_SIZE;
     /* byte steps address whole floats; the two row strides must agree if both given */
     if (im->stride_bytes % fs != 0 || im->pixel_bytes % fs != 0) return SBL_ERROR_INVALID_STRIDE;
-    if (im->pixel_bytes != 0 && im->pixel_bytes < im->channels * fs) return SBL_ERROR_INVALID_STRIDE;
+    if (im->pixel_bytes != 0 && im->pixel_bytes < im->channels * fs)
+        return SBL_ERROR_INVALID_STRIDE;
     if (im->stride_bytes != 0 && im->stride != 0 && im->stride_bytes / fs != im->stride)
         return SBL_ERROR_INVALID_STRIDE;
     if (im->stride_bytes == 0 && im->stride < 0 && im->stride < -(INT_MAX / fs))
         return SBL_ERROR_INVALID_STRIDE;
+    /* a row's extent must be addressable (32-bit ptrdiff_t included) */
+    if (SBL__CAST(size_t, sbl__step_of(im)) >
+        SBL__CAST(size_t, PTRDIFF_MAX) / sizeof(float) / SBL__CAST(size_t, im->width))
+        return SBL_ERROR_INVALID_SIZE;
     /* rows may not overlap each other: |row stride| covers a row's last pixel */
     rs = sbl__stride(im);
     if (rs < 0) rs = -rs;
-    row_floats = (ptrdiff_t)(im->width - 1) * (ptrdiff_t)sbl__step_of(im) + im->channels;
+    row_floats = SBL__CAST(ptrdiff_t, im->width - 1) * SBL__CAST(ptrdiff_t, sbl__step_of(im)) +
+                 im->channels;
     if (rs < row_floats) return SBL_ERROR_INVALID_STRIDE;
     /* the whole footprint must be addressable: (h - 1) |stride| + row <= PTRDIFF_MAX */
-    if ((size_t)rs > ((size_t)PTRDIFF_MAX / sizeof(float) - (size_t)row_floats) /
-                         (size_t)im->height)
+    if (SBL__CAST(size_t, rs) >
+        (SBL__CAST(size_t, PTRDIFF_MAX) / sizeof(float) - SBL__CAST(size_t, row_floats)) /
+            SBL__CAST(size_t, im->height))
         return SBL_ERROR_INVALID_SIZE;
     if (im->size_bytes != 0 && sbl__footprint(im) > im->size_bytes) return SBL_ERROR_INVALID_SIZE;
     return SBL_OK;
@@ -872,8 +892,8 @@ static sbl_result sbl__check_gbuffer(const sbl_gbuffer *g, int w, int h)
 static void sbl__range(const sbl_image *im, const char **begin, const char **end)
 {
     ptrdiff_t rs = sbl__stride(im);
-    const float *lo = im->data + (rs < 0 ? (ptrdiff_t)(im->height - 1) * rs : 0);
-    *begin = (const char *)lo;
+    const float *lo = im->data + (rs < 0 ? SBL__CAST(ptrdiff_t, (im->height - 1)) * rs : 0);
+    *begin = SBL__PCAST(const char *, lo);
     *end = *begin + sbl__footprint(im);
 }
 
@@ -892,16 +912,19 @@ static int sbl__overlap(const sbl_image *a, const sbl_image *b)
     sa = sbl__stride(a); if (sa < 0) sa = -sa;
     sb = sbl__stride(b); if (sb < 0) sb = -sb;
     if (sa == sb && (a->height > 1 || b->height > 1)) {
-        const size_t period = (size_t)sa * sizeof(float), fs = sizeof(float);
-        const size_t pa = (size_t)sbl__step_of(a) * fs, pb = (size_t)sbl__step_of(b) * fs;
-        const size_t ra = (size_t)(a->width - 1) * pa + (size_t)a->channels * fs;
-        const size_t rb = (size_t)(b->width - 1) * pb + (size_t)b->channels * fs;
-        size_t d = (size_t)(b0 >= a0 ? b0 - a0 : a0 - b0) % period;
+        const size_t period = SBL__CAST(size_t, sa) * sizeof(float), fs = sizeof(float);
+        const size_t pa = SBL__CAST(size_t, sbl__step_of(a)) * fs;
+        const size_t pb = SBL__CAST(size_t, sbl__step_of(b)) * fs;
+        const size_t ca = SBL__CAST(size_t, a->channels) * fs;
+        const size_t cb = SBL__CAST(size_t, b->channels) * fs;
+        const size_t ra = SBL__CAST(size_t, a->width - 1) * pa + ca;
+        const size_t rb = SBL__CAST(size_t, b->width - 1) * pb + cb;
+        size_t d = SBL__CAST(size_t, (b0 >= a0 ? b0 - a0 : a0 - b0)) % period;
         if (b0 < a0) d = (period - d) % period; /* offset of b's rows within a's period */
         if (d >= ra && d + rb <= period) return 0;
         if (pa == pb && period % pa == 0) { /* channels interleaved within the pixels */
             size_t e = d % pa;
-            if (e >= (size_t)a->channels * fs && e + (size_t)b->channels * fs <= pa) return 0;
+            if (e >= ca && e + cb <= pa) return 0;
         }
         return 1;
     }
@@ -1025,7 +1048,7 @@ static int sbl__mat_invert(double *out, const double *m)
 static void sbl__mat_from_float(double *out, const float *m)
 {
     int i;
-    for (i = 0; i < 16; ++i) out[i] = (double)m[i];
+    for (i = 0; i < 16; ++i) out[i] = SBL__CAST(double, m[i]);
 }
 
 /* Maps a pixel of one camera at linear depth z to the pixel of another camera:
@@ -1061,7 +1084,9 @@ static int sbl__pinhole_gl(const sbl_intrinsics *k, const float *world_to_view,
     const double half = integer_pixel_centers ? 0.5 : 0.0; /* to centres at i + 0.5 */
     double cx, cy;
     int i;
-    if ((int)axes != (int)SBL_AXES_OPENGL && (int)axes != (int)SBL_AXES_OPENCV) return 0;
+    if (SBL__CAST(int, axes) != SBL__CAST(int, SBL_AXES_OPENGL) &&
+        SBL__CAST(int, axes) != SBL__CAST(int, SBL_AXES_OPENCV))
+        return 0;
     if (w <= 0 || h <= 0) return 0;
     if (!sbl__finite(k->fx) || !sbl__finite(k->fy) || !sbl__finite(k->cx) ||
         !sbl__finite(k->cy) || !(k->fx > 0.0f) || !(k->fy > 0.0f))
@@ -1071,14 +1096,14 @@ static int sbl__pinhole_gl(const sbl_intrinsics *k, const float *world_to_view,
     sbl__mat_from_float(view, world_to_view);
     if (axes == SBL_AXES_OPENCV) /* (x, y, z) -> (x, -y, -z) */
         for (i = 4; i < 12; ++i) view[i] = -view[i];
-    cx = (double)k->cx + half;
-    cy = (double)k->cy + half;
+    cx = SBL__CAST(double, k->cx) + half;
+    cy = SBL__CAST(double, k->cy) + half;
     sbl__proj_depth_rows(proj);
     /* u = fx x / d + cx with d = -z: ndc_x d = (2 fx / W) x + (1 - 2 cx / W) z */
-    proj[0] = 2.0 * (double)k->fx / w;
+    proj[0] = 2.0 * SBL__CAST(double, k->fx) / w;
     proj[2] = 1.0 - 2.0 * cx / w;
     /* v = -fy y / d + cy: ndc_y d = (2 fy / H) y + (2 cy / H - 1) z */
-    proj[5] = 2.0 * (double)k->fy / h;
+    proj[5] = 2.0 * SBL__CAST(double, k->fy) / h;
     proj[6] = 2.0 * cy / h - 1.0;
     return 1;
 }
@@ -1094,7 +1119,7 @@ static int sbl__world_to_pixel_gl(const float *P, int integer_pixel_centers, int
     if (w <= 0 || h <= 0) return 0;
     for (i = 0; i < 12; ++i) {
         if (!sbl__finite(P[i])) return 0;
-        m[i] = (double)P[i];
+        m[i] = SBL__CAST(double, P[i]);
     }
     det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
           m[2] * (m[4] * m[9] - m[5] * m[8]);
@@ -1118,8 +1143,8 @@ static void sbl__camera_store(sbl_camera *out, const double *view, const double 
 {
     int i;
     for (i = 0; i < 16; ++i) {
-        out->world_to_view[i] = (float)view[i];
-        out->view_to_clip[i] = (float)proj[i];
+        out->world_to_view[i] = SBL__CAST(float, view[i]);
+        out->view_to_clip[i] = SBL__CAST(float, proj[i]);
     }
 }
 
@@ -1149,7 +1174,7 @@ SBLDEF sbl_result sbl_camera_from_world_to_pixel(sbl_camera *out, const float *w
                                 proj))
         return SBL_ERROR_INVALID_PARAM;
     for (i = 0; i < 16; ++i) /* the float matrices must stay finite */
-        if (!sbl__finite((float)view[i]) || !sbl__finite((float)proj[i]))
+        if (!sbl__finite(SBL__CAST(float, view[i])) || !sbl__finite(SBL__CAST(float, proj[i])))
             return SBL_ERROR_INVALID_PARAM;
     sbl__camera_store(out, view, proj);
     return SBL_OK;
@@ -1205,7 +1230,10 @@ static int sbl__cam_map_point(const sbl__cam_map *m, double px, double py, float
     if (q[3] == 0.0 || -q[2] / q[3] <= 0.0) return 0;
     for (i = 0; i < 3; ++i) q[i] = (q[i] / q[3]) / (-q[2] / q[3]);
     if (sbl__is_pos_inf(z)) { p[0] = q[0]; p[1] = q[1]; p[2] = q[2]; p[3] = 0.0; }
-    else { p[0] = q[0] * z; p[1] = q[1] * z; p[2] = q[2] * z; p[3] = 1.0; }
+    else {
+        const double zd = SBL__CAST(double, z);
+        p[0] = q[0] * zd; p[1] = q[1] * zd; p[2] = q[2] * zd; p[3] = 1.0;
+    }
     return 1;
 }
 
@@ -1253,7 +1281,7 @@ static int sbl__mat_solve(const float *mf, const double *p, double *q)
     double a[4][5];
     int i, j, k;
     for (i = 0; i < 4; ++i) {
-        for (j = 0; j < 4; ++j) a[i][j] = (double)mf[i * 4 + j];
+        for (j = 0; j < 4; ++j) a[i][j] = SBL__CAST(double, mf[i * 4 + j]);
         a[i][4] = p[i];
     }
     for (i = 0; i < 4; ++i) {
@@ -1346,13 +1374,14 @@ static sbl__flat sbl__flatten(const sbl_image *im)
     sbl__flat f;
     f.p = im ? im->data : NULL;
     f.stride = f.p ? sbl__stride(im) : 0;
-    f.step = f.p ? (ptrdiff_t)sbl__step_of(im) : 0;
+    f.step = f.p ? SBL__CAST(ptrdiff_t, sbl__step_of(im)) : 0;
     f.ch = f.p ? im->channels : 0;
     return f;
 }
 
 /* Every address of a flattened view is formed here (signed: strides may be negative). */
-#define SBL__AT(f, x, y) ((f).p + (ptrdiff_t)(y) * (f).stride + (ptrdiff_t)(x) * (f).step)
+#define SBL__AT(f, x, y) \
+    ((f).p + SBL__CAST(ptrdiff_t, y) * (f).stride + SBL__CAST(ptrdiff_t, x) * (f).step)
 
 /* The source view a gather reads, and the tests it applies: fixed for a call. A test
    runs only when both views have its buffer. */
@@ -1715,7 +1744,7 @@ static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
         return SBL_ERROR_INVALID_PARAM;
     if ((int)d->motion.units < 0 || (int)d->motion.units > (int)SBL_MOTION_NDC)
         return SBL_ERROR_INVALID_PARAM;
-    if (d->disabled_tests & ~(int)SBL_TEST_ALL) return SBL_ERROR_INVALID_PARAM;
+    if (d->disabled_tests & ~SBL__CAST(int, SBL_TEST_ALL)) return SBL_ERROR_INVALID_PARAM;
     return SBL_OK;
 }
 
@@ -3668,9 +3697,9 @@ static int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, in
     if (z == 0.0f) return 0;
     fbz = sbl__is_pos_inf(z) ? 0.0f : s->fb / z;
     if (!sbl__finite(fbz)) return 0;
-    *ox = px + s->dir[back] * ((double)fbz - s->offset);
+    *ox = px + s->dir[back] * (SBL__CAST(double, fbz) - s->offset);
     *oy = py;
-    *oz = (double)z;
+    *oz = SBL__CAST(double, z);
     return 1;
 }
 
@@ -3682,9 +3711,9 @@ static int sbl__stereo_map_disparity(const struct sbl__stereo_rp *s, int back, i
     const float *d = SBL__AT(*m, ix, iy);
     float dy = m->ch > 1 ? d[1] : 0.0f;
     if (!sbl__finite(d[0]) || !sbl__finite(dy)) return 0;
-    *ox = px + s->dir[back] * (double)d[0];
-    *oy = py + s->dir[back] * (double)dy;
-    *oz = s->depth[back].p ? (double)*SBL__AT(s->depth[back], ix, iy) : 0.0;
+    *ox = px + s->dir[back] * SBL__CAST(double, d[0]);
+    *oy = py + s->dir[back] * SBL__CAST(double, dy);
+    *oz = s->depth[back].p ? SBL__CAST(double, *SBL__AT(s->depth[back], ix, iy)) : 0.0;
     return 1;
 }
 
@@ -3703,7 +3732,7 @@ static int sbl__pinhole_rig_maps(sbl__stereo_rp *s, const sbl_pinhole_rig *p, in
 {
     double view[2][16], proj[2][16];
     float identity[16];
-    int e, i, t = (int)s->target_eye;
+    int e, i, t = SBL__CAST(int, s->target_eye);
     for (i = 0; i < 16; ++i) identity[i] = (i % 5 == 0) ? 1.0f : 0.0f;
     for (e = 0; e < 2; ++e)
         if (!sbl__pinhole_gl(&p->eye[e], e ? p->right_from_left : identity, p->axes,
@@ -3723,8 +3752,9 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     int w, h, e;
     if (!desc || !target || !source) return SBL_ERROR_NULL_POINTER;
     s->d = sbl_stereo_defaults(desc);
-    if ((int)s->d.rig < 0 || s->d.rig >= SBL_RIG_COUNT) return SBL_ERROR_INVALID_PARAM;
-    if ((int)target_eye != 0 && (int)target_eye != 1) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, s->d.rig) < 0 || s->d.rig >= SBL_RIG_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, target_eye) != 0 && SBL__CAST(int, target_eye) != 1)
+        return SBL_ERROR_INVALID_PARAM;
     if ((r = sbl__check_reproject_desc(&s->d.reproject)) != SBL_OK) return r;
     if (s->d.rig == SBL_RIG_PARALLEL &&
         (!sbl__finite(s->d.focal_px) || !(s->d.focal_px > 0.0f) ||
@@ -3754,7 +3784,7 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->dir[0] = target_eye == SBL_EYE_LEFT ? -1.0 : 1.0;
     s->dir[1] = -s->dir[0];
     s->fb = s->d.focal_px * s->d.baseline;
-    s->offset = (double)s->d.disparity_offset;
+    s->offset = SBL__CAST(double, s->d.disparity_offset);
     switch (s->d.rig) {
     case SBL_RIG_PARALLEL: s->map = sbl__stereo_map_parallel; break;
     case SBL_RIG_DISPARITY: s->map = sbl__stereo_map_disparity; break;
@@ -3777,7 +3807,7 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
    returns its N (0: no valid correspondence). */
 static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 {
-    const sbl__stereo_rp *s = (const sbl__stereo_rp *)ctx;
+    const sbl__stereo_rp *s = SBL__CAST(const sbl__stereo_rp *, ctx);
     const int sw = s->source->color.width, sh = s->source->color.height;
     double sx, sy, sz, bx, by, bz;
     float z, n;
@@ -3787,20 +3817,21 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
     if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) return 0.0f;
     /* the match must lie inside the source image: outside it, the bilinear
        renormalisation and the 3x3 fallback would replicate the edge pixels */
-    if (!(sx >= 0.0 && sx < (double)sw && sy >= 0.0 && sy < (double)sh)) return 0.0f;
-    want.depth = (float)sz;
+    if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh)))
+        return 0.0f;
+    want.depth = SBL__CAST(float, sz);
     n = sbl__gather(&s->src, &want, sx, sy, !s->d.reproject.no_fallback, out);
     if (!(n > 0.0f)) return 0.0f;
 
     /* back-check: from the nearest source pixel, with the source's own geometry, the
        correspondence must come back to within back_check_pixels of where it started */
     if (s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK) return n;
-    ix = (int)floor(sx);
-    iy = (int)floor(sy);
+    ix = SBL__CAST(int, floor(sx));
+    iy = SBL__CAST(int, floor(sy));
     if (!s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)) return 0.0f;
     {
         double ex = bx - (x + 0.5), ey = by - (y + 0.5);
-        double tol = s->d.reproject.back_check_pixels;
+        double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
         if (!(ex * ex + ey * ey <= tol * tol)) return 0.0f;
     }
     return n;
@@ -4105,7 +4136,8 @@ static sbl_result sbl__walk_image(sbl__walk *wk, const char *name, const sbl_ima
     switch (r) {
     case SBL_ERROR_INVALID_SIZE:
         if (im->width <= 0 || im->height <= 0) {
-            snprintf(msg, sizeof msg, "%d x %d: width and height must be > 0", im->width, im->height);
+            snprintf(msg, sizeof msg, "%d x %d: width and height must be > 0", im->width,
+                     im->height);
             sbl__blame(wk, r, name, ".width", msg);
         } else if (im->size_bytes != 0 && im->width <= INT_MAX / 4 && im->height <= INT_MAX / 4) {
             snprintf(msg, sizeof msg, "%zu bytes, but the layout (rows, strides) reaches over "
@@ -4122,12 +4154,14 @@ static sbl_result sbl__walk_image(sbl__walk *wk, const char *name, const sbl_ima
         sbl__blame(wk, r, name, ".channels", msg);
         break;
     case SBL_ERROR_INVALID_STRIDE:
-        if (im->stride_bytes % (int)sizeof(float) != 0) {
+        if (im->stride_bytes % SBL__CAST(int, sizeof(float)) != 0) {
             snprintf(msg, sizeof msg, "%d is not a multiple of sizeof(float)", im->stride_bytes);
             sbl__blame(wk, r, name, ".stride_bytes", msg);
-        } else if (im->pixel_bytes % (int)sizeof(float) != 0 ||
-                   (im->pixel_bytes != 0 && im->pixel_bytes < im->channels * (int)sizeof(float))) {
-            snprintf(msg, sizeof msg, "%d: must be a multiple of sizeof(float) and hold %d channels",
+        } else if (im->pixel_bytes % SBL__CAST(int, sizeof(float)) != 0 ||
+                   (im->pixel_bytes != 0 &&
+                    im->pixel_bytes < im->channels * SBL__CAST(int, sizeof(float)))) {
+            snprintf(msg, sizeof msg,
+                     "%d: must be a multiple of sizeof(float) and hold %d channels",
                      im->pixel_bytes, im->channels);
             sbl__blame(wk, r, name, ".pixel_bytes", msg);
         } else if (im->stride_bytes != 0 && im->stride != 0) {
@@ -4135,7 +4169,8 @@ static sbl_result sbl__walk_image(sbl__walk *wk, const char *name, const sbl_ima
                      im->stride_bytes, im->stride);
             sbl__blame(wk, r, name, ".stride_bytes", msg);
         } else {
-            snprintf(msg, sizeof msg, "a row of %d pixels does not fit in |row stride| (%td floats): "
+            snprintf(msg, sizeof msg,
+                     "a row of %d pixels does not fit in |row stride| (%td floats): "
                      "rows would overlap", im->width, sbl__stride(im));
             sbl__blame(wk, r, name, im->stride_bytes ? ".stride_bytes" : ".stride", msg);
         }
@@ -4239,7 +4274,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         if (sbl__check_weight_params(t.estimator, t.rectify, t.weight_mode, t.constant_alpha, \
                                      t.alpha_min, t.clip_gamma, t.bias_threshold) != SBL_OK) { \
             snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
-                     (double)u.fieldname);                                           \
+                     SBL__CAST(double, u.fieldname));                                           \
             sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
         }
         SBL__TRY_WEIGHT(estimator)
@@ -4264,8 +4299,10 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         SBL__TRY_RP(motion.units)
         SBL__TRY_RP(disabled_tests)
 #undef SBL__TRY_RP
-        if ((int)u.source < 0 || (int)u.source > (int)SBL_TEMPORAL_CAMERA)
-            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->source", "", "not an sbl_temporal_source");
+        if (SBL__CAST(int, u.source) < 0 ||
+            SBL__CAST(int, u.source) > SBL__CAST(int, SBL_TEMPORAL_CAMERA))
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->source", "",
+                       "not an sbl_temporal_source");
         sbl__walk_gbuffer(&wk, "frame->gbuffer", &frame->gbuffer, w, h);
         if (history && history->color.data) {
             sbl__walk_image(&wk, "history->color", &history->color, 0, w, h, 0);
@@ -4362,8 +4399,11 @@ static double sbl__sample_roundtrip(const sbl__stereo_rp *s, int w, int h, long 
             sbl__tap_want want;
             if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
             if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
-            if (!(sx >= 0.0 && sx < (double)w && sy >= 0.0 && sy < (double)h)) continue;
-            if (!s->map(s, 1, (int)floor(sx), (int)floor(sy), sx, sy, &bx, &by, &bz)) continue;
+            if (!(sx >= 0.0 && sx < SBL__CAST(double, w) && sy >= 0.0 && sy < SBL__CAST(double, h)))
+                continue;
+            if (!s->map(s, 1, SBL__CAST(int, floor(sx)), SBL__CAST(int, floor(sy)), sx, sy, &bx,
+                        &by, &bz))
+                continue;
             ex = bx - (x + 0.5);
             ey = by - (y + 0.5);
             if (!(ex * ex + ey * ey < 1e6)) continue;
@@ -4371,7 +4411,7 @@ static double sbl__sample_roundtrip(const sbl__stereo_rp *s, int w, int h, long 
             ++n;
         }
     *count = n;
-    return n ? sum / (double)n : 0.0;
+    return n ? sum / SBL__CAST(double, n) : 0.0;
 }
 
 SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
@@ -4418,13 +4458,16 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
                        "is absent: the target's geometry (depth or disparity) is required");
         sbl__diag_copy(f, sizeof f, nm, "->gbuffer.depth");
         if (desc->rig != SBL_RIG_DISPARITY && !eye->gbuffer.depth.data)
-            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is absent: this rig needs both eyes' depth");
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "",
+                       "is absent: this rig needs both eyes' depth");
         sbl__diag_copy(f, sizeof f, nm, "->disparity");
         if (desc->rig == SBL_RIG_DISPARITY && !eye->disparity.data)
-            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is absent: SBL_RIG_DISPARITY needs both eyes' maps");
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "",
+                       "is absent: SBL_RIG_DISPARITY needs both eyes' maps");
         sbl__diag_copy(f, sizeof f, nm, "->camera");
         if (desc->rig == SBL_RIG_MATRICES && !eye->camera)
-            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is NULL: SBL_RIG_MATRICES needs both eyes' cameras");
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "",
+                       "is NULL: SBL_RIG_MATRICES needs both eyes' cameras");
     }
     if (desc->rig == SBL_RIG_MATRICES && target->camera && source->camera) {
         sbl__cam_map m;
@@ -4450,10 +4493,11 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
     {
         sbl_stereo_desc z = sbl_stereo_defaults(NULL), u = sbl_stereo_defaults(desc), t;
         char msg[96];
-        if ((int)u.rig < 0 || u.rig >= SBL_RIG_COUNT)
+        if (SBL__CAST(int, u.rig) < 0 || u.rig >= SBL_RIG_COUNT)
             sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->rig", "", "not an sbl_stereo_rig");
-        if ((int)target_eye != 0 && (int)target_eye != 1)
-            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "target_eye", "", "must be SBL_EYE_LEFT or SBL_EYE_RIGHT");
+        if (SBL__CAST(int, target_eye) != 0 && SBL__CAST(int, target_eye) != 1)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "target_eye", "",
+                       "must be SBL_EYE_LEFT or SBL_EYE_RIGHT");
         if (u.rig == SBL_RIG_PARALLEL) {
             if (!sbl__finite(u.focal_px) || !(u.focal_px > 0.0f))
                 sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->focal_px", "",
@@ -4462,7 +4506,8 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
                 sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->baseline", "",
                            "must be finite and > 0 for SBL_RIG_PARALLEL");
             if (!sbl__finite(u.disparity_offset))
-                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->disparity_offset", "", "not finite");
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->disparity_offset", "",
+                           "not finite");
         }
         if (u.rig == SBL_RIG_PINHOLE) {
             double v[16], p[16], inv[16];
@@ -4475,7 +4520,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
                     sbl__blame(&wk, SBL_ERROR_INVALID_PARAM,
                                e ? "desc->pinhole.eye[1]" : "desc->pinhole.eye[0]", "",
                                "fx, fy must be > 0 and everything finite (or axes invalid)");
-            for (i = 0; i < 16; ++i) v[i] = (double)u.pinhole.right_from_left[i];
+            for (i = 0; i < 16; ++i) v[i] = SBL__CAST(double, u.pinhole.right_from_left[i]);
             if (!sbl__mat_invert(inv, v))
                 sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->pinhole.right_from_left", "",
                            "not finite or singular (a zero-initialised pose is singular: "
@@ -4487,7 +4532,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
                                             t.constant_beta,                                \
                                      0.0f, t.clip_gamma, t.bias_threshold) != SBL_OK) {     \
             snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
-                     (double)u.fieldname);                                           \
+                     SBL__CAST(double, u.fieldname));                                           \
             sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
         }
         SBL__TRY_WEIGHT(estimator)
@@ -4880,13 +4925,12 @@ static long sbl__keep_own(const sbl__kernel *k, const unsigned char *mask, int m
     int x, y, c;
     for (y = y0; y < y1; ++y) {
         const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
-        const float *own = sbl__px(k->own, 0, y);
-        float *o = sbl__px(&k->out, 0, y);
-        float *on = k->out_n.data ? sbl__px(&k->out_n, 0, y) : NULL;
-        for (x = 0; x < k->w; ++x) {
+        for (x = 0; x < k->w; ++x) { /* per pixel: views may have pixel steps */
+            const float *own = sbl__px(k->own, x, y);
+            float *o = sbl__px(&k->out, x, y);
             if (m[x] == SBL_INCONSISTENT) { ++marked; continue; }
-            for (c = 0; c < k->ch; ++c) o[(size_t)x * k->ch + c] = own[(size_t)x * k->ch + c];
-            if (on) on[x] = sbl__own_n(k, x, y);
+            for (c = 0; c < k->ch; ++c) o[c] = own[c];
+            if (k->out_n.data) *sbl__px(&k->out_n, x, y) = sbl__own_n(k, x, y);
         }
     }
     return marked;
