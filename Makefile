@@ -28,7 +28,8 @@ EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
 # the unit tests (tests/<name>.c): append new ones here; mk/check.mk builds and runs
 # each in every configuration
-TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive
+TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive \
+        test_accuracy
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)
@@ -69,6 +70,10 @@ $(BUILD)/bench: bench/bench.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_data
 $(BUILD)/bench-adaptive: bench/adaptive.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+$(BUILD)/adaptive_ipp: bench/adaptive_ipp.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -g -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
 
 # Mono / FSA / adaptive stereo blend: ms, RMSE, eff spp, stereo inconsistency ratio
 bench-adaptive: $(BUILD)/bench-adaptive

@@ -35,7 +35,12 @@
    both eyes, over pixels with a correspondence; sky has none), MAE against FSA, and ms
    per stereo frame (median); then ms against the threshold (0.01 .. 0.1, Figure 11).
 
-   usage: ao_stereo [--quick] [--data DIR] [--frames N] [--reps N] [--samples N] */
+   With --only CONFIG [--scene NAME] it runs just that configuration once per frame (no
+   tables): the run to count instructions under callgrind, which does not drift with the
+   machine's load (bench/ao_ipp.sh).
+
+   usage: ao_stereo [--quick] [--data DIR] [--frames N] [--reps N] [--samples N]
+                    [--only Mono|FSA|Variant1|Variant2 [--scene NAME] [--threshold T]] */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
@@ -426,13 +431,22 @@ static double make_mask(const pair *p, maps *m, float threshold)
     return matched ? 100.0 * (double)bad / (double)matched : 0.0;
 }
 
-/* One configuration on one stereo frame; the AO maps end in m->A. Returns ms. */
-static double run_config(const pair *p, maps *m, int config, float threshold, double *marked)
+/* Stages of the seed's Table 3. */
+enum { ST_EST, ST_FILTER, ST_MAP, ST_AEST, ST_AFILTER, STAGES };
+static const char *const stage_name[STAGES] = {"obscur. est.", "filtering", "adaptive map",
+                                               "adaptive est.", "adaptive filtering"};
+
+/* One configuration on one stereo frame; the AO maps end in m->A. Returns ms; stage[]
+   receives the ms of each stage. */
+static double run_config(const pair *p, maps *m, int config, float threshold, double *marked,
+                         double *stage)
 {
     const int w = p->w, h = p->h;
-    double t0 = now_ms();
+    double t0 = now_ms(), t = t0, t1;
     int e, x, y;
     *marked = 0;
+    memset(stage, 0, sizeof(double) * STAGES);
+#define STAGE_END(s) (t1 = now_ms(), stage[s] = t1 - t, t = t1)
     for (e = 0; e < 2; ++e)
         for (y = 0; y < h; ++y)
             for (x = 0; x < w; ++x) {
@@ -440,12 +454,16 @@ static double run_config(const pair *p, maps *m, int config, float threshold, do
                 m->raw[e][i] = (config == MONO || config == VAR1) ? raw_ao(p, e, x, y, 0)
                                                                   : raw_stereo(p, e, x, y);
             }
+    STAGE_END(ST_EST);
     if (config == FSA) {
         filter_stereo(p, m, 1, 1);
+        STAGE_END(ST_FILTER);
     } else {
         for (e = 0; e < 2; ++e) filter_mono(p, m, e);
+        STAGE_END(ST_FILTER);
         if (config != MONO) {
             *marked = make_mask(p, m, threshold);
+            STAGE_END(ST_MAP);
             if (config == VAR1)
                 for (e = 0; e < 2; ++e)
                     for (y = 0; y < h; ++y)
@@ -453,11 +471,14 @@ static double run_config(const pair *p, maps *m, int config, float threshold, do
                             size_t i = (size_t)y * w + x;
                             if (m->mask[e][i] == SBL_INCONSISTENT) m->raw[e][i] = raw_stereo(p, e, x, y);
                         }
+            STAGE_END(ST_AEST);
             /* Variant 2 keeps its raw map, so F and W of the mono pass stand: only the
                combination with the other view is left */
             filter_stereo(p, m, 0, config == VAR1);
+            STAGE_END(ST_AFILTER);
         }
     }
+#undef STAGE_END
     return now_ms() - t0;
 }
 
@@ -566,7 +587,7 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : (x > y ? 1 : 0);
 }
 
-typedef struct row { double ratio, mae, ms, marked; } row;
+typedef struct row { double ratio, mae, ms, marked, stage[STAGES]; } row;
 
 /* Every configuration on every frame of the scene at threshold T: ratio (2 %) of the
    final pair, MAE against FSA (pixels with geometry, both eyes), median ms. */
@@ -578,7 +599,8 @@ static void measure(const scene *s, float threshold, int reps, row *out)
     for (c = 0; c < CONFIGS; ++c) {
         int nt = 0;
         long bad = 0, matched = 0;
-        double mae = 0.0, marked_sum = 0.0;
+        double mae = 0.0, marked_sum = 0.0, stage_sum[STAGES], st[STAGES];
+        int k;
         long mae_n = 0;
         for (f = 0; f < s->count; ++f) {
             const pair *p = &s->frame[f];
@@ -587,9 +609,13 @@ static void measure(const scene *s, float threshold, int reps, row *out)
             double marked = 0.0;
             maps_alloc(&m, n);
             maps_alloc(&ref, n);
-            for (r = 0; r < reps; ++r) times[nt++] = run_config(p, &m, c, threshold, &marked);
+            if (f == 0) memset(stage_sum, 0, sizeof stage_sum);
+            for (r = 0; r < reps; ++r) {
+                times[nt++] = run_config(p, &m, c, threshold, &marked, st);
+                for (k = 0; k < STAGES; ++k) stage_sum[k] += st[k];
+            }
             marked_sum += marked;
-            (void)run_config(p, &ref, FSA, threshold, &marked);
+            (void)run_config(p, &ref, FSA, threshold, &marked, st);
             {   /* consistency of the final pair at 2 % */
                 sbl_stereo_desc d = lib_desc(p);
                 sbl_eye eye[2];
@@ -619,6 +645,7 @@ static void measure(const scene *s, float threshold, int reps, row *out)
         out[c].ratio = matched ? 100.0 * (double)bad / (double)matched : 0.0;
         out[c].mae = mae_n ? mae / (double)mae_n : 0.0;
         out[c].marked = marked_sum / s->count;
+        for (k = 0; k < STAGES; ++k) out[c].stage[k] = stage_sum[k] / nt;
     }
     free(times);
 }
@@ -636,6 +663,16 @@ static void report(const scene *s, int reps, int sweep)
     for (c = 0; c < CONFIGS; ++c)
         printf("| %-8s | %20.2f | %10.5f | %11.2f | %6.2f | %8.2f |\n", config_name[c], r[c].ratio,
                r[c].mae, r[c].ms, r[MONO].ms > 0 ? r[c].ms / r[MONO].ms : 0.0, r[c].marked);
+    printf("\nstages, mean ms per stereo frame (the seed's Table 3):\n\n| config   |");
+    for (c = 0; c < STAGES; ++c) printf(" %s |", stage_name[c]);
+    printf(" total |\n|----------|---:|---:|---:|---:|---:|---:|\n");
+    for (c = 0; c < CONFIGS; ++c) {
+        int k;
+        double tot = 0;
+        printf("| %-8s |", config_name[c]);
+        for (k = 0; k < STAGES; ++k) { printf(" %.2f |", r[c].stage[k]); tot += r[c].stage[k]; }
+        printf(" %.2f |\n", tot);
+    }
     fflush(stdout);
     if (sweep) {
         static const float T[] = {0.01f, 0.02f, 0.03f, 0.05f, 0.07f, 0.1f};
@@ -654,10 +691,30 @@ static void report(const scene *s, int reps, int sweep)
     }
 }
 
+/* One configuration on every frame, nothing else (for callgrind --toggle-collect). */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static void count_config(const scene *s, int config, float threshold)
+{
+    int f;
+    for (f = 0; f < s->count; ++f) {
+        const pair *p = &s->frame[f];
+        maps m;
+        double marked, st[STAGES];
+        maps_alloc(&m, (size_t)p->w * p->h);
+        (void)run_config(p, &m, config, threshold, &marked, st);
+        printf("%s %s frame %d: marked %.2f %%\n", s->name, config_name[config], f, marked);
+        maps_free(&m);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const char *data = "../shared/data";
-    int quick = 0, frames = 3, reps = 3, samples = 8, i, k;
+    int quick = 0, frames = 3, reps = 3, samples = 8, i, k, only = -1;
+    const char *only_scene = "atrium";
+    float only_threshold = 0.0f;
     char path[1024];
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0) quick = 1;
@@ -665,6 +722,13 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--frames") == 0 && i + 1 < argc) frames = atoi(argv[++i]);
         else if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = atoi(argv[++i]);
         else if (strcmp(argv[i], "--samples") == 0 && i + 1 < argc) samples = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc) only_scene = argv[++i];
+        else if (strcmp(argv[i], "--threshold") == 0 && i + 1 < argc) only_threshold = (float)atof(argv[++i]);
+        else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
+            ++i;
+            for (only = 0; only < CONFIGS && strcmp(argv[i], config_name[only]) != 0; ++only) {}
+            if (only == CONFIGS) { fprintf(stderr, "unknown configuration %s\n", argv[i]); return 2; }
+        }
         else { fprintf(stderr, "usage: ao_stereo [--quick] [--data DIR] [--frames N] [--reps N] [--samples N]\n"); return 2; }
     }
     if (quick) { frames = 1; reps = 1; }
@@ -675,6 +739,22 @@ int main(int argc, char **argv)
     for (k = 0; k <= 2 * BF_RADIUS; ++k) {
         float d = (float)(k - BF_RADIUS);
         bf_spatial[k] = expf(-d * d / (2.0f * BF_SIGMA * BF_SIGMA));
+    }
+    if (only >= 0) {
+        scene s;
+        int bad;
+        if (strncmp(only_scene, "synthetic", 9) == 0)
+            bad = scene_synthetic(&s, only_scene, strcmp(only_scene, "synthetic-static") == 0
+                                                      ? SBL_SCENE_STATIC : SBL_SCENE_DYNAMIC,
+                                  320, 180, frames, samples);
+        else {
+            snprintf(path, sizeof path, "%s/%s", data, only_scene);
+            bad = scene_dataset(&s, path, frames, samples);
+        }
+        if (bad) return 1;
+        count_config(&s, only, only_threshold);
+        scene_free(&s);
+        return 0;
     }
     printf("# stereo-consistent SSAO (Wu's Mono / FSA / Variant 1 / Variant 2) on stereoblend.h's\n"
            "# consistency mask; ms = median per stereo frame (both eyes), single thread, %d run%s per frame\n",

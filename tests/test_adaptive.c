@@ -11,7 +11,7 @@
 static sbl_image view(const sbt_img *im)
 {
     sbl_image v;
-    memset(&v, 0, sizeof v); /* fields this test does not set mean "default" */
+    memset(&v, 0, sizeof v); /* fields not named here take their defaults */
     v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
     return v;
 }
@@ -379,7 +379,7 @@ static void test_blend_masked(void)
     sbt_at(&col[0], 3, 3)[1] = (float)(HUGE_VAL - HUGE_VAL);
     *sbt_at(&len[0], 4, 3) = 0.0f;
     *sbt_at(&len[1], 4, 3) = 0.0f;
-    for (pass = 0; pass < 3; ++pass)
+    for (pass = 0; pass < 5; ++pass)
         for (t = 0; t < 2; ++t) {
             /* masks: sparse random (with other byte values, which are not "marked"), one
                marked block, everything marked */
@@ -390,7 +390,12 @@ static void test_blend_masked(void)
                     double u = sbt_uniform(&rng);
                     if (pass == 0) m = u < 0.05 ? SBL_INCONSISTENT : (u < 0.5 ? SBL_CONSISTENT : (u < 0.9 ? SBL_NO_CORRESPONDENCE : 7));
                     else if (pass == 1) m = (x >= 17 && x < 23 && y >= 30) ? SBL_INCONSISTENT : SBL_CONSISTENT;
-                    else m = SBL_INCONSISTENT;
+                    else if (pass == 2) m = SBL_INCONSISTENT;
+                    else if (pass == 3) /* bands: full, partial, full */
+                        m = ((y < 16 && x % 16 == 5) || (y == 20 && x < 10) || (y >= 32 && x % 8 == 0))
+                                ? SBL_INCONSISTENT : SBL_CONSISTENT;
+                    else /* sparse: partial spans everywhere */
+                        m = u < 0.003 ? SBL_INCONSISTENT : SBL_CONSISTENT;
                     mask[(size_t)y * ms + x] = m;
                 }
             mask[(size_t)3 * ms + 3] = SBL_CONSISTENT;
