@@ -2,11 +2,13 @@
    table, on the synthetic scenes and on the rendered sequences in ../shared/data.
    Prints one table per scene, writes the rows to bench/out/bench.csv (quick.csv) with
    the header scene,method,ms,rmse,ssim,eff_spp,indep_spp,oracle_pct,traced_pct
-   (oracle_pct: eff spp as a percentage of the oracle of the same pipeline), and plots ms against RMSE
-   (bench/out/bench.svg, written here; plus bench.png through gnuplot when present).
+   (oracle_pct: eff spp as a percentage of the oracle of the same pipeline), and plots
+   effective spp against ms per frame, one panel per scene (bench/out/bench.svg, written
+   here; plus bench.png through gnuplot when present).
 
    usage: bench [--quick] [--reps N] [--data DIR] [--out DIR] [--methods A,B,..]
-                [--scenes S,T,..]   (the oracle rows always run) */
+                [--scenes S,T,..]   (the oracle rows always run)
+          bench --plot CSV SVG     (redraw the plot from an earlier run's CSV) */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
@@ -17,6 +19,7 @@
 #define SBL_RUNNER_IMPLEMENTATION
 #include "sbl_runner.h"
 #include "sbl_exr.h"
+#include <math.h>
 #include <stdio.h>
 #include <sys/stat.h>
 
@@ -110,50 +113,245 @@ static void write_csv(const char *path)
     printf("\nwrote %s\n", path);
 }
 
-/* A scatter plot per scene (ms on x, RMSE on y), one SVG, no dependencies. */
+/* ---- the error-against-time plot (SVG, no dependencies) ----------------------------
+   One panel per scene: effective spp (log axis) against ms per stereo frame, one marker
+   shape and colour per method family (legend on top), ticks and gridlines, the Pareto
+   front (the methods no other beats on both axes; oracles excluded, they need the
+   reference) as a dashed line, and every method named in a label column beside the plot,
+   in the order of its points' heights, joined to its point by a thin leader line: labels
+   are spaced by construction, so they cannot overlap. */
+enum { PLOT_FAMILIES = 9 };
+static const char *const plot_family_name[PLOT_FAMILIES] = {
+    "1 spp input", "constant / EMA", "progressive", "paper", "history-aware",
+    "stereo only", "temporal + stereo", "oracle (uses the reference)", "other"};
+static const char *const plot_family_colour[PLOT_FAMILIES] = { /* Okabe-Ito */
+    "#000000", "#E69F00", "#56B4E9", "#D55E00", "#0072B2", "#CC79A7", "#009E73", "#888888", "#999933"};
+
+static int starts_with(const char *s, const char *prefix) { return strncmp(s, prefix, strlen(prefix)) == 0; }
+
+/* the family of a method, from its name in the standard table */
+static int plot_family(const char *name)
+{
+    if (strstr(name, "oracle")) return 7;
+    if (starts_with(name, "input")) return 0;
+    if (strstr(name, "+stereo") || (starts_with(name, "default") && strstr(name, "stereo"))) return 6;
+    if (starts_with(name, "stereo")) return 5;
+    if (starts_with(name, "const") || starts_with(name, "ema")) return 1;
+    if (starts_with(name, "progressive")) return 2;
+    if (starts_with(name, "paper")) return 3;
+    if (starts_with(name, "history-aware") || starts_with(name, "default") || starts_with(name, "ha")) return 4;
+    return 8;
+}
+
+static void plot_marker(FILE *f, int family, double x, double y)
+{
+    const char *c = plot_family_colour[family];
+    const double r = 4.5;
+    switch (family) {
+    case 0: fprintf(f, "<circle cx='%.1f' cy='%.1f' r='%.1f' fill='%s'/>\n", x, y, r, c); break;
+    case 1: fprintf(f, "<rect x='%.1f' y='%.1f' width='%.1f' height='%.1f' fill='%s'/>\n", x - r, y - r, 2 * r, 2 * r, c); break;
+    case 2: fprintf(f, "<path d='M%.1f %.1fl%.1f %.1fh%.1fz' fill='%s'/>\n", x, y - r * 1.2, r * 1.1, r * 2, -r * 2.2, c); break;
+    case 3: fprintf(f, "<path d='M%.1f %.1fl%.1f %.1fl%.1f %.1fl%.1f %.1fz' fill='%s'/>\n", x, y - r * 1.3, r * 1.1,
+                    r * 1.3, -r * 1.1, r * 1.3, -r * 1.1, -r * 1.3, c); break;
+    case 4: fprintf(f, "<path d='M%.1f %.1fl%.1f %.1fh%.1fz' fill='%s'/>\n", x, y + r * 1.2, r * 1.1, -r * 2, -r * 2.2, c); break;
+    case 5: fprintf(f, "<path d='M%.1f %.1fh%.1fM%.1f %.1fv%.1f' stroke='%s' stroke-width='2.5'/>\n", x - r, y, 2 * r,
+                    x, y - r, 2 * r, c); break;
+    case 6: fprintf(f, "<circle cx='%.1f' cy='%.1f' r='%.1f' fill='white' stroke='%s' stroke-width='2.2'/>\n", x, y, r, c); break;
+    case 7: fprintf(f, "<rect x='%.1f' y='%.1f' width='%.1f' height='%.1f' fill='white' stroke='%s' stroke-width='2'/>\n",
+                    x - r, y - r, 2 * r, 2 * r, c); break;
+    default: fprintf(f, "<path d='M%.1f %.1fl%.1f %.1fM%.1f %.1fl%.1f %.1f' stroke='%s' stroke-width='2.5'/>\n", x - r,
+                     y - r, 2 * r, 2 * r, x - r, y + r, 2 * r, -2 * r, c); break;
+    }
+}
+
+/* a tick step of 1, 2 or 5 times a power of ten giving about `count` intervals */
+static double plot_nice_step(double range, int count)
+{
+    double raw = range / count, p = pow(10.0, floor(log10(raw))), m = raw / p;
+    return (m < 1.5 ? 1.0 : m < 3.5 ? 2.0 : m < 7.5 ? 5.0 : 10.0) * p;
+}
+
+static void plot_escape(FILE *f, const char *s)
+{
+    for (; *s; ++s) {
+        if (*s == '<') fputs("&lt;", f);
+        else if (*s == '>') fputs("&gt;", f);
+        else if (*s == '&') fputs("&amp;", f);
+        else fputc(*s, f);
+    }
+}
+
+typedef struct plot_point { int row; double x, y, label_y; } plot_point;
+
+static int cmp_point_y(const void *a, const void *b)
+{
+    double u = ((const plot_point *)a)->y, v = ((const plot_point *)b)->y;
+    return u < v ? -1 : (u > v ? 1 : 0);
+}
+
+static void plot_panel(FILE *f, const char *scene, double ox, double oy, double pw, double ph)
+{
+    const double ml = 58, mt = 26, mb = 40, label_w = 170;
+    const double plot_w = pw - ml - label_w - 20, plot_h = ph - mt - mb;
+    const double x0 = ox + ml, y0 = oy + mt; /* top left of the plot area */
+    plot_point pts[MAX_ROWS];
+    int n = 0, skipped = 0, i, j, front[MAX_ROWS], nf = 0;
+    double xmax = 0, ylo = 1e300, yhi = 0, lylo, lyhi, step, t, spacing;
+    for (i = 0; i < row_count; ++i) {
+        if (strcmp(rows[i].scene, scene) != 0) continue;
+        if (!(rows[i].r.eff_spp > 0) || !(rows[i].r.ms >= 0)) { ++skipped; continue; }
+        pts[n].row = i;
+        if (rows[i].r.ms > xmax) xmax = rows[i].r.ms;
+        if (rows[i].r.eff_spp < ylo) ylo = rows[i].r.eff_spp;
+        if (rows[i].r.eff_spp > yhi) yhi = rows[i].r.eff_spp;
+        ++n;
+    }
+    fprintf(f, "<text x='%.1f' y='%.1f' font-size='14' font-weight='bold'>", x0, oy + 17);
+    plot_escape(f, scene);
+    fprintf(f, "</text>\n");
+    if (n == 0) { fprintf(f, "<text x='%.1f' y='%.1f'>no rows with an effective spp</text>\n", x0, y0 + 20); return; }
+    /* axes: x linear from 0, y log10 padded to whole 1-2-5 steps */
+    step = plot_nice_step(xmax > 0 ? xmax : 1.0, 5);
+    xmax = ceil((xmax > 0 ? xmax * 1.04 : 1.0) / step) * step;
+    lylo = log10(ylo) - 0.05;
+    lyhi = log10(yhi) + 0.05;
+    if (lyhi - lylo < 0.5) { double c = 0.5 * (lylo + lyhi); lylo = c - 0.25; lyhi = c + 0.25; }
+#define PX(v) (x0 + plot_w * (v) / xmax)
+#define PY(v) (y0 + plot_h * (lyhi - log10(v)) / (lyhi - lylo))
+    fprintf(f, "<rect x='%.1f' y='%.1f' width='%.1f' height='%.1f' fill='#fbfbfb' stroke='none'/>\n", x0, y0, plot_w, plot_h);
+    for (t = 0; t <= xmax * 1.0001; t += step) { /* x grid and ticks */
+        fprintf(f, "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#dddddd'/>\n", PX(t), y0, PX(t), y0 + plot_h);
+        fprintf(f, "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='black'/>\n", PX(t), y0 + plot_h, PX(t), y0 + plot_h + 4);
+        fprintf(f, "<text x='%.1f' y='%.1f' text-anchor='middle'>%g</text>\n", PX(t), y0 + plot_h + 16, t);
+    }
+    {   /* y grid and ticks at 1, 2, 5 x 10^k (every integer too when the range is narrow) */
+        int k, narrow = lyhi - lylo < 1.2;
+        for (k = (int)floor(lylo); k <= (int)ceil(lyhi); ++k) {
+            int m;
+            for (m = 1; m < 10; ++m) {
+                double v = m * pow(10.0, k), ly = log10(v);
+                int major = m == 1 || m == 2 || m == 5;
+                if (ly < lylo || ly > lyhi) continue;
+                if (!major && !narrow) {
+                    fprintf(f, "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#eeeeee'/>\n", x0, PY(v), x0 + plot_w, PY(v));
+                    continue;
+                }
+                fprintf(f, "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#dddddd'/>\n", x0, PY(v), x0 + plot_w, PY(v));
+                fprintf(f, "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='black'/>\n", x0 - 4, PY(v), x0, PY(v));
+                fprintf(f, "<text x='%.1f' y='%.1f' text-anchor='end'>%g</text>\n", x0 - 7, PY(v) + 4, v);
+            }
+        }
+    }
+    fprintf(f, "<rect x='%.1f' y='%.1f' width='%.1f' height='%.1f' fill='none' stroke='black'/>\n", x0, y0, plot_w, plot_h);
+    fprintf(f, "<text x='%.1f' y='%.1f' text-anchor='middle'>ms per stereo frame (median)</text>\n", x0 + plot_w / 2,
+            y0 + plot_h + 32);
+    fprintf(f, "<text transform='translate(%.1f %.1f) rotate(-90)' text-anchor='middle'>effective spp (log)</text>\n",
+            ox + 14, y0 + plot_h / 2);
+    for (i = 0; i < n; ++i) {
+        pts[i].x = PX(rows[pts[i].row].r.ms);
+        pts[i].y = PY(rows[pts[i].row].r.eff_spp);
+    }
+    /* Pareto front: not oracle, and no other non-oracle row at most as slow and at least
+       as good with one of the two strictly */
+    for (i = 0; i < n; ++i) {
+        const sbr_result *a = &rows[pts[i].row].r;
+        int dominated = plot_family(rows[pts[i].row].method) == 7;
+        for (j = 0; j < n && !dominated; ++j) {
+            const sbr_result *b = &rows[pts[j].row].r;
+            if (j == i || plot_family(rows[pts[j].row].method) == 7) continue;
+            if (b->ms <= a->ms && b->eff_spp >= a->eff_spp && (b->ms < a->ms || b->eff_spp > a->eff_spp)) dominated = 1;
+        }
+        if (!dominated) front[nf++] = i;
+    }
+    for (i = 1; i < nf; ++i) /* by time */
+        for (j = i; j > 0 && pts[front[j]].x < pts[front[j - 1]].x; --j) { int tmp = front[j]; front[j] = front[j - 1]; front[j - 1] = tmp; }
+    if (nf > 1) {
+        fprintf(f, "<polyline fill='none' stroke='#444444' stroke-width='1.5' stroke-dasharray='5 3' points='");
+        for (i = 0; i < nf; ++i) fprintf(f, "%.1f,%.1f ", pts[front[i]].x, pts[front[i]].y);
+        fprintf(f, "'/>\n");
+    }
+    /* label column: sorted by the points' heights, spaced at least `spacing` apart */
+    qsort(pts, (size_t)n, sizeof pts[0], cmp_point_y);
+    spacing = plot_h / n < 13.0 ? plot_h / n : 13.0;
+    for (i = 0; i < n; ++i) {
+        double want = pts[i].y, lo = y0 + 4 + i * spacing;
+        pts[i].label_y = want < lo ? lo : want;
+        if (i > 0 && pts[i].label_y < pts[i - 1].label_y + spacing) pts[i].label_y = pts[i - 1].label_y + spacing;
+    }
+    for (i = n - 1; i >= 0; --i) { /* push back up from the bottom edge */
+        double hi = y0 + plot_h - 2 - (n - 1 - i) * spacing;
+        if (pts[i].label_y > hi) pts[i].label_y = hi;
+    }
+    for (i = 0; i < n; ++i) {
+        const row *r = &rows[pts[i].row];
+        int fam = plot_family(r->method), on_front = 0;
+        double lx = x0 + plot_w + 14;
+        for (j = 0; j < nf; ++j) on_front |= pts[front[j]].row == pts[i].row;
+        fprintf(f, "<polyline fill='none' stroke='%s' stroke-opacity='0.35' points='%.1f,%.1f %.1f,%.1f %.1f,%.1f'/>\n",
+                plot_family_colour[fam], pts[i].x, pts[i].y, x0 + plot_w + 6, pts[i].label_y, lx - 2, pts[i].label_y);
+        fprintf(f, "<text x='%.1f' y='%.1f' font-size='%.1f' fill='%s'%s>", lx, pts[i].label_y + 3.5,
+                spacing < 11.0 ? spacing - 1.0 : 10.5, plot_family_colour[fam], on_front ? " font-weight='bold'" : "");
+        plot_escape(f, r->method);
+        fprintf(f, " (%.2f)</text>\n", r->r.eff_spp);
+    }
+    for (i = 0; i < n; ++i) plot_marker(f, plot_family(rows[pts[i].row].method), pts[i].x, pts[i].y);
+    if (skipped)
+        fprintf(f, "<text x='%.1f' y='%.1f' font-size='9' fill='#666666'>%d method%s without an effective spp not shown</text>\n",
+                x0 + 4, y0 + 12, skipped, skipped > 1 ? "s" : "");
+#undef PX
+#undef PY
+}
+
 static void write_svg(const char *path)
 {
     FILE *f = fopen(path, "w");
     const char *scenes[16];
-    int ns = 0, i, j, s;
-    const int pw = 520, ph = 360, ml = 70, mb = 50, mt = 30, mr = 180;
+    int ns = 0, i, j, s, used[PLOT_FAMILIES] = {0}, cols, nrows;
+    const double pw = 660, ph = 400, legend_h = 58;
+    double lx = 12, ly = 20;
     if (!f) { perror(path); return; }
     for (i = 0; i < row_count; ++i) {
+        used[plot_family(rows[i].method)] = 1;
         for (j = 0; j < ns; ++j) if (strcmp(scenes[j], rows[i].scene) == 0) break;
         if (j == ns && ns < 16) scenes[ns++] = rows[i].scene;
     }
-    fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d' font-family='sans-serif' font-size='10'>\n",
-            pw + mr, ph * ns);
-    for (s = 0; s < ns; ++s) {
-        double xmax = 0, ymax = 0;
-        int oy = s * ph;
-        for (i = 0; i < row_count; ++i)
-            if (strcmp(rows[i].scene, scenes[s]) == 0) {
-                if (rows[i].r.ms > xmax) xmax = rows[i].r.ms;
-                if (rows[i].r.rmse > ymax) ymax = rows[i].r.rmse;
-            }
-        xmax = xmax > 0 ? xmax * 1.1 : 1;
-        ymax = ymax > 0 ? ymax * 1.1 : 1;
-        fprintf(f, "<text x='%d' y='%d' font-size='13'>%s: RMSE vs ms per stereo frame</text>\n", ml, oy + 18, scenes[s]);
-        fprintf(f, "<rect x='%d' y='%d' width='%d' height='%d' fill='none' stroke='black'/>\n", ml, oy + mt,
-                pw - ml, ph - mt - mb);
-        fprintf(f, "<text x='%d' y='%d'>0</text><text x='%d' y='%d'>%.2f ms</text>\n", ml, oy + ph - mb + 14,
-                pw - 40, oy + ph - mb + 14, xmax);
-        fprintf(f, "<text x='5' y='%d'>%.4f</text><text x='5' y='%d'>0</text>\n", oy + mt + 10, ymax, oy + ph - mb);
-        for (i = 0, j = 0; i < row_count; ++i) {
-            double px, py;
-            if (strcmp(rows[i].scene, scenes[s]) != 0) continue;
-            px = ml + (pw - ml) * rows[i].r.ms / xmax;
-            py = oy + ph - mb - (ph - mt - mb) * rows[i].r.rmse / ymax;
-            fprintf(f, "<circle cx='%.1f' cy='%.1f' r='3' fill='hsl(%d,70%%,40%%)'/>\n", px, py, (j * 47) % 360);
-            fprintf(f, "<text x='%.1f' y='%.1f' fill='hsl(%d,70%%,30%%)'>%s</text>\n", px + 5, py - 3, (j * 47) % 360,
-                    rows[i].method);
-            ++j;
-        }
+    cols = ns > 1 ? 2 : 1;
+    nrows = (ns + cols - 1) / cols;
+    fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' width='%.0f' height='%.0f' font-family='sans-serif' font-size='11'>\n"
+               "<rect width='100%%' height='100%%' fill='white'/>\n", pw * cols, legend_h + ph * nrows);
+    fprintf(f, "<text x='%.1f' y='%.1f' font-size='13'>Effective spp against time per stereo frame; dashed: the Pareto "
+               "front (bold labels); label = method (effective spp)</text>\n", lx, ly);
+    ly += 24;
+    for (i = 0; i < PLOT_FAMILIES; ++i) {
+        if (!used[i]) continue;
+        if (lx + 14 + 7.0 * (double)strlen(plot_family_name[i]) > pw * cols) { lx = 12; ly += 18; }
+        plot_marker(f, i, lx + 5, ly - 4);
+        fprintf(f, "<text x='%.1f' y='%.1f' fill='%s'>%s</text>\n", lx + 14, ly, plot_family_colour[i], plot_family_name[i]);
+        lx += 14 + 6.2 * (double)strlen(plot_family_name[i]) + 22;
     }
+    for (s = 0; s < ns; ++s) plot_panel(f, scenes[s], (s % cols) * pw, legend_h + (s / cols) * ph, pw, ph);
     fprintf(f, "</svg>\n");
     fclose(f);
     printf("wrote %s\n", path);
+}
+
+/* --plot CSV: the rows of an earlier run (scene,method,ms,rmse,ssim,eff_spp,...), to
+   redraw the plot without measuring again */
+static int read_csv(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    char line[512];
+    if (!f) { perror(path); return 1; }
+    if (!fgets(line, sizeof line, f)) { fclose(f); return 1; } /* header */
+    while (row_count < MAX_ROWS && fgets(line, sizeof line, f)) {
+        row *r = &rows[row_count];
+        memset(r, 0, sizeof *r);
+        if (sscanf(line, "%63[^,],%47[^,],%lf,%lf,%lf,%lf", r->scene, r->method, &r->r.ms, &r->r.rmse,
+                   &r->r.ssim, &r->r.eff_spp) == 6)
+            ++row_count;
+    }
+    fclose(f);
+    return 0;
 }
 
 static void gnuplot_png(const char *csv, const char *png)
@@ -189,6 +387,11 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
         else if (strcmp(argv[i], "--methods") == 0 && i + 1 < argc) only_methods = argv[++i];
         else if (strcmp(argv[i], "--scenes") == 0 && i + 1 < argc) only_scenes = argv[++i];
+        else if (strcmp(argv[i], "--plot") == 0 && i + 2 < argc) { /* --plot CSV SVG: redraw only */
+            if (read_csv(argv[i + 1]) != 0) return 1;
+            write_svg(argv[i + 2]);
+            return 0;
+        }
         else {
             fprintf(stderr, "usage: bench [--quick] [--reps N] [--data DIR] [--out DIR] "
                             "[--methods A,B,..] [--scenes S,T,..]\n");

@@ -89,6 +89,10 @@ int  sbr_standard_methods(sbr_method *m, int max);
 int  sbr_find_method(const char *name, sbr_method *out);
 
 int  sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx);
+/* The same, and alpha_fn (if not NULL) gets each eye's temporal weight per frame (W*H, one
+   channel; only for methods whose temporal stage is the library's filter). */
+int  sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn,
+                   sbr_frame_fn alpha_fn, void *ctx);
 void sbr_luminance(const float *rgb, float *lum, size_t n);
 double sbr_now_ms(void);
 
@@ -463,10 +467,17 @@ static int sbr_stereo_masked(const sbl_stereo_desc *sd, float threshold, const s
 
 int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx)
 {
+    return sbr_run_alpha(s, m, res, fn, NULL, ctx);
+}
+
+int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn,
+                  sbr_frame_fn alpha_fn, void *ctx)
+{
     const int w = s->width, h = s->height;
     const size_t n = (size_t)w * (size_t)h;
     float *hist[2][2], *len[2][2], *input[2], *tout[2], *disp[2], *tmp_a, *tmp_b;
     float *ox, *onx, *onx2; /* oracle: x*, its N (or validity), the blend's N */
+    float *alpha[2];        /* the temporal weights, for alpha_fn */
     unsigned char *mask;
     double *times, mse_sum = 0, mse1_sum = 0, ssim_sum = 0, eff_sum = 0;
     long traced = 0, traced_total = 0;
@@ -485,6 +496,8 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
     tmp_a = sbr_alloc(n * 3); /* also the luminance planes of SBR_STEREO_MASKED */
     tmp_b = sbr_alloc(n * 3);
     ox = sbr_alloc(n * 3);
+    alpha[0] = alpha_fn ? sbr_alloc(n) : NULL;
+    alpha[1] = alpha_fn ? sbr_alloc(n) : NULL;
     onx = sbr_alloc(n);
     onx2 = sbr_alloc(n);
     times = (double *)calloc((size_t)s->frames, sizeof(double));
@@ -535,6 +548,7 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
                 }
                 out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
                 out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
+                if (alpha[e]) out.alpha = sbl_image_make(alpha[e], w, h, 1);
                 if (m->oracle & SBR_ORACLE_TEMPORAL) {
                     sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
                     rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
@@ -591,6 +605,8 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
         times[f] = t1 - t0;
         if (fn)
             for (e = 0; e < 2; ++e) fn(ctx, f, e, disp[e], w, h);
+        if (alpha_fn && m->temporal && !(m->oracle & SBR_ORACLE_TEMPORAL))
+            for (e = 0; e < 2; ++e) alpha_fn(ctx, f, e, alpha[e], w, h);
         if (f >= skip && v[0]->ref) {
             for (e = 0; e < 2; ++e) {
                 mse_sum += sbl_metric_mse(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3);
@@ -633,7 +649,7 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
         for (i = 0; i < 2; ++i) { free(hist[e][i]); free(len[e][i]); }
         free(input[e]); free(disp[e]);
     }
-    free(mask); free(tmp_a); free(tmp_b); free(times); free(ox); free(onx); free(onx2);
+    free(mask); free(tmp_a); free(tmp_b); free(times); free(ox); free(onx); free(onx2); free(alpha[0]); free(alpha[1]);
     return rc;
 }
 
