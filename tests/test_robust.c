@@ -1355,7 +1355,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                 }
                 if (pass == 0 && p->est == SBL_ESTIMATOR_ROBUST && cnt > 1) {
                     /* neighbours without the centre: mean and population variance,
-                       summed over channels; bound = max(their mean, x*) + 4 sigma */
+                       summed over channels; bound = max(their mean, x*) + 6 sigma */
                     double sy = 0, sm = 0, sx = 0, sv = 0, bound, t = 1;
                     int n;
                     for (k = 0; k < c; ++k) {
@@ -1365,7 +1365,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                             if (n != centre) v8 += (REF_Y(n, k) - m8) * (REF_Y(n, k) - m8) / (cnt - 1);
                         sy += yv[k]; sm += m8; sx += x1[k]; sv += v8;
                     }
-                    bound = (sm > sx ? sm : sx) + 4.0 * sqrt(sv);
+                    bound = (sm > sx ? sm : sx) + 6.0 * sqrt(sv);
                     if (bound < 0) bound = 0;
                     if (sy > bound) t = bound / sy;
                     for (k = 0; k < c; ++k) yl[k] = yv[k] * t;
