@@ -1,13 +1,16 @@
 # stereoblend.h - build, test, demo, bench.
 #   make          build tests, demo and tools
-#   make check    run every test, built with every compiler present (C99 pedantic
-#                 -Werror with cc / gcc / clang, and once as C++)
+#   make check    every test in every configuration (C99 pedantic -Werror with gcc and
+#                 clang, C++, scalar and each SIMD path, -O0, -O3 -march=native,
+#                 -ffast-math, ASan + UBSan, valgrind, fuzz corpus replay): one line per
+#                 run, failures in full, "N passed, N failed" last (mk/check.mk)
+#   make strict   the header under -Wconversion, -Wshadow, -Wold-style-cast, ... (mk/strict.mk)
 #   make demo     the temporal filter on a built-in synthetic scene: RMSE and ms/frame
 
 CC      ?= cc
 CFLAGS_STRICT = -std=c99 -pedantic -Wall -Wextra -Werror
 CXXFLAGS_STRICT = -std=c++11 -Wall -Wextra -Werror
-OPT     ?= -O2 -g
+OPT     ?= -O2            # the tests' optimisation (OPT='-O2 -g' to debug one)
 LDLIBS  = -lm
 BUILD   = build
 
@@ -23,8 +26,10 @@ HAVE_EXR := $(shell pkg-config --exists OpenEXR 2>/dev/null && echo 1)
 EXR_CFLAGS := $(if $(HAVE_EXR),$(shell pkg-config --cflags OpenEXR),-DSBL_NO_EXR)
 EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
-TESTS = test_core test_metrics test_stereo test_robust test_paths test_accuracy
-SIMD_TESTS = test_core test_stereo test_paths
+# the unit tests (tests/<name>.c): append new ones here; mk/check.mk builds and runs
+# each in every configuration
+TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive \
+        test_accuracy
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)
@@ -34,62 +39,14 @@ FLAGS_scalar = -DSBL_NO_SIMD
 FLAGS_avx2   = -mavx2 -mfma
 FLAGS_avx512 = -mavx512f -mavx2 -mfma
 
-# every (compiler, test) pair: build/<compiler>/<test>; the default SIMD path of each
-# compiler is SSE2 on x86-64 (NEON on AArch64); build/simd-<v>/ are the other paths
-COMPILERS = cc $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang)
-TEST_BINS = $(foreach c,$(COMPILERS),$(addprefix $(BUILD)/$(c)/,$(TESTS))) \
-            $(if $(CXX_TEST),$(addprefix $(BUILD)/cxx/,$(TESTS))) \
-            $(foreach v,$(SIMD_VARIANTS),$(addprefix $(BUILD)/simd-$(v)/,$(SIMD_TESTS))) \
-            $(foreach v,default $(filter-out scalar,$(SIMD_VARIANTS)),$(BUILD)/simd-$(v)/test_simd)
-
-.PHONY: all check demo bench bench-quick bench-perf clean tests
+.PHONY: all check demo bench bench-quick bench-perf bench-ipp bench-adaptive ao clean tests
 all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
-tests: $(TEST_BINS)
-
-$(BUILD)/cc/%: tests/%.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	cc $(CFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
-$(BUILD)/gcc/%: tests/%.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	gcc $(CFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
-$(BUILD)/clang/%: tests/%.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	clang $(CFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
-define SIMD_RULE
-$(BUILD)/simd-$(1)/%: tests/%.c $(HEADERS)
-	@mkdir -p $$(dir $$@)
-	$(CC) $(CFLAGS_STRICT) $(OPT) $(FLAGS_$(1)) -Itools $$< -o $$@ $(LDLIBS)
-endef
-$(foreach v,scalar avx2 avx512,$(eval $(call SIMD_RULE,$(v))))
-
-# SIMD against scalar in one binary: the scalar path in a translation unit of its own
-$(BUILD)/simd_scalar_tu.o: tests/simd_scalar_tu.c stereoblend.h
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) $(OPT) -DSBL_NO_SIMD -c $< -o $@
-$(BUILD)/simd-%/test_simd: tests/test_simd.c $(BUILD)/simd_scalar_tu.o $(HEADERS)
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) $(OPT) $(FLAGS_$*) -Itools $< $(BUILD)/simd_scalar_tu.o -o $@ $(LDLIBS)
-$(BUILD)/simd-default/test_simd: tests/test_simd.c $(BUILD)/simd_scalar_tu.o $(HEADERS)
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) $(OPT) -Itools $< $(BUILD)/simd_scalar_tu.o -o $@ $(LDLIBS)
-$(BUILD)/cxx/%: tests/%.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	$(CXX_TEST) -x c++ $(CXXFLAGS_STRICT) $(OPT) -Itools $< -o $@ $(LDLIBS)
-
+# make check / make tests / make check-robust: the configurations and the quiet runner
+include mk/check.mk
 include mk/robust.mk
-
-# the unit tests built every way, then the robustness runs (-O0, -O3 -march=native,
-# -ffast-math with gcc and clang, scalar; ASan + UBSan; valgrind; fuzz corpus replay)
-check: $(TEST_BINS)
-	@$(MAKE) --no-print-directory check-robust
-	@fail=0; total=0; \
-	for t in $(TEST_BINS); do \
-	  total=$$((total+1)); echo "== $$t"; \
-	  if ! ./$$t; then fail=$$((fail+1)); echo "!! $$t FAILED"; fi; \
-	done; \
-	echo "test binaries: $$((total-fail)) passed, $$fail failed"; \
-	test $$fail -eq 0
+include mk/strict.mk
+include mk/install.mk
 
 RUNNER = bench/sbl_runner.h
 DATASET_SRC = tools/sbl_dataset.c tools/sbl_exr.c
@@ -100,7 +57,7 @@ $(BUILD)/demo: examples/demo.c $(HEADERS) $(RUNNER)
 
 $(BUILD)/minimal: examples/minimal.c stereoblend.h
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) -O2 $< -o $@ $(LDLIBS)
+	$(CC) $(CFLAGS_STRICT) -O2 -I. $< -o $@ $(LDLIBS)
 
 $(BUILD)/sblexr: examples/sblexr.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
 	@mkdir -p $(dir $@)
@@ -109,6 +66,26 @@ $(BUILD)/sblexr: examples/sblexr.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl
 $(BUILD)/bench: bench/bench.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+$(BUILD)/bench-adaptive: bench/adaptive.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+$(BUILD)/adaptive_ipp: bench/adaptive_ipp.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -g -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+# Mono / FSA / adaptive stereo blend: ms, RMSE, eff spp, stereo inconsistency ratio
+bench-adaptive: $(BUILD)/bench-adaptive
+	./$(BUILD)/bench-adaptive --out bench/out
+
+$(BUILD)/ao_stereo: examples/ao_stereo.c $(DATASET_SRC) $(HEADERS) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+# Wu's stereo-consistent SSAO (Mono / FSA / Variant 1 / Variant 2) on the consistency mask
+ao: $(BUILD)/ao_stereo
+	./$(BUILD)/ao_stereo
 
 demo: $(BUILD)/demo
 	./$(BUILD)/demo
@@ -139,6 +116,18 @@ endif
 PERF_FLAGS ?= -march=native
 bench-perf: $(BUILD)/perf
 	./$(BUILD)/perf --out bench/out
+
+# instructions per pixel (callgrind, inside the public call only) on the SSE2 and the
+# AVX2 build: the noise-free speed figure (valgrind cannot run AVX-512 code)
+IPP_CASES ?= easy hard tiny static
+$(BUILD)/ipp-sse2: bench/ipp.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) -std=c99 -Wall -Wextra -O2 -g $< -o $@ $(LDLIBS)
+$(BUILD)/ipp-avx2: bench/ipp.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) -std=c99 -Wall -Wextra -O2 -g -mavx2 -mfma $< -o $@ $(LDLIBS)
+bench-ipp: $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2
+	@sh bench/ipp.sh $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2 -- $(IPP_CASES)
 
 # the same in under a minute (CI smoke run; never asserts timings)
 bench-quick: $(BUILD)/bench

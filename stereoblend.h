@@ -42,24 +42,54 @@
      First frame: pass prev = NULL (or prev->color.data == NULL): every pixel resets.
 
    CONVENTIONS (see also README.md)
-     Images     float, 1-4 interleaved channels, row 0 = top, stride in floats
-                (0 = width * channels). Pixel (i, j) has its centre at (i + 0.5, j + 0.5).
+     Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
+                (i + 0.5, j + 0.5). sbl_image_make() gives tight rows; otherwise
+                stride_bytes (any sign: negative = bottom-up memory, data = the top row)
+                and pixel_bytes (a channel view into a wider interleaved buffer), both
+                multiples of sizeof(float) (else SBL_ERROR_INVALID_STRIDE). The legacy
+                `stride` is in floats; give one of the two. size_bytes (optional) makes
+                a layout that reaches past the buffer an error (SBL_ERROR_INVALID_SIZE)
+                before anything is read. data is const (const inputs need no cast);
+                outputs are written through it. Zero-initialise views built by hand.
      Depth      linear planar view depth (distance along the view axis, > 0); +inf is
                 sky and matches only sky. 0, negative or NaN depth = no valid geometry.
                 Converters from NDC / reversed-Z buffers: sbl_depth_to_linear().
      Motion     default: pixels, backward (previous position = current + mv), +y down.
                 sbl_motion_convention selects UV / NDC units, forward vectors, +y up
                 (Blender's Vector pass is pixels, forward=0 for its X,Y pair, y_up=1).
-     Cameras    row-major 4x4, column vectors (p' = M p); view space looks down -z;
-                OpenGL-style projection: u = (ndc_x + 1)/2 W, v = (1 - ndc_y)/2 H.
-     Stereo     parallel rig: right eye = left eye moved by +baseline along camera x;
-                the right-eye match of left pixel u at depth z is u - focal_px*baseline/z.
+                Motion vectors carry no depth change: the depth test compares the
+                previous depth with the current one (camera mode knows the change).
+     Cameras    sbl_camera: row-major 4x4, column vectors (p' = M p); OpenGL view space
+                (x right, y up, looks down -z); OpenGL-style projection, u = (ndc_x + 1)/2 W,
+                v = (1 - ndc_y)/2 H, off-axis allowed; near / far do not matter. Other
+                forms: sbl_camera_from_pinhole (fx fy cx cy + a pose in OpenCV axes, x
+                right, y down, +z forward, or OpenGL axes) and
+                sbl_camera_from_world_to_pixel (one 3x4 P = K [R | t]); integer_pixel_centers
+                = 1 for calibrations that centre pixel (i, j) at (i, j) (OpenCV, Middlebury).
+                Moving objects: sbl_frame.objects (object-to-world now and before, per id).
+     Stereo     disparity d = u_left - u_right (pixels). Parallel rig: d = focal_px *
+                baseline / z - disparity_offset (Middlebury doffs = cx_right - cx_left;
+                d may be negative); the right-eye match of left pixel u is u - d.
+                Disparity maps: 1 channel (d_x) or 2 (d_x, d_y = v_left - v_right), the
+                same sign in both eyes' maps. Pinhole rig: intrinsics per eye + the right
+                eye's pose relative to the left (x_r = R x_l + T; parallel: T = (-b,0,0)).
+                The library cannot know which image is left: a swapped target_eye passes
+                (symmetric rigs give consistent round trips); sbl_stereo_validate warns
+                when the round trips say so. sbl_stereo_desc.fill (take the other eye
+                wherever it reprojects, in a blend) is unrelated to sbl_stereo_fill() (the
+                mask of pixels that still need a ray).
      Weights    a (alpha, beta) is the weight of the NEW / OWN sample:
-                out = (1 - a) X + a Y.
+                out = (1 - a) X + a Y. Both are returned on request (sbl_temporal_output
+                .alpha, sbl_stereo_output.beta).
      History    N per pixel = effective number of samples (Eq. 5), capped, 1 on reset
-                (0 where the new sample is not finite and there is no history).
+                (0 where the new sample is not finite and there is no history). A
+                history without length means N = 1 everywhere; a history without depth
+                (normals, ids) while the frame has it switches that test off silently:
+                sbl_temporal_validate warns about both.
      Defaults   a zero field means its default, so a parameter cannot be set to exactly
-                0: use a tiny positive value (e.g. 1e-6f) for that.
+                0: use a tiny positive value (e.g. 1e-6f) for that. Tests are switched
+                off by flags, never by values: sbl_reproject_desc.disabled_tests
+                (SBL_TEST_DEPTH, _NORMAL, _ID, _BACK_CHECK, _FALLBACK).
 
    THREADING AND MEMORY
      No globals, no threads, no allocation except in the *_frame convenience calls,
@@ -69,11 +99,15 @@
    ERRORS
      Every call validates all arguments before writing anything and returns an
      sbl_result; sbl_result_string() names it. Bad input never half-writes an output.
+     sbl_temporal_validate / sbl_stereo_validate return the same code and fill a
+     caller-owned sbl_diag with the culprit field ("frame->gbuffer.depth.stride_bytes")
+     and the reason, plus a warning for legal but suspicious input.
 
    SECTIONS (data-flow order, same in the implementation)
      1. Results          2. Views and conventions   3. Reprojection
      4. Moments          5. Weights                 6. Blend and history length
      7. Temporal filter  8. Stereo                  9. Fill mode (pixels needing a ray)
+    10. Adaptive computation (stereo consistency mask, stereo blend where it is needed)
 */
 #ifndef STEREOBLEND_H
 #define STEREOBLEND_H
@@ -128,15 +162,32 @@ SBLDEF const char *sbl_result_string(sbl_result result);
 /* 2. Views and conventions                                                 */
 /* ======================================================================== */
 
+/* A view of fp32 pixels: interleaved channels, any row and pixel stride. The library
+   writes outputs through `data` (const only so that const inputs need no cast).
+   Layouts: tight rows (sbl_image_make); a row pitch in bytes as engines give it
+   (D3D RowPitch, Vulkan rowPitch, stb stride_in_bytes); bottom-up memory such as a
+   glReadPixels buffer: data = the TOP row (the last in memory), stride_bytes = -pitch;
+   a channel view into a wider interleaved buffer: e.g. the XY of an RGBA motion
+   target is data = rgba, channels = 2, pixel_bytes = 16 (ZW: data = rgba + 2). */
 typedef struct sbl_image {
-    float *data;    /* row 0 = top; NULL means "not given" where a buffer is optional */
+    const float *data;  /* pixel (0, 0) = top left; NULL = "not given" where optional   */
     int width;
     int height;
-    int channels;   /* 1..4, interleaved */
-    int stride;     /* floats between the starts of two rows; 0 means width * channels */
+    int channels;       /* 1..4, interleaved                                            */
+    int stride;         /* row stride in floats (may be negative); 0: see stride_bytes  */
+    int stride_bytes;   /* row stride in bytes, a multiple of sizeof(float), may be
+                           negative; 0: `stride`, or tight rows if both are 0. If both
+                           are given they must agree. |row stride| must cover a row.   */
+    int pixel_bytes;    /* bytes from one pixel to the next, a multiple of sizeof(float)
+                           and >= channels * sizeof(float); 0: channels * sizeof(float) */
+    size_t size_bytes;  /* optional: bytes readable from the lowest address the view
+                           touches (the allocation's size for a view at its start);
+                           0: not checked. A layout that does not fit is refused
+                           (SBL_ERROR_INVALID_SIZE) before any read.                    */
 } sbl_image;
 
-SBLDEF sbl_image sbl_image_make(float *data, int width, int height, int channels);
+/* A tight view (rows of width * channels floats, top row first). */
+SBLDEF sbl_image sbl_image_make(const float *data, int width, int height, int channels);
 
 /* G-buffer of one view. Every member is optional: a NULL data pointer skips the test
    that buffer feeds (no depth: no depth test; no ids: no id test, ...). Camera-based
@@ -160,12 +211,51 @@ typedef struct sbl_motion_convention {
     int y_up;     /* 0: +y goes down the rows (default). 1: +y goes up (NDC, Blender) */
 } sbl_motion_convention;
 
-/* A perspective camera: row-major, column-vector matrices (p' = M * p).
-   View space looks down -z; projection is OpenGL-style (ndc in [-1,1]^2, y up). */
+/* A perspective camera: row-major, column-vector matrices (p' = M * p). View space has
+   OpenGL axes (x right, y up, the camera looks down -z); the projection is OpenGL-style:
+   u = (ndc_x + 1)/2 W, v = (1 - ndc_y)/2 H; off-axis (asymmetric) frusta are fine. Near
+   and far do not matter: any invertible projection with w_clip = -z_view works, since
+   only planar depth (from the depth buffer) places points along the rays.
+   Calibrations and other engines give cameras in other forms: the constructors below
+   convert them (sbl_camera_from_pinhole, sbl_camera_from_world_to_pixel). */
 typedef struct sbl_camera {
     float world_to_view[16];
     float view_to_clip[16];
 } sbl_camera;
+
+/* View-space axes of a pose (a world_to_view, or the stereo rig's relative pose). */
+typedef enum sbl_view_axes {
+    SBL_AXES_OPENGL = 0, /* x right, y up, the camera looks down -z (OpenGL, Vulkan and
+                            Blender view space; sbl_camera's convention)               */
+    SBL_AXES_OPENCV      /* x right, y down, the camera looks down +z (OpenCV, COLMAP,
+                            Middlebury, most calibrations)                             */
+} sbl_view_axes;
+
+/* Pinhole intrinsics in pixels: u = fx x/z + cx, v = fy y/z + cy in OpenCV axes
+   (u right, v down). */
+typedef struct sbl_intrinsics {
+    float fx, fy, cx, cy;
+} sbl_intrinsics;
+
+/* integer_pixel_centers: 1 if the calibration puts pixel (i, j)'s centre at (i, j)
+   (OpenCV, Middlebury, most calibration tools); 0 if at (i + 0.5, j + 0.5), this
+   library's convention. */
+
+/* Camera from intrinsics and a pose (world_to_view in the given axes) for a width x
+   height image. Writes *out only on SBL_OK (fx, fy > 0, everything finite). */
+SBLDEF sbl_result sbl_camera_from_pinhole(sbl_camera *out, const sbl_intrinsics *k,
+                                          const float *world_to_view /* 16 */,
+                                          sbl_view_axes axes, int integer_pixel_centers,
+                                          int width, int height);
+
+/* Camera from one world-to-pixel matrix P (3 rows of 4): (u w, v w, w) = P (x, y, z, 1)
+   with u right and v down, as P = K [R | t] (any scale; -P is the same camera). w is
+   proportional to planar depth, so the camera is recovered exactly without factoring K
+   out. Fails (SBL_ERROR_INVALID_PARAM) if the left 3x3 block is singular. */
+SBLDEF sbl_result sbl_camera_from_world_to_pixel(sbl_camera *out,
+                                                 const float *world_to_pixel /* 12 */,
+                                                 int integer_pixel_centers,
+                                                 int width, int height);
 
 typedef enum sbl_depth_encoding {
     SBL_DEPTH_LINEAR = 0,          /* already linear planar depth                         */
@@ -190,7 +280,19 @@ SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
 /* 3. Reprojection                                                          */
 /* ======================================================================== */
 
-/* Per-tap consistency tests. Zeros mean defaults. */
+/* Tests that sbl_reproject_desc.disabled_tests can switch off explicitly (a zero
+   tolerance means "default", so switching off is a flag, never a magic value). */
+typedef enum sbl_test_flags {
+    SBL_TEST_DEPTH = 1,       /* depth test of every tap                                */
+    SBL_TEST_NORMAL = 2,      /* normal test of every tap                               */
+    SBL_TEST_ID = 4,          /* id test of every tap                                   */
+    SBL_TEST_BACK_CHECK = 8,  /* stereo round trip                                      */
+    SBL_TEST_FALLBACK = 16,   /* the 3x3 search for thin geometry (same as no_fallback) */
+    SBL_TEST_ALL = 31
+} sbl_test_flags;
+
+/* Per-tap consistency tests. Zeros mean defaults; a test runs when both views have its
+   buffer and its bit is not in disabled_tests. */
 typedef struct sbl_reproject_desc {
     float depth_tolerance;    /* relative depth difference a tap may have; 0 -> 0.05.
                                  A slope term (the pixel's depth gradient) is added.   */
@@ -198,18 +300,34 @@ typedef struct sbl_reproject_desc {
     float back_check_pixels;  /* stereo round-trip tolerance in pixels; 0 -> 1.0        */
     int   no_fallback;        /* 1 disables the 3x3 fallback search for thin geometry  */
     sbl_motion_convention motion;
+    int   disabled_tests;     /* SBL_TEST_* bits to switch off; 0: every test on        */
 } sbl_reproject_desc;
 
 typedef enum sbl_temporal_source {
-    SBL_TEMPORAL_MOTION = 0,  /* motion vectors of the current frame                 */
-    SBL_TEMPORAL_CAMERA       /* depth + both frames' cameras (static geometry only) */
+    SBL_TEMPORAL_MOTION = 0,  /* motion vectors of the current frame                   */
+    SBL_TEMPORAL_CAMERA       /* depth + both frames' cameras; static geometry, and the
+                                 objects of sbl_frame.objects by their own transforms  */
 } sbl_temporal_source;
+
+/* An object that moves by its own transform (camera mode): the pixels whose id (the
+   G-buffer's ids, exact compare) is `id` are carried back to the previous frame by
+   prev_object_to_world * inverse(object_to_world) before the previous camera sees
+   them. Any invertible affine transform (rigid, scaled, sheared). */
+typedef struct sbl_object_motion {
+    float id;                       /* its value in the id buffer                       */
+    float object_to_world[16];      /* this frame (row-major, p' = M p)                 */
+    float prev_object_to_world[16]; /* the history's frame                              */
+} sbl_object_motion;
 
 /* The current frame: colour to filter, its G-buffer, its camera (camera mode). */
 typedef struct sbl_frame {
     sbl_image color;
     sbl_gbuffer gbuffer;
     const sbl_camera *camera;
+    const sbl_object_motion *objects; /* camera mode, optional: moving objects, sorted by
+                                         id (ascending, distinct); needs gbuffer.ids.
+                                         Pixels whose id is not listed are static.     */
+    int object_count;
 } sbl_frame;
 
 /* Last frame's filter output and the G-buffer it was made with. */
@@ -269,7 +387,7 @@ typedef enum sbl_weight_mode {
     SBL_WEIGHT_MODE_COUNT
 } sbl_weight_mode;
 
-/* The optimal weight of the new estimate (ALGORITHMS.md section 1):
+/* The optimal weight of the new estimate (docs/ALGORITHMS.md section 1):
    a* = (B^2 + var_X) / (B^2 + var_X + var_Y). An infinite var_X or bias gives 1 (no
    usable history); all zero gives 0.5 (nothing tells the two apart). */
 SBLDEF float sbl_optimal_weight(float bias2, float var_x, float var_y);
@@ -325,20 +443,38 @@ SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
 /* 8. Stereo                                                                */
 /* ======================================================================== */
 
+/* Stereo rigs. Disparity d = (position in the left image) - (position in the right
+   image) of one surface point, in pixels: the right-eye match of left pixel (u, v) is
+   (u - d, v), the left-eye match of right pixel (u, v) is (u + d, v). */
 typedef enum sbl_stereo_rig {
-    SBL_RIG_PARALLEL = 0,  /* disparity = focal_px * baseline / depth               */
-    SBL_RIG_DISPARITY,     /* per-eye disparity images (pixels, >= 0)               */
-    SBL_RIG_MATRICES,      /* general rig: both eyes' cameras + depth               */
+    SBL_RIG_PARALLEL = 0,  /* rectified pair: d = focal_px * baseline / depth
+                              - disparity_offset (Middlebury: doffs = cx_right - cx_left) */
+    SBL_RIG_DISPARITY,     /* per-eye disparity images: 1 channel (d_x, rows aligned) or 2
+                              channels (d_x, d_y), both left minus right, in both eyes'
+                              maps; non-finite = no match                               */
+    SBL_RIG_MATRICES,      /* general rig: each eye's sbl_camera (any model) + depth    */
+    SBL_RIG_PINHOLE,       /* calibration: intrinsics per eye + the right eye's pose
+                              relative to the left (sbl_pinhole_rig) + depth           */
     SBL_RIG_COUNT
 } sbl_stereo_rig;
+
+/* A calibrated pair (SBL_RIG_PINHOLE). right_from_left maps a point from the left eye's
+   view space to the right eye's (OpenCV stereoCalibrate's R, T: x_r = R x_l + T; a
+   parallel rig with baseline b in OpenCV or OpenGL axes: T = (-b, 0, 0)). */
+typedef struct sbl_pinhole_rig {
+    sbl_intrinsics eye[2];        /* left, right                                         */
+    float right_from_left[16];    /* rigid pose, row-major 4x4                           */
+    sbl_view_axes axes;           /* axes of both view spaces                            */
+    int integer_pixel_centers;    /* 1: cx, cy put pixel (i, j)'s centre at (i, j)       */
+} sbl_pinhole_rig;
 
 typedef enum sbl_eye_index { SBL_EYE_LEFT = 0, SBL_EYE_RIGHT = 1 } sbl_eye_index;
 
 typedef struct sbl_eye {
     sbl_image color;          /* this eye's colour (after the temporal filter)        */
     sbl_image length;         /* optional: this eye's N (history-aware beta uses it)  */
-    sbl_gbuffer gbuffer;      /* depth (parallel, matrices), normals, ids             */
-    sbl_image disparity;      /* SBL_RIG_DISPARITY: 1 channel, pixels                 */
+    sbl_gbuffer gbuffer;      /* depth (parallel, matrices, pinhole), normals, ids    */
+    sbl_image disparity;      /* SBL_RIG_DISPARITY: 1 (d_x) or 2 (d_x, d_y) channels  */
     const sbl_camera *camera; /* SBL_RIG_MATRICES                                     */
 } sbl_eye;
 
@@ -346,6 +482,9 @@ typedef struct sbl_stereo_desc {
     sbl_stereo_rig rig;
     float focal_px;         /* parallel rig: focal length in pixels                     */
     float baseline;         /* parallel rig: eye separation, same units as depth        */
+    float disparity_offset; /* parallel rig: cx_right - cx_left in pixels (Middlebury
+                               doffs; asymmetric per-eye frusta); 0: same principal point */
+    sbl_pinhole_rig pinhole;/* SBL_RIG_PINHOLE                                           */
     sbl_estimator estimator;/* HISTORY_AWARE (default), PAPER, PROGRESSIVE, CONSTANT    */
     sbl_rectify rectify;
     sbl_weight_mode weight_mode;
@@ -368,9 +507,22 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
 
 SBLDEF size_t sbl_stereo_scratch_size(int width, int channels);
 
-/* Stereo blend of one eye, rows [y0, y1): out = lerp(other eye reprojected, own, beta).
-   Both eyes are read unblended, so calling it for each eye is symmetric. out_length
-   (optional) receives the effective N of the blend. */
+typedef struct sbl_stereo_output {
+    sbl_image color;   /* required; same size and channels as the target eye's colour */
+    sbl_image length;  /* optional; 1 channel: the effective N of the blend            */
+    sbl_image beta;    /* optional; 1 channel: the weight of the own eye used (mean
+                          over channels; 1 where the other eye did not reproject)     */
+} sbl_stereo_output;
+
+/* Stereo blend of one eye, rows [y0, y1): out = lerp(other eye reprojected, own, beta),
+   with beta and N returned like the temporal filter's alpha and N. Both eyes are read
+   unblended, so calling it for each eye is symmetric. */
+SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                    const sbl_eye *target, const sbl_eye *source,
+                                    const sbl_stereo_output *out, int y0, int y1,
+                                    void *scratch, size_t scratch_bytes);
+
+/* sbl_stereo_filter with the outputs colour and length (optional) only. */
 SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
                                    const sbl_eye *target, const sbl_eye *source,
                                    sbl_image out_color, sbl_image out_length,
@@ -399,6 +551,36 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
                                             const sbl_stereo_temporal_io *io);
 
 /* ======================================================================== */
+/* Diagnostics: which field, and why                                        */
+/* ======================================================================== */
+
+/* Filled by the validate calls (no globals: the caller owns it). A validate call runs
+   the checks of its filter call and names the culprit the way the caller spells it,
+   e.g. field "frame->gbuffer.depth.stride_bytes", message "-5 is not a multiple of
+   sizeof(float)". It also reports the first input that is legal but probably not what
+   was meant (e.g. a history without depth while the frame has depth, which turns the
+   depth test off, or a stereo pair whose target_eye looks swapped). */
+typedef struct sbl_diag {
+    sbl_result result;  /* what the filter call returns for these arguments            */
+    char field[80];     /* the culprit; empty when result is SBL_OK                    */
+    char message[200];  /* why, in words; empty when result is SBL_OK                  */
+    char warning[240];  /* legal but suspicious (the first found); empty if none        */
+} sbl_diag;
+
+/* The checks of sbl_temporal_filter (any row range, scratch given) without writing any
+   output. diag may be NULL (then this is a plain validation). */
+SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl_frame *frame,
+                                        const sbl_history *history,
+                                        const sbl_temporal_output *out, sbl_diag *diag);
+
+/* The checks of sbl_stereo_filter (out given) or of sbl_reproject_stereo /
+   sbl_stereo_fill's eyes (out NULL: the target needs no colour). Warns when the
+   correspondences of a sample of pixels work far better with target_eye swapped. */
+SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                      const sbl_eye *target, const sbl_eye *source,
+                                      const sbl_stereo_output *out, sbl_diag *diag);
+
+/* ======================================================================== */
 /* 9. Fill mode: which pixels of the second eye still need a ray            */
 /* ======================================================================== */
 
@@ -416,6 +598,70 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
                                    const unsigned char *mask, int mask_stride,
                                    int y0, int y1);
 
+/* ======================================================================== */
+/* 10. Adaptive computation                                                 */
+/* ======================================================================== */
+
+/* Stereo consistency (Wu, after Weber's law): a value A(p) of the target eye and the
+   value A(p*) of the other eye at p's back-checked match p* differ visibly when their
+   Weber ratio reaches the threshold:
+       r = |A(p) - A(p*)| / max(|A(p)|, |A(p*)|)     (per channel; the largest counts)
+   (Wu's Eq. 2 divides by A(p) alone; the larger magnitude makes r symmetric, so the two
+   eyes' masks agree pair by pair.) The two images are any per-eye quantity (filtered colour, luminance, AO), 1..4
+   channels, the same in both eyes; p* is found by the stereo reprojection of
+   sbl_reproject_stereo (tap tests, back-check) with `source_value` in place of the
+   source eye's colour, so A(p*) is its bilinear value over the taps that pass.
+   Defined cases:
+     - both values 0: r = 0 (equal); one 0, the other not: r = 1;
+     - negative values: the magnitudes in the denominator, so -a against a gives r = 2;
+     - NaN or +-inf in target_value at p: inconsistent (nothing finite can agree);
+     - NaN or +-inf in source_value: such taps are dropped as by every reprojection; if
+       no tap remains the pixel has no correspondence;
+     - a pixel without a correspondence is SBL_NO_CORRESPONDENCE whatever its values.
+   The eyes' colour and length are not read (only their geometry); the rig, focal
+   length, baseline and tap tests are those of `desc`.
+   Cost: one stereo reprojection per pixel, about 70 % of a stereo blend's instructions,
+   so the mask pays where the work it lets skip costs more than that (Wu's stereo-aware
+   SSAO), or where most pixels are already consistent. */
+typedef enum sbl_consistency_class {
+    SBL_CONSISTENT = 0,         /* r < threshold                                      */
+    SBL_INCONSISTENT = 1,       /* r >= threshold, or a non-finite target value       */
+    SBL_NO_CORRESPONDENCE = 2   /* no back-checked match (occluded, outside, no depth) */
+} sbl_consistency_class;
+
+typedef struct sbl_consistency_counts {
+    long consistent, inconsistent, no_correspondence; /* pixels of the rows written    */
+    double inconsistent_ratio; /* inconsistent / (consistent + inconsistent); 0 if none.
+                                  For row bands sum the counts and divide again.      */
+} sbl_consistency_counts;
+
+#define SBL_WEBER_THRESHOLD 0.02f /* Walter et al. (Lightcuts), used by Wu */
+
+/* Classify rows [y0, y1) of `target_eye`: mask[y * mask_stride + x] receives an
+   sbl_consistency_class. threshold 0 -> SBL_WEBER_THRESHOLD; negative or non-finite is
+   SBL_ERROR_INVALID_PARAM. counts (optional) receives the counts of these rows. */
+SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
+                                         sbl_eye_index target_eye, const sbl_eye *target,
+                                         const sbl_eye *source, sbl_image target_value,
+                                         sbl_image source_value, unsigned char *mask,
+                                         int mask_stride, int y0, int y1,
+                                         sbl_consistency_counts *counts);
+
+/* Adaptive stereo blend (Wu's adaptive pass): rows [y0, y1) of out_color / out_length
+   receive sbl_stereo_blend's result (bit for bit) where mask[y * mask_stride + x] is
+   SBL_INCONSISTENT, and the target eye's own colour and N (1 where it has no length)
+   everywhere else. The blend runs only on the tiles of 16 x 16 pixels that hold a
+   marked pixel, so its time follows the share of such tiles. The mask is typically sbl_stereo_consistency's
+   on the two eyes' per-eye results (it is read whole, so compute all of it first).
+   Scratch: sbl_stereo_scratch_size(). blended_count (optional): marked pixels of these
+   rows. Arguments are checked as by sbl_stereo_blend, before anything is written. */
+SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                          const sbl_eye *target, const sbl_eye *source,
+                                          const unsigned char *mask, int mask_stride,
+                                          sbl_image out_color, sbl_image out_length,
+                                          int y0, int y1, void *scratch,
+                                          size_t scratch_bytes, long *blended_count);
+
 #ifdef __cplusplus
 }
 #endif
@@ -432,6 +678,8 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
 #include <string.h>
 #include <float.h>
 #include <limits.h>
+#include <stdint.h>
+#include <stdio.h> /* snprintf: diagnostics */
 
 #if defined(SBL_MALLOC) != defined(SBL_FREE)
 #error "define both SBL_MALLOC and SBL_FREE, or neither"
@@ -475,15 +723,15 @@ SBLDEF const char *sbl_result_string(sbl_result result)
 /* 2. Views and conventions                                                 */
 /* ------------------------------------------------------------------------ */
 
-SBLDEF sbl_image sbl_image_make(float *data, int width, int height, int channels)
+SBLDEF sbl_image sbl_image_make(const float *data, int width, int height, int channels)
 {
     sbl_image im;
+    memset(&im, 0, sizeof im);
     im.data = data;
     im.width = width;
     im.height = height;
     im.channels = channels;
-    im.stride = width * channels;
-    return im;
+    return im; /* stride 0: tight rows and pixels */
 }
 
 /* Finite test on the bits, so that -ffast-math (which may assume no NaN/inf and fold
@@ -525,27 +773,75 @@ static int sbl__is_pos_inf(float v)
     return bits == 0x7f800000u;
 }
 
-static int sbl__stride(const sbl_image *im)
+/* Views are addressed in per-pixel loops of the stage calls: keep these inlined. */
+#if defined(__GNUC__) || defined(__clang__)
+#define SBL__VIEW_FN static __inline__ __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define SBL__VIEW_FN static __forceinline
+#else
+#define SBL__VIEW_FN static
+#endif
+
+/* Row and pixel steps in floats (signed; validated by sbl__check_image first). */
+SBL__VIEW_FN int sbl__step_of(const sbl_image *im)
 {
-    return im->stride ? im->stride : im->width * im->channels;
+    return im->pixel_bytes ? im->pixel_bytes / (int)sizeof(float) : im->channels;
+}
+SBL__VIEW_FN ptrdiff_t sbl__stride(const sbl_image *im)
+{
+    if (im->stride_bytes) return (ptrdiff_t)(im->stride_bytes / (int)sizeof(float));
+    if (im->stride) return (ptrdiff_t)im->stride;
+    return (ptrdiff_t)sbl__step_of(im) * (ptrdiff_t)im->width;
 }
 
-static float *sbl__px(const sbl_image *im, int x, int y)
+/* Pixel (x, y) of a view, writable: inputs and outputs share sbl_image, whose data is
+   const so that const inputs need no cast; an output's memory is the caller's writable
+   buffer, and this is the one place the qualifier is dropped. */
+SBL__VIEW_FN float *sbl__px(const sbl_image *im, int x, int y)
 {
-    return im->data + (ptrdiff_t)y * (ptrdiff_t)sbl__stride(im) + (ptrdiff_t)x * im->channels;
+    float *base;
+    memcpy(&base, &im->data, sizeof base);
+    return base + (ptrdiff_t)y * sbl__stride(im) + (ptrdiff_t)x * sbl__step_of(im);
+}
+
+/* Bytes from the lowest to one past the highest byte a view touches (after
+   sbl__check_image's limits this fits in ptrdiff_t). */
+static size_t sbl__footprint(const sbl_image *im)
+{
+    ptrdiff_t rs = sbl__stride(im);
+    size_t rows = (size_t)(rs < 0 ? -rs : rs);
+    return ((size_t)(im->height - 1) * rows + (size_t)(im->width - 1) * (size_t)sbl__step_of(im) +
+            (size_t)im->channels) * sizeof(float);
 }
 
 /* Validate one view. want_channels 0 accepts 1..4. */
 static sbl_result sbl__check_image(const sbl_image *im, int want_channels)
 {
+    const int fs = (int)sizeof(float);
+    ptrdiff_t rs, row_floats;
     if (!im->data) return SBL_ERROR_NULL_POINTER;
     if (im->width <= 0 || im->height <= 0) return SBL_ERROR_INVALID_SIZE;
     if (im->channels < 1 || im->channels > 4) return SBL_ERROR_INVALID_CHANNELS;
     if (want_channels && im->channels != want_channels) return SBL_ERROR_INVALID_CHANNELS;
     /* row and pixel offsets must fit in an int-sized stride and in size_t */
     if (im->width > INT_MAX / 4 || im->height > INT_MAX / 4) return SBL_ERROR_INVALID_SIZE;
-    if (im->stride != 0 && im->stride < im->width * im->channels) return SBL_ERROR_INVALID_STRIDE;
-    if (im->stride < 0) return SBL_ERROR_INVALID_STRIDE;
+    /* byte steps address whole floats; the two row strides must agree if both given */
+    if (im->stride_bytes % fs != 0 || im->pixel_bytes % fs != 0) return SBL_ERROR_INVALID_STRIDE;
+    if (im->pixel_bytes != 0 && im->pixel_bytes < im->channels * fs) return SBL_ERROR_INVALID_STRIDE;
+    if (im->stride_bytes != 0 && im->stride != 0 && im->stride_bytes / fs != im->stride)
+        return SBL_ERROR_INVALID_STRIDE;
+    if (im->stride_bytes == 0 && im->stride < 0 && im->stride < -(INT_MAX / fs))
+        return SBL_ERROR_INVALID_STRIDE;
+    /* rows may not overlap each other: |row stride| covers a row's last pixel */
+    rs = sbl__stride(im);
+    if (rs < 0) rs = -rs;
+    row_floats = (ptrdiff_t)(im->width - 1) * (ptrdiff_t)sbl__step_of(im) + im->channels;
+    if (rs < row_floats) return SBL_ERROR_INVALID_STRIDE;
+    /* the whole footprint must be addressable: (h - 1) |stride| + row <= PTRDIFF_MAX */
+    if ((size_t)rs > ((size_t)PTRDIFF_MAX / sizeof(float) - (size_t)row_floats) /
+                         (size_t)im->height)
+        return SBL_ERROR_INVALID_SIZE;
+    if (im->size_bytes != 0 && sbl__footprint(im) > im->size_bytes) return SBL_ERROR_INVALID_SIZE;
     return SBL_OK;
 }
 
@@ -571,32 +867,43 @@ static sbl_result sbl__check_gbuffer(const sbl_gbuffer *g, int w, int h)
     return SBL_OK;
 }
 
-/* Byte range an image touches: [begin, end). */
+/* Byte range an image touches: [begin, end), from its lowest address (the last row in
+   memory order first when the row stride is negative). */
 static void sbl__range(const sbl_image *im, const char **begin, const char **end)
 {
-    size_t floats = (size_t)(im->height - 1) * (size_t)sbl__stride(im) +
-                    (size_t)im->width * (size_t)im->channels;
-    *begin = (const char *)im->data;
-    *end = (const char *)(im->data + floats);
+    ptrdiff_t rs = sbl__stride(im);
+    const float *lo = im->data + (rs < 0 ? (ptrdiff_t)(im->height - 1) * rs : 0);
+    *begin = (const char *)lo;
+    *end = *begin + sbl__footprint(im);
 }
 
-/* Do two views share a float? Views with the same stride whose rows interleave
-   without touching (the two eyes of a side-by-side texture) do not; other strides are
-   judged by their byte ranges alone (conservative). */
+/* Do two views share a float? Views with the same row period whose rows interleave
+   without touching (the two eyes of a side-by-side texture) do not, nor do views with
+   the same pixel step whose channels interleave (the colour and a 4th-channel weight
+   of one RGBA buffer); anything else is judged by the byte ranges (conservative). */
 static int sbl__overlap(const sbl_image *a, const sbl_image *b)
 {
     const char *a0, *a1, *b0, *b1;
+    ptrdiff_t sa, sb;
     if (!a->data || !b->data) return 0;
     sbl__range(a, &a0, &a1);
     sbl__range(b, &b0, &b1);
     if (!(a0 < b1 && b0 < a1)) return 0;
-    if (sbl__stride(a) == sbl__stride(b) && a->height > 1 && b->height > 1) {
-        const size_t period = (size_t)sbl__stride(a) * sizeof(float);
-        const size_t ra = (size_t)a->width * (size_t)a->channels * sizeof(float);
-        const size_t rb = (size_t)b->width * (size_t)b->channels * sizeof(float);
+    sa = sbl__stride(a); if (sa < 0) sa = -sa;
+    sb = sbl__stride(b); if (sb < 0) sb = -sb;
+    if (sa == sb && (a->height > 1 || b->height > 1)) {
+        const size_t period = (size_t)sa * sizeof(float), fs = sizeof(float);
+        const size_t pa = (size_t)sbl__step_of(a) * fs, pb = (size_t)sbl__step_of(b) * fs;
+        const size_t ra = (size_t)(a->width - 1) * pa + (size_t)a->channels * fs;
+        const size_t rb = (size_t)(b->width - 1) * pb + (size_t)b->channels * fs;
         size_t d = (size_t)(b0 >= a0 ? b0 - a0 : a0 - b0) % period;
         if (b0 < a0) d = (period - d) % period; /* offset of b's rows within a's period */
-        return !(d >= ra && d + rb <= period);
+        if (d >= ra && d + rb <= period) return 0;
+        if (pa == pb && period % pa == 0) { /* channels interleaved within the pixels */
+            size_t e = d % pa;
+            if (e >= (size_t)a->channels * fs && e + (size_t)b->channels * fs <= pa) return 0;
+        }
+        return 1;
     }
     return 1;
 }
@@ -657,7 +964,9 @@ SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
     }
     /* in place only with the same layout: otherwise a row could be overwritten
        before it is read */
-    if (src.data == dst.data ? sbl__stride(&src) != sbl__stride(&dst) : sbl__overlap(&src, &dst))
+    if (src.data == dst.data ? sbl__stride(&src) != sbl__stride(&dst) ||
+                                   sbl__step_of(&src) != sbl__step_of(&dst)
+                             : sbl__overlap(&src, &dst))
         return SBL_ERROR_OVERLAP;
     for (y = 0; y < src.height; ++y)
         for (x = 0; x < src.width; ++x)
@@ -725,14 +1034,147 @@ typedef struct sbl__cam_map {
     double clip_to_view[16];  /* inverse projection of the source (this) camera      */
     double view_to_view[16];  /* this view -> other view                             */
     double other_proj[16];    /* other view -> clip                                   */
+    double view_to_world[16]; /* this view -> world (objects that move)               */
+    double world_to_other[16];/* world -> other view (objects that move)              */
     double width, height;     /* this image (for pixel -> ndc)                        */
     double other_width, other_height;
+    const sbl_object_motion *objects; /* sorted by id; NULL: everything static        */
+    int object_count;
 } sbl__cam_map;
+
+/* The other camera forms as the equivalent OpenGL pair (double): a view space with the
+   camera looking down -z (its z is minus the planar depth; x and y need not be metric)
+   and a clip matrix whose NDC maps to pixels as u = (ndc_x + 1)/2 W, v = (1 - ndc_y)/2 H.
+   The depth rows only need to be invertible: rays are cast through ndc z = 0 and
+   scaled to the given planar depth. Return 0 if the input is not usable. */
+static void sbl__proj_depth_rows(double *proj)
+{
+    int i;
+    for (i = 0; i < 16; ++i) proj[i] = 0.0;
+    proj[10] = -1.0; proj[11] = -2.0; proj[14] = -1.0;
+}
+
+static int sbl__pinhole_gl(const sbl_intrinsics *k, const float *world_to_view,
+                           sbl_view_axes axes, int integer_pixel_centers, int w, int h,
+                           double *view, double *proj)
+{
+    const double half = integer_pixel_centers ? 0.5 : 0.0; /* to centres at i + 0.5 */
+    double cx, cy;
+    int i;
+    if ((int)axes != (int)SBL_AXES_OPENGL && (int)axes != (int)SBL_AXES_OPENCV) return 0;
+    if (w <= 0 || h <= 0) return 0;
+    if (!sbl__finite(k->fx) || !sbl__finite(k->fy) || !sbl__finite(k->cx) ||
+        !sbl__finite(k->cy) || !(k->fx > 0.0f) || !(k->fy > 0.0f))
+        return 0;
+    for (i = 0; i < 16; ++i)
+        if (!sbl__finite(world_to_view[i])) return 0;
+    sbl__mat_from_float(view, world_to_view);
+    if (axes == SBL_AXES_OPENCV) /* (x, y, z) -> (x, -y, -z) */
+        for (i = 4; i < 12; ++i) view[i] = -view[i];
+    cx = (double)k->cx + half;
+    cy = (double)k->cy + half;
+    sbl__proj_depth_rows(proj);
+    /* u = fx x / d + cx with d = -z: ndc_x d = (2 fx / W) x + (1 - 2 cx / W) z */
+    proj[0] = 2.0 * (double)k->fx / w;
+    proj[2] = 1.0 - 2.0 * cx / w;
+    /* v = -fy y / d + cy: ndc_y d = (2 fy / H) y + (2 cy / H - 1) z */
+    proj[5] = 2.0 * (double)k->fy / h;
+    proj[6] = 2.0 * cy / h - 1.0;
+    return 1;
+}
+
+static int sbl__world_to_pixel_gl(const float *P, int integer_pixel_centers, int w, int h,
+                                  double *view, double *proj)
+{
+    /* P = [M | p]: once det M > 0 (else use -P), w = |row 2 of M| * planar depth > 0 in
+       front. View space: (u w, v w, -depth). */
+    const double half = integer_pixel_centers ? 0.5 : 0.0;
+    double m[12], det, s;
+    int i;
+    if (w <= 0 || h <= 0) return 0;
+    for (i = 0; i < 12; ++i) {
+        if (!sbl__finite(P[i])) return 0;
+        m[i] = (double)P[i];
+    }
+    det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+          m[2] * (m[4] * m[9] - m[5] * m[8]);
+    if (!(fabs(det) > 1e-300) || det - det != 0.0) return 0;
+    if (det < 0.0)
+        for (i = 0; i < 12; ++i) m[i] = -m[i];
+    s = sqrt(m[8] * m[8] + m[9] * m[9] + m[10] * m[10]);
+    for (i = 0; i < 8; ++i) view[i] = m[i];
+    for (i = 8; i < 12; ++i) view[i] = -m[i] / s;
+    view[12] = 0.0; view[13] = 0.0; view[14] = 0.0; view[15] = 1.0;
+    sbl__proj_depth_rows(proj);
+    /* u = U / (s d) + half with U = view x, d = -view z */
+    proj[0] = 2.0 / (w * s);
+    proj[2] = 1.0 - 2.0 * half / w;
+    proj[5] = -2.0 / (h * s);
+    proj[6] = 2.0 * half / h - 1.0;
+    return 1;
+}
+
+static void sbl__camera_store(sbl_camera *out, const double *view, const double *proj)
+{
+    int i;
+    for (i = 0; i < 16; ++i) {
+        out->world_to_view[i] = (float)view[i];
+        out->view_to_clip[i] = (float)proj[i];
+    }
+}
+
+SBLDEF sbl_result sbl_camera_from_pinhole(sbl_camera *out, const sbl_intrinsics *k,
+                                          const float *world_to_view, sbl_view_axes axes,
+                                          int integer_pixel_centers, int width, int height)
+{
+    double view[16], proj[16];
+    if (!out || !k || !world_to_view) return SBL_ERROR_NULL_POINTER;
+    if (width <= 0 || height <= 0) return SBL_ERROR_INVALID_SIZE;
+    if (!sbl__pinhole_gl(k, world_to_view, axes, integer_pixel_centers, width, height, view,
+                         proj))
+        return SBL_ERROR_INVALID_PARAM;
+    sbl__camera_store(out, view, proj);
+    return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_camera_from_world_to_pixel(sbl_camera *out, const float *world_to_pixel,
+                                                 int integer_pixel_centers, int width,
+                                                 int height)
+{
+    double view[16], proj[16];
+    int i;
+    if (!out || !world_to_pixel) return SBL_ERROR_NULL_POINTER;
+    if (width <= 0 || height <= 0) return SBL_ERROR_INVALID_SIZE;
+    if (!sbl__world_to_pixel_gl(world_to_pixel, integer_pixel_centers, width, height, view,
+                                proj))
+        return SBL_ERROR_INVALID_PARAM;
+    for (i = 0; i < 16; ++i) /* the float matrices must stay finite */
+        if (!sbl__finite((float)view[i]) || !sbl__finite((float)proj[i]))
+            return SBL_ERROR_INVALID_PARAM;
+    sbl__camera_store(out, view, proj);
+    return SBL_OK;
+}
+
+/* From view / projection pairs in double (the other camera forms). */
+static int sbl__cam_map_init_gl(sbl__cam_map *m, const double *view, const double *proj,
+                                int w, int h, const double *other_view,
+                                const double *other_proj, int ow, int oh)
+{
+    memcpy(m->other_proj, other_proj, sizeof m->other_proj);
+    memcpy(m->world_to_other, other_view, sizeof m->world_to_other);
+    m->objects = NULL;
+    m->object_count = 0;
+    if (!sbl__mat_invert(m->clip_to_view, proj)) return 0;
+    if (!sbl__mat_invert(m->view_to_world, view)) return 0;
+    sbl__mat_mul(m->view_to_view, other_view, m->view_to_world);
+    m->width = w; m->height = h; m->other_width = ow; m->other_height = oh;
+    return 1;
+}
 
 static int sbl__cam_map_init(sbl__cam_map *m, const sbl_camera *from, int w, int h,
                              const sbl_camera *to, int ow, int oh)
 {
-    double proj[16], view[16], inv_view[16], other_view[16];
+    double proj[16], view[16], other_view[16], other_proj[16];
     int i;
     for (i = 0; i < 16; ++i) /* NaN / inf entries can still "invert" to a finite matrix */
         if (!sbl__finite(from->world_to_view[i]) || !sbl__finite(from->view_to_clip[i]) ||
@@ -741,20 +1183,15 @@ static int sbl__cam_map_init(sbl__cam_map *m, const sbl_camera *from, int w, int
     sbl__mat_from_float(proj, from->view_to_clip);
     sbl__mat_from_float(view, from->world_to_view);
     sbl__mat_from_float(other_view, to->world_to_view);
-    sbl__mat_from_float(m->other_proj, to->view_to_clip);
-    if (!sbl__mat_invert(m->clip_to_view, proj)) return 0;
-    if (!sbl__mat_invert(inv_view, view)) return 0;
-    sbl__mat_mul(m->view_to_view, other_view, inv_view);
-    m->width = w; m->height = h; m->other_width = ow; m->other_height = oh;
-    return 1;
+    sbl__mat_from_float(other_proj, to->view_to_clip);
+    return sbl__cam_map_init_gl(m, view, proj, w, h, other_view, other_proj, ow, oh);
 }
 
-/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> position in the
-   other image and the point's planar depth there. Returns 0 if behind the camera. */
-static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float z,
-                              double *ox, double *oy, double *oz)
+/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> the point in this
+   camera's view space (p[3] = 0 for a direction). Returns 0 if the ray is degenerate. */
+static int sbl__cam_map_point(const sbl__cam_map *m, double px, double py, float z, double *p)
 {
-    double ndc[4], q[4], p[4], v[4], c[4];
+    double ndc[4], q[4];
     int i, k;
     ndc[0] = 2.0 * px / m->width - 1.0;
     ndc[1] = 1.0 - 2.0 * py / m->height;
@@ -769,10 +1206,15 @@ static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float
     for (i = 0; i < 3; ++i) q[i] = (q[i] / q[3]) / (-q[2] / q[3]);
     if (sbl__is_pos_inf(z)) { p[0] = q[0]; p[1] = q[1]; p[2] = q[2]; p[3] = 0.0; }
     else { p[0] = q[0] * z; p[1] = q[1] * z; p[2] = q[2] * z; p[3] = 1.0; }
-    for (i = 0; i < 4; ++i) {
-        v[i] = 0.0;
-        for (k = 0; k < 4; ++k) v[i] += m->view_to_view[i * 4 + k] * p[k];
-    }
+    return 1;
+}
+
+/* A point of the other camera's view space -> its pixel position and planar depth. */
+static int sbl__cam_map_project(const sbl__cam_map *m, const double *v, double *ox, double *oy,
+                                double *oz)
+{
+    double c[4];
+    int i, k;
     for (i = 0; i < 4; ++i) {
         c[i] = 0.0;
         for (k = 0; k < 4; ++k) c[i] += m->other_proj[i * 4 + k] * v[k];
@@ -780,7 +1222,109 @@ static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float
     if (!(c[3] > 0.0)) return 0;
     *ox = (c[0] / c[3] + 1.0) * 0.5 * m->other_width;
     *oy = (1.0 - c[1] / c[3]) * 0.5 * m->other_height;
-    *oz = p[3] == 0.0 ? HUGE_VAL : -v[2];
+    *oz = v[3] == 0.0 ? HUGE_VAL : -v[2];
+    return 1;
+}
+
+static void sbl__mat_apply(double *out, const double *m, const double *p)
+{
+    int i, k;
+    for (i = 0; i < 4; ++i) {
+        out[i] = 0.0;
+        for (k = 0; k < 4; ++k) out[i] += m[i * 4 + k] * p[k];
+    }
+}
+
+/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> position in the
+   other image and the point's planar depth there. Returns 0 if behind the camera. */
+static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float z,
+                              double *ox, double *oy, double *oz)
+{
+    double p[4], v[4];
+    if (!sbl__cam_map_point(m, px, py, z, p)) return 0;
+    sbl__mat_apply(v, m->view_to_view, p);
+    return sbl__cam_map_project(m, v, ox, oy, oz);
+}
+
+/* Solves M q = p for an object_to_world M (float, row-major) in double with partial
+   pivoting. Returns 0 if M is singular or not finite. */
+static int sbl__mat_solve(const float *mf, const double *p, double *q)
+{
+    double a[4][5];
+    int i, j, k;
+    for (i = 0; i < 4; ++i) {
+        for (j = 0; j < 4; ++j) a[i][j] = (double)mf[i * 4 + j];
+        a[i][4] = p[i];
+    }
+    for (i = 0; i < 4; ++i) {
+        int piv = i;
+        for (k = i + 1; k < 4; ++k)
+            if (fabs(a[k][i]) > fabs(a[piv][i])) piv = k;
+        if (!(fabs(a[piv][i]) > 1e-300)) return 0;
+        if (piv != i)
+            for (j = 0; j < 5; ++j) { double t = a[i][j]; a[i][j] = a[piv][j]; a[piv][j] = t; }
+        for (k = i + 1; k < 4; ++k) {
+            double f = a[k][i] / a[i][i];
+            for (j = i; j < 5; ++j) a[k][j] -= f * a[i][j];
+        }
+    }
+    for (i = 3; i >= 0; --i) {
+        double v = a[i][4];
+        for (j = i + 1; j < 4; ++j) v -= a[i][j] * q[j];
+        q[i] = v / a[i][i];
+    }
+    return q[0] - q[0] == 0.0 && q[1] - q[1] == 0.0 && q[2] - q[2] == 0.0 && q[3] - q[3] == 0.0;
+}
+
+/* The moving object with this id (binary search; ids sorted ascending), or NULL. */
+static const sbl_object_motion *sbl__find_object(const sbl__cam_map *m, float id)
+{
+    int lo = 0, hi = m->object_count - 1;
+    while (lo <= hi) {
+        int mid = lo + (hi - lo) / 2;
+        float v = m->objects[mid].id;
+        if (v == id) return &m->objects[mid];
+        if (v < id) lo = mid + 1;
+        else hi = mid - 1;
+    }
+    return NULL;
+}
+
+/* sbl__cam_map_apply for a pixel with object id `id`: a listed (moving) object is carried
+   back by prev_object_to_world * inverse(object_to_world) in world space; anything else
+   is static. */
+static int sbl__cam_map_apply_id(const sbl__cam_map *m, float id, double px, double py, float z,
+                                 double *ox, double *oy, double *oz)
+{
+    const sbl_object_motion *o;
+    double p[4], w[4], q[4], v[4];
+    if (!m->object_count || !(o = sbl__find_object(m, id)))
+        return sbl__cam_map_apply(m, px, py, z, ox, oy, oz);
+    if (!sbl__cam_map_point(m, px, py, z, p)) return 0;
+    sbl__mat_apply(w, m->view_to_world, p);
+    if (!sbl__mat_solve(o->object_to_world, w, q)) return 0;
+    {
+        double prev[16];
+        sbl__mat_from_float(prev, o->prev_object_to_world);
+        sbl__mat_apply(w, prev, q);
+    }
+    sbl__mat_apply(v, m->world_to_other, w);
+    return sbl__cam_map_project(m, v, ox, oy, oz);
+}
+
+/* Objects of a frame: finite, invertible, sorted by distinct ids. */
+static int sbl__objects_ok(const sbl_object_motion *o, int n)
+{
+    int i, k;
+    if (n < 0 || (n > 0 && !o)) return 0;
+    for (i = 0; i < n; ++i) {
+        double t[4] = {0, 0, 0, 1}, q[4];
+        if (!sbl__finite(o[i].id) || (i > 0 && !(o[i - 1].id < o[i].id))) return 0;
+        for (k = 0; k < 16; ++k)
+            if (!sbl__finite(o[i].object_to_world[k]) || !sbl__finite(o[i].prev_object_to_world[k]))
+                return 0;
+        if (!sbl__mat_solve(o[i].object_to_world, t, q)) return 0;
+    }
     return 1;
 }
 
@@ -801,8 +1345,8 @@ static sbl__flat sbl__flatten(const sbl_image *im)
 {
     sbl__flat f;
     f.p = im ? im->data : NULL;
-    f.stride = f.p ? (ptrdiff_t)sbl__stride(im) : 0;
-    f.step = f.p ? (ptrdiff_t)im->channels : 0;
+    f.stride = f.p ? sbl__stride(im) : 0;
+    f.step = f.p ? (ptrdiff_t)sbl__step_of(im) : 0;
     f.ch = f.p ? im->channels : 0;
     return f;
 }
@@ -1130,9 +1674,11 @@ static void sbl__tap_src_init(sbl__tap_src *s, const sbl_image *color, const sbl
     s->ids = sbl__flatten(&src_g->ids);
     s->width = color->width;
     s->height = color->height;
-    s->use_depth = src_g->depth.data && dst_g->depth.data;
-    s->use_id = src_g->ids.data && dst_g->ids.data;
-    s->use_normal = src_g->normals.data && dst_g->normals.data && !(rp->normal_threshold < 0.0f);
+    s->use_depth = src_g->depth.data && dst_g->depth.data &&
+                   !(rp->disabled_tests & SBL_TEST_DEPTH);
+    s->use_id = src_g->ids.data && dst_g->ids.data && !(rp->disabled_tests & SBL_TEST_ID);
+    s->use_normal = src_g->normals.data && dst_g->normals.data &&
+                    !(rp->normal_threshold < 0.0f) && !(rp->disabled_tests & SBL_TEST_NORMAL);
     s->depth_tolerance = rp->depth_tolerance;
     s->normal_threshold2 = rp->normal_threshold * rp->normal_threshold;
 }
@@ -1154,6 +1700,7 @@ static void sbl__motion_scale(const sbl_motion_convention *c, int w, int h, doub
 static sbl_reproject_desc sbl__reproject_defaults(const sbl_reproject_desc *d)
 {
     sbl_reproject_desc r = *d;
+    if (r.disabled_tests & SBL_TEST_FALLBACK) r.no_fallback = 1;
     if (sbl__is_zero(r.depth_tolerance)) r.depth_tolerance = 0.05f;
     if (sbl__is_zero(r.normal_threshold)) r.normal_threshold = 0.9f;
     if (sbl__is_zero(r.back_check_pixels)) r.back_check_pixels = 1.0f;
@@ -1168,6 +1715,7 @@ static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
         return SBL_ERROR_INVALID_PARAM;
     if ((int)d->motion.units < 0 || (int)d->motion.units > (int)SBL_MOTION_NDC)
         return SBL_ERROR_INVALID_PARAM;
+    if (d->disabled_tests & ~(int)SBL_TEST_ALL) return SBL_ERROR_INVALID_PARAM;
     return SBL_OK;
 }
 
@@ -1213,13 +1761,46 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     if (source == SBL_TEMPORAL_MOTION && !g->motion.data) return SBL_ERROR_MISSING_INPUT;
     if (source == SBL_TEMPORAL_CAMERA) {
         if (!g->depth.data || !frame->camera) return SBL_ERROR_MISSING_INPUT;
+        if (frame->object_count && !g->ids.data) return SBL_ERROR_MISSING_INPUT;
+        if (!sbl__objects_ok(frame->objects, frame->object_count)) return SBL_ERROR_INVALID_PARAM;
         if (s->history) {
             if (!s->history->camera) return SBL_ERROR_MISSING_INPUT;
             if (!sbl__cam_map_init(&s->cam, frame->camera, w, h, s->history->camera, w, h))
                 return SBL_ERROR_INVALID_PARAM;
+            s->cam.objects = frame->objects;
+            s->cam.object_count = frame->object_count;
         }
     }
     return SBL_OK;
+}
+
+/* Where target pixel (x, y) finds its history: the source position (*sx, *sy) and what
+   the taps must match (*t). Returns 0 when the pixel must reset. Shared by the pixel
+   gather below and the row gather (sbl__temporal_rp_row). */
+SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sbl__tap_want *t,
+                                     double *sx, double *sy)
+{
+    double sz;
+    float z;
+    if (!sbl__tap_want_init(t, &s->geo, x, y, &z)) return 0;
+    if (s->source == SBL_TEMPORAL_MOTION) {
+        const float *mv = SBL__AT(s->motion, x, y);
+        if (sbl__any_nonfinite(mv, 2)) return 0;
+        *sx = x + 0.5 + s->motion_kx * mv[0];
+        *sy = y + 0.5 + s->motion_ky * mv[1];
+        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
+    } else {
+        if (!sbl__cam_map_apply_id(&s->cam, s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f,
+                                   x + 0.5, y + 0.5, z, sx, sy, &sz))
+            return 0;
+    }
+    /* came in from outside the previous image: nothing to reuse (edge pixels would
+       otherwise be replicated by the renormalisation and the 3x3 fallback) */
+    if (!(*sx >= 0.0 && *sx < (double)s->frame->color.width && *sy >= 0.0 &&
+          *sy < (double)s->frame->color.height))
+        return 0;
+    t->depth = (float)sz;
+    return 1;
 }
 
 /* x* and its N for target pixel (x, y); returns 0 when the pixel must reset. */
@@ -1227,25 +1808,9 @@ static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
 {
     const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
     sbl__tap_want t;
-    double sx, sy, sz;
-    float z;
+    double sx, sy;
     if (!s->history) return 0.0f;
-    if (!sbl__tap_want_init(&t, &s->geo, x, y, &z)) return 0.0f;
-    if (s->source == SBL_TEMPORAL_MOTION) {
-        const float *mv = SBL__AT(s->motion, x, y);
-        if (sbl__any_nonfinite(mv, 2)) return 0.0f;
-        sx = x + 0.5 + s->motion_kx * mv[0];
-        sy = y + 0.5 + s->motion_ky * mv[1];
-        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
-    } else {
-        if (!sbl__cam_map_apply(&s->cam, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
-    }
-    /* came in from outside the previous image: nothing to reuse (edge pixels would
-       otherwise be replicated by the renormalisation and the 3x3 fallback) */
-    if (!(sx >= 0.0 && sx < (double)s->frame->color.width && sy >= 0.0 &&
-          sy < (double)s->frame->color.height))
-        return 0.0f;
-    t.depth = (float)sz;
+    if (!sbl__temporal_rp_pos(s, x, y, &t, &sx, &sy)) return 0.0f;
     return sbl__gather(&s->src, &t, sx, sy, !s->rp.no_fallback, out);
 }
 
@@ -1684,7 +2249,11 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
 /* ---- thin SIMD layer ------------------------------------------------------
    One lane kernel below is written against these few operations. Chosen at compile
    time: AVX-512F, AVX2, SSE2, NEON (AArch64), or plain float (SBL_NO_SIMD, or none of
-   them available): the scalar path is the same code with a width of 1. */
+   them available): the scalar path is the same code with a width of 1.
+   The row gather (SBL__ROW_GATHER) adds tap loads at int offsets (hardware gathers on
+   AVX2 / AVX-512, emulated on SSE2), mask logic and bit tests that -ffast-math cannot
+   fold. The scalar build and NEON gather one pixel at a time with the reference
+   gather, which the row gather must equal bit for bit (test_simd, test_paths). */
 #if !defined(SBL_NO_SIMD) && defined(__AVX512F__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx512"
@@ -1704,6 +2273,22 @@ typedef __mmask16 sbl__m;
 #define sbl__abs(a) _mm512_abs_ps(a)
 #define sbl__gt(a, b) _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
+/* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm512_i32gather_ps(_mm512_loadu_si512((const void *)(idx)), base, 4)
+#define sbl__le(a, b) _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
+#define sbl__mand(a, b) ((__mmask16)((a) & (b)))
+#define sbl__mor(a, b) ((__mmask16)((a) | (b)))
+#define sbl__mandnot(a, b) ((__mmask16)((a) & ~(b))) /* a and not b */
+#define sbl__mbits(m) ((int)(m))
+#define sbl__nonfinite(a) \
+    _mm512_cmpeq_epi32_mask(_mm512_and_si512(_mm512_castps_si512(a), \
+                                             _mm512_set1_epi32(0x7f800000)), \
+                            _mm512_set1_epi32(0x7f800000))
+#define sbl__posinf(a) \
+    _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
+#define sbl__floor(a) _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
 #elif !defined(SBL_NO_SIMD) && defined(__AVX2__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx2"
@@ -1723,6 +2308,22 @@ typedef __m256 sbl__m;
 #define sbl__abs(a) _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a)
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm256_i32gather_ps(base, _mm256_loadu_si256((const __m256i *)(const void *)(idx)), 4)
+#define sbl__le(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
+#define sbl__mand(a, b) _mm256_and_ps(a, b)
+#define sbl__mor(a, b) _mm256_or_ps(a, b)
+#define sbl__mandnot(a, b) _mm256_andnot_ps(b, a)
+#define sbl__mbits(m) _mm256_movemask_ps(m)
+#define sbl__nonfinite(a) \
+    _mm256_castsi256_ps(_mm256_cmpeq_epi32( \
+        _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7f800000)), \
+        _mm256_set1_epi32(0x7f800000)))
+#define sbl__posinf(a) \
+    _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
+                                           _mm256_set1_epi32(0x7f800000)))
+#define sbl__floor(a) _mm256_floor_ps(a)
 #elif !defined(SBL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || \
                                 (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
@@ -1743,6 +2344,26 @@ typedef __m128 sbl__m;
 #define sbl__abs(a) _mm_andnot_ps(_mm_set1_ps(-0.0f), a)
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm_setr_ps((base)[(idx)[0]], (base)[(idx)[1]], (base)[(idx)[2]], (base)[(idx)[3]])
+#define sbl__le(a, b) _mm_cmple_ps(a, b)
+#define sbl__mand(a, b) _mm_and_ps(a, b)
+#define sbl__mor(a, b) _mm_or_ps(a, b)
+#define sbl__mandnot(a, b) _mm_andnot_ps(b, a)
+#define sbl__mbits(m) _mm_movemask_ps(m)
+#define sbl__nonfinite(a) \
+    _mm_castsi128_ps(_mm_cmpeq_epi32( \
+        _mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)), \
+        _mm_set1_epi32(0x7f800000)))
+#define sbl__posinf(a) \
+    _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)))
+/* floor of |a| < 2^31 (SSE2 has no rounding mode op): truncate, then step down */
+SBL__INLINE __m128 sbl__floor(__m128 a)
+{
+    const __m128 t = _mm_cvtepi32_ps(_mm_cvttps_epi32(a));
+    return _mm_sub_ps(t, _mm_and_ps(_mm_cmpgt_ps(t, a), _mm_set1_ps(1.0f)));
+}
 #elif !defined(SBL_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h>
 #define SBL_SIMD_NAME "neon"
@@ -1787,22 +2408,31 @@ typedef int sbl__m;
    deinterleaved into planes, and the other estimate x* (reprojected history or other
    eye) is gathered once per row, into a ring of three rows; the 3x3 statistics, the
    weight, the rectification, the blend and Eq. 5 then run over those planes:
-   - the lane kernel (SIMD layer above) on interior pixels of rows whose values are
-     finite and within about [1e-12, 1e15] in magnitude (or 0), in float;
+   - the lane kernel (SIMD layer above) on interior pixels whose 3x3 window holds only
+     values that are finite and within about [1e-12, 1e15] in magnitude (or 0), in
+     float;
    - the reference path (sbl__blend_pixel, double) everywhere else: image borders
-     (fewer than 9 neighbours), non-finite samples, extreme magnitudes or denormals.
+     (fewer than 9 neighbours), and pixels with a non-finite sample, an extreme
+     magnitude or a denormal in their window ("unsafe", flagged per pixel at load).
    Each output pixel takes one of the two paths by a rule that depends only on the
-   input, never on the row range, so banded calls reproduce a whole-image call. */
+   input, never on the row or column range nor on the vector width, so banded and
+   tiled calls reproduce a whole-image call and every SIMD build the scalar one. */
 
 typedef float (*sbl__gather_fn)(const void *ctx, int x, int y, float *out);
+struct sbl__ring_row;
+/* x*, N and validity of columns [xa, xb) of row y straight into a ring row, equal bit
+   for bit to calling the pixel gather on each (one call per row: no pointer per pixel) */
+typedef void (*sbl__row_gather_fn)(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                   int xb);
 
 typedef struct sbl__ring_row {
     float *y[4];   /* own colour, one plane per channel                         */
     float *x[4];   /* x* per channel, 0 where invalid                           */
     float *n;      /* N of x*, 0 where invalid                                  */
     float *v;      /* 1 where x* is valid, else 0                               */
+    unsigned char *unsafe; /* 1 where a value of the pixel is outside the lane range */
     int row;       /* image row held (-1: none)                                 */
-    int lane_safe; /* every value finite and of moderate magnitude              */
+    int unsafe_count; /* pixels flagged unsafe among the columns loaded          */
 } sbl__ring_row;
 
 typedef struct sbl__kernel {
@@ -1815,12 +2445,15 @@ typedef struct sbl__kernel {
     const sbl_image *own_n;  /* N_Y (NULL data: 1)                                */
     sbl__gather_fn gather;
     const void *gather_ctx;
+    sbl__row_gather_fn gather_row; /* NULL: `gather` one pixel at a time          */
     sbl_image out, out_n, out_a; /* out_n / out_a data may be NULL                */
     float *stage[4], *stage_n, *stage_a;
+    unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
     sbl__ring_row ring[3];
 } sbl__kernel;
 
-/* planes per ring row: 2 * channels + 2; staging: channels + 2; each plane padded */
+/* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
+   channels + 2 float planes and one byte plane; each plane padded to 64 bytes */
 static size_t sbl__plane_floats(int width)
 {
     return ((size_t)width + 15u) & ~(size_t)15u;
@@ -1828,9 +2461,10 @@ static size_t sbl__plane_floats(int width)
 
 static size_t sbl__kernel_scratch_size(int width, int channels)
 {
+    size_t pf;
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
-    return (size_t)(3 * (2 * channels + 2) + channels + 2) * sbl__plane_floats(width) *
-               sizeof(float) + 64;
+    pf = sbl__plane_floats(width);
+    return (size_t)(3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 4 * pf + 64;
 }
 
 static void *sbl__align64(void *p)
@@ -1850,11 +2484,16 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
         k->ring[r].n = p; p += pf;
         k->ring[r].v = p; p += pf;
         k->ring[r].row = -1;
-        k->ring[r].lane_safe = 0;
+        k->ring[r].unsafe_count = 0;
     }
     for (c = 0; c < k->ch; ++c) { k->stage[c] = p; p += pf; }
     k->stage_n = p; p += pf;
-    k->stage_a = p;
+    k->stage_a = p; p += pf;
+    {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
+        unsigned char *b = (unsigned char *)p;
+        for (r = 0; r < 3; ++r) { k->ring[r].unsafe = b; b += pf; }
+        k->window_unsafe = b;
+    }
 }
 
 /* 0, or finite with magnitude in [2^-40, 2^50) (about 9.1e-13 .. 1.1e15): squares and
@@ -1869,50 +2508,405 @@ static int sbl__lane_value_ok(float v)
     return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
-/* Own colour Y of one row, deinterleaved into planes; returns 1 if lane-safe. */
-static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row)
+/* One gathered x* (N > 0: valid) into ring column x. */
+SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v, int ch)
+{
+    int c, valid = n > 0.0f;
+    r->n[x] = valid ? n : 0.0f;
+    r->v[x] = valid ? 1.0f : 0.0f;
+    for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f;
+}
+
+#ifdef SBL__ROW_GATHER
+/* ---- the row gather ---------------------------------------------------------
+   A scalar pass plans a block of pixels (target tests, source position, floor and
+   fraction, the offset of the first tap in each source view; the same code as the
+   pixel gather); the taps, their tests and the renormalised bilinear weights then run
+   in lanes. Lanes the pixel gather would send anywhere but its fast path (a tap
+   outside the image, a rejected footprint that needs the 3x3 fallback, a NaN or inf
+   in a sum) are redone by the pixel gather. */
+#define SBL__BLOCK 64
+
+typedef struct sbl__tap_plan {
+    int ci[SBL__BLOCK], di[SBL__BLOCK], li[SBL__BLOCK]; /* tap (x0, y0) in colour, depth, N */
+    float fx[SBL__BLOCK], fy[SBL__BLOCK];               /* bilinear fractions              */
+    float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
+    float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
+    unsigned char redo[SBL__BLOCK]; /* 1: the pixel gather decides                          */
+} sbl__tap_plan;
+
+static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
+{
+    p->ci[i] = p->di[i] = p->li[i] = 0; /* tap (0, 0): a valid address, result unused */
+    p->fx[i] = p->fy[i] = 0.0f;
+    p->depth[i] = 1.0f;
+    p->slack[i] = 0.0f;
+    p->fast[i] = 0.0f;
+    p->redo[i] = 0;
+}
+
+/* Plan entry i from a source position, as sbl__gather_ch decides: 0 reset, else the
+   fast path or (p->redo) the pixel gather. */
+SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+                                   const sbl__tap_want *t, double sx, double sy)
+{
+    double bx = sx - 0.5, by = sy - 0.5;
+    int x0, y0;
+    if (!(bx > -2.0 && by > -2.0 && bx < (double)s->width + 1.0 &&
+          by < (double)s->height + 1.0))
+        return;
+    x0 = (int)floor(bx);
+    y0 = (int)floor(by);
+    if (!(x0 >= 0 && y0 >= 0 && x0 + 1 < s->width && y0 + 1 < s->height)) {
+        p->redo[i] = 1;
+        return;
+    }
+    p->fx[i] = (float)(bx - x0);
+    p->fy[i] = (float)(by - y0);
+    p->depth[i] = t->depth;
+    p->slack[i] = t->depth_slack;
+    p->ci[i] = (int)((ptrdiff_t)y0 * s->color.stride + (ptrdiff_t)x0 * s->color.step);
+    if (s->use_depth)
+        p->di[i] = (int)((ptrdiff_t)y0 * s->depth.stride + (ptrdiff_t)x0 * s->depth.step);
+    if (s->length.p)
+        p->li[i] = (int)((ptrdiff_t)y0 * s->length.stride + (ptrdiff_t)x0 * s->length.step);
+    p->fast[i] = 1.0f;
+}
+
+/* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
+   renormalisation and saturation) for plan entries [i, i + VW), into ring columns
+   [x, x + VW): the same float operations in the same order per lane (a skipped tap
+   adds +0 to a sum that cannot be -0), hence the same bits. Lanes whose sums are not
+   finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
+   contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
+   rest), read with plain vector loads where a view has one channel. When no lane has
+   a fraction (a camera at rest), the three taps of weight 0 are skipped: they would
+   add +0 everywhere. */
+SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
+                                 sbl__ring_row *r, int x, int ch, int contiguous)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
+    const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
+    const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
+    const sbl__m fast = sbl__gt(sbl__load(p->fast + i), zero);
+    sbl__v w[4], acc[4], accn = zero, wsum = zero, inv, n;
+    sbl__m ok[4], redo, lo, valid;
+    ptrdiff_t off[4];
+    int t, c, bits, taps;
+    /* fractions are >= 0: none above 0 means every lane reads its pixel (x0, y0) */
+    taps = sbl__mbits(sbl__mor(sbl__gt(fx, zero), sbl__gt(fy, zero))) ? 4 : 1;
+    w[0] = sbl__mul(gx, gy);
+    w[1] = sbl__mul(fx, gy);
+    w[2] = sbl__mul(gx, fy);
+    w[3] = sbl__mul(fx, fy);
+    for (t = 0; t < 4; ++t) ok[t] = sbl__gt(w[t], zero);
+    if (s->use_depth) {
+        const sbl__v ze = sbl__load(p->depth + i), sl = sbl__load(p->slack + i);
+        const sbl__v lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sl);
+        const sbl__m inf_e = sbl__posinf(ze);
+        off[0] = 0; off[1] = s->depth.step; off[2] = s->depth.stride;
+        off[3] = s->depth.stride + s->depth.step;
+        for (t = 0; t < taps; ++t) {
+            /* sbl__depth_match: sky matches only sky; else a finite, positive depth
+               within the tolerance */
+            const sbl__v d = contiguous ? sbl__load(s->depth.p + off[t] + p->di[i])
+                                        : sbl__gatheri(s->depth.p + off[t], p->di + i);
+            const sbl__m inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
+                                          sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
+            ok[t] = sbl__mand(ok[t], match);
+        }
+    }
+    if (s->length.p) {
+        off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
+        off[3] = s->length.stride + s->length.step;
+        for (t = 0; t < taps; ++t) {
+            const sbl__v nt = contiguous ? sbl__load(s->length.p + off[t] + p->li[i])
+                                         : sbl__gatheri(s->length.p + off[t], p->li + i);
+            ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
+            accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+        }
+    } else {
+        for (t = 0; t < taps; ++t) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
+    }
+    off[0] = 0; off[1] = s->color.step; off[2] = s->color.stride;
+    off[3] = s->color.stride + s->color.step;
+    for (c = 0; c < ch; ++c) acc[c] = zero;
+    for (t = 0; t < taps; ++t) {
+        for (c = 0; c < ch; ++c) {
+            const sbl__v v = contiguous && ch == 1 ? sbl__load(s->color.p + off[t] + p->ci[i])
+                                                   : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
+            acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
+        }
+        wsum = sbl__add(wsum, sbl__sel(ok[t], w[t], zero));
+    }
+    redo = sbl__nonfinite(accn);
+    for (c = 0; c < ch; ++c) redo = sbl__mor(redo, sbl__nonfinite(acc[c]));
+    lo = sbl__gt(sbl__set1(1e-3f), wsum);
+    if (fallback) redo = sbl__mor(redo, lo);
+    redo = sbl__mand(redo, fast);
+    inv = sbl__div(one, wsum);
+    n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
+    valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
+    sbl__store(r->n + x, sbl__sel(valid, n, zero));
+    sbl__store(r->v + x, sbl__sel(valid, one, zero));
+    for (c = 0; c < ch; ++c) {
+        const sbl__v o = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax);
+        sbl__store(r->x[c] + x, sbl__sel(valid, o, zero));
+    }
+    bits = sbl__mbits(redo);
+    for (t = 0; bits; ++t, bits >>= 1)
+        if (bits & 1) p->redo[i + t] = 1;
+}
+
+/* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
+   last vector overlaps the one before rather than running past the block. */
+static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+                          sbl__ring_row *r, int x)
+{
+    int i = 0;
+    for (;;) {
+        int l, contiguous = 1;
+        if (i + SBL__VW > n) i = n - SBL__VW;
+        /* every lane's first tap one pixel after the previous lane's, in every view
+           (each lane's index is a valid one, so the vector load reads exactly the
+           addresses the gather would) */
+        for (l = 1; l < SBL__VW; ++l)
+            contiguous &= (p->ci[i + l] - p->ci[i] == l * (int)s->color.step) &
+                          (!s->use_depth || p->di[i + l] - p->di[i] == l) &
+                          (!s->length.p || p->li[i + l] - p->li[i] == l);
+        switch (s->color.ch) {
+        case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
+        case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
+        case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous); break;
+        default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous); break;
+        }
+        if (i + SBL__VW >= n) break;
+        i += SBL__VW;
+    }
+}
+
+/* Can the row gather address every tap of this source with int offsets, and does it
+   run the tests the lanes implement (not ids nor normals)? */
+static int sbl__row_gather_ok(const sbl__tap_src *s)
+{
+    const sbl__flat *f[3];
+    int i;
+    if (s->use_id || s->use_normal || s->width < 2 || s->height < 2) return 0;
+    f[0] = &s->color; f[1] = &s->depth; f[2] = &s->length;
+    for (i = 0; i < 3; ++i) {
+        double span;
+        if (!f[i]->p) continue;
+        span = (double)(s->height - 1) * fabs((double)f[i]->stride) +
+               (double)s->width * (double)f[i]->step;
+        if (!(span < (double)INT_MAX / 2)) return 0;
+    }
+    return 1;
+}
+
+/* Can sbl__temporal_plan_lanes plan row y of this call? Motion vectors in pixels
+   (|k| = 1: the products are exact), images up to 2^15 pixels (positions exact in
+   float), no target normals or ids (their tests stay in sbl__tap_want_init), and an
+   interior row (the depth slack reads both neighbours). */
+static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+{
+    const int w = s->src.width, h = s->src.height;
+    return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
+           fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && !s->geo.normals.p &&
+           !s->geo.ids.p && y >= 1 && y + 1 < h;
+}
+
+/* sbl__temporal_rp_pos and sbl__tap_plan_set for the VW pixels x .. x + VW - 1 (all
+   with both horizontal neighbours) in float lanes, with the same results: for a
+   motion m in pixels with |m| = 0 or in [2^-8, 2^15), x + 0.5 + m is exact in double,
+   so the reference's floor and fraction are floor(m) and the correctly rounded
+   m - floor(m), and its bounds tests are exact float comparisons of m. Lanes with any
+   other motion are left to the scalar plan (returned as bits). */
+SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                         int x, int y)
+{
+    static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+    static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    const sbl__tap_src *src = &s->src;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
+    const sbl__v lo = sbl__set1(1.0f / 256.0f), hi = sbl__set1(32768.0f);
+    const sbl__v wf = sbl__set1((float)src->width), hf = sbl__set1((float)src->height);
+    const sbl__v xf = sbl__add(sbl__set1((float)x), sbl__load(lane)), yf = sbl__set1((float)y);
+    const float *mvp = SBL__AT(s->motion, x, y);
+    sbl__v z = zero, slack = zero, mx, my, ax, ay, fmx, fmy, x0f, y0f;
+    sbl__m keep, exact, inside, fast;
+    int l, bits_scalar, bits_fast;
+    float x0s[SBL__VW], y0s[SBL__VW];
+    if (s->geo.depth.p) {
+        /* sbl__tap_want_init / sbl__depth_slack: valid geometry is z > 0 (NaN, -inf
+           fail; +inf is sky); slack = min one-sided difference per axis, if finite */
+        const float *dp = SBL__AT(s->geo.depth, x, y);
+        const ptrdiff_t ds = s->geo.depth.stride;
+        sbl__v da, db, sx, sy;
+        z = sbl__load(dp);
+        da = sbl__abs(sbl__sub(z, sbl__load(dp - 1)));
+        db = sbl__abs(sbl__sub(sbl__load(dp + 1), z));
+        sx = sbl__min(da, db);
+        sx = sbl__sel(sbl__nonfinite(sx), zero, sx);
+        da = sbl__abs(sbl__sub(z, sbl__load(dp - ds)));
+        db = sbl__abs(sbl__sub(sbl__load(dp + ds), z));
+        sy = sbl__min(da, db);
+        sy = sbl__sel(sbl__nonfinite(sy), zero, sy);
+        slack = sbl__sel(sbl__nonfinite(z), zero, sbl__add(sx, sy));
+        keep = sbl__gt(z, zero);
+    } else {
+        keep = sbl__gt(one, zero);
+    }
+    mx = sbl__gatheri(mvp, pair);
+    my = sbl__gatheri(mvp + 1, pair);
+    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+    if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
+    if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
+    ax = sbl__abs(mx);
+    ay = sbl__abs(my);
+    exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
+                      sbl__mor(sbl__le(ay, zero), sbl__mand(sbl__le(lo, ay), sbl__gt(hi, ay))));
+    bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
+    /* x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
+    inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
+                       sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
+    inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
+                                         sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
+    keep = sbl__mand(sbl__mand(keep, exact), inside);
+    fmx = sbl__floor(mx);
+    fmy = sbl__floor(my);
+    x0f = sbl__add(xf, fmx);
+    y0f = sbl__add(yf, fmy);
+    /* the four taps inside the image, else the pixel gather decides */
+    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__gt(wf, sbl__add(x0f, one))),
+                     sbl__mand(sbl__le(zero, y0f), sbl__gt(hf, sbl__add(y0f, one))));
+    fast = sbl__mand(fast, keep);
+    /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
+    sbl__store(p->fx + i, sbl__sel(fast, sbl__add(sbl__sub(mx, fmx), zero), zero));
+    sbl__store(p->fy + i, sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
+    sbl__store(p->depth + i, sbl__sel(fast, z, one));
+    sbl__store(p->slack + i, sbl__sel(fast, slack, zero));
+    sbl__store(p->fast + i, sbl__sel(fast, one, zero));
+    sbl__store(x0s, x0f);
+    sbl__store(y0s, y0f);
+    bits_fast = sbl__mbits(fast);
+    for (l = 0; l < SBL__VW; ++l) {
+        const int f = (bits_fast >> l) & 1, x0 = f ? (int)x0s[l] : 0, y0 = f ? (int)y0s[l] : 0;
+        p->redo[i + l] = (unsigned char)(((sbl__mbits(keep) >> l) & 1) & !f);
+        p->ci[i + l] = (int)((ptrdiff_t)y0 * src->color.stride + (ptrdiff_t)x0 * src->color.step);
+        p->di[i + l] = src->use_depth ? (int)((ptrdiff_t)y0 * src->depth.stride + x0) : 0;
+        p->li[i + l] = src->length.p ? (int)((ptrdiff_t)y0 * src->length.stride + x0) : 0;
+    }
+    return bits_scalar;
+}
+
+/* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
+static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                 int xb)
+{
+    const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
+    const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
+    const int lanes = sbl__temporal_plan_lanes_ok(s, y);
+    sbl__tap_plan p;
+    int x0, i;
+    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
+        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
+        if (n < SBL__VW) {
+            for (i = 0; i < n; ++i) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+            continue;
+        }
+        for (i = 0; i < n;) {
+            int bits = 1, l;
+            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width && i + SBL__VW <= n) {
+                bits = sbl__temporal_plan_lanes(s, &p, i, x0 + i, y);
+                l = SBL__VW;
+            } else {
+                l = 1;
+            }
+            for (; bits; ++i, --l, bits >>= 1) {
+                sbl__tap_want t;
+                double sx, sy;
+                if (!(bits & 1)) continue;
+                sbl__tap_plan_reset(&p, i);
+                if (sbl__temporal_rp_pos(s, x0 + i, y, &t, &sx, &sy))
+                    sbl__tap_plan_set(&s->src, &p, i, &t, sx, sy);
+            }
+            i += l;
+        }
+        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
+        for (i = 0; i < n; ++i)
+            if (p.redo[i]) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+    }
+}
+#endif
+
+/* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
+   pixels holding a value outside the lane range. Returns the number flagged. */
+static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
     const float *src = sbl__px(k->own, 0, row);
-    int x, c, ch = k->ch, safe = 1;
-    for (x = 0; x < k->w; ++x)
+    const ptrdiff_t step = sbl__step_of(k->own);
+    const float *ny = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, row) : NULL;
+    const ptrdiff_t ny_step = ny ? (ptrdiff_t)sbl__step_of(k->own_n) : 0;
+    /* the lanes load N_Y contiguously: another pixel step takes the reference path */
+    const int ny_lanes = !ny || ny_step == 1;
+    int x, c, ch = k->ch, count = 0;
+    for (x = xa; x < xb; ++x) {
+        int safe = ny_lanes;
         for (c = 0; c < ch; ++c) {
-            float v = src[(ptrdiff_t)x * ch + c];
+            float v = src[(ptrdiff_t)x * step + c];
             r->y[c][x] = v;
             safe &= sbl__lane_value_ok(v);
         }
-    if (k->own_n && k->own_n->data) { /* N_Y: the reference path sanitises it */
-        const float *ny = sbl__px(k->own_n, 0, row);
-        for (x = 0; x < k->w; ++x) safe &= sbl__lane_value_ok(ny[x]) && ny[x] <= 1048576.0f;
-    }
-    return safe;
-}
-
-/* The other estimate x* of one row (reprojected history or other eye), its N and
-   validity, into planes; returns 1 if lane-safe. */
-static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row)
-{
-    int x, c, ch = k->ch, safe = 1;
-    for (x = 0; x < k->w; ++x) {
-        float tmp[4] = {0, 0, 0, 0};
-        float n = k->gather(k->gather_ctx, x, row, tmp);
-        int valid = n > 0.0f;
-        r->n[x] = valid ? n : 0.0f;
-        r->v[x] = valid ? 1.0f : 0.0f;
-        for (c = 0; c < ch; ++c) {
-            r->x[c][x] = valid ? tmp[c] : 0.0f;
-            if (valid) safe &= sbl__lane_value_ok(tmp[c]);
+        /* N_Y: the reference path sanitises it */
+        if (ny) {
+            float n = ny[(ptrdiff_t)x * ny_step];
+            safe &= sbl__lane_value_ok(n) && n <= 1048576.0f;
         }
-        if (valid) safe &= sbl__lane_value_ok(n);
+        r->unsafe[x] = (unsigned char)!safe;
+        count += !safe;
     }
-    return safe;
+    return count;
 }
 
-static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row)
+/* The other estimate x* of columns [xa, xb) of one row (reprojected history or other
+   eye), its N and validity, into planes; adds its own unsafe values to the flags (the
+   own colour is loaded first). Returns the number of pixels newly flagged. */
+static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
-    int safe_own = sbl__ring_load_own(k, r, row);
-    int safe_other = sbl__ring_gather(k, r, row);
+    int x, c, ch = k->ch, count = 0;
+    if (k->gather_row) {
+        k->gather_row(k->gather_ctx, r, row, xa, xb);
+    } else {
+        for (x = xa; x < xb; ++x) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, k->gather(k->gather_ctx, x, row, tmp), tmp, ch);
+        }
+    }
+    for (x = xa; x < xb; ++x) {
+        int safe = 1;
+        if (!(r->v[x] > 0.0f)) continue;
+        for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(r->x[c][x]);
+        safe &= sbl__lane_value_ok(r->n[x]);
+        if (!safe && !r->unsafe[x]) { r->unsafe[x] = 1; ++count; }
+    }
+    return count;
+}
+
+static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
+{
+    int count = sbl__ring_load_own(k, r, row, xa, xb);
+    count += sbl__ring_gather(k, r, row, xa, xb);
     r->row = row;
-    r->lane_safe = safe_own && safe_other;
+    r->unsafe_count = count;
 }
 
 static float sbl__own_n(const sbl__kernel *k, int x, int y)
@@ -2237,57 +3231,124 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
     return x;
 }
 
+/* Lane kernel over the pixels of [xa, xb) (interior columns of an interior row) whose
+   3x3 window holds no unsafe value; the others are left to the reference path. A run
+   of such pixels narrower than a vector is computed by a vector widened inside
+   [la, lb) (loaded columns, at least 16 wide), whose extra lanes are either recomputed
+   identically or overwritten by the reference path afterwards: lanes are independent,
+   so no result depends on the vector width. */
+static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
+                                   int xb, int la, int lb, const unsigned char *win)
+{
+    int a = xa;
+    while (a < xb) {
+        int b;
+        if (win) {
+            while (a < xb && win[a]) ++a;
+            if (a >= xb) break;
+        }
+        b = a + 1;
+        if (win) { while (b < xb && !win[b]) ++b; }
+        else b = xb;
+        if (b - a >= SBL__VW) {
+            int e = sbl__kernel_lanes(k, R, a, b);
+            /* the tail: one more vector ending at b, overlapping pixels already done
+               (same values), so that every pixel takes the same float path */
+            if (e < b) sbl__kernel_lanes(k, R, b - SBL__VW, b);
+        } else {
+            int s0 = a + SBL__VW <= lb ? a : lb - SBL__VW;
+            if (s0 < la) s0 = la;
+            sbl__kernel_lanes(k, R, s0, s0 + SBL__VW);
+        }
+        a = b;
+    }
+}
+
+/* Filter columns [x0, x1) of rows [y0, y1) into k->out (and out_n / out_a); nothing
+   else of the outputs is written. Every written pixel equals the one a whole-image run
+   gives, bit for bit: the ring holds the columns [x0 - 1, x1 + 1) (clamped), widened
+   to 18 inside the image when the span is narrower, so that a whole vector fits. */
+static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
+{
+    /* rows narrower than the widest vector (plus the two border pixels) take the
+       reference path on every build, so that no build depends on its vector width */
+    const int lanes_w = k->w - 2 >= 16;
+    int y, x, c, j, la = x0, lb = x1, xa, xb;
+    if (x0 < 0) x0 = 0;
+    if (x1 > k->w) x1 = k->w;
+    if (y0 >= y1 || x0 >= x1) return;
+    /* lane columns: the span's interior part, widened to 16 inside [1, w - 1) */
+    xa = x0 > 1 ? x0 : 1;
+    xb = x1 < k->w - 1 ? x1 : k->w - 1;
+    la = xa; lb = xb;
+    if (lanes_w && lb - la < 16) {
+        lb = la + 16;
+        if (lb > k->w - 1) { lb = k->w - 1; la = lb - 16; }
+    }
+    {   /* ring columns: the lane columns and the span, each with its neighbours */
+        int ra = (la < x0 ? la : x0) - 1, rb = (lb > x1 ? lb : x1) + 1;
+        if (ra < 0) ra = 0;
+        if (rb > k->w) rb = k->w;
+        if (!lanes_w) { ra = x0 > 0 ? x0 - 1 : 0; rb = x1 < k->w ? x1 + 1 : k->w; }
+        for (j = 0; j < 3; ++j) {
+            int ry = y0 - 1 + j;
+            k->ring[j].row = -1;
+            if (ry >= 0 && ry < k->h) sbl__ring_load(k, &k->ring[j], ry, ra, rb);
+        }
+        for (y = y0; y < y1; ++y) {
+            const sbl__ring_row *R[3];
+            const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
+            const unsigned char *win = NULL;
+            for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
+            if (lanes_ok) {
+                if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
+                    /* per pixel: 1 if any of the nine values of its window is unsafe */
+                    unsigned char *w = k->window_unsafe;
+                    const unsigned char *u0 = R[0]->unsafe, *u1 = R[1]->unsafe,
+                                        *u2 = R[2]->unsafe;
+                    for (x = xa - 1; x <= xb; ++x) w[x] = (unsigned char)(u0[x] | u1[x] | u2[x]);
+                    {
+                        unsigned char prev = w[xa - 1], cur = w[xa];
+                        for (x = xa; x < xb; ++x) {
+                            unsigned char next = w[x + 1];
+                            w[x] = (unsigned char)(prev | cur | next);
+                            prev = cur;
+                            cur = next;
+                        }
+                    }
+                    win = w;
+                }
+                sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
+            }
+            for (x = x0; x < x1; ++x)
+                if (!lanes_ok || x < xa || x >= xb || (win && win[x]))
+                    sbl__kernel_pixel_ref(k, R, x);
+            {   /* interleave the staged row into the outputs */
+                float *o = sbl__px(&k->out, 0, y);
+                const ptrdiff_t step = sbl__step_of(&k->out);
+                for (x = x0; x < x1; ++x)
+                    for (c = 0; c < k->ch; ++c) o[(ptrdiff_t)x * step + c] = k->stage[c][x];
+                if (k->out_n.data)
+                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_n, x, y) = k->stage_n[x];
+                if (k->out_a.data)
+                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_a, x, y) = k->stage_a[x];
+            }
+            {   /* advance the ring: drop row y-1, load row y+2 */
+                sbl__ring_row t = k->ring[0];
+                k->ring[0] = k->ring[1];
+                k->ring[1] = k->ring[2];
+                k->ring[2] = t;
+                k->ring[2].row = -1;
+                if (y + 1 < y1 && y + 2 < k->h) sbl__ring_load(k, &k->ring[2], y + 2, ra, rb);
+            }
+        }
+    }
+}
+
 /* Filter rows [y0, y1) into k->out (and out_n / out_a). */
 static void sbl__kernel_run(sbl__kernel *k, int y0, int y1)
 {
-    int y, x, c, j;
-    if (y0 >= y1) return;
-    for (j = 0; j < 3; ++j) {
-        int ry = y0 - 1 + j;
-        k->ring[j].row = -1;
-        if (ry >= 0 && ry < k->h) sbl__ring_load(k, &k->ring[j], ry);
-    }
-    for (y = y0; y < y1; ++y) {
-        const sbl__ring_row *R[3];
-        int lanes_ok, xs = 0, xe = 0;
-        for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
-        /* rows narrower than the widest vector take the reference path on every build,
-           so that no build depends on its vector width for them */
-        lanes_ok = R[0] && R[2] && R[0]->lane_safe && R[1]->lane_safe && R[2]->lane_safe &&
-                   k->w - 2 >= 16;
-        if (lanes_ok) {
-            xs = 1;
-            xe = sbl__kernel_lanes(k, R, 1, k->w - 1);
-            /* the tail: one more vector ending at the last interior pixel, overlapping
-               pixels already done (same values), so that every interior pixel takes
-               the same float path whatever the vector width */
-            if (xe < k->w - 1)
-                xe = sbl__kernel_lanes(k, R, k->w - 1 - SBL__VW, k->w - 1);
-        }
-        for (x = 0; x < k->w; ++x)
-            if (x < xs || x >= xe) sbl__kernel_pixel_ref(k, R, x);
-        {   /* interleave the staged row into the outputs */
-            float *o = sbl__px(&k->out, 0, y);
-            for (x = 0; x < k->w; ++x)
-                for (c = 0; c < k->ch; ++c) o[(size_t)x * k->ch + c] = k->stage[c][x];
-            if (k->out_n.data) {
-                float *on = sbl__px(&k->out_n, 0, y);
-                for (x = 0; x < k->w; ++x) on[x] = k->stage_n[x];
-            }
-            if (k->out_a.data) {
-                float *oa = sbl__px(&k->out_a, 0, y);
-                for (x = 0; x < k->w; ++x) oa[x] = k->stage_a[x];
-            }
-        }
-        {   /* advance the ring: drop row y-1, load row y+2 */
-            sbl__ring_row t = k->ring[0];
-            k->ring[0] = k->ring[1];
-            k->ring[1] = k->ring[2];
-            k->ring[2] = t;
-            k->ring[2].row = -1;
-            if (y + 1 < y1 && y + 2 < k->h) sbl__ring_load(k, &k->ring[2], y + 2);
-        }
-    }
+    sbl__kernel_run_span(k, y0, y1, 0, k->w);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -2370,6 +3431,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.own_n = NULL;
     k.gather = sbl__temporal_rp_pixel;
     k.gather_ctx = &s;
+#ifdef SBL__ROW_GATHER
+    if (s.history && sbl__row_gather_ok(&s.src)) k.gather_row = sbl__temporal_rp_row;
+#endif
     k.out = out->color;
     k.out_n = out->length;
     k.out_a = out->alpha;
@@ -2413,13 +3477,25 @@ SBLDEF sbl_stereo_desc sbl_stereo_defaults(const sbl_stereo_desc *desc)
     return d;
 }
 
+struct sbl__stereo_rp;
+/* A rig's correspondence: pixel (ix, iy) of the target eye (back = 0) or of the source
+   eye (back = 1), at continuous position (px, py), to its position (ox, oy) in the other
+   eye and its planar depth oz there (0 if unknown). Returns 0 if there is none. */
+typedef int (*sbl__stereo_map_fn)(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                  double px, double py, double *ox, double *oy, double *oz);
+
 typedef struct sbl__stereo_rp {
     sbl_stereo_desc d;
     sbl_eye_index target_eye;
     const sbl_eye *target, *source;
     sbl__tap_src src;
     sbl__target_geo geo;
-    sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES */
+    sbl__stereo_map_fn map;
+    sbl__flat depth[2], disparity[2];  /* [0] target, [1] source                      */
+    double dir[2];            /* -1 for the left eye, +1 for the right: other = p + dir d */
+    float fb;                 /* parallel: focal_px * baseline                          */
+    double offset;            /* parallel: disparity_offset                             */
+    sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES, SBL_RIG_PINHOLE             */
 } sbl__stereo_rp;
 
 static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_color)
@@ -2433,18 +3509,21 @@ static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_
         /* the target of a fill only needs geometry: take the size from depth/disparity */
         const sbl_image *ref = e->gbuffer.depth.data ? &e->gbuffer.depth : &e->disparity;
         if (!ref->data) return SBL_ERROR_MISSING_INPUT;
-        if ((r = sbl__check_image(ref, 1)) != SBL_OK) return r;
+        if ((r = sbl__check_image(ref, ref == &e->disparity ? 0 : 1)) != SBL_OK) return r;
+        if (ref->channels > 2) return SBL_ERROR_INVALID_CHANNELS;
         w = ref->width; h = ref->height;
         /* a colour given anyway is what sbl__eye_width() reports: it must agree */
         if ((r = sbl__check_optional(&e->color, 0, w, h)) != SBL_OK) return r;
     }
     if ((r = sbl__check_gbuffer(&e->gbuffer, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&e->length, 1, w, h)) != SBL_OK) return r;
-    if ((r = sbl__check_optional(&e->disparity, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&e->disparity, 0, w, h)) != SBL_OK) return r;
+    if (e->disparity.data && e->disparity.channels > 2) return SBL_ERROR_INVALID_CHANNELS;
     if (rig == SBL_RIG_PARALLEL && !e->gbuffer.depth.data) return SBL_ERROR_MISSING_INPUT;
     if (rig == SBL_RIG_DISPARITY && !e->disparity.data) return SBL_ERROR_MISSING_INPUT;
     if (rig == SBL_RIG_MATRICES && (!e->gbuffer.depth.data || !e->camera))
         return SBL_ERROR_MISSING_INPUT;
+    if (rig == SBL_RIG_PINHOLE && !e->gbuffer.depth.data) return SBL_ERROR_MISSING_INPUT;
     return SBL_OK;
 }
 
@@ -2459,11 +3538,75 @@ static int sbl__eye_height(const sbl_eye *e)
                          : (e->gbuffer.depth.data ? e->gbuffer.depth.height : e->disparity.height);
 }
 
+/* Planar depth of pixel (ix, iy) of an eye's depth view; 0 if not valid geometry. */
+static float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
+{
+    float z = *SBL__AT(*depth, ix, iy);
+    if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
+    return z;
+}
+
+/* SBL_RIG_PARALLEL: d = f b / z - offset (sky: -offset), rows aligned. */
+static int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                    double px, double py, double *ox, double *oy, double *oz)
+{
+    float z = sbl__valid_depth(&s->depth[back], ix, iy), fbz;
+    if (z == 0.0f) return 0;
+    fbz = sbl__is_pos_inf(z) ? 0.0f : s->fb / z;
+    if (!sbl__finite(fbz)) return 0;
+    *ox = px + s->dir[back] * ((double)fbz - s->offset);
+    *oy = py;
+    *oz = (double)z;
+    return 1;
+}
+
+/* SBL_RIG_DISPARITY: the eye's own map, (d_x[, d_y]) left minus right. */
+static int sbl__stereo_map_disparity(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                     double px, double py, double *ox, double *oy, double *oz)
+{
+    const sbl__flat *m = &s->disparity[back];
+    const float *d = SBL__AT(*m, ix, iy);
+    float dy = m->ch > 1 ? d[1] : 0.0f;
+    if (!sbl__finite(d[0]) || !sbl__finite(dy)) return 0;
+    *ox = px + s->dir[back] * (double)d[0];
+    *oy = py + s->dir[back] * (double)dy;
+    *oz = s->depth[back].p ? (double)*SBL__AT(s->depth[back], ix, iy) : 0.0;
+    return 1;
+}
+
+/* SBL_RIG_MATRICES, SBL_RIG_PINHOLE: unproject at the eye's depth, project into the
+   other eye. */
+static int sbl__stereo_map_cameras(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                   double px, double py, double *ox, double *oy, double *oz)
+{
+    float z = sbl__valid_depth(&s->depth[back], ix, iy);
+    if (z == 0.0f) return 0;
+    return sbl__cam_map_apply(back ? &s->to_target : &s->to_source, px, py, z, ox, oy, oz);
+}
+
+/* The pinhole rig as two cameras (the left eye's view space is the world). */
+static int sbl__pinhole_rig_maps(sbl__stereo_rp *s, const sbl_pinhole_rig *p, int w, int h)
+{
+    double view[2][16], proj[2][16];
+    float identity[16];
+    int e, i, t = (int)s->target_eye;
+    for (i = 0; i < 16; ++i) identity[i] = (i % 5 == 0) ? 1.0f : 0.0f;
+    for (e = 0; e < 2; ++e)
+        if (!sbl__pinhole_gl(&p->eye[e], e ? p->right_from_left : identity, p->axes,
+                             p->integer_pixel_centers, w, h, view[e], proj[e]))
+            return 0;
+    return sbl__cam_map_init_gl(&s->to_source, view[t], proj[t], w, h, view[!t], proj[!t],
+                                w, h) &&
+           sbl__cam_map_init_gl(&s->to_target, view[!t], proj[!t], w, h, view[t], proj[t],
+                                w, h);
+}
+
 static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
                                       sbl_eye_index target_eye, const sbl_eye *target,
                                       const sbl_eye *source, int target_needs_color)
 {
     sbl_result r;
+    int w, h, e;
     if (!desc || !target || !source) return SBL_ERROR_NULL_POINTER;
     s->d = sbl_stereo_defaults(desc);
     if ((int)s->d.rig < 0 || s->d.rig >= SBL_RIG_COUNT) return SBL_ERROR_INVALID_PARAM;
@@ -2471,7 +3614,8 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     if ((r = sbl__check_reproject_desc(&s->d.reproject)) != SBL_OK) return r;
     if (s->d.rig == SBL_RIG_PARALLEL &&
         (!sbl__finite(s->d.focal_px) || !(s->d.focal_px > 0.0f) ||
-         !sbl__finite(s->d.baseline) || !(s->d.baseline > 0.0f)))
+         !sbl__finite(s->d.baseline) || !(s->d.baseline > 0.0f) ||
+         !sbl__finite(s->d.disparity_offset)))
         return SBL_ERROR_INVALID_PARAM;
     if ((r = sbl__check_eye(target, s->d.rig, target_needs_color)) != SBL_OK) return r;
     if ((r = sbl__check_eye(source, s->d.rig, 1)) != SBL_OK) return r;
@@ -2485,25 +3629,34 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->source = source;
     sbl__tap_src_init(&s->src, &source->color, &source->length, &source->gbuffer,
                       &target->gbuffer, &s->d.reproject);
-    s->geo = sbl__target_geo_make(&target->gbuffer, source->color.width, source->color.height);
-    if (s->d.rig == SBL_RIG_MATRICES) {
-        int w = source->color.width, h = source->color.height;
+    w = source->color.width; h = source->color.height;
+    s->geo = sbl__target_geo_make(&target->gbuffer, w, h);
+    for (e = 0; e < 2; ++e) {
+        const sbl_eye *eye = e ? source : target;
+        s->depth[e] = sbl__flatten(&eye->gbuffer.depth);
+        s->disparity[e] = sbl__flatten(&eye->disparity);
+    }
+    /* left eye: the other eye's position is p - d; right eye: p + d */
+    s->dir[0] = target_eye == SBL_EYE_LEFT ? -1.0 : 1.0;
+    s->dir[1] = -s->dir[0];
+    s->fb = s->d.focal_px * s->d.baseline;
+    s->offset = (double)s->d.disparity_offset;
+    switch (s->d.rig) {
+    case SBL_RIG_PARALLEL: s->map = sbl__stereo_map_parallel; break;
+    case SBL_RIG_DISPARITY: s->map = sbl__stereo_map_disparity; break;
+    case SBL_RIG_PINHOLE:
+        s->map = sbl__stereo_map_cameras;
+        if (!sbl__pinhole_rig_maps(s, &s->d.pinhole, w, h)) return SBL_ERROR_INVALID_PARAM;
+        break;
+    case SBL_RIG_MATRICES:
+    case SBL_RIG_COUNT:
+        s->map = sbl__stereo_map_cameras;
         if (!sbl__cam_map_init(&s->to_source, target->camera, w, h, source->camera, w, h) ||
             !sbl__cam_map_init(&s->to_target, source->camera, w, h, target->camera, w, h))
             return SBL_ERROR_INVALID_PARAM;
+        break;
     }
     return SBL_OK;
-}
-
-/* Horizontal disparity (pixels) of a view's pixel for the parallel / disparity rigs. */
-static float sbl__disparity(const sbl__stereo_rp *s, const sbl_eye *e, int x, int y)
-{
-    if (s->d.rig == SBL_RIG_DISPARITY) return *sbl__px(&e->disparity, x, y);
-    {
-        float z = *sbl__px(&e->gbuffer.depth, x, y);
-        if (sbl__is_pos_inf(z)) return 0.0f;
-        return s->d.focal_px * s->d.baseline / z;
-    }
 }
 
 /* The other eye's colour at target pixel (x, y) after tap tests and back-check;
@@ -2511,50 +3664,26 @@ static float sbl__disparity(const sbl__stereo_rp *s, const sbl_eye *e, int x, in
 static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 {
     const sbl__stereo_rp *s = (const sbl__stereo_rp *)ctx;
-    const sbl_eye *t = s->target, *src = s->source;
-    /* target left: the source (right) position is u - disparity; target right: u + d */
-    double dir = s->target_eye == SBL_EYE_LEFT ? -1.0 : 1.0;
+    const int sw = s->source->color.width, sh = s->source->color.height;
     double sx, sy, sz, bx, by, bz;
     float z, n;
     sbl__tap_want want;
     int ix, iy;
     if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) return 0.0f;
-    if (s->d.rig == SBL_RIG_MATRICES) {
-        if (!sbl__cam_map_apply(&s->to_source, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
-    } else {
-        float disp = sbl__disparity(s, t, x, y);
-        if (!sbl__finite(disp) || disp < 0.0f) return 0.0f;
-        sx = x + 0.5 + dir * disp;
-        sy = y + 0.5;
-        sz = z;
-    }
+    if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) return 0.0f;
     /* the match must lie inside the source image: outside it, the bilinear
        renormalisation and the 3x3 fallback would replicate the edge pixels */
-    if (!(sx >= 0.0 && sx < (double)src->color.width && sy >= 0.0 &&
-          sy < (double)src->color.height))
-        return 0.0f;
+    if (!(sx >= 0.0 && sx < (double)sw && sy >= 0.0 && sy < (double)sh)) return 0.0f;
     want.depth = (float)sz;
     n = sbl__gather(&s->src, &want, sx, sy, !s->d.reproject.no_fallback, out);
     if (!(n > 0.0f)) return 0.0f;
 
     /* back-check: from the nearest source pixel, with the source's own geometry, the
        correspondence must come back to within back_check_pixels of where it started */
+    if (s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK) return n;
     ix = (int)floor(sx);
     iy = (int)floor(sy);
-    if (ix < 0) ix = 0;
-    if (iy < 0) iy = 0;
-    if (ix >= src->color.width) ix = src->color.width - 1;
-    if (iy >= src->color.height) iy = src->color.height - 1;
-    if (s->d.rig == SBL_RIG_MATRICES) {
-        float zs = *sbl__px(&src->gbuffer.depth, ix, iy);
-        if (!(zs > 0.0f) || (!sbl__finite(zs) && !sbl__is_pos_inf(zs))) return 0.0f;
-        if (!sbl__cam_map_apply(&s->to_target, sx, sy, zs, &bx, &by, &bz)) return 0.0f;
-    } else {
-        float ds = sbl__disparity(s, src, ix, iy);
-        if (!sbl__finite(ds) || ds < 0.0f) return 0.0f;
-        bx = sx - dir * ds;
-        by = sy;
-    }
+    if (!s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)) return 0.0f;
     {
         double ex = bx - (x + 0.5), ey = by - (y + 0.5);
         double tol = s->d.reproject.back_check_pixels;
@@ -2612,11 +3741,12 @@ SBLDEF size_t sbl_stereo_scratch_size(int width, int channels)
     return sbl__kernel_scratch_size(width, channels);
 }
 
-/* All validation of a stereo blend, without writing anything. */
-static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
-                                          sbl_eye_index target_eye, const sbl_eye *target,
-                                          const sbl_eye *source, const sbl_image *out_color,
-                                          const sbl_image *out_length)
+/* All validation of a stereo blend with its outputs, without writing anything. */
+static sbl_result sbl__stereo_output_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
+                                           sbl_eye_index target_eye, const sbl_eye *target,
+                                           const sbl_eye *source, const sbl_image *out_color,
+                                           const sbl_image *out_length,
+                                           const sbl_image *out_beta)
 {
     sbl_result r;
     int w, h;
@@ -2630,22 +3760,39 @@ static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_de
     if (out_color->width != w || out_color->height != h) return SBL_ERROR_SIZE_MISMATCH;
     if (out_color->channels != target->color.channels) return SBL_ERROR_CHANNEL_MISMATCH;
     if ((r = sbl__check_optional(out_length, 1, w, h)) != SBL_OK) return r;
-    if (sbl__overlap(out_color, out_length)) return SBL_ERROR_OVERLAP;
+    if ((r = sbl__check_optional(out_beta, 1, w, h)) != SBL_OK) return r;
+    if (sbl__overlap(out_color, out_length) || sbl__overlap(out_color, out_beta) ||
+        sbl__overlap(out_length, out_beta))
+        return SBL_ERROR_OVERLAP;
     if ((r = sbl__check_outputs_vs_eyes(out_color, target, source)) != SBL_OK) return r;
     if ((r = sbl__check_outputs_vs_eyes(out_length, target, source)) != SBL_OK) return r;
+    if ((r = sbl__check_outputs_vs_eyes(out_beta, target, source)) != SBL_OK) return r;
     return SBL_OK;
 }
 
-SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
-                                   const sbl_eye *target, const sbl_eye *source,
-                                   sbl_image out_color, sbl_image out_length,
-                                   int y0, int y1, void *scratch, size_t scratch_bytes)
+/* All validation of a stereo blend, without writing anything. */
+static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
+                                          sbl_eye_index target_eye, const sbl_eye *target,
+                                          const sbl_eye *source, const sbl_image *out_color,
+                                          const sbl_image *out_length)
+{
+    sbl_image none;
+    memset(&none, 0, sizeof none);
+    return sbl__stereo_output_check(s, desc, target_eye, target, source, out_color,
+                                    out_length, &none);
+}
+
+SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                    const sbl_eye *target, const sbl_eye *source,
+                                    const sbl_stereo_output *out, int y0, int y1,
+                                    void *scratch, size_t scratch_bytes)
 {
     sbl__stereo_rp s;
     sbl__kernel k;
     sbl_result r;
-    if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
-                                     &out_length)) != SBL_OK)
+    if (!out) return SBL_ERROR_NULL_POINTER;
+    if ((r = sbl__stereo_output_check(&s, desc, target_eye, target, source, &out->color,
+                                      &out->length, &out->beta)) != SBL_OK)
         return r;
     if ((r = sbl__check_rows(y0, y1, target->color.height)) != SBL_OK) return r;
     if (!scratch) return SBL_ERROR_NULL_POINTER;
@@ -2665,11 +3812,540 @@ SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index ta
     k.own_n = &target->length;
     k.gather = sbl__stereo_rp_pixel;
     k.gather_ctx = &s;
-    k.out = out_color;
-    k.out_n = out_length;
+    k.out = out->color;
+    k.out_n = out->length;
+    k.out_a = out->beta;
     sbl__kernel_bind(&k, scratch);
     sbl__kernel_run(&k, y0, y1);
     return SBL_OK;
+}
+
+SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                   const sbl_eye *target, const sbl_eye *source,
+                                   sbl_image out_color, sbl_image out_length,
+                                   int y0, int y1, void *scratch, size_t scratch_bytes)
+{
+    sbl_stereo_output out;
+    memset(&out, 0, sizeof out);
+    out.color = out_color;
+    out.length = out_length;
+    return sbl_stereo_filter(desc, target_eye, target, source, &out, y0, y1, scratch,
+                             scratch_bytes);
+}
+
+/* ------------------------------------------------------------------------ */
+/* Diagnostics                                                              */
+/* ------------------------------------------------------------------------ */
+
+/* The walk over named arguments: the first check that fails with the code the call
+   returns is the culprit, so the named field always explains the actual result. */
+typedef struct sbl__walk {
+    sbl_diag *d;
+    sbl_result want;
+    int found;
+} sbl__walk;
+
+static void sbl__diag_copy(char *dst, size_t n, const char *a, const char *b)
+{
+    size_t i = 0, j;
+    for (j = 0; a && a[j] && i + 1 < n; ++j) dst[i++] = a[j];
+    for (j = 0; b && b[j] && i + 1 < n; ++j) dst[i++] = b[j];
+    dst[i] = '\0';
+}
+
+/* Records field (name + suffix) and message if r is the code looked for. */
+static int sbl__blame(sbl__walk *w, sbl_result r, const char *name, const char *suffix,
+                      const char *message)
+{
+    if (w->found || r == SBL_OK || r != w->want) return 0;
+    w->found = 1;
+    sbl__diag_copy(w->d->field, sizeof w->d->field, name, suffix);
+    sbl__diag_copy(w->d->message, sizeof w->d->message, message, NULL);
+    return 1;
+}
+
+static void sbl__warn(sbl_diag *d, const char *name, const char *message)
+{
+    if (d->warning[0]) return;
+    sbl__diag_copy(d->warning, sizeof d->warning, name, message);
+}
+
+/* A named view: why sbl__check_image / sbl__check_optional refuse it. w = 0: no size
+   to match. Returns the code. */
+static sbl_result sbl__walk_image(sbl__walk *wk, const char *name, const sbl_image *im,
+                                  int want_ch, int w, int h, int optional)
+{
+    sbl_result r;
+    char msg[160];
+    if (!im->data) {
+        if (optional) return SBL_OK;
+        sbl__blame(wk, SBL_ERROR_NULL_POINTER, name, ".data", "is NULL: the buffer is required");
+        return SBL_ERROR_NULL_POINTER;
+    }
+    r = sbl__check_image(im, want_ch);
+    switch (r) {
+    case SBL_ERROR_INVALID_SIZE:
+        if (im->width <= 0 || im->height <= 0) {
+            snprintf(msg, sizeof msg, "%d x %d: width and height must be > 0", im->width, im->height);
+            sbl__blame(wk, r, name, ".width", msg);
+        } else if (im->size_bytes != 0 && im->width <= INT_MAX / 4 && im->height <= INT_MAX / 4) {
+            snprintf(msg, sizeof msg, "%zu bytes, but the layout (rows, strides) reaches over "
+                     "%zu bytes: is a pitch in bytes given in the float field `stride`?",
+                     im->size_bytes, sbl__footprint(im));
+            sbl__blame(wk, r, name, ".size_bytes", msg);
+        } else {
+            sbl__blame(wk, r, name, ".width", "too large to address");
+        }
+        break;
+    case SBL_ERROR_INVALID_CHANNELS:
+        if (want_ch) snprintf(msg, sizeof msg, "%d, this buffer needs %d", im->channels, want_ch);
+        else snprintf(msg, sizeof msg, "%d, outside 1..4", im->channels);
+        sbl__blame(wk, r, name, ".channels", msg);
+        break;
+    case SBL_ERROR_INVALID_STRIDE:
+        if (im->stride_bytes % (int)sizeof(float) != 0) {
+            snprintf(msg, sizeof msg, "%d is not a multiple of sizeof(float)", im->stride_bytes);
+            sbl__blame(wk, r, name, ".stride_bytes", msg);
+        } else if (im->pixel_bytes % (int)sizeof(float) != 0 ||
+                   (im->pixel_bytes != 0 && im->pixel_bytes < im->channels * (int)sizeof(float))) {
+            snprintf(msg, sizeof msg, "%d: must be a multiple of sizeof(float) and hold %d channels",
+                     im->pixel_bytes, im->channels);
+            sbl__blame(wk, r, name, ".pixel_bytes", msg);
+        } else if (im->stride_bytes != 0 && im->stride != 0) {
+            snprintf(msg, sizeof msg, "%d bytes disagrees with stride = %d floats (give one)",
+                     im->stride_bytes, im->stride);
+            sbl__blame(wk, r, name, ".stride_bytes", msg);
+        } else {
+            snprintf(msg, sizeof msg, "a row of %d pixels does not fit in |row stride| (%td floats): "
+                     "rows would overlap", im->width, sbl__stride(im));
+            sbl__blame(wk, r, name, im->stride_bytes ? ".stride_bytes" : ".stride", msg);
+        }
+        break;
+    default:
+        sbl__blame(wk, r, name, "", sbl_result_string(r));
+        break;
+    }
+    if (r == SBL_OK && w > 0 && (im->width != w || im->height != h)) {
+        r = SBL_ERROR_SIZE_MISMATCH;
+        snprintf(msg, sizeof msg, "%d x %d, expected %d x %d", im->width, im->height, w, h);
+        sbl__blame(wk, r, name, ".width", msg);
+    }
+    return r;
+}
+
+static void sbl__walk_gbuffer(sbl__walk *wk, const char *name, const sbl_gbuffer *g, int w, int h)
+{
+    char f[64];
+    sbl__diag_copy(f, sizeof f, name, ".depth");
+    sbl__walk_image(wk, f, &g->depth, 1, w, h, 1);
+    sbl__diag_copy(f, sizeof f, name, ".normals");
+    sbl__walk_image(wk, f, &g->normals, 3, w, h, 1);
+    sbl__diag_copy(f, sizeof f, name, ".ids");
+    sbl__walk_image(wk, f, &g->ids, 1, w, h, 1);
+    sbl__diag_copy(f, sizeof f, name, ".motion");
+    sbl__walk_image(wk, f, &g->motion, 2, w, h, 1);
+}
+
+/* Overlap of two views that may not have passed validation (the walk goes on after a
+   failure): only valid views have a meaningful footprint. */
+static int sbl__overlap_checked(const sbl_image *a, const sbl_image *b)
+{
+    return a->data && b->data && sbl__check_image(a, 0) == SBL_OK &&
+           sbl__check_image(b, 0) == SBL_OK && sbl__overlap(a, b);
+}
+
+/* An output against a named list of views it may not share a float with. */
+static void sbl__walk_overlap(sbl__walk *wk, const char *name, const sbl_image *o,
+                              const sbl_image *const *in, const char *const *in_names, int n)
+{
+    int i;
+    for (i = 0; i < n; ++i)
+        if (in[i] && sbl__overlap_checked(o, in[i]))
+            sbl__blame(wk, SBL_ERROR_OVERLAP, name, "", in_names[i]);
+}
+
+/* The G-buffer tests a pair of views runs: warn where one side has a buffer the other
+   lacks (the test is then silently off). */
+static void sbl__warn_gbuffers(sbl_diag *d, const char *a_name, const sbl_gbuffer *a,
+                               const char *b_name, const sbl_gbuffer *b)
+{
+    const sbl_image *ai[3], *bi[3];
+    const char *what[3] = {".depth", ".normals", ".ids"};
+    const char *test[3] = {": absent while the other view has it, so the depth test is off",
+                           ": absent while the other view has it, so the normal test is off",
+                           ": absent while the other view has it, so the id test is off"};
+    int i;
+    char f[96];
+    ai[0] = &a->depth; ai[1] = &a->normals; ai[2] = &a->ids;
+    bi[0] = &b->depth; bi[1] = &b->normals; bi[2] = &b->ids;
+    for (i = 0; i < 3; ++i) {
+        if (!ai[i]->data == !bi[i]->data) continue;
+        sbl__diag_copy(f, sizeof f, ai[i]->data ? b_name : a_name, what[i]);
+        sbl__warn(d, f, test[i]);
+    }
+}
+
+SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl_frame *frame,
+                                        const sbl_history *history,
+                                        const sbl_temporal_output *out, sbl_diag *diag)
+{
+    sbl_diag local;
+    sbl__walk wk;
+    sbl_result r;
+    int w, h;
+    if (!diag) diag = &local;
+    memset(diag, 0, sizeof *diag);
+    /* scratch NULL: the filter runs every other check first, so NULL_POINTER with every
+       required pointer present means the arguments are valid */
+    r = sbl_temporal_filter(desc, frame, history, out, 0, 0, NULL, 0);
+    wk.d = diag; wk.want = r; wk.found = 0;
+    if (!desc) sbl__blame(&wk, r, "desc", "", "is NULL");
+    if (!frame) sbl__blame(&wk, r, "frame", "", "is NULL");
+    if (!out) sbl__blame(&wk, r, "out", "", "is NULL");
+    if (!desc || !frame || !out) { diag->result = r; return r; }
+    w = frame->color.width; h = frame->color.height;
+    sbl__walk_image(&wk, "frame->color", &frame->color, 0, 0, 0, 0);
+    sbl__walk_image(&wk, "out->color", &out->color, 0, w, h, 0);
+    sbl__walk_image(&wk, "out->length", &out->length, 1, w, h, 0);
+    sbl__walk_image(&wk, "out->alpha", &out->alpha, 1, w, h, 1);
+    if (r == SBL_ERROR_NULL_POINTER && !wk.found) r = wk.want = SBL_OK; /* the scratch */
+    if (out->color.data && out->color.channels != frame->color.channels)
+        sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "out->color", ".channels",
+                   "differs from frame->color.channels");
+    {   /* parameters, one at a time against the defaults */
+        sbl_temporal_desc z = sbl_temporal_defaults(NULL), u = sbl_temporal_defaults(desc), t;
+        char msg[96];
+#define SBL__TRY_WEIGHT(fieldname)                                                          \
+        t = z; t.fieldname = u.fieldname;                                                   \
+        if (sbl__check_weight_params(t.estimator, t.rectify, t.weight_mode, t.constant_alpha, \
+                                     t.alpha_min, t.clip_gamma, t.bias_threshold) != SBL_OK) { \
+            snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
+                     (double)u.fieldname);                                           \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
+        }
+        SBL__TRY_WEIGHT(estimator)
+        SBL__TRY_WEIGHT(rectify)
+        SBL__TRY_WEIGHT(weight_mode)
+        SBL__TRY_WEIGHT(constant_alpha)
+        SBL__TRY_WEIGHT(alpha_min)
+        SBL__TRY_WEIGHT(clip_gamma)
+        SBL__TRY_WEIGHT(bias_threshold)
+#undef SBL__TRY_WEIGHT
+        if (!sbl__finite(u.max_history) || u.max_history < 1.0f)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->max_history", "",
+                       "must be finite and >= 1");
+#define SBL__TRY_RP(fieldname)                                                              \
+        t = z; t.reproject.fieldname = u.reproject.fieldname;                               \
+        if (sbl__check_reproject_desc(&t.reproject) != SBL_OK)                              \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->reproject." #fieldname, "",    \
+                       "out of range or not finite");
+        SBL__TRY_RP(depth_tolerance)
+        SBL__TRY_RP(normal_threshold)
+        SBL__TRY_RP(back_check_pixels)
+        SBL__TRY_RP(motion.units)
+        SBL__TRY_RP(disabled_tests)
+#undef SBL__TRY_RP
+        if ((int)u.source < 0 || (int)u.source > (int)SBL_TEMPORAL_CAMERA)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->source", "", "not an sbl_temporal_source");
+        sbl__walk_gbuffer(&wk, "frame->gbuffer", &frame->gbuffer, w, h);
+        if (history && history->color.data) {
+            sbl__walk_image(&wk, "history->color", &history->color, 0, w, h, 0);
+            if (history->color.channels != frame->color.channels)
+                sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "history->color", ".channels",
+                           "differs from frame->color.channels");
+            sbl__walk_image(&wk, "history->length", &history->length, 1, w, h, 1);
+            sbl__walk_gbuffer(&wk, "history->gbuffer", &history->gbuffer, w, h);
+        }
+        if (u.source == SBL_TEMPORAL_MOTION && !frame->gbuffer.motion.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->gbuffer.motion", "",
+                       "is absent: SBL_TEMPORAL_MOTION needs motion vectors");
+        if (u.source == SBL_TEMPORAL_CAMERA) {
+            if (!frame->gbuffer.depth.data)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->gbuffer.depth", "",
+                           "is absent: SBL_TEMPORAL_CAMERA needs depth");
+            if (!frame->camera)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->camera", "",
+                           "is NULL: SBL_TEMPORAL_CAMERA needs both frames' cameras");
+            if (frame->object_count && !frame->gbuffer.ids.data)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->gbuffer.ids", "",
+                           "is absent: frame->objects are found through the id buffer");
+            if (!sbl__objects_ok(frame->objects, frame->object_count))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "frame->objects", "",
+                           "need finite, invertible transforms, sorted by distinct ids "
+                           "(and object_count >= 0)");
+            if (history && history->color.data && !history->camera)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "history->camera", "",
+                           "is NULL: SBL_TEMPORAL_CAMERA needs both frames' cameras");
+            if (frame->camera && history && history->color.data && history->camera) {
+                sbl__cam_map m;
+                if (!sbl__cam_map_init(&m, frame->camera, w, h, history->camera, w, h))
+                    sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "frame->camera / history->camera",
+                               "", "a matrix is not finite, or a projection or view matrix "
+                               "is singular");
+            }
+        }
+    }
+    {   /* outputs: disjoint from each other and from every input */
+        const sbl_image *o[3], *in[11];
+        const char *on[3] = {"out->color", "out->length", "out->alpha"};
+        const char *names[11] = {
+            "overlaps frame->color", "overlaps frame->gbuffer.depth",
+            "overlaps frame->gbuffer.normals", "overlaps frame->gbuffer.ids",
+            "overlaps frame->gbuffer.motion", "overlaps history->color",
+            "overlaps history->length", "overlaps history->gbuffer.depth",
+            "overlaps history->gbuffer.normals", "overlaps history->gbuffer.ids",
+            "overlaps history->gbuffer.motion"};
+        int i, j;
+        const sbl_history *hi = history && history->color.data ? history : NULL;
+        o[0] = &out->color; o[1] = &out->length; o[2] = &out->alpha;
+        in[0] = &frame->color; in[1] = &frame->gbuffer.depth; in[2] = &frame->gbuffer.normals;
+        in[3] = &frame->gbuffer.ids; in[4] = &frame->gbuffer.motion;
+        in[5] = hi ? &hi->color : NULL; in[6] = hi ? &hi->length : NULL;
+        in[7] = hi ? &hi->gbuffer.depth : NULL; in[8] = hi ? &hi->gbuffer.normals : NULL;
+        in[9] = hi ? &hi->gbuffer.ids : NULL; in[10] = hi ? &hi->gbuffer.motion : NULL;
+        for (i = 0; i < 3; ++i)
+            for (j = i + 1; j < 3; ++j)
+                if (sbl__overlap_checked(o[i], o[j]))
+                    sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
+        for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 11);
+    }
+    if (r != SBL_OK && !wk.found) {
+        sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);
+        sbl__diag_copy(diag->message, sizeof diag->message, sbl_result_string(r), NULL);
+    }
+    /* legal but probably unintended */
+    if (history && history->color.data) {
+        sbl__warn_gbuffers(diag, "frame->gbuffer", &frame->gbuffer, "history->gbuffer",
+                           &history->gbuffer);
+        if (!history->length.data)
+            sbl__warn(diag, "history->length",
+                      ": absent, so N = 1 everywhere (the progressive and history-aware "
+                      "estimators then blend 1:1): pass last frame's out->length");
+    }
+    diag->result = r;
+    return r;
+}
+
+/* Round-trip error of the rig's correspondence over a sample of target pixels (a grid
+   of at most ~64 x 64): target -> source -> back from the nearest source pixel. With the
+   right eye assignment it is the error of a nearest-pixel lookup; with the eyes swapped
+   the match lands on another point and the error grows with the disparity gradient
+   (zero only where the disparity is constant, where a swap cannot be seen). */
+static double sbl__sample_roundtrip(const sbl__stereo_rp *s, int w, int h, long *count)
+{
+    int stx = w / 64 + 1, sty = h / 64 + 1, x, y;
+    double sum = 0.0;
+    long n = 0;
+    for (y = sty / 2; y < h; y += sty)
+        for (x = stx / 2; x < w; x += stx) {
+            double sx, sy, sz, bx, by, bz, ex, ey;
+            float z;
+            sbl__tap_want want;
+            if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
+            if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
+            if (!(sx >= 0.0 && sx < (double)w && sy >= 0.0 && sy < (double)h)) continue;
+            if (!s->map(s, 1, (int)floor(sx), (int)floor(sy), sx, sy, &bx, &by, &bz)) continue;
+            ex = bx - (x + 0.5);
+            ey = by - (y + 0.5);
+            if (!(ex * ex + ey * ey < 1e6)) continue;
+            sum += sqrt(ex * ex + ey * ey);
+            ++n;
+        }
+    *count = n;
+    return n ? sum / (double)n : 0.0;
+}
+
+SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                      const sbl_eye *target, const sbl_eye *source,
+                                      const sbl_stereo_output *out, sbl_diag *diag)
+{
+    sbl_diag local;
+    sbl__walk wk;
+    sbl__stereo_rp s;
+    sbl_result r;
+    int e, w, h;
+    if (!diag) diag = &local;
+    memset(diag, 0, sizeof *diag);
+    if (out) {
+        r = sbl_stereo_filter(desc, target_eye, target, source, out, 0, 0, NULL, 0);
+    } else {
+        r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0);
+        if (r == SBL_OK) r = SBL_ERROR_NULL_POINTER; /* as the filter reports a NULL scratch */
+    }
+    wk.d = diag; wk.want = r; wk.found = 0;
+    if (!desc) sbl__blame(&wk, r, "desc", "", "is NULL");
+    if (!target) sbl__blame(&wk, r, "target", "", "is NULL");
+    if (!source) sbl__blame(&wk, r, "source", "", "is NULL");
+    if (!desc || !target || !source) { diag->result = r; return r; }
+    w = source->color.width; h = source->color.height;
+    for (e = 0; e < 2; ++e) {
+        const sbl_eye *eye = e ? source : target;
+        const char *nm = e ? "source" : "target";
+        int need = e || out;
+        char f[64];
+        sbl__diag_copy(f, sizeof f, nm, "->color");
+        sbl__walk_image(&wk, f, &eye->color, 0, e ? 0 : w, h, !need);
+        sbl__diag_copy(f, sizeof f, nm, "->gbuffer");
+        sbl__walk_gbuffer(&wk, f, &eye->gbuffer, w, h);
+        sbl__diag_copy(f, sizeof f, nm, "->length");
+        sbl__walk_image(&wk, f, &eye->length, 1, w, h, 1);
+        sbl__diag_copy(f, sizeof f, nm, "->disparity");
+        sbl__walk_image(&wk, f, &eye->disparity, 0, w, h, 1);
+        if (eye->disparity.data && eye->disparity.channels > 2)
+            sbl__blame(&wk, SBL_ERROR_INVALID_CHANNELS, f, ".channels",
+                       "a disparity map has 1 (d_x) or 2 (d_x, d_y) channels");
+        if (!need && !eye->gbuffer.depth.data && !eye->disparity.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, nm, "->gbuffer.depth",
+                       "is absent: the target's geometry (depth or disparity) is required");
+        sbl__diag_copy(f, sizeof f, nm, "->gbuffer.depth");
+        if (desc->rig != SBL_RIG_DISPARITY && !eye->gbuffer.depth.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is absent: this rig needs both eyes' depth");
+        sbl__diag_copy(f, sizeof f, nm, "->disparity");
+        if (desc->rig == SBL_RIG_DISPARITY && !eye->disparity.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is absent: SBL_RIG_DISPARITY needs both eyes' maps");
+        sbl__diag_copy(f, sizeof f, nm, "->camera");
+        if (desc->rig == SBL_RIG_MATRICES && !eye->camera)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is NULL: SBL_RIG_MATRICES needs both eyes' cameras");
+    }
+    if (desc->rig == SBL_RIG_MATRICES && target->camera && source->camera) {
+        sbl__cam_map m;
+        if (!sbl__cam_map_init(&m, target->camera, w, h, source->camera, w, h))
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "target->camera / source->camera", "",
+                       "a matrix is not finite, or a projection or view matrix is singular");
+    }
+    if (r == SBL_ERROR_NULL_POINTER && !wk.found) r = wk.want = SBL_OK; /* the scratch */
+    if (out) {
+        sbl__walk_image(&wk, "out->color", &out->color, 0, w, h, 0);
+        sbl__walk_image(&wk, "out->length", &out->length, 1, w, h, 1);
+        sbl__walk_image(&wk, "out->beta", &out->beta, 1, w, h, 1);
+        if (out->color.data && out->color.channels != target->color.channels)
+            sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "out->color", ".channels",
+                       "differs from target->color.channels");
+    }
+    if (target->color.data && source->color.data &&
+        target->color.channels != source->color.channels)
+        sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "target->color", ".channels",
+                   "differs from source->color.channels");
+    if (sbl__eye_width(target) != w || sbl__eye_height(target) != h)
+        sbl__blame(&wk, SBL_ERROR_SIZE_MISMATCH, "target", "", "differs in size from source");
+    {
+        sbl_stereo_desc z = sbl_stereo_defaults(NULL), u = sbl_stereo_defaults(desc), t;
+        char msg[96];
+        if ((int)u.rig < 0 || u.rig >= SBL_RIG_COUNT)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->rig", "", "not an sbl_stereo_rig");
+        if ((int)target_eye != 0 && (int)target_eye != 1)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "target_eye", "", "must be SBL_EYE_LEFT or SBL_EYE_RIGHT");
+        if (u.rig == SBL_RIG_PARALLEL) {
+            if (!sbl__finite(u.focal_px) || !(u.focal_px > 0.0f))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->focal_px", "",
+                           "must be finite and > 0 for SBL_RIG_PARALLEL");
+            if (!sbl__finite(u.baseline) || !(u.baseline > 0.0f))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->baseline", "",
+                           "must be finite and > 0 for SBL_RIG_PARALLEL");
+            if (!sbl__finite(u.disparity_offset))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->disparity_offset", "", "not finite");
+        }
+        if (u.rig == SBL_RIG_PINHOLE) {
+            double v[16], p[16], inv[16];
+            float id[16];
+            int i;
+            for (i = 0; i < 16; ++i) id[i] = (i % 5 == 0) ? 1.0f : 0.0f;
+            for (e = 0; e < 2; ++e)
+                if (!sbl__pinhole_gl(&u.pinhole.eye[e], id, u.pinhole.axes, 0, w > 0 ? w : 1,
+                                     h > 0 ? h : 1, v, p))
+                    sbl__blame(&wk, SBL_ERROR_INVALID_PARAM,
+                               e ? "desc->pinhole.eye[1]" : "desc->pinhole.eye[0]", "",
+                               "fx, fy must be > 0 and everything finite (or axes invalid)");
+            for (i = 0; i < 16; ++i) v[i] = (double)u.pinhole.right_from_left[i];
+            if (!sbl__mat_invert(inv, v))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->pinhole.right_from_left", "",
+                           "not finite or singular (a zero-initialised pose is singular: "
+                           "set at least the identity)");
+        }
+#define SBL__TRY_WEIGHT(fieldname)                                                          \
+        t = z; t.fieldname = u.fieldname;                                                   \
+        if (out && sbl__check_weight_params(t.estimator, t.rectify, t.weight_mode,           \
+                                            t.constant_beta,                                \
+                                     0.0f, t.clip_gamma, t.bias_threshold) != SBL_OK) {     \
+            snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
+                     (double)u.fieldname);                                           \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
+        }
+        SBL__TRY_WEIGHT(estimator)
+        SBL__TRY_WEIGHT(rectify)
+        SBL__TRY_WEIGHT(weight_mode)
+        SBL__TRY_WEIGHT(constant_beta)
+        SBL__TRY_WEIGHT(clip_gamma)
+        SBL__TRY_WEIGHT(bias_threshold)
+#undef SBL__TRY_WEIGHT
+#define SBL__TRY_RP(fieldname)                                                              \
+        t = z; t.reproject.fieldname = u.reproject.fieldname;                               \
+        if (sbl__check_reproject_desc(&t.reproject) != SBL_OK)                              \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->reproject." #fieldname, "",    \
+                       "out of range or not finite");
+        SBL__TRY_RP(depth_tolerance)
+        SBL__TRY_RP(normal_threshold)
+        SBL__TRY_RP(back_check_pixels)
+        SBL__TRY_RP(disabled_tests)
+#undef SBL__TRY_RP
+    }
+    if (out) {
+        const sbl_image *o[3], *in[14];
+        const char *on[3] = {"out->color", "out->length", "out->beta"};
+        const char *names[14] = {
+            "overlaps target->color", "overlaps target->length", "overlaps target->disparity",
+            "overlaps target->gbuffer.depth", "overlaps target->gbuffer.normals",
+            "overlaps target->gbuffer.ids", "overlaps target->gbuffer.motion",
+            "overlaps source->color", "overlaps source->length", "overlaps source->disparity",
+            "overlaps source->gbuffer.depth", "overlaps source->gbuffer.normals",
+            "overlaps source->gbuffer.ids", "overlaps source->gbuffer.motion"};
+        int i, j;
+        for (e = 0; e < 2; ++e) {
+            const sbl_eye *eye = e ? source : target;
+            in[e * 7 + 0] = &eye->color; in[e * 7 + 1] = &eye->length;
+            in[e * 7 + 2] = &eye->disparity; in[e * 7 + 3] = &eye->gbuffer.depth;
+            in[e * 7 + 4] = &eye->gbuffer.normals; in[e * 7 + 5] = &eye->gbuffer.ids;
+            in[e * 7 + 6] = &eye->gbuffer.motion;
+        }
+        o[0] = &out->color; o[1] = &out->length; o[2] = &out->beta;
+        for (i = 0; i < 3; ++i)
+            for (j = i + 1; j < 3; ++j)
+                if (sbl__overlap_checked(o[i], o[j]))
+                    sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
+        for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 14);
+    }
+    if (r != SBL_OK && !wk.found) {
+        sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);
+        sbl__diag_copy(diag->message, sizeof diag->message, sbl_result_string(r), NULL);
+    }
+    /* legal but probably unintended */
+    if (r == SBL_OK) {
+        sbl__warn_gbuffers(diag, "target->gbuffer", &target->gbuffer, "source->gbuffer",
+                           &source->gbuffer);
+        if (desc->rig != SBL_RIG_MATRICES) {
+            /* target_eye decides the direction of the correspondence (and the pinhole
+               rig's cameras): with it swapped, the matches land on other surfaces; the
+               depth, id and normal tests and the back-check then reject most of them */
+            sbl__stereo_rp swapped;
+            long n_this, n_swap;
+            if (sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0) == SBL_OK &&
+                sbl__stereo_rp_init(&swapped, desc, target_eye == SBL_EYE_LEFT ? SBL_EYE_RIGHT
+                                                                              : SBL_EYE_LEFT,
+                                    target, source, 0) == SBL_OK) {
+                double e_this = sbl__sample_roundtrip(&s, w, h, &n_this);
+                double e_swap = sbl__sample_roundtrip(&swapped, w, h, &n_swap);
+                if (n_this > 0 && n_swap > 0 && e_this > 4.0 * e_swap && e_this > 0.05) {
+                    char msg[200];
+                    snprintf(msg, sizeof msg, ": the correspondence comes back %.3g px off on "
+                             "average, %.3g px with the other eye: are target_eye, or target "
+                             "and source, swapped?", e_this, e_swap);
+                    sbl__warn(diag, "target_eye", msg);
+                }
+            }
+        }
+    }
+    diag->result = r;
+    return r;
 }
 
 SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_eye *left,
@@ -2864,6 +4540,217 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
                 float *d = sbl__px(&dst, x, y);
                 for (k = 0; k < dst.channels; ++k) d[k] = t[k];
             }
+    return SBL_OK;
+}
+
+/* ------------------------------------------------------------------------ */
+/* 10. Adaptive computation                                                 */
+/* ------------------------------------------------------------------------ */
+
+/* Weber ratio of two values of one channel (the cases are documented at the
+   declaration); in double so that |a - b| of two finite floats cannot overflow. */
+static double sbl__weber_ratio(float a, float b)
+{
+    double da = fabs((double)a), db = fabs((double)b);
+    double m = da > db ? da : db;
+    if (!(m > 0.0)) return 0.0; /* both +-0 */
+    return fabs((double)a - (double)b) / m;
+}
+
+/* Does the byte mask [mask, mask + (h-1)*stride + w) overlap any image of the eyes or
+   either value image? */
+static int sbl__mask_overlaps(const unsigned char *mask, int mask_stride, int w, int h,
+                              const sbl_eye *a, const sbl_eye *b)
+{
+    const char *m0 = (const char *)mask;
+    const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+    return sbl__overlap_bytes_eye(m0, m1, a) || sbl__overlap_bytes_eye(m0, m1, b);
+}
+
+SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
+                                         sbl_eye_index target_eye, const sbl_eye *target,
+                                         const sbl_eye *source, sbl_image target_value,
+                                         sbl_image source_value, unsigned char *mask,
+                                         int mask_stride, int y0, int y1,
+                                         sbl_consistency_counts *counts)
+{
+    sbl__stereo_rp s;
+    sbl_eye t, o; /* the eyes with the value images as their colour, without N */
+    sbl_result r;
+    long n_ok = 0, n_bad = 0, n_none = 0;
+    int x, y, k, w, h, ch;
+    if (!target || !source) return SBL_ERROR_NULL_POINTER;
+    t = *target;
+    o = *source;
+    t.color = target_value;
+    o.color = source_value;
+    memset(&t.length, 0, sizeof t.length);
+    memset(&o.length, 0, sizeof o.length);
+    /* validates the rig, both eyes' geometry and both value images (size, channels) */
+    if ((r = sbl__stereo_rp_init(&s, desc, target_eye, &t, &o, 1)) != SBL_OK) return r;
+    if (sbl__is_zero(threshold)) threshold = SBL_WEBER_THRESHOLD;
+    if (!sbl__finite(threshold) || !(threshold > 0.0f)) return SBL_ERROR_INVALID_PARAM;
+    w = target_value.width; h = target_value.height; ch = target_value.channels;
+    if (!mask) return SBL_ERROR_NULL_POINTER;
+    if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    if (sbl__mask_overlaps(mask, mask_stride, w, h, &t, &o) ||
+        sbl__mask_overlaps(mask, mask_stride, w, h, target, source))
+        return SBL_ERROR_OVERLAP;
+    for (y = y0; y < y1; ++y) {
+        unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        for (x = 0; x < w; ++x) {
+            float other[4] = {0, 0, 0, 0};
+            const float *own = sbl__px(&target_value, x, y);
+            unsigned char cls;
+            if (!(sbl__stereo_rp_pixel(&s, x, y, other) > 0.0f)) {
+                cls = SBL_NO_CORRESPONDENCE;
+            } else if (sbl__any_nonfinite(own, ch)) {
+                cls = SBL_INCONSISTENT;
+            } else {
+                double worst = 0.0;
+                for (k = 0; k < ch; ++k) {
+                    double q = sbl__weber_ratio(own[k], other[k]);
+                    if (q > worst) worst = q;
+                }
+                cls = worst >= (double)threshold ? SBL_INCONSISTENT : SBL_CONSISTENT;
+            }
+            m[x] = cls;
+            n_ok += cls == SBL_CONSISTENT;
+            n_bad += cls == SBL_INCONSISTENT;
+            n_none += cls == SBL_NO_CORRESPONDENCE;
+        }
+    }
+    if (counts) {
+        counts->consistent = n_ok;
+        counts->inconsistent = n_bad;
+        counts->no_correspondence = n_none;
+        counts->inconsistent_ratio =
+            n_ok + n_bad > 0 ? (double)n_bad / (double)(n_ok + n_bad) : 0.0;
+    }
+    return SBL_OK;
+}
+
+/* Tiles of the adaptive pass: the blend runs on row bands of this height, on the column
+   spans of the tiles that hold a marked pixel (sbl__kernel_run_span, bit-identical to the
+   whole run there). Each band reloads the two rows around it and each span its two
+   border columns (the 3x3 window), so larger tiles waste less; smaller ones follow the
+   mask closer. */
+#define SBL__ADAPTIVE_TILE 16
+
+/* Does the tile of columns [x0, min(x1, w)) and rows [y0, y1) hold a marked pixel? */
+static int sbl__tile_marked(const unsigned char *mask, int mask_stride, int x0, int x1, int w,
+                            int y0, int y1)
+{
+    int x, y;
+    if (x1 > w) x1 = w;
+    for (y = y0; y < y1; ++y) {
+        const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        for (x = x0; x < x1; ++x)
+            if (m[x] == SBL_INCONSISTENT) return 1;
+    }
+    return 0;
+}
+
+/* The own colour and N on the unmarked pixels of rows [y0, y1) (after the blend ran on
+   their tiles); returns the count of marked pixels. */
+static long sbl__keep_own(const sbl__kernel *k, const unsigned char *mask, int mask_stride,
+                          int y0, int y1)
+{
+    long marked = 0;
+    int x, y, c;
+    for (y = y0; y < y1; ++y) {
+        const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        const float *own = sbl__px(k->own, 0, y);
+        float *o = sbl__px(&k->out, 0, y);
+        float *on = k->out_n.data ? sbl__px(&k->out_n, 0, y) : NULL;
+        for (x = 0; x < k->w; ++x) {
+            if (m[x] == SBL_INCONSISTENT) { ++marked; continue; }
+            for (c = 0; c < k->ch; ++c) o[(size_t)x * k->ch + c] = own[(size_t)x * k->ch + c];
+            if (on) on[x] = sbl__own_n(k, x, y);
+        }
+    }
+    return marked;
+}
+
+SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                          const sbl_eye *target, const sbl_eye *source,
+                                          const unsigned char *mask, int mask_stride,
+                                          sbl_image out_color, sbl_image out_length,
+                                          int y0, int y1, void *scratch,
+                                          size_t scratch_bytes, long *blended_count)
+{
+    sbl__stereo_rp s;
+    sbl__kernel k;
+    sbl_result r;
+    long marked = 0;
+    int w, h, ch, by, full0 = -1;
+    /* every check of the full blend: an empty row range validates and writes nothing */
+    if ((r = sbl_stereo_blend(desc, target_eye, target, source, out_color, out_length, y0, y0,
+                              scratch, scratch_bytes)) != SBL_OK)
+        return r;
+    w = target->color.width; h = target->color.height; ch = target->color.channels;
+    if (!mask) return SBL_ERROR_NULL_POINTER;
+    if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    {   /* the mask is read while the outputs are written */
+        const char *m0 = (const char *)mask;
+        const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+        if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes(m0, m1, &out_length))
+            return SBL_ERROR_OVERLAP;
+    }
+    if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
+                                     &out_length)) != SBL_OK)
+        return r;
+    memset(&k, 0, sizeof k); /* the kernel as sbl_stereo_blend sets it up */
+    k.w = w; k.h = h; k.ch = ch;
+    k.wp = sbl__weight_params_make(s.d.estimator, s.d.rectify, s.d.weight_mode,
+                                   s.d.constant_beta, 0.0f, s.d.clip_gamma,
+                                   s.d.bias_threshold);
+    k.n_cap = FLT_MAX;
+    k.temporal = 0;
+    k.fill = s.d.fill;
+    k.own = &target->color;
+    k.own_n = &target->length;
+    k.gather = sbl__stereo_rp_pixel;
+    k.gather_ctx = &s;
+    k.out = out_color;
+    k.out_n = out_length;
+    sbl__kernel_bind(&k, scratch);
+    /* bands on the absolute tile grid, clipped to [y0, y1); consecutive bands marked
+       across the whole width run as one (no ring reload between them) */
+    for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
+        int b0 = by > y0 ? by : y0, b1 = by + SBL__ADAPTIVE_TILE < y1 ? by + SBL__ADAPTIVE_TILE : y1;
+        int tx, span0 = -1, full = 1;
+        for (tx = 0; tx < w && full; tx += SBL__ADAPTIVE_TILE)
+            full = sbl__tile_marked(mask, mask_stride, tx, tx + SBL__ADAPTIVE_TILE, w, b0, b1);
+        if (full) {
+            if (full0 < 0) full0 = b0;
+            continue;
+        }
+        if (full0 >= 0) {
+            sbl__kernel_run(&k, full0, b0);
+            marked += sbl__keep_own(&k, mask, mask_stride, full0, b0);
+            full0 = -1;
+        }
+        /* runs of marked tiles along the band become one span each; the step past the
+           last tile closes an open span */
+        for (tx = 0; tx < w + SBL__ADAPTIVE_TILE; tx += SBL__ADAPTIVE_TILE) {
+            int marked_tile = tx < w && sbl__tile_marked(mask, mask_stride, tx,
+                                                         tx + SBL__ADAPTIVE_TILE, w, b0, b1);
+            if (marked_tile && span0 < 0) span0 = tx;
+            if (!marked_tile && span0 >= 0) {
+                sbl__kernel_run_span(&k, b0, b1, span0, tx < w ? tx : w);
+                span0 = -1;
+            }
+        }
+        marked += sbl__keep_own(&k, mask, mask_stride, b0, b1);
+    }
+    if (full0 >= 0) {
+        sbl__kernel_run(&k, full0, y1);
+        marked += sbl__keep_own(&k, mask, mask_stride, full0, y1);
+    }
+    if (blended_count) *blended_count = marked;
     return SBL_OK;
 }
 

@@ -47,7 +47,9 @@ typedef enum sbr_stereo_mode {
     SBR_STEREO_NONE = 0,
     SBR_STEREO_FILL,      /* trace the left eye; right = left reprojected, holes traced */
     SBR_STEREO_FIXED,     /* beta 0.5 */
-    SBR_STEREO_ADAPTIVE   /* beta by the chosen estimator */
+    SBR_STEREO_ADAPTIVE,  /* beta by the chosen estimator */
+    SBR_STEREO_MASKED     /* the same blend only where the eyes' luminances differ by
+                             the Weber threshold (sbl_stereo_consistency), else own */
 } sbr_stereo_mode;
 
 /* Oracle weights (bench only): the library's reprojection stage, then
@@ -62,6 +64,7 @@ typedef struct sbr_method {
     sbl_temporal_desc temporal_desc;
     sbr_stereo_mode stereo;
     sbl_stereo_desc stereo_desc;   /* rig / focal / baseline filled in by the runner */
+    float weber_threshold;         /* SBR_STEREO_MASKED: 0 -> SBL_WEBER_THRESHOLD */
 } sbr_method;
 
 typedef struct sbr_result {
@@ -86,6 +89,7 @@ int  sbr_standard_methods(sbr_method *m, int max);
 int  sbr_find_method(const char *name, sbr_method *out);
 
 int  sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx);
+void sbr_luminance(const float *rgb, float *lum, size_t n);
 double sbr_now_ms(void);
 
 #endif
@@ -419,6 +423,44 @@ static void sbr_oracle_blend(int w, int h, const float *y, const float *ny, cons
         }
 }
 
+/* Rec. 709 luminance of an RGB image (the quantity Weber's law is about). */
+void sbr_luminance(const float *rgb, float *lum, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; ++i)
+        lum[i] = 0.2126f * rgb[3 * i] + 0.7152f * rgb[3 * i + 1] + 0.0722f * rgb[3 * i + 2];
+}
+
+/* SBR_STEREO_MASKED: the consistency mask of each eye on the two eyes' luminances, then
+   the stereo blend where it marks a pixel. lum: 2 * W*H floats, mask: W*H bytes. */
+static int sbr_stereo_masked(const sbl_stereo_desc *sd, float threshold, const sbl_eye *eye,
+                             float *const *disp, float *lum, unsigned char *mask, int w, int h)
+{
+    const size_t n = (size_t)w * (size_t)h;
+    size_t bytes = sbl_stereo_scratch_size(w, 3);
+    void *scratch = malloc(bytes);
+    sbl_image L[2];
+    sbl_eye geo[2];
+    int e, rc = 0;
+    if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
+    for (e = 0; e < 2; ++e) {
+        sbr_luminance(eye[e].color.data, lum + e * n, n);
+        L[e] = sbl_image_make(lum + e * n, w, h, 1);
+        geo[e] = eye[e];
+        memset(&geo[e].length, 0, sizeof geo[e].length);
+    }
+    for (e = 0; e < 2 && rc == 0; ++e) {
+        rc = sbl_stereo_consistency(sd, threshold, (sbl_eye_index)e, &geo[e], &geo[!e], L[e],
+                                    L[!e], mask, w, 0, h, NULL);
+        if (rc == 0)
+            rc = sbl_stereo_blend_masked(sd, (sbl_eye_index)e, &eye[e], &eye[!e], mask, w,
+                                         sbl_image_make(disp[e], w, h, 3), sbl_image_make(NULL, 0, 0, 0),
+                                         0, h, scratch, bytes, NULL);
+    }
+    free(scratch);
+    return rc;
+}
+
 int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx)
 {
     const int w = s->width, h = s->height;
@@ -440,7 +482,7 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
         disp[e] = sbr_alloc(n * 3);
     }
     mask = (unsigned char *)calloc(n, 1);
-    tmp_a = sbr_alloc(n * 3);
+    tmp_a = sbr_alloc(n * 3); /* also the luminance planes of SBR_STEREO_MASKED */
     tmp_b = sbr_alloc(n * 3);
     ox = sbr_alloc(n * 3);
     onx = sbr_alloc(n);
@@ -532,6 +574,15 @@ int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn
                 rc = sbl_stereo_blend_frame(&sd, &eye[0], &eye[1], sbl_image_make(disp[0], w, h, 3),
                                             sbl_image_make(disp[1], w, h, 3));
             }
+        } else if (rc == 0 && m->stereo == SBR_STEREO_MASKED) {
+            sbl_eye eye[2];
+            for (e = 0; e < 2; ++e) {
+                memset(&eye[e], 0, sizeof eye[e]);
+                eye[e].color = sbl_image_make(tout[e], w, h, 3);
+                if (m->temporal) eye[e].length = sbl_image_make(len[e][ping[e]], w, h, 1);
+                eye[e].gbuffer = sbr_gbuffer(v[e], w, h, 0);
+            }
+            rc = sbr_stereo_masked(&sd, m->weber_threshold, eye, disp, tmp_a, mask, w, h);
         } else if (rc == 0) {
             for (e = 0; e < 2; ++e) memcpy(disp[e], tout[e], n * 3 * sizeof(float));
         }

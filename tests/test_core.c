@@ -7,6 +7,7 @@
 static sbl_image view(const sbt_img *im)
 {
     sbl_image v;
+    memset(&v, 0, sizeof v);
     v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
     return v;
 }

@@ -16,6 +16,7 @@
 #include "../stereoblend.h"
 #include "sbl_test.h"
 #include <float.h>
+#include <limits.h>
 #include <time.h>
 
 #ifdef __FAST_MATH__
@@ -78,6 +79,7 @@ static float *px(const rimg *im, int x, int y) { return im->mem + (size_t)y * im
 static sbl_image vw(const rimg *im)
 {
     sbl_image v;
+    memset(&v, 0, sizeof v);
     v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
     return v;
 }
@@ -2158,6 +2160,7 @@ static void test_merge_traced(void)
     sbt_at(&tr, 2, 0)[0] = f_nan();
     {
         sbl_image a, b;
+        memset(&a, 0, sizeof a); memset(&b, 0, sizeof b);
         a.data = dst.mem; a.width = 5; a.height = 3; a.channels = 3; a.stride = dst.stride;
         b.data = tr.mem; b.width = 5; b.height = 3; b.channels = 3; b.stride = tr.stride;
         CHECK_EQ(sbl_merge_traced(a, b, mask, 5, 0, 3), SBL_OK);

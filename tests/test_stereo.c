@@ -33,6 +33,7 @@ static void tst_free(void *p, void *ctx)
 static sbl_image view(const sbt_img *im)
 {
     sbl_image v;
+    memset(&v, 0, sizeof v);
     v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
     return v;
 }

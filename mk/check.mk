@@ -1,0 +1,170 @@
+# `make check`: every test in every configuration that can catch something distinct,
+# built once, run quietly. Included from the Makefile, which defines TESTS (a plain list:
+# append new test files there), CFLAGS_STRICT, CXXFLAGS_STRICT, OPT, LDLIBS, BUILD.
+#
+# A configuration is a compiler, its flags and the tests it runs. Each compiles the
+# implementation once (tests/sbl_impl.c -> build/<config>/stereoblend.o) and links it into
+# its tests, which are compiled with -DSTEREOBLEND_IMPLEMENTATION_DONE (so a test must
+# include what it uses, not count on the implementation's includes). A test that
+# configures the implementation (STEREOBLEND_STATIC, SBL_MALLOC) or calls internal sbl__
+# functions compiles its own copy instead.
+#
+#   gcc             C99 pedantic -Werror, $(OPT), default SIMD path (SSE2 / NEON); + test_simd
+#   clang           the same with clang
+#   cxx             the same as C++ (g++, else clang++)
+#   scalar          -DSBL_NO_SIMD (the reference path)
+#   avx2, avx512    each SIMD path the CPU can run; + test_simd (against the scalar path);
+#                   test_robust on the widest path is O3native's (-march=native)
+#   O0, O3native    test_robust at -O0 and at -O3 -march=native
+#   fastmath        test_robust with gcc -ffast-math (FTZ/DAZ set by crtfastmath.o)
+#   clang-fastmath  test_robust with clang -O3 -march=native -ffast-math
+#   asan            every test under -fsanitize=address,undefined (clang, else gcc), and
+#                   the fuzz harness replaying tests/fuzz_corpus
+#   valgrind        VALGRIND_TESTS of the gcc configuration under memcheck (no rebuild)
+#
+# Output: one line per run (PASS/FAIL, label, number of checks), then each failure's full
+# output, then "N passed, N failed" alone on the last line. A missing compiler or tool is
+# a SKIP line, never a failure. V=1 shows the compiler commands.
+
+Q := $(if $(filter 1,$(V)),,@)
+CC_GCC := $(if $(HAVE_GCC),gcc,$(CC))
+HEADER_TESTS = $(filter-out test_metrics,$(TESTS))
+VALGRIND_TESTS ?= test_core test_stereo
+# tests that configure the implementation (STEREOBLEND_STATIC, SBL_MALLOC) or call its
+# internal functions compile their own copy of it
+SELF_IMPL_RE := define (STEREOBLEND_STATIC|SBL_MALLOC)|sbl__[a-z0-9_]+[(]
+SELF_IMPL_TESTS := $(basename $(notdir $(shell grep -l -E '$(SELF_IMPL_RE)' tests/*.c 2>/dev/null)))
+SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1
+
+# the first compiler that links and runs a program with the sanitizers (probed once, and
+# only when a recipe needs it)
+SAN_PROBE = mkdir -p $(BUILD); for c in clang gcc $(CC); do \
+	  command -v $$c >/dev/null 2>&1 || continue; \
+	  printf 'int main(void){return 0;}\n' > $(BUILD)/san_probe.c; \
+	  if $$c $(SAN_FLAGS) $(BUILD)/san_probe.c -o $(BUILD)/san_probe >/dev/null 2>&1 && \
+	     ./$(BUILD)/san_probe; then echo $$c; break; fi; \
+	done
+SAN_CC = $(eval SAN_CC := $(shell $(SAN_PROBE)))$(SAN_CC)
+
+# ---- the configurations ------------------------------------------------------------
+CHECK_CONFIGS := gcc $(if $(HAVE_CLANG),clang) $(if $(CXX_TEST),cxx) scalar \
+                 $(filter-out scalar,$(SIMD_VARIANTS)) O0 O3native fastmath \
+                 $(if $(HAVE_CLANG),clang-fastmath) asan
+
+CFG_CC_gcc = $(CC_GCC)
+CFG_FLAGS_gcc = $(CFLAGS_STRICT) $(OPT)
+CFG_TESTS_gcc = $(TESTS) test_simd
+
+CFG_CC_clang = clang
+CFG_FLAGS_clang = $(CFLAGS_STRICT) $(OPT)
+CFG_TESTS_clang = $(TESTS)
+
+CFG_CC_cxx = $(CXX_TEST) -x c++
+CFG_FLAGS_cxx = $(CXXFLAGS_STRICT) $(OPT)
+CFG_TESTS_cxx = $(TESTS)
+
+CFG_CC_scalar = $(CC_GCC)
+CFG_FLAGS_scalar = $(CFLAGS_STRICT) $(OPT) -DSBL_NO_SIMD
+CFG_TESTS_scalar = $(HEADER_TESTS)
+
+CFG_CC_avx2 = $(CC_GCC)
+CFG_FLAGS_avx2 = $(CFLAGS_STRICT) $(OPT) $(FLAGS_avx2)
+CFG_TESTS_avx2 = $(HEADER_TESTS) test_simd
+
+CFG_CC_avx512 = $(CC_GCC)
+CFG_FLAGS_avx512 = $(CFLAGS_STRICT) $(OPT) $(FLAGS_avx512)
+CFG_TESTS_avx512 = $(filter-out test_robust,$(HEADER_TESTS)) test_simd  # robust: O3native
+
+CFG_CC_O0 = $(CC_GCC)
+CFG_FLAGS_O0 = $(CFLAGS_STRICT) -O0 -g
+CFG_TESTS_O0 = test_robust
+
+CFG_CC_O3native = $(CC_GCC)
+CFG_FLAGS_O3native = $(CFLAGS_STRICT) -O3 -march=native
+CFG_TESTS_O3native = test_robust
+
+CFG_CC_fastmath = $(CC_GCC)
+CFG_FLAGS_fastmath = $(CFLAGS_STRICT) -O2 -ffast-math
+CFG_TESTS_fastmath = test_robust
+
+CFG_CC_clang-fastmath = clang
+CFG_FLAGS_clang-fastmath = $(CFLAGS_STRICT) -O3 -march=native -ffast-math
+CFG_TESTS_clang-fastmath = test_robust
+
+CFG_CC_asan = $(if $(SAN_CC),$(SAN_CC),$(CC_GCC))
+CFG_FLAGS_asan = $(CFLAGS_STRICT) -O1 -g $(if $(SAN_CC),$(SAN_FLAGS))
+CFG_TESTS_asan = $(TESTS) fuzz_sbl
+CFG_ENV_asan = $(SAN_ENV)
+$(BUILD)/asan/fuzz_sbl: EXTRA_FLAGS = -DSBL_FUZZ_STANDALONE
+RUN_ARGS_asan/fuzz_sbl = tests/fuzz_corpus/*
+
+# build/<config>/stereoblend.o, and build/<config>/<test> for every test of it
+define CONFIG_RULES
+$(BUILD)/$(1)/stereoblend.o: tests/sbl_impl.c stereoblend.h
+	@mkdir -p $$(@D)
+	$$(Q)$$(CFG_CC_$(1)) $$(CFG_FLAGS_$(1)) -c $$< -o $$@
+$(BUILD)/$(1)/%: tests/%.c $(BUILD)/$(1)/stereoblend.o $$(HEADERS)
+	@mkdir -p $$(@D)
+	$$(Q)$$(CFG_CC_$(1)) $$(CFG_FLAGS_$(1)) $$(EXTRA_FLAGS) -Itools \
+	  $$(if $$(filter $$*,$$(SELF_IMPL_TESTS)),$$<,-DSTEREOBLEND_IMPLEMENTATION_DONE $$< -x none $$(@D)/stereoblend.o) \
+	  -o $$@ $$(LDLIBS)
+endef
+$(foreach c,$(CHECK_CONFIGS),$(eval $(call CONFIG_RULES,$(c))))
+
+# test_simd: this configuration's SIMD path against the scalar path of its own object
+$(BUILD)/simd_scalar_tu.o: tests/simd_scalar_tu.c stereoblend.h
+	@mkdir -p $(@D)
+	$(Q)$(CC_GCC) $(CFLAGS_STRICT) $(OPT) -DSBL_NO_SIMD -c $< -o $@
+define SIMD_TEST_RULE
+$(BUILD)/$(1)/test_simd: tests/test_simd.c $(BUILD)/simd_scalar_tu.o $$(HEADERS)
+	@mkdir -p $$(@D)
+	$$(Q)$$(CFG_CC_$(1)) $$(CFG_FLAGS_$(1)) -Itools $$< $(BUILD)/simd_scalar_tu.o -o $$@ $$(LDLIBS)
+endef
+$(foreach c,$(CHECK_CONFIGS),$(if $(filter test_simd,$(CFG_TESTS_$(c))),$(eval $(call SIMD_TEST_RULE,$(c)))))
+
+CHECK_BINS = $(foreach c,$(CHECK_CONFIGS),$(addprefix $(BUILD)/$(c)/,$(CFG_TESTS_$(c))))
+
+# ---- the runs: build/res/<label>.res, written by mk/run_test.sh -----------------------
+RUN_TEST = sh mk/run_test.sh
+define RUN_RULE
+$(BUILD)/res/$(1)/$(2).res: $(BUILD)/$(1)/$(2) FORCE
+	$$(Q)$$(RUN_TEST) $$@ $(1)/$(2) env $$(CFG_ENV_$(1)) ./$$< $$(RUN_ARGS_$(1)/$(2))
+endef
+$(foreach c,$(CHECK_CONFIGS),$(foreach t,$(CFG_TESTS_$(c)),$(eval $(call RUN_RULE,$(c),$(t)))))
+
+HAVE_VALGRIND := $(shell command -v valgrind 2>/dev/null)
+VALGRIND = valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite
+define VALGRIND_RULE
+$(BUILD)/res/valgrind/$(1).res: $(BUILD)/gcc/$(1) FORCE
+	$$(Q)$$(RUN_TEST) $$@ valgrind/$(1) $$(VALGRIND) ./$$<
+endef
+$(foreach t,$(VALGRIND_TESTS),$(eval $(call VALGRIND_RULE,$(t))))
+
+CHECK_RESULTS = $(foreach c,$(CHECK_CONFIGS),$(foreach t,$(CFG_TESTS_$(c)),$(BUILD)/res/$(c)/$(t).res)) \
+                $(if $(HAVE_VALGRIND),$(foreach t,$(VALGRIND_TESTS),$(BUILD)/res/valgrind/$(t).res))
+CHECK_SKIPS = $(if $(HAVE_CLANG),,clang:not_installed) $(if $(CXX_TEST),,c++:no_g++_or_clang++) \
+              $(if $(HAVE_VALGRIND),,valgrind:not_installed) \
+              $(if $(SAN_CC),,sanitizers:no_compiler_links_them,_asan/_built_without)
+
+.PHONY: check check-results check-robust tests FORCE
+FORCE:
+
+tests: $(CHECK_BINS)
+
+# -k: a test that does not build is reported (FAIL, did not build) and the others still run
+check:
+	@rm -rf $(BUILD)/res
+	@$(MAKE) -k --no-print-directory check-results || true
+	@$(RUN_TEST) --summary "$(CHECK_SKIPS)" $(CHECK_RESULTS)
+
+check-results: $(CHECK_RESULTS)
+
+# the robustness subset alone (the configurations that exist for it)
+ROBUST_RESULTS = $(filter $(BUILD)/res/O0/% $(BUILD)/res/O3native/% $(BUILD)/res/fastmath/% \
+                   $(BUILD)/res/clang-fastmath/% $(BUILD)/res/scalar/test_robust.res \
+                   $(BUILD)/res/asan/% $(BUILD)/res/valgrind/%,$(CHECK_RESULTS))
+check-robust:
+	@rm -rf $(BUILD)/res
+	@$(MAKE) -k --no-print-directory $(ROBUST_RESULTS) || true
+	@$(RUN_TEST) --summary "$(CHECK_SKIPS)" $(ROBUST_RESULTS)
