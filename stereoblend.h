@@ -2191,6 +2191,8 @@ static void sbl__firefly_limit(const sbl__moments *m, const float *y, const floa
         v8 += m->var8[k];
     }
     bound = (sum_m8 > sum_x ? sum_m8 : sum_x) + SBL_FIREFLY_SIGMAS * sqrt(v8);
+    /* a relative slack: y equal to x* must stay untouched under any summation order */
+    bound += 1e-5 * fabs(bound);
     if (bound < 0.0) bound = 0.0;
     if (sum_y > bound) t = bound / sum_y;
     for (k = 0; k < ch; ++k) ylim[k] = t < 1.0 ? (float)((double)y[k] * t) : y[k];
@@ -3162,6 +3164,7 @@ SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
     }
     bound = sbl__add(sbl__max(sum_m8, sum_x),
                      sbl__mul(sbl__set1((float)SBL_FIREFLY_SIGMAS), sbl__sqrt(v8)));
+    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
     bound = sbl__max(bound, zero);
     t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
     for (c = 0; c < ch; ++c) st->yb[c] = sbl__sel(sbl__gt(one, t), sbl__mul(st->yc[c], t), st->yc[c]);

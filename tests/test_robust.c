@@ -1370,6 +1370,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                         sy += yv[k]; sm += m8; sx += x1[k]; sv += v8;
                     }
                     bound = (sm > sx ? sm : sx) + 6.0 * sqrt(sv);
+                    bound += 1e-5 * fabs(bound);
                     if (bound < 0) bound = 0;
                     if (sy > bound) t = bound / sy;
                     for (k = 0; k < c; ++k) yl[k] = yv[k] * t;
