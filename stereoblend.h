@@ -2037,26 +2037,35 @@ typedef struct sbl__weight_params {
     sbl_rectify rectify;
     sbl_weight_mode mode;
     float constant, alpha_min, gamma, bias_threshold;
+    int temporal; /* X is a history (its N is a time since the last change) */
 } sbl__weight_params;
 
 /* Firefly limit of the robust estimator: the new sample may exceed the larger of the
    neighbours' mean and the history by at most this many neighbour standard deviations
    (summed over channels; see docs/ESTIMATORS.md). */
 #ifndef SBL_FIREFLY_SIGMAS
-#define SBL_FIREFLY_SIGMAS 4.0
+#define SBL_FIREFLY_SIGMAS 6.0
 #endif
 
 /* Posterior probability that a window changed, from the squared mean paired difference
    pd2 and its squared standard error se2 (robust estimator): 1 / (1 + rho^4.5), rho =
    (1 + k2/8) / (1 + t^2/8), t^2 = pd2 / se2. 0.5 at t^2 = k2, about 0.03 at t = 0 and
    k = 3, tending to 1 as t grows. */
-static double sbl__change_posterior(double pd2, double se2, double k2)
+static double sbl__change_posterior(double pd2, double se2, double k2, double prior_odds)
 {
     double t2 = se2 > 0.0 ? pd2 / se2 : (pd2 > 0.0 ? HUGE_VAL : 0.0);
     double rho = (1.0 + k2 * 0.125) / (1.0 + t2 * 0.125);
     double r2 = rho * rho;
-    return 1.0 / (1.0 + r2 * r2 * sqrt(rho));
+    return 1.0 / (1.0 + prior_odds * (r2 * r2 * sqrt(rho)));
 }
+
+/* Prior odds against a change this frame, relative to a history of one sample: by
+   Laplace's rule of succession a pixel unchanged for N frames changes in the next with
+   probability 1 / (N + 2), so the odds against grow as (N + 1) / 2. Temporal only (a
+   stereo pair has no such memory). */
+#ifndef SBL_HISTORY_PRIOR
+#define SBL_HISTORY_PRIOR 1
+#endif
 
 /* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
@@ -2095,7 +2104,10 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             var_x = var_y * (double)n_y / (double)n_x;
             se2 = pair_count == 1 ? var_x + var_y : 0.0;
         }
-        if (pair_count > 0) bias2 = sbl__change_posterior(pd2, se2, k2) * pd2;
+        if (pair_count > 0)
+            bias2 = sbl__change_posterior(pd2, se2, k2,
+                                          p->temporal && SBL_HISTORY_PRIOR ? 0.5 * ((double)n_x + 1.0)
+                                                                          : 1.0) * pd2;
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
         break;
@@ -2170,6 +2182,7 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.alpha_min = alpha_min;
     p.gamma = gamma;
     p.bias_threshold = bias;
+    p.temporal = 0;
     return p;
 }
 
@@ -2207,6 +2220,8 @@ static void sbl__firefly_limit(const sbl__moments *m, const float *y, const floa
         v8 += m->var8[k];
     }
     bound = (sum_m8 > sum_x ? sum_m8 : sum_x) + SBL_FIREFLY_SIGMAS * sqrt(v8);
+    /* a relative slack: y equal to x* must stay untouched under any summation order */
+    bound += 1e-5 * fabs(bound);
     if (bound < 0.0) bound = 0.0;
     if (sum_y > bound) t = bound / sum_y;
     for (k = 0; k < ch; ++k) ylim[k] = t < 1.0 ? (float)((double)y[k] * t) : y[k];
@@ -3203,6 +3218,7 @@ SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
     }
     bound = sbl__add(sbl__max(sum_m8, sum_x),
                      sbl__mul(sbl__set1((float)SBL_FIREFLY_SIGMAS), sbl__sqrt(v8)));
+    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
     bound = sbl__max(bound, zero);
     t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
     for (c = 0; c < ch; ++c) st->yb[c] = sbl__sel(sbl__gt(one, t), sbl__mul(st->yc[c], t), st->yc[c]);
@@ -3265,7 +3281,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         sbl__v t2 = sbl__div(pd2, sbl__max(se2, tiny));
         sbl__v rho = sbl__div(k2e, sbl__add(one, sbl__mul(t2, sbl__set1(0.125f))));
         sbl__v r2 = sbl__mul(rho, rho);
-        sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho))));
+        sbl__v odds = p->temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
+        sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
         sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
         sbl__v num = sbl__add(b2, vx), den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
@@ -3568,6 +3585,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.w = w; k.h = h; k.ch = ch;
     k.wp = sbl__weight_params_make(d.estimator, d.rectify, d.weight_mode, d.constant_alpha,
                                    d.alpha_min, d.clip_gamma, d.bias_threshold);
+    k.wp.temporal = 1;
     k.n_cap = d.max_history;
     k.temporal = 1;
     k.own = &frame->color;

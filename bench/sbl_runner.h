@@ -317,16 +317,14 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n++] = sbr_method_make("history-aware", 1, HA, RN, WS, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_make("history-aware-per-ch", 1, HA, RN, WP, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_default("default", SBR_STEREO_NONE);
-#ifdef SBL_EXPERIMENT
     all[n++] = sbr_method_make("robust", 1, SBL_ESTIMATOR_ROBUST, RN, WS, SBR_STEREO_NONE, HA);
-    all[n++] = sbr_method_make("robust+stereo-robust", 1, SBL_ESTIMATOR_ROBUST, RN, WS, SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_ROBUST);
-#endif
     all[n++] = sbr_method_oracle("oracle", 1, SBR_STEREO_NONE, SBR_ORACLE_TEMPORAL);
     /* stereo alone (on the 1-spp input) */
     all[n++] = sbr_method_make("stereo-fill", 0, HA, RN, WS, SBR_STEREO_FILL, HA);
     all[n++] = sbr_method_make("stereo-beta-0.5", 0, HA, RN, WS, SBR_STEREO_FIXED, C);
     all[n++] = sbr_method_make("stereo-paper", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, P);
     all[n++] = sbr_method_make("stereo-history-aware", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, HA);
+    all[n++] = sbr_method_make("stereo-robust", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_ROBUST);
     all[n++] = sbr_method_oracle("stereo-oracle", 0, SBR_STEREO_ADAPTIVE, SBR_ORACLE_STEREO);
     /* stereo after the temporal filter (history-aware temporal) */
     all[n++] = sbr_method_make("ha+stereo-fill", 1, HA, RN, WS, SBR_STEREO_FILL, HA);
@@ -338,6 +336,10 @@ int sbr_standard_methods(sbr_method *m, int max)
     /* the strongest one-line baseline with the stereo blend after it */
     all[n] = sbr_method_make("ema-0.2+stereo-beta-0.5", 1, C, RN, WS, SBR_STEREO_FIXED, C);
     all[n++].temporal_desc.constant_alpha = 0.2f;
+    all[n++] = sbr_method_make("robust+stereo-robust", 1, SBL_ESTIMATOR_ROBUST, RN, WS,
+                               SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_ROBUST);
+    all[n++] = sbr_method_make("robust+stereo-ha", 1, SBL_ESTIMATOR_ROBUST, RN, WS,
+                               SBR_STEREO_ADAPTIVE, HA);
     /* the library's default combined pipeline, and the oracle of the same pipeline */
     all[n++] = sbr_method_default("default-stereo", SBR_STEREO_ADAPTIVE);
     all[n++] = sbr_method_oracle("oracle+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,

@@ -1233,7 +1233,7 @@ static double ref_weight(const refp *p, double dev2, double s2, double pd2, doub
     else if (p->est == SBL_ESTIMATOR_CONSTANT) a = p->constant;
     else if (p->est == SBL_ESTIMATOR_ROBUST) {
         /* as below, the bias weighted by the posterior of change: t^2 = pd2 / se2,
-           rho = (1 + k^2/8) / (1 + t^2/8), posterior 1 / (1 + rho^4.5) */
+           rho = (1 + k^2/8) / (1 + t^2/8), posterior 1 / (1 + odds rho^4.5) */
         double k2 = p->bias_thr * p->bias_thr, vy, vx, se2, b2 = 0;
         if (pairs > 1) {
             vy = pv * nx / (nx + ny);
@@ -1247,7 +1247,9 @@ static double ref_weight(const refp *p, double dev2, double s2, double pd2, doub
         if (pairs > 0) {
             double t2 = se2 > 0 ? pd2 / se2 : (pd2 > 0 ? HUGE_VAL : 0.0);
             double rho = (1 + k2 / 8) / (1 + t2 / 8);
-            b2 = pd2 / (1 + pow(rho, 4.5));
+            /* prior odds against change (N + 1) / 2 (the temporal filter: rule of
+               succession on the history length) */
+            b2 = pd2 / (1 + 0.5 * (nx + 1) * pow(rho, 4.5));
         }
         a = b2 + vx + vy > 0 ? (b2 + vx) / (b2 + vx + vy) : prog;
     } else {
@@ -1357,7 +1359,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                 }
                 if (pass == 0 && p->est == SBL_ESTIMATOR_ROBUST && cnt > 1) {
                     /* neighbours without the centre: mean and population variance,
-                       summed over channels; bound = max(their mean, x*) + 4 sigma */
+                       summed over channels; bound = max(their mean, x*) + 6 sigma */
                     double sy = 0, sm = 0, sx = 0, sv = 0, bound, t = 1;
                     int n;
                     for (k = 0; k < c; ++k) {
@@ -1367,7 +1369,8 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                             if (n != centre) v8 += (REF_Y(n, k) - m8) * (REF_Y(n, k) - m8) / (cnt - 1);
                         sy += yv[k]; sm += m8; sx += x1[k]; sv += v8;
                     }
-                    bound = (sm > sx ? sm : sx) + 4.0 * sqrt(sv);
+                    bound = (sm > sx ? sm : sx) + 6.0 * sqrt(sv);
+                    bound += 1e-5 * fabs(bound);
                     if (bound < 0) bound = 0;
                     if (sy > bound) t = bound / sy;
                     for (k = 0; k < c; ++k) yl[k] = yv[k] * t;
