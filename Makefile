@@ -4,12 +4,13 @@
 #                 clang, C++, scalar and each SIMD path, -O0, -O3 -march=native,
 #                 -ffast-math, ASan + UBSan, valgrind, fuzz corpus replay): one line per
 #                 run, failures in full, "N passed, N failed" last (mk/check.mk)
+#   make strict   the header under -Wconversion, -Wshadow, -Wold-style-cast, ... (mk/strict.mk)
 #   make demo     the temporal filter on a built-in synthetic scene: RMSE and ms/frame
 
 CC      ?= cc
 CFLAGS_STRICT = -std=c99 -pedantic -Wall -Wextra -Werror
 CXXFLAGS_STRICT = -std=c++11 -Wall -Wextra -Werror
-OPT     ?= -O2 -g
+OPT     ?= -O2            # the tests' optimisation (OPT='-O2 -g' to debug one)
 LDLIBS  = -lm
 BUILD   = build
 
@@ -27,7 +28,8 @@ EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
 # the unit tests (tests/<name>.c): append new ones here; mk/check.mk builds and runs
 # each in every configuration
-TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive
+TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive \
+        test_accuracy
 HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)
@@ -43,6 +45,8 @@ all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 # make check / make tests / make check-robust: the configurations and the quiet runner
 include mk/check.mk
 include mk/robust.mk
+include mk/strict.mk
+include mk/install.mk
 
 RUNNER = bench/sbl_runner.h
 DATASET_SRC = tools/sbl_dataset.c tools/sbl_exr.c
@@ -53,7 +57,7 @@ $(BUILD)/demo: examples/demo.c $(HEADERS) $(RUNNER)
 
 $(BUILD)/minimal: examples/minimal.c stereoblend.h
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_STRICT) -O2 $< -o $@ $(LDLIBS)
+	$(CC) $(CFLAGS_STRICT) -O2 -I. $< -o $@ $(LDLIBS)
 
 $(BUILD)/sblexr: examples/sblexr.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
 	@mkdir -p $(dir $@)

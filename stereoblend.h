@@ -42,24 +42,54 @@
      First frame: pass prev = NULL (or prev->color.data == NULL): every pixel resets.
 
    CONVENTIONS (see also README.md)
-     Images     float, 1-4 interleaved channels, row 0 = top, stride in floats
-                (0 = width * channels). Pixel (i, j) has its centre at (i + 0.5, j + 0.5).
+     Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
+                (i + 0.5, j + 0.5). sbl_image_make() gives tight rows; otherwise
+                stride_bytes (any sign: negative = bottom-up memory, data = the top row)
+                and pixel_bytes (a channel view into a wider interleaved buffer), both
+                multiples of sizeof(float) (else SBL_ERROR_INVALID_STRIDE). The legacy
+                `stride` is in floats; give one of the two. size_bytes (optional) makes
+                a layout that reaches past the buffer an error (SBL_ERROR_INVALID_SIZE)
+                before anything is read. data is const (const inputs need no cast);
+                outputs are written through it. Zero-initialise views built by hand.
      Depth      linear planar view depth (distance along the view axis, > 0); +inf is
                 sky and matches only sky. 0, negative or NaN depth = no valid geometry.
                 Converters from NDC / reversed-Z buffers: sbl_depth_to_linear().
      Motion     default: pixels, backward (previous position = current + mv), +y down.
                 sbl_motion_convention selects UV / NDC units, forward vectors, +y up
                 (Blender's Vector pass is pixels, forward=0 for its X,Y pair, y_up=1).
-     Cameras    row-major 4x4, column vectors (p' = M p); view space looks down -z;
-                OpenGL-style projection: u = (ndc_x + 1)/2 W, v = (1 - ndc_y)/2 H.
-     Stereo     parallel rig: right eye = left eye moved by +baseline along camera x;
-                the right-eye match of left pixel u at depth z is u - focal_px*baseline/z.
+                Motion vectors carry no depth change: the depth test compares the
+                previous depth with the current one (camera mode knows the change).
+     Cameras    sbl_camera: row-major 4x4, column vectors (p' = M p); OpenGL view space
+                (x right, y up, looks down -z); OpenGL-style projection, u = (ndc_x + 1)/2 W,
+                v = (1 - ndc_y)/2 H, off-axis allowed; near / far do not matter. Other
+                forms: sbl_camera_from_pinhole (fx fy cx cy + a pose in OpenCV axes, x
+                right, y down, +z forward, or OpenGL axes) and
+                sbl_camera_from_world_to_pixel (one 3x4 P = K [R | t]); integer_pixel_centers
+                = 1 for calibrations that centre pixel (i, j) at (i, j) (OpenCV, Middlebury).
+                Moving objects: sbl_frame.objects (object-to-world now and before, per id).
+     Stereo     disparity d = u_left - u_right (pixels). Parallel rig: d = focal_px *
+                baseline / z - disparity_offset (Middlebury doffs = cx_right - cx_left;
+                d may be negative); the right-eye match of left pixel u is u - d.
+                Disparity maps: 1 channel (d_x) or 2 (d_x, d_y = v_left - v_right), the
+                same sign in both eyes' maps. Pinhole rig: intrinsics per eye + the right
+                eye's pose relative to the left (x_r = R x_l + T; parallel: T = (-b,0,0)).
+                The library cannot know which image is left: a swapped target_eye passes
+                (symmetric rigs give consistent round trips); sbl_stereo_validate warns
+                when the round trips say so. sbl_stereo_desc.fill (take the other eye
+                wherever it reprojects, in a blend) is unrelated to sbl_stereo_fill() (the
+                mask of pixels that still need a ray).
      Weights    a (alpha, beta) is the weight of the NEW / OWN sample:
-                out = (1 - a) X + a Y.
+                out = (1 - a) X + a Y. Both are returned on request (sbl_temporal_output
+                .alpha, sbl_stereo_output.beta).
      History    N per pixel = effective number of samples (Eq. 5), capped, 1 on reset
-                (0 where the new sample is not finite and there is no history).
+                (0 where the new sample is not finite and there is no history). A
+                history without length means N = 1 everywhere; a history without depth
+                (normals, ids) while the frame has it switches that test off silently:
+                sbl_temporal_validate warns about both.
      Defaults   a zero field means its default, so a parameter cannot be set to exactly
-                0: use a tiny positive value (e.g. 1e-6f) for that.
+                0: use a tiny positive value (e.g. 1e-6f) for that. Tests are switched
+                off by flags, never by values: sbl_reproject_desc.disabled_tests
+                (SBL_TEST_DEPTH, _NORMAL, _ID, _BACK_CHECK, _FALLBACK).
 
    THREADING AND MEMORY
      No globals, no threads, no allocation except in the *_frame convenience calls,
@@ -69,6 +99,9 @@
    ERRORS
      Every call validates all arguments before writing anything and returns an
      sbl_result; sbl_result_string() names it. Bad input never half-writes an output.
+     sbl_temporal_validate / sbl_stereo_validate return the same code and fill a
+     caller-owned sbl_diag with the culprit field ("frame->gbuffer.depth.stride_bytes")
+     and the reason, plus a warning for legal but suspicious input.
 
    SECTIONS (data-flow order, same in the implementation)
      1. Results          2. Views and conventions   3. Reprojection
@@ -271,15 +304,30 @@ typedef struct sbl_reproject_desc {
 } sbl_reproject_desc;
 
 typedef enum sbl_temporal_source {
-    SBL_TEMPORAL_MOTION = 0,  /* motion vectors of the current frame                 */
-    SBL_TEMPORAL_CAMERA       /* depth + both frames' cameras (static geometry only) */
+    SBL_TEMPORAL_MOTION = 0,  /* motion vectors of the current frame                   */
+    SBL_TEMPORAL_CAMERA       /* depth + both frames' cameras; static geometry, and the
+                                 objects of sbl_frame.objects by their own transforms  */
 } sbl_temporal_source;
+
+/* An object that moves by its own transform (camera mode): the pixels whose id (the
+   G-buffer's ids, exact compare) is `id` are carried back to the previous frame by
+   prev_object_to_world * inverse(object_to_world) before the previous camera sees
+   them. Any invertible affine transform (rigid, scaled, sheared). */
+typedef struct sbl_object_motion {
+    float id;                       /* its value in the id buffer                       */
+    float object_to_world[16];      /* this frame (row-major, p' = M p)                 */
+    float prev_object_to_world[16]; /* the history's frame                              */
+} sbl_object_motion;
 
 /* The current frame: colour to filter, its G-buffer, its camera (camera mode). */
 typedef struct sbl_frame {
     sbl_image color;
     sbl_gbuffer gbuffer;
     const sbl_camera *camera;
+    const sbl_object_motion *objects; /* camera mode, optional: moving objects, sorted by
+                                         id (ascending, distinct); needs gbuffer.ids.
+                                         Pixels whose id is not listed are static.     */
+    int object_count;
 } sbl_frame;
 
 /* Last frame's filter output and the G-buffer it was made with. */
@@ -320,6 +368,9 @@ typedef enum sbl_estimator {
     SBL_ESTIMATOR_PAPER,             /* Philippi Eq. 4 with Eq. 10/11: a = d^2/(d^2+s^2) */
     SBL_ESTIMATOR_PROGRESSIVE,       /* a = N_Y / (N_X + N_Y): 1/(N+1) for temporal     */
     SBL_ESTIMATOR_CONSTANT,          /* a = constant (alpha 0.1 / beta 0.5 by default)  */
+    SBL_ESTIMATOR_ROBUST,            /* history-aware with a soft (Student-t) bias test
+                                        and a firefly limit on the new sample; see
+                                        docs/ESTIMATORS.md                               */
     SBL_ESTIMATOR_COUNT
 } sbl_estimator;
 
@@ -336,7 +387,7 @@ typedef enum sbl_weight_mode {
     SBL_WEIGHT_MODE_COUNT
 } sbl_weight_mode;
 
-/* The optimal weight of the new estimate (ALGORITHMS.md section 1):
+/* The optimal weight of the new estimate (docs/ALGORITHMS.md section 1):
    a* = (B^2 + var_X) / (B^2 + var_X + var_Y). An infinite var_X or bias gives 1 (no
    usable history); all zero gives 0.5 (nothing tells the two apart). */
 SBLDEF float sbl_optimal_weight(float bias2, float var_x, float var_y);
@@ -500,6 +551,36 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
                                             const sbl_stereo_temporal_io *io);
 
 /* ======================================================================== */
+/* Diagnostics: which field, and why                                        */
+/* ======================================================================== */
+
+/* Filled by the validate calls (no globals: the caller owns it). A validate call runs
+   the checks of its filter call and names the culprit the way the caller spells it,
+   e.g. field "frame->gbuffer.depth.stride_bytes", message "-5 is not a multiple of
+   sizeof(float)". It also reports the first input that is legal but probably not what
+   was meant (e.g. a history without depth while the frame has depth, which turns the
+   depth test off, or a stereo pair whose target_eye looks swapped). */
+typedef struct sbl_diag {
+    sbl_result result;  /* what the filter call returns for these arguments            */
+    char field[80];     /* the culprit; empty when result is SBL_OK                    */
+    char message[200];  /* why, in words; empty when result is SBL_OK                  */
+    char warning[240];  /* legal but suspicious (the first found); empty if none        */
+} sbl_diag;
+
+/* The checks of sbl_temporal_filter (any row range, scratch given) without writing any
+   output. diag may be NULL (then this is a plain validation). */
+SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl_frame *frame,
+                                        const sbl_history *history,
+                                        const sbl_temporal_output *out, sbl_diag *diag);
+
+/* The checks of sbl_stereo_filter (out given) or of sbl_reproject_stereo /
+   sbl_stereo_fill's eyes (out NULL: the target needs no colour). Warns when the
+   correspondences of a sample of pixels work far better with target_eye swapped. */
+SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                      const sbl_eye *target, const sbl_eye *source,
+                                      const sbl_stereo_output *out, sbl_diag *diag);
+
+/* ======================================================================== */
 /* 9. Fill mode: which pixels of the second eye still need a ray            */
 /* ======================================================================== */
 
@@ -598,6 +679,7 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
 #include <float.h>
 #include <limits.h>
 #include <stdint.h>
+#include <stdio.h> /* snprintf: diagnostics */
 
 #if defined(SBL_MALLOC) != defined(SBL_FREE)
 #error "define both SBL_MALLOC and SBL_FREE, or neither"
@@ -691,12 +773,21 @@ static int sbl__is_pos_inf(float v)
     return bits == 0x7f800000u;
 }
 
+/* Views are addressed in per-pixel loops of the stage calls: keep these inlined. */
+#if defined(__GNUC__) || defined(__clang__)
+#define SBL__VIEW_FN static __inline__ __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define SBL__VIEW_FN static __forceinline
+#else
+#define SBL__VIEW_FN static
+#endif
+
 /* Row and pixel steps in floats (signed; validated by sbl__check_image first). */
-static int sbl__step_of(const sbl_image *im)
+SBL__VIEW_FN int sbl__step_of(const sbl_image *im)
 {
     return im->pixel_bytes ? im->pixel_bytes / (int)sizeof(float) : im->channels;
 }
-static ptrdiff_t sbl__stride(const sbl_image *im)
+SBL__VIEW_FN ptrdiff_t sbl__stride(const sbl_image *im)
 {
     if (im->stride_bytes) return (ptrdiff_t)(im->stride_bytes / (int)sizeof(float));
     if (im->stride) return (ptrdiff_t)im->stride;
@@ -706,7 +797,7 @@ static ptrdiff_t sbl__stride(const sbl_image *im)
 /* Pixel (x, y) of a view, writable: inputs and outputs share sbl_image, whose data is
    const so that const inputs need no cast; an output's memory is the caller's writable
    buffer, and this is the one place the qualifier is dropped. */
-static float *sbl__px(const sbl_image *im, int x, int y)
+SBL__VIEW_FN float *sbl__px(const sbl_image *im, int x, int y)
 {
     float *base;
     memcpy(&base, &im->data, sizeof base);
@@ -943,8 +1034,12 @@ typedef struct sbl__cam_map {
     double clip_to_view[16];  /* inverse projection of the source (this) camera      */
     double view_to_view[16];  /* this view -> other view                             */
     double other_proj[16];    /* other view -> clip                                   */
+    double view_to_world[16]; /* this view -> world (objects that move)               */
+    double world_to_other[16];/* world -> other view (objects that move)              */
     double width, height;     /* this image (for pixel -> ndc)                        */
     double other_width, other_height;
+    const sbl_object_motion *objects; /* sorted by id; NULL: everything static        */
+    int object_count;
 } sbl__cam_map;
 
 /* The other camera forms as the equivalent OpenGL pair (double): a view space with the
@@ -1065,11 +1160,13 @@ static int sbl__cam_map_init_gl(sbl__cam_map *m, const double *view, const doubl
                                 int w, int h, const double *other_view,
                                 const double *other_proj, int ow, int oh)
 {
-    double inv_view[16];
     memcpy(m->other_proj, other_proj, sizeof m->other_proj);
+    memcpy(m->world_to_other, other_view, sizeof m->world_to_other);
+    m->objects = NULL;
+    m->object_count = 0;
     if (!sbl__mat_invert(m->clip_to_view, proj)) return 0;
-    if (!sbl__mat_invert(inv_view, view)) return 0;
-    sbl__mat_mul(m->view_to_view, other_view, inv_view);
+    if (!sbl__mat_invert(m->view_to_world, view)) return 0;
+    sbl__mat_mul(m->view_to_view, other_view, m->view_to_world);
     m->width = w; m->height = h; m->other_width = ow; m->other_height = oh;
     return 1;
 }
@@ -1090,12 +1187,11 @@ static int sbl__cam_map_init(sbl__cam_map *m, const sbl_camera *from, int w, int
     return sbl__cam_map_init_gl(m, view, proj, w, h, other_view, other_proj, ow, oh);
 }
 
-/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> position in the
-   other image and the point's planar depth there. Returns 0 if behind the camera. */
-static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float z,
-                              double *ox, double *oy, double *oz)
+/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> the point in this
+   camera's view space (p[3] = 0 for a direction). Returns 0 if the ray is degenerate. */
+static int sbl__cam_map_point(const sbl__cam_map *m, double px, double py, float z, double *p)
 {
-    double ndc[4], q[4], p[4], v[4], c[4];
+    double ndc[4], q[4];
     int i, k;
     ndc[0] = 2.0 * px / m->width - 1.0;
     ndc[1] = 1.0 - 2.0 * py / m->height;
@@ -1110,10 +1206,15 @@ static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float
     for (i = 0; i < 3; ++i) q[i] = (q[i] / q[3]) / (-q[2] / q[3]);
     if (sbl__is_pos_inf(z)) { p[0] = q[0]; p[1] = q[1]; p[2] = q[2]; p[3] = 0.0; }
     else { p[0] = q[0] * z; p[1] = q[1] * z; p[2] = q[2] * z; p[3] = 1.0; }
-    for (i = 0; i < 4; ++i) {
-        v[i] = 0.0;
-        for (k = 0; k < 4; ++k) v[i] += m->view_to_view[i * 4 + k] * p[k];
-    }
+    return 1;
+}
+
+/* A point of the other camera's view space -> its pixel position and planar depth. */
+static int sbl__cam_map_project(const sbl__cam_map *m, const double *v, double *ox, double *oy,
+                                double *oz)
+{
+    double c[4];
+    int i, k;
     for (i = 0; i < 4; ++i) {
         c[i] = 0.0;
         for (k = 0; k < 4; ++k) c[i] += m->other_proj[i * 4 + k] * v[k];
@@ -1121,7 +1222,109 @@ static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float
     if (!(c[3] > 0.0)) return 0;
     *ox = (c[0] / c[3] + 1.0) * 0.5 * m->other_width;
     *oy = (1.0 - c[1] / c[3]) * 0.5 * m->other_height;
-    *oz = p[3] == 0.0 ? HUGE_VAL : -v[2];
+    *oz = v[3] == 0.0 ? HUGE_VAL : -v[2];
+    return 1;
+}
+
+static void sbl__mat_apply(double *out, const double *m, const double *p)
+{
+    int i, k;
+    for (i = 0; i < 4; ++i) {
+        out[i] = 0.0;
+        for (k = 0; k < 4; ++k) out[i] += m[i * 4 + k] * p[k];
+    }
+}
+
+/* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> position in the
+   other image and the point's planar depth there. Returns 0 if behind the camera. */
+static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float z,
+                              double *ox, double *oy, double *oz)
+{
+    double p[4], v[4];
+    if (!sbl__cam_map_point(m, px, py, z, p)) return 0;
+    sbl__mat_apply(v, m->view_to_view, p);
+    return sbl__cam_map_project(m, v, ox, oy, oz);
+}
+
+/* Solves M q = p for an object_to_world M (float, row-major) in double with partial
+   pivoting. Returns 0 if M is singular or not finite. */
+static int sbl__mat_solve(const float *mf, const double *p, double *q)
+{
+    double a[4][5];
+    int i, j, k;
+    for (i = 0; i < 4; ++i) {
+        for (j = 0; j < 4; ++j) a[i][j] = (double)mf[i * 4 + j];
+        a[i][4] = p[i];
+    }
+    for (i = 0; i < 4; ++i) {
+        int piv = i;
+        for (k = i + 1; k < 4; ++k)
+            if (fabs(a[k][i]) > fabs(a[piv][i])) piv = k;
+        if (!(fabs(a[piv][i]) > 1e-300)) return 0;
+        if (piv != i)
+            for (j = 0; j < 5; ++j) { double t = a[i][j]; a[i][j] = a[piv][j]; a[piv][j] = t; }
+        for (k = i + 1; k < 4; ++k) {
+            double f = a[k][i] / a[i][i];
+            for (j = i; j < 5; ++j) a[k][j] -= f * a[i][j];
+        }
+    }
+    for (i = 3; i >= 0; --i) {
+        double v = a[i][4];
+        for (j = i + 1; j < 4; ++j) v -= a[i][j] * q[j];
+        q[i] = v / a[i][i];
+    }
+    return q[0] - q[0] == 0.0 && q[1] - q[1] == 0.0 && q[2] - q[2] == 0.0 && q[3] - q[3] == 0.0;
+}
+
+/* The moving object with this id (binary search; ids sorted ascending), or NULL. */
+static const sbl_object_motion *sbl__find_object(const sbl__cam_map *m, float id)
+{
+    int lo = 0, hi = m->object_count - 1;
+    while (lo <= hi) {
+        int mid = lo + (hi - lo) / 2;
+        float v = m->objects[mid].id;
+        if (v == id) return &m->objects[mid];
+        if (v < id) lo = mid + 1;
+        else hi = mid - 1;
+    }
+    return NULL;
+}
+
+/* sbl__cam_map_apply for a pixel with object id `id`: a listed (moving) object is carried
+   back by prev_object_to_world * inverse(object_to_world) in world space; anything else
+   is static. */
+static int sbl__cam_map_apply_id(const sbl__cam_map *m, float id, double px, double py, float z,
+                                 double *ox, double *oy, double *oz)
+{
+    const sbl_object_motion *o;
+    double p[4], w[4], q[4], v[4];
+    if (!m->object_count || !(o = sbl__find_object(m, id)))
+        return sbl__cam_map_apply(m, px, py, z, ox, oy, oz);
+    if (!sbl__cam_map_point(m, px, py, z, p)) return 0;
+    sbl__mat_apply(w, m->view_to_world, p);
+    if (!sbl__mat_solve(o->object_to_world, w, q)) return 0;
+    {
+        double prev[16];
+        sbl__mat_from_float(prev, o->prev_object_to_world);
+        sbl__mat_apply(w, prev, q);
+    }
+    sbl__mat_apply(v, m->world_to_other, w);
+    return sbl__cam_map_project(m, v, ox, oy, oz);
+}
+
+/* Objects of a frame: finite, invertible, sorted by distinct ids. */
+static int sbl__objects_ok(const sbl_object_motion *o, int n)
+{
+    int i, k;
+    if (n < 0 || (n > 0 && !o)) return 0;
+    for (i = 0; i < n; ++i) {
+        double t[4] = {0, 0, 0, 1}, q[4];
+        if (!sbl__finite(o[i].id) || (i > 0 && !(o[i - 1].id < o[i].id))) return 0;
+        for (k = 0; k < 16; ++k)
+            if (!sbl__finite(o[i].object_to_world[k]) || !sbl__finite(o[i].prev_object_to_world[k]))
+                return 0;
+        if (!sbl__mat_solve(o[i].object_to_world, t, q)) return 0;
+    }
     return 1;
 }
 
@@ -1558,13 +1761,46 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     if (source == SBL_TEMPORAL_MOTION && !g->motion.data) return SBL_ERROR_MISSING_INPUT;
     if (source == SBL_TEMPORAL_CAMERA) {
         if (!g->depth.data || !frame->camera) return SBL_ERROR_MISSING_INPUT;
+        if (frame->object_count && !g->ids.data) return SBL_ERROR_MISSING_INPUT;
+        if (!sbl__objects_ok(frame->objects, frame->object_count)) return SBL_ERROR_INVALID_PARAM;
         if (s->history) {
             if (!s->history->camera) return SBL_ERROR_MISSING_INPUT;
             if (!sbl__cam_map_init(&s->cam, frame->camera, w, h, s->history->camera, w, h))
                 return SBL_ERROR_INVALID_PARAM;
+            s->cam.objects = frame->objects;
+            s->cam.object_count = frame->object_count;
         }
     }
     return SBL_OK;
+}
+
+/* Where target pixel (x, y) finds its history: the source position (*sx, *sy) and what
+   the taps must match (*t). Returns 0 when the pixel must reset. Shared by the pixel
+   gather below and the row gather (sbl__temporal_rp_row). */
+SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sbl__tap_want *t,
+                                     double *sx, double *sy)
+{
+    double sz;
+    float z;
+    if (!sbl__tap_want_init(t, &s->geo, x, y, &z)) return 0;
+    if (s->source == SBL_TEMPORAL_MOTION) {
+        const float *mv = SBL__AT(s->motion, x, y);
+        if (sbl__any_nonfinite(mv, 2)) return 0;
+        *sx = x + 0.5 + s->motion_kx * mv[0];
+        *sy = y + 0.5 + s->motion_ky * mv[1];
+        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
+    } else {
+        if (!sbl__cam_map_apply_id(&s->cam, s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f,
+                                   x + 0.5, y + 0.5, z, sx, sy, &sz))
+            return 0;
+    }
+    /* came in from outside the previous image: nothing to reuse (edge pixels would
+       otherwise be replicated by the renormalisation and the 3x3 fallback) */
+    if (!(*sx >= 0.0 && *sx < (double)s->frame->color.width && *sy >= 0.0 &&
+          *sy < (double)s->frame->color.height))
+        return 0;
+    t->depth = (float)sz;
+    return 1;
 }
 
 /* x* and its N for target pixel (x, y); returns 0 when the pixel must reset. */
@@ -1572,25 +1808,9 @@ static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
 {
     const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
     sbl__tap_want t;
-    double sx, sy, sz;
-    float z;
+    double sx, sy;
     if (!s->history) return 0.0f;
-    if (!sbl__tap_want_init(&t, &s->geo, x, y, &z)) return 0.0f;
-    if (s->source == SBL_TEMPORAL_MOTION) {
-        const float *mv = SBL__AT(s->motion, x, y);
-        if (sbl__any_nonfinite(mv, 2)) return 0.0f;
-        sx = x + 0.5 + s->motion_kx * mv[0];
-        sy = y + 0.5 + s->motion_ky * mv[1];
-        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
-    } else {
-        if (!sbl__cam_map_apply(&s->cam, x + 0.5, y + 0.5, z, &sx, &sy, &sz)) return 0.0f;
-    }
-    /* came in from outside the previous image: nothing to reuse (edge pixels would
-       otherwise be replicated by the renormalisation and the 3x3 fallback) */
-    if (!(sx >= 0.0 && sx < (double)s->frame->color.width && sy >= 0.0 &&
-          sy < (double)s->frame->color.height))
-        return 0.0f;
-    t.depth = (float)sz;
+    if (!sbl__temporal_rp_pos(s, x, y, &t, &sx, &sy)) return 0.0f;
     return sbl__gather(&s->src, &t, sx, sy, !s->rp.no_fallback, out);
 }
 
@@ -1656,16 +1876,32 @@ typedef struct sbl__moments {
     float lo[4], hi[4];         /* min / max of Y per channel                       */
     double pair_diff[4];        /* mean of (x*_i - y_i) over pixels with both valid */
     double pair_var[4];         /* sample variance of (x*_i - y_i) (Bessel), 0 if < 2 */
+    double mean8[4], var8[4];   /* mean / population variance of Y without the centre
+                                   sample (firefly limit); 0 without a centre         */
     int count, pair_count;
 } sbl__moments;
 
-/* vals[i][c]: the n finite neighbours (centre included); xv[i] non-NULL where that
-   neighbour also has a valid x*. Two passes in double: exact enough for any float
-   input, never negative. */
+/* vals[i][c]: the n finite neighbours (centre included, at index `centre`, or -1);
+   xv[i] non-NULL where that neighbour also has a valid x*. Two passes in double: exact
+   enough for any float input, never negative. */
 static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
-                              const float (*xvals)[4], const int *xvalid, int n, int ch)
+                              const float (*xvals)[4], const int *xvalid, int n, int ch,
+                              int centre)
 {
     int i, k;
+    for (k = 0; k < ch; ++k) {
+        /* the window without its centre, centred on its own mean (a firefly at the
+           centre cannot cancel the others' spread away) */
+        double s8 = 0.0, v8 = 0.0;
+        m->mean8[k] = m->var8[k] = 0.0;
+        if (centre < 0 || n < 2) continue;
+        for (i = 0; i < n; ++i) if (i != centre) s8 += vals[i][k];
+        s8 /= n - 1;
+        for (i = 0; i < n; ++i)
+            if (i != centre) v8 += ((double)vals[i][k] - s8) * ((double)vals[i][k] - s8);
+        m->mean8[k] = s8;
+        m->var8[k] = v8 / (n - 1);
+    }
     m->count = n;
     m->pair_count = 0;
     for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
@@ -1735,7 +1971,7 @@ SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image var, 
                     for (k = 0; k < ch; ++k) vals[n][k] = p[k];
                     ++n;
                 }
-            sbl__moments_core(&m, (const float(*)[4])vals, NULL, NULL, n, ch);
+            sbl__moments_core(&m, (const float(*)[4])vals, NULL, NULL, n, ch, -1);
             for (k = 0; k < ch; ++k) {
                 if (mean.data) sbl__px(&mean, x, y)[k] = (float)m.mean[k];
                 /* beyond float range (|values| > ~1e19): saturate, finite in -> finite out */
@@ -1774,6 +2010,25 @@ typedef struct sbl__weight_params {
     float constant, alpha_min, gamma, bias_threshold;
 } sbl__weight_params;
 
+/* Firefly limit of the robust estimator: the new sample may exceed the larger of the
+   neighbours' mean and the history by at most this many neighbour standard deviations
+   (summed over channels; see docs/ESTIMATORS.md). */
+#ifndef SBL_FIREFLY_SIGMAS
+#define SBL_FIREFLY_SIGMAS 4.0
+#endif
+
+/* Posterior probability that a window changed, from the squared mean paired difference
+   pd2 and its squared standard error se2 (robust estimator): 1 / (1 + rho^4.5), rho =
+   (1 + k2/8) / (1 + t^2/8), t^2 = pd2 / se2. 0.5 at t^2 = k2, about 0.03 at t = 0 and
+   k = 3, tending to 1 as t grows. */
+static double sbl__change_posterior(double pd2, double se2, double k2)
+{
+    double t2 = se2 > 0.0 ? pd2 / se2 : (pd2 > 0.0 ? HUGE_VAL : 0.0);
+    double rho = (1.0 + k2 * 0.125) / (1.0 + t2 * 0.125);
+    double r2 = rho * rho;
+    return 1.0 / (1.0 + r2 * r2 * sqrt(rho));
+}
+
 /* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
    variance of the paired differences x*_i - y_i. */
@@ -1793,6 +2048,29 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
     case SBL_ESTIMATOR_CONSTANT:
         a = p->constant;
         break;
+    case SBL_ESTIMATOR_ROBUST: {
+        /* As history-aware, but the bias enters with the posterior probability that
+           the window changed: t = mean paired difference / its standard error is
+           Student-t with 8 degrees of freedom if nothing changed; against a flat
+           alternative the odds of change grow as (1 + t^2/8)^4.5, set to 1 at t^2 = k^2
+           (bias_threshold). Soft, and polynomial rather than exponential in t^2, so
+           heavy-tailed noise cannot make a near-certain change out of one sample. */
+        double k2 = (double)p->bias_threshold * (double)p->bias_threshold;
+        double var_x, var_y, se2, bias2 = 0.0;
+        if (pair_count > 1) {
+            var_y = pv * (double)n_x / ((double)n_x + (double)n_y);
+            var_x = pv - var_y;
+            se2 = pv / pair_count;
+        } else {
+            var_y = count > 1 ? s2 * count / (count - 1) : 0.0;
+            var_x = var_y * (double)n_y / (double)n_x;
+            se2 = pair_count == 1 ? var_x + var_y : 0.0;
+        }
+        if (pair_count > 0) bias2 = sbl__change_posterior(pd2, se2, k2) * pd2;
+        a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
+                                          : progressive;
+        break;
+    }
     case SBL_ESTIMATOR_HISTORY_AWARE:
     default: {
         /* The paired differences x*_i - y_i cancel texture: their variance is
@@ -1883,6 +2161,28 @@ static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
 /* 6. Blend, history length, and the fused row kernel                       */
 /* ------------------------------------------------------------------------ */
 
+/* Firefly limit (robust estimator): the new sample y is scaled down (hue kept) so that
+   its channel sum exceeds max(neighbours' mean, x*) by at most SBL_FIREFLY_SIGMAS
+   neighbour standard deviations (the window without y, summed over channels). Only the
+   sample that enters the blend is limited; the window statistics keep it (with a
+   firefly in them they drive the weight towards 1/(N+1), see docs/ESTIMATORS.md). */
+static void sbl__firefly_limit(const sbl__moments *m, const float *y, const float *xs, int ch,
+                               float *ylim)
+{
+    double sum_y = 0.0, sum_m8 = 0.0, sum_x = 0.0, v8 = 0.0, bound, t = 1.0;
+    int k;
+    for (k = 0; k < ch; ++k) {
+        sum_y += y[k];
+        sum_m8 += m->mean8[k];
+        sum_x += xs[k];
+        v8 += m->var8[k];
+    }
+    bound = (sum_m8 > sum_x ? sum_m8 : sum_x) + SBL_FIREFLY_SIGMAS * sqrt(v8);
+    if (bound < 0.0) bound = 0.0;
+    if (sum_y > bound) t = bound / sum_y;
+    for (k = 0; k < ch; ++k) ylim[k] = t < 1.0 ? (float)((double)y[k] * t) : y[k];
+}
+
 /* Reference blend of one pixel (double): y = own, xs = other (rectified here), n_x/n_y
    their sample counts. Writes out[ch], returns the new N; *alpha_out = mean weight. */
 static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m,
@@ -1892,6 +2192,11 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     float a[4];
     float a_mean = 0.0f;
     int k;
+    float ylim[4];
+    if (p->estimator == SBL_ESTIMATOR_ROBUST && m->count > 1) {
+        sbl__firefly_limit(m, y, xs, ch, ylim);
+        y = ylim;
+    }
     sbl__rectify(p, m, y, xs, ch);
     if (p->mode == SBL_WEIGHT_PER_CHANNEL) {
         for (k = 0; k < ch; ++k) {
@@ -1931,7 +2236,11 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
 /* ---- thin SIMD layer ------------------------------------------------------
    One lane kernel below is written against these few operations. Chosen at compile
    time: AVX-512F, AVX2, SSE2, NEON (AArch64), or plain float (SBL_NO_SIMD, or none of
-   them available): the scalar path is the same code with a width of 1. */
+   them available): the scalar path is the same code with a width of 1.
+   The row gather (SBL__ROW_GATHER) adds tap loads at int offsets (hardware gathers on
+   AVX2 / AVX-512, emulated on SSE2), mask logic and bit tests that -ffast-math cannot
+   fold. The scalar build and NEON gather one pixel at a time with the reference
+   gather, which the row gather must equal bit for bit (test_simd, test_paths). */
 #if !defined(SBL_NO_SIMD) && defined(__AVX512F__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx512"
@@ -1951,6 +2260,22 @@ typedef __mmask16 sbl__m;
 #define sbl__abs(a) _mm512_abs_ps(a)
 #define sbl__gt(a, b) _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
+/* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm512_i32gather_ps(_mm512_loadu_si512((const void *)(idx)), base, 4)
+#define sbl__le(a, b) _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
+#define sbl__mand(a, b) ((__mmask16)((a) & (b)))
+#define sbl__mor(a, b) ((__mmask16)((a) | (b)))
+#define sbl__mandnot(a, b) ((__mmask16)((a) & ~(b))) /* a and not b */
+#define sbl__mbits(m) ((int)(m))
+#define sbl__nonfinite(a) \
+    _mm512_cmpeq_epi32_mask(_mm512_and_si512(_mm512_castps_si512(a), \
+                                             _mm512_set1_epi32(0x7f800000)), \
+                            _mm512_set1_epi32(0x7f800000))
+#define sbl__posinf(a) \
+    _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
+#define sbl__floor(a) _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
 #elif !defined(SBL_NO_SIMD) && defined(__AVX2__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx2"
@@ -1970,6 +2295,22 @@ typedef __m256 sbl__m;
 #define sbl__abs(a) _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a)
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm256_i32gather_ps(base, _mm256_loadu_si256((const __m256i *)(const void *)(idx)), 4)
+#define sbl__le(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
+#define sbl__mand(a, b) _mm256_and_ps(a, b)
+#define sbl__mor(a, b) _mm256_or_ps(a, b)
+#define sbl__mandnot(a, b) _mm256_andnot_ps(b, a)
+#define sbl__mbits(m) _mm256_movemask_ps(m)
+#define sbl__nonfinite(a) \
+    _mm256_castsi256_ps(_mm256_cmpeq_epi32( \
+        _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7f800000)), \
+        _mm256_set1_epi32(0x7f800000)))
+#define sbl__posinf(a) \
+    _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
+                                           _mm256_set1_epi32(0x7f800000)))
+#define sbl__floor(a) _mm256_floor_ps(a)
 #elif !defined(SBL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || \
                                 (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
@@ -1990,6 +2331,26 @@ typedef __m128 sbl__m;
 #define sbl__abs(a) _mm_andnot_ps(_mm_set1_ps(-0.0f), a)
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
+#define SBL__ROW_GATHER 1
+#define sbl__gatheri(base, idx) \
+    _mm_setr_ps((base)[(idx)[0]], (base)[(idx)[1]], (base)[(idx)[2]], (base)[(idx)[3]])
+#define sbl__le(a, b) _mm_cmple_ps(a, b)
+#define sbl__mand(a, b) _mm_and_ps(a, b)
+#define sbl__mor(a, b) _mm_or_ps(a, b)
+#define sbl__mandnot(a, b) _mm_andnot_ps(b, a)
+#define sbl__mbits(m) _mm_movemask_ps(m)
+#define sbl__nonfinite(a) \
+    _mm_castsi128_ps(_mm_cmpeq_epi32( \
+        _mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)), \
+        _mm_set1_epi32(0x7f800000)))
+#define sbl__posinf(a) \
+    _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)))
+/* floor of |a| < 2^31 (SSE2 has no rounding mode op): truncate, then step down */
+SBL__INLINE __m128 sbl__floor(__m128 a)
+{
+    const __m128 t = _mm_cvtepi32_ps(_mm_cvttps_epi32(a));
+    return _mm_sub_ps(t, _mm_and_ps(_mm_cmpgt_ps(t, a), _mm_set1_ps(1.0f)));
+}
 #elif !defined(SBL_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h>
 #define SBL_SIMD_NAME "neon"
@@ -2045,6 +2406,11 @@ typedef int sbl__m;
    tiled calls reproduce a whole-image call and every SIMD build the scalar one. */
 
 typedef float (*sbl__gather_fn)(const void *ctx, int x, int y, float *out);
+struct sbl__ring_row;
+/* x*, N and validity of columns [xa, xb) of row y straight into a ring row, equal bit
+   for bit to calling the pixel gather on each (one call per row: no pointer per pixel) */
+typedef void (*sbl__row_gather_fn)(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                   int xb);
 
 typedef struct sbl__ring_row {
     float *y[4];   /* own colour, one plane per channel                         */
@@ -2066,6 +2432,7 @@ typedef struct sbl__kernel {
     const sbl_image *own_n;  /* N_Y (NULL data: 1)                                */
     sbl__gather_fn gather;
     const void *gather_ctx;
+    sbl__row_gather_fn gather_row; /* NULL: `gather` one pixel at a time          */
     sbl_image out, out_n, out_a; /* out_n / out_a data may be NULL                */
     float *stage[4], *stage_n, *stage_a;
     unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
@@ -2128,6 +2495,351 @@ static int sbl__lane_value_ok(float v)
     return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
+/* One gathered x* (N > 0: valid) into ring column x. */
+SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v, int ch)
+{
+    int c, valid = n > 0.0f;
+    r->n[x] = valid ? n : 0.0f;
+    r->v[x] = valid ? 1.0f : 0.0f;
+    for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f;
+}
+
+#ifdef SBL__ROW_GATHER
+/* ---- the row gather ---------------------------------------------------------
+   A scalar pass plans a block of pixels (target tests, source position, floor and
+   fraction, the offset of the first tap in each source view; the same code as the
+   pixel gather); the taps, their tests and the renormalised bilinear weights then run
+   in lanes. Lanes the pixel gather would send anywhere but its fast path (a tap
+   outside the image, a rejected footprint that needs the 3x3 fallback, a NaN or inf
+   in a sum) are redone by the pixel gather. */
+#define SBL__BLOCK 64
+
+typedef struct sbl__tap_plan {
+    int ci[SBL__BLOCK], di[SBL__BLOCK], li[SBL__BLOCK]; /* tap (x0, y0) in colour, depth, N */
+    float fx[SBL__BLOCK], fy[SBL__BLOCK];               /* bilinear fractions              */
+    float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
+    float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
+    unsigned char redo[SBL__BLOCK]; /* 1: the pixel gather decides                          */
+} sbl__tap_plan;
+
+static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
+{
+    p->ci[i] = p->di[i] = p->li[i] = 0; /* tap (0, 0): a valid address, result unused */
+    p->fx[i] = p->fy[i] = 0.0f;
+    p->depth[i] = 1.0f;
+    p->slack[i] = 0.0f;
+    p->fast[i] = 0.0f;
+    p->redo[i] = 0;
+}
+
+/* Plan entry i from a source position, as sbl__gather_ch decides: 0 reset, else the
+   fast path or (p->redo) the pixel gather. */
+SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+                                   const sbl__tap_want *t, double sx, double sy)
+{
+    double bx = sx - 0.5, by = sy - 0.5;
+    int x0, y0;
+    if (!(bx > -2.0 && by > -2.0 && bx < (double)s->width + 1.0 &&
+          by < (double)s->height + 1.0))
+        return;
+    x0 = (int)floor(bx);
+    y0 = (int)floor(by);
+    if (!(x0 >= 0 && y0 >= 0 && x0 + 1 < s->width && y0 + 1 < s->height)) {
+        p->redo[i] = 1;
+        return;
+    }
+    p->fx[i] = (float)(bx - x0);
+    p->fy[i] = (float)(by - y0);
+    p->depth[i] = t->depth;
+    p->slack[i] = t->depth_slack;
+    p->ci[i] = (int)((ptrdiff_t)y0 * s->color.stride + (ptrdiff_t)x0 * s->color.step);
+    if (s->use_depth)
+        p->di[i] = (int)((ptrdiff_t)y0 * s->depth.stride + (ptrdiff_t)x0 * s->depth.step);
+    if (s->length.p)
+        p->li[i] = (int)((ptrdiff_t)y0 * s->length.stride + (ptrdiff_t)x0 * s->length.step);
+    p->fast[i] = 1.0f;
+}
+
+/* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
+   renormalisation and saturation) for plan entries [i, i + VW), into ring columns
+   [x, x + VW): the same float operations in the same order per lane (a skipped tap
+   adds +0 to a sum that cannot be -0), hence the same bits. Lanes whose sums are not
+   finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
+   contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
+   rest), read with plain vector loads where a view has one channel. When no lane has
+   a fraction (a camera at rest), the three taps of weight 0 are skipped: they would
+   add +0 everywhere. */
+SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
+                                 sbl__ring_row *r, int x, int ch, int contiguous)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
+    const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
+    const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
+    const sbl__m fast = sbl__gt(sbl__load(p->fast + i), zero);
+    sbl__v w[4], acc[4], accn = zero, wsum = zero, inv, n;
+    sbl__m ok[4], redo, lo, valid;
+    ptrdiff_t off[4];
+    int t, c, bits, taps;
+    /* fractions are >= 0: none above 0 means every lane reads its pixel (x0, y0) */
+    taps = sbl__mbits(sbl__mor(sbl__gt(fx, zero), sbl__gt(fy, zero))) ? 4 : 1;
+    w[0] = sbl__mul(gx, gy);
+    w[1] = sbl__mul(fx, gy);
+    w[2] = sbl__mul(gx, fy);
+    w[3] = sbl__mul(fx, fy);
+    for (t = 0; t < 4; ++t) ok[t] = sbl__gt(w[t], zero);
+    if (s->use_depth) {
+        const sbl__v ze = sbl__load(p->depth + i), sl = sbl__load(p->slack + i);
+        const sbl__v lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sl);
+        const sbl__m inf_e = sbl__posinf(ze);
+        off[0] = 0; off[1] = s->depth.step; off[2] = s->depth.stride;
+        off[3] = s->depth.stride + s->depth.step;
+        for (t = 0; t < taps; ++t) {
+            /* sbl__depth_match: sky matches only sky; else a finite, positive depth
+               within the tolerance */
+            const sbl__v d = contiguous ? sbl__load(s->depth.p + off[t] + p->di[i])
+                                        : sbl__gatheri(s->depth.p + off[t], p->di + i);
+            const sbl__m inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
+                                          sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
+            ok[t] = sbl__mand(ok[t], match);
+        }
+    }
+    if (s->length.p) {
+        off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
+        off[3] = s->length.stride + s->length.step;
+        for (t = 0; t < taps; ++t) {
+            const sbl__v nt = contiguous ? sbl__load(s->length.p + off[t] + p->li[i])
+                                         : sbl__gatheri(s->length.p + off[t], p->li + i);
+            ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
+            accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+        }
+    } else {
+        for (t = 0; t < taps; ++t) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
+    }
+    off[0] = 0; off[1] = s->color.step; off[2] = s->color.stride;
+    off[3] = s->color.stride + s->color.step;
+    for (c = 0; c < ch; ++c) acc[c] = zero;
+    for (t = 0; t < taps; ++t) {
+        for (c = 0; c < ch; ++c) {
+            const sbl__v v = contiguous && ch == 1 ? sbl__load(s->color.p + off[t] + p->ci[i])
+                                                   : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
+            acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
+        }
+        wsum = sbl__add(wsum, sbl__sel(ok[t], w[t], zero));
+    }
+    redo = sbl__nonfinite(accn);
+    for (c = 0; c < ch; ++c) redo = sbl__mor(redo, sbl__nonfinite(acc[c]));
+    lo = sbl__gt(sbl__set1(1e-3f), wsum);
+    if (fallback) redo = sbl__mor(redo, lo);
+    redo = sbl__mand(redo, fast);
+    inv = sbl__div(one, wsum);
+    n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
+    valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
+    sbl__store(r->n + x, sbl__sel(valid, n, zero));
+    sbl__store(r->v + x, sbl__sel(valid, one, zero));
+    for (c = 0; c < ch; ++c) {
+        const sbl__v o = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax);
+        sbl__store(r->x[c] + x, sbl__sel(valid, o, zero));
+    }
+    bits = sbl__mbits(redo);
+    for (t = 0; bits; ++t, bits >>= 1)
+        if (bits & 1) p->redo[i + t] = 1;
+}
+
+/* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
+   last vector overlaps the one before rather than running past the block. */
+static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+                          sbl__ring_row *r, int x)
+{
+    int i = 0;
+    for (;;) {
+        int l, contiguous = 1;
+        if (i + SBL__VW > n) i = n - SBL__VW;
+        /* every lane's first tap one pixel after the previous lane's, in every view
+           (each lane's index is a valid one, so the vector load reads exactly the
+           addresses the gather would) */
+        for (l = 1; l < SBL__VW; ++l)
+            contiguous &= (p->ci[i + l] - p->ci[i] == l * (int)s->color.step) &
+                          (!s->use_depth || p->di[i + l] - p->di[i] == l) &
+                          (!s->length.p || p->li[i + l] - p->li[i] == l);
+        switch (s->color.ch) {
+        case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
+        case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
+        case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous); break;
+        default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous); break;
+        }
+        if (i + SBL__VW >= n) break;
+        i += SBL__VW;
+    }
+}
+
+/* Can the row gather address every tap of this source with int offsets, and does it
+   run the tests the lanes implement (not ids nor normals)? */
+static int sbl__row_gather_ok(const sbl__tap_src *s)
+{
+    const sbl__flat *f[3];
+    int i;
+    if (s->use_id || s->use_normal || s->width < 2 || s->height < 2) return 0;
+    f[0] = &s->color; f[1] = &s->depth; f[2] = &s->length;
+    for (i = 0; i < 3; ++i) {
+        double span;
+        if (!f[i]->p) continue;
+        span = (double)(s->height - 1) * fabs((double)f[i]->stride) +
+               (double)s->width * (double)f[i]->step;
+        if (!(span < (double)INT_MAX / 2)) return 0;
+    }
+    return 1;
+}
+
+/* Can sbl__temporal_plan_lanes plan row y of this call? Motion vectors in pixels
+   (|k| = 1: the products are exact), images up to 2^15 pixels (positions exact in
+   float), no target normals or ids (their tests stay in sbl__tap_want_init), and an
+   interior row (the depth slack reads both neighbours). */
+static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+{
+    const int w = s->src.width, h = s->src.height;
+    /* the lanes read the target depth, the source depth and N one float per pixel and
+       the motion two: other pixel steps (channel views) take the scalar plan */
+    const int steps = s->motion.step == 2 && (!s->geo.depth.p || s->geo.depth.step == 1) &&
+                      (!s->src.use_depth || s->src.depth.step == 1) &&
+                      (!s->src.length.p || s->src.length.step == 1);
+    return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
+           fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && !s->geo.normals.p &&
+           !s->geo.ids.p && y >= 1 && y + 1 < h && steps;
+}
+
+/* sbl__temporal_rp_pos and sbl__tap_plan_set for the VW pixels x .. x + VW - 1 (all
+   with both horizontal neighbours) in float lanes, with the same results: for a
+   motion m in pixels with |m| = 0 or in [2^-8, 2^15), x + 0.5 + m is exact in double,
+   so the reference's floor and fraction are floor(m) and the correctly rounded
+   m - floor(m), and its bounds tests are exact float comparisons of m. Lanes with any
+   other motion are left to the scalar plan (returned as bits). */
+SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                         int x, int y)
+{
+    static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+    static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    const sbl__tap_src *src = &s->src;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
+    const sbl__v lo = sbl__set1(1.0f / 256.0f), hi = sbl__set1(32768.0f);
+    const sbl__v wf = sbl__set1((float)src->width), hf = sbl__set1((float)src->height);
+    const sbl__v xf = sbl__add(sbl__set1((float)x), sbl__load(lane)), yf = sbl__set1((float)y);
+    const float *mvp = SBL__AT(s->motion, x, y);
+    sbl__v z = zero, slack = zero, mx, my, ax, ay, fmx, fmy, x0f, y0f;
+    sbl__m keep, exact, inside, fast;
+    int l, bits_scalar, bits_fast;
+    float x0s[SBL__VW], y0s[SBL__VW];
+    if (s->geo.depth.p) {
+        /* sbl__tap_want_init / sbl__depth_slack: valid geometry is z > 0 (NaN, -inf
+           fail; +inf is sky); slack = min one-sided difference per axis, if finite */
+        const float *dp = SBL__AT(s->geo.depth, x, y);
+        const ptrdiff_t ds = s->geo.depth.stride;
+        sbl__v da, db, sx, sy;
+        z = sbl__load(dp);
+        da = sbl__abs(sbl__sub(z, sbl__load(dp - 1)));
+        db = sbl__abs(sbl__sub(sbl__load(dp + 1), z));
+        sx = sbl__min(da, db);
+        sx = sbl__sel(sbl__nonfinite(sx), zero, sx);
+        da = sbl__abs(sbl__sub(z, sbl__load(dp - ds)));
+        db = sbl__abs(sbl__sub(sbl__load(dp + ds), z));
+        sy = sbl__min(da, db);
+        sy = sbl__sel(sbl__nonfinite(sy), zero, sy);
+        slack = sbl__sel(sbl__nonfinite(z), zero, sbl__add(sx, sy));
+        keep = sbl__gt(z, zero);
+    } else {
+        keep = sbl__gt(one, zero);
+    }
+    mx = sbl__gatheri(mvp, pair);
+    my = sbl__gatheri(mvp + 1, pair);
+    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+    if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
+    if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
+    ax = sbl__abs(mx);
+    ay = sbl__abs(my);
+    exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
+                      sbl__mor(sbl__le(ay, zero), sbl__mand(sbl__le(lo, ay), sbl__gt(hi, ay))));
+    bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
+    /* x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
+    inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
+                       sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
+    inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
+                                         sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
+    keep = sbl__mand(sbl__mand(keep, exact), inside);
+    fmx = sbl__floor(mx);
+    fmy = sbl__floor(my);
+    x0f = sbl__add(xf, fmx);
+    y0f = sbl__add(yf, fmy);
+    /* the four taps inside the image, else the pixel gather decides */
+    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__gt(wf, sbl__add(x0f, one))),
+                     sbl__mand(sbl__le(zero, y0f), sbl__gt(hf, sbl__add(y0f, one))));
+    fast = sbl__mand(fast, keep);
+    /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
+    sbl__store(p->fx + i, sbl__sel(fast, sbl__add(sbl__sub(mx, fmx), zero), zero));
+    sbl__store(p->fy + i, sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
+    sbl__store(p->depth + i, sbl__sel(fast, z, one));
+    sbl__store(p->slack + i, sbl__sel(fast, slack, zero));
+    sbl__store(p->fast + i, sbl__sel(fast, one, zero));
+    sbl__store(x0s, x0f);
+    sbl__store(y0s, y0f);
+    bits_fast = sbl__mbits(fast);
+    for (l = 0; l < SBL__VW; ++l) {
+        const int f = (bits_fast >> l) & 1, x0 = f ? (int)x0s[l] : 0, y0 = f ? (int)y0s[l] : 0;
+        p->redo[i + l] = (unsigned char)(((sbl__mbits(keep) >> l) & 1) & !f);
+        p->ci[i + l] = (int)((ptrdiff_t)y0 * src->color.stride + (ptrdiff_t)x0 * src->color.step);
+        p->di[i + l] = src->use_depth ? (int)((ptrdiff_t)y0 * src->depth.stride + x0) : 0;
+        p->li[i + l] = src->length.p ? (int)((ptrdiff_t)y0 * src->length.stride + x0) : 0;
+    }
+    return bits_scalar;
+}
+
+/* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
+static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                 int xb)
+{
+    const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
+    const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
+    const int lanes = sbl__temporal_plan_lanes_ok(s, y);
+    sbl__tap_plan p;
+    int x0, i;
+    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
+        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
+        if (n < SBL__VW) {
+            for (i = 0; i < n; ++i) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+            continue;
+        }
+        for (i = 0; i < n;) {
+            int bits = 1, l;
+            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width && i + SBL__VW <= n) {
+                bits = sbl__temporal_plan_lanes(s, &p, i, x0 + i, y);
+                l = SBL__VW;
+            } else {
+                l = 1;
+            }
+            for (; bits; ++i, --l, bits >>= 1) {
+                sbl__tap_want t;
+                double sx, sy;
+                if (!(bits & 1)) continue;
+                sbl__tap_plan_reset(&p, i);
+                if (sbl__temporal_rp_pos(s, x0 + i, y, &t, &sx, &sy))
+                    sbl__tap_plan_set(&s->src, &p, i, &t, sx, sy);
+            }
+            i += l;
+        }
+        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
+        for (i = 0; i < n; ++i)
+            if (p.redo[i]) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+    }
+}
+#endif
+
 /* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
    pixels holding a value outside the lane range. Returns the number flagged. */
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
@@ -2163,17 +2875,19 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
 static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
     int x, c, ch = k->ch, count = 0;
-    for (x = xa; x < xb; ++x) {
-        float tmp[4] = {0, 0, 0, 0};
-        float n = k->gather(k->gather_ctx, x, row, tmp);
-        int valid = n > 0.0f, safe = 1;
-        r->n[x] = valid ? n : 0.0f;
-        r->v[x] = valid ? 1.0f : 0.0f;
-        for (c = 0; c < ch; ++c) {
-            r->x[c][x] = valid ? tmp[c] : 0.0f;
-            if (valid) safe &= sbl__lane_value_ok(tmp[c]);
+    if (k->gather_row) {
+        k->gather_row(k->gather_ctx, r, row, xa, xb);
+    } else {
+        for (x = xa; x < xb; ++x) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, k->gather(k->gather_ctx, x, row, tmp), tmp, ch);
         }
-        if (valid) safe &= sbl__lane_value_ok(n);
+    }
+    for (x = xa; x < xb; ++x) {
+        int safe = 1;
+        if (!(r->v[x] > 0.0f)) continue;
+        for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(r->x[c][x]);
+        safe &= sbl__lane_value_ok(r->n[x]);
         if (!safe && !r->unsafe[x]) { r->unsafe[x] = 1; ++count; }
     }
     return count;
@@ -2221,7 +2935,7 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
         a = 0.0f;
     } else {
         float vals[9][4], xvals[9][4];
-        int xvalid[9], n = 0, i, j;
+        int xvalid[9], n = 0, i, j, centre = -1;
         sbl__moments m;
         for (j = 0; j < 3; ++j) {
             if (!R[j]) continue;
@@ -2235,10 +2949,12 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
                 }
                 if (!ok) continue;
                 xvalid[n] = R[j]->v[i] > 0.0f;
+                if (j == 1 && i == x) centre = n;
                 ++n;
             }
         }
-        sbl__moments_core(&m, (const float(*)[4])vals, (const float(*)[4])xvals, xvalid, n, ch);
+        sbl__moments_core(&m, (const float(*)[4])vals, (const float(*)[4])xvals, xvalid, n, ch,
+                          centre);
         if (n_x > k->n_cap) n_x = k->n_cap;
         n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
     }
@@ -2266,6 +2982,8 @@ typedef struct sbl__lane_stats {
     sbl__v xs[4];   /* x* (rectified by sbl__lanes_rectify)                         */
     sbl__v xr[4];   /* x* as gathered                                               */
     sbl__v yc[4];   /* own sample                                                   */
+    sbl__v yb[4];   /* own sample as blended (firefly-limited by the robust estimator) */
+    sbl__v m8[4], v8[4]; /* mean / population variance of Y without the centre (robust) */
     sbl__v inv_cnt; /* 1 / max(pairs, 1)                                            */
     sbl__m has_pairs, two_pairs;
 } sbl__lane_stats;
@@ -2288,13 +3006,17 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
            well above the noise does not cancel the one-pass variance away */
         sbl__v shift = sbl__sub(sbl__load(xp[c][1] + x), sbl__load(yp[c][1] + x));
         sbl__v lo = m, hi = m; /* the mean lies inside [min, max]: a neutral start */
+        /* robust estimator: Y without the centre, centred on its own mean */
+        sbl__v m8 = sbl__mul(sbl__sub(sbl__mul(m, sbl__set1(9.0f)), sbl__load(yp[c][1] + x)),
+                             sbl__set1(0.125f)), v8 = zero;
         for (j = 0; j < 3; ++j) {
             int i;
             for (i = -1; i <= 1; ++i) {
                 sbl__v yy = sbl__load(yp[c][j] + x + i);
-                sbl__v e = sbl__sub(yy, m);
+                sbl__v e = sbl__sub(yy, m), e8 = sbl__sub(yy, m8);
                 sbl__v pdiff;
                 v = sbl__add(v, sbl__mul(e, e));
+                if (j != 1 || i != 0) v8 = sbl__add(v8, sbl__mul(e8, e8));
                 pdiff = sbl__mul(sbl__load(vp[j] + x + i),
                                  sbl__sub(sbl__sub(sbl__load(xp[c][j] + x + i), yy), shift));
                 d = sbl__add(d, pdiff);
@@ -2307,6 +3029,8 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
         }
         st->mean[c] = m;
         st->var[c] = sbl__mul(v, ninth);
+        st->m8[c] = m8;
+        st->v8[c] = sbl__mul(v8, sbl__set1(0.125f));
         st->lo[c] = lo;
         st->hi[c] = hi;
         st->pd[c] = sbl__mul(d, st->inv_cnt);
@@ -2318,19 +3042,41 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
     }
 }
 
-/* Neighbourhood clamp / variance clip of x*, as sbl__rectify. */
+/* Firefly limit of the own sample, as sbl__firefly_limit. */
+SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, v8 = zero, bound, t;
+    int c, ch = k->ch;
+    for (c = 0; c < ch; ++c) {
+        sum_y = sbl__add(sum_y, st->yc[c]);
+        sum_m8 = sbl__add(sum_m8, st->m8[c]);
+        sum_x = sbl__add(sum_x, st->xr[c]);
+        v8 = sbl__add(v8, st->v8[c]);
+    }
+    bound = sbl__add(sbl__max(sum_m8, sum_x),
+                     sbl__mul(sbl__set1((float)SBL_FIREFLY_SIGMAS), sbl__sqrt(v8)));
+    bound = sbl__max(bound, zero);
+    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    for (c = 0; c < ch; ++c) st->yb[c] = sbl__sel(sbl__gt(one, t), sbl__mul(st->yc[c], t), st->yc[c]);
+}
+
+/* Neighbourhood clamp / variance clip of x*, as sbl__rectify (after the firefly limit
+   of the robust estimator, as in sbl__blend_pixel). */
 SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
 {
     const sbl__v one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v gamma = sbl__set1(k->wp.gamma);
     int c, ch = k->ch;
+    for (c = 0; c < ch; ++c) st->yb[c] = st->yc[c];
+    if (k->wp.estimator == SBL_ESTIMATOR_ROBUST) sbl__lanes_firefly(k, st);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
     } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
         sbl__v t = one;
         for (c = 0; c < ch; ++c) {
             sbl__v half = sbl__max(sbl__mul(gamma, sbl__sqrt(st->var[c])),
-                                   sbl__abs(sbl__sub(st->yc[c], st->mean[c])));
+                                   sbl__abs(sbl__sub(st->yb[c], st->mean[c])));
             sbl__v dist = sbl__abs(sbl__sub(st->xs[c], st->mean[c]));
             t = sbl__sel(sbl__gt(dist, half), sbl__min(t, sbl__div(half, sbl__max(dist, tiny))), t);
         }
@@ -2358,6 +3104,24 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         w = prog;
     } else if (p->estimator == SBL_ESTIMATOR_CONSTANT) {
         w = sbl__set1(p->constant);
+    } else if (p->estimator == SBL_ESTIMATOR_ROBUST) {
+        /* as sbl__weight: the bias enters with its posterior (sbl__change_posterior) */
+        const sbl__v k2e = sbl__set1(1.0f + p->bias_threshold * p->bias_threshold * 0.125f);
+        sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
+        sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
+        sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
+        sbl__v vx_p = sbl__sub(pvs, vy_p);
+        sbl__v vy = sbl__sel(st->two_pairs, vy_p, vy_s);
+        sbl__v vx = sbl__sel(st->two_pairs, vx_p, vx_s);
+        sbl__v se2 = sbl__sel(st->two_pairs, sbl__mul(pvs, st->inv_cnt),
+                              sbl__sel(st->has_pairs, sbl__add(vx_s, vy_s), zero));
+        sbl__v t2 = sbl__div(pd2, sbl__max(se2, tiny));
+        sbl__v rho = sbl__div(k2e, sbl__add(one, sbl__mul(t2, sbl__set1(0.125f))));
+        sbl__v r2 = sbl__mul(rho, rho);
+        sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho))));
+        sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
+        sbl__v num = sbl__add(b2, vx), den = sbl__add(num, vy);
+        w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
         const sbl__v k2 = sbl__set1(p->bias_threshold * p->bias_threshold);
@@ -2390,9 +3154,9 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
     for (c = 0; c < k->ch; ++c) {
         /* two-sided lerp, as in sbl__blend_pixel */
         sbl__v o = sbl__sel(sbl__gt(a[c], sbl__set1(0.5f)),
-                            sbl__add(st->yc[c], sbl__mul(sbl__sub(one, a[c]),
-                                                         sbl__sub(st->xs[c], st->yc[c]))),
-                            sbl__add(st->xs[c], sbl__mul(a[c], sbl__sub(st->yc[c], st->xs[c]))));
+                            sbl__add(st->yb[c], sbl__mul(sbl__sub(one, a[c]),
+                                                         sbl__sub(st->xs[c], st->yb[c]))),
+                            sbl__add(st->xs[c], sbl__mul(a[c], sbl__sub(st->yb[c], st->xs[c]))));
         if (k->fill) o = st->xr[c]; /* fill takes x* unrectified, as the reference path */
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, st->yc[c]));
         a_mean = sbl__add(a_mean, a[c]);
@@ -2657,6 +3421,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.own_n = NULL;
     k.gather = sbl__temporal_rp_pixel;
     k.gather_ctx = &s;
+#ifdef SBL__ROW_GATHER
+    if (s.history && sbl__row_gather_ok(&s.src)) k.gather_row = sbl__temporal_rp_row;
+#endif
     k.out = out->color;
     k.out_n = out->length;
     k.out_a = out->alpha;
@@ -2779,7 +3546,7 @@ static int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, in
     if (!sbl__finite(fbz)) return 0;
     *ox = px + s->dir[back] * ((double)fbz - s->offset);
     *oy = py;
-    *oz = z;
+    *oz = (double)z;
     return 1;
 }
 
@@ -2791,9 +3558,9 @@ static int sbl__stereo_map_disparity(const struct sbl__stereo_rp *s, int back, i
     const float *d = SBL__AT(*m, ix, iy);
     float dy = m->ch > 1 ? d[1] : 0.0f;
     if (!sbl__finite(d[0]) || !sbl__finite(dy)) return 0;
-    *ox = px + s->dir[back] * d[0];
-    *oy = py + s->dir[back] * dy;
-    *oz = s->depth[back].p ? *SBL__AT(s->depth[back], ix, iy) : 0.0f;
+    *ox = px + s->dir[back] * (double)d[0];
+    *oy = py + s->dir[back] * (double)dy;
+    *oz = s->depth[back].p ? (double)*SBL__AT(s->depth[back], ix, iy) : 0.0;
     return 1;
 }
 
@@ -2863,7 +3630,7 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->dir[0] = target_eye == SBL_EYE_LEFT ? -1.0 : 1.0;
     s->dir[1] = -s->dir[0];
     s->fb = s->d.focal_px * s->d.baseline;
-    s->offset = s->d.disparity_offset;
+    s->offset = (double)s->d.disparity_offset;
     switch (s->d.rig) {
     case SBL_RIG_PARALLEL: s->map = sbl__stereo_map_parallel; break;
     case SBL_RIG_DISPARITY: s->map = sbl__stereo_map_disparity; break;
@@ -3054,6 +3821,521 @@ SBLDEF sbl_result sbl_stereo_blend(const sbl_stereo_desc *desc, sbl_eye_index ta
     out.length = out_length;
     return sbl_stereo_filter(desc, target_eye, target, source, &out, y0, y1, scratch,
                              scratch_bytes);
+}
+
+/* ------------------------------------------------------------------------ */
+/* Diagnostics                                                              */
+/* ------------------------------------------------------------------------ */
+
+/* The walk over named arguments: the first check that fails with the code the call
+   returns is the culprit, so the named field always explains the actual result. */
+typedef struct sbl__walk {
+    sbl_diag *d;
+    sbl_result want;
+    int found;
+} sbl__walk;
+
+static void sbl__diag_copy(char *dst, size_t n, const char *a, const char *b)
+{
+    size_t i = 0, j;
+    for (j = 0; a && a[j] && i + 1 < n; ++j) dst[i++] = a[j];
+    for (j = 0; b && b[j] && i + 1 < n; ++j) dst[i++] = b[j];
+    dst[i] = '\0';
+}
+
+/* Records field (name + suffix) and message if r is the code looked for. */
+static int sbl__blame(sbl__walk *w, sbl_result r, const char *name, const char *suffix,
+                      const char *message)
+{
+    if (w->found || r == SBL_OK || r != w->want) return 0;
+    w->found = 1;
+    sbl__diag_copy(w->d->field, sizeof w->d->field, name, suffix);
+    sbl__diag_copy(w->d->message, sizeof w->d->message, message, NULL);
+    return 1;
+}
+
+static void sbl__warn(sbl_diag *d, const char *name, const char *message)
+{
+    if (d->warning[0]) return;
+    sbl__diag_copy(d->warning, sizeof d->warning, name, message);
+}
+
+/* A named view: why sbl__check_image / sbl__check_optional refuse it. w = 0: no size
+   to match. Returns the code. */
+static sbl_result sbl__walk_image(sbl__walk *wk, const char *name, const sbl_image *im,
+                                  int want_ch, int w, int h, int optional)
+{
+    sbl_result r;
+    char msg[160];
+    if (!im->data) {
+        if (optional) return SBL_OK;
+        sbl__blame(wk, SBL_ERROR_NULL_POINTER, name, ".data", "is NULL: the buffer is required");
+        return SBL_ERROR_NULL_POINTER;
+    }
+    r = sbl__check_image(im, want_ch);
+    switch (r) {
+    case SBL_ERROR_INVALID_SIZE:
+        if (im->width <= 0 || im->height <= 0) {
+            snprintf(msg, sizeof msg, "%d x %d: width and height must be > 0", im->width, im->height);
+            sbl__blame(wk, r, name, ".width", msg);
+        } else if (im->size_bytes != 0 && im->width <= INT_MAX / 4 && im->height <= INT_MAX / 4) {
+            snprintf(msg, sizeof msg, "%zu bytes, but the layout (rows, strides) reaches over "
+                     "%zu bytes: is a pitch in bytes given in the float field `stride`?",
+                     im->size_bytes, sbl__footprint(im));
+            sbl__blame(wk, r, name, ".size_bytes", msg);
+        } else {
+            sbl__blame(wk, r, name, ".width", "too large to address");
+        }
+        break;
+    case SBL_ERROR_INVALID_CHANNELS:
+        if (want_ch) snprintf(msg, sizeof msg, "%d, this buffer needs %d", im->channels, want_ch);
+        else snprintf(msg, sizeof msg, "%d, outside 1..4", im->channels);
+        sbl__blame(wk, r, name, ".channels", msg);
+        break;
+    case SBL_ERROR_INVALID_STRIDE:
+        if (im->stride_bytes % (int)sizeof(float) != 0) {
+            snprintf(msg, sizeof msg, "%d is not a multiple of sizeof(float)", im->stride_bytes);
+            sbl__blame(wk, r, name, ".stride_bytes", msg);
+        } else if (im->pixel_bytes % (int)sizeof(float) != 0 ||
+                   (im->pixel_bytes != 0 && im->pixel_bytes < im->channels * (int)sizeof(float))) {
+            snprintf(msg, sizeof msg, "%d: must be a multiple of sizeof(float) and hold %d channels",
+                     im->pixel_bytes, im->channels);
+            sbl__blame(wk, r, name, ".pixel_bytes", msg);
+        } else if (im->stride_bytes != 0 && im->stride != 0) {
+            snprintf(msg, sizeof msg, "%d bytes disagrees with stride = %d floats (give one)",
+                     im->stride_bytes, im->stride);
+            sbl__blame(wk, r, name, ".stride_bytes", msg);
+        } else {
+            snprintf(msg, sizeof msg, "a row of %d pixels does not fit in |row stride| (%td floats): "
+                     "rows would overlap", im->width, sbl__stride(im));
+            sbl__blame(wk, r, name, im->stride_bytes ? ".stride_bytes" : ".stride", msg);
+        }
+        break;
+    default:
+        sbl__blame(wk, r, name, "", sbl_result_string(r));
+        break;
+    }
+    if (r == SBL_OK && w > 0 && (im->width != w || im->height != h)) {
+        r = SBL_ERROR_SIZE_MISMATCH;
+        snprintf(msg, sizeof msg, "%d x %d, expected %d x %d", im->width, im->height, w, h);
+        sbl__blame(wk, r, name, ".width", msg);
+    }
+    return r;
+}
+
+static void sbl__walk_gbuffer(sbl__walk *wk, const char *name, const sbl_gbuffer *g, int w, int h)
+{
+    char f[64];
+    sbl__diag_copy(f, sizeof f, name, ".depth");
+    sbl__walk_image(wk, f, &g->depth, 1, w, h, 1);
+    sbl__diag_copy(f, sizeof f, name, ".normals");
+    sbl__walk_image(wk, f, &g->normals, 3, w, h, 1);
+    sbl__diag_copy(f, sizeof f, name, ".ids");
+    sbl__walk_image(wk, f, &g->ids, 1, w, h, 1);
+    sbl__diag_copy(f, sizeof f, name, ".motion");
+    sbl__walk_image(wk, f, &g->motion, 2, w, h, 1);
+}
+
+/* Overlap of two views that may not have passed validation (the walk goes on after a
+   failure): only valid views have a meaningful footprint. */
+static int sbl__overlap_checked(const sbl_image *a, const sbl_image *b)
+{
+    return a->data && b->data && sbl__check_image(a, 0) == SBL_OK &&
+           sbl__check_image(b, 0) == SBL_OK && sbl__overlap(a, b);
+}
+
+/* An output against a named list of views it may not share a float with. */
+static void sbl__walk_overlap(sbl__walk *wk, const char *name, const sbl_image *o,
+                              const sbl_image *const *in, const char *const *in_names, int n)
+{
+    int i;
+    for (i = 0; i < n; ++i)
+        if (in[i] && sbl__overlap_checked(o, in[i]))
+            sbl__blame(wk, SBL_ERROR_OVERLAP, name, "", in_names[i]);
+}
+
+/* The G-buffer tests a pair of views runs: warn where one side has a buffer the other
+   lacks (the test is then silently off). */
+static void sbl__warn_gbuffers(sbl_diag *d, const char *a_name, const sbl_gbuffer *a,
+                               const char *b_name, const sbl_gbuffer *b)
+{
+    const sbl_image *ai[3], *bi[3];
+    const char *what[3] = {".depth", ".normals", ".ids"};
+    const char *test[3] = {": absent while the other view has it, so the depth test is off",
+                           ": absent while the other view has it, so the normal test is off",
+                           ": absent while the other view has it, so the id test is off"};
+    int i;
+    char f[96];
+    ai[0] = &a->depth; ai[1] = &a->normals; ai[2] = &a->ids;
+    bi[0] = &b->depth; bi[1] = &b->normals; bi[2] = &b->ids;
+    for (i = 0; i < 3; ++i) {
+        if (!ai[i]->data == !bi[i]->data) continue;
+        sbl__diag_copy(f, sizeof f, ai[i]->data ? b_name : a_name, what[i]);
+        sbl__warn(d, f, test[i]);
+    }
+}
+
+SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl_frame *frame,
+                                        const sbl_history *history,
+                                        const sbl_temporal_output *out, sbl_diag *diag)
+{
+    sbl_diag local;
+    sbl__walk wk;
+    sbl_result r;
+    int w, h;
+    if (!diag) diag = &local;
+    memset(diag, 0, sizeof *diag);
+    /* scratch NULL: the filter runs every other check first, so NULL_POINTER with every
+       required pointer present means the arguments are valid */
+    r = sbl_temporal_filter(desc, frame, history, out, 0, 0, NULL, 0);
+    wk.d = diag; wk.want = r; wk.found = 0;
+    if (!desc) sbl__blame(&wk, r, "desc", "", "is NULL");
+    if (!frame) sbl__blame(&wk, r, "frame", "", "is NULL");
+    if (!out) sbl__blame(&wk, r, "out", "", "is NULL");
+    if (!desc || !frame || !out) { diag->result = r; return r; }
+    w = frame->color.width; h = frame->color.height;
+    sbl__walk_image(&wk, "frame->color", &frame->color, 0, 0, 0, 0);
+    sbl__walk_image(&wk, "out->color", &out->color, 0, w, h, 0);
+    sbl__walk_image(&wk, "out->length", &out->length, 1, w, h, 0);
+    sbl__walk_image(&wk, "out->alpha", &out->alpha, 1, w, h, 1);
+    if (r == SBL_ERROR_NULL_POINTER && !wk.found) r = wk.want = SBL_OK; /* the scratch */
+    if (out->color.data && out->color.channels != frame->color.channels)
+        sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "out->color", ".channels",
+                   "differs from frame->color.channels");
+    {   /* parameters, one at a time against the defaults */
+        sbl_temporal_desc z = sbl_temporal_defaults(NULL), u = sbl_temporal_defaults(desc), t;
+        char msg[96];
+#define SBL__TRY_WEIGHT(fieldname)                                                          \
+        t = z; t.fieldname = u.fieldname;                                                   \
+        if (sbl__check_weight_params(t.estimator, t.rectify, t.weight_mode, t.constant_alpha, \
+                                     t.alpha_min, t.clip_gamma, t.bias_threshold) != SBL_OK) { \
+            snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
+                     (double)u.fieldname);                                           \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
+        }
+        SBL__TRY_WEIGHT(estimator)
+        SBL__TRY_WEIGHT(rectify)
+        SBL__TRY_WEIGHT(weight_mode)
+        SBL__TRY_WEIGHT(constant_alpha)
+        SBL__TRY_WEIGHT(alpha_min)
+        SBL__TRY_WEIGHT(clip_gamma)
+        SBL__TRY_WEIGHT(bias_threshold)
+#undef SBL__TRY_WEIGHT
+        if (!sbl__finite(u.max_history) || u.max_history < 1.0f)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->max_history", "",
+                       "must be finite and >= 1");
+#define SBL__TRY_RP(fieldname)                                                              \
+        t = z; t.reproject.fieldname = u.reproject.fieldname;                               \
+        if (sbl__check_reproject_desc(&t.reproject) != SBL_OK)                              \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->reproject." #fieldname, "",    \
+                       "out of range or not finite");
+        SBL__TRY_RP(depth_tolerance)
+        SBL__TRY_RP(normal_threshold)
+        SBL__TRY_RP(back_check_pixels)
+        SBL__TRY_RP(motion.units)
+        SBL__TRY_RP(disabled_tests)
+#undef SBL__TRY_RP
+        if ((int)u.source < 0 || (int)u.source > (int)SBL_TEMPORAL_CAMERA)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->source", "", "not an sbl_temporal_source");
+        sbl__walk_gbuffer(&wk, "frame->gbuffer", &frame->gbuffer, w, h);
+        if (history && history->color.data) {
+            sbl__walk_image(&wk, "history->color", &history->color, 0, w, h, 0);
+            if (history->color.channels != frame->color.channels)
+                sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "history->color", ".channels",
+                           "differs from frame->color.channels");
+            sbl__walk_image(&wk, "history->length", &history->length, 1, w, h, 1);
+            sbl__walk_gbuffer(&wk, "history->gbuffer", &history->gbuffer, w, h);
+        }
+        if (u.source == SBL_TEMPORAL_MOTION && !frame->gbuffer.motion.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->gbuffer.motion", "",
+                       "is absent: SBL_TEMPORAL_MOTION needs motion vectors");
+        if (u.source == SBL_TEMPORAL_CAMERA) {
+            if (!frame->gbuffer.depth.data)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->gbuffer.depth", "",
+                           "is absent: SBL_TEMPORAL_CAMERA needs depth");
+            if (!frame->camera)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->camera", "",
+                           "is NULL: SBL_TEMPORAL_CAMERA needs both frames' cameras");
+            if (frame->object_count && !frame->gbuffer.ids.data)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "frame->gbuffer.ids", "",
+                           "is absent: frame->objects are found through the id buffer");
+            if (!sbl__objects_ok(frame->objects, frame->object_count))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "frame->objects", "",
+                           "need finite, invertible transforms, sorted by distinct ids "
+                           "(and object_count >= 0)");
+            if (history && history->color.data && !history->camera)
+                sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, "history->camera", "",
+                           "is NULL: SBL_TEMPORAL_CAMERA needs both frames' cameras");
+            if (frame->camera && history && history->color.data && history->camera) {
+                sbl__cam_map m;
+                if (!sbl__cam_map_init(&m, frame->camera, w, h, history->camera, w, h))
+                    sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "frame->camera / history->camera",
+                               "", "a matrix is not finite, or a projection or view matrix "
+                               "is singular");
+            }
+        }
+    }
+    {   /* outputs: disjoint from each other and from every input */
+        const sbl_image *o[3], *in[11];
+        const char *on[3] = {"out->color", "out->length", "out->alpha"};
+        const char *names[11] = {
+            "overlaps frame->color", "overlaps frame->gbuffer.depth",
+            "overlaps frame->gbuffer.normals", "overlaps frame->gbuffer.ids",
+            "overlaps frame->gbuffer.motion", "overlaps history->color",
+            "overlaps history->length", "overlaps history->gbuffer.depth",
+            "overlaps history->gbuffer.normals", "overlaps history->gbuffer.ids",
+            "overlaps history->gbuffer.motion"};
+        int i, j;
+        const sbl_history *hi = history && history->color.data ? history : NULL;
+        o[0] = &out->color; o[1] = &out->length; o[2] = &out->alpha;
+        in[0] = &frame->color; in[1] = &frame->gbuffer.depth; in[2] = &frame->gbuffer.normals;
+        in[3] = &frame->gbuffer.ids; in[4] = &frame->gbuffer.motion;
+        in[5] = hi ? &hi->color : NULL; in[6] = hi ? &hi->length : NULL;
+        in[7] = hi ? &hi->gbuffer.depth : NULL; in[8] = hi ? &hi->gbuffer.normals : NULL;
+        in[9] = hi ? &hi->gbuffer.ids : NULL; in[10] = hi ? &hi->gbuffer.motion : NULL;
+        for (i = 0; i < 3; ++i)
+            for (j = i + 1; j < 3; ++j)
+                if (sbl__overlap_checked(o[i], o[j]))
+                    sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
+        for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 11);
+    }
+    if (r != SBL_OK && !wk.found) {
+        sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);
+        sbl__diag_copy(diag->message, sizeof diag->message, sbl_result_string(r), NULL);
+    }
+    /* legal but probably unintended */
+    if (history && history->color.data) {
+        sbl__warn_gbuffers(diag, "frame->gbuffer", &frame->gbuffer, "history->gbuffer",
+                           &history->gbuffer);
+        if (!history->length.data)
+            sbl__warn(diag, "history->length",
+                      ": absent, so N = 1 everywhere (the progressive and history-aware "
+                      "estimators then blend 1:1): pass last frame's out->length");
+    }
+    diag->result = r;
+    return r;
+}
+
+/* Round-trip error of the rig's correspondence over a sample of target pixels (a grid
+   of at most ~64 x 64): target -> source -> back from the nearest source pixel. With the
+   right eye assignment it is the error of a nearest-pixel lookup; with the eyes swapped
+   the match lands on another point and the error grows with the disparity gradient
+   (zero only where the disparity is constant, where a swap cannot be seen). */
+static double sbl__sample_roundtrip(const sbl__stereo_rp *s, int w, int h, long *count)
+{
+    int stx = w / 64 + 1, sty = h / 64 + 1, x, y;
+    double sum = 0.0;
+    long n = 0;
+    for (y = sty / 2; y < h; y += sty)
+        for (x = stx / 2; x < w; x += stx) {
+            double sx, sy, sz, bx, by, bz, ex, ey;
+            float z;
+            sbl__tap_want want;
+            if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
+            if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
+            if (!(sx >= 0.0 && sx < (double)w && sy >= 0.0 && sy < (double)h)) continue;
+            if (!s->map(s, 1, (int)floor(sx), (int)floor(sy), sx, sy, &bx, &by, &bz)) continue;
+            ex = bx - (x + 0.5);
+            ey = by - (y + 0.5);
+            if (!(ex * ex + ey * ey < 1e6)) continue;
+            sum += sqrt(ex * ex + ey * ey);
+            ++n;
+        }
+    *count = n;
+    return n ? sum / (double)n : 0.0;
+}
+
+SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
+                                      const sbl_eye *target, const sbl_eye *source,
+                                      const sbl_stereo_output *out, sbl_diag *diag)
+{
+    sbl_diag local;
+    sbl__walk wk;
+    sbl__stereo_rp s;
+    sbl_result r;
+    int e, w, h;
+    if (!diag) diag = &local;
+    memset(diag, 0, sizeof *diag);
+    if (out) {
+        r = sbl_stereo_filter(desc, target_eye, target, source, out, 0, 0, NULL, 0);
+    } else {
+        r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0);
+        if (r == SBL_OK) r = SBL_ERROR_NULL_POINTER; /* as the filter reports a NULL scratch */
+    }
+    wk.d = diag; wk.want = r; wk.found = 0;
+    if (!desc) sbl__blame(&wk, r, "desc", "", "is NULL");
+    if (!target) sbl__blame(&wk, r, "target", "", "is NULL");
+    if (!source) sbl__blame(&wk, r, "source", "", "is NULL");
+    if (!desc || !target || !source) { diag->result = r; return r; }
+    w = source->color.width; h = source->color.height;
+    for (e = 0; e < 2; ++e) {
+        const sbl_eye *eye = e ? source : target;
+        const char *nm = e ? "source" : "target";
+        int need = e || out;
+        char f[64];
+        sbl__diag_copy(f, sizeof f, nm, "->color");
+        sbl__walk_image(&wk, f, &eye->color, 0, e ? 0 : w, h, !need);
+        sbl__diag_copy(f, sizeof f, nm, "->gbuffer");
+        sbl__walk_gbuffer(&wk, f, &eye->gbuffer, w, h);
+        sbl__diag_copy(f, sizeof f, nm, "->length");
+        sbl__walk_image(&wk, f, &eye->length, 1, w, h, 1);
+        sbl__diag_copy(f, sizeof f, nm, "->disparity");
+        sbl__walk_image(&wk, f, &eye->disparity, 0, w, h, 1);
+        if (eye->disparity.data && eye->disparity.channels > 2)
+            sbl__blame(&wk, SBL_ERROR_INVALID_CHANNELS, f, ".channels",
+                       "a disparity map has 1 (d_x) or 2 (d_x, d_y) channels");
+        if (!need && !eye->gbuffer.depth.data && !eye->disparity.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, nm, "->gbuffer.depth",
+                       "is absent: the target's geometry (depth or disparity) is required");
+        sbl__diag_copy(f, sizeof f, nm, "->gbuffer.depth");
+        if (desc->rig != SBL_RIG_DISPARITY && !eye->gbuffer.depth.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is absent: this rig needs both eyes' depth");
+        sbl__diag_copy(f, sizeof f, nm, "->disparity");
+        if (desc->rig == SBL_RIG_DISPARITY && !eye->disparity.data)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is absent: SBL_RIG_DISPARITY needs both eyes' maps");
+        sbl__diag_copy(f, sizeof f, nm, "->camera");
+        if (desc->rig == SBL_RIG_MATRICES && !eye->camera)
+            sbl__blame(&wk, SBL_ERROR_MISSING_INPUT, f, "", "is NULL: SBL_RIG_MATRICES needs both eyes' cameras");
+    }
+    if (desc->rig == SBL_RIG_MATRICES && target->camera && source->camera) {
+        sbl__cam_map m;
+        if (!sbl__cam_map_init(&m, target->camera, w, h, source->camera, w, h))
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "target->camera / source->camera", "",
+                       "a matrix is not finite, or a projection or view matrix is singular");
+    }
+    if (r == SBL_ERROR_NULL_POINTER && !wk.found) r = wk.want = SBL_OK; /* the scratch */
+    if (out) {
+        sbl__walk_image(&wk, "out->color", &out->color, 0, w, h, 0);
+        sbl__walk_image(&wk, "out->length", &out->length, 1, w, h, 1);
+        sbl__walk_image(&wk, "out->beta", &out->beta, 1, w, h, 1);
+        if (out->color.data && out->color.channels != target->color.channels)
+            sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "out->color", ".channels",
+                       "differs from target->color.channels");
+    }
+    if (target->color.data && source->color.data &&
+        target->color.channels != source->color.channels)
+        sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "target->color", ".channels",
+                   "differs from source->color.channels");
+    if (sbl__eye_width(target) != w || sbl__eye_height(target) != h)
+        sbl__blame(&wk, SBL_ERROR_SIZE_MISMATCH, "target", "", "differs in size from source");
+    {
+        sbl_stereo_desc z = sbl_stereo_defaults(NULL), u = sbl_stereo_defaults(desc), t;
+        char msg[96];
+        if ((int)u.rig < 0 || u.rig >= SBL_RIG_COUNT)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->rig", "", "not an sbl_stereo_rig");
+        if ((int)target_eye != 0 && (int)target_eye != 1)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "target_eye", "", "must be SBL_EYE_LEFT or SBL_EYE_RIGHT");
+        if (u.rig == SBL_RIG_PARALLEL) {
+            if (!sbl__finite(u.focal_px) || !(u.focal_px > 0.0f))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->focal_px", "",
+                           "must be finite and > 0 for SBL_RIG_PARALLEL");
+            if (!sbl__finite(u.baseline) || !(u.baseline > 0.0f))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->baseline", "",
+                           "must be finite and > 0 for SBL_RIG_PARALLEL");
+            if (!sbl__finite(u.disparity_offset))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->disparity_offset", "", "not finite");
+        }
+        if (u.rig == SBL_RIG_PINHOLE) {
+            double v[16], p[16], inv[16];
+            float id[16];
+            int i;
+            for (i = 0; i < 16; ++i) id[i] = (i % 5 == 0) ? 1.0f : 0.0f;
+            for (e = 0; e < 2; ++e)
+                if (!sbl__pinhole_gl(&u.pinhole.eye[e], id, u.pinhole.axes, 0, w > 0 ? w : 1,
+                                     h > 0 ? h : 1, v, p))
+                    sbl__blame(&wk, SBL_ERROR_INVALID_PARAM,
+                               e ? "desc->pinhole.eye[1]" : "desc->pinhole.eye[0]", "",
+                               "fx, fy must be > 0 and everything finite (or axes invalid)");
+            for (i = 0; i < 16; ++i) v[i] = (double)u.pinhole.right_from_left[i];
+            if (!sbl__mat_invert(inv, v))
+                sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->pinhole.right_from_left", "",
+                           "not finite or singular (a zero-initialised pose is singular: "
+                           "set at least the identity)");
+        }
+#define SBL__TRY_WEIGHT(fieldname)                                                          \
+        t = z; t.fieldname = u.fieldname;                                                   \
+        if (out && sbl__check_weight_params(t.estimator, t.rectify, t.weight_mode,           \
+                                            t.constant_beta,                                \
+                                     0.0f, t.clip_gamma, t.bias_threshold) != SBL_OK) {     \
+            snprintf(msg, sizeof msg, "%g is out of range or not finite",                   \
+                     (double)u.fieldname);                                           \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->" #fieldname, "", msg);         \
+        }
+        SBL__TRY_WEIGHT(estimator)
+        SBL__TRY_WEIGHT(rectify)
+        SBL__TRY_WEIGHT(weight_mode)
+        SBL__TRY_WEIGHT(constant_beta)
+        SBL__TRY_WEIGHT(clip_gamma)
+        SBL__TRY_WEIGHT(bias_threshold)
+#undef SBL__TRY_WEIGHT
+#define SBL__TRY_RP(fieldname)                                                              \
+        t = z; t.reproject.fieldname = u.reproject.fieldname;                               \
+        if (sbl__check_reproject_desc(&t.reproject) != SBL_OK)                              \
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->reproject." #fieldname, "",    \
+                       "out of range or not finite");
+        SBL__TRY_RP(depth_tolerance)
+        SBL__TRY_RP(normal_threshold)
+        SBL__TRY_RP(back_check_pixels)
+        SBL__TRY_RP(disabled_tests)
+#undef SBL__TRY_RP
+    }
+    if (out) {
+        const sbl_image *o[3], *in[14];
+        const char *on[3] = {"out->color", "out->length", "out->beta"};
+        const char *names[14] = {
+            "overlaps target->color", "overlaps target->length", "overlaps target->disparity",
+            "overlaps target->gbuffer.depth", "overlaps target->gbuffer.normals",
+            "overlaps target->gbuffer.ids", "overlaps target->gbuffer.motion",
+            "overlaps source->color", "overlaps source->length", "overlaps source->disparity",
+            "overlaps source->gbuffer.depth", "overlaps source->gbuffer.normals",
+            "overlaps source->gbuffer.ids", "overlaps source->gbuffer.motion"};
+        int i, j;
+        for (e = 0; e < 2; ++e) {
+            const sbl_eye *eye = e ? source : target;
+            in[e * 7 + 0] = &eye->color; in[e * 7 + 1] = &eye->length;
+            in[e * 7 + 2] = &eye->disparity; in[e * 7 + 3] = &eye->gbuffer.depth;
+            in[e * 7 + 4] = &eye->gbuffer.normals; in[e * 7 + 5] = &eye->gbuffer.ids;
+            in[e * 7 + 6] = &eye->gbuffer.motion;
+        }
+        o[0] = &out->color; o[1] = &out->length; o[2] = &out->beta;
+        for (i = 0; i < 3; ++i)
+            for (j = i + 1; j < 3; ++j)
+                if (sbl__overlap_checked(o[i], o[j]))
+                    sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
+        for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 14);
+    }
+    if (r != SBL_OK && !wk.found) {
+        sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);
+        sbl__diag_copy(diag->message, sizeof diag->message, sbl_result_string(r), NULL);
+    }
+    /* legal but probably unintended */
+    if (r == SBL_OK) {
+        sbl__warn_gbuffers(diag, "target->gbuffer", &target->gbuffer, "source->gbuffer",
+                           &source->gbuffer);
+        if (desc->rig != SBL_RIG_MATRICES) {
+            /* target_eye decides the direction of the correspondence (and the pinhole
+               rig's cameras): with it swapped, the matches land on other surfaces; the
+               depth, id and normal tests and the back-check then reject most of them */
+            sbl__stereo_rp swapped;
+            long n_this, n_swap;
+            if (sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0) == SBL_OK &&
+                sbl__stereo_rp_init(&swapped, desc, target_eye == SBL_EYE_LEFT ? SBL_EYE_RIGHT
+                                                                              : SBL_EYE_LEFT,
+                                    target, source, 0) == SBL_OK) {
+                double e_this = sbl__sample_roundtrip(&s, w, h, &n_this);
+                double e_swap = sbl__sample_roundtrip(&swapped, w, h, &n_swap);
+                if (n_this > 0 && n_swap > 0 && e_this > 4.0 * e_swap && e_this > 0.05) {
+                    char msg[200];
+                    snprintf(msg, sizeof msg, ": the correspondence comes back %.3g px off on "
+                             "average, %.3g px with the other eye: are target_eye, or target "
+                             "and source, swapped?", e_this, e_swap);
+                    sbl__warn(diag, "target_eye", msg);
+                }
+            }
+        }
+    }
+    diag->result = r;
+    return r;
 }
 
 SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc, const sbl_eye *left,

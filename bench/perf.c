@@ -7,6 +7,13 @@
    width,height,eyes,pipeline,threads,ms,floor_ms,ratio_floor,opencv_ms
    (opencv_ms: the temporal filter composed from OpenCV calls, bench/perf_opencv.cpp,
    timed in the same run when built with OpenCV; else empty).
+   Mono temporal also runs on three more contents (1 thread):
+     temporal-hard    per-pixel random sub-pixel motion, and a nearer disc that moved
+                      so that ~10 % of the pixels are disoccluded (the slow path's cost)
+     temporal-tiny    the easy frame with one 1e-14 value in every row (no slow-path cliff)
+     temporal-static  a camera at rest: zero motion, unchanged depth
+   (compare their ms with the `temporal` row of the same size: the issue asks for
+   hard <= 1.5x, tiny <= 1.2x, static <= 1.2x the floor).
 
    usage: perf [--quick] [--reps N] [--out DIR] */
 #define _POSIX_C_SOURCE 200809L
@@ -43,7 +50,7 @@ static float *falloc(size_t n)
 
 /* One eye's buffers: frame colour, depth, motion; history (ping-pong); outputs. */
 typedef struct eye_bufs {
-    float *color, *depth, *motion, *hist, *hlen, *out, *olen, *stereo_out;
+    float *color, *depth, *prev_depth, *motion, *hist, *hlen, *out, *olen, *stereo_out;
 } eye_bufs;
 
 typedef struct job {
@@ -75,7 +82,7 @@ static void run_temporal(job *j)
     f.gbuffer.motion = sbl_image_make(b->motion, j->w, j->h, 2);
     hi.color = sbl_image_make(b->hist, j->w, j->h, 3);
     hi.length = sbl_image_make(b->hlen, j->w, j->h, 1);
-    hi.gbuffer.depth = sbl_image_make(b->depth, j->w, j->h, 1);
+    hi.gbuffer.depth = sbl_image_make(b->prev_depth, j->w, j->h, 1);
     o.color = sbl_image_make(b->out, j->w, j->h, 3);
     o.length = sbl_image_make(b->olen, j->w, j->h, 1);
     j->result = sbl_temporal_filter(&j->td, &f, &hi, &o, j->y0, j->y1, j->scratch, j->scratch_bytes);
@@ -160,7 +167,8 @@ static void fill_eye(eye_bufs *b, int w, int h, int eye)
 {
     size_t n = (size_t)w * h, i;
     unsigned s = 12345u + 77u * (unsigned)eye;
-    b->color = falloc(n * 3); b->depth = falloc(n); b->motion = falloc(n * 2);
+    b->color = falloc(n * 3); b->depth = falloc(n); b->prev_depth = falloc(n);
+    b->motion = falloc(n * 2);
     b->hist = falloc(n * 3); b->hlen = falloc(n); b->out = falloc(n * 3); b->olen = falloc(n);
     b->stereo_out = falloc(n * 3);
     for (i = 0; i < n; ++i) {
@@ -171,15 +179,45 @@ static void fill_eye(eye_bufs *b, int w, int h, int eye)
             b->hist[i * 3 + c] = 0.5f + 0.3f * sinf(x * 0.05f + c);
         }
         b->depth[i] = 2.0f + 0.001f * (float)y;
+        b->prev_depth[i] = b->depth[i];
         b->motion[i * 2] = 0.37f + 0.1f * sinf(y * 0.01f);
         b->motion[i * 2 + 1] = -0.21f;
         b->hlen[i] = 8.0f;
     }
 }
 
+/* Turn eye 0's easy content into case 3 (hard), 4 (tiny) or 5 (static); run in this
+   order, each from the one before (hard undoes the tiny values and rewrites motion and
+   depth, static rewrites them again). */
+static void make_case(eye_bufs *b, int w, int h, int kase)
+{
+    size_t n = (size_t)w * h, i;
+    unsigned s = 777u;
+    int r = h / 5 < w / 5 ? h / 5 : w / 5; /* disc radius: ~10 % disoccluded */
+    for (i = 0; i < n; ++i) {
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
+        if (kase == 4) {
+            if (x == (int)(((size_t)y * 37u) % (size_t)w)) b->color[i * 3 + (size_t)(y % 3)] = 1e-14f;
+        } else if (kase == 3) {
+            int dx = x - w / 2, dy = y - h / 2, dxp = x - (w / 2 - r / 2);
+            s = s * 1664525u + 1013904223u;
+            b->motion[i * 2] = ((float)(s >> 8) * (1.0f / 16777216.0f) - 0.5f) * 1.8f;
+            s = s * 1664525u + 1013904223u;
+            b->motion[i * 2 + 1] = ((float)(s >> 8) * (1.0f / 16777216.0f) - 0.5f) * 1.8f;
+            b->depth[i] = dx * dx + dy * dy < r * r ? 1.0f : 2.0f + 0.001f * (float)y;
+            b->prev_depth[i] = dxp * dxp + dy * dy < r * r ? 1.0f : 2.0f + 0.001f * (float)y;
+            if (x == (int)(((size_t)y * 37u) % (size_t)w)) b->color[i * 3 + (size_t)(y % 3)] = 0.5f;
+        } else if (kase == 5) {
+            b->motion[i * 2] = 0.0f;
+            b->motion[i * 2 + 1] = 0.0f;
+            b->depth[i] = b->prev_depth[i] = 2.0f + 0.001f * (float)y;
+        }
+    }
+}
+
 static void free_eye(eye_bufs *b)
 {
-    free(b->color); free(b->depth); free(b->motion); free(b->hist); free(b->hlen);
+    free(b->color); free(b->depth); free(b->prev_depth); free(b->motion); free(b->hist); free(b->hlen);
     free(b->out); free(b->olen); free(b->stereo_out);
 }
 
@@ -211,9 +249,9 @@ int main(int argc, char **argv)
            "scalar"
 #endif
     );
-    printf("| %9s | %4s | %-8s | %7s | %9s | %9s | %6s | %9s |\n", "size", "eyes", "pipeline",
+    printf("| %9s | %4s | %-15s | %7s | %9s | %9s | %6s | %9s |\n", "size", "eyes", "pipeline",
            "threads", "ms", "floor ms", "ratio", "OpenCV ms");
-    printf("|-----------|------|----------|--------:|----------:|----------:|-------:|----------:|\n");
+    printf("|-----------|------|-----------------|--------:|----------:|----------:|-------:|----------:|\n");
     for (si = 0; si < (quick ? 1 : 3); ++si) {
         int w = sizes[si][0], h = sizes[si][1];
         eye_bufs e[2];
@@ -223,10 +261,14 @@ int main(int argc, char **argv)
         fill_eye(&e[1], w, h, 1);
         for (i = 0; i < 8; ++i) scratch[i] = malloc(bytes);
         for (eyes = 1; eyes <= 2; ++eyes)
-            for (pipe = 0; pipe < 3; ++pipe) {
-                static const char *names[3] = {"temporal", "stereo", "combined"};
-                if (eyes == 1 && pipe != 0) continue; /* stereo needs two eyes */
-                for (threads = 1; threads <= 2; ++threads) {
+            for (pipe = 0; pipe < 6; ++pipe) {
+                static const char *names[6] = {"temporal", "stereo", "combined", "temporal-tiny",
+                                               "temporal-hard", "temporal-static"};
+                const int kind = pipe >= 3 ? 0 : pipe; /* the extra contents run temporal */
+                if (eyes == 1 && pipe != 0 && pipe < 3) continue; /* stereo needs two eyes */
+                if (eyes == 2 && pipe >= 3) continue;
+                if (pipe >= 3) make_case(&e[0], w, h, pipe == 3 ? 4 : (pipe == 4 ? 3 : 5));
+                for (threads = 1; threads <= (pipe >= 3 ? 1 : 2); ++threads) {
                     double t_lib[64], t_floor[64], t_cv[64], ms, fms, cvms = -1.0;
                     /* byte plan for the floor, matching the pipeline's reads / writes */
                     const float *inp[32];
@@ -234,17 +276,17 @@ int main(int argc, char **argv)
                     int in_ch[32], out_ch[32], ni = 0, no = 0, ev;
                     job pj, fj;
                     for (ev = 0; ev < eyes; ++ev) {
-                        if (pipe == 0 || pipe == 2) {
+                        if (kind == 0 || kind == 2) {
                             inp[ni] = e[ev].color; in_ch[ni++] = 3;
                             inp[ni] = e[ev].depth; in_ch[ni++] = 1;
                             inp[ni] = e[ev].motion; in_ch[ni++] = 2;
                             inp[ni] = e[ev].hist; in_ch[ni++] = 3;
                             inp[ni] = e[ev].hlen; in_ch[ni++] = 1;
-                            inp[ni] = e[ev].depth; in_ch[ni++] = 1; /* previous depth */
+                            inp[ni] = e[ev].prev_depth; in_ch[ni++] = 1; /* previous depth */
                             outp[no] = e[ev].out; out_ch[no++] = 3;
                             outp[no] = e[ev].olen; out_ch[no++] = 1;
                         }
-                        if (pipe == 1 || pipe == 2) {
+                        if (kind == 1 || kind == 2) {
                             inp[ni] = e[ev].out; in_ch[ni++] = 3;     /* own colour    */
                             inp[ni] = e[ev].olen; in_ch[ni++] = 1;    /* own N         */
                             inp[ni] = e[ev].depth; in_ch[ni++] = 1;   /* own depth     */
@@ -265,12 +307,12 @@ int main(int argc, char **argv)
                     fj.out_planes = outp; fj.out_count = no; fj.out_ch = out_ch;
                     for (r = 0; r < reps + 1 && r < 64; ++r) {
                         double t0 = now_ms();
-                        if (pipe == 0 || pipe == 2)
+                        if (kind == 0 || kind == 2)
                             for (ev = 0; ev < eyes; ++ev) {
                                 pj.kind = 0; pj.eye = ev;
                                 if (run_bands(&pj, threads, scratch) != 0) { fprintf(stderr, "temporal failed\n"); return 1; }
                             }
-                        if (pipe == 1 || pipe == 2)
+                        if (kind == 1 || kind == 2)
                             for (ev = 0; ev < eyes; ++ev) {
                                 pj.kind = 1; pj.eye = ev;
                                 if (run_bands(&pj, threads, scratch) != 0) { fprintf(stderr, "stereo failed\n"); return 1; }
@@ -303,7 +345,7 @@ int main(int argc, char **argv)
                     qsort(t_floor + 1, (size_t)reps, sizeof(double), cmp_double);
                     ms = t_lib[1 + reps / 2];
                     fms = t_floor[1 + reps / 2];
-                    printf("| %4dx%-4d | %4d | %-8s | %7d | %9.3f | %9.3f | %6.2f |", w, h, eyes,
+                    printf("| %4dx%-4d | %4d | %-15s | %7d | %9.3f | %9.3f | %6.2f |", w, h, eyes,
                            names[pipe], threads, ms, fms, ms / fms);
                     if (cvms >= 0) printf(" %9.3f |\n", cvms);
                     else printf(" %9s |\n", "");

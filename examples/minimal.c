@@ -4,9 +4,9 @@
    for display (the history keeps the temporal result). The "renderer" here is a noisy
    textured plane seen by a parallel stereo rig, panning one pixel per frame.
 
-   cc -std=c99 -O2 examples/minimal.c -lm && ./a.out */
+   cc -std=c99 -O2 -I. examples/minimal.c -lm && ./a.out */
 #define STEREOBLEND_IMPLEMENTATION
-#include "../stereoblend.h"
+#include "stereoblend.h" /* -I the repository, or the installed header (pkg-config, CMake) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

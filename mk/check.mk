@@ -9,11 +9,12 @@
 # configures the implementation (STEREOBLEND_STATIC, SBL_MALLOC) or calls internal sbl__
 # functions compiles its own copy instead.
 #
-#   gcc             C99 pedantic -Werror, -O2, default SIMD path (SSE2 / NEON); + test_simd
+#   gcc             C99 pedantic -Werror, $(OPT), default SIMD path (SSE2 / NEON); + test_simd
 #   clang           the same with clang
 #   cxx             the same as C++ (g++, else clang++)
 #   scalar          -DSBL_NO_SIMD (the reference path)
-#   avx2, avx512    each SIMD path the CPU can run; + test_simd (against the scalar path)
+#   avx2, avx512    each SIMD path the CPU can run; + test_simd (against the scalar path);
+#                   test_robust on the widest path is O3native's (-march=native)
 #   O0, O3native    test_robust at -O0 and at -O3 -march=native
 #   fastmath        test_robust with gcc -ffast-math (FTZ/DAZ set by crtfastmath.o)
 #   clang-fastmath  test_robust with clang -O3 -march=native -ffast-math
@@ -28,7 +29,7 @@
 Q := $(if $(filter 1,$(V)),,@)
 CC_GCC := $(if $(HAVE_GCC),gcc,$(CC))
 HEADER_TESTS = $(filter-out test_metrics,$(TESTS))
-VALGRIND_TESTS ?= test_core test_stereo test_paths
+VALGRIND_TESTS ?= test_core test_stereo
 # tests that configure the implementation (STEREOBLEND_STATIC, SBL_MALLOC) or call its
 # internal functions compile their own copy of it
 SELF_IMPL_RE := define (STEREOBLEND_STATIC|SBL_MALLOC)|sbl__[a-z0-9_]+[(]
@@ -73,7 +74,7 @@ CFG_TESTS_avx2 = $(HEADER_TESTS) test_simd
 
 CFG_CC_avx512 = $(CC_GCC)
 CFG_FLAGS_avx512 = $(CFLAGS_STRICT) $(OPT) $(FLAGS_avx512)
-CFG_TESTS_avx512 = $(HEADER_TESTS) test_simd
+CFG_TESTS_avx512 = $(filter-out test_robust,$(HEADER_TESTS)) test_simd  # robust: O3native
 
 CFG_CC_O0 = $(CC_GCC)
 CFG_FLAGS_O0 = $(CFLAGS_STRICT) -O0 -g

@@ -105,6 +105,7 @@ typedef struct fbuf {
 } fbuf;
 
 typedef struct ctx {
+    sbl_result expect; /* what the validation said */
     fbuf bufs[MAXBUF];
     int nbufs;
     void *extra[4];
@@ -386,9 +387,26 @@ static sbl_result fuzz_temporal(rd *r, ctx *cx, int w, int h, int c, int op)
     d.reproject.motion.units = (sbl_motion_units)(enum_val(r, 3) < 0 ? -1 : (int)(u8(r) % 3u));
     d.reproject.motion.forward = (int)(u8(r) & 1u);
     d.reproject.motion.y_up = (int)(u8(r) & 1u);
+    d.reproject.disabled_tests = (int)(u8(r) % 40u); /* 32..39: an unknown bit */
     f.color = make_image(r, cx, R_COLOR, w, h, c, 0, 0);
     f.gbuffer = make_gbuffer(r, cx, w, h, 1);
     f.camera = make_camera(r, &cc, w, h);
+    {   /* moving objects (camera mode): ids 1..4, sorted or not, maybe singular */
+        static sbl_object_motion objs[4];
+        int n = (int)(u8(r) % 5u), i, k;
+        for (i = 0; i < n; ++i) {
+            objs[i].id = (float)(i + 1);
+            for (k = 0; k < 16; ++k) {
+                objs[i].object_to_world[k] = (k % 5 == 0) ? 1.0f : 0.0f;
+                objs[i].prev_object_to_world[k] = (k % 5 == 0) ? 1.0f : 0.0f;
+            }
+            objs[i].prev_object_to_world[3] = ((float)(int)u8(r) - 128.0f) / 64.0f;
+            if ((u8(r) % 16u) == 0) objs[i].object_to_world[u8(r) % 16u] = special(u8(r));
+            if ((u8(r) % 16u) == 1) objs[i].id = 2.0f; /* duplicate / unsorted */
+        }
+        f.objects = n ? objs : NULL;
+        f.object_count = n;
+    }
     use_hist = (int)(u8(r) % 4u) != 0;
     if (use_hist) {
         hi.color = make_image(r, cx, R_COLOR, w, h, c, (u8(r) % 8u) == 0, 0);
@@ -416,6 +434,16 @@ static sbl_result fuzz_temporal(rd *r, ctx *cx, int w, int h, int c, int op)
     o.color = make_image(r, cx, R_COLOR, w, h, c, 0, 1);
     o.length = make_image(r, cx, R_LENGTH, w, h, 1, 0, 1);
     o.alpha = make_image(r, cx, R_LENGTH, w, h, 1, 1, 1);
+    {   /* the validation: the same code as the call for every argument error, the
+           culprit named, nothing written */
+        sbl_diag dg;
+        sbl_result vr = sbl_temporal_validate(&d, &f, hp, &o, &dg);
+        check_rc(vr);
+        REQUIRE(dg.result == vr);
+        REQUIRE((vr == SBL_OK) == (dg.field[0] == '\0'));
+        check_untouched(cx);
+        cx->expect = vr;
+    }
     if (op == 6) {
         rc = sbl_temporal_filter_frame(&d, &f, hp, &o);
         y0 = 0; y1 = f.color.height;
@@ -426,6 +454,11 @@ static sbl_result fuzz_temporal(rd *r, ctx *cx, int w, int h, int c, int op)
         rc = sbl_temporal_filter(&d, &f, hp, &o, y0, y1, s, bytes);
     }
     check_rc(rc);
+    /* validation OK: only the row range, the scratch or its size can still fail */
+    if (cx->expect != SBL_OK) REQUIRE(rc == cx->expect);
+    else REQUIRE(rc == SBL_OK || rc == SBL_ERROR_INVALID_ROWS || rc == SBL_ERROR_NULL_POINTER ||
+                 rc == SBL_ERROR_SCRATCH_TOO_SMALL || rc == SBL_ERROR_INVALID_SIZE ||
+                 rc == SBL_ERROR_OUT_OF_MEMORY);
     if (rc != SBL_OK) { check_untouched(cx); return rc; }
     {
         sbl_temporal_desc dd = sbl_temporal_defaults(&d);
@@ -482,7 +515,7 @@ static void make_eye(rd *r, ctx *cx, sbl_eye *e, int w, int h, int c, int need_c
     e->color = make_image(r, cx, R_COLOR, w, h, c, !need_color, 0);
     e->length = make_image(r, cx, R_LENGTH, w, h, 1, 1, 0);
     e->gbuffer = make_gbuffer(r, cx, w, h, 0);
-    e->disparity = make_image(r, cx, R_DISP, w, h, 1, 1, 0);
+    e->disparity = make_image(r, cx, R_DISP, w, h, 1 + (int)(u8(r) & 1u), 1, 0);
     e->camera = make_camera(r, cam, w, h);
 }
 
@@ -505,6 +538,22 @@ static sbl_result fuzz_stereo(rd *r, ctx *cx, int w, int h, int c, int op)
     d.focal_px = param(r);
     d.baseline = param(r);
     if (u8(r) & 1u) { d.focal_px = 8.0f; d.baseline = 0.5f; }
+    d.disparity_offset = (u8(r) & 1u) ? param(r) - 1.0f : 0.0f;
+    if (d.rig == SBL_RIG_PINHOLE) {
+        int e, k;
+        for (e = 0; e < 2; ++e) {
+            d.pinhole.eye[e].fx = (u8(r) & 1u) ? param(r) : 8.0f;
+            d.pinhole.eye[e].fy = 8.0f;
+            d.pinhole.eye[e].cx = (float)w * 0.5f + (float)(u8(r) % 8u) * 0.25f;
+            d.pinhole.eye[e].cy = (float)h * 0.5f;
+        }
+        for (k = 0; k < 16; ++k) d.pinhole.right_from_left[k] = (k % 5 == 0) ? 1.0f : 0.0f;
+        d.pinhole.right_from_left[3] = -0.5f;
+        if ((u8(r) % 8u) == 0) d.pinhole.right_from_left[u8(r) % 16u] = special(u8(r));
+        d.pinhole.axes = (sbl_view_axes)(u8(r) % 3u); /* 2: invalid */
+        d.pinhole.integer_pixel_centers = (int)(u8(r) & 1u);
+    }
+    d.reproject.disabled_tests = (int)(u8(r) % 40u);
     weight_enums(r, &d.estimator, &d.rectify, &d.weight_mode);
     d.constant_beta = param(r);
     d.clip_gamma = param(r);
@@ -520,12 +569,28 @@ static sbl_result fuzz_stereo(rd *r, ctx *cx, int w, int h, int c, int op)
     if (op == 3) {
         sbl_image oc = make_image(r, cx, R_COLOR, w, h, c, 0, 1);
         sbl_image on = make_image(r, cx, R_LENGTH, w, h, 1, 1, 1);
+        sbl_image ob = make_image(r, cx, R_LENGTH, w, h, 1, 1, 1);
         size_t need = sbl_stereo_scratch_size(t.color.width, t.color.channels), bytes;
         void *sp = scratch(r, cx, need, &bytes);
+        sbl_stereo_output so;
+        sbl_diag dg;
+        sbl_result vr;
+        memset(&so, 0, sizeof so);
+        so.color = oc; so.length = on; so.beta = ob;
+        vr = sbl_stereo_validate(&d, te, &t, &s, &so, &dg);
+        check_rc(vr);
+        REQUIRE(dg.result == vr);
+        REQUIRE((vr == SBL_OK) == (dg.field[0] == '\0'));
+        check_untouched(cx);
         rows(r, h, &y0, &y1);
-        rc = sbl_stereo_blend(&d, te, &t, &s, oc, on, y0, y1, sp, bytes);
+        rc = sbl_stereo_filter(&d, te, &t, &s, &so, y0, y1, sp, bytes);
         check_rc(rc);
+        if (vr != SBL_OK) REQUIRE(rc == vr);
+        else REQUIRE(rc == SBL_OK || rc == SBL_ERROR_INVALID_ROWS || rc == SBL_ERROR_NULL_POINTER ||
+                     rc == SBL_ERROR_SCRATCH_TOO_SMALL || rc == SBL_ERROR_INVALID_SIZE);
         if (rc != SBL_OK) { check_untouched(cx); return rc; }
+        check_rows(cx, &ob, y0, y1);
+        check_range(&ob, y0, y1, 0.0f, 1.0f);
         check_rows(cx, &oc, y0, y1);
         check_rows(cx, &on, y0, y1);
         check_range(&on, y0, y1, 0.0f, f_bits(0x7f800000u));

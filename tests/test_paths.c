@@ -10,6 +10,15 @@
 #include "../stereoblend.h"
 #include "sbl_test.h"
 
+#ifdef SBL__ROW_GATHER
+static sbl_image view(const sbt_img *im)
+{
+    sbl_image v;
+    v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
+    return v;
+}
+#endif
+
 #define PW 40
 #define PH 3
 typedef struct paths_gather { float x[PH][PW][4]; float n[PH][PW]; } paths_gather;
@@ -130,6 +139,136 @@ static void test_spans(void)
     free(scratch);
 }
 
+/* The row gather against the pixel gather it replaces, bit for bit, on hostile
+   content: taps outside the image, rejected taps (3x3 fallback on and off), NaN / inf /
+   FLT_MAX / 0 / negative history colour and N, sky and invalid depth, zero, integer,
+   huge and NaN motion in every unit convention, no N buffer, no depth buffer. */
+/* 1 if this translation unit's compiler contracts a * b + c into a fused multiply-add
+   (clang -mfma does, gcc in ISO C mode does not): then the pixel gather's sums may
+   differ from the lanes' in the last bits, and the comparison allows 1e-6 relative
+   (1e-5 absolute where the sums cancel). */
+static int compiler_contracts(void)
+{
+    volatile float a = 1.0f + 1.0f / 4096.0f, c = -(1.0f + 1.0f / 2048.0f);
+    float b = a;
+    return a * b + c != 0.0f;
+}
+
+static int same_float(float a, float b, int contracts)
+{
+    if (memcmp(&a, &b, sizeof a) == 0) return 1;
+    /* colours here are of order 1 and may cancel: an absolute floor of 1e-5 */
+    return contracts && fabs((double)a - b) <= 1e-6 * (fabs(a) + fabs(b)) + 1e-5;
+}
+
+static void test_row_gather(void)
+{
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+    static const float specials[8] = {0.0f, -1.0f, 1e30f, FLT_MAX, 1e-39f, -FLT_MAX, 0.0f, FLT_MAX};
+    sbt_rng rng = {99};
+    int it, pixels = 0, mismatches = 0, redone = 0;
+    for (it = 0; it < 600; ++it) {
+        int w = 2 + (int)(sbt_uniform(&rng) * 80), h = 2 + (int)(sbt_uniform(&rng) * 10);
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i;
+        int with_len = it % 5 != 0, with_depth = it % 7 != 0;
+        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
+        sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
+        sbt_img pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 1);
+        sbl_reproject_desc rd;
+        sbl_frame f;
+        sbl_history hi;
+        sbl__temporal_rp rp;
+        float planes[2][7][96];
+        unsigned char unsafe[96];
+        sbl__ring_row ra, rb;
+        double mscale;
+        memset(&rd, 0, sizeof rd);
+        rd.no_fallback = it % 4 == 1;
+        rd.motion.units = (sbl_motion_units)(it % 3);
+        rd.motion.y_up = (it / 3) % 2;
+        rd.motion.forward = (it / 6) % 2;
+        mscale = rd.motion.units == SBL_MOTION_PIXELS ? 1.0 : 1.0 / w;
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                float r0 = (float)sbt_uniform(&rng);
+                for (c = 0; c < ch; ++c) {
+                    sbt_at(&cur, x, y)[c] = (float)sbt_uniform(&rng);
+                    sbt_at(&hist, x, y)[c] = (float)(sbt_uniform(&rng) * 2 - 0.2);
+                }
+                *sbt_at(&len, x, y) = (float)(sbt_uniform(&rng) * 30);
+                *sbt_at(&depth, x, y) = (float)(3.0 + 0.01 * x + (r0 < 0.15 ? 5.0 : 0.0));
+                *sbt_at(&pdepth, x, y) = (float)(3.0 + 0.01 * x + (sbt_uniform(&rng) < 0.15 ? 5.0 : 0.0));
+                sbt_at(&mv, x, y)[0] = (float)((sbt_uniform(&rng) * 6 - 3) * mscale);
+                sbt_at(&mv, x, y)[1] = (float)((sbt_uniform(&rng) * 4 - 2) * mscale);
+                if (r0 > 0.9) { sbt_at(&mv, x, y)[0] = 0.0f; sbt_at(&mv, x, y)[1] = 0.0f; }
+                else if (r0 > 0.85) { sbt_at(&mv, x, y)[0] = -1.0f; sbt_at(&mv, x, y)[1] = 1.0f; }
+                if (sbt_uniform(&rng) < 0.04) sbt_at(&hist, x, y)[(int)(sbt_uniform(&rng) * ch)] = specials[it % 8];
+                if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[ch - 1] = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.03) *sbt_at(&len, x, y) = specials[(it + x) % 8];
+                if (sbt_uniform(&rng) < 0.01) *sbt_at(&len, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = specials[(it + y) % 4];
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&depth, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.01) sbt_at(&mv, x, y)[1] = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.01) sbt_at(&mv, x, y)[0] = 1e30f;
+                if (sbt_uniform(&rng) < 0.01) sbt_at(&mv, x, y)[0] = 1e-40f;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&depth, x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.01) *sbt_at(&depth, x, y) = -(float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) /* x + 0.5 + m not exact in double */
+                    sbt_at(&mv, x, y)[(x + y) & 1] = (float)(sbt_uniform(&rng) * 3e-8);
+                if (sbt_uniform(&rng) < 0.05) /* small motions, some below 2^-8 */
+                    sbt_at(&mv, x, y)[(x + y) & 1] = (float)((sbt_uniform(&rng) - 0.5) * 1e-2 * pow(10.0, -4.0 * sbt_uniform(&rng)));
+            }
+        memset(&f, 0, sizeof f);
+        memset(&hi, 0, sizeof hi);
+        f.color = view(&cur);
+        if (with_depth) f.gbuffer.depth = view(&depth);
+        f.gbuffer.motion = view(&mv);
+        hi.color = view(&hist);
+        if (with_len) hi.length = view(&len);
+        if (with_depth) hi.gbuffer.depth = view(&pdepth);
+        CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
+        if (!sbl__row_gather_ok(&rp.src)) { CHECK(0); continue; }
+        for (i = 0; i < 2; ++i) {
+            sbl__ring_row *r = i ? &rb : &ra;
+            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
+            r->n = planes[i][4];
+            r->v = planes[i][5];
+            r->y[0] = planes[i][6];
+            r->unsafe = unsafe;
+            memset(planes[i], 0xff, sizeof planes[i]);
+        }
+        for (y = 0; y < h; ++y) {
+            int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w), xb = it % 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
+            sbl__temporal_rp_row(&rp, &ra, y, xa, xb);
+            for (x = xa; x < xb; ++x) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(&rb, x, sbl__temporal_rp_pixel(&rp, x, y, tmp), tmp, ch);
+            }
+            for (x = xa; x < xb; ++x) {
+                int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
+                for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
+                if (bad && mismatches < 5)
+                    printf("  row gather case %d (%dx%dx%d) pixel (%d,%d): n %.9g vs %.9g, x0 %.9g vs %.9g\n",
+                           it, w, h, ch, x, y, ra.n[x], rb.n[x], ra.x[0][x], rb.x[0][x]);
+                mismatches += bad;
+                redone += !(rb.n[x] > 0.0f);
+                ++pixels;
+            }
+        }
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
+    }
+    printf("  %s row gather vs pixel gather: %d pixels (%d without x*), %d differ (%s)\n", SBL_SIMD_NAME,
+           pixels, redone, mismatches, contracts ? "a*b+c contracted: 1e-6 relative" : "bit for bit");
+    CHECK(mismatches == 0);
+    CHECK(redone > pixels / 20 && redone < pixels / 2);
+#else
+    printf("  %s: no row gather on this path (the pixel gather runs)\n", SBL_SIMD_NAME);
+#endif
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -218,5 +357,6 @@ int main(void)
            SBL_SIMD_NAME, compared, worst, refused);
     CHECK(refused > 0);
     test_spans();
+    test_row_gather();
     return sbt_finish("test_paths");
 }

@@ -1231,7 +1231,26 @@ static double ref_weight(const refp *p, double dev2, double s2, double pd2, doub
     if (p->est == SBL_ESTIMATOR_PAPER) a = dev2 + s2 > 0 ? dev2 / (dev2 + s2) : prog;
     else if (p->est == SBL_ESTIMATOR_PROGRESSIVE) a = prog;
     else if (p->est == SBL_ESTIMATOR_CONSTANT) a = p->constant;
-    else {
+    else if (p->est == SBL_ESTIMATOR_ROBUST) {
+        /* as below, the bias weighted by the posterior of change: t^2 = pd2 / se2,
+           rho = (1 + k^2/8) / (1 + t^2/8), posterior 1 / (1 + rho^4.5) */
+        double k2 = p->bias_thr * p->bias_thr, vy, vx, se2, b2 = 0;
+        if (pairs > 1) {
+            vy = pv * nx / (nx + ny);
+            vx = pv - vy;
+            se2 = pv / pairs;
+        } else {
+            vy = count > 1 ? s2 * count / (count - 1) : 0.0;
+            vx = vy * ny / nx;
+            se2 = pairs == 1 ? vx + vy : 0.0;
+        }
+        if (pairs > 0) {
+            double t2 = se2 > 0 ? pd2 / se2 : (pd2 > 0 ? HUGE_VAL : 0.0);
+            double rho = (1 + k2 / 8) / (1 + t2 / 8);
+            b2 = pd2 / (1 + pow(rho, 4.5));
+        }
+        a = b2 + vx + vy > 0 ? (b2 + vx) / (b2 + vx + vy) : prog;
+    } else {
         /* paired t-test: with two or more pairs, var_X + var_Y from the pairs' sample
            variance pv and bias beyond bias_thr standard errors; else the 3x3 variance */
         double k2 = p->bias_thr * p->bias_thr, vy, vx, b2 = 0;
@@ -1292,27 +1311,32 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                 for (k = 0; k < c; ++k) o[k] = yv[k];
                 nout = 1;
             } else {
-                double mean[4], var[4], lo[4], hi[4], pd[4], pv[4], x1[4], ak[4];
-                int cnt = 0, pairs = 0, idx[9][2], ispair[9];
+                double mean[4], var[4], lo[4], hi[4], pd[4], pv[4], x1[4], ak[4], yl[4];
+                int cnt = 0, pairs = 0, idx[9][2], ispair[9], centre = 0, pass;
                 for (j = y - 1; j <= y + 1; ++j)
                     for (i = x - 1; i <= x + 1; ++i) {
                         int f = 1;
                         if (i < 0 || j < 0 || i >= w || j >= h) continue;
                         for (k = 0; k < c; ++k) f &= fin(px(in->cur, i, j)[k]);
                         if (!f) continue;
+                        if (i == x && j == y) centre = cnt;
                         idx[cnt][0] = i; idx[cnt][1] = j;
                         ispair[cnt] = xn[j * w + i] > 0;
                         pairs += ispair[cnt];
                         ++cnt;
                     }
+                for (k = 0; k < c; ++k) yl[k] = yv[k];
+                /* robust estimator: the centre's own sample limited for the blend */
+                for (pass = 0; pass < 2; ++pass) {
+#define REF_Y(n, k) ((n) == centre ? yl[k] : (double)px(in->cur, idx[n][0], idx[n][1])[k])
                 for (k = 0; k < c; ++k) {
                     double s = 0, v = 0, q = 0;
                     int n;
-                    for (n = 0; n < cnt; ++n) s += px(in->cur, idx[n][0], idx[n][1])[k];
+                    for (n = 0; n < cnt; ++n) s += REF_Y(n, k);
                     mean[k] = s / cnt;
-                    lo[k] = hi[k] = px(in->cur, idx[0][0], idx[0][1])[k];
+                    lo[k] = hi[k] = REF_Y(0, k);
                     for (n = 0; n < cnt; ++n) {
-                        double yy = px(in->cur, idx[n][0], idx[n][1])[k];
+                        double yy = REF_Y(n, k);
                         v += (yy - mean[k]) * (yy - mean[k]);
                         if (yy < lo[k]) lo[k] = yy;
                         if (yy > hi[k]) hi[k] = yy;
@@ -1324,13 +1348,32 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     if (pairs > 1) {
                         for (n = 0; n < cnt; ++n)
                             if (ispair[n]) {
-                                double e = (xs[(idx[n][1] * w + idx[n][0]) * c + k] -
-                                            px(in->cur, idx[n][0], idx[n][1])[k]) - pd[k];
+                                double e = (xs[(idx[n][1] * w + idx[n][0]) * c + k] - REF_Y(n, k)) - pd[k];
                                 pv[k] += e * e;
                             }
                         pv[k] /= pairs - 1;
                     }
                     x1[k] = xs[(y * w + x) * c + k];
+                }
+                if (pass == 0 && p->est == SBL_ESTIMATOR_ROBUST && cnt > 1) {
+                    /* neighbours without the centre: mean and population variance,
+                       summed over channels; bound = max(their mean, x*) + 4 sigma */
+                    double sy = 0, sm = 0, sx = 0, sv = 0, bound, t = 1;
+                    int n;
+                    for (k = 0; k < c; ++k) {
+                        double m8 = 0, v8 = 0;
+                        for (n = 0; n < cnt; ++n) if (n != centre) m8 += REF_Y(n, k) / (cnt - 1);
+                        for (n = 0; n < cnt; ++n)
+                            if (n != centre) v8 += (REF_Y(n, k) - m8) * (REF_Y(n, k) - m8) / (cnt - 1);
+                        sy += yv[k]; sm += m8; sx += x1[k]; sv += v8;
+                    }
+                    bound = (sm > sx ? sm : sx) + 4.0 * sqrt(sv);
+                    if (bound < 0) bound = 0;
+                    if (sy > bound) t = bound / sy;
+                    for (k = 0; k < c; ++k) yl[k] = yv[k] * t;
+                }
+                break; /* the window statistics keep the raw sample */
+#undef REF_Y
                 }
                 if (nx > p->max_history) nx = p->max_history;
                 if (p->rect == SBL_RECTIFY_CLAMP) {
@@ -1339,7 +1382,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     double t = 1;
                     for (k = 0; k < c; ++k) {
                         double half = p->gamma * sqrt(var[k]), dd = fabs(x1[k] - mean[k]);
-                        if (fabs(yv[k] - mean[k]) > half) half = fabs(yv[k] - mean[k]);
+                        if (fabs(yl[k] - mean[k]) > half) half = fabs(yl[k] - mean[k]);
                         if (dd > half && half / dd < t) t = half / dd;
                     }
                     if (t < 1)
@@ -1364,7 +1407,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     a = ref_weight(p, dev2, s2, pd2, pvs, cnt, pairs, nx, 1.0);
                     for (k = 0; k < c; ++k) ak[k] = a;
                 }
-                for (k = 0; k < c; ++k) o[k] = x1[k] + ak[k] * (yv[k] - x1[k]);
+                for (k = 0; k < c; ++k) o[k] = x1[k] + ak[k] * (yl[k] - x1[k]);
                 nout = ref_eq5(a, nx, 1.0);
             }
             if (!(nout <= p->max_history)) nout = p->max_history;

@@ -1,0 +1,39 @@
+# `make strict`: the header, declarations and implementation (tests/sbl_impl.c), compiled
+# with every warning a strict user project turns on, by gcc and clang as C99 and as C++,
+# on every SIMD path (the paths are different code). Prints the warning count of each
+# compile (the full text is in build/strict/<compile>.log) and fails if there is any.
+# Not yet part of `make check`: it goes in once the header is clean.
+
+STRICT_WARN   = -Wall -Wextra -Wpedantic -Wconversion -Wsign-conversion -Wdouble-promotion \
+                -Wshadow -Wcast-qual -Wundef
+STRICT_C      = -std=c99 $(STRICT_WARN) -Wstrict-prototypes -Wmissing-prototypes
+STRICT_CXX    = -std=c++11 $(STRICT_WARN) -Wold-style-cast
+STRICT_PATHS  = default scalar avx2 avx512
+STRICT_default =
+STRICT_scalar  = -DSBL_NO_SIMD
+STRICT_avx2    = -mavx2 -mfma
+STRICT_avx512  = -mavx512f -mavx2 -mfma
+
+STRICT_CC_gcc       = gcc -x c $(STRICT_C)
+STRICT_CC_clang     = clang -x c $(STRICT_C)
+STRICT_CC_gxx       = g++ -x c++ $(STRICT_CXX) -Wuseless-cast
+STRICT_CC_clangxx   = clang++ -x c++ $(STRICT_CXX)
+STRICT_COMPILERS = $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang) $(if $(HAVE_GXX),gxx) \
+                   $(if $(HAVE_CLANGXX),clangxx)
+STRICT_LOGS = $(foreach c,$(STRICT_COMPILERS),$(foreach p,$(STRICT_PATHS),$(BUILD)/strict/$(c)-$(p).log))
+
+define STRICT_RULE
+$(BUILD)/strict/$(1)-$(2).log: tests/sbl_impl.c stereoblend.h
+	@mkdir -p $$(@D)
+	@$$(STRICT_CC_$(1)) $$(STRICT_$(2)) -O2 -c $$< -o $$(@:.log=.o) > $$@ 2>&1 || echo "error: did not compile" >> $$@
+endef
+$(foreach c,$(STRICT_COMPILERS),$(foreach p,$(STRICT_PATHS),$(eval $(call STRICT_RULE,$(c),$(p)))))
+
+.PHONY: strict
+strict: $(STRICT_LOGS)
+	@total=0; for f in $(STRICT_LOGS); do \
+	  n=$$(grep -c -E '(warning|error):' $$f); total=$$((total + n)); \
+	  printf '%-40s %4d warnings\n' "$$f" "$$n"; \
+	done; \
+	for f in $(STRICT_LOGS); do grep -h -o -E '\[-W[a-z0-9=-]+\]' $$f; done | sort | uniq -c | sort -rn; \
+	echo "strict: $$total warnings"; test $$total -eq 0
