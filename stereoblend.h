@@ -2276,6 +2276,23 @@ typedef __mmask16 sbl__m;
 #define sbl__posinf(a) \
     _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
 #define sbl__floor(a) _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
+SBL__INLINE __mmask16 sbl__lane_ok(__m512 a) /* sbl__lane_value_ok per lane */
+{
+    const __m512i b = _mm512_and_si512(_mm512_castps_si512(a), _mm512_set1_epi32(0x7fffffff));
+    const __m512i e = _mm512_srli_epi32(b, 23);
+    return (__mmask16)(_mm512_cmpeq_epi32_mask(b, _mm512_setzero_si512()) |
+                       (_mm512_cmpgt_epi32_mask(e, _mm512_set1_epi32(86)) &
+                        _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(177), e)));
+}
+SBL__INLINE __m512 sbl__recip(__m512 a) /* see the SSE2 version */
+{
+    const __m512d one = _mm512_set1_pd(1.0);
+    const __m256 lo = _mm512_cvtpd_ps(_mm512_div_pd(one, _mm512_cvtps_pd(_mm512_castps512_ps256(a))));
+    const __m256 hi = _mm512_cvtpd_ps(_mm512_div_pd(
+        one, _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(a), 1)))));
+    return _mm512_castpd_ps(
+        _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1));
+}
 #elif !defined(SBL_NO_SIMD) && defined(__AVX2__)
 #include <immintrin.h>
 #define SBL_SIMD_NAME "avx2"
@@ -2292,7 +2309,8 @@ typedef __m256 sbl__m;
 #define sbl__min(a, b) _mm256_min_ps(a, b)
 #define sbl__max(a, b) _mm256_max_ps(a, b)
 #define sbl__sqrt(a) _mm256_sqrt_ps(a)
-#define sbl__abs(a) _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a)
+/* abs on the bits: -ffast-math (no signed zeros) may fold a -0.0f mask to +0 */
+#define sbl__abs(a) _mm256_and_ps(a, _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
 #define SBL__ROW_GATHER 1
@@ -2311,6 +2329,22 @@ typedef __m256 sbl__m;
     _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
                                            _mm256_set1_epi32(0x7f800000)))
 #define sbl__floor(a) _mm256_floor_ps(a)
+SBL__INLINE __m256 sbl__lane_ok(__m256 a) /* sbl__lane_value_ok per lane */
+{
+    const __m256i b = _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7fffffff));
+    const __m256i e = _mm256_srli_epi32(b, 23);
+    return _mm256_castsi256_ps(_mm256_or_si256(
+        _mm256_cmpeq_epi32(b, _mm256_setzero_si256()),
+        _mm256_and_si256(_mm256_cmpgt_epi32(e, _mm256_set1_epi32(86)),
+                         _mm256_cmpgt_epi32(_mm256_set1_epi32(177), e))));
+}
+SBL__INLINE __m256 sbl__recip(__m256 a) /* see the SSE2 version */
+{
+    const __m256d one = _mm256_set1_pd(1.0);
+    const __m128 lo = _mm256_cvtpd_ps(_mm256_div_pd(one, _mm256_cvtps_pd(_mm256_castps256_ps128(a))));
+    const __m128 hi = _mm256_cvtpd_ps(_mm256_div_pd(one, _mm256_cvtps_pd(_mm256_extractf128_ps(a, 1))));
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
+}
 #elif !defined(SBL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || \
                                 (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
@@ -2328,7 +2362,8 @@ typedef __m128 sbl__m;
 #define sbl__min(a, b) _mm_min_ps(a, b)
 #define sbl__max(a, b) _mm_max_ps(a, b)
 #define sbl__sqrt(a) _mm_sqrt_ps(a)
-#define sbl__abs(a) _mm_andnot_ps(_mm_set1_ps(-0.0f), a)
+/* abs on the bits: -ffast-math (no signed zeros) may fold a -0.0f mask to +0 */
+#define sbl__abs(a) _mm_and_ps(a, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
 #define SBL__ROW_GATHER 1
@@ -2345,6 +2380,26 @@ typedef __m128 sbl__m;
         _mm_set1_epi32(0x7f800000)))
 #define sbl__posinf(a) \
     _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a), _mm_set1_epi32(0x7f800000)))
+/* 1 / a as the float division gives it, also under -ffast-math (which lets gcc replace
+   a float vector division by a reciprocal estimate): divided in double and rounded once
+   more, which for a quotient of floats is the correctly rounded float (53 >= 2 * 24 + 2) */
+SBL__INLINE __m128 sbl__recip(__m128 a)
+{
+    const __m128d one = _mm_set1_pd(1.0);
+    const __m128 lo = _mm_cvtpd_ps(_mm_div_pd(one, _mm_cvtps_pd(a)));
+    const __m128 hi = _mm_cvtpd_ps(_mm_div_pd(one, _mm_cvtps_pd(_mm_movehl_ps(a, a))));
+    return _mm_movelh_ps(lo, hi);
+}
+/* sbl__lane_value_ok per lane, on the bits (exponent in [87, 177), or +-0) */
+SBL__INLINE __m128 sbl__lane_ok(__m128 a)
+{
+    const __m128i b = _mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7fffffff));
+    const __m128i e = _mm_srli_epi32(b, 23);
+    return _mm_castsi128_ps(_mm_or_si128(
+        _mm_cmpeq_epi32(b, _mm_setzero_si128()),
+        _mm_and_si128(_mm_cmpgt_epi32(e, _mm_set1_epi32(86)),
+                      _mm_cmplt_epi32(e, _mm_set1_epi32(177)))));
+}
 /* floor of |a| < 2^31 (SSE2 has no rounding mode op): truncate, then step down */
 SBL__INLINE __m128 sbl__floor(__m128 a)
 {
@@ -2501,7 +2556,7 @@ SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v,
     int c, valid = n > 0.0f;
     r->n[x] = valid ? n : 0.0f;
     r->v[x] = valid ? 1.0f : 0.0f;
-    for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f;
+    for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f; /* v may be NULL if n <= 0 */
 }
 
 #ifdef SBL__ROW_GATHER
@@ -2596,7 +2651,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         for (t = 0; t < taps; ++t) {
             /* sbl__depth_match: sky matches only sky; else a finite, positive depth
                within the tolerance */
-            const sbl__v d = contiguous ? sbl__load(s->depth.p + off[t] + p->di[i])
+            const sbl__v d = contiguous && s->depth.step == 1
+                                 ? sbl__load(s->depth.p + off[t] + p->di[i])
                                         : sbl__gatheri(s->depth.p + off[t], p->di + i);
             const sbl__m inf_t = sbl__posinf(d);
             const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
@@ -2610,7 +2666,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
         off[3] = s->length.stride + s->length.step;
         for (t = 0; t < taps; ++t) {
-            const sbl__v nt = contiguous ? sbl__load(s->length.p + off[t] + p->li[i])
+            const sbl__v nt = contiguous && s->length.step == 1
+                                  ? sbl__load(s->length.p + off[t] + p->li[i])
                                          : sbl__gatheri(s->length.p + off[t], p->li + i);
             ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
             accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
@@ -2623,7 +2680,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     for (c = 0; c < ch; ++c) acc[c] = zero;
     for (t = 0; t < taps; ++t) {
         for (c = 0; c < ch; ++c) {
-            const sbl__v v = contiguous && ch == 1 ? sbl__load(s->color.p + off[t] + p->ci[i])
+            const sbl__v v = contiguous && s->color.step == 1
+                                 ? sbl__load(s->color.p + off[t] + p->ci[i])
                                                    : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
             acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
         }
@@ -2634,7 +2692,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
     if (fallback) redo = sbl__mor(redo, lo);
     redo = sbl__mand(redo, fast);
-    inv = sbl__div(one, wsum);
+    inv = sbl__recip(wsum);
     n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
     valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
     sbl__store(r->n + x, sbl__sel(valid, n, zero));
@@ -2662,8 +2720,8 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
            addresses the gather would) */
         for (l = 1; l < SBL__VW; ++l)
             contiguous &= (p->ci[i + l] - p->ci[i] == l * (int)s->color.step) &
-                          (!s->use_depth || p->di[i + l] - p->di[i] == l) &
-                          (!s->length.p || p->li[i + l] - p->li[i] == l);
+                          (!s->use_depth || p->di[i + l] - p->di[i] == l * (int)s->depth.step) &
+                          (!s->length.p || p->li[i + l] - p->li[i] == l * (int)s->length.step);
         switch (s->color.ch) {
         case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
         case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
@@ -2696,18 +2754,15 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
 /* Can sbl__temporal_plan_lanes plan row y of this call? Motion vectors in pixels
    (|k| = 1: the products are exact), images up to 2^15 pixels (positions exact in
    float), no target normals or ids (their tests stay in sbl__tap_want_init), and an
-   interior row (the depth slack reads both neighbours). */
+   interior row (the depth slack reads both neighbours); motion and target depth packed
+   (pixel steps 2 and 1). */
 static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     const int w = s->src.width, h = s->src.height;
-    /* the lanes read the target depth, the source depth and N one float per pixel and
-       the motion two: other pixel steps (channel views) take the scalar plan */
-    const int steps = s->motion.step == 2 && (!s->geo.depth.p || s->geo.depth.step == 1) &&
-                      (!s->src.use_depth || s->src.depth.step == 1) &&
-                      (!s->src.length.p || s->src.length.step == 1);
     return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
            fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && !s->geo.normals.p &&
-           !s->geo.ids.p && y >= 1 && y + 1 < h && steps;
+           !s->geo.ids.p && y >= 1 && y + 1 < h && s->motion.step == 2 &&
+           (!s->geo.depth.p || s->geo.depth.step == 1);
 }
 
 /* sbl__temporal_rp_pos and sbl__tap_plan_set for the VW pixels x .. x + VW - 1 (all
@@ -2788,8 +2843,12 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
         const int f = (bits_fast >> l) & 1, x0 = f ? (int)x0s[l] : 0, y0 = f ? (int)y0s[l] : 0;
         p->redo[i + l] = (unsigned char)(((sbl__mbits(keep) >> l) & 1) & !f);
         p->ci[i + l] = (int)((ptrdiff_t)y0 * src->color.stride + (ptrdiff_t)x0 * src->color.step);
-        p->di[i + l] = src->use_depth ? (int)((ptrdiff_t)y0 * src->depth.stride + x0) : 0;
-        p->li[i + l] = src->length.p ? (int)((ptrdiff_t)y0 * src->length.stride + x0) : 0;
+        p->di[i + l] = src->use_depth
+                           ? (int)((ptrdiff_t)y0 * src->depth.stride + (ptrdiff_t)x0 * src->depth.step)
+                           : 0;
+        p->li[i + l] = src->length.p ? (int)((ptrdiff_t)y0 * src->length.stride +
+                                             (ptrdiff_t)x0 * src->length.step)
+                                     : 0;
     }
     return bits_scalar;
 }
@@ -2851,7 +2910,30 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     /* the lanes load N_Y contiguously: another pixel step takes the reference path */
     const int ny_lanes = !ny || ny_step == 1;
     int x, c, ch = k->ch, count = 0;
-    for (x = xa; x < xb; ++x) {
+    x = xa;
+#ifdef SBL__ROW_GATHER
+    if (ny_lanes) {
+        /* deinterleave, then flag a vector at a time */
+        for (x = xa; x < xb; ++x)
+            for (c = 0; c < ch; ++c) r->y[c][x] = src[(ptrdiff_t)x * step + c];
+        for (x = xa; x + SBL__VW <= xb; x += SBL__VW) {
+            sbl__m ok = sbl__lane_ok(sbl__load(r->y[0] + x));
+            int bits, l;
+            for (c = 1; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->y[c] + x)));
+            if (ny) {
+                const sbl__v n = sbl__load(ny + x);
+                ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
+            }
+            bits = sbl__mbits(ok);
+            for (l = 0; l < SBL__VW; ++l) {
+                const int bad = !((bits >> l) & 1);
+                r->unsafe[x + l] = (unsigned char)bad;
+                count += bad;
+            }
+        }
+    }
+#endif
+    for (; x < xb; ++x) {
         int safe = ny_lanes;
         for (c = 0; c < ch; ++c) {
             float v = src[(ptrdiff_t)x * step + c];
@@ -2883,7 +2965,18 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
             sbl__ring_put(r, x, k->gather(k->gather_ctx, x, row, tmp), tmp, ch);
         }
     }
-    for (x = xa; x < xb; ++x) {
+    x = xa;
+#ifdef SBL__ROW_GATHER
+    for (; x + SBL__VW <= xb; x += SBL__VW) {
+        sbl__m ok = sbl__lane_ok(sbl__load(r->n + x));
+        int bits, l;
+        for (c = 0; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[c] + x)));
+        bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), sbl__set1(0.0f)), ok));
+        for (l = 0; bits; ++l, bits >>= 1)
+            if ((bits & 1) && !r->unsafe[x + l]) { r->unsafe[x + l] = 1; ++count; }
+    }
+#endif
+    for (; x < xb; ++x) {
         int safe = 1;
         if (!(r->v[x] > 0.0f)) continue;
         for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(r->x[c][x]);
@@ -3319,10 +3412,16 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 const ptrdiff_t step = sbl__step_of(&k->out);
                 for (x = x0; x < x1; ++x)
                     for (c = 0; c < k->ch; ++c) o[(ptrdiff_t)x * step + c] = k->stage[c][x];
-                if (k->out_n.data)
-                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_n, x, y) = k->stage_n[x];
-                if (k->out_a.data)
-                    for (x = x0; x < x1; ++x) *sbl__px(&k->out_a, x, y) = k->stage_a[x];
+                if (k->out_n.data) {
+                    float *on = sbl__px(&k->out_n, 0, y);
+                    const ptrdiff_t ns = sbl__step_of(&k->out_n);
+                    for (x = x0; x < x1; ++x) on[(ptrdiff_t)x * ns] = k->stage_n[x];
+                }
+                if (k->out_a.data) {
+                    float *oa = sbl__px(&k->out_a, 0, y);
+                    const ptrdiff_t as = sbl__step_of(&k->out_a);
+                    for (x = x0; x < x1; ++x) oa[(ptrdiff_t)x * as] = k->stage_a[x];
+                }
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
                 sbl__ring_row t = k->ring[0];
@@ -3682,6 +3781,79 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
     return n;
 }
 
+#ifdef SBL__ROW_GATHER
+/* sbl__stereo_rp_pixel for columns [xa, xb) of row y through the row gather (plan in
+   scalar with the rig's map called directly, taps in lanes, back-check in scalar on the
+   matches the lanes kept); `map` is a constant where this is inlined. */
+SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *r, int y,
+                                        int xa, int xb, sbl__stereo_map_fn map)
+{
+    const int sw = s->source->color.width, sh = s->source->color.height;
+    const int fallback = !s->d.reproject.no_fallback, ch = s->src.color.ch;
+    const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
+    const double tol = s->d.reproject.back_check_pixels;
+    sbl__tap_plan p;
+    double psx[SBL__BLOCK], psy[SBL__BLOCK];
+    int x0, i;
+    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
+        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
+        if (n < SBL__VW) {
+            for (i = 0; i < n; ++i) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x0 + i, sbl__stereo_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
+            }
+            continue;
+        }
+        for (i = 0; i < n; ++i) {
+            const int x = x0 + i;
+            sbl__tap_want want;
+            double sx, sy, sz;
+            float z;
+            sbl__tap_plan_reset(&p, i);
+            psx[i] = psy[i] = 0.0;
+            if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
+            if (!map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
+            if (!(sx >= 0.0 && sx < (double)sw && sy >= 0.0 && sy < (double)sh)) continue;
+            want.depth = (float)sz;
+            psx[i] = sx;
+            psy[i] = sy;
+            sbl__tap_plan_set(&s->src, &p, i, &want, sx, sy);
+        }
+        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
+        for (i = 0; i < n; ++i) {
+            const int x = x0 + i;
+            if (p.redo[i]) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, y, tmp), tmp, ch);
+            } else if (back_check && r->v[x] > 0.0f) {
+                /* as sbl__stereo_rp_pixel: from the nearest source pixel back */
+                double bx, by, bz, ex, ey;
+                int ok = map(s, 1, (int)floor(psx[i]), (int)floor(psy[i]), psx[i], psy[i], &bx,
+                             &by, &bz);
+                if (ok) {
+                    ex = bx - (x + 0.5);
+                    ey = by - (y + 0.5);
+                    ok = ex * ex + ey * ey <= tol * tol;
+                }
+                if (!ok) sbl__ring_put(r, x, 0.0f, NULL, ch);
+            }
+        }
+    }
+}
+
+/* The stereo reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
+static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa, int xb)
+{
+    const sbl__stereo_rp *s = (const sbl__stereo_rp *)ctx;
+    if (s->map == sbl__stereo_map_parallel)
+        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_parallel);
+    else if (s->map == sbl__stereo_map_disparity)
+        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_disparity);
+    else
+        sbl__stereo_rp_row_map(s, r, y, xa, xb, s->map);
+}
+#endif
+
 /* An output of a stereo call must not overlap any buffer of either eye. */
 static sbl_result sbl__check_outputs_vs_eyes(const sbl_image *o, const sbl_eye *a,
                                              const sbl_eye *b)
@@ -3802,6 +3974,9 @@ SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index t
     k.own_n = &target->length;
     k.gather = sbl__stereo_rp_pixel;
     k.gather_ctx = &s;
+#ifdef SBL__ROW_GATHER
+    if (sbl__row_gather_ok(&s.src)) k.gather_row = sbl__stereo_rp_row;
+#endif
     k.out = out->color;
     k.out_n = out->length;
     k.out_a = out->beta;
@@ -4704,6 +4879,9 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     k.own_n = &target->length;
     k.gather = sbl__stereo_rp_pixel;
     k.gather_ctx = &s;
+#ifdef SBL__ROW_GATHER
+    if (sbl__row_gather_ok(&s.src)) k.gather_row = sbl__stereo_rp_row;
+#endif
     k.out = out_color;
     k.out_n = out_length;
     sbl__kernel_bind(&k, scratch);

@@ -14,6 +14,7 @@
 static sbl_image view(const sbt_img *im)
 {
     sbl_image v;
+    memset(&v, 0, sizeof v);
     v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
     return v;
 }
@@ -142,7 +143,9 @@ static void test_spans(void)
 /* The row gather against the pixel gather it replaces, bit for bit, on hostile
    content: taps outside the image, rejected taps (3x3 fallback on and off), NaN / inf /
    FLT_MAX / 0 / negative history colour and N, sky and invalid depth, zero, integer,
-   huge and NaN motion in every unit convention, no N buffer, no depth buffer. */
+   huge and NaN motion in every unit convention, no N buffer, no depth buffer, a
+   bottom-up history, depth and N with a pixel step of 2. */
+#ifdef SBL__ROW_GATHER
 /* 1 if this translation unit's compiler contracts a * b + c into a fused multiply-add
    (clang -mfma does, gcc in ISO C mode does not): then the pixel gather's sums may
    differ from the lanes' in the last bits, and the comparison allows 1e-6 relative
@@ -160,6 +163,7 @@ static int same_float(float a, float b, int contracts)
     /* colours here are of order 1 and may cancel: an absolute floor of 1e-5 */
     return contracts && fabs((double)a - b) <= 1e-6 * (fabs(a) + fabs(b)) + 1e-5;
 }
+#endif
 
 static void test_row_gather(void)
 {
@@ -175,6 +179,7 @@ static void test_row_gather(void)
         sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
         sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
         sbt_img pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 1);
+        sbt_img pair = sbt_img_new(w, h, 2, 1);
         sbl_reproject_desc rd;
         sbl_frame f;
         sbl_history hi;
@@ -229,6 +234,26 @@ static void test_row_gather(void)
         hi.color = view(&hist);
         if (with_len) hi.length = view(&len);
         if (with_depth) hi.gbuffer.depth = view(&pdepth);
+        if (it % 3 == 0) { /* bottom-up history colour: the last row first */
+            hi.color.data = sbt_at(&hist, 0, h - 1);
+            hi.color.stride = -hist.stride;
+        }
+        if (it % 4 == 2) { /* depth and N as one channel of two-channel buffers */
+            int k;
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    sbt_at(&pair, x, y)[0] = *sbt_at(&pdepth, x, y);
+                    sbt_at(&pair, x, y)[1] = *sbt_at(&len, x, y);
+                }
+            for (k = 0; k < 2; ++k) {
+                sbl_image *v = k ? &hi.length : &hi.gbuffer.depth;
+                if (!v->data) continue;
+                *v = view(&pair);
+                v->data = pair.mem + k;
+                v->channels = 1;
+                v->pixel_bytes = 2 * (int)sizeof(float);
+            }
+        }
         CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
         if (!sbl__row_gather_ok(&rp.src)) { CHECK(0); continue; }
         for (i = 0; i < 2; ++i) {
@@ -259,6 +284,7 @@ static void test_row_gather(void)
             }
         }
         free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
+        free(pair.mem);
     }
     printf("  %s row gather vs pixel gather: %d pixels (%d without x*), %d differ (%s)\n", SBL_SIMD_NAME,
            pixels, redone, mismatches, contracts ? "a*b+c contracted: 1e-6 relative" : "bit for bit");
@@ -266,6 +292,96 @@ static void test_row_gather(void)
     CHECK(redone > pixels / 20 && redone < pixels / 2);
 #else
     printf("  %s: no row gather on this path (the pixel gather runs)\n", SBL_SIMD_NAME);
+#endif
+}
+
+/* The stereo row gather against sbl__stereo_rp_pixel, bit for bit (or within the
+   contraction tolerance): parallel and disparity rigs (one and two channels), both
+   eyes as target, back-check on and off, hostile depth / disparity / colour / N. */
+static void test_stereo_row_gather(void)
+{
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+    sbt_rng rng = {123};
+    int it, pixels = 0, mismatches = 0, none = 0;
+    for (it = 0; it < 300; ++it) {
+        int w = 2 + (int)(sbt_uniform(&rng) * 80), h = 2 + (int)(sbt_uniform(&rng) * 8);
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i, e;
+        int rig = it % 3, dch = 1 + (it / 3) % 2;
+        sbt_img col[2], len[2], dep[2], disp[2];
+        sbl_stereo_desc sd;
+        sbl_eye eye[2];
+        sbl__stereo_rp rp;
+        float planes[2][7][96];
+        unsigned char unsafe[96];
+        sbl__ring_row ra, rb;
+        for (e = 0; e < 2; ++e) {
+            col[e] = sbt_img_new(w, h, ch, 1);
+            len[e] = sbt_img_new(w, h, 1, 0);
+            dep[e] = sbt_img_new(w, h, 1, 1);
+            disp[e] = sbt_img_new(w, h, dch, 0);
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    float u = (float)sbt_uniform(&rng);
+                    for (c = 0; c < ch; ++c) sbt_at(&col[e], x, y)[c] = (float)sbt_uniform(&rng);
+                    *sbt_at(&len[e], x, y) = (float)(sbt_uniform(&rng) * 20);
+                    *sbt_at(&dep[e], x, y) = u < 0.1f ? 2.0f : 4.0f;
+                    sbt_at(&disp[e], x, y)[0] = u < 0.1f ? 5.0f : 2.5f + 0.01f * x;
+                    if (dch > 1) sbt_at(&disp[e], x, y)[1] = (float)(sbt_uniform(&rng) * 0.6 - 0.3);
+                    if (sbt_uniform(&rng) < 0.03) *sbt_at(&dep[e], x, y) = (float)HUGE_VAL;
+                    if (sbt_uniform(&rng) < 0.02) *sbt_at(&dep[e], x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                    if (sbt_uniform(&rng) < 0.02) sbt_at(&disp[e], x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+                    if (sbt_uniform(&rng) < 0.02) sbt_at(&col[e], x, y)[0] = (float)HUGE_VAL;
+                    if (sbt_uniform(&rng) < 0.02) *sbt_at(&len[e], x, y) = 0.0f;
+                }
+            memset(&eye[e], 0, sizeof eye[e]);
+            eye[e].color = view(&col[e]);
+            eye[e].length = view(&len[e]);
+            eye[e].gbuffer.depth = view(&dep[e]);
+            eye[e].disparity = view(&disp[e]);
+        }
+        memset(&sd, 0, sizeof sd);
+        sd.rig = rig == 2 ? SBL_RIG_DISPARITY : SBL_RIG_PARALLEL;
+        sd.focal_px = 10.0f;
+        sd.baseline = 1.0f;
+        if (rig == 1) sd.disparity_offset = 0.75f;
+        if (it % 4 == 3) sd.reproject.disabled_tests = SBL_TEST_BACK_CHECK;
+        sd.reproject.no_fallback = it % 5 == 1;
+        e = it & 1;
+        CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+        CHECK(sbl__row_gather_ok(&rp.src));
+        for (i = 0; i < 2; ++i) {
+            sbl__ring_row *r = i ? &rb : &ra;
+            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
+            r->n = planes[i][4];
+            r->v = planes[i][5];
+            r->y[0] = planes[i][6];
+            r->unsafe = unsafe;
+            memset(planes[i], 0xff, sizeof planes[i]);
+        }
+        for (y = 0; y < h; ++y) {
+            sbl__stereo_rp_row(&rp, &ra, y, 0, w);
+            for (x = 0; x < w; ++x) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(&rb, x, sbl__stereo_rp_pixel(&rp, x, y, tmp), tmp, ch);
+            }
+            for (x = 0; x < w; ++x) {
+                int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
+                for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
+                if (bad && mismatches < 5)
+                    printf("  stereo row gather case %d (rig %d) pixel (%d,%d): n %.9g vs %.9g\n", it,
+                           rig, x, y, ra.n[x], rb.n[x]);
+                mismatches += bad;
+                none += !(rb.n[x] > 0.0f);
+                ++pixels;
+            }
+        }
+        for (e = 0; e < 2; ++e) { free(col[e].mem); free(len[e].mem); free(dep[e].mem); free(disp[e].mem); }
+    }
+    printf("  %s stereo row gather vs pixel gather: %d pixels (%d without a match), %d differ\n",
+           SBL_SIMD_NAME, pixels, none, mismatches);
+    CHECK(mismatches == 0);
+    CHECK(none > pixels / 20 && none < pixels / 2);
 #endif
 }
 
@@ -358,5 +474,6 @@ int main(void)
     CHECK(refused > 0);
     test_spans();
     test_row_gather();
+    test_stereo_row_gather();
     return sbt_finish("test_paths");
 }
