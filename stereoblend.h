@@ -762,7 +762,7 @@ static int sbl__any_nonfinite(const float *v, int n)
         memcpy(&bits, &v[k], sizeof bits);
         acc |= (bits & 0x7f800000u) + 0x00800000u;
     }
-    return (int)(acc >> 31);
+    return SBL__CAST(int, acc >> 31);
 }
 static int sbl__is_zero(float v) /* +-0 on the bits: NaN is not 0 under -ffast-math */
 {
@@ -946,23 +946,23 @@ SBLDEF float sbl_depth_to_linear(float d, sbl_depth_encoding enc, float n, float
 {
     /* NaN stays NaN ("no geometry"); beyond the far plane is sky (+inf); nearer than
        the near plane cannot be geometry: NaN. Never a wrong finite depth. */
-    const float nan_value = (float)(HUGE_VAL - HUGE_VAL);
+    const float nan_value = SBL__CAST(float, HUGE_VAL - HUGE_VAL);
     if (enc == SBL_DEPTH_LINEAR || !sbl__finite(d)) return d;
     switch (enc) {
     case SBL_DEPTH_NDC_GL: /* d in [-1,1], -1 near: z = 2nf / (f + n - d (f - n)) */
-        if (d > 1.0f) return (float)HUGE_VAL;
+        if (d > 1.0f) return SBL__CAST(float, HUGE_VAL);
         if (d < -1.0f) return nan_value;
-        return (float)(2.0 * n * f / ((double)f + n - (double)d * ((double)f - n)));
+        return SBL__CAST(float, 2.0 * SBL__CAST(double, n) * SBL__CAST(double, f) / (SBL__CAST(double, f) + SBL__CAST(double, n) - SBL__CAST(double, d) * (SBL__CAST(double, f) - SBL__CAST(double, n))));
     case SBL_DEPTH_NDC_ZERO_ONE: /* d in [0,1], 0 near: z = nf / (f - d (f - n)) */
-        if (d > 1.0f) return (float)HUGE_VAL;
+        if (d > 1.0f) return SBL__CAST(float, HUGE_VAL);
         if (d < 0.0f) return nan_value;
-        return (float)((double)n * f / ((double)f - (double)d * ((double)f - n)));
+        return SBL__CAST(float, SBL__CAST(double, n) * SBL__CAST(double, f) / (SBL__CAST(double, f) - SBL__CAST(double, d) * (SBL__CAST(double, f) - SBL__CAST(double, n))));
     case SBL_DEPTH_REVERSED: /* d in [0,1], 1 near: z = nf / (n + d (f - n)) */
-        if (d < 0.0f) return (float)HUGE_VAL;
+        if (d < 0.0f) return SBL__CAST(float, HUGE_VAL);
         if (d > 1.0f) return nan_value;
-        return (float)((double)n * f / ((double)n + (double)d * ((double)f - n)));
+        return SBL__CAST(float, SBL__CAST(double, n) * SBL__CAST(double, f) / (SBL__CAST(double, n) + SBL__CAST(double, d) * (SBL__CAST(double, f) - SBL__CAST(double, n))));
     case SBL_DEPTH_REVERSED_INFINITE: /* z = n / d; d = 0 is the far plane at infinity */
-        if (!(d > 0.0f)) return (float)HUGE_VAL;
+        if (!(d > 0.0f)) return SBL__CAST(float, HUGE_VAL);
         if (d > 1.0f) return nan_value;
         return n / d;
     case SBL_DEPTH_LINEAR:
@@ -979,7 +979,7 @@ SBLDEF sbl_result sbl_depth_image_to_linear(sbl_image src, sbl_image dst,
     if ((r = sbl__check_image(&src, 1)) != SBL_OK) return r;
     if ((r = sbl__check_image(&dst, 1)) != SBL_OK) return r;
     if (src.width != dst.width || src.height != dst.height) return SBL_ERROR_SIZE_MISMATCH;
-    if ((int)enc < 0 || enc >= SBL_DEPTH_ENCODING_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, enc) < 0 || enc >= SBL_DEPTH_ENCODING_COUNT) return SBL_ERROR_INVALID_PARAM;
     if (enc != SBL_DEPTH_LINEAR) {
         if (!sbl__finite(n) || n <= 0.0f) return SBL_ERROR_INVALID_PARAM;
         if (enc != SBL_DEPTH_REVERSED_INFINITE && (!sbl__finite(f) || f <= n))
@@ -1554,13 +1554,13 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     int k, x0, y0, i, j, fast;
     double bx = sx - 0.5, by = sy - 0.5;
     /* far outside (or NaN): no tap can pass; also keeps the int conversion defined */
-    if (!(bx > -2.0 && by > -2.0 && bx < (double)s->width + 1.0 &&
-          by < (double)s->height + 1.0))
+    if (!(bx > -2.0 && by > -2.0 && bx < SBL__CAST(double, s->width) + 1.0 &&
+          by < SBL__CAST(double, s->height) + 1.0))
         return 0.0f;
-    x0 = (int)floor(bx);
-    y0 = (int)floor(by);
-    fx = (float)(bx - x0);
-    fy = (float)(by - y0);
+    x0 = SBL__CAST(int, floor(bx));
+    y0 = SBL__CAST(int, floor(by));
+    fx = SBL__CAST(float, bx - x0);
+    fy = SBL__CAST(float, by - y0);
     fast = x0 >= 0 && y0 >= 0 && x0 + 1 < s->width && y0 + 1 < s->height;
     if (fast) {
         /* all four taps inside (the common case): no bounds tests, and the values'
@@ -1587,20 +1587,20 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
            pixel; average the consistent ones */
         /* summed in double: up to nine finite values near FLT_MAX (colour or N) must
            not overflow before the division */
-        int cx = (int)floor(sx), cy = (int)floor(sy), cnt = 0;
+        int cx = SBL__CAST(int, floor(sx)), cy = SBL__CAST(int, floor(sy)), cnt = 0;
         double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
         for (j = -1; j <= 1; ++j)
             for (i = -1; i <= 1; ++i)
                 if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
                     const float *c = SBL__AT(s->color, cx + i, cy + j);
-                    for (k = 0; k < ch; ++k) dacc[k] += c[k];
-                    dn += s->length.p ? *SBL__AT(s->length, cx + i, cy + j) : 1.0f;
+                    for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
+                    dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
                     ++cnt;
                 }
         if (!cnt) return 0.0f;
-        for (k = 0; k < ch; ++k) out[k] = (float)(dacc[k] / cnt);
+        for (k = 0; k < ch; ++k) out[k] = SBL__CAST(float, dacc[k] / cnt);
         dn /= cnt;
-        return dn > 0.0 ? (float)dn : 0.0f;
+        return dn > 0.0 ? SBL__CAST(float, dn) : 0.0f;
     }
     if (wsum < 1e-3f) return 0.0f;
     inv = 1.0f / wsum;
@@ -1742,7 +1742,7 @@ static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
         return SBL_ERROR_INVALID_PARAM;
     if (!sbl__finite(d->normal_threshold) || d->normal_threshold > 1.0f)
         return SBL_ERROR_INVALID_PARAM;
-    if ((int)d->motion.units < 0 || (int)d->motion.units > (int)SBL_MOTION_NDC)
+    if (SBL__CAST(int, d->motion.units) < 0 || SBL__CAST(int, d->motion.units) > SBL__CAST(int, SBL_MOTION_NDC))
         return SBL_ERROR_INVALID_PARAM;
     if (d->disabled_tests & ~SBL__CAST(int, SBL_TEST_ALL)) return SBL_ERROR_INVALID_PARAM;
     return SBL_OK;
@@ -1769,7 +1769,7 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     sbl_result r;
     int w = frame->color.width, h = frame->color.height;
     if ((r = sbl__check_reproject_desc(desc)) != SBL_OK) return r;
-    if ((int)source < 0 || (int)source > (int)SBL_TEMPORAL_CAMERA) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, source) < 0 || SBL__CAST(int, source) > SBL__CAST(int, SBL_TEMPORAL_CAMERA)) return SBL_ERROR_INVALID_PARAM;
     if ((r = sbl__check_gbuffer(g, w, h)) != SBL_OK) return r;
     s->rp = sbl__reproject_defaults(desc);
     s->source = source;
@@ -1815,9 +1815,9 @@ SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sb
     if (s->source == SBL_TEMPORAL_MOTION) {
         const float *mv = SBL__AT(s->motion, x, y);
         if (sbl__any_nonfinite(mv, 2)) return 0;
-        *sx = x + 0.5 + s->motion_kx * mv[0];
-        *sy = y + 0.5 + s->motion_ky * mv[1];
-        sz = z; /* motion vectors carry no depth change: relative tolerance covers it */
+        *sx = x + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]);
+        *sy = y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
+        sz = SBL__CAST(double, z); /* motion vectors carry no depth change: relative tolerance covers it */
     } else {
         if (!sbl__cam_map_apply_id(&s->cam, s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f,
                                    x + 0.5, y + 0.5, z, sx, sy, &sz))
@@ -1825,17 +1825,17 @@ SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sb
     }
     /* came in from outside the previous image: nothing to reuse (edge pixels would
        otherwise be replicated by the renormalisation and the 3x3 fallback) */
-    if (!(*sx >= 0.0 && *sx < (double)s->frame->color.width && *sy >= 0.0 &&
-          *sy < (double)s->frame->color.height))
+    if (!(*sx >= 0.0 && *sx < SBL__CAST(double, s->frame->color.width) && *sy >= 0.0 &&
+          *sy < SBL__CAST(double, s->frame->color.height)))
         return 0;
-    t->depth = (float)sz;
+    t->depth = SBL__CAST(float, sz);
     return 1;
 }
 
 /* x* and its N for target pixel (x, y); returns 0 when the pixel must reset. */
 static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
 {
-    const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     sbl__tap_want t;
     double sx, sy;
     if (!s->history) return 0.0f;
@@ -1924,10 +1924,10 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
         double s8 = 0.0, v8 = 0.0;
         m->mean8[k] = m->var8[k] = 0.0;
         if (centre < 0 || n < 2) continue;
-        for (i = 0; i < n; ++i) if (i != centre) s8 += vals[i][k];
+        for (i = 0; i < n; ++i) if (i != centre) s8 += SBL__CAST(double, vals[i][k]);
         s8 /= n - 1;
         for (i = 0; i < n; ++i)
-            if (i != centre) v8 += ((double)vals[i][k] - s8) * ((double)vals[i][k] - s8);
+            if (i != centre) v8 += (SBL__CAST(double, vals[i][k]) - s8) * (SBL__CAST(double, vals[i][k]) - s8);
         m->mean8[k] = s8;
         m->var8[k] = v8 / (n - 1);
     }
@@ -1937,10 +1937,10 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
     for (k = 0; k < ch; ++k) {
         double s = 0.0, v = 0.0, pd = 0.0;
         float lo = 0.0f, hi = 0.0f;
-        for (i = 0; i < n; ++i) s += vals[i][k];
+        for (i = 0; i < n; ++i) s += SBL__CAST(double, vals[i][k]);
         s = n ? s / n : 0.0;
         for (i = 0; i < n; ++i) {
-            double d = vals[i][k] - s;
+            double d = SBL__CAST(double, vals[i][k]) - s;
             v += d * d;
             if (i == 0 || vals[i][k] < lo) lo = vals[i][k];
             if (i == 0 || vals[i][k] > hi) hi = vals[i][k];
@@ -1951,14 +1951,14 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
         m->hi[k] = hi;
         if (xvalid)
             for (i = 0; i < n; ++i)
-                if (xvalid[i]) pd += (double)xvals[i][k] - (double)vals[i][k];
+                if (xvalid[i]) pd += SBL__CAST(double, xvals[i][k]) - SBL__CAST(double, vals[i][k]);
         m->pair_diff[k] = m->pair_count ? pd / m->pair_count : 0.0;
         m->pair_var[k] = 0.0;
         if (xvalid && m->pair_count > 1) {
             double pv = 0.0;
             for (i = 0; i < n; ++i)
                 if (xvalid[i]) {
-                    double e = ((double)xvals[i][k] - (double)vals[i][k]) - m->pair_diff[k];
+                    double e = (SBL__CAST(double, xvals[i][k]) - SBL__CAST(double, vals[i][k])) - m->pair_diff[k];
                     pv += e * e;
                 }
             m->pair_var[k] = pv / (m->pair_count - 1);
@@ -2000,12 +2000,12 @@ SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image var, 
                     for (k = 0; k < ch; ++k) vals[n][k] = p[k];
                     ++n;
                 }
-            sbl__moments_core(&m, (const float(*)[4])vals, NULL, NULL, n, ch, -1);
+            sbl__moments_core(&m, SBL__PCAST(const float(*)[4], vals), NULL, NULL, n, ch, -1);
             for (k = 0; k < ch; ++k) {
-                if (mean.data) sbl__px(&mean, x, y)[k] = (float)m.mean[k];
+                if (mean.data) sbl__px(&mean, x, y)[k] = SBL__CAST(float, m.mean[k]);
                 /* beyond float range (|values| > ~1e19): saturate, finite in -> finite out */
                 if (var.data)
-                    sbl__px(&var, x, y)[k] = m.var[k] > FLT_MAX ? FLT_MAX : (float)m.var[k];
+                    sbl__px(&var, x, y)[k] = m.var[k] > SBL__CAST(double, FLT_MAX) ? FLT_MAX : SBL__CAST(float, m.var[k]);
             }
         }
     return SBL_OK;
@@ -2017,18 +2017,18 @@ SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image var, 
 
 SBLDEF float sbl_optimal_weight(float bias2, float var_x, float var_y)
 {
-    double num = (double)bias2 + (double)var_x, den = num + (double)var_y;
+    double num = SBL__CAST(double, bias2) + SBL__CAST(double, var_x), den = num + SBL__CAST(double, var_y);
     if (sbl__is_pos_inf(var_x) || sbl__is_pos_inf(bias2)) return 1.0f;
     if (!(den > 0.0)) return 0.5f;
-    return (float)(num / den);
+    return SBL__CAST(float, num / den);
 }
 
 SBLDEF float sbl_blend_sample_count(float a, float n_x, float n_y)
 {
-    double A = a, den = (1.0 - A) * (1.0 - A) * n_y + A * A * n_x, n;
-    if (!(den > 0.0)) n = (double)n_x + (double)n_y; /* a blend of nothing: the sum */
-    else n = (double)n_x * (double)n_y / den;
-    return n > FLT_MAX ? FLT_MAX : (float)n; /* saturate: finite counts stay finite */
+    double A = SBL__CAST(double, a), den = (1.0 - A) * (1.0 - A) * SBL__CAST(double, n_y) + A * A * SBL__CAST(double, n_x), n;
+    if (!(den > 0.0)) n = SBL__CAST(double, n_x) + SBL__CAST(double, n_y); /* a blend of nothing: the sum */
+    else n = SBL__CAST(double, n_x) * SBL__CAST(double, n_y) / den;
+    return n > SBL__CAST(double, FLT_MAX) ? FLT_MAX : SBL__CAST(float, n); /* saturate: finite counts stay finite */
 }
 
 /* Resolved weight parameters shared by temporal and stereo. */
@@ -2074,7 +2074,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
                          double pv, int count, int pair_count, float n_x, float n_y)
 {
     double a;
-    double progressive = (double)n_y / ((double)n_x + (double)n_y);
+    double progressive = SBL__CAST(double, n_y) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
     switch (p->estimator) {
     case SBL_ESTIMATOR_PAPER:
         /* Eq. 4 with Eq. 10/11: a = 1 - s^2 / D, D = d^2 + s^2 */
@@ -2084,7 +2084,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         a = progressive;
         break;
     case SBL_ESTIMATOR_CONSTANT:
-        a = p->constant;
+        a = SBL__CAST(double, p->constant);
         break;
     case SBL_ESTIMATOR_ROBUST: {
         /* As history-aware, but the bias enters with the posterior probability that
@@ -2093,20 +2093,20 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
            alternative the odds of change grow as (1 + t^2/8)^4.5, set to 1 at t^2 = k^2
            (bias_threshold). Soft, and polynomial rather than exponential in t^2, so
            heavy-tailed noise cannot make a near-certain change out of one sample. */
-        double k2 = (double)p->bias_threshold * (double)p->bias_threshold;
+        double k2 = SBL__CAST(double, p->bias_threshold) * SBL__CAST(double, p->bias_threshold);
         double var_x, var_y, se2, bias2 = 0.0;
         if (pair_count > 1) {
-            var_y = pv * (double)n_x / ((double)n_x + (double)n_y);
+            var_y = pv * SBL__CAST(double, n_x) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
             var_x = pv - var_y;
             se2 = pv / pair_count;
         } else {
             var_y = count > 1 ? s2 * count / (count - 1) : 0.0;
-            var_x = var_y * (double)n_y / (double)n_x;
+            var_x = var_y * SBL__CAST(double, n_y) / SBL__CAST(double, n_x);
             se2 = pair_count == 1 ? var_x + var_y : 0.0;
         }
         if (pair_count > 0)
             bias2 = sbl__change_posterior(pd2, se2, k2,
-                                          p->temporal && SBL_HISTORY_PRIOR ? 0.5 * ((double)n_x + 1.0)
+                                          p->temporal && SBL_HISTORY_PRIOR ? 0.5 * (SBL__CAST(double, n_x) + 1.0)
                                                                           : 1.0) * pd2;
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
@@ -2119,15 +2119,15 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
            noise of variance pv / pairs. Bias counts only beyond bias_threshold standard
            errors (a paired t-test), so that noise is not taken for change. With fewer
            than two pairs, var_Y falls back to the 3x3 variance of Y (Bessel). */
-        double k2 = (double)p->bias_threshold * (double)p->bias_threshold;
+        double k2 = SBL__CAST(double, p->bias_threshold) * SBL__CAST(double, p->bias_threshold);
         double var_x, var_y, bias2 = 0.0;
         if (pair_count > 1) {
-            var_y = pv * (double)n_x / ((double)n_x + (double)n_y);
+            var_y = pv * SBL__CAST(double, n_x) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
             var_x = pv - var_y;
             bias2 = pd2 - k2 * pv / pair_count;
         } else {
             var_y = count > 1 ? s2 * count / (count - 1) : 0.0;
-            var_x = var_y * (double)n_y / (double)n_x;
+            var_x = var_y * SBL__CAST(double, n_y) / SBL__CAST(double, n_x);
             if (pair_count == 1) bias2 = pd2 - k2 * (var_x + var_y);
         }
         if (bias2 < 0.0) bias2 = 0.0;
@@ -2136,10 +2136,10 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         break;
     }
     }
-    if (a < p->alpha_min) a = p->alpha_min;
+    if (a < SBL__CAST(double, p->alpha_min)) a = SBL__CAST(double, p->alpha_min);
     if (!(a >= 0.0)) a = 0.0; /* NaN lands here too */
     if (a > 1.0) a = 1.0;
-    return (float)a;
+    return SBL__CAST(float, a);
 }
 
 /* Neighbourhood clamp / variance clip of x* in place. The box always contains the
@@ -2155,9 +2155,9 @@ static void sbl__rectify(const sbl__weight_params *p, const sbl__moments *m, con
         /* shrink the segment mean -> x* until it enters the box (keeps hue) */
         double t = 1.0;
         for (k = 0; k < ch; ++k) {
-            double half = p->gamma * sqrt(m->var[k]);
-            double d = fabs((double)xs[k] - m->mean[k]);
-            double dy = fabs((double)y[k] - m->mean[k]);
+            double half = SBL__CAST(double, p->gamma) * sqrt(m->var[k]);
+            double d = fabs(SBL__CAST(double, xs[k]) - m->mean[k]);
+            double dy = fabs(SBL__CAST(double, y[k]) - m->mean[k]);
             if (dy > half) half = dy;
             if (d > half) {
                 double tk = d > 0.0 ? half / d : 1.0;
@@ -2166,7 +2166,7 @@ static void sbl__rectify(const sbl__weight_params *p, const sbl__moments *m, con
         }
         if (t < 1.0)
             for (k = 0; k < ch; ++k)
-                xs[k] = (float)(m->mean[k] + ((double)xs[k] - m->mean[k]) * t);
+                xs[k] = SBL__CAST(float, m->mean[k] + (SBL__CAST(double, xs[k]) - m->mean[k]) * t);
     }
 }
 
@@ -2190,9 +2190,9 @@ static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
                                            sbl_weight_mode m, float constant,
                                            float alpha_min, float gamma, float bias)
 {
-    if ((int)e < 0 || e >= SBL_ESTIMATOR_COUNT) return SBL_ERROR_INVALID_PARAM;
-    if ((int)r < 0 || r >= SBL_RECTIFY_COUNT) return SBL_ERROR_INVALID_PARAM;
-    if ((int)m < 0 || m >= SBL_WEIGHT_MODE_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, e) < 0 || e >= SBL_ESTIMATOR_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, r) < 0 || r >= SBL_RECTIFY_COUNT) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, m) < 0 || m >= SBL_WEIGHT_MODE_COUNT) return SBL_ERROR_INVALID_PARAM;
     if (!sbl__param_ok(constant) || constant > 1.0f) return SBL_ERROR_INVALID_PARAM;
     if (!sbl__param_ok(alpha_min) || alpha_min > 1.0f) return SBL_ERROR_INVALID_PARAM;
     if (!sbl__param_ok(gamma) || !sbl__param_ok(bias)) return SBL_ERROR_INVALID_PARAM;
@@ -2214,9 +2214,9 @@ static void sbl__firefly_limit(const sbl__moments *m, const float *y, const floa
     double sum_y = 0.0, sum_m8 = 0.0, sum_x = 0.0, v8 = 0.0, bound, t = 1.0;
     int k;
     for (k = 0; k < ch; ++k) {
-        sum_y += y[k];
+        sum_y += SBL__CAST(double, y[k]);
         sum_m8 += m->mean8[k];
-        sum_x += xs[k];
+        sum_x += SBL__CAST(double, xs[k]);
         v8 += m->var8[k];
     }
     bound = (sum_m8 > sum_x ? sum_m8 : sum_x) + SBL_FIREFLY_SIGMAS * sqrt(v8);
@@ -2224,7 +2224,7 @@ static void sbl__firefly_limit(const sbl__moments *m, const float *y, const floa
     bound += 1e-5 * fabs(bound);
     if (bound < 0.0) bound = 0.0;
     if (sum_y > bound) t = bound / sum_y;
-    for (k = 0; k < ch; ++k) ylim[k] = t < 1.0 ? (float)((double)y[k] * t) : y[k];
+    for (k = 0; k < ch; ++k) ylim[k] = t < 1.0 ? SBL__CAST(float, SBL__CAST(double, y[k]) * t) : y[k];
 }
 
 /* Reference blend of one pixel (double): y = own, xs = other (rectified here), n_x/n_y
@@ -2244,16 +2244,16 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     sbl__rectify(p, m, y, xs, ch);
     if (p->mode == SBL_WEIGHT_PER_CHANNEL) {
         for (k = 0; k < ch; ++k) {
-            double dev = (double)xs[k] - m->mean[k];
+            double dev = SBL__CAST(double, xs[k]) - m->mean[k];
             a[k] = sbl__weight(p, dev * dev, m->var[k], m->pair_diff[k] * m->pair_diff[k],
                                m->pair_var[k], m->count, m->pair_count, n_x, n_y);
             a_mean += a[k];
         }
-        a_mean /= (float)ch;
+        a_mean /= SBL__CAST(float, ch);
     } else {
         double dev2 = 0.0, s2 = 0.0, pd2 = 0.0, pv = 0.0;
         for (k = 0; k < ch; ++k) {
-            double dev = (double)xs[k] - m->mean[k];
+            double dev = SBL__CAST(double, xs[k]) - m->mean[k];
             dev2 += dev * dev;
             s2 += m->var[k];
             pd2 += m->pair_diff[k] * m->pair_diff[k];
@@ -2270,7 +2270,7 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
         /* both inputs finite but the lerp overflowed (|x|,|y| near FLT_MAX): form it
            the other way, which cannot overflow when the inputs are finite */
         if (!sbl__finite(v))
-            v = (float)((1.0 - (double)a[k]) * (double)xs[k] + (double)a[k] * (double)y[k]);
+            v = SBL__CAST(float, (1.0 - SBL__CAST(double, a[k])) * SBL__CAST(double, xs[k]) + SBL__CAST(double, a[k]) * SBL__CAST(double, y[k]));
         out[k] = v;
     }
     *alpha_out = a_mean;
@@ -2286,7 +2286,17 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
    fold. The scalar build and NEON gather one pixel at a time with the reference
    gather, which the row gather must equal bit for bit (test_simd, test_paths). */
 #if !defined(SBL_NO_SIMD) && defined(__AVX512F__)
+/* g++ 12's AVX-512 intrinsics start from `__m512 __Y = __Y;` (an undefined vector) and
+   -Wmaybe-uninitialized then flags every inlined min / max / sqrt / gather: a false
+   positive inside the compiler's own header, silenced for that header only */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
+#pragma GCC diagnostic pop
+#else
+#include <immintrin.h>
+#endif
 #define SBL_SIMD_NAME "avx512"
 #define SBL__VW 16
 typedef __m512 sbl__v;
@@ -2307,12 +2317,12 @@ typedef __mmask16 sbl__m;
 /* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
 #define SBL__ROW_GATHER 1
 #define sbl__gatheri(base, idx) \
-    _mm512_i32gather_ps(_mm512_loadu_si512((const void *)(idx)), base, 4)
+    _mm512_i32gather_ps(_mm512_loadu_si512(SBL__PCAST(const void *, idx)), base, 4)
 #define sbl__le(a, b) _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
-#define sbl__mand(a, b) ((__mmask16)((a) & (b)))
-#define sbl__mor(a, b) ((__mmask16)((a) | (b)))
-#define sbl__mandnot(a, b) ((__mmask16)((a) & ~(b))) /* a and not b */
-#define sbl__mbits(m) ((int)(m))
+#define sbl__mand(a, b) SBL__CAST(__mmask16, (a) & (b))
+#define sbl__mor(a, b) SBL__CAST(__mmask16, (a) | (b))
+#define sbl__mandnot(a, b) SBL__CAST(__mmask16, (a) & ~(b)) /* a and not b */
+#define sbl__mbits(m) SBL__CAST(int, m)
 #define sbl__nonfinite(a) \
     _mm512_cmpeq_epi32_mask(_mm512_and_si512(_mm512_castps_si512(a), \
                                              _mm512_set1_epi32(0x7f800000)), \
@@ -2324,9 +2334,9 @@ SBL__INLINE __mmask16 sbl__lane_ok(__m512 a) /* sbl__lane_value_ok per lane */
 {
     const __m512i b = _mm512_and_si512(_mm512_castps_si512(a), _mm512_set1_epi32(0x7fffffff));
     const __m512i e = _mm512_srli_epi32(b, 23);
-    return (__mmask16)(_mm512_cmpeq_epi32_mask(b, _mm512_setzero_si512()) |
-                       (_mm512_cmpgt_epi32_mask(e, _mm512_set1_epi32(86)) &
-                        _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(177), e)));
+    return SBL__CAST(__mmask16, _mm512_cmpeq_epi32_mask(b, _mm512_setzero_si512()) |
+                                    (_mm512_cmpgt_epi32_mask(e, _mm512_set1_epi32(86)) &
+                                     _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(177), e)));
 }
 SBL__INLINE __m512 sbl__div_exact(__m512 n, __m512 a) /* see the SSE2 version */
 {
@@ -2361,7 +2371,7 @@ typedef __m256 sbl__m;
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
 #define SBL__ROW_GATHER 1
 #define sbl__gatheri(base, idx) \
-    _mm256_i32gather_ps(base, _mm256_loadu_si256((const __m256i *)(const void *)(idx)), 4)
+    _mm256_i32gather_ps(base, _mm256_loadu_si256(SBL__PCAST(const __m256i *, idx)), 4)
 #define sbl__le(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
 #define sbl__mand(a, b) _mm256_and_ps(a, b)
 #define sbl__mor(a, b) _mm256_or_ps(a, b)
@@ -2545,7 +2555,7 @@ typedef struct sbl__kernel {
    channels + 2 float planes and one byte plane; each plane padded to 64 bytes */
 static size_t sbl__plane_floats(int width)
 {
-    return ((size_t)width + 15u) & ~(size_t)15u;
+    return (SBL__CAST(size_t, width) + 15u) & ~SBL__CAST(size_t, 15u);
 }
 
 static size_t sbl__kernel_scratch_size(int width, int channels)
@@ -2553,19 +2563,19 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     size_t pf;
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
     pf = sbl__plane_floats(width);
-    return (size_t)(3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 4 * pf + 64;
+    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 4 * pf + 64;
 }
 
 static void *sbl__align64(void *p)
 {
-    size_t a = (size_t)p;
-    return (void *)((char *)p + ((64 - (a & 63)) & 63));
+    size_t a = SBL__PCAST(size_t, p);
+    return SBL__PCAST(void *, SBL__PCAST(char *, p) + ((64 - (a & 63)) & 63));
 }
 
 static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
 {
     size_t pf = sbl__plane_floats(k->w);
-    float *p = (float *)sbl__align64(scratch);
+    float *p = SBL__PCAST(float *, sbl__align64(scratch));
     int r, c;
     for (r = 0; r < 3; ++r) {
         for (c = 0; c < k->ch; ++c) { k->ring[r].y[c] = p; p += pf; }
@@ -2579,7 +2589,7 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->stage_n = p; p += pf;
     k->stage_a = p; p += pf;
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
-        unsigned char *b = (unsigned char *)p;
+        unsigned char *b = SBL__PCAST(unsigned char *, p);
         for (r = 0; r < 3; ++r) { k->ring[r].unsafe = b; b += pf; }
         k->window_unsafe = b;
     }
@@ -2641,24 +2651,24 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
 {
     double bx = sx - 0.5, by = sy - 0.5;
     int x0, y0;
-    if (!(bx > -2.0 && by > -2.0 && bx < (double)s->width + 1.0 &&
-          by < (double)s->height + 1.0))
+    if (!(bx > -2.0 && by > -2.0 && bx < SBL__CAST(double, s->width) + 1.0 &&
+          by < SBL__CAST(double, s->height) + 1.0))
         return;
-    x0 = (int)floor(bx);
-    y0 = (int)floor(by);
+    x0 = SBL__CAST(int, floor(bx));
+    y0 = SBL__CAST(int, floor(by));
     if (!(x0 >= 0 && y0 >= 0 && x0 + 1 < s->width && y0 + 1 < s->height)) {
         p->redo[i] = 1;
         return;
     }
-    p->fx[i] = (float)(bx - x0);
-    p->fy[i] = (float)(by - y0);
+    p->fx[i] = SBL__CAST(float, bx - x0);
+    p->fy[i] = SBL__CAST(float, by - y0);
     p->depth[i] = t->depth;
     p->slack[i] = t->depth_slack;
-    p->ci[i] = (int)((ptrdiff_t)y0 * s->color.stride + (ptrdiff_t)x0 * s->color.step);
+    p->ci[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->color.stride + SBL__CAST(ptrdiff_t, x0) * s->color.step);
     if (s->use_depth)
-        p->di[i] = (int)((ptrdiff_t)y0 * s->depth.stride + (ptrdiff_t)x0 * s->depth.step);
+        p->di[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->depth.stride + SBL__CAST(ptrdiff_t, x0) * s->depth.step);
     if (s->length.p)
-        p->li[i] = (int)((ptrdiff_t)y0 * s->length.stride + (ptrdiff_t)x0 * s->length.step);
+        p->li[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->length.stride + SBL__CAST(ptrdiff_t, x0) * s->length.step);
     p->fast[i] = 1.0f;
 }
 
@@ -2771,9 +2781,9 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
            (each lane's index is a valid one, so the vector load reads exactly the
            addresses the gather would) */
         for (l = 1; l < SBL__VW; ++l)
-            contiguous &= (p->ci[i + l] - p->ci[i] == l * (int)s->color.step) &
-                          (!s->use_depth || p->di[i + l] - p->di[i] == l * (int)s->depth.step) &
-                          (!s->length.p || p->li[i + l] - p->li[i] == l * (int)s->length.step);
+            contiguous &= (p->ci[i + l] - p->ci[i] == l * SBL__CAST(int, s->color.step)) &
+                          (!s->use_depth || p->di[i + l] - p->di[i] == l * SBL__CAST(int, s->depth.step)) &
+                          (!s->length.p || p->li[i + l] - p->li[i] == l * SBL__CAST(int, s->length.step));
         switch (s->color.ch) {
         case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
         case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
@@ -2796,9 +2806,9 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
     for (i = 0; i < 3; ++i) {
         double span;
         if (!f[i]->p) continue;
-        span = (double)(s->height - 1) * fabs((double)f[i]->stride) +
-               (double)s->width * (double)f[i]->step;
-        if (!(span < (double)INT_MAX / 2)) return 0;
+        span = SBL__CAST(double, s->height - 1) * fabs(SBL__CAST(double, f[i]->stride)) +
+               SBL__CAST(double, s->width) * SBL__CAST(double, f[i]->step);
+        if (!(span < SBL__CAST(double, INT_MAX) / 2)) return 0;
     }
     return 1;
 }
@@ -2854,8 +2864,8 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
     const sbl__v lo = sbl__set1(1.0f / 256.0f), hi = sbl__set1(32768.0f);
-    const sbl__v wf = sbl__set1((float)src->width), hf = sbl__set1((float)src->height);
-    const sbl__v xf = sbl__add(sbl__set1((float)x), sbl__load(lane)), yf = sbl__set1((float)y);
+    const sbl__v wf = sbl__set1(SBL__CAST(float, src->width)), hf = sbl__set1(SBL__CAST(float, src->height));
+    const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane)), yf = sbl__set1(SBL__CAST(float, y));
     sbl__v ax, ay, fmx, fmy, x0f, y0f;
     sbl__m exact, inside, fast;
     int l, bits_scalar, bits_fast, bits_keep;
@@ -2890,14 +2900,14 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     bits_fast = sbl__mbits(fast);
     bits_keep = sbl__mbits(keep);
     for (l = 0; l < SBL__VW; ++l) {
-        const int f = (bits_fast >> l) & 1, x0 = f ? (int)x0s[l] : 0, y0 = f ? (int)y0s[l] : 0;
-        p->redo[i + l] = (unsigned char)(((bits_keep >> l) & 1) & !f);
-        p->ci[i + l] = (int)((ptrdiff_t)y0 * src->color.stride + (ptrdiff_t)x0 * src->color.step);
+        const int f = (bits_fast >> l) & 1, x0 = f ? SBL__CAST(int, x0s[l]) : 0, y0 = f ? SBL__CAST(int, y0s[l]) : 0;
+        p->redo[i + l] = SBL__CAST(unsigned char, ((bits_keep >> l) & 1) & !f);
+        p->ci[i + l] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * src->color.stride + SBL__CAST(ptrdiff_t, x0) * src->color.step);
         p->di[i + l] = src->use_depth
-                           ? (int)((ptrdiff_t)y0 * src->depth.stride + (ptrdiff_t)x0 * src->depth.step)
+                           ? SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * src->depth.stride + SBL__CAST(ptrdiff_t, x0) * src->depth.step)
                            : 0;
-        p->li[i + l] = src->length.p ? (int)((ptrdiff_t)y0 * src->length.stride +
-                                             (ptrdiff_t)x0 * src->length.step)
+        p->li[i + l] = src->length.p ? SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * src->length.stride +
+                                             SBL__CAST(ptrdiff_t, x0) * src->length.step)
                                      : 0;
     }
     return bits_scalar;
@@ -2926,7 +2936,7 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
 {
-    const sbl__temporal_rp *s = (const sbl__temporal_rp *)ctx;
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
     const int lanes = sbl__temporal_plan_lanes_ok(s, y);
     sbl__tap_plan p;
@@ -2975,7 +2985,7 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     const float *src = sbl__px(k->own, 0, row);
     const ptrdiff_t step = sbl__step_of(k->own);
     const float *ny = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, row) : NULL;
-    const ptrdiff_t ny_step = ny ? (ptrdiff_t)sbl__step_of(k->own_n) : 0;
+    const ptrdiff_t ny_step = ny ? SBL__CAST(ptrdiff_t, sbl__step_of(k->own_n)) : 0;
     /* the lanes load N_Y contiguously: another pixel step takes the reference path */
     const int ny_lanes = !ny || ny_step == 1;
     int x, c, ch = k->ch, count = 0;
@@ -2984,7 +2994,7 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     if (ny_lanes) {
         /* deinterleave, then flag a vector at a time */
         for (x = xa; x < xb; ++x)
-            for (c = 0; c < ch; ++c) r->y[c][x] = src[(ptrdiff_t)x * step + c];
+            for (c = 0; c < ch; ++c) r->y[c][x] = src[SBL__CAST(ptrdiff_t, x) * step + c];
         for (x = xa; x + SBL__VW <= xb; x += SBL__VW) {
             sbl__m ok = sbl__lane_ok(sbl__load(r->y[0] + x));
             int bits, l;
@@ -2996,7 +3006,7 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
             bits = sbl__mbits(ok);
             for (l = 0; l < SBL__VW; ++l) {
                 const int bad = !((bits >> l) & 1);
-                r->unsafe[x + l] = (unsigned char)bad;
+                r->unsafe[x + l] = SBL__CAST(unsigned char, bad);
                 count += bad;
             }
         }
@@ -3005,16 +3015,16 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     for (; x < xb; ++x) {
         int safe = ny_lanes;
         for (c = 0; c < ch; ++c) {
-            float v = src[(ptrdiff_t)x * step + c];
+            float v = src[SBL__CAST(ptrdiff_t, x) * step + c];
             r->y[c][x] = v;
             safe &= sbl__lane_value_ok(v);
         }
         /* N_Y: the reference path sanitises it */
         if (ny) {
-            float n = ny[(ptrdiff_t)x * ny_step];
+            float n = ny[SBL__CAST(ptrdiff_t, x) * ny_step];
             safe &= sbl__lane_value_ok(n) && n <= 1048576.0f;
         }
-        r->unsafe[x] = (unsigned char)!safe;
+        r->unsafe[x] = SBL__CAST(unsigned char, !safe);
         count += !safe;
     }
     return count;
@@ -3115,7 +3125,7 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
                 ++n;
             }
         }
-        sbl__moments_core(&m, (const float(*)[4])vals, (const float(*)[4])xvals, xvalid, n, ch,
+        sbl__moments_core(&m, SBL__PCAST(const float(*)[4], vals), SBL__PCAST(const float(*)[4], xvals), xvalid, n, ch,
                           centre);
         if (n_x > k->n_cap) n_x = k->n_cap;
         n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
@@ -3217,7 +3227,7 @@ SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
         v8 = sbl__add(v8, st->v8[c]);
     }
     bound = sbl__add(sbl__max(sum_m8, sum_x),
-                     sbl__mul(sbl__set1((float)SBL_FIREFLY_SIGMAS), sbl__sqrt(v8)));
+                     sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(v8)));
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
     bound = sbl__max(bound, zero);
     t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
@@ -3325,7 +3335,7 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, st->yc[c]));
         a_mean = sbl__add(a_mean, a[c]);
     }
-    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / (float)k->ch));
+    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, k->ch)));
     if (k->fill) a_mean = zero;
     /* Eq. 5: N = N_X N_Y / ((1-a)^2 N_Y + a^2 N_X) */
     one_m = sbl__sub(one, a_mean);
@@ -3365,7 +3375,7 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
         n_y = nyrow ? sbl__load(nyrow + x) : one;
         n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
         n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-        sbl__lanes_moments(k, (const float *const(*)[3])yp, (const float *const(*)[3])xp,
+        sbl__lanes_moments(k, SBL__PCAST(const float *const(*)[3], yp), SBL__PCAST(const float *const(*)[3], xp),
                            vp, x, &st);
         sbl__lanes_rectify(k, &st);
         for (g = 0; g < groups; ++g) {
@@ -3461,12 +3471,12 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                     unsigned char *w = k->window_unsafe;
                     const unsigned char *u0 = R[0]->unsafe, *u1 = R[1]->unsafe,
                                         *u2 = R[2]->unsafe;
-                    for (x = xa - 1; x <= xb; ++x) w[x] = (unsigned char)(u0[x] | u1[x] | u2[x]);
+                    for (x = xa - 1; x <= xb; ++x) w[x] = SBL__CAST(unsigned char, u0[x] | u1[x] | u2[x]);
                     {
                         unsigned char prev = w[xa - 1], cur = w[xa];
                         for (x = xa; x < xb; ++x) {
                             unsigned char next = w[x + 1];
-                            w[x] = (unsigned char)(prev | cur | next);
+                            w[x] = SBL__CAST(unsigned char, prev | cur | next);
                             prev = cur;
                             cur = next;
                         }
@@ -3482,16 +3492,16 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 float *o = sbl__px(&k->out, 0, y);
                 const ptrdiff_t step = sbl__step_of(&k->out);
                 for (x = x0; x < x1; ++x)
-                    for (c = 0; c < k->ch; ++c) o[(ptrdiff_t)x * step + c] = k->stage[c][x];
+                    for (c = 0; c < k->ch; ++c) o[SBL__CAST(ptrdiff_t, x) * step + c] = k->stage[c][x];
                 if (k->out_n.data) {
                     float *on = sbl__px(&k->out_n, 0, y);
                     const ptrdiff_t ns = sbl__step_of(&k->out_n);
-                    for (x = x0; x < x1; ++x) on[(ptrdiff_t)x * ns] = k->stage_n[x];
+                    for (x = x0; x < x1; ++x) on[SBL__CAST(ptrdiff_t, x) * ns] = k->stage_n[x];
                 }
                 if (k->out_a.data) {
                     float *oa = sbl__px(&k->out_a, 0, y);
                     const ptrdiff_t as = sbl__step_of(&k->out_a);
-                    for (x = x0; x < x1; ++x) oa[(ptrdiff_t)x * as] = k->stage_a[x];
+                    for (x = x0; x < x1; ++x) oa[SBL__CAST(ptrdiff_t, x) * as] = k->stage_a[x];
                 }
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
@@ -3865,7 +3875,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
     const int sw = s->source->color.width, sh = s->source->color.height;
     const int fallback = !s->d.reproject.no_fallback, ch = s->src.color.ch;
     const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
-    const double tol = s->d.reproject.back_check_pixels;
+    const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
     /* the plan in lanes: parallel rig without a disparity offset (the lane plan's
        positions are exact for m = +-f b / z), target depth packed and of the source's
        size, no target normals / ids, an interior row, images up to 2^15 */
@@ -3899,7 +3909,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
                 if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
                 bits = sbl__plan_lanes(&s->src, &p, i, x0 + i, y, keep, z, slack, m, zero);
                 for (l = 0; l < SBL__VW; ++l) {
-                    psx[i + l] = x0 + i + l + 0.5 + s->dir[0] * ((double)fbz[l] - s->offset);
+                    psx[i + l] = x0 + i + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
                     psy[i + l] = y + 0.5;
                 }
                 l = SBL__VW;
@@ -3914,8 +3924,8 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
                 psx[i] = psy[i] = 0.0;
                 if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
                 if (!map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
-                if (!(sx >= 0.0 && sx < (double)sw && sy >= 0.0 && sy < (double)sh)) continue;
-                want.depth = (float)sz;
+                if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh))) continue;
+                want.depth = SBL__CAST(float, sz);
                 psx[i] = sx;
                 psy[i] = sy;
                 sbl__tap_plan_set(&s->src, &p, i, &want, sx, sy);
@@ -3931,7 +3941,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
             } else if (back_check && r->v[x] > 0.0f) {
                 /* as sbl__stereo_rp_pixel: from the nearest source pixel back */
                 double bx, by, bz, ex, ey;
-                int ok = map(s, 1, (int)floor(psx[i]), (int)floor(psy[i]), psx[i], psy[i], &bx,
+                int ok = map(s, 1, SBL__CAST(int, floor(psx[i])), SBL__CAST(int, floor(psy[i])), psx[i], psy[i], &bx,
                              &by, &bz);
                 if (ok) {
                     ex = bx - (x + 0.5);
@@ -3947,7 +3957,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
 /* The stereo reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa, int xb)
 {
-    const sbl__stereo_rp *s = (const sbl__stereo_rp *)ctx;
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     if (s->map == sbl__stereo_map_parallel)
         sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_parallel);
     else if (s->map == sbl__stereo_map_disparity)
@@ -4691,7 +4701,7 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
     for (e = 0; e < 2; ++e) {
         if ((r = sbl__check_image(&io->frame[e].color, 0)) != SBL_OK) return r;
         if ((r = sbl_temporal_filter(td, &io->frame[e], io->history[e], &io->temporal[e], 0, 0,
-                                     &none, (size_t)-1)) != SBL_OK)
+                                     &none, SBL__CAST(size_t, -1))) != SBL_OK)
             return r;
     }
     if (sbl__overlap(&io->temporal[0].color, &io->temporal[1].color) ||
@@ -4710,7 +4720,7 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
         eye[e] = sbl__eye_from_temporal(io, e);
     }
     for (e = 0; e < 2; ++e)
-        if ((r = sbl__stereo_blend_check(&s, sd, (sbl_eye_index)e, &eye[e], &eye[!e],
+        if ((r = sbl__stereo_blend_check(&s, sd, SBL__CAST(sbl_eye_index, e), &eye[e], &eye[!e],
                                          &io->display[e], &none)) != SBL_OK)
             return r;
     if (sbl__overlap(&io->display[0], &io->display[1])) return SBL_ERROR_OVERLAP;
@@ -4731,7 +4741,7 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
         r = sbl_temporal_filter(td, &io->frame[e], io->history[e], &io->temporal[e], 0,
                                 io->frame[e].color.height, scratch, bytes);
     for (e = 0; e < 2 && r == SBL_OK; ++e)
-        r = sbl_stereo_blend(sd, (sbl_eye_index)e, &eye[e], &eye[!e], io->display[e], none, 0,
+        r = sbl_stereo_blend(sd, SBL__CAST(sbl_eye_index, e), &eye[e], &eye[!e], io->display[e], none, 0,
                              eye[e].color.height, scratch, bytes);
     SBL_FREE(scratch, td->alloc_context);
     return r;
@@ -4777,8 +4787,8 @@ SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index tar
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     if ((r = sbl__check_outputs_vs_eyes(&out_color, target, source)) != SBL_OK) return r;
     {
-        const char *m0 = (const char *)mask;
-        const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+        const char *m0 = SBL__PCAST(const char *, mask);
+        const char *m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
         if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes_eye(m0, m1, target) ||
             sbl__overlap_bytes_eye(m0, m1, source))
             return SBL_ERROR_OVERLAP;
@@ -4790,7 +4800,7 @@ SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index tar
             float *o = sbl__px(&out_color, x, y);
             unsigned char need = n > 0.0f ? 0 : 1;
             for (k = 0; k < ch; ++k) o[k] = need ? 0.0f : v[k];
-            mask[(size_t)y * (size_t)mask_stride + (size_t)x] = need;
+            mask[SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, x)] = need;
             count += need;
         }
     if (needs_ray_count) *needs_ray_count = count;
@@ -4811,13 +4821,13 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
     if ((r = sbl__check_rows(y0, y1, dst.height)) != SBL_OK) return r;
     if (sbl__overlap(&dst, &traced)) return SBL_ERROR_OVERLAP;
     {   /* the mask is read while dst is written */
-        const char *m0 = (const char *)mask;
-        const char *m1 = m0 + (size_t)(dst.height - 1) * (size_t)mask_stride + (size_t)dst.width;
+        const char *m0 = SBL__PCAST(const char *, mask);
+        const char *m1 = m0 + SBL__CAST(size_t, dst.height - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, dst.width);
         if (sbl__overlap_bytes(m0, m1, &dst)) return SBL_ERROR_OVERLAP;
     }
     for (y = y0; y < y1; ++y)
         for (x = 0; x < dst.width; ++x)
-            if (mask[(size_t)y * (size_t)mask_stride + (size_t)x]) {
+            if (mask[SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, x)]) {
                 const float *t = sbl__px(&traced, x, y);
                 float *d = sbl__px(&dst, x, y);
                 for (k = 0; k < dst.channels; ++k) d[k] = t[k];
@@ -4833,10 +4843,10 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
    declaration); in double so that |a - b| of two finite floats cannot overflow. */
 static double sbl__weber_ratio(float a, float b)
 {
-    double da = fabs((double)a), db = fabs((double)b);
+    double da = fabs(SBL__CAST(double, a)), db = fabs(SBL__CAST(double, b));
     double m = da > db ? da : db;
     if (!(m > 0.0)) return 0.0; /* both +-0 */
-    return fabs((double)a - (double)b) / m;
+    return fabs(SBL__CAST(double, a) - SBL__CAST(double, b)) / m;
 }
 
 /* Does the byte mask [mask, mask + (h-1)*stride + w) overlap any image of the eyes or
@@ -4844,8 +4854,8 @@ static double sbl__weber_ratio(float a, float b)
 static int sbl__mask_overlaps(const unsigned char *mask, int mask_stride, int w, int h,
                               const sbl_eye *a, const sbl_eye *b)
 {
-    const char *m0 = (const char *)mask;
-    const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+    const char *m0 = SBL__PCAST(const char *, mask);
+    const char *m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
     return sbl__overlap_bytes_eye(m0, m1, a) || sbl__overlap_bytes_eye(m0, m1, b);
 }
 
@@ -4880,7 +4890,7 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
         sbl__mask_overlaps(mask, mask_stride, w, h, target, source))
         return SBL_ERROR_OVERLAP;
     for (y = y0; y < y1; ++y) {
-        unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        unsigned char *m = mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride);
         for (x = 0; x < w; ++x) {
             float other[4] = {0, 0, 0, 0};
             const float *own = sbl__px(&target_value, x, y);
@@ -4895,7 +4905,7 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
                     double q = sbl__weber_ratio(own[k], other[k]);
                     if (q > worst) worst = q;
                 }
-                cls = worst >= (double)threshold ? SBL_INCONSISTENT : SBL_CONSISTENT;
+                cls = worst >= SBL__CAST(double, threshold) ? SBL_INCONSISTENT : SBL_CONSISTENT;
             }
             m[x] = cls;
             n_ok += cls == SBL_CONSISTENT;
@@ -4908,7 +4918,7 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
         counts->inconsistent = n_bad;
         counts->no_correspondence = n_none;
         counts->inconsistent_ratio =
-            n_ok + n_bad > 0 ? (double)n_bad / (double)(n_ok + n_bad) : 0.0;
+            n_ok + n_bad > 0 ? SBL__CAST(double, n_bad) / SBL__CAST(double, n_ok + n_bad) : 0.0;
     }
     return SBL_OK;
 }
@@ -4927,7 +4937,7 @@ static int sbl__tile_marked(const unsigned char *mask, int mask_stride, int x0, 
     int x, y;
     if (x1 > w) x1 = w;
     for (y = y0; y < y1; ++y) {
-        const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        const unsigned char *m = mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride);
         for (x = x0; x < x1; ++x)
             if (m[x] == SBL_INCONSISTENT) return 1;
     }
@@ -4942,7 +4952,7 @@ static long sbl__keep_own(const sbl__kernel *k, const unsigned char *mask, int m
     long marked = 0;
     int x, y, c;
     for (y = y0; y < y1; ++y) {
-        const unsigned char *m = mask + (size_t)y * (size_t)mask_stride;
+        const unsigned char *m = mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride);
         for (x = 0; x < k->w; ++x) { /* per pixel: views may have pixel steps */
             const float *own = sbl__px(k->own, x, y);
             float *o = sbl__px(&k->out, x, y);
@@ -4975,8 +4985,8 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     {   /* the mask is read while the outputs are written */
-        const char *m0 = (const char *)mask;
-        const char *m1 = m0 + (size_t)(h - 1) * (size_t)mask_stride + (size_t)w;
+        const char *m0 = SBL__PCAST(const char *, mask);
+        const char *m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
         if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes(m0, m1, &out_length))
             return SBL_ERROR_OVERLAP;
     }
