@@ -4057,6 +4057,34 @@ static sbl_result sbl__stereo_blend_check(sbl__stereo_rp *s, const sbl_stereo_de
                                     out_length, &none);
 }
 
+/* The row kernel of a stereo blend of `target` (validated by the caller); beta may be
+   NULL. Shared by sbl_stereo_filter and sbl_stereo_blend_masked. */
+static void sbl__stereo_kernel_setup(sbl__kernel *k, const sbl__stereo_rp *s,
+                                     const sbl_eye *target, const sbl_image *color,
+                                     const sbl_image *length, const sbl_image *beta,
+                                     void *scratch)
+{
+    memset(k, 0, sizeof *k);
+    k->w = target->color.width; k->h = target->color.height; k->ch = target->color.channels;
+    k->wp = sbl__weight_params_make(s->d.estimator, s->d.rectify, s->d.weight_mode,
+                                    s->d.constant_beta, 0.0f, s->d.clip_gamma,
+                                    s->d.bias_threshold);
+    k->n_cap = FLT_MAX;
+    k->temporal = 0;
+    k->fill = s->d.fill;
+    k->own = &target->color;
+    k->own_n = &target->length;
+    k->gather = sbl__stereo_rp_pixel;
+    k->gather_ctx = s;
+#ifdef SBL__ROW_GATHER
+    if (sbl__row_gather_ok(&s->src)) k->gather_row = sbl__stereo_rp_row;
+#endif
+    k->out = *color;
+    k->out_n = *length;
+    if (beta) k->out_a = *beta;
+    sbl__kernel_bind(k, scratch);
+}
+
 SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
                                     const sbl_eye *target, const sbl_eye *source,
                                     const sbl_stereo_output *out, int y0, int y1,
@@ -4075,25 +4103,7 @@ SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index t
         return SBL_ERROR_INVALID_SIZE; /* too wide to size */
     if (scratch_bytes < sbl_stereo_scratch_size(target->color.width, target->color.channels))
         return SBL_ERROR_SCRATCH_TOO_SMALL;
-    memset(&k, 0, sizeof k);
-    k.w = target->color.width; k.h = target->color.height; k.ch = target->color.channels;
-    k.wp = sbl__weight_params_make(s.d.estimator, s.d.rectify, s.d.weight_mode,
-                                   s.d.constant_beta, 0.0f, s.d.clip_gamma,
-                                   s.d.bias_threshold);
-    k.n_cap = FLT_MAX;
-    k.temporal = 0;
-    k.fill = s.d.fill;
-    k.own = &target->color;
-    k.own_n = &target->length;
-    k.gather = sbl__stereo_rp_pixel;
-    k.gather_ctx = &s;
-#ifdef SBL__ROW_GATHER
-    if (sbl__row_gather_ok(&s.src)) k.gather_row = sbl__stereo_rp_row;
-#endif
-    k.out = out->color;
-    k.out_n = out->length;
-    k.out_a = out->beta;
-    sbl__kernel_bind(&k, scratch);
+    sbl__stereo_kernel_setup(&k, &s, target, &out->color, &out->length, &out->beta, scratch);
     sbl__kernel_run(&k, y0, y1);
     return SBL_OK;
 }
@@ -4975,12 +4985,12 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     sbl__kernel k;
     sbl_result r;
     long marked = 0;
-    int w, h, ch, by, full0 = -1;
+    int w, h, by, full0 = -1;
     /* every check of the full blend: an empty row range validates and writes nothing */
     if ((r = sbl_stereo_blend(desc, target_eye, target, source, out_color, out_length, y0, y0,
                               scratch, scratch_bytes)) != SBL_OK)
         return r;
-    w = target->color.width; h = target->color.height; ch = target->color.channels;
+    w = target->color.width; h = target->color.height;
     if (!mask) return SBL_ERROR_NULL_POINTER;
     if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
@@ -4993,24 +5003,8 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
                                      &out_length)) != SBL_OK)
         return r;
-    memset(&k, 0, sizeof k); /* the kernel as sbl_stereo_blend sets it up */
-    k.w = w; k.h = h; k.ch = ch;
-    k.wp = sbl__weight_params_make(s.d.estimator, s.d.rectify, s.d.weight_mode,
-                                   s.d.constant_beta, 0.0f, s.d.clip_gamma,
-                                   s.d.bias_threshold);
-    k.n_cap = FLT_MAX;
-    k.temporal = 0;
-    k.fill = s.d.fill;
-    k.own = &target->color;
-    k.own_n = &target->length;
-    k.gather = sbl__stereo_rp_pixel;
-    k.gather_ctx = &s;
-#ifdef SBL__ROW_GATHER
-    if (sbl__row_gather_ok(&s.src)) k.gather_row = sbl__stereo_rp_row;
-#endif
-    k.out = out_color;
-    k.out_n = out_length;
-    sbl__kernel_bind(&k, scratch);
+    /* the kernel as sbl_stereo_blend sets it up */
+    sbl__stereo_kernel_setup(&k, &s, target, &out_color, &out_length, NULL, scratch);
     /* bands on the absolute tile grid, clipped to [y0, y1); consecutive bands marked
        across the whole width run as one (no ring reload between them) */
     for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
