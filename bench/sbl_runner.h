@@ -65,6 +65,11 @@ typedef struct sbr_method {
     sbr_stereo_mode stereo;
     sbl_stereo_desc stereo_desc;   /* rig / focal / baseline filled in by the runner */
     float weber_threshold;         /* SBR_STEREO_MASKED: 0 -> SBL_WEBER_THRESHOLD */
+    /* prototypes (not in the standard table): if set, the temporal stage is the library's
+       reprojection, then this blend (y = input, xs / nx = x* and its N, 0 = invalid) */
+    void (*temporal_blend)(void *ctx, int w, int h, const float *y, const float *xs,
+                           const float *nx, float cap, float *out, float *nout);
+    void *temporal_blend_ctx;
 } sbr_method;
 
 typedef struct sbr_result {
@@ -551,7 +556,15 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
                 out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
                 if (alpha[e]) out.alpha = sbl_image_make(alpha[e], w, h, 1);
-                if (m->oracle & SBR_ORACLE_TEMPORAL) {
+                if (m->temporal_blend) {
+                    sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
+                    rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
+                                                sbl_image_make(ox, w, h, 3),
+                                                sbl_image_make(onx, w, h, 1), 0, h);
+                    if (rc == 0)
+                        m->temporal_blend(m->temporal_blend_ctx, w, h, input[e], ox, onx,
+                                          td.max_history, hist[e][!ping[e]], len[e][!ping[e]]);
+                } else if (m->oracle & SBR_ORACLE_TEMPORAL) {
                     sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
                     rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
                                                 sbl_image_make(ox, w, h, 3),
