@@ -371,6 +371,10 @@ typedef enum sbl_estimator {
     SBL_ESTIMATOR_ROBUST,            /* history-aware with a soft (Student-t) bias test
                                         and a firefly limit on the new sample; see
                                         docs/ESTIMATORS.md                               */
+    SBL_ESTIMATOR_POOLED,            /* robust, plus bias evidence pooled along the row
+                                        (empirical Bayes over five 3x3 blocks, 15 px):
+                                        catches small changes that cover a region; see
+                                        docs/ESTIMATORS.md                               */
     SBL_ESTIMATOR_COUNT
 } sbl_estimator;
 
@@ -1908,6 +1912,8 @@ typedef struct sbl__moments {
     double mean8[4], var8[4];   /* mean / population variance of Y without the centre
                                    sample (firefly limit); 0 without a centre         */
     int count, pair_count;
+    double tau2;                /* pooled estimator: prior variance of the bias (summed
+                                   over channels) from the blocks along the row; 0 if none */
 } sbl__moments;
 
 /* vals[i][c]: the n finite neighbours (centre included, at index `centre`, or -1);
@@ -1933,6 +1939,7 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
     }
     m->count = n;
     m->pair_count = 0;
+    m->tau2 = 0.0;
     for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
     for (k = 0; k < ch; ++k) {
         double s = 0.0, v = 0.0, pd = 0.0;
@@ -2047,6 +2054,22 @@ typedef struct sbl__weight_params {
 #define SBL_FIREFLY_SIGMAS 6.0
 #endif
 
+/* Pooled estimator (docs/ESTIMATORS.md section 3): a block's squared mean paired
+   difference counts as bias energy only beyond SBL_POOLED_BLOCK_SE2 of its squared
+   standard errors, and the pixel's own 3x3 test asks for SBL_POOLED_LOCAL_SCALE times
+   bias_threshold standard errors. Blocks: 3x3 windows centred SBL__POOL_STEP apart on
+   the pixel's row, SBL__POOL_BLOCKS each side. */
+#ifndef SBL_POOLED_BLOCK_SE2
+#define SBL_POOLED_BLOCK_SE2 3.0
+#endif
+#ifndef SBL_POOLED_LOCAL_SCALE
+#define SBL_POOLED_LOCAL_SCALE (4.0 / 3.0)
+#endif
+#define SBL__POOL_STEP 3
+#define SBL__POOL_BLOCKS 2
+/* columns a pixel's pooled statistic reads beyond it: the farthest block centre + 1 */
+#define SBL__POOL_REACH (SBL__POOL_STEP * SBL__POOL_BLOCKS + 1)
+
 /* Posterior probability that a window changed, from the squared mean paired difference
    pd2 and its squared standard error se2 (robust estimator): 1 / (1 + rho^4.5), rho =
    (1 + k2/8) / (1 + t^2/8), t^2 = pd2 / se2. 0.5 at t^2 = k2, about 0.03 at t = 0 and
@@ -2071,7 +2094,8 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
    variance of the paired differences x*_i - y_i. */
 static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, double pd2,
-                         double pv, int count, int pair_count, float n_x, float n_y)
+                         double pv, int count, int pair_count, float n_x, float n_y,
+                         double tau2)
 {
     double a;
     double progressive = SBL__CAST(double, n_y) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
@@ -2086,6 +2110,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
     case SBL_ESTIMATOR_CONSTANT:
         a = SBL__CAST(double, p->constant);
         break;
+    case SBL_ESTIMATOR_POOLED:
     case SBL_ESTIMATOR_ROBUST: {
         /* As history-aware, but the bias enters with the posterior probability that
            the window changed: t = mean paired difference / its standard error is
@@ -2093,8 +2118,12 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
            alternative the odds of change grow as (1 + t^2/8)^4.5, set to 1 at t^2 = k^2
            (bias_threshold). Soft, and polynomial rather than exponential in t^2, so
            heavy-tailed noise cannot make a near-certain change out of one sample. */
-        double k2 = SBL__CAST(double, p->bias_threshold) * SBL__CAST(double, p->bias_threshold);
+        double k = SBL__CAST(double, p->bias_threshold), k2;
         double var_x, var_y, se2, bias2 = 0.0;
+        /* pooled: the local test only has to catch what the blocks cannot (a change
+           confined to a few pixels), so it asks for more evidence */
+        if (p->estimator == SBL_ESTIMATOR_POOLED) k *= SBL_POOLED_LOCAL_SCALE;
+        k2 = k * k;
         if (pair_count > 1) {
             var_y = pv * SBL__CAST(double, n_x) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
             var_x = pv - var_y;
@@ -2108,6 +2137,12 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             bias2 = sbl__change_posterior(pd2, se2, k2,
                                           p->temporal && SBL_HISTORY_PRIOR ? 0.5 * (SBL__CAST(double, n_x) + 1.0)
                                                                           : 1.0) * pd2;
+        if (pair_count > 1 && tau2 > 0.0) {
+            /* empirical Bayes: with B ~ N(0, tau2) and pd = B + noise(se2), the
+               posterior mean of B^2 is sh^2 pd2 + sh se2, sh = tau2 / (tau2 + se2) */
+            double sh = tau2 / (tau2 + se2), b_eb = sh * sh * pd2 + sh * se2;
+            if (b_eb > bias2) bias2 = b_eb;
+        }
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
         break;
@@ -2237,7 +2272,8 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     float a_mean = 0.0f;
     int k;
     float ylim[4];
-    if (p->estimator == SBL_ESTIMATOR_ROBUST && m->count > 1) {
+    if ((p->estimator == SBL_ESTIMATOR_ROBUST || p->estimator == SBL_ESTIMATOR_POOLED) &&
+        m->count > 1) {
         sbl__firefly_limit(m, y, xs, ch, ylim);
         y = ylim;
     }
@@ -2246,7 +2282,8 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
         for (k = 0; k < ch; ++k) {
             double dev = SBL__CAST(double, xs[k]) - m->mean[k];
             a[k] = sbl__weight(p, dev * dev, m->var[k], m->pair_diff[k] * m->pair_diff[k],
-                               m->pair_var[k], m->count, m->pair_count, n_x, n_y);
+                               m->pair_var[k], m->count, m->pair_count, n_x, n_y,
+                               m->tau2 / ch);
             a_mean += a[k];
         }
         a_mean /= SBL__CAST(float, ch);
@@ -2259,7 +2296,7 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
             pd2 += m->pair_diff[k] * m->pair_diff[k];
             pv += m->pair_var[k];
         }
-        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y);
+        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y, m->tau2);
         for (k = 0; k < ch; ++k) a[k] = a_mean;
     }
     for (k = 0; k < ch; ++k) {
@@ -2549,6 +2586,10 @@ typedef struct sbl__kernel {
     float *stage[4], *stage_n, *stage_a;
     unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
     sbl__ring_row ring[3];
+    /* pooled estimator (sbl__row_pool): per column of row pool_row, each 3x3 block's
+       bias energy, and the prior variance of the bias pooled from the blocks */
+    float *pool_z, *pool_tau2;
+    int pool_row;            /* row pool_tau2 holds (-1: none: tau2 reads as 0)    */
 } sbl__kernel;
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
@@ -2563,7 +2604,7 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     size_t pf;
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
     pf = sbl__plane_floats(width);
-    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 4 * pf + 64;
+    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 4) * pf * sizeof(float) + 4 * pf + 64;
 }
 
 static void *sbl__align64(void *p)
@@ -2588,6 +2629,9 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     for (c = 0; c < k->ch; ++c) { k->stage[c] = p; p += pf; }
     k->stage_n = p; p += pf;
     k->stage_a = p; p += pf;
+    k->pool_z = p; p += pf;
+    k->pool_tau2 = p; p += pf;
+    k->pool_row = -1;
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
         unsigned char *b = SBL__PCAST(unsigned char *, p);
         for (r = 0; r < 3; ++r) { k->ring[r].unsafe = b; b += pf; }
@@ -3081,6 +3125,72 @@ static float sbl__own_n(const sbl__kernel *k, int x, int y)
     return (sbl__finite(n) && n > 0.0f) ? n : 1.0f;
 }
 
+/* Pooled estimator, once per row before its pixels: the prior variance of the bias at
+   each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md section 3). Each 3x3
+   block of paired differences d = x* - y (pixels with a valid x* and finite values)
+   gives z = sum_c (mean_c^2 - SBL_POOLED_BLOCK_SE2 var_c / n), var_c the sample
+   variance: its bias energy beyond the noise of its mean. tau2 = max(0, mean of z over
+   the blocks centred at x + SBL__POOL_STEP b, |b| <= SBL__POOL_BLOCKS, inside the
+   image, with at least 3 pairs). Reads the ring's columns [xa - SBL__POOL_REACH,
+   xb + SBL__POOL_REACH) (clamped to the image). Scalar, in double, in a fixed order:
+   the same value whatever span or vector width computes the row. */
+static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
+{
+    const int ch = k->ch, w = k->w;
+    int za = xa - SBL__POOL_STEP * SBL__POOL_BLOCKS, zb = xb + SBL__POOL_STEP * SBL__POOL_BLOCKS;
+    int x, j, i, c;
+    if (za < 0) za = 0;
+    if (zb > w) zb = w;
+    for (x = za; x < zb; ++x) {
+        double s1[4] = {0.0, 0.0, 0.0, 0.0}, s2[4] = {0.0, 0.0, 0.0, 0.0}, z = 0.0;
+        int n = 0;
+        for (j = 0; j < 3; ++j) {
+            if (!R[j]) continue;
+            for (i = x - 1; i <= x + 1; ++i) {
+                double d[4];
+                int ok = 1;
+                if (i < 0 || i >= w || !(R[j]->v[i] > 0.0f)) continue;
+                for (c = 0; c < ch; ++c) {
+                    ok &= sbl__finite(R[j]->y[c][i]) & sbl__finite(R[j]->x[c][i]);
+                    d[c] = SBL__CAST(double, R[j]->x[c][i]) - SBL__CAST(double, R[j]->y[c][i]);
+                }
+                if (!ok) continue;
+                for (c = 0; c < ch; ++c) { s1[c] += d[c]; s2[c] += d[c] * d[c]; }
+                ++n;
+            }
+        }
+        if (n < 3) { k->pool_z[x] = -FLT_MAX; continue; } /* no block here */
+        for (c = 0; c < ch; ++c) {
+            double mu = s1[c] / n, v = (s2[c] - n * mu * mu) / (n - 1);
+            z += mu * mu - SBL_POOLED_BLOCK_SE2 * (v > 0.0 ? v : 0.0) / n;
+        }
+        /* signed: a block below its threshold pulls the mean down (1e30: huge inputs
+           saturate, and -FLT_MAX stays the "no block" mark) */
+        if (z > 1e30) z = 1e30;
+        if (z < -1e30) z = -1e30;
+        k->pool_z[x] = SBL__CAST(float, z);
+    }
+    for (x = xa; x < xb; ++x) {
+        double zs = 0.0;
+        int b, nb = 0;
+        for (b = -SBL__POOL_BLOCKS; b <= SBL__POOL_BLOCKS; ++b) {
+            int cx = x + SBL__POOL_STEP * b;
+            if (cx < 0 || cx >= w || k->pool_z[cx] == -FLT_MAX) continue;
+            zs += SBL__CAST(double, k->pool_z[cx]);
+            ++nb;
+        }
+        zs = nb ? zs / nb : 0.0;
+        k->pool_tau2[x] = zs > 0.0 ? SBL__CAST(float, zs) : 0.0f;
+    }
+    k->pool_row = R[1]->row;
+}
+
+/* The pooled prior variance of the bias at pixel x of row y (0 if not computed). */
+static float sbl__pool_tau2(const sbl__kernel *k, int x, int y)
+{
+    return (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y) ? k->pool_tau2[x] : 0.0f;
+}
+
 /* Reference path for one pixel: borders, non-finite and extreme values. */
 static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R, int x)
 {
@@ -3127,6 +3237,7 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
         }
         sbl__moments_core(&m, SBL__PCAST(const float(*)[4], vals), SBL__PCAST(const float(*)[4], xvals), xvalid, n, ch,
                           centre);
+        m.tau2 = SBL__CAST(double, sbl__pool_tau2(k, x, y));
         if (n_x > k->n_cap) n_x = k->n_cap;
         n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
     }
@@ -3158,6 +3269,7 @@ typedef struct sbl__lane_stats {
     sbl__v m8[4], v8[4]; /* mean / population variance of Y without the centre (robust) */
     sbl__v inv_cnt; /* 1 / max(pairs, 1)                                            */
     sbl__m has_pairs, two_pairs;
+    sbl__v tau2;    /* pooled estimator: prior variance of the bias (sbl__row_pool)   */
 } sbl__lane_stats;
 
 SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*yp)[3],
@@ -3214,6 +3326,14 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
     }
 }
 
+/* Pooled estimator: the prior variance of the bias of pixels [x, x + VW) of row y, as
+   sbl__pool_tau2 (computed for the row by sbl__row_pool). */
+SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_stats *st)
+{
+    st->tau2 = (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y)
+                   ? sbl__load(k->pool_tau2 + x) : sbl__set1(0.0f);
+}
+
 /* Firefly limit of the own sample, as sbl__firefly_limit. */
 SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
 {
@@ -3242,7 +3362,8 @@ SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
     const sbl__v gamma = sbl__set1(k->wp.gamma);
     int c, ch = k->ch;
     for (c = 0; c < ch; ++c) st->yb[c] = st->yc[c];
-    if (k->wp.estimator == SBL_ESTIMATOR_ROBUST) sbl__lanes_firefly(k, st);
+    if (k->wp.estimator == SBL_ESTIMATOR_ROBUST || k->wp.estimator == SBL_ESTIMATOR_POOLED)
+        sbl__lanes_firefly(k, st);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
     } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
@@ -3265,7 +3386,7 @@ SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
    variance of the paired differences; n_xc = capped N_X, n_y = N_Y. */
 SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lane_stats *st,
                                      sbl__v dev2, sbl__v s2, sbl__v pd2, sbl__v pvs,
-                                     sbl__v n_xc, sbl__v n_y)
+                                     sbl__v n_xc, sbl__v n_y, sbl__v tau2)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
@@ -3277,9 +3398,12 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         w = prog;
     } else if (p->estimator == SBL_ESTIMATOR_CONSTANT) {
         w = sbl__set1(p->constant);
-    } else if (p->estimator == SBL_ESTIMATOR_ROBUST) {
+    } else if (p->estimator == SBL_ESTIMATOR_ROBUST || p->estimator == SBL_ESTIMATOR_POOLED) {
         /* as sbl__weight: the bias enters with its posterior (sbl__change_posterior) */
-        const sbl__v k2e = sbl__set1(1.0f + p->bias_threshold * p->bias_threshold * 0.125f);
+        const float kb = p->estimator == SBL_ESTIMATOR_POOLED
+                             ? SBL__CAST(float, SBL__CAST(double, p->bias_threshold) * SBL_POOLED_LOCAL_SCALE)
+                             : p->bias_threshold;
+        const sbl__v k2e = sbl__set1(SBL__CAST(float, 1.0 + SBL__CAST(double, kb) * SBL__CAST(double, kb) * 0.125));
         sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
         sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
         sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
@@ -3294,7 +3418,15 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         sbl__v odds = p->temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
         sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
         sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
-        sbl__v num = sbl__add(b2, vx), den = sbl__add(num, vy);
+        sbl__v num, den;
+        if (p->estimator == SBL_ESTIMATOR_POOLED) {
+            /* empirical Bayes, as sbl__weight: sh^2 pd2 + sh se2, sh = tau2/(tau2+se2) */
+            sbl__v sh = sbl__div(tau2, sbl__max(sbl__add(tau2, se2), tiny));
+            sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
+            b2 = sbl__sel(sbl__mand(st->two_pairs, sbl__gt(tau2, zero)), sbl__max(b2, b_eb), b2);
+        }
+        num = sbl__add(b2, vx);
+        den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
@@ -3377,6 +3509,7 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
         n_xc = sbl__max(sbl__min(n_x, cap), tiny);
         sbl__lanes_moments(k, SBL__PCAST(const float *const(*)[3], yp), SBL__PCAST(const float *const(*)[3], xp),
                            vp, x, &st);
+        sbl__lanes_pool(k, x, y, &st);
         sbl__lanes_rectify(k, &st);
         for (g = 0; g < groups; ++g) {
             sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
@@ -3388,7 +3521,8 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
                 pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
                 pvs = sbl__add(pvs, st.pv[c]);
             }
-            w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
+            w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y,
+                                  per_channel ? sbl__mul(st.tau2, sbl__set1(1.0f / SBL__CAST(float, ch))) : st.tau2);
             for (c = c0; c < c1; ++c) a[c] = w;
         }
         sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
@@ -3452,9 +3586,13 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
     }
     {   /* ring columns: the lane columns and the span, each with its neighbours */
         int ra = (la < x0 ? la : x0) - 1, rb = (lb > x1 ? lb : x1) + 1;
+        /* pooled estimator: sbl__row_pool computes [pa, pb) and reads further */
+        const int pool = k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->fill;
+        const int pa = lanes_w && la < x0 ? la : x0, pb = lanes_w && lb > x1 ? lb : x1;
+        if (!lanes_w) { ra = x0 - 1; rb = x1 + 1; }
+        if (pool) { ra = pa - SBL__POOL_REACH; rb = pb + SBL__POOL_REACH; }
         if (ra < 0) ra = 0;
         if (rb > k->w) rb = k->w;
-        if (!lanes_w) { ra = x0 > 0 ? x0 - 1 : 0; rb = x1 < k->w ? x1 + 1 : k->w; }
         for (j = 0; j < 3; ++j) {
             int ry = y0 - 1 + j;
             k->ring[j].row = -1;
@@ -3465,6 +3603,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
             const unsigned char *win = NULL;
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
+            if (pool) sbl__row_pool(k, R, pa, pb);
             if (lanes_ok) {
                 if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
                     /* per pixel: 1 if any of the nine values of its window is unsafe */
