@@ -1912,8 +1912,8 @@ typedef struct sbl__moments {
     double mean8[4], var8[4];   /* mean / population variance of Y without the centre
                                    sample (firefly limit); 0 without a centre         */
     int count, pair_count;
-    double tau2;                /* pooled estimator: prior variance of the bias (summed
-                                   over channels) from the blocks along the row; 0 if none */
+    double pool_r;              /* pooled estimator: prior bias-to-noise ratio tau^2 / se^2
+                                   from the blocks along the row (sbl__row_pool); 0 if none */
 } sbl__moments;
 
 /* vals[i][c]: the n finite neighbours (centre included, at index `centre`, or -1);
@@ -1939,7 +1939,7 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
     }
     m->count = n;
     m->pair_count = 0;
-    m->tau2 = 0.0;
+    m->pool_r = 0.0;
     for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
     for (k = 0; k < ch; ++k) {
         double s = 0.0, v = 0.0, pd = 0.0;
@@ -2066,6 +2066,7 @@ typedef struct sbl__weight_params {
 #define SBL_POOLED_LOCAL_SCALE (4.0 / 3.0)
 #endif
 #define SBL__POOL_STEP 3
+#define SBL__POOL_RATIO_CAP 1e6
 #define SBL__POOL_BLOCKS 2
 /* columns a pixel's pooled statistic reads beyond it: the farthest block centre + 1 */
 #define SBL__POOL_REACH (SBL__POOL_STEP * SBL__POOL_BLOCKS + 1)
@@ -2095,7 +2096,7 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
    variance of the paired differences x*_i - y_i. */
 static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, double pd2,
                          double pv, int count, int pair_count, float n_x, float n_y,
-                         double tau2)
+                         double pool_r)
 {
     double a;
     double progressive = SBL__CAST(double, n_y) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
@@ -2137,10 +2138,11 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             bias2 = sbl__change_posterior(pd2, se2, k2,
                                           p->temporal && SBL_HISTORY_PRIOR ? 0.5 * (SBL__CAST(double, n_x) + 1.0)
                                                                           : 1.0) * pd2;
-        if (pair_count > 1 && tau2 > 0.0) {
-            /* empirical Bayes: with B ~ N(0, tau2) and pd = B + noise(se2), the
-               posterior mean of B^2 is sh^2 pd2 + sh se2, sh = tau2 / (tau2 + se2) */
-            double sh = tau2 / (tau2 + se2), b_eb = sh * sh * pd2 + sh * se2;
+        if (pair_count > 1 && pool_r > 0.0) {
+            /* empirical Bayes: with B ~ N(0, tau^2) and pd = B + noise(se2), the
+               posterior mean of B^2 is sh^2 pd2 + sh se2, sh = tau^2 / (tau^2 + se2) =
+               r / (1 + r), r = tau^2 / se2 pooled from the blocks */
+            double sh = pool_r / (1.0 + pool_r), b_eb = sh * sh * pd2 + sh * se2;
             if (b_eb > bias2) bias2 = b_eb;
         }
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
@@ -2283,7 +2285,7 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
             double dev = SBL__CAST(double, xs[k]) - m->mean[k];
             a[k] = sbl__weight(p, dev * dev, m->var[k], m->pair_diff[k] * m->pair_diff[k],
                                m->pair_var[k], m->count, m->pair_count, n_x, n_y,
-                               m->tau2 / ch);
+                               m->pool_r);
             a_mean += a[k];
         }
         a_mean /= SBL__CAST(float, ch);
@@ -2296,7 +2298,7 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
             pd2 += m->pair_diff[k] * m->pair_diff[k];
             pv += m->pair_var[k];
         }
-        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y, m->tau2);
+        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y, m->pool_r);
         for (k = 0; k < ch; ++k) a[k] = a_mean;
     }
     for (k = 0; k < ch; ++k) {
@@ -2588,8 +2590,8 @@ typedef struct sbl__kernel {
     sbl__ring_row ring[3];
     /* pooled estimator (sbl__row_pool): per column of row pool_row, each 3x3 block's
        bias energy, and the prior variance of the bias pooled from the blocks */
-    float *pool_z, *pool_tau2;
-    int pool_row;            /* row pool_tau2 holds (-1: none: tau2 reads as 0)    */
+    float *pool_z, *pool_r;
+    int pool_row;            /* row pool_r holds (-1: none: the ratio reads as 0)  */
 } sbl__kernel;
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
@@ -2630,7 +2632,7 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->stage_n = p; p += pf;
     k->stage_a = p; p += pf;
     k->pool_z = p; p += pf;
-    k->pool_tau2 = p; p += pf;
+    k->pool_r = p; p += pf;
     k->pool_row = -1;
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
         unsigned char *b = SBL__PCAST(unsigned char *, p);
@@ -3125,13 +3127,14 @@ static float sbl__own_n(const sbl__kernel *k, int x, int y)
     return (sbl__finite(n) && n > 0.0f) ? n : 1.0f;
 }
 
-/* Pooled estimator, once per row before its pixels: the prior variance of the bias at
-   each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md section 3). Each 3x3
-   block of paired differences d = x* - y (pixels with a valid x* and finite values)
-   gives z = sum_c (mean_c^2 - SBL_POOLED_BLOCK_SE2 var_c / n), var_c the sample
-   variance: its bias energy beyond the noise of its mean. tau2 = max(0, mean of z over
-   the blocks centred at x + SBL__POOL_STEP b, |b| <= SBL__POOL_BLOCKS, inside the
-   image, with at least 3 pairs). Reads the ring's columns [xa - SBL__POOL_REACH,
+/* Pooled estimator, once per row before its pixels: the prior bias-to-noise ratio
+   r = tau^2 / se^2 at each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md
+   section 3). Each 3x3 block of paired differences d = x* - y (pixels with a valid x*
+   and finite values) gives z = sum_c mean_c^2 / sum_c (var_c / n) - SBL_POOLED_BLOCK_SE2
+   (var_c the sample variance): its squared t beyond the threshold. r = max(0, mean of
+   z over the blocks centred at x + SBL__POOL_STEP b, |b| <= SBL__POOL_BLOCKS, inside
+   the image, with at least 3 pairs). A ratio, so that it does not depend on the scale
+   of the values (HDR) and a bright region's noise does not swamp a dim one's. Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image). Scalar, in double, in a fixed order:
    the same value whatever span or vector width computes the row. */
 static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
@@ -3142,7 +3145,7 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
     if (za < 0) za = 0;
     if (zb > w) zb = w;
     for (x = za; x < zb; ++x) {
-        double s1[4] = {0.0, 0.0, 0.0, 0.0}, s2[4] = {0.0, 0.0, 0.0, 0.0}, z = 0.0;
+        double s1[4] = {0.0, 0.0, 0.0, 0.0}, s2[4] = {0.0, 0.0, 0.0, 0.0}, z, m2 = 0.0, se2 = 0.0;
         int n = 0;
         for (j = 0; j < 3; ++j) {
             if (!R[j]) continue;
@@ -3162,13 +3165,15 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
         if (n < 3) { k->pool_z[x] = -FLT_MAX; continue; } /* no block here */
         for (c = 0; c < ch; ++c) {
             double mu = s1[c] / n, v = (s2[c] - n * mu * mu) / (n - 1);
-            z += mu * mu - SBL_POOLED_BLOCK_SE2 * (v > 0.0 ? v : 0.0) / n;
+            m2 += mu * mu;
+            se2 += (v > 0.0 ? v : 0.0) / n;
         }
-        /* signed: a block below its threshold pulls the mean down (1e30: huge inputs
-           saturate, and -FLT_MAX stays the "no block" mark) */
-        if (z > 1e30) z = 1e30;
-        if (z < -1e30) z = -1e30;
-        k->pool_z[x] = SBL__CAST(float, z);
+        /* the block's squared mean over its squared standard error, less the
+           threshold; signed: a block below it pulls the mean down. Capped: a block
+           with no noise at all (se2 = 0) and a mean counts as certain change. */
+        z = se2 > 0.0 ? m2 / se2 : (m2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
+        if (z > SBL__POOL_RATIO_CAP) z = SBL__POOL_RATIO_CAP;
+        k->pool_z[x] = SBL__CAST(float, z - SBL_POOLED_BLOCK_SE2);
     }
     for (x = xa; x < xb; ++x) {
         double zs = 0.0;
@@ -3180,15 +3185,15 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
             ++nb;
         }
         zs = nb ? zs / nb : 0.0;
-        k->pool_tau2[x] = zs > 0.0 ? SBL__CAST(float, zs) : 0.0f;
+        k->pool_r[x] = zs > 0.0 ? SBL__CAST(float, zs) : 0.0f;
     }
     k->pool_row = R[1]->row;
 }
 
-/* The pooled prior variance of the bias at pixel x of row y (0 if not computed). */
-static float sbl__pool_tau2(const sbl__kernel *k, int x, int y)
+/* The pooled prior bias-to-noise ratio at pixel x of row y (0 if not computed). */
+static float sbl__pool_ratio(const sbl__kernel *k, int x, int y)
 {
-    return (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y) ? k->pool_tau2[x] : 0.0f;
+    return (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y) ? k->pool_r[x] : 0.0f;
 }
 
 /* Reference path for one pixel: borders, non-finite and extreme values. */
@@ -3237,7 +3242,7 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
         }
         sbl__moments_core(&m, SBL__PCAST(const float(*)[4], vals), SBL__PCAST(const float(*)[4], xvals), xvalid, n, ch,
                           centre);
-        m.tau2 = SBL__CAST(double, sbl__pool_tau2(k, x, y));
+        m.pool_r = SBL__CAST(double, sbl__pool_ratio(k, x, y));
         if (n_x > k->n_cap) n_x = k->n_cap;
         n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
     }
@@ -3269,7 +3274,7 @@ typedef struct sbl__lane_stats {
     sbl__v m8[4], v8[4]; /* mean / population variance of Y without the centre (robust) */
     sbl__v inv_cnt; /* 1 / max(pairs, 1)                                            */
     sbl__m has_pairs, two_pairs;
-    sbl__v tau2;    /* pooled estimator: prior variance of the bias (sbl__row_pool)   */
+    sbl__v pool_r;  /* pooled estimator: prior bias-to-noise ratio (sbl__row_pool)     */
 } sbl__lane_stats;
 
 SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*yp)[3],
@@ -3327,11 +3332,11 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*y
 }
 
 /* Pooled estimator: the prior variance of the bias of pixels [x, x + VW) of row y, as
-   sbl__pool_tau2 (computed for the row by sbl__row_pool). */
+   sbl__pool_ratio (computed for the row by sbl__row_pool). */
 SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_stats *st)
 {
-    st->tau2 = (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y)
-                   ? sbl__load(k->pool_tau2 + x) : sbl__set1(0.0f);
+    st->pool_r = (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y)
+                   ? sbl__load(k->pool_r + x) : sbl__set1(0.0f);
 }
 
 /* Firefly limit of the own sample, as sbl__firefly_limit. */
@@ -3386,7 +3391,7 @@ SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
    variance of the paired differences; n_xc = capped N_X, n_y = N_Y. */
 SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lane_stats *st,
                                      sbl__v dev2, sbl__v s2, sbl__v pd2, sbl__v pvs,
-                                     sbl__v n_xc, sbl__v n_y, sbl__v tau2)
+                                     sbl__v n_xc, sbl__v n_y)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
@@ -3420,10 +3425,10 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
         sbl__v num, den;
         if (p->estimator == SBL_ESTIMATOR_POOLED) {
-            /* empirical Bayes, as sbl__weight: sh^2 pd2 + sh se2, sh = tau2/(tau2+se2) */
-            sbl__v sh = sbl__div(tau2, sbl__max(sbl__add(tau2, se2), tiny));
+            /* empirical Bayes, as sbl__weight: sh^2 pd2 + sh se2, sh = r / (1 + r) */
+            sbl__v sh = sbl__div(st->pool_r, sbl__add(one, st->pool_r));
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
-            b2 = sbl__sel(sbl__mand(st->two_pairs, sbl__gt(tau2, zero)), sbl__max(b2, b_eb), b2);
+            b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
         }
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
@@ -3521,8 +3526,7 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
                 pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
                 pvs = sbl__add(pvs, st.pv[c]);
             }
-            w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y,
-                                  per_channel ? sbl__mul(st.tau2, sbl__set1(1.0f / SBL__CAST(float, ch))) : st.tau2);
+            w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
             for (c = c0; c < c1; ++c) a[c] = w;
         }
         sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);

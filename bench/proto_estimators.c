@@ -24,6 +24,7 @@ typedef struct cand {
     int combine;     /* 0 max of bias^2; 1 bias from wide only */
     int soft_w;      /* wide test: 0 hard (pd^2 - kw^2 se^2), 1 soft */
     double c_eb;     /* >0: also the empirical-Bayes bias from 5 blocks, c = c_eb */
+    int normalized;  /* blocks' bias-to-noise ratio pooled instead of their energy */
 } cand;
 
 static double post_t(double pd2, double se2, double k, double nu, double odds)
@@ -165,17 +166,20 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
                                 }
                             }
                         if (cnt > 2) {
-                            double z = 0;
+                            double z = 0, m2 = 0, se = 0;
                             for (ch = 0; ch < 3; ++ch) {
                                 double mu = s1[ch] / cnt, vv = (s2c[ch] - cnt * mu * mu) / (cnt - 1);
                                 z += mu * mu - cc * (vv > 0 ? vv : 0) / cnt;
+                                m2 += mu * mu; se += (vv > 0 ? vv : 0) / cnt;
                             }
+                            if (c->normalized) z = se > 0 ? m2 / se - cc : (m2 > 0 ? 1e6 : -cc);
                             zs += z; ++nb;
                         }
                     }
                     if (nb > 0 && np > 1) {
                         double tau2 = zs / nb, sh;
                         if (tau2 < 0) tau2 = 0;
+                        if (c->normalized) tau2 *= se2;
                         sh = tau2 / (tau2 + se2);
                         bw = sh * sh * pd2 + sh * se2;
                     }
@@ -194,11 +198,10 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
 }
 
 static cand cands[] = {
-    {"ha (check)", 0, 0, 3, 3, 0, 0, 0, 0, 0},
-    {"s4 + EB c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0},
-    {"s4 + EB c2.5", 7, 1, 4, 2.5, 1, 0, 2, 0, 0},
-    {"s4 + W7h1.5 + EB c3", 7, 1, 4, 1.5, 1, 0, 0, 0, 3.0},
-    {"s4 + W7h2 + EB c2.5", 7, 1, 4, 2, 1, 0, 0, 0, 2.5},
+    {"ha (check)", 0, 0, 3, 3, 0, 0, 0, 0, 0, 0},
+    {"s4 + EB c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0, 0},
+    {"s4 + EBn c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0, 1},
+    {"s4 + EBn c2.5", 7, 1, 4, 2.5, 1, 0, 2, 0, 0, 1},
 };
 
 int main(int argc, char **argv)
