@@ -2590,7 +2590,8 @@ typedef struct sbl__kernel {
     sbl__ring_row ring[3];
     /* pooled estimator (sbl__row_pool): per column of row pool_row, each 3x3 block's
        bias energy, and the prior variance of the bias pooled from the blocks */
-    float *pool_z, *pool_r;
+    double *pool_m2, *pool_se2; /* per column: a block's sum_c mean_c^2, sum_c se_c^2 (< 0: none) */
+    float *pool_r;
     int pool_row;            /* row pool_r holds (-1: none: the ratio reads as 0)  */
 } sbl__kernel;
 
@@ -2606,7 +2607,7 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     size_t pf;
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
     pf = sbl__plane_floats(width);
-    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 4) * pf * sizeof(float) + 4 * pf + 64;
+    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 7) * pf * sizeof(float) + 4 * pf + 64;
 }
 
 static void *sbl__align64(void *p)
@@ -2631,7 +2632,8 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     for (c = 0; c < k->ch; ++c) { k->stage[c] = p; p += pf; }
     k->stage_n = p; p += pf;
     k->stage_a = p; p += pf;
-    k->pool_z = p; p += pf;
+    k->pool_m2 = SBL__PCAST(double *, p); p += 2 * pf; /* 64-byte aligned: fit for doubles */
+    k->pool_se2 = SBL__PCAST(double *, p); p += 2 * pf;
     k->pool_r = p; p += pf;
     k->pool_row = -1;
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
@@ -3130,11 +3132,12 @@ static float sbl__own_n(const sbl__kernel *k, int x, int y)
 /* Pooled estimator, once per row before its pixels: the prior bias-to-noise ratio
    r = tau^2 / se^2 at each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md
    section 3). Each 3x3 block of paired differences d = x* - y (pixels with a valid x*
-   and finite values) gives z = sum_c mean_c^2 / sum_c (var_c / n) - SBL_POOLED_BLOCK_SE2
-   (var_c the sample variance): its squared t beyond the threshold. r = max(0, mean of
-   z over the blocks centred at x + SBL__POOL_STEP b, |b| <= SBL__POOL_BLOCKS, inside
-   the image, with at least 3 pairs). A ratio, so that it does not depend on the scale
-   of the values (HDR) and a bright region's noise does not swamp a dim one's. Reads the ring's columns [xa - SBL__POOL_REACH,
+   and finite values, at least 3) gives its squared mean m2 = sum_c mean_c^2 and the
+   squared standard error of that mean se2 = sum_c var_c / n (var_c the sample
+   variance); over the blocks centred at x + SBL__POOL_STEP b, |b| <= SBL__POOL_BLOCKS,
+   r = max(0, sum m2 / sum se2 - SBL_POOLED_BLOCK_SE2): the blocks' bias energy beyond
+   the threshold, in units of the noise of their means. A ratio: independent of the
+   scale of the values (HDR). Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image). Scalar, in double, in a fixed order:
    the same value whatever span or vector width computes the row. */
 static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
@@ -3145,7 +3148,7 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
     if (za < 0) za = 0;
     if (zb > w) zb = w;
     for (x = za; x < zb; ++x) {
-        double s1[4] = {0.0, 0.0, 0.0, 0.0}, s2[4] = {0.0, 0.0, 0.0, 0.0}, z, m2 = 0.0, se2 = 0.0;
+        double s1[4] = {0.0, 0.0, 0.0, 0.0}, s2[4] = {0.0, 0.0, 0.0, 0.0}, m2 = 0.0, se2 = 0.0;
         int n = 0;
         for (j = 0; j < 3; ++j) {
             if (!R[j]) continue;
@@ -3162,30 +3165,31 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
                 ++n;
             }
         }
-        if (n < 3) { k->pool_z[x] = -FLT_MAX; continue; } /* no block here */
+        k->pool_m2[x] = 0.0;
+        k->pool_se2[x] = -1.0; /* no block here */
+        if (n < 3) continue;
         for (c = 0; c < ch; ++c) {
             double mu = s1[c] / n, v = (s2[c] - n * mu * mu) / (n - 1);
             m2 += mu * mu;
             se2 += (v > 0.0 ? v : 0.0) / n;
         }
-        /* the block's squared mean over its squared standard error, less the
-           threshold; signed: a block below it pulls the mean down. Capped: a block
-           with no noise at all (se2 = 0) and a mean counts as certain change. */
-        z = se2 > 0.0 ? m2 / se2 : (m2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
-        if (z > SBL__POOL_RATIO_CAP) z = SBL__POOL_RATIO_CAP;
-        k->pool_z[x] = SBL__CAST(float, z - SBL_POOLED_BLOCK_SE2);
+        k->pool_m2[x] = m2;
+        k->pool_se2[x] = se2;
     }
     for (x = xa; x < xb; ++x) {
-        double zs = 0.0;
-        int b, nb = 0;
+        double sm2 = 0.0, sse2 = 0.0, r;
+        int b;
         for (b = -SBL__POOL_BLOCKS; b <= SBL__POOL_BLOCKS; ++b) {
             int cx = x + SBL__POOL_STEP * b;
-            if (cx < 0 || cx >= w || k->pool_z[cx] == -FLT_MAX) continue;
-            zs += SBL__CAST(double, k->pool_z[cx]);
-            ++nb;
+            if (cx < 0 || cx >= w || k->pool_se2[cx] < 0.0) continue;
+            sm2 += k->pool_m2[cx];
+            sse2 += k->pool_se2[cx];
         }
-        zs = nb ? zs / nb : 0.0;
-        k->pool_r[x] = zs > 0.0 ? SBL__CAST(float, zs) : 0.0f;
+        /* pooled squared mean over pooled squared standard error, less the threshold;
+           no noise at all and a mean: certain change (capped) */
+        r = sse2 > 0.0 ? sm2 / sse2 - SBL_POOLED_BLOCK_SE2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
+        if (r > SBL__POOL_RATIO_CAP) r = SBL__POOL_RATIO_CAP;
+        k->pool_r[x] = r > 0.0 ? SBL__CAST(float, r) : 0.0f;
     }
     k->pool_row = R[1]->row;
 }

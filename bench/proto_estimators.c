@@ -150,7 +150,7 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
                     double cc = c->c_eb > 0 ? c->c_eb : c->kw; double bmean = c->combine == 2 ? 0 : bw;
                     /* empirical Bayes: prior variance of the bias from 5 3x3 blocks at
                        columns px + 3b, b = -2..2 */
-                    double zs = 0; int nb = 0, b;
+                    double zs = 0, sse = 0; int nb = 0, b;
                     for (b = -2; b <= 2; ++b) {
                         double s1[3] = {0}, s2c[3] = {0}; int cnt = 0, cx = px + 3 * b;
                         for (j = py - 1; j <= py + 1; ++j)
@@ -172,12 +172,14 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
                                 z += mu * mu - cc * (vv > 0 ? vv : 0) / cnt;
                                 m2 += mu * mu; se += (vv > 0 ? vv : 0) / cnt;
                             }
-                            if (c->normalized) z = se > 0 ? m2 / se - cc : (m2 > 0 ? 1e6 : -cc);
+                            if (c->normalized == 1) z = se > 0 ? m2 / se - cc : (m2 > 0 ? 1e6 : -cc);
+                            if (c->normalized == 2) { z = m2; sse += se; }
                             zs += z; ++nb;
                         }
                     }
                     if (nb > 0 && np > 1) {
                         double tau2 = zs / nb, sh;
+                        if (c->normalized == 2) tau2 = sse > 0 ? zs / sse - cc : (zs > 0 ? 1e6 : 0);
                         if (tau2 < 0) tau2 = 0;
                         if (c->normalized) tau2 *= se2;
                         sh = tau2 / (tau2 + se2);
@@ -199,9 +201,9 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
 
 static cand cands[] = {
     {"ha (check)", 0, 0, 3, 3, 0, 0, 0, 0, 0, 0},
-    {"s4 + EB c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0, 0},
-    {"s4 + EBn c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0, 1},
-    {"s4 + EBn c2.5", 7, 1, 4, 2.5, 1, 0, 2, 0, 0, 1},
+    {"s4 + EBs c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0, 2},
+    {"s4 + EBs c2.5", 7, 1, 4, 2.5, 1, 0, 2, 0, 0, 2},
+    {"s4 + EBn c3.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 1},
 };
 
 int main(int argc, char **argv)

@@ -323,6 +323,7 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n++] = sbr_method_make("history-aware-per-ch", 1, HA, RN, WP, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_default("default", SBR_STEREO_NONE);
     all[n++] = sbr_method_make("robust", 1, SBL_ESTIMATOR_ROBUST, RN, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("pooled", 1, SBL_ESTIMATOR_POOLED, RN, WS, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_oracle("oracle", 1, SBR_STEREO_NONE, SBR_ORACLE_TEMPORAL);
     /* stereo alone (on the 1-spp input) */
     all[n++] = sbr_method_make("stereo-fill", 0, HA, RN, WS, SBR_STEREO_FILL, HA);

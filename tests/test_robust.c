@@ -1305,19 +1305,19 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
             xn[y * w + x] = ref_reproject(in, p, x, y, v);
             for (k = 0; k < c; ++k) xs[(y * w + x) * c + k] = v[k];
         }
-    /* pooled estimator: per pixel, the mean over the 3x3 blocks centred at x + 3b,
-       |b| <= 2, in the image and with >= 3 pairs (valid x*, finite values), of the
-       block's sum_c mean_c^2 / sum_c (sample var_c / n) less 3 (capped at 1e6); r is
-       that mean if positive, else 0 */
+    /* pooled estimator: over the 3x3 blocks centred at x + 3b, |b| <= 2, in the image
+       and with >= 3 pairs (valid x*, finite values), the sum of the blocks'
+       sum_c mean_c^2 over the sum of their sum_c (sample var_c / n), less 3 (capped at
+       1e6); r is that if positive, else 0 */
     for (y = 0; y < h; ++y)
         for (x = 0; x < w; ++x) {
-            double zs = 0;
-            int b, nb = 0;
+            double sm2 = 0, sse2 = 0, r;
+            int b;
             pool[y * w + x] = 0;
             if (p->est != SBL_ESTIMATOR_POOLED) continue;
             for (b = -2; b <= 2; ++b) {
                 int cx = x + 3 * b, n = 0;
-                double s1[4] = {0, 0, 0, 0}, s2[4] = {0, 0, 0, 0}, m2 = 0, se2 = 0, z;
+                double s1[4] = {0, 0, 0, 0}, s2[4] = {0, 0, 0, 0};
                 if (cx < 0 || cx >= w) continue;
                 for (j = y - 1; j <= y + 1; ++j)
                     for (i = cx - 1; i <= cx + 1; ++i) {
@@ -1336,14 +1336,13 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                 if (n < 3) continue;
                 for (k = 0; k < c; ++k) {
                     double mu = s1[k] / n, vv = (s2[k] - n * mu * mu) / (n - 1);
-                    m2 += mu * mu;
-                    se2 += (vv > 0 ? vv : 0) / n;
+                    sm2 += mu * mu;
+                    sse2 += (vv > 0 ? vv : 0) / n;
                 }
-                z = se2 > 0 ? m2 / se2 : (m2 > 0 ? 1e6 : 0);
-                zs += (z > 1e6 ? 1e6 : z) - 3.0;
-                ++nb;
             }
-            if (nb && zs / nb > 0) pool[y * w + x] = zs / nb;
+            r = sse2 > 0 ? sm2 / sse2 - 3.0 : (sm2 > 0 ? 1e6 : 0);
+            if (r > 1e6) r = 1e6;
+            if (r > 0) pool[y * w + x] = r;
         }
     for (y = 0; y < h; ++y)
         for (x = 0; x < w; ++x) {
