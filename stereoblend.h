@@ -363,17 +363,18 @@ SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image varia
 /* ======================================================================== */
 
 typedef enum sbl_estimator {
-    SBL_ESTIMATOR_HISTORY_AWARE = 0, /* default: var_X from tracked N, bias from paired
-                                        3x3 differences beyond their noise level       */
+    SBL_ESTIMATOR_POOLED = 0,        /* default: robust (below), plus bias evidence pooled
+                                        along the row (empirical Bayes over five 3x3
+                                        blocks, 15 px): catches small changes that cover
+                                        a region; see docs/ESTIMATORS.md                 */
+    SBL_ESTIMATOR_HISTORY_AWARE,     /* var_X from tracked N, bias from paired 3x3
+                                        differences beyond their noise level (the
+                                        default before the pooled estimator)            */
     SBL_ESTIMATOR_PAPER,             /* Philippi Eq. 4 with Eq. 10/11: a = d^2/(d^2+s^2) */
     SBL_ESTIMATOR_PROGRESSIVE,       /* a = N_Y / (N_X + N_Y): 1/(N+1) for temporal     */
     SBL_ESTIMATOR_CONSTANT,          /* a = constant (alpha 0.1 / beta 0.5 by default)  */
     SBL_ESTIMATOR_ROBUST,            /* history-aware with a soft (Student-t) bias test
                                         and a firefly limit on the new sample; see
-                                        docs/ESTIMATORS.md                               */
-    SBL_ESTIMATOR_POOLED,            /* robust, plus bias evidence pooled along the row
-                                        (empirical Bayes over five 3x3 blocks, 15 px):
-                                        catches small changes that cover a region; see
                                         docs/ESTIMATORS.md                               */
     SBL_ESTIMATOR_COUNT
 } sbl_estimator;
@@ -413,9 +414,10 @@ typedef struct sbl_temporal_desc {
     float alpha_min;        /* lower bound on alpha after estimation; 0 -> none        */
     float max_history;      /* cap on N; 0 -> 64                                        */
     float clip_gamma;       /* SBL_RECTIFY_VARIANCE_CLIP box half-width in sigmas; 0 -> 1.25 */
-    float bias_threshold;   /* history-aware: bias counts only beyond this many standard
-                               errors of the mean paired difference (a paired t-test);
-                               0 -> 3                                                    */
+    float bias_threshold;   /* history-aware / robust: bias counts (fully / with half
+                               its posterior) beyond this many standard errors of the
+                               mean paired difference; pooled: the local test at 4/3 of
+                               it; 0 -> 3                                               */
     sbl_reproject_desc reproject;
     void *alloc_context;    /* passed to SBL_MALLOC / SBL_FREE in *_frame calls        */
 } sbl_temporal_desc;
@@ -489,7 +491,8 @@ typedef struct sbl_stereo_desc {
     float disparity_offset; /* parallel rig: cx_right - cx_left in pixels (Middlebury
                                doffs; asymmetric per-eye frusta); 0: same principal point */
     sbl_pinhole_rig pinhole;/* SBL_RIG_PINHOLE                                           */
-    sbl_estimator estimator;/* HISTORY_AWARE (default), PAPER, PROGRESSIVE, CONSTANT    */
+    sbl_estimator estimator;/* POOLED (default), HISTORY_AWARE, PAPER, PROGRESSIVE,
+                               CONSTANT, ROBUST                                          */
     sbl_rectify rectify;
     sbl_weight_mode weight_mode;
     float constant_beta;    /* SBL_ESTIMATOR_CONSTANT; 0 -> 0.5                         */
@@ -2060,7 +2063,7 @@ typedef struct sbl__weight_params {
    bias_threshold standard errors. Blocks: 3x3 windows centred SBL__POOL_STEP apart on
    the pixel's row, SBL__POOL_BLOCKS each side. */
 #ifndef SBL_POOLED_BLOCK_SE2
-#define SBL_POOLED_BLOCK_SE2 3.0
+#define SBL_POOLED_BLOCK_SE2 3.5
 #endif
 #ifndef SBL_POOLED_LOCAL_SCALE
 #define SBL_POOLED_LOCAL_SCALE (4.0 / 3.0)

@@ -331,6 +331,7 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n++] = sbr_method_make("stereo-paper", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, P);
     all[n++] = sbr_method_make("stereo-history-aware", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, HA);
     all[n++] = sbr_method_make("stereo-robust", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_ROBUST);
+    all[n++] = sbr_method_make("stereo-pooled", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_POOLED);
     all[n++] = sbr_method_oracle("stereo-oracle", 0, SBR_STEREO_ADAPTIVE, SBR_ORACLE_STEREO);
     /* stereo after the temporal filter (history-aware temporal) */
     all[n++] = sbr_method_make("ha+stereo-fill", 1, HA, RN, WS, SBR_STEREO_FILL, HA);
@@ -346,6 +347,10 @@ int sbr_standard_methods(sbr_method *m, int max)
                                SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_ROBUST);
     all[n++] = sbr_method_make("robust+stereo-ha", 1, SBL_ESTIMATOR_ROBUST, RN, WS,
                                SBR_STEREO_ADAPTIVE, HA);
+    all[n++] = sbr_method_make("pooled+stereo-ha", 1, SBL_ESTIMATOR_POOLED, RN, WS,
+                               SBR_STEREO_ADAPTIVE, HA);
+    all[n++] = sbr_method_make("pooled+stereo-pooled", 1, SBL_ESTIMATOR_POOLED, RN, WS,
+                               SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_POOLED);
     /* the library's default combined pipeline, and the oracle of the same pipeline */
     all[n++] = sbr_method_default("default-stereo", SBR_STEREO_ADAPTIVE);
     all[n++] = sbr_method_oracle("oracle+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,

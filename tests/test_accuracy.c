@@ -380,12 +380,13 @@ static void stereo_measure(sbl_estimator e, int flat, double sigma, unsigned lon
 
 static void test_stereo_edge_and_flat(void)
 {
-    static const sbl_estimator est[4] = {SBL_ESTIMATOR_ROBUST, SBL_ESTIMATOR_HISTORY_AWARE,
-                                         SBL_ESTIMATOR_PAPER, SBL_ESTIMATOR_CONSTANT};
-    static const char *const names[4] = {"robust", "history-aware", "paper", "beta 0.5"};
-    double edge_in[4], edge_out[4], all_in[4], all_out[4], flat_out[4], flat_in[4], dummy1, dummy2;
+    static const sbl_estimator est[5] = {SBL_ESTIMATOR_POOLED, SBL_ESTIMATOR_HISTORY_AWARE,
+                                         SBL_ESTIMATOR_PAPER, SBL_ESTIMATOR_CONSTANT,
+                                         SBL_ESTIMATOR_ROBUST};
+    static const char *const names[5] = {"pooled", "history-aware", "paper", "beta 0.5", "robust"};
+    double edge_in[5], edge_out[5], all_in[5], all_out[5], flat_out[5], flat_in[5], dummy1, dummy2;
     int k, s;
-    for (k = 0; k < 4; ++k) {
+    for (k = 0; k < 5; ++k) {
         edge_in[k] = edge_out[k] = all_in[k] = all_out[k] = flat_out[k] = flat_in[k] = 0;
         for (s = 0; s < 8; ++s) {
             double ei, eo, ai, ao, fi, fo;

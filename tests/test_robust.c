@@ -1307,7 +1307,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
         }
     /* pooled estimator: over the 3x3 blocks centred at x + 3b, |b| <= 2, in the image
        and with >= 3 pairs (valid x*, finite values), the sum of the blocks'
-       sum_c mean_c^2 over the sum of their sum_c (sample var_c / n), less 3 (capped at
+       sum_c mean_c^2 over the sum of their sum_c (sample var_c / n), less 3.5 (capped at
        1e6); r is that if positive, else 0 */
     for (y = 0; y < h; ++y)
         for (x = 0; x < w; ++x) {
@@ -1340,7 +1340,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     sse2 += (vv > 0 ? vv : 0) / n;
                 }
             }
-            r = sse2 > 0 ? sm2 / sse2 - 3.0 : (sm2 > 0 ? 1e6 : 0);
+            r = sse2 > 0 ? sm2 / sse2 - 3.5 : (sm2 > 0 ? 1e6 : 0);
             if (r > 1e6) r = 1e6;
             if (r > 0) pool[y * w + x] = r;
         }
