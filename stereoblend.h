@@ -3132,6 +3132,29 @@ static float sbl__own_n(const sbl__kernel *k, int x, int y)
     return (sbl__finite(n) && n > 0.0f) ? n : 1.0f;
 }
 
+/* One column of the blocks: over rows R[0..2] at column x, the count of pairs (valid
+   x*, finite values) and per channel the sums of d = x* - y and of d^2: out[0],
+   out[1 + c], out[5 + c]. Zero outside the image. */
+static void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                             double *out)
+{
+    int j, c;
+    for (c = 0; c < 9; ++c) out[c] = 0.0;
+    if (x < 0 || x >= k->w) return;
+    for (j = 0; j < 3; ++j) {
+        double d[4];
+        int ok = 1;
+        if (!R[j] || !(R[j]->v[x] > 0.0f)) continue;
+        for (c = 0; c < k->ch; ++c) {
+            ok &= sbl__finite(R[j]->y[c][x]) & sbl__finite(R[j]->x[c][x]);
+            d[c] = SBL__CAST(double, R[j]->x[c][x]) - SBL__CAST(double, R[j]->y[c][x]);
+        }
+        if (!ok) continue;
+        out[0] += 1.0;
+        for (c = 0; c < k->ch; ++c) { out[1 + c] += d[c]; out[5 + c] += d[c] * d[c]; }
+    }
+}
+
 /* Pooled estimator, once per row before its pixels: the prior bias-to-noise ratio
    r = tau^2 / se^2 at each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md
    section 3). Each 3x3 block of paired differences d = x* - y (pixels with a valid x*
@@ -3147,37 +3170,34 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
 {
     const int ch = k->ch, w = k->w;
     int za = xa - SBL__POOL_STEP * SBL__POOL_BLOCKS, zb = xb + SBL__POOL_STEP * SBL__POOL_BLOCKS;
-    int x, j, i, c;
+    int x, c, i;
+    double col[3][9]; /* columns x - 1, x, x + 1 */
     if (za < 0) za = 0;
     if (zb > w) zb = w;
+    if (za < zb) {
+        sbl__pool_column(k, R, za - 1, col[0]);
+        sbl__pool_column(k, R, za, col[1]);
+    }
     for (x = za; x < zb; ++x) {
-        double s1[4] = {0.0, 0.0, 0.0, 0.0}, s2[4] = {0.0, 0.0, 0.0, 0.0}, m2 = 0.0, se2 = 0.0;
-        int n = 0;
-        for (j = 0; j < 3; ++j) {
-            if (!R[j]) continue;
-            for (i = x - 1; i <= x + 1; ++i) {
-                double d[4];
-                int ok = 1;
-                if (i < 0 || i >= w || !(R[j]->v[i] > 0.0f)) continue;
-                for (c = 0; c < ch; ++c) {
-                    ok &= sbl__finite(R[j]->y[c][i]) & sbl__finite(R[j]->x[c][i]);
-                    d[c] = SBL__CAST(double, R[j]->x[c][i]) - SBL__CAST(double, R[j]->y[c][i]);
-                }
-                if (!ok) continue;
-                for (c = 0; c < ch; ++c) { s1[c] += d[c]; s2[c] += d[c] * d[c]; }
-                ++n;
-            }
-        }
+        double m2 = 0.0, se2 = 0.0, n;
+        sbl__pool_column(k, R, x + 1, col[2]);
+        /* the block: three column sums, always added in this order (the same value
+           whatever column the row's span starts at) */
+        n = col[0][0] + col[1][0] + col[2][0];
         k->pool_m2[x] = 0.0;
         k->pool_se2[x] = -1.0; /* no block here */
-        if (n < 3) continue;
-        for (c = 0; c < ch; ++c) {
-            double mu = s1[c] / n, v = (s2[c] - n * mu * mu) / (n - 1);
-            m2 += mu * mu;
-            se2 += (v > 0.0 ? v : 0.0) / n;
+        if (n >= 3.0) {
+            for (c = 0; c < ch; ++c) {
+                double s1 = col[0][1 + c] + col[1][1 + c] + col[2][1 + c];
+                double s2 = col[0][5 + c] + col[1][5 + c] + col[2][5 + c];
+                double mu = s1 / n, v = (s2 - n * mu * mu) / (n - 1.0);
+                m2 += mu * mu;
+                se2 += (v > 0.0 ? v : 0.0) / n;
+            }
+            k->pool_m2[x] = m2;
+            k->pool_se2[x] = se2;
         }
-        k->pool_m2[x] = m2;
-        k->pool_se2[x] = se2;
+        for (i = 0; i < 9; ++i) { col[0][i] = col[1][i]; col[1][i] = col[2][i]; }
     }
     for (x = xa; x < xb; ++x) {
         double sm2 = 0.0, sse2 = 0.0, r;
