@@ -2316,6 +2316,7 @@ typedef __mmask16 sbl__m;
 #define sbl__sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
 /* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
 #define SBL__ROW_GATHER 1
+#define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
     _mm512_i32gather_ps(_mm512_loadu_si512(SBL__PCAST(const void *, idx)), base, 4)
 #define sbl__le(a, b) _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
@@ -2370,6 +2371,7 @@ typedef __m256 sbl__m;
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
 #define SBL__ROW_GATHER 1
+#define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
     _mm256_i32gather_ps(base, _mm256_loadu_si256(SBL__PCAST(const __m256i *, idx)), 4)
 #define sbl__le(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
@@ -2424,6 +2426,7 @@ typedef __m128 sbl__m;
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
 #define SBL__ROW_GATHER 1
+#define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
     _mm_setr_ps((base)[(idx)[0]], (base)[(idx)[1]], (base)[(idx)[2]], (base)[(idx)[3]])
 #define sbl__le(a, b) _mm_cmple_ps(a, b)
@@ -2978,24 +2981,142 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
 }
 #endif
 
+#ifdef SBL__SHUFFLE4
+SBL__INLINE void sbl__transpose4(__m128 *a, __m128 *b, __m128 *c, __m128 *d)
+{
+    const __m128 t0 = _mm_unpacklo_ps(*a, *b), t1 = _mm_unpacklo_ps(*c, *d);
+    const __m128 t2 = _mm_unpackhi_ps(*a, *b), t3 = _mm_unpackhi_ps(*c, *d);
+    *a = _mm_movelh_ps(t0, t1);
+    *b = _mm_movehl_ps(t1, t0);
+    *c = _mm_movelh_ps(t2, t3);
+    *d = _mm_movehl_ps(t3, t2);
+}
+#endif
+
+/* Pixels [xa, xb) of an interleaved row (pixel step `step` floats, `ch` channels used)
+   to one plane per channel, and back. Pure data movement: every build gives the same
+   planes; packed rows (step == ch) move four pixels per 128-bit shuffle group. */
+static void sbl__deinterleave(const float *src, ptrdiff_t step, int ch, float *const *planes,
+                              int xa, int xb)
+{
+    int x = xa, c;
+#ifdef SBL__SHUFFLE4
+    if (step == ch && ch >= 2) {
+        float *p0 = planes[0], *p1 = planes[1];
+        const float *s = src + SBL__CAST(ptrdiff_t, xa) * step;
+        if (ch == 2) {
+            for (; x + 4 <= xb; x += 4, s += 8) {
+                const __m128 a = _mm_loadu_ps(s), b = _mm_loadu_ps(s + 4);
+                _mm_storeu_ps(p0 + x, _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0)));
+                _mm_storeu_ps(p1 + x, _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1)));
+            }
+        } else if (ch == 3) {
+            float *p2 = planes[2];
+            for (; x + 4 <= xb; x += 4, s += 12) {
+                /* a = r0 g0 b0 r1, b = g1 b1 r2 g2, c = b2 r3 g3 b3 */
+                const __m128 a = _mm_loadu_ps(s), b = _mm_loadu_ps(s + 4), d = _mm_loadu_ps(s + 8);
+                const __m128 r = _mm_shuffle_ps(a, _mm_shuffle_ps(b, d, _MM_SHUFFLE(1, 1, 2, 2)),
+                                                _MM_SHUFFLE(2, 0, 3, 0));
+                const __m128 g = _mm_shuffle_ps(_mm_shuffle_ps(a, b, _MM_SHUFFLE(0, 0, 1, 1)),
+                                                _mm_shuffle_ps(b, d, _MM_SHUFFLE(2, 2, 3, 3)),
+                                                _MM_SHUFFLE(2, 0, 2, 0));
+                const __m128 bl = _mm_shuffle_ps(_mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 1, 2, 2)),
+                                                 _mm_shuffle_ps(d, d, _MM_SHUFFLE(3, 3, 0, 0)),
+                                                 _MM_SHUFFLE(2, 0, 2, 0));
+                _mm_storeu_ps(p0 + x, r);
+                _mm_storeu_ps(p1 + x, g);
+                _mm_storeu_ps(p2 + x, bl);
+            }
+        } else {
+            float *p2 = planes[2], *p3 = planes[3];
+            for (; x + 4 <= xb; x += 4, s += 16) {
+                __m128 a = _mm_loadu_ps(s), b = _mm_loadu_ps(s + 4), d = _mm_loadu_ps(s + 8),
+                       e = _mm_loadu_ps(s + 12);
+                sbl__transpose4(&a, &b, &d, &e);
+                _mm_storeu_ps(p0 + x, a);
+                _mm_storeu_ps(p1 + x, b);
+                _mm_storeu_ps(p2 + x, d);
+                _mm_storeu_ps(p3 + x, e);
+            }
+        }
+    }
+#endif
+    if (step == 1 && ch == 1 && x < xb) {
+        memcpy(planes[0] + x, src + x, SBL__CAST(size_t, xb - x) * sizeof(float));
+        return;
+    }
+    for (; x < xb; ++x)
+        for (c = 0; c < ch; ++c) planes[c][x] = src[SBL__CAST(ptrdiff_t, x) * step + c];
+}
+
+static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *const *planes,
+                            int xa, int xb)
+{
+    int x = xa, c;
+#ifdef SBL__SHUFFLE4
+    if (step == ch && ch >= 2) {
+        const float *p0 = planes[0], *p1 = planes[1];
+        float *d = dst + SBL__CAST(ptrdiff_t, xa) * step;
+        if (ch == 2) {
+            for (; x + 4 <= xb; x += 4, d += 8) {
+                const __m128 r = _mm_loadu_ps(p0 + x), g = _mm_loadu_ps(p1 + x);
+                _mm_storeu_ps(d, _mm_unpacklo_ps(r, g));
+                _mm_storeu_ps(d + 4, _mm_unpackhi_ps(r, g));
+            }
+        } else if (ch == 3) {
+            const float *p2 = planes[2];
+            for (; x + 4 <= xb; x += 4, d += 12) {
+                const __m128 r = _mm_loadu_ps(p0 + x), g = _mm_loadu_ps(p1 + x),
+                             b = _mm_loadu_ps(p2 + x);
+                _mm_storeu_ps(d, _mm_shuffle_ps(_mm_shuffle_ps(r, g, _MM_SHUFFLE(0, 0, 0, 0)),
+                                                _mm_shuffle_ps(b, r, _MM_SHUFFLE(1, 1, 0, 0)),
+                                                _MM_SHUFFLE(2, 0, 2, 0)));
+                _mm_storeu_ps(d + 4, _mm_shuffle_ps(_mm_shuffle_ps(g, b, _MM_SHUFFLE(1, 1, 1, 1)),
+                                                    _mm_shuffle_ps(r, g, _MM_SHUFFLE(2, 2, 2, 2)),
+                                                    _MM_SHUFFLE(2, 0, 2, 0)));
+                _mm_storeu_ps(d + 8, _mm_shuffle_ps(_mm_shuffle_ps(b, r, _MM_SHUFFLE(3, 3, 2, 2)),
+                                                    _mm_shuffle_ps(g, b, _MM_SHUFFLE(3, 3, 3, 3)),
+                                                    _MM_SHUFFLE(2, 0, 2, 0)));
+            }
+        } else {
+            const float *p2 = planes[2], *p3 = planes[3];
+            for (; x + 4 <= xb; x += 4, d += 16) {
+                __m128 a = _mm_loadu_ps(p0 + x), b = _mm_loadu_ps(p1 + x), e = _mm_loadu_ps(p2 + x),
+                       f = _mm_loadu_ps(p3 + x);
+                sbl__transpose4(&a, &b, &e, &f);
+                _mm_storeu_ps(d, a);
+                _mm_storeu_ps(d + 4, b);
+                _mm_storeu_ps(d + 8, e);
+                _mm_storeu_ps(d + 12, f);
+            }
+        }
+    }
+#endif
+    if (step == 1 && ch == 1 && x < xb) {
+        memcpy(dst + x, planes[0] + x, SBL__CAST(size_t, xb - x) * sizeof(float));
+        return;
+    }
+    for (; x < xb; ++x)
+        for (c = 0; c < ch; ++c) dst[SBL__CAST(ptrdiff_t, x) * step + c] = planes[c][x];
+}
+
 /* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
    pixels holding a value outside the lane range. Returns the number flagged. */
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
-    const float *src = sbl__px(k->own, 0, row);
-    const ptrdiff_t step = sbl__step_of(k->own);
     const float *ny = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, row) : NULL;
     const ptrdiff_t ny_step = ny ? SBL__CAST(ptrdiff_t, sbl__step_of(k->own_n)) : 0;
     /* the lanes load N_Y contiguously: another pixel step takes the reference path */
     const int ny_lanes = !ny || ny_step == 1;
     int x, c, ch = k->ch, count = 0;
+    sbl__deinterleave(sbl__px(k->own, 0, row), sbl__step_of(k->own), ch, r->y, xa, xb);
     x = xa;
 #ifdef SBL__ROW_GATHER
     if (ny_lanes) {
-        /* deinterleave, then flag a vector at a time */
-        for (x = xa; x < xb; ++x)
-            for (c = 0; c < ch; ++c) r->y[c][x] = src[SBL__CAST(ptrdiff_t, x) * step + c];
-        for (x = xa; x + SBL__VW <= xb; x += SBL__VW) {
+        /* a vector at a time; bytes one by one only where a lane is unsafe */
+        static const unsigned char safe_bytes[16] = {0};
+        const int all = (1 << SBL__VW) - 1;
+        for (; x + SBL__VW <= xb; x += SBL__VW) {
             sbl__m ok = sbl__lane_ok(sbl__load(r->y[0] + x));
             int bits, l;
             for (c = 1; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->y[c] + x)));
@@ -3004,6 +3125,10 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
                 ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
             }
             bits = sbl__mbits(ok);
+            if (bits == all) {
+                memcpy(r->unsafe + x, safe_bytes, SBL__VW);
+                continue;
+            }
             for (l = 0; l < SBL__VW; ++l) {
                 const int bad = !((bits >> l) & 1);
                 r->unsafe[x + l] = SBL__CAST(unsigned char, bad);
@@ -3014,11 +3139,7 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
 #endif
     for (; x < xb; ++x) {
         int safe = ny_lanes;
-        for (c = 0; c < ch; ++c) {
-            float v = src[SBL__CAST(ptrdiff_t, x) * step + c];
-            r->y[c][x] = v;
-            safe &= sbl__lane_value_ok(v);
-        }
+        for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(r->y[c][x]);
         /* N_Y: the reference path sanitises it */
         if (ny) {
             float n = ny[SBL__CAST(ptrdiff_t, x) * ny_step];
@@ -3438,7 +3559,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
     /* rows narrower than the widest vector (plus the two border pixels) take the
        reference path on every build, so that no build depends on its vector width */
     const int lanes_w = k->w - 2 >= 16;
-    int y, x, c, j, la = x0, lb = x1, xa, xb;
+    int y, x, j, la = x0, lb = x1, xa, xb;
     if (x0 < 0) x0 = 0;
     if (x1 > k->w) x1 = k->w;
     if (y0 >= y1 || x0 >= x1) return;
@@ -3485,24 +3606,26 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 }
                 sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
             }
-            for (x = x0; x < x1; ++x)
-                if (!lanes_ok || x < xa || x >= xb || (win && win[x]))
-                    sbl__kernel_pixel_ref(k, R, x);
+            if (!lanes_ok) {
+                for (x = x0; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
+            } else {
+                /* the reference path: the span's border columns, and inside [xa, xb)
+                   the pixels whose window holds an unsafe value */
+                for (x = x0; x < xa; ++x) sbl__kernel_pixel_ref(k, R, x);
+                if (win)
+                    for (x = xa; x < xb; ++x)
+                        if (win[x]) sbl__kernel_pixel_ref(k, R, x);
+                for (x = xb; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
+            }
             {   /* interleave the staged row into the outputs */
-                float *o = sbl__px(&k->out, 0, y);
-                const ptrdiff_t step = sbl__step_of(&k->out);
-                for (x = x0; x < x1; ++x)
-                    for (c = 0; c < k->ch; ++c) o[SBL__CAST(ptrdiff_t, x) * step + c] = k->stage[c][x];
-                if (k->out_n.data) {
-                    float *on = sbl__px(&k->out_n, 0, y);
-                    const ptrdiff_t ns = sbl__step_of(&k->out_n);
-                    for (x = x0; x < x1; ++x) on[SBL__CAST(ptrdiff_t, x) * ns] = k->stage_n[x];
-                }
-                if (k->out_a.data) {
-                    float *oa = sbl__px(&k->out_a, 0, y);
-                    const ptrdiff_t as = sbl__step_of(&k->out_a);
-                    for (x = x0; x < x1; ++x) oa[SBL__CAST(ptrdiff_t, x) * as] = k->stage_a[x];
-                }
+                const float *const *stage = SBL__PCAST(const float *const *, k->stage);
+                sbl__interleave(sbl__px(&k->out, 0, y), sbl__step_of(&k->out), k->ch, stage, x0, x1);
+                if (k->out_n.data)
+                    sbl__interleave(sbl__px(&k->out_n, 0, y), sbl__step_of(&k->out_n), 1,
+                                    SBL__PCAST(const float *const *, &k->stage_n), x0, x1);
+                if (k->out_a.data)
+                    sbl__interleave(sbl__px(&k->out_a, 0, y), sbl__step_of(&k->out_a), 1,
+                                    SBL__PCAST(const float *const *, &k->stage_a), x0, x1);
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
                 sbl__ring_row t = k->ring[0];
