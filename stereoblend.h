@@ -2552,10 +2552,23 @@ typedef struct sbl__kernel {
     float *stage[4], *stage_n, *stage_a;
     unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
     sbl__ring_row ring[3];
+    /* column sums of one chunk of the lane kernel (sbl__lanes_columns), per channel:
+       col_a / col_b: sum of (y - y_top) and of its square over the column's three rows
+       (y_top: the column's top sample); col_t: the column's pair shift (its first valid
+       x* - y); col_da / col_db: sum of v (x* - y - t) and of its square; col_lo /
+       col_hi: the column's min / max of y (clamp only); col_n: valid pairs */
+    float *col_a[4], *col_b[4], *col_t[4], *col_da[4], *col_db[4], *col_lo[4], *col_hi[4];
+    float *col_n;
 } sbl__kernel;
 
+/* lane kernel chunk: columns per chunk, and floats per column plane (the chunk, its two
+   neighbour columns, padding) */
+#define SBL__CHUNK 64
+#define SBL__CHUNK_COLS 80
+
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
-   channels + 2 float planes and one byte plane; each plane padded to 64 bytes */
+   channels + 2 float planes and one byte plane; each plane padded to 64 bytes; the
+   lane kernel's column sums: 7 * channels + 1 planes of SBL__CHUNK_COLS floats */
 static size_t sbl__plane_floats(int width)
 {
     return (SBL__CAST(size_t, width) + 15u) & ~SBL__CAST(size_t, 15u);
@@ -2566,7 +2579,8 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     size_t pf;
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
     pf = sbl__plane_floats(width);
-    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 4 * pf + 64;
+    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 4 * pf + 64 +
+           SBL__CAST(size_t, 7 * channels + 1) * SBL__CHUNK_COLS * sizeof(float);
 }
 
 static void *sbl__align64(void *p)
@@ -2591,6 +2605,16 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     for (c = 0; c < k->ch; ++c) { k->stage[c] = p; p += pf; }
     k->stage_n = p; p += pf;
     k->stage_a = p; p += pf;
+    for (c = 0; c < k->ch; ++c) {
+        k->col_a[c] = p; p += SBL__CHUNK_COLS;
+        k->col_b[c] = p; p += SBL__CHUNK_COLS;
+        k->col_t[c] = p; p += SBL__CHUNK_COLS;
+        k->col_da[c] = p; p += SBL__CHUNK_COLS;
+        k->col_db[c] = p; p += SBL__CHUNK_COLS;
+        k->col_lo[c] = p; p += SBL__CHUNK_COLS;
+        k->col_hi[c] = p; p += SBL__CHUNK_COLS;
+    }
+    k->col_n = p; p += SBL__CHUNK_COLS;
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
         unsigned char *b = SBL__PCAST(unsigned char *, p);
         for (r = 0; r < 3; ++r) { k->ring[r].unsafe = b; b += pf; }
@@ -3257,17 +3281,28 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
     k->stage_a[x] = a;
 }
 
-#define SBL__SUM9(P, X) \
-    sbl__add(sbl__add(sbl__add(sbl__load((P)[0] + (X) - 1), sbl__load((P)[0] + (X))), \
-                      sbl__add(sbl__load((P)[0] + (X) + 1), sbl__load((P)[1] + (X) - 1))), \
-             sbl__add(sbl__add(sbl__add(sbl__load((P)[1] + (X)), sbl__load((P)[1] + (X) + 1)), \
-                               sbl__add(sbl__load((P)[2] + (X) - 1), sbl__load((P)[2] + (X)))), \
-                      sbl__load((P)[2] + (X) + 1)))
-
 /* The lane kernel, as stages named like their reference-path counterparts:
    sbl__lanes_moments (sbl__moments_core), sbl__lanes_rectify (sbl__rectify),
    sbl__lanes_weight (sbl__weight) and sbl__lanes_blend (the rest of sbl__blend_pixel
-   and Eq. 5). Same algebra as the reference path with count = 9, in float. */
+   and Eq. 5). Same algebra as the reference path with count = 9, in float.
+
+   The 3x3 sums are separable: sbl__lanes_columns sums each column's three rows once
+   per output row (a chunk of SBL__CHUNK columns at a time), and sbl__lanes_moments
+   adds three columns per pixel, instead of nine loads per pixel and statistic.
+   Precision policy: the sums are one-pass (sum of squares minus n mean^2), so every
+   sum is taken about a shift that is a sample of the set summed, never about 0: then
+   n (mean - shift)^2 <= n^2 variance and the subtraction loses at most a few bits,
+   however large the mean (1e4 + noise 1e-3 keeps its variance, as the two-pass form
+   did). A column is summed about its own top sample (Y) and its first valid x* - y
+   (pairs); the pixel moves its side columns to the window's shift with
+   sum (e + D)^2 = sum e^2 + D (2 sum e + n D), exact algebra whose terms are bounded
+   by the window's own spread. The window's shifts: Y about its top-centre sample,
+   which also belongs to the leave-centre-out set of the robust estimator (m8, v8 are
+   summed without the centre, never as the 9-sums minus it: a firefly at the centre
+   would cancel the neighbours' variance away); the pairs about the centre column's
+   shift (the centre pair when it is the column's first valid one). Lanes are
+   independent and every column is computed by the same operations whatever the chunk
+   or the vector width, so spans, bands and every build give the same bits. */
 
 /* Statistics of one vector of pixels: Y's 3x3 moments and the paired differences. */
 typedef struct sbl__lane_stats {
@@ -3281,59 +3316,116 @@ typedef struct sbl__lane_stats {
     sbl__m has_pairs, two_pairs;
 } sbl__lane_stats;
 
-SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*yp)[3],
-                                    const float *const (*xp)[3], const float *const *vp, int x,
-                                    sbl__lane_stats *st)
+/* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows R, stored at index
+   column - ca; the last vector overlaps the one before (same values). */
+SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__ring_row *const *R, int ca, int cb)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), ninth = sbl__set1(1.0f / 9.0f);
-    sbl__v cnt = SBL__SUM9(vp, x), inv_cnt1;
-    int c, j;
+    const sbl__v zero = sbl__set1(0.0f);
+    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
+    int x = ca, c;
+    for (;;) {
+        const int i = x - ca;
+        const sbl__v v0 = sbl__load(R[0]->v + x), v1 = sbl__load(R[1]->v + x),
+                     v2 = sbl__load(R[2]->v + x);
+        const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
+        sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
+        for (c = 0; c < ch; ++c) {
+            const sbl__v y0 = sbl__load(R[0]->y[c] + x), y1 = sbl__load(R[1]->y[c] + x),
+                         y2 = sbl__load(R[2]->y[c] + x);
+            const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
+            const sbl__v d0 = sbl__sub(sbl__load(R[0]->x[c] + x), y0),
+                         d1 = sbl__sub(sbl__load(R[1]->x[c] + x), y1),
+                         d2 = sbl__sub(sbl__load(R[2]->x[c] + x), y2);
+            const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
+            const sbl__v e0 = sbl__mul(v0, sbl__sub(d0, t)), e1 = sbl__mul(v1, sbl__sub(d1, t)),
+                         e2 = sbl__mul(v2, sbl__sub(d2, t));
+            sbl__store(k->col_a[c] + i, sbl__add(a1, a2));
+            sbl__store(k->col_b[c] + i, sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
+            sbl__store(k->col_t[c] + i, t);
+            sbl__store(k->col_da[c] + i, sbl__add(sbl__add(e0, e1), e2));
+            sbl__store(k->col_db[c] + i,
+                       sbl__add(sbl__add(sbl__mul(e0, e0), sbl__mul(e1, e1)), sbl__mul(e2, e2)));
+            if (clamp) {
+                sbl__store(k->col_lo[c] + i, sbl__min(sbl__min(y0, y1), y2));
+                sbl__store(k->col_hi[c] + i, sbl__max(sbl__max(y0, y1), y2));
+            }
+        }
+        if (x + SBL__VW >= cb) break;
+        x += SBL__VW;
+        if (x + SBL__VW > cb) x = cb - SBL__VW;
+    }
+}
+
+/* One side column moved from its own shift to the window's: D = its shift minus the
+   window's, n its count; sum (e + D) = a + n D, sum (e + D)^2 = b + D (a + (a + n D)) */
+#define SBL__SIDE(A, B, D, N, OA, OB) \
+    do { \
+        (OA) = sbl__add((A), sbl__mul((D), (N))); \
+        (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
+    } while (0)
+
+/* Moments of pixels [x, x + VW) from the column sums of the chunk starting at column
+   ca (sbl__lanes_columns) and the window rows R. */
+SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                                    int ca, sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), three = sbl__set1(3.0f);
+    const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
+    const int i = x - ca, ch = k->ch;
+    const sbl__v nl = sbl__load(k->col_n + i - 1), nr = sbl__load(k->col_n + i + 1);
+    const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    sbl__v inv_cnt1;
+    int c;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
     inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
-    for (c = 0; c < k->ch; ++c) {
-        const float *const *P = yp[c];
-        sbl__v m = sbl__mul(SBL__SUM9(P, x), ninth), v = zero, d = zero, dd = zero;
-        /* the pairs are summed shifted by the centre's difference, so that a bias
-           well above the noise does not cancel the one-pass variance away */
-        sbl__v shift = sbl__sub(sbl__load(xp[c][1] + x), sbl__load(yp[c][1] + x));
-        sbl__v lo = m, hi = m; /* the mean lies inside [min, max]: a neutral start */
-        /* robust estimator: Y without the centre, centred on its own mean */
-        sbl__v m8 = sbl__mul(sbl__sub(sbl__mul(m, sbl__set1(9.0f)), sbl__load(yp[c][1] + x)),
-                             sbl__set1(0.125f)), v8 = zero;
-        for (j = 0; j < 3; ++j) {
-            int i;
-            for (i = -1; i <= 1; ++i) {
-                sbl__v yy = sbl__load(yp[c][j] + x + i);
-                sbl__v e = sbl__sub(yy, m), e8 = sbl__sub(yy, m8);
-                sbl__v pdiff;
-                v = sbl__add(v, sbl__mul(e, e));
-                if (j != 1 || i != 0) v8 = sbl__add(v8, sbl__mul(e8, e8));
-                pdiff = sbl__mul(sbl__load(vp[j] + x + i),
-                                 sbl__sub(sbl__sub(sbl__load(xp[c][j] + x + i), yy), shift));
-                d = sbl__add(d, pdiff);
-                dd = sbl__add(dd, sbl__mul(pdiff, pdiff));
-                if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
-                    lo = sbl__min(lo, yy);
-                    hi = sbl__max(hi, yy);
-                }
-            }
-        }
-        st->mean[c] = m;
-        st->var[c] = sbl__mul(v, ninth);
-        st->m8[c] = m8;
-        st->v8[c] = sbl__mul(v8, sbl__set1(0.125f));
-        st->lo[c] = lo;
-        st->hi[c] = hi;
+    for (c = 0; c < ch; ++c) {
+        const float *y0 = R[0]->y[c] + x;
+        const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
+        const sbl__v yc = sbl__load(R[1]->y[c] + x);
+        const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(R[2]->y[c] + x), s);
+        const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
+        const sbl__v tc = sbl__load(k->col_t[c] + i);
+        const sbl__v da = sbl__load(k->col_da[c] + i), db = sbl__load(k->col_db[c] + i);
+        sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
+        /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
+        SBL__SIDE(sbl__load(k->col_a[c] + i - 1), sbl__load(k->col_b[c] + i - 1), dl, three, al, bl);
+        SBL__SIDE(sbl__load(k->col_a[c] + i + 1), sbl__load(k->col_b[c] + i + 1), dr, three, ar, br);
+        a8 = sbl__add(sbl__add(al, ar), a2);
+        b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
+        a9 = sbl__add(a8, a1);
+        b9 = sbl__add(b8, sbl__mul(a1, a1));
+        q = sbl__mul(a9, ninth);
+        st->mean[c] = sbl__add(s, q);
+        st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
+        q = sbl__mul(a8, eighth);
+        st->m8[c] = sbl__add(s, q);
+        st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+        /* pairs: side columns about the centre column's shift tc */
+        SBL__SIDE(sbl__load(k->col_da[c] + i - 1), sbl__load(k->col_db[c] + i - 1),
+                  sbl__sub(sbl__load(k->col_t[c] + i - 1), tc), nl, pl, ql);
+        SBL__SIDE(sbl__load(k->col_da[c] + i + 1), sbl__load(k->col_db[c] + i + 1),
+                  sbl__sub(sbl__load(k->col_t[c] + i + 1), tc), nr, pr, qr);
+        d = sbl__add(sbl__add(pl, pr), da);
+        dd = sbl__add(sbl__add(ql, qr), db);
         st->pd[c] = sbl__mul(d, st->inv_cnt);
-        /* sample variance of the pairs, one pass: (sum d^2 - n mean^2) / (n - 1) */
+        /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
         st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
-        st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], shift), zero);
-        st->xs[c] = st->xr[c] = sbl__load(xp[c][1] + x);
-        st->yc[c] = sbl__load(yp[c][1] + x);
+        st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
+        if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+            st->lo[c] = sbl__min(sbl__min(sbl__load(k->col_lo[c] + i - 1), sbl__load(k->col_lo[c] + i)),
+                                 sbl__load(k->col_lo[c] + i + 1));
+            st->hi[c] = sbl__max(sbl__max(sbl__load(k->col_hi[c] + i - 1), sbl__load(k->col_hi[c] + i)),
+                                 sbl__load(k->col_hi[c] + i + 1));
+        } else {
+            st->lo[c] = st->hi[c] = st->mean[c];
+        }
+        st->xs[c] = st->xr[c] = sbl__load(R[1]->x[c] + x);
+        st->yc[c] = yc;
     }
 }
+#undef SBL__SIDE
 
 /* Firefly limit of the own sample, as sbl__firefly_limit. */
 SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
@@ -3479,40 +3571,40 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
     const sbl__v cap = sbl__set1(k->n_cap);
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     const int per_channel = k->wp.mode == SBL_WEIGHT_PER_CHANNEL;
-    const float *yp[4][3], *xp[4][3], *vp[3];
-    int x, c, j;
-    for (j = 0; j < 3; ++j) {
-        for (c = 0; c < ch; ++c) { yp[c][j] = R[j]->y[c]; xp[c][j] = R[j]->x[c]; }
-        vp[j] = R[j]->v;
-    }
-    for (x = x0; x + SBL__VW <= x1; x += SBL__VW) {
-        sbl__lane_stats st;
-        sbl__v a[4], n_x, n_y, n_xc;
-        sbl__m valid;
-        const int groups = per_channel ? ch : 1;
-        int g;
-        n_x = sbl__load(R[1]->n + x);
-        valid = sbl__gt(n_x, zero);
-        n_y = nyrow ? sbl__load(nyrow + x) : one;
-        n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
-        n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-        sbl__lanes_moments(k, SBL__PCAST(const float *const(*)[3], yp), SBL__PCAST(const float *const(*)[3], xp),
-                           vp, x, &st);
-        sbl__lanes_rectify(k, &st);
-        for (g = 0; g < groups; ++g) {
-            sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
-            int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
-            for (c = c0; c < c1; ++c) {
-                sbl__v e = sbl__sub(st.xs[c], st.mean[c]);
-                dev2 = sbl__add(dev2, sbl__mul(e, e));
-                s2 = sbl__add(s2, st.var[c]);
-                pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
-                pvs = sbl__add(pvs, st.pv[c]);
+    const int end = x0 + (x1 - x0) / SBL__VW * SBL__VW; /* whole vectors only */
+    int x = x0, c;
+    while (x < end) {
+        /* one chunk: its column sums (with the neighbour columns), then its pixels */
+        const int ca = x - 1, ce = end - x > SBL__CHUNK ? x + SBL__CHUNK : end;
+        sbl__lanes_columns(k, R, ca, ce + 1);
+        for (; x < ce; x += SBL__VW) {
+            sbl__lane_stats st;
+            sbl__v a[4], n_x, n_y, n_xc;
+            sbl__m valid;
+            const int groups = per_channel ? ch : 1;
+            int g;
+            n_x = sbl__load(R[1]->n + x);
+            valid = sbl__gt(n_x, zero);
+            n_y = nyrow ? sbl__load(nyrow + x) : one;
+            n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+            n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+            sbl__lanes_moments(k, R, x, ca, &st);
+            sbl__lanes_rectify(k, &st);
+            for (g = 0; g < groups; ++g) {
+                sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
+                int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
+                for (c = c0; c < c1; ++c) {
+                    sbl__v e = sbl__sub(st.xs[c], st.mean[c]);
+                    dev2 = sbl__add(dev2, sbl__mul(e, e));
+                    s2 = sbl__add(s2, st.var[c]);
+                    pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
+                    pvs = sbl__add(pvs, st.pv[c]);
+                }
+                w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
+                for (c = c0; c < c1; ++c) a[c] = w;
             }
-            w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
-            for (c = c0; c < c1; ++c) a[c] = w;
+            sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
         }
-        sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
     }
     return x;
 }
