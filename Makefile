@@ -30,7 +30,7 @@ EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 # each in every configuration
 TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive \
         test_accuracy
-HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
+HEADERS = stereoblend.h tests/sbl_test.h tests/sbl_test_alloc.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)
 CPU_FLAGS := $(shell grep -m1 '^flags' /proc/cpuinfo 2>/dev/null)
