@@ -2331,13 +2331,12 @@ typedef __mmask16 sbl__m;
 #define sbl__posinf(a) \
     _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
 #define sbl__floor(a) _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
-SBL__INLINE __mmask16 sbl__lane_ok(__m512 a) /* sbl__lane_value_ok per lane */
+SBL__INLINE __mmask16 sbl__lane_ok(__m512 a) /* sbl__lane_value_ok per lane (see SSE2) */
 {
     const __m512i b = _mm512_and_si512(_mm512_castps_si512(a), _mm512_set1_epi32(0x7fffffff));
-    const __m512i e = _mm512_srli_epi32(b, 23);
     return SBL__CAST(__mmask16, _mm512_cmpeq_epi32_mask(b, _mm512_setzero_si512()) |
-                                    (_mm512_cmpgt_epi32_mask(e, _mm512_set1_epi32(86)) &
-                                     _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(177), e)));
+                                    _mm512_cmplt_epu32_mask(_mm512_sub_epi32(b, _mm512_set1_epi32(0x2b800000)),
+                                                            _mm512_set1_epi32(0x2d000000)));
 }
 SBL__INLINE __m512 sbl__div_exact(__m512 n, __m512 a) /* see the SSE2 version */
 {
@@ -2387,14 +2386,13 @@ typedef __m256 sbl__m;
     _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
                                            _mm256_set1_epi32(0x7f800000)))
 #define sbl__floor(a) _mm256_floor_ps(a)
-SBL__INLINE __m256 sbl__lane_ok(__m256 a) /* sbl__lane_value_ok per lane */
+SBL__INLINE __m256 sbl__lane_ok(__m256 a) /* sbl__lane_value_ok per lane (see SSE2) */
 {
     const __m256i b = _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7fffffff));
-    const __m256i e = _mm256_srli_epi32(b, 23);
     return _mm256_castsi256_ps(_mm256_or_si256(
         _mm256_cmpeq_epi32(b, _mm256_setzero_si256()),
-        _mm256_and_si256(_mm256_cmpgt_epi32(e, _mm256_set1_epi32(86)),
-                         _mm256_cmpgt_epi32(_mm256_set1_epi32(177), e))));
+        _mm256_cmpgt_epi32(_mm256_set1_epi32(-0x53000000),
+                           _mm256_add_epi32(b, _mm256_set1_epi32(0x54800000)))));
 }
 SBL__INLINE __m256 sbl__div_exact(__m256 n, __m256 a) /* see the SSE2 version */
 {
@@ -2450,15 +2448,15 @@ SBL__INLINE __m128 sbl__div_exact(__m128 n, __m128 a)
                                               _mm_cvtps_pd(_mm_movehl_ps(a, a))));
     return _mm_movelh_ps(lo, hi);
 }
-/* sbl__lane_value_ok per lane, on the bits (exponent in [87, 177), or +-0) */
+/* sbl__lane_value_ok per lane, on the bits b of |a|: b == 0, or the exponent in
+   [87, 177), i.e. b - (87 << 23) below (90 << 23) unsigned, compared signed with the top
+   bit flipped: b + 0x54800000 < 0xad000000 (= -0x53000000) */
 SBL__INLINE __m128 sbl__lane_ok(__m128 a)
 {
     const __m128i b = _mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7fffffff));
-    const __m128i e = _mm_srli_epi32(b, 23);
     return _mm_castsi128_ps(_mm_or_si128(
         _mm_cmpeq_epi32(b, _mm_setzero_si128()),
-        _mm_and_si128(_mm_cmpgt_epi32(e, _mm_set1_epi32(86)),
-                      _mm_cmplt_epi32(e, _mm_set1_epi32(177)))));
+        _mm_cmpgt_epi32(_mm_set1_epi32(-0x53000000), _mm_add_epi32(b, _mm_set1_epi32(0x54800000)))));
 }
 /* floor of |a| < 2^31 (SSE2 has no rounding mode op): truncate, then step down */
 SBL__INLINE __m128 sbl__floor(__m128 a)
@@ -2563,8 +2561,8 @@ typedef struct sbl__kernel {
 
 /* lane kernel chunk: columns per chunk, and floats per column plane (the chunk, its two
    neighbour columns, padding) */
-#define SBL__CHUNK 64
-#define SBL__CHUNK_COLS 80
+#define SBL__CHUNK 128
+#define SBL__CHUNK_COLS 144
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and one byte plane; each plane padded to 64 bytes; the
@@ -3137,25 +3135,29 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     x = xa;
 #ifdef SBL__ROW_GATHER
     if (ny_lanes) {
-        /* a vector at a time; bytes one by one only where a lane is unsafe */
+        /* a vector at a time; bytes one by one only where a lane is unsafe (the planes
+           in locals: a byte store may alias anything, and would reload them) */
         static const unsigned char safe_bytes[16] = {0};
         const int all = (1 << SBL__VW) - 1;
+        const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
+                    *y3 = ch > 3 ? r->y[3] : y0;
+        unsigned char *unsafe = r->unsafe;
         for (; x + SBL__VW <= xb; x += SBL__VW) {
-            sbl__m ok = sbl__lane_ok(sbl__load(r->y[0] + x));
+            sbl__m ok = sbl__mand(sbl__mand(sbl__lane_ok(sbl__load(y0 + x)), sbl__lane_ok(sbl__load(y1 + x))),
+                                  sbl__mand(sbl__lane_ok(sbl__load(y2 + x)), sbl__lane_ok(sbl__load(y3 + x))));
             int bits, l;
-            for (c = 1; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->y[c] + x)));
             if (ny) {
                 const sbl__v n = sbl__load(ny + x);
                 ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
             }
             bits = sbl__mbits(ok);
             if (bits == all) {
-                memcpy(r->unsafe + x, safe_bytes, SBL__VW);
+                memcpy(unsafe + x, safe_bytes, SBL__VW);
                 continue;
             }
             for (l = 0; l < SBL__VW; ++l) {
                 const int bad = !((bits >> l) & 1);
-                r->unsafe[x + l] = SBL__CAST(unsigned char, bad);
+                unsafe[x + l] = SBL__CAST(unsigned char, bad);
                 count += bad;
             }
         }
