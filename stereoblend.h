@@ -3566,15 +3566,20 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
 /* Lane kernel over pixels [x0, x1) of an interior row (all nine neighbours exist and
    are lane-safe). Returns the first pixel it did not process (the tail goes to the
    reference path). */
-static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int x0, int x1)
+SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
+                                     int x0, int x1, const int ch)
 {
-    const int ch = k->ch, y = R[1]->row;
+    /* a copy whose channel count is a constant in each instance below (the stages read
+       k->ch): their channel loops unroll, with no plane pointer reloaded per channel */
+    sbl__kernel k_ch = *k_in, *k = &k_ch;
+    const int y = R[1]->row;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap);
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     const int per_channel = k->wp.mode == SBL_WEIGHT_PER_CHANNEL;
     const int end = x0 + (x1 - x0) / SBL__VW * SBL__VW; /* whole vectors only */
     int x = x0, c;
+    k_ch.ch = ch;
     while (x < end) {
         /* one chunk: its column sums (with the neighbour columns), then its pixels */
         const int ca = x - 1, ce = end - x > SBL__CHUNK ? x + SBL__CHUNK : end;
@@ -3609,6 +3614,16 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
         }
     }
     return x;
+}
+
+static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int x0, int x1)
+{
+    switch (k->ch) {
+    case 1: return sbl__kernel_lanes_ch(k, R, x0, x1, 1);
+    case 2: return sbl__kernel_lanes_ch(k, R, x0, x1, 2);
+    case 3: return sbl__kernel_lanes_ch(k, R, x0, x1, 3);
+    default: return sbl__kernel_lanes_ch(k, R, x0, x1, 4);
+    }
 }
 
 /* Lane kernel over the pixels of [xa, xb) (interior columns of an interior row) whose
