@@ -2549,6 +2549,7 @@ typedef struct sbl__kernel {
     sbl_image out, out_n, out_a; /* out_n / out_a data may be NULL                */
     float *stage[4], *stage_n, *stage_a;
     unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
+    unsigned char *column_unsafe; /* per row: 1 where the column's three rows hold one */
     sbl__ring_row ring[3];
     /* column sums of one chunk of the lane kernel (sbl__lanes_columns), per channel:
        col_a / col_b: sum of (y - y_top) and of its square over the column's three rows
@@ -2565,7 +2566,7 @@ typedef struct sbl__kernel {
 #define SBL__CHUNK_COLS 144
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
-   channels + 2 float planes and one byte plane; each plane padded to 64 bytes; the
+   channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
    lane kernel's column sums: 7 * channels + 1 planes of SBL__CHUNK_COLS floats */
 static size_t sbl__plane_floats(int width)
 {
@@ -2577,7 +2578,7 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     size_t pf;
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
     pf = sbl__plane_floats(width);
-    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 4 * pf + 64 +
+    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 5 * pf + 64 +
            SBL__CAST(size_t, 7 * channels + 1) * SBL__CHUNK_COLS * sizeof(float);
 }
 
@@ -2616,7 +2617,8 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
         unsigned char *b = SBL__PCAST(unsigned char *, p);
         for (r = 0; r < 3; ++r) { k->ring[r].unsafe = b; b += pf; }
-        k->window_unsafe = b;
+        k->window_unsafe = b; b += pf;
+        k->column_unsafe = b;
     }
 }
 
@@ -3632,6 +3634,34 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
    [la, lb) (loaded columns, at least 16 wide), whose extra lanes are either recomputed
    identically or overwritten by the reference path afterwards: lanes are independent,
    so no result depends on the vector width. */
+/* The first of bytes [a, b) of p that is not 0, else b; eight bytes at a time. */
+static int sbl__find_set(const unsigned char *p, int a, int b)
+{
+    for (; a + 8 <= b; a += 8) {
+        uint64_t w;
+        memcpy(&w, p + a, 8);
+        if (w) break;
+    }
+    while (a < b && !p[a]) ++a;
+    return a;
+}
+
+/* d[i] = a[i] | b[i] | c[i] for i in [0, n), eight bytes at a time. */
+static void sbl__or3_bytes(unsigned char *d, const unsigned char *a, const unsigned char *b,
+                           const unsigned char *c, int n)
+{
+    int i = 0;
+    for (; i + 8 <= n; i += 8) {
+        uint64_t u, v, w;
+        memcpy(&u, a + i, 8);
+        memcpy(&v, b + i, 8);
+        memcpy(&w, c + i, 8);
+        u |= v | w;
+        memcpy(d + i, &u, 8);
+    }
+    for (; i < n; ++i) d[i] = SBL__CAST(unsigned char, a[i] | b[i] | c[i]);
+}
+
 static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
                                    int xb, int la, int lb, const unsigned char *win)
 {
@@ -3641,10 +3671,10 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
         if (win) {
             while (a < xb && win[a]) ++a;
             if (a >= xb) break;
+            b = sbl__find_set(win, a + 1, xb);
+        } else {
+            b = xb;
         }
-        b = a + 1;
-        if (win) { while (b < xb && !win[b]) ++b; }
-        else b = xb;
         if (b - a >= SBL__VW) {
             int e = sbl__kernel_lanes(k, R, a, b);
             /* the tail: one more vector ending at b, overlapping pixels already done
@@ -3697,21 +3727,13 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
             if (lanes_ok) {
                 if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
-                    /* per pixel: 1 if any of the nine values of its window is unsafe */
-                    unsigned char *w = k->window_unsafe;
-                    const unsigned char *u0 = R[0]->unsafe, *u1 = R[1]->unsafe,
-                                        *u2 = R[2]->unsafe;
-                    for (x = xa - 1; x <= xb; ++x) w[x] = SBL__CAST(unsigned char, u0[x] | u1[x] | u2[x]);
-                    {
-                        unsigned char prev = w[xa - 1], cur = w[xa];
-                        for (x = xa; x < xb; ++x) {
-                            unsigned char next = w[x + 1];
-                            w[x] = SBL__CAST(unsigned char, prev | cur | next);
-                            prev = cur;
-                            cur = next;
-                        }
-                    }
-                    win = w;
+                    /* per pixel: 1 if any of the nine values of its window is unsafe
+                       (per column over its three rows, then over three columns) */
+                    unsigned char *cu = k->column_unsafe;
+                    sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
+                                   R[2]->unsafe + xa - 1, xb - xa + 2);
+                    sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
+                    win = k->window_unsafe;
                 }
                 sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
             }
@@ -3722,8 +3744,8 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                    the pixels whose window holds an unsafe value */
                 for (x = x0; x < xa; ++x) sbl__kernel_pixel_ref(k, R, x);
                 if (win)
-                    for (x = xa; x < xb; ++x)
-                        if (win[x]) sbl__kernel_pixel_ref(k, R, x);
+                    for (x = sbl__find_set(win, xa, xb); x < xb; x = sbl__find_set(win, x + 1, xb))
+                        sbl__kernel_pixel_ref(k, R, x);
                 for (x = xb; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
             }
             {   /* interleave the staged row into the outputs */
