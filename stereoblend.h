@@ -2551,14 +2551,19 @@ typedef struct sbl__kernel {
     unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
     unsigned char *column_unsafe; /* per row: 1 where the column's three rows hold one */
     sbl__ring_row ring[3];
-    /* column sums of one chunk of the lane kernel (sbl__lanes_columns), per channel:
-       col_a / col_b: sum of (y - y_top) and of its square over the column's three rows
-       (y_top: the column's top sample); col_t: the column's pair shift (its first valid
-       x* - y); col_da / col_db: sum of v (x* - y - t) and of its square; col_lo /
-       col_hi: the column's min / max of y (clamp only); col_n: valid pairs */
-    float *col_a[4], *col_b[4], *col_t[4], *col_da[4], *col_db[4], *col_lo[4], *col_hi[4];
+    /* column sums of one chunk of the lane kernel (sbl__lanes_columns): per channel a
+       block of SBL__COL_PLANES planes (below), and the valid pairs per column */
+    float *col[4];
     float *col_n;
 } sbl__kernel;
+
+/* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
+   A / B: sum of (y - y_top) and of its square over the column's three rows (y_top: the
+   column's top sample); T: the column's pair shift (its first valid x* - y); DA / DB:
+   sum of v (x* - y - t) and of its square; LO / HI: min / max of y (clamp only) */
+enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO, SBL__COL_HI,
+       SBL__COL_PLANES };
+#define SBL__COLP(block, plane) ((block) + (plane) * SBL__CHUNK_COLS)
 
 /* lane kernel chunk: columns per chunk, and floats per column plane (the chunk, its two
    neighbour columns, padding) */
@@ -2567,7 +2572,8 @@ typedef struct sbl__kernel {
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
-   lane kernel's column sums: 7 * channels + 1 planes of SBL__CHUNK_COLS floats */
+   lane kernel's column sums: SBL__COL_PLANES * channels + 1 planes of SBL__CHUNK_COLS
+   floats */
 static size_t sbl__plane_floats(int width)
 {
     return (SBL__CAST(size_t, width) + 15u) & ~SBL__CAST(size_t, 15u);
@@ -2579,7 +2585,7 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
     pf = sbl__plane_floats(width);
     return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 5 * pf + 64 +
-           SBL__CAST(size_t, 7 * channels + 1) * SBL__CHUNK_COLS * sizeof(float);
+           SBL__CAST(size_t, SBL__COL_PLANES * channels + 1) * SBL__CHUNK_COLS * sizeof(float);
 }
 
 static void *sbl__align64(void *p)
@@ -2604,15 +2610,7 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     for (c = 0; c < k->ch; ++c) { k->stage[c] = p; p += pf; }
     k->stage_n = p; p += pf;
     k->stage_a = p; p += pf;
-    for (c = 0; c < k->ch; ++c) {
-        k->col_a[c] = p; p += SBL__CHUNK_COLS;
-        k->col_b[c] = p; p += SBL__CHUNK_COLS;
-        k->col_t[c] = p; p += SBL__CHUNK_COLS;
-        k->col_da[c] = p; p += SBL__CHUNK_COLS;
-        k->col_db[c] = p; p += SBL__CHUNK_COLS;
-        k->col_lo[c] = p; p += SBL__CHUNK_COLS;
-        k->col_hi[c] = p; p += SBL__CHUNK_COLS;
-    }
+    for (c = 0; c < k->ch; ++c) { k->col[c] = p; p += SBL__COL_PLANES * SBL__CHUNK_COLS; }
     k->col_n = p; p += SBL__CHUNK_COLS;
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
         unsigned char *b = SBL__PCAST(unsigned char *, p);
@@ -3343,15 +3341,16 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__ring_row *const *
             const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
             const sbl__v e0 = sbl__mul(v0, sbl__sub(d0, t)), e1 = sbl__mul(v1, sbl__sub(d1, t)),
                          e2 = sbl__mul(v2, sbl__sub(d2, t));
-            sbl__store(k->col_a[c] + i, sbl__add(a1, a2));
-            sbl__store(k->col_b[c] + i, sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
-            sbl__store(k->col_t[c] + i, t);
-            sbl__store(k->col_da[c] + i, sbl__add(sbl__add(e0, e1), e2));
-            sbl__store(k->col_db[c] + i,
+            float *cp = k->col[c] + i;
+            sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
+            sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
+            sbl__store(SBL__COLP(cp, SBL__COL_T), t);
+            sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(sbl__add(e0, e1), e2));
+            sbl__store(SBL__COLP(cp, SBL__COL_DB),
                        sbl__add(sbl__add(sbl__mul(e0, e0), sbl__mul(e1, e1)), sbl__mul(e2, e2)));
             if (clamp) {
-                sbl__store(k->col_lo[c] + i, sbl__min(sbl__min(y0, y1), y2));
-                sbl__store(k->col_hi[c] + i, sbl__max(sbl__max(y0, y1), y2));
+                sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
+                sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
             }
         }
         if (x + SBL__VW >= cb) break;
@@ -3390,12 +3389,15 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__ring_row *c
         const sbl__v yc = sbl__load(R[1]->y[c] + x);
         const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(R[2]->y[c] + x), s);
         const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
-        const sbl__v tc = sbl__load(k->col_t[c] + i);
-        const sbl__v da = sbl__load(k->col_da[c] + i), db = sbl__load(k->col_db[c] + i);
+        const float *cp = k->col[c] + i;
+        const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
+        const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
         sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
         /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
-        SBL__SIDE(sbl__load(k->col_a[c] + i - 1), sbl__load(k->col_b[c] + i - 1), dl, three, al, bl);
-        SBL__SIDE(sbl__load(k->col_a[c] + i + 1), sbl__load(k->col_b[c] + i + 1), dr, three, ar, br);
+        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
+                  three, al, bl);
+        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
+                  three, ar, br);
         a8 = sbl__add(sbl__add(al, ar), a2);
         b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
         a9 = sbl__add(a8, a1);
@@ -3407,10 +3409,10 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__ring_row *c
         st->m8[c] = sbl__add(s, q);
         st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
         /* pairs: side columns about the centre column's shift tc */
-        SBL__SIDE(sbl__load(k->col_da[c] + i - 1), sbl__load(k->col_db[c] + i - 1),
-                  sbl__sub(sbl__load(k->col_t[c] + i - 1), tc), nl, pl, ql);
-        SBL__SIDE(sbl__load(k->col_da[c] + i + 1), sbl__load(k->col_db[c] + i + 1),
-                  sbl__sub(sbl__load(k->col_t[c] + i + 1), tc), nr, pr, qr);
+        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
+                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
+        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1),
+                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) + 1), tc), nr, pr, qr);
         d = sbl__add(sbl__add(pl, pr), da);
         dd = sbl__add(sbl__add(ql, qr), db);
         st->pd[c] = sbl__mul(d, st->inv_cnt);
@@ -3418,10 +3420,9 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__ring_row *c
         st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
         st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
         if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
-            st->lo[c] = sbl__min(sbl__min(sbl__load(k->col_lo[c] + i - 1), sbl__load(k->col_lo[c] + i)),
-                                 sbl__load(k->col_lo[c] + i + 1));
-            st->hi[c] = sbl__max(sbl__max(sbl__load(k->col_hi[c] + i - 1), sbl__load(k->col_hi[c] + i)),
-                                 sbl__load(k->col_hi[c] + i + 1));
+            const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
+            st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
+            st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
         } else {
             st->lo[c] = st->hi[c] = st->mean[c];
         }
