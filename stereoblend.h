@@ -3318,26 +3318,41 @@ typedef struct sbl__lane_stats {
     sbl__m has_pairs, two_pairs;
 } sbl__lane_stats;
 
-/* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows R, stored at index
+/* The planes of the three window rows, gathered once per call of the lane kernel (one
+   load per plane in the channel loops instead of two). */
+typedef struct sbl__lane_rows {
+    const float *y[3][4], *x[3][4], *v[3];
+} sbl__lane_rows;
+
+static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, int ch)
+{
+    int j, c;
+    for (j = 0; j < 3; ++j) {
+        for (c = 0; c < ch; ++c) { W->y[j][c] = R[j]->y[c]; W->x[j][c] = R[j]->x[c]; }
+        W->v[j] = R[j]->v;
+    }
+}
+
+/* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
    column - ca; the last vector overlaps the one before (same values). */
-SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__ring_row *const *R, int ca, int cb)
+SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
     int x = ca, c;
     for (;;) {
         const int i = x - ca;
-        const sbl__v v0 = sbl__load(R[0]->v + x), v1 = sbl__load(R[1]->v + x),
-                     v2 = sbl__load(R[2]->v + x);
+        const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
+                     v2 = sbl__load(W->v[2] + x);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
         for (c = 0; c < ch; ++c) {
-            const sbl__v y0 = sbl__load(R[0]->y[c] + x), y1 = sbl__load(R[1]->y[c] + x),
-                         y2 = sbl__load(R[2]->y[c] + x);
+            const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
+                         y2 = sbl__load(W->y[2][c] + x);
             const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
-            const sbl__v d0 = sbl__sub(sbl__load(R[0]->x[c] + x), y0),
-                         d1 = sbl__sub(sbl__load(R[1]->x[c] + x), y1),
-                         d2 = sbl__sub(sbl__load(R[2]->x[c] + x), y2);
+            const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
+                         d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
+                         d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
             const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
             const sbl__v e0 = sbl__mul(v0, sbl__sub(d0, t)), e1 = sbl__mul(v1, sbl__sub(d1, t)),
                          e2 = sbl__mul(v2, sbl__sub(d2, t));
@@ -3368,9 +3383,9 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__ring_row *const *
     } while (0)
 
 /* Moments of pixels [x, x + VW) from the column sums of the chunk starting at column
-   ca (sbl__lanes_columns) and the window rows R. */
-SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
-                                    int ca, sbl__lane_stats *st)
+   ca (sbl__lanes_columns) and the window rows W. */
+SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *W, int x, int ca,
+                                    sbl__lane_stats *st)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), three = sbl__set1(3.0f);
     const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
@@ -3384,10 +3399,10 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__ring_row *c
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
     inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
     for (c = 0; c < ch; ++c) {
-        const float *y0 = R[0]->y[c] + x;
+        const float *y0 = W->y[0][c] + x;
         const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
-        const sbl__v yc = sbl__load(R[1]->y[c] + x);
-        const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(R[2]->y[c] + x), s);
+        const sbl__v yc = sbl__load(W->y[1][c] + x);
+        const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
         const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
         const float *cp = k->col[c] + i;
         const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
@@ -3426,7 +3441,7 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__ring_row *c
         } else {
             st->lo[c] = st->hi[c] = st->mean[c];
         }
-        st->xs[c] = st->xr[c] = sbl__load(R[1]->x[c] + x);
+        st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
         st->yc[c] = yc;
     }
 }
@@ -3581,12 +3596,14 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     const int per_channel = k->wp.mode == SBL_WEIGHT_PER_CHANNEL;
     const int end = x0 + (x1 - x0) / SBL__VW * SBL__VW; /* whole vectors only */
+    sbl__lane_rows W;
     int x = x0, c;
     k_ch.ch = ch;
+    sbl__lane_rows_of(&W, R, ch);
     while (x < end) {
         /* one chunk: its column sums (with the neighbour columns), then its pixels */
         const int ca = x - 1, ce = end - x > SBL__CHUNK ? x + SBL__CHUNK : end;
-        sbl__lanes_columns(k, R, ca, ce + 1);
+        sbl__lanes_columns(k, &W, ca, ce + 1);
         for (; x < ce; x += SBL__VW) {
             sbl__lane_stats st;
             sbl__v a[4], n_x, n_y, n_xc;
@@ -3598,7 +3615,7 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
             n_y = nyrow ? sbl__load(nyrow + x) : one;
             n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
             n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-            sbl__lanes_moments(k, R, x, ca, &st);
+            sbl__lanes_moments(k, &W, x, ca, &st);
             sbl__lanes_rectify(k, &st);
             for (g = 0; g < groups; ++g) {
                 sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;

@@ -404,6 +404,7 @@ static void test_moments_precision(void)
         sbl_image im;
         void *scratch;
         const sbl__ring_row *R[3];
+        sbl__lane_rows W;
         const int ch = 1 + it % 4, kind = (it / 4) % 3;
         const double base = kind == 2 ? 1.0 : (it % 2 ? 1e4 : -3e3), noise = kind == 2 ? 0.01 : 0.05;
         int x, y, c, i, l;
@@ -433,11 +434,12 @@ static void test_moments_precision(void)
         for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
         R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
         CHECK_EQ(R[0]->unsafe_count + R[1]->unsafe_count + R[2]->unsafe_count, 0);
-        sbl__lanes_columns(&k, R, 0, PW);
+        sbl__lane_rows_of(&W, R, ch);
+        sbl__lanes_columns(&k, &W, 0, PW);
         for (x = 1; x + SBL__VW <= PW - 1; x += SBL__VW) {
             sbl__lane_stats st;
             float f[6][SBL__VW];
-            sbl__lanes_moments(&k, R, x, 0, &st);
+            sbl__lanes_moments(&k, &W, x, 0, &st);
             for (c = 0; c < ch; ++c) {
                 sbl__store(f[0], st.mean[c]); sbl__store(f[1], st.var[c]);
                 sbl__store(f[2], st.m8[c]); sbl__store(f[3], st.v8[c]);
