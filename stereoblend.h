@@ -3353,16 +3353,16 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
             const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
                          d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
                          d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
+            /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t)
+               is then 0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
             const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
-            const sbl__v e0 = sbl__mul(v0, sbl__sub(d0, t)), e1 = sbl__mul(v1, sbl__sub(d1, t)),
-                         e2 = sbl__mul(v2, sbl__sub(d2, t));
+            const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
             float *cp = k->col[c] + i;
             sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
             sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
             sbl__store(SBL__COLP(cp, SBL__COL_T), t);
-            sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(sbl__add(e0, e1), e2));
-            sbl__store(SBL__COLP(cp, SBL__COL_DB),
-                       sbl__add(sbl__add(sbl__mul(e0, e0), sbl__mul(e1, e1)), sbl__mul(e2, e2)));
+            sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
+            sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
             if (clamp) {
                 sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
                 sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
