@@ -1759,7 +1759,31 @@ typedef struct sbl__temporal_rp {
     sbl__flat motion;
     double motion_kx, motion_ky; /* see sbl__motion_scale */
     sbl__cam_map cam;
+    /* camera source: the frame's and the history's cameras are equal, so every pixel
+       that is not on a moving object maps to itself (sbl__temporal_rp_pos) */
+    int at_rest;
+    int moving_count;            /* listed objects whose two matrices differ          */
+    float moving_lo, moving_hi;  /* the range of their ids                            */
+    int tiles;                   /* 1: the row gather's tile shortcuts (tests: 0)     */
 } sbl__temporal_rp;
+
+/* Does an object's pose differ between the two frames? */
+static int sbl__object_moves(const sbl_object_motion *o)
+{
+    int i;
+    for (i = 0; i < 16; ++i)
+        if (o->object_to_world[i] != o->prev_object_to_world[i]) return 1;
+    return 0;
+}
+
+/* Is a pixel with this id on a moving object (camera source)? */
+static int sbl__on_moving_object(const sbl__temporal_rp *s, float id)
+{
+    const sbl_object_motion *o;
+    if (!s->moving_count || !(id >= s->moving_lo && id <= s->moving_hi)) return 0;
+    o = sbl__find_object(&s->cam, id);
+    return o && sbl__object_moves(o);
+}
 
 static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject_desc *desc,
                                         sbl_temporal_source source, const sbl_frame *frame,
@@ -1774,6 +1798,10 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     s->rp = sbl__reproject_defaults(desc);
     s->source = source;
     s->frame = frame;
+    s->at_rest = 0;
+    s->moving_count = 0;
+    s->moving_lo = s->moving_hi = 0.0f;
+    s->tiles = 1;
     sbl__motion_scale(&s->rp.motion, w, h, &s->motion_kx, &s->motion_ky);
     s->geo = sbl__target_geo_make(g, w, h);
     s->motion = sbl__flatten(&g->motion);
@@ -1798,6 +1826,23 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
                 return SBL_ERROR_INVALID_PARAM;
             s->cam.objects = frame->objects;
             s->cam.object_count = frame->object_count;
+            {   /* a camera at rest: the two cameras' values equal (the matrix chain of
+                   sbl__cam_map_apply would give the identity only within rounding) */
+                const sbl_camera *a = frame->camera, *b = s->history->camera;
+                int i;
+                s->at_rest = 1;
+                for (i = 0; i < 16; ++i)
+                    if (a->world_to_view[i] != b->world_to_view[i] ||
+                        a->view_to_clip[i] != b->view_to_clip[i])
+                        s->at_rest = 0;
+                for (i = 0; i < frame->object_count; ++i) {
+                    const sbl_object_motion *o = &frame->objects[i];
+                    if (!sbl__object_moves(o)) continue;
+                    if (!s->moving_count || o->id < s->moving_lo) s->moving_lo = o->id;
+                    if (!s->moving_count || o->id > s->moving_hi) s->moving_hi = o->id;
+                    ++s->moving_count;
+                }
+            }
         }
     }
     return SBL_OK;
@@ -1819,9 +1864,15 @@ SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sb
         *sy = y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
         sz = SBL__CAST(double, z); /* motion vectors carry no depth change: relative tolerance covers it */
     } else {
-        if (!sbl__cam_map_apply_id(&s->cam, s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f,
-                                   x + 0.5, y + 0.5, z, sx, sy, &sz))
+        const float id = s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f;
+        if (s->at_rest && !sbl__on_moving_object(s, id)) {
+            /* camera at rest, static surface: the pixel itself, exactly */
+            *sx = x + 0.5;
+            *sy = y + 0.5;
+            sz = SBL__CAST(double, z);
+        } else if (!sbl__cam_map_apply_id(&s->cam, id, x + 0.5, y + 0.5, z, sx, sy, &sz)) {
             return 0;
+        }
     }
     /* came in from outside the previous image: nothing to reuse (edge pixels would
        otherwise be replicated by the renormalisation and the 3x3 fallback) */
@@ -2932,6 +2983,152 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
     return sbl__plan_lanes(&s->src, p, i, x, y, keep, z, slack, mx, my);
 }
 
+/* ---- tile classification -----------------------------------------------------
+   The row gather decides per tile (a block of up to SBL__BLOCK pixels of one row), from
+   the data it reads anyway, whether the tile needs the general plan:
+   - SBL__TILE_VOID: no target pixel has geometry (depth 0, negative or NaN): every
+     pixel resets, without reading motion or history;
+   - SBL__TILE_REST: every source position is the pixel itself (zero motion vectors, or
+     a camera at rest over static surfaces): the history is read at the same pixel, with
+     no position maths, no footprint and one tap test (sbl__rest_tile);
+   - SBL__TILE_GENERAL: the plan and the tap stage, with two cheaper forms decided in
+     the tap stage itself: a sky tile (target all +inf: the depth test is "tap is sky",
+     no slack) and a tile whose taps all pass (no masks on the sums, no fallback
+     bookkeeping).
+   Each shortcut gives the general path's bits (the same operations on the values that
+   matter, or operations whose result is exactly the same), so no result depends on where
+   a band, a span or a tile starts. */
+enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2 };
+
+/* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
+   vector loads packed (pixel step 1: depth, N), no target normals or ids (whose tests
+   the general path keeps)? */
+static int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
+{
+    const sbl__tap_src *src = &s->src;
+    return s->tiles && s->history && !s->geo.normals.p && !s->geo.ids.p && !src->use_id &&
+           !src->use_normal && (!s->geo.depth.p || s->geo.depth.step == 1) &&
+           (!src->use_depth || src->depth.step == 1) && (!src->length.p || src->length.step == 1) &&
+           (s->source == SBL_TEMPORAL_MOTION || s->at_rest);
+}
+
+/* The class of tile [x0, x0 + n) of row y (n >= VW; the call passed
+   sbl__temporal_tiles_ok). */
+static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, int n)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    int i;
+    if (s->geo.depth.p) { /* no geometry anywhere: NaN, -inf, 0 and negatives fail z > 0 */
+        const float *zp = SBL__AT(s->geo.depth, x0, y);
+        int any = 0;
+        for (i = 0;; i += SBL__VW) {
+            if (i + SBL__VW > n) i = n - SBL__VW;
+            any |= sbl__mbits(sbl__gt(sbl__load(zp + i), zero));
+            if (any || i + SBL__VW >= n) break;
+        }
+        if (!any) return SBL__TILE_VOID;
+    }
+    if (s->source == SBL_TEMPORAL_MOTION) { /* every vector +-0 (kx * +-0 = +-0) */
+        const float *mp = SBL__AT(s->motion, x0, y);
+        if (s->motion.step == 2) {
+            for (i = 0;; i += SBL__VW) {
+                if (i + SBL__VW > 2 * n) i = 2 * n - SBL__VW;
+                if (~sbl__mbits(sbl__le(sbl__abs(sbl__load(mp + i)), zero)) &
+                    ((1 << SBL__VW) - 1))
+                    return SBL__TILE_GENERAL;
+                if (i + SBL__VW >= 2 * n) break;
+            }
+        } else {
+            for (i = 0; i < n; ++i) {
+                const float *m = mp + SBL__CAST(ptrdiff_t, i) * s->motion.step;
+                if (!(fabsf(m[0]) <= 0.0f && fabsf(m[1]) <= 0.0f)) return SBL__TILE_GENERAL;
+            }
+        }
+        return SBL__TILE_REST;
+    }
+    /* camera at rest: a tile without a moving object's id (the call has no ids here
+       unless no object moves, see sbl__temporal_tiles_ok) */
+    return s->moving_count ? SBL__TILE_GENERAL : SBL__TILE_REST;
+}
+
+/* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
+   pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
+   sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
+   edge columns and rows, which take its bounds-checked path, give the same). So x* is
+   the history colour (+ 0: -0 becomes +0) and N its N wherever that tap passes; the
+   depth test passes when |history - target| <= tolerance * target (the slack only
+   widens it) or both are sky. Lanes with geometry that this does not settle (depth
+   moved beyond that, N <= 0, a NaN or inf) are handed to the pixel gather; lanes
+   without geometry reset. */
+SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0,
+                                   int n, int ch)
+{
+    const sbl__tap_src *src = &s->src;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const sbl__v tol = sbl__set1(src->depth_tolerance);
+    const float *zp = s->geo.depth.p ? SBL__AT(s->geo.depth, x0, y) : NULL;
+    const float *hp = src->use_depth ? SBL__AT(src->depth, x0, y) : NULL;
+    const float *np = src->length.p ? SBL__AT(src->length, x0, y) : NULL;
+    const float *cp = SBL__AT(src->color, x0, y);
+    const ptrdiff_t cs = src->color.step;
+    int i = 0, l, c, idx[SBL__VW];
+    for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
+    for (;;) {
+        int x, bits;
+        sbl__m keep, valid;
+        sbl__v nv = one, v[4];
+        if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
+        x = x0 + i;
+        for (c = 0; c < ch; ++c) /* the history colour, one channel per vector */
+            v[c] = cs == 1 ? sbl__load(cp + i + c) : sbl__gatheri(cp + SBL__CAST(ptrdiff_t, i) * cs + c, idx);
+        keep = zp ? sbl__gt(sbl__load(zp + i), zero) : sbl__gt(one, zero);
+        valid = keep;
+        if (hp) {
+            const sbl__v z = sbl__load(zp + i), d = sbl__load(hp + i);
+            const sbl__m inf_e = sbl__posinf(z), inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, z)), sbl__mul(tol, z)));
+            valid = sbl__mand(valid, sbl__mor(sbl__mand(inf_e, inf_t),
+                                              sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
+        }
+        if (np) {
+            nv = sbl__load(np + i);
+            valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+        }
+        for (c = 0; c < ch; ++c) valid = sbl__mandnot(valid, sbl__nonfinite(v[c]));
+        for (c = 0; c < ch; ++c) sbl__store(r->x[c] + x, sbl__sel(valid, sbl__add(zero, v[c]), zero));
+        sbl__store(r->n + x, sbl__sel(valid, nv, zero));
+        sbl__store(r->v + x, sbl__sel(valid, one, zero));
+        bits = sbl__mbits(sbl__mandnot(keep, valid));
+        for (l = 0; bits; ++l, bits >>= 1)
+            if (bits & 1) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
+            }
+        if (i + SBL__VW >= n) break;
+        i += SBL__VW;
+    }
+}
+
+static void sbl__rest_tile(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
+{
+    switch (s->src.color.ch) {
+    case 1: sbl__rest_tile_ch(s, r, y, x0, n, 1); break;
+    case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2); break;
+    case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3); break;
+    default: sbl__rest_tile_ch(s, r, y, x0, n, 4); break;
+    }
+}
+
+/* A tile without geometry: every pixel resets. */
+static void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x0, int n)
+{
+    int c;
+    memset(r->n + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
+    memset(r->v + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
+    for (c = 0; c < src->color.ch; ++c) memset(r->x[c] + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
+}
+
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
@@ -2939,6 +3136,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
     const int lanes = sbl__temporal_plan_lanes_ok(s, y);
+    const int tiles = sbl__temporal_tiles_ok(s);
     sbl__tap_plan p;
     int x0, i;
     for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
@@ -2949,6 +3147,11 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
                 sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
             }
             continue;
+        }
+        if (tiles) {
+            const int kind = sbl__temporal_tile_class(s, y, x0, n);
+            if (kind == SBL__TILE_VOID) { sbl__void_tile(&s->src, r, x0, n); continue; }
+            if (kind == SBL__TILE_REST) { sbl__rest_tile(s, r, y, x0, n); continue; }
         }
         for (i = 0; i < n;) {
             int bits = 1, l;
