@@ -2730,9 +2730,11 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
    finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
    contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
    rest), read with plain vector loads where a view has one channel. Taps of weight 0
-   in every lane are skipped: they would add +0 everywhere. */
+   in every lane are skipped: they would add +0 everywhere.
+   sky: every planned lane expects sky (+inf), so its depth test is "the tap is sky"
+   (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
-                                 sbl__ring_row *r, int x, int ch, int contiguous)
+                                 sbl__ring_row *r, int x, int ch, int contiguous, int sky)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -2759,17 +2761,23 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         off[3] = s->depth.stride + s->depth.step;
         for (t = 0; t < 4; ++t) {
             if (t & skip) continue;
-            /* sbl__depth_match: sky matches only sky; else a finite, positive depth
-               within the tolerance */
-            const sbl__v d = contiguous && s->depth.step == 1
-                                 ? sbl__load(s->depth.p + off[t] + p->di[i])
-                                        : sbl__gatheri(s->depth.p + off[t], p->di + i);
-            const sbl__m inf_t = sbl__posinf(d);
-            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
-                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
-            const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
-                                          sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
-            ok[t] = sbl__mand(ok[t], match);
+            {
+                const sbl__v d = contiguous && s->depth.step == 1
+                                     ? sbl__load(s->depth.p + off[t] + p->di[i])
+                                     : sbl__gatheri(s->depth.p + off[t], p->di + i);
+                const sbl__m inf_t = sbl__posinf(d);
+                if (sky) {
+                    ok[t] = sbl__mand(ok[t], inf_t);
+                } else {
+                    /* sbl__depth_match: sky matches only sky; else a finite, positive
+                       depth within the tolerance */
+                    const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                                  sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+                    const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
+                                                  sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
+                    ok[t] = sbl__mand(ok[t], match);
+                }
+            }
         }
     }
     if (s->length.p) {
@@ -2777,11 +2785,13 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         off[3] = s->length.stride + s->length.step;
         for (t = 0; t < 4; ++t) {
             if (t & skip) continue;
-            const sbl__v nt = contiguous && s->length.step == 1
-                                  ? sbl__load(s->length.p + off[t] + p->li[i])
-                                         : sbl__gatheri(s->length.p + off[t], p->li + i);
-            ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
-            accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+            {
+                const sbl__v nt = contiguous && s->length.step == 1
+                                      ? sbl__load(s->length.p + off[t] + p->li[i])
+                                      : sbl__gatheri(s->length.p + off[t], p->li + i);
+                ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
+                accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+            }
         }
     } else {
         for (t = 0; t < 4; ++t)
@@ -2820,9 +2830,10 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
 }
 
 /* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
-   last vector overlaps the one before rather than running past the block. */
+   last vector overlaps the one before rather than running past the block. sky: every
+   planned entry expects sky (see sbl__lanes_taps). */
 static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
-                          sbl__ring_row *r, int x)
+                          sbl__ring_row *r, int x, int sky)
 {
     int i = 0;
     for (;;) {
@@ -2835,11 +2846,20 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
             contiguous &= (p->ci[i + l] - p->ci[i] == l * SBL__CAST(int, s->color.step)) &
                           (!s->use_depth || p->di[i + l] - p->di[i] == l * SBL__CAST(int, s->depth.step)) &
                           (!s->length.p || p->li[i + l] - p->li[i] == l * SBL__CAST(int, s->length.step));
-        switch (s->color.ch) {
-        case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
-        case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
-        case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous); break;
-        default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous); break;
+        if (sky) {
+            switch (s->color.ch) {
+            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 1); break;
+            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 1); break;
+            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 1); break;
+            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 1); break;
+            }
+        } else {
+            switch (s->color.ch) {
+            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 0); break;
+            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 0); break;
+            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 0); break;
+            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 0); break;
+            }
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
@@ -2966,14 +2986,17 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
 
 /* sbl__temporal_rp_pos and sbl__tap_plan_set in lanes (motion vectors in pixels) */
 SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
-                                         int x, int y)
+                                         int x, int y, int sky)
 {
     static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const float *mvp = SBL__AT(s->motion, x, y);
     sbl__v z = zero, slack = zero, mx, my;
-    sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
-                                 : sbl__gt(one, zero);
+    /* a sky tile: z = +inf, which is valid geometry with slack 0 (sbl__lanes_want) */
+    sbl__m keep = sky ? sbl__gt(one, zero)
+                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+                                        : sbl__gt(one, zero));
+    if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
     mx = sbl__gatheri(mvp, pair);
     my = sbl__gatheri(mvp + 1, pair);
     keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
@@ -2991,14 +3014,15 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
    - SBL__TILE_REST: every source position is the pixel itself (zero motion vectors, or
      a camera at rest over static surfaces): the history is read at the same pixel, with
      no position maths, no footprint and one tap test (sbl__rest_tile);
-   - SBL__TILE_GENERAL: the plan and the tap stage, with two cheaper forms decided in
-     the tap stage itself: a sky tile (target all +inf: the depth test is "tap is sky",
-     no slack) and a tile whose taps all pass (no masks on the sums, no fallback
-     bookkeeping).
+   - SBL__TILE_SKY: every target pixel is sky (+inf) and moves: the general plan and
+     tap stage without the target's depth slack, and with the documented rule for sky
+     in its cheapest form as the depth test (the tap is sky);
+   - SBL__TILE_GENERAL: the plan and the tap stage, which itself drops the masks on its
+     sums (the fallback bookkeeping) for a vector whose taps all pass.
    Each shortcut gives the general path's bits (the same operations on the values that
    matter, or operations whose result is exactly the same), so no result depends on where
    a band, a span or a tile starts. */
-enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2 };
+enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2, SBL__TILE_SKY = 3 };
 
 /* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
    vector loads packed (pixel step 1: depth, N), no target normals or ids (whose tests
@@ -3018,15 +3042,21 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
 {
     const sbl__v zero = sbl__set1(0.0f);
     int i;
+    int sky = 0;
     if (s->geo.depth.p) { /* no geometry anywhere: NaN, -inf, 0 and negatives fail z > 0 */
         const float *zp = SBL__AT(s->geo.depth, x0, y);
-        int any = 0;
+        const int full = (1 << SBL__VW) - 1;
+        int any = 0, all_sky = full;
         for (i = 0;; i += SBL__VW) {
+            sbl__v z;
             if (i + SBL__VW > n) i = n - SBL__VW;
-            any |= sbl__mbits(sbl__gt(sbl__load(zp + i), zero));
-            if (any || i + SBL__VW >= n) break;
+            z = sbl__load(zp + i);
+            any |= sbl__mbits(sbl__gt(z, zero));
+            all_sky &= sbl__mbits(sbl__posinf(z));
+            if ((any && all_sky != full) || i + SBL__VW >= n) break;
         }
         if (!any) return SBL__TILE_VOID;
+        sky = all_sky == full;
     }
     if (s->source == SBL_TEMPORAL_MOTION) { /* every vector +-0 (kx * +-0 = +-0) */
         const float *mp = SBL__AT(s->motion, x0, y);
@@ -3035,20 +3065,21 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
                 if (i + SBL__VW > 2 * n) i = 2 * n - SBL__VW;
                 if (~sbl__mbits(sbl__le(sbl__abs(sbl__load(mp + i)), zero)) &
                     ((1 << SBL__VW) - 1))
-                    return SBL__TILE_GENERAL;
+                    return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
                 if (i + SBL__VW >= 2 * n) break;
             }
         } else {
             for (i = 0; i < n; ++i) {
                 const float *m = mp + SBL__CAST(ptrdiff_t, i) * s->motion.step;
-                if (!(fabsf(m[0]) <= 0.0f && fabsf(m[1]) <= 0.0f)) return SBL__TILE_GENERAL;
+                if (!(fabsf(m[0]) <= 0.0f && fabsf(m[1]) <= 0.0f))
+                    return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
             }
         }
         return SBL__TILE_REST;
     }
     /* camera at rest: a tile without a moving object's id (the call has no ids here
        unless no object moves, see sbl__temporal_tiles_ok) */
-    return s->moving_count ? SBL__TILE_GENERAL : SBL__TILE_REST;
+    return s->moving_count ? (sky ? SBL__TILE_SKY : SBL__TILE_GENERAL) : SBL__TILE_REST;
 }
 
 /* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
@@ -3138,7 +3169,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     const int lanes = sbl__temporal_plan_lanes_ok(s, y);
     const int tiles = sbl__temporal_tiles_ok(s);
     sbl__tap_plan p;
-    int x0, i;
+    int x0, i, sky;
     for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
         const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
         if (n < SBL__VW) {
@@ -3148,15 +3179,18 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
             }
             continue;
         }
+        sky = 0;
         if (tiles) {
             const int kind = sbl__temporal_tile_class(s, y, x0, n);
             if (kind == SBL__TILE_VOID) { sbl__void_tile(&s->src, r, x0, n); continue; }
             if (kind == SBL__TILE_REST) { sbl__rest_tile(s, r, y, x0, n); continue; }
+            sky = kind == SBL__TILE_SKY;
         }
         for (i = 0; i < n;) {
             int bits = 1, l;
             if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width && i + SBL__VW <= n) {
-                bits = sbl__temporal_plan_lanes(s, &p, i, x0 + i, y);
+                bits = sky ? sbl__temporal_plan_lanes(s, &p, i, x0 + i, y, 1)
+                           : sbl__temporal_plan_lanes(s, &p, i, x0 + i, y, 0);
                 l = SBL__VW;
             } else {
                 l = 1;
@@ -3171,7 +3205,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
             }
             i += l;
         }
-        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
+        sbl__row_taps(&s->src, &p, n, fallback, r, x0, sky);
         for (i = 0; i < n; ++i)
             if (p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
@@ -4086,6 +4120,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
                       s->geo.depth.step == 1 && !s->geo.normals.p && !s->geo.ids.p &&
                       s->geo.width == sw && s->geo.height == sh && sw <= 32768 &&
                       sh <= 32768 && y >= 1 && y + 1 < sh;
+    const int sky = 0;
     sbl__tap_plan p;
     double psx[SBL__BLOCK], psy[SBL__BLOCK];
     int x0, i;
@@ -4135,7 +4170,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
             }
             i += l;
         }
-        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
+        sbl__row_taps(&s->src, &p, n, fallback, r, x0, sky);
         for (i = 0; i < n; ++i) {
             const int x = x0 + i;
             if (p.redo[i]) {

@@ -191,7 +191,7 @@ static void test_scenes(void)
     sbt_rng rng = {2026};
     int kind, it;
     for (kind = 0; kind < SCENE_COUNT; ++kind) {
-        long pixels = 0, differ_off = 0, differ_pixel = 0, classes[3] = {0, 0, 0}, reset = 0;
+        long pixels = 0, differ_off = 0, differ_pixel = 0, classes[4] = {0, 0, 0, 0}, reset = 0;
         for (it = 0; it < 160; ++it) {
             scene sc;
             sbl_reproject_desc rd;
@@ -234,10 +234,10 @@ static void test_scenes(void)
             }
             scene_free(&sc);
         }
-        printf("  %s %-5s: %ld pixels (%ld without x*), tiles general %ld / void %ld / rest %ld;"
+        printf("  %s %-5s: %ld pixels (%ld without x*), tiles general %ld / void %ld / rest %ld / sky %ld;"
                " differ from no shortcuts %ld, from the pixel gather %ld\n",
                SBL_SIMD_NAME, scene_names[kind], pixels, reset, classes[0], classes[1], classes[2],
-               differ_off, differ_pixel);
+               classes[3], differ_off, differ_pixel);
         CHECK(differ_off == 0);
         CHECK(differ_pixel == 0);
         CHECK(reset < pixels);
@@ -245,6 +245,7 @@ static void test_scenes(void)
         if (kind == SCENE_REST) CHECK(classes[SBL__TILE_REST] > 100 && reset > pixels / 50);
         if (kind == SCENE_VOID) CHECK(classes[SBL__TILE_VOID] > 50 && classes[SBL__TILE_GENERAL] > 50);
         if (kind == SCENE_MIXED) CHECK(classes[SBL__TILE_REST] > 20 && classes[SBL__TILE_GENERAL] > 20);
+        if (kind == SCENE_SKY) CHECK(classes[SBL__TILE_SKY] > 100 && classes[SBL__TILE_GENERAL] > 20);
     }
 }
 
