@@ -3904,6 +3904,7 @@ typedef struct sbl__stereo_rp {
     float fb;                 /* parallel: focal_px * baseline                          */
     double offset;            /* parallel: disparity_offset                             */
     sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES, SBL_RIG_PINHOLE             */
+    int tiles;                /* 1: the row gather's far-tile shortcut (tests: 0)       */
 } sbl__stereo_rp;
 
 static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_color)
@@ -4050,6 +4051,7 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->dir[1] = -s->dir[0];
     s->fb = s->d.focal_px * s->d.baseline;
     s->offset = SBL__CAST(double, s->d.disparity_offset);
+    s->tiles = 1;
     switch (s->d.rig) {
     case SBL_RIG_PARALLEL: s->map = sbl__stereo_map_parallel; break;
     case SBL_RIG_DISPARITY: s->map = sbl__stereo_map_disparity; break;
@@ -4103,6 +4105,17 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 }
 
 #ifdef SBL__ROW_GATHER
+/* Far tiles of the parallel rig (issue 10): where every disparity of a vector of pixels
+   is below SBL__FAR_PX (geometry beyond 256 f b), the other eye is read at the pixel
+   itself, its one tap tested, instead of a footprint whose second tap weighs |d|. Where
+   that tap passes, x* and its N differ from the general path by at most
+   (|d| / (1 - |d|) + 2^-23) |c(x +- 1) - c(x)| + 2^-22 |x*|: under 0.4 % of the
+   contrast to the neighbour (tests/test_tiles.c); where it fails, the pixel gather
+   decides, so validity never changes. The back-check keeps the exact position. This is
+   the one result by which a build with the row gather (x86 SIMD) may differ from the
+   scalar reference build: within that bound, on far geometry only. */
+#define SBL__FAR_PX (1.0f / 256.0f)
+
 /* sbl__stereo_rp_pixel for columns [xa, xb) of row y through the row gather (plan in
    scalar with the rig's map called directly, taps in lanes, back-check in scalar on the
    matches the lanes kept); `map` is a constant where this is inlined. */
@@ -4123,6 +4136,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
     const int sky = 0;
     sbl__tap_plan p;
     double psx[SBL__BLOCK], psy[SBL__BLOCK];
+    unsigned char snapped[SBL__BLOCK];
     int x0, i;
     for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
         const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
@@ -4141,14 +4155,21 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
                 float fbz[SBL__VW];
                 sbl__v z, slack, m;
                 sbl__m keep = sbl__lanes_want(&s->geo.depth, x0 + i, y, &z, &slack);
+                int far;
                 m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
                 keep = sbl__mandnot(keep, sbl__nonfinite(m));
                 sbl__store(fbz, m);
                 if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
-                bits = sbl__plan_lanes(&s->src, &p, i, x0 + i, y, keep, z, slack, m, zero);
+                /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the
+                   other eye is read at the same pixel (see SBL__FAR_PX) */
+                far = s->tiles &&
+                      !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
+                      sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
+                bits = sbl__plan_lanes(&s->src, &p, i, x0 + i, y, keep, z, slack, far ? zero : m, zero);
                 for (l = 0; l < SBL__VW; ++l) {
                     psx[i + l] = x0 + i + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
                     psy[i + l] = y + 0.5;
+                    snapped[i + l] = SBL__CAST(unsigned char, far);
                 }
                 l = SBL__VW;
             }
@@ -4160,6 +4181,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
                 if (!(bits & 1)) continue;
                 sbl__tap_plan_reset(&p, i);
                 psx[i] = psy[i] = 0.0;
+                snapped[i] = 0;
                 if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
                 if (!map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
                 if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh))) continue;
@@ -4173,6 +4195,9 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
         sbl__row_taps(&s->src, &p, n, fallback, r, x0, sky);
         for (i = 0; i < n; ++i) {
             const int x = x0 + i;
+            /* a far lane whose one tap failed: the pixel gather (the footprint's other
+               tap may carry it) */
+            if (snapped[i] && p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) p.redo[i] = 1;
             if (p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
                 sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, y, tmp), tmp, ch);

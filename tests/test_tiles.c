@@ -12,6 +12,7 @@
    - mixed:   a scene at rest with a moving object (zero and non-zero motion tiles).
    - sky:     target rows of sky (+inf) under moving content, history partly sky.
    - valid:   smooth moving content where every tap passes.
+   - far:     stereo rows of distant geometry (disparity below 1/256 px), parallel rig.
    Calls internal functions: includes the implementation statically. */
 #define STEREOBLEND_STATIC
 #define STEREOBLEND_IMPLEMENTATION
@@ -351,6 +352,117 @@ static void test_camera_at_rest(void)
     CHECK(chain_bad == 0);
 }
 
+/* Far tiles of the parallel rig: target rows of distant geometry (|d| = f b / z below
+   1/256 px), with sky, near pixels, rejected taps and hostile values mixed in. The
+   shortcut against the general path (tiles off): the same validity everywhere and, per
+   channel and for N, |x* - x*_general| <= (|d| / (1 - |d|) + 2^-23) * the largest finite
+   difference to the two neighbours + 2^-22 |x*_general| (the general path's weight of
+   the neighbour is itself |d| only to within a float rounding next to 1); the general path against the
+   pixel gather bit for bit (or within the contraction tolerance). */
+static void test_stereo_far(void)
+{
+    const int contracts = compiler_contracts();
+    sbt_rng rng = {4711};
+    int it, differ_valid = 0, beyond = 0, snapped_differ = 0, differ_pixel = 0;
+    long pixels = 0;
+    for (it = 0; it < 120; ++it) {
+        int w = 8 + (int)(sbt_uniform(&rng) * 150), h = 3 + (int)(sbt_uniform(&rng) * 5);
+        int ch = 1 + it % 4, e, x, y, c, tgt = it & 1;
+        sbt_img col[2], len[2], dep[2];
+        sbl_stereo_desc sd;
+        sbl_eye eye[2];
+        sbl__stereo_rp rp;
+        ring3 g;
+        for (e = 0; e < 2; ++e) {
+            col[e] = sbt_img_new(w, h, ch, 1);
+            len[e] = sbt_img_new(w, h, 1, 0);
+            dep[e] = sbt_img_new(w, h, 1, 1);
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    const double u = sbt_uniform(&rng);
+                    for (c = 0; c < ch; ++c) sbt_at(&col[e], x, y)[c] = (float)sbt_uniform(&rng);
+                    *sbt_at(&len[e], x, y) = (float)(1 + sbt_uniform(&rng) * 20);
+                    /* f b = 10: z in [3e3, 3e5] gives |d| in [3.3e-5, 3.3e-3] */
+                    *sbt_at(&dep[e], x, y) = (float)(3e3 * pow(100.0, sbt_uniform(&rng)));
+                    if (y == 1 && x < w / 3) *sbt_at(&dep[e], x, y) = 4.0f; /* near: d = 2.5 */
+                    if (u < 0.05) *sbt_at(&dep[e], x, y) = (float)HUGE_VAL;
+                    else if (u < 0.07) *sbt_at(&len[e], x, y) = 0.0f;
+                    else if (u < 0.08) sbt_at(&col[e], x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+                    else if (u < 0.10 && e == 1) *sbt_at(&dep[e], x, y) *= 3.0f; /* rejected */
+                }
+            memset(&eye[e], 0, sizeof eye[e]);
+            eye[e].color = view(&col[e]);
+            eye[e].length = view(&len[e]);
+            eye[e].gbuffer.depth = view(&dep[e]);
+        }
+        memset(&sd, 0, sizeof sd);
+        sd.rig = SBL_RIG_PARALLEL;
+        sd.focal_px = 10.0f;
+        sd.baseline = 1.0f;
+        sd.reproject.no_fallback = it % 3 == 1;
+        if (it % 4 == 3) sd.reproject.disabled_tests = SBL_TEST_BACK_CHECK;
+        CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)tgt, &eye[tgt], &eye[!tgt], 1), SBL_OK);
+        ring3_init(&g);
+        for (y = 0; y < h; ++y) {
+            rp.tiles = 1;
+            sbl__stereo_rp_row(&rp, &g.r[0], y, 0, w);
+            rp.tiles = 0;
+            sbl__stereo_rp_row(&rp, &g.r[1], y, 0, w);
+            for (x = 0; x < w; ++x) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(&g.r[2], x, sbl__stereo_rp_pixel(&rp, x, y, tmp), tmp, ch);
+            }
+            differ_pixel += ring_diff(&g, 1, 2, 0, w, ch, contracts, "stereo general", it, y);
+            for (x = 0; x < w; ++x) {
+                const double z = *sbt_at(&dep[tgt], x, y), d = 10.0 / z;
+                const sbt_img *sc = &col[!tgt], *sl = &len[!tgt];
+                int k, same = memcmp(&g.r[0].n[x], &g.r[1].n[x], 4) == 0;
+                ++pixels;
+                if ((g.r[0].v[x] > 0.0f) != (g.r[1].v[x] > 0.0f)) { ++differ_valid; continue; }
+                if (!(g.r[1].v[x] > 0.0f)) continue;
+                for (k = 0; k <= ch; ++k) { /* channels, then N */
+                    const float a = k < ch ? g.r[0].x[k][x] : g.r[0].n[x];
+                    const float b = k < ch ? g.r[1].x[k][x] : g.r[1].n[x];
+                    double big = 0.0, lim;
+                    int i2;
+                    same &= memcmp(&a, &b, 4) == 0;
+                    for (i2 = -1; i2 <= 1; i2 += 2) {
+                        const int xx = x + i2;
+                        double v0, v1;
+                        if (xx < 0 || xx >= w) continue;
+                        v0 = k < ch ? sbt_at(sc, x, y)[k] : *sbt_at(sl, x, y);
+                        v1 = k < ch ? sbt_at(sc, xx, y)[k] : *sbt_at(sl, xx, y);
+                        if (isfinite(v0) && isfinite(v1) && fabs(v1 - v0) > big) big = fabs(v1 - v0);
+                    }
+                    /* the general path's weight of the neighbour is |d| to within 2^-24
+                       (its fraction is rounded to float next to 1) */
+                    lim = (d < 0.5 ? d / (1.0 - d) + 1.0 / 8388608.0 : 1e30) * big + fabs(b) * (1.0 / 4194304.0);
+                    if (!(fabs((double)a - b) <= lim)) {
+                        if (beyond < 3)
+                            printf("  far case %d (%d,%d) k %d: %.9g vs %.9g (d %.3g, lim %.3g) c %.9g %.9g %.9g z %g %g %g tgt %d\n", it, x, y, k, a, b, d, lim,
+                                   x > 0 ? sbt_at(sc, x - 1, y)[0] : -1.0f, sbt_at(sc, x, y)[0], x + 1 < w ? sbt_at(sc, x + 1, y)[0] : -1.0f,
+                                   *sbt_at(&dep[!tgt], x - 1, y), *sbt_at(&dep[!tgt], x, y), *sbt_at(&dep[!tgt], x + 1, y), tgt);
+                        ++beyond;
+                    }
+                }
+                snapped_differ += !same;
+            }
+            {
+                int i;
+                for (i = 0; i < 3; ++i) g.r[i].row = y;
+            }
+        }
+        for (e = 0; e < 2; ++e) { free(col[e].mem); free(len[e].mem); free(dep[e].mem); }
+    }
+    printf("  %s stereo far tiles: %ld pixels, %d differ from the general path (all within the bound: %s),"
+           " %d change validity; general vs pixel gather: %d differ\n",
+           SBL_SIMD_NAME, pixels, snapped_differ, beyond ? "no" : "yes", differ_valid, differ_pixel);
+    CHECK(beyond == 0);
+    CHECK(differ_valid == 0);
+    CHECK(differ_pixel == 0);
+    CHECK(snapped_differ > pixels / 10); /* the shortcut ran */
+}
+
 /* A whole-image sbl_temporal_filter against row bands of it, bit for bit, on the rest
    and mixed scenes; and against the same data in a layout that turns the shortcuts off
    (depth and N as one channel of two-channel buffers: pixel step 2), bit for bit. */
@@ -445,6 +557,7 @@ int main(void)
 #ifdef SBL__ROW_GATHER
     test_scenes();
     test_camera_at_rest();
+    test_stereo_far();
     test_bands();
 #else
     printf("  %s: no row gather on this path (the pixel gather runs, no tile shortcuts)\n",
