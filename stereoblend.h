@@ -3160,6 +3160,134 @@ static void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x0, in
     for (c = 0; c < src->color.ch; ++c) memset(r->x[c] + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
 }
 
+/* ---- camera planning in lanes ---------------------------------------------------
+   The camera source's position maths (sbl__cam_map_apply: unproject at the target's
+   depth, carry into the history's view, project) in double lanes, with the reference's
+   operations in its order, so every lane gets its bits; the checks and the tap plan of
+   each lane then run in scalar (sbl__tap_plan_set). A few double operations suffice:
+   set1, load, store, add, sub, mul, div. */
+#if SBL__VW == 16
+#define SBL__DW 8
+typedef __m512d sbl__dv;
+#define sbl__dset1(a) _mm512_set1_pd(a)
+#define sbl__dload(p) _mm512_loadu_pd(p)
+#define sbl__dstore(p, a) _mm512_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm512_add_pd(a, b)
+#define sbl__dsub(a, b) _mm512_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm512_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm512_div_pd(a, b)
+#elif SBL__VW == 8
+#define SBL__DW 4
+typedef __m256d sbl__dv;
+#define sbl__dset1(a) _mm256_set1_pd(a)
+#define sbl__dload(p) _mm256_loadu_pd(p)
+#define sbl__dstore(p, a) _mm256_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm256_add_pd(a, b)
+#define sbl__dsub(a, b) _mm256_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm256_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm256_div_pd(a, b)
+#else
+#define SBL__DW 2
+typedef __m128d sbl__dv;
+#define sbl__dset1(a) _mm_set1_pd(a)
+#define sbl__dload(p) _mm_loadu_pd(p)
+#define sbl__dstore(p, a) _mm_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm_add_pd(a, b)
+#define sbl__dsub(a, b) _mm_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm_div_pd(a, b)
+#endif
+
+/* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
+   camera and no listed objects, no target normals or ids (their tests stay in
+   sbl__tap_want_init), an interior row (the depth slack reads both neighbours), target
+   depth packed. */
+static int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+{
+    return s->source == SBL_TEMPORAL_CAMERA && s->history && !s->at_rest &&
+           !s->cam.object_count && !s->geo.normals.p && !s->geo.ids.p && y >= 1 &&
+           y + 1 < s->src.height && s->geo.depth.step == 1;
+}
+
+/* sbl__temporal_rp_pos (camera source) and sbl__tap_plan_set for the VW pixels
+   x .. x + VW - 1 of row y. The sums start from 0.0 and take the terms in the
+   reference's order (C * 0.0 included: it can turn a -0 into +0); the terms that only
+   depend on the row are the same products in scalar. */
+SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                        int x, int y)
+{
+    static const double lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    const sbl__cam_map *m = &s->cam;
+    const double py = y + 0.5, n1 = 1.0 - 2.0 * py / m->height;
+    const double *C = m->clip_to_view, *V = m->view_to_view, *P = m->other_proj;
+    const double w = SBL__CAST(double, s->frame->color.width), h = SBL__CAST(double, s->frame->color.height);
+    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0), half = sbl__dset1(0.5);
+    float zf[SBL__VW], sf[SBL__VW];
+    double zmul[SBL__VW], p3[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW], q3[SBL__VW],
+        chk[SBL__VW], c3[SBL__VW];
+    sbl__v z, slack;
+    int keep, l, j, k;
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    sbl__store(zf, z);
+    sbl__store(sf, slack);
+    for (l = 0; l < SBL__VW; ++l) { /* a direction for sky (+inf): p = q, p[3] = 0 */
+        const int sky = sbl__is_pos_inf(zf[l]);
+        zmul[l] = sky ? 1.0 : SBL__CAST(double, zf[l]);
+        p3[l] = sky ? 0.0 : 1.0;
+    }
+    for (j = 0; j < SBL__VW; j += SBL__DW) {
+        const sbl__dv px = sbl__dadd(sbl__dset1(x + j + 0.5), sbl__dload(lane));
+        const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, px), sbl__dset1(m->width)), one);
+        sbl__dv q[4], a[3], pv[4], v[4], c[4], t, zm;
+        for (k = 0; k < 4; ++k) { /* q = clip_to_view (n0, n1, 0, 1) */
+            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(C[k * 4]), n0));
+            t = sbl__dadd(t, sbl__dset1(C[k * 4 + 1] * n1));
+            t = sbl__dadd(t, sbl__dset1(C[k * 4 + 2] * 0.0));
+            q[k] = sbl__dadd(t, sbl__dset1(C[k * 4 + 3] * 1.0));
+        }
+        t = sbl__ddiv(sbl__dsub(zero, q[2]), q[3]); /* -q2 / q3 (negation exact) */
+        sbl__dstore(q3 + j, q[3]);
+        sbl__dstore(chk + j, t);
+        for (k = 0; k < 3; ++k) a[k] = sbl__ddiv(sbl__ddiv(q[k], q[3]), t);
+        zm = sbl__dload(zmul + j);
+        for (k = 0; k < 3; ++k) pv[k] = sbl__dmul(a[k], zm); /* a * 1.0 = a for sky */
+        pv[3] = sbl__dload(p3 + j);
+        for (k = 0; k < 4; ++k) {
+            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(V[k * 4]), pv[0]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 1]), pv[1]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 2]), pv[2]));
+            v[k] = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 3]), pv[3]));
+        }
+        for (k = 0; k < 4; ++k) {
+            if (k == 2) continue; /* (unused) */
+            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(P[k * 4]), v[0]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 1]), v[1]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 2]), v[2]));
+            c[k] = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 3]), v[3]));
+        }
+        sbl__dstore(c3 + j, c[3]);
+        sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c[0], c[3]), one), half),
+                                      sbl__dset1(m->other_width)));
+        sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c[1], c[3])), half),
+                                      sbl__dset1(m->other_height)));
+        sbl__dstore(oz + j, sbl__dsub(zero, v[2])); /* -v2 (v3 = 0: sky, below) */
+        sbl__dstore(p3 + j, v[3]);
+    }
+    for (l = 0; l < SBL__VW; ++l) {
+        sbl__tap_want t;
+        sbl__tap_plan_reset(p, i + l);
+        if (!((keep >> l) & 1)) continue;                        /* no geometry     */
+        if (q3[l] == 0.0 || chk[l] <= 0.0 || !(c3[l] > 0.0)) continue; /* no ray, behind */
+        if (!(ox[l] >= 0.0 && ox[l] < w && oy[l] >= 0.0 && oy[l] < h)) continue; /* outside */
+        t.depth = SBL__CAST(float, p3[l] == 0.0 ? HUGE_VAL : oz[l]);
+        t.depth_slack = sf[l];
+        t.normal = NULL;
+        t.normal_len2 = 0.0f;
+        t.id = 0.0f;
+        sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
+    }
+}
+
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
@@ -3167,6 +3295,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
     const int lanes = sbl__temporal_plan_lanes_ok(s, y);
+    const int cam_lanes = sbl__camera_plan_lanes_ok(s, y);
     const int tiles = sbl__temporal_tiles_ok(s);
     sbl__tap_plan p;
     int x0, i, sky;
@@ -3188,9 +3317,15 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
         }
         for (i = 0; i < n;) {
             int bits = 1, l;
-            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width && i + SBL__VW <= n) {
-                bits = sky ? sbl__temporal_plan_lanes(s, &p, i, x0 + i, y, 1)
-                           : sbl__temporal_plan_lanes(s, &p, i, x0 + i, y, 0);
+            if ((lanes || cam_lanes) && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width &&
+                i + SBL__VW <= n) {
+                if (cam_lanes) {
+                    sbl__camera_plan_lanes(s, &p, i, x0 + i, y);
+                    bits = 0;
+                } else {
+                    bits = sky ? sbl__temporal_plan_lanes(s, &p, i, x0 + i, y, 1)
+                               : sbl__temporal_plan_lanes(s, &p, i, x0 + i, y, 0);
+                }
                 l = SBL__VW;
             } else {
                 l = 1;
