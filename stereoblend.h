@@ -3209,39 +3209,31 @@ static int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
            y + 1 < s->src.height && s->geo.depth.step == 1;
 }
 
-/* sbl__temporal_rp_pos (camera source) and sbl__tap_plan_set for the VW pixels
-   x .. x + VW - 1 of row y. The sums start from 0.0 and take the terms in the
-   reference's order (C * 0.0 included: it can turn a -0 into +0); the terms that only
-   depend on the row are the same products in scalar. */
-SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
-                                        int x, int y)
+/* sbl__cam_map_apply for VW positions (px[l], py[l]) at planar depths zf[l] (+inf: a
+   direction): (ox, oy, oz)[l]; bit l of the result is set where the map gives a
+   position (a ray through the pixel, in front of the other camera). The sums start
+   from 0.0 and take the terms in the reference's order (C * 0.0 included: it can turn
+   a -0 into +0). */
+SBL__INLINE int sbl__cam_lanes(const sbl__cam_map *m, const double *px, const double *py,
+                               const float *zf, double *ox, double *oy, double *oz)
 {
-    static const double lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-    const sbl__cam_map *m = &s->cam;
-    const double py = y + 0.5, n1 = 1.0 - 2.0 * py / m->height;
     const double *C = m->clip_to_view, *V = m->view_to_view, *P = m->other_proj;
-    const double w = SBL__CAST(double, s->frame->color.width), h = SBL__CAST(double, s->frame->color.height);
-    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0), half = sbl__dset1(0.5);
-    float zf[SBL__VW], sf[SBL__VW];
-    double zmul[SBL__VW], p3[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW], q3[SBL__VW],
-        chk[SBL__VW], c3[SBL__VW];
-    sbl__v z, slack;
-    int keep, l, j, k;
-    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
-    sbl__store(zf, z);
-    sbl__store(sf, slack);
+    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
+                  half = sbl__dset1(0.5);
+    double zmul[SBL__VW], p3[SBL__VW], q3[SBL__VW], chk[SBL__VW], c3[SBL__VW];
+    int l, j, k, bits = 0;
     for (l = 0; l < SBL__VW; ++l) { /* a direction for sky (+inf): p = q, p[3] = 0 */
         const int sky = sbl__is_pos_inf(zf[l]);
         zmul[l] = sky ? 1.0 : SBL__CAST(double, zf[l]);
         p3[l] = sky ? 0.0 : 1.0;
     }
     for (j = 0; j < SBL__VW; j += SBL__DW) {
-        const sbl__dv px = sbl__dadd(sbl__dset1(x + j + 0.5), sbl__dload(lane));
-        const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, px), sbl__dset1(m->width)), one);
+        const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, sbl__dload(px + j)), sbl__dset1(m->width)), one);
+        const sbl__dv n1 = sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), sbl__dset1(m->height)));
         sbl__dv q[4], a[3], pv[4], v[4], c[4], t, zm;
         for (k = 0; k < 4; ++k) { /* q = clip_to_view (n0, n1, 0, 1) */
             t = sbl__dadd(zero, sbl__dmul(sbl__dset1(C[k * 4]), n0));
-            t = sbl__dadd(t, sbl__dset1(C[k * 4 + 1] * n1));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(C[k * 4 + 1]), n1));
             t = sbl__dadd(t, sbl__dset1(C[k * 4 + 2] * 0.0));
             q[k] = sbl__dadd(t, sbl__dset1(C[k * 4 + 3] * 1.0));
         }
@@ -3270,16 +3262,37 @@ SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan
                                       sbl__dset1(m->other_width)));
         sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c[1], c[3])), half),
                                       sbl__dset1(m->other_height)));
-        sbl__dstore(oz + j, sbl__dsub(zero, v[2])); /* -v2 (v3 = 0: sky, below) */
+        sbl__dstore(oz + j, sbl__dsub(zero, v[2])); /* -v2 (v3 = 0: a direction, below) */
         sbl__dstore(p3 + j, v[3]);
     }
     for (l = 0; l < SBL__VW; ++l) {
+        if (p3[l] == 0.0) oz[l] = HUGE_VAL;
+        if (!(q3[l] == 0.0 || chk[l] <= 0.0) && c3[l] > 0.0) bits |= 1 << l;
+    }
+    return bits;
+}
+
+/* sbl__temporal_rp_pos (camera source) and sbl__tap_plan_set for the VW pixels
+   x .. x + VW - 1 of row y. */
+SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                        int x, int y)
+{
+    const double w = SBL__CAST(double, s->frame->color.width), h = SBL__CAST(double, s->frame->color.height);
+    float zf[SBL__VW], sf[SBL__VW];
+    double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
+    sbl__v z, slack;
+    int keep, l;
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    sbl__store(zf, z);
+    sbl__store(sf, slack);
+    for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
+    keep &= sbl__cam_lanes(&s->cam, px, py, zf, ox, oy, oz);
+    for (l = 0; l < SBL__VW; ++l) {
         sbl__tap_want t;
         sbl__tap_plan_reset(p, i + l);
-        if (!((keep >> l) & 1)) continue;                        /* no geometry     */
-        if (q3[l] == 0.0 || chk[l] <= 0.0 || !(c3[l] > 0.0)) continue; /* no ray, behind */
+        if (!((keep >> l) & 1)) continue; /* no geometry, no ray, behind */
         if (!(ox[l] >= 0.0 && ox[l] < w && oy[l] >= 0.0 && oy[l] < h)) continue; /* outside */
-        t.depth = SBL__CAST(float, p3[l] == 0.0 ? HUGE_VAL : oz[l]);
+        t.depth = SBL__CAST(float, oz[l]);
         t.depth_slack = sf[l];
         t.normal = NULL;
         t.normal_len2 = 0.0f;
@@ -4251,6 +4264,70 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
    scalar reference build: within that bound, on far geometry only. */
 #define SBL__FAR_PX (1.0f / 256.0f)
 
+/* The two-camera rigs' plan for the VW pixels x .. x + VW - 1 of an interior row
+   (sbl__stereo_rp_pixel's target tests and map, sbl__tap_plan_set), the map in lanes;
+   the matches' positions into psx / psy (0 where there is none). */
+SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p, int i, int x,
+                                      int y, double *psx, double *psy)
+{
+    const double sw = SBL__CAST(double, s->source->color.width), sh = SBL__CAST(double, s->source->color.height);
+    float zf[SBL__VW], sf[SBL__VW];
+    double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
+    sbl__v z, slack;
+    int keep, l;
+    /* sbl__tap_want_init and sbl__valid_depth agree: z > 0, or +inf */
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    sbl__store(zf, z);
+    sbl__store(sf, slack);
+    for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
+    keep &= sbl__cam_lanes(&s->to_source, px, py, zf, ox, oy, oz);
+    for (l = 0; l < SBL__VW; ++l) {
+        sbl__tap_want t;
+        sbl__tap_plan_reset(p, i + l);
+        psx[l] = psy[l] = 0.0;
+        if (!((keep >> l) & 1)) continue;
+        if (!(ox[l] >= 0.0 && ox[l] < sw && oy[l] >= 0.0 && oy[l] < sh)) continue;
+        t.depth = SBL__CAST(float, oz[l]);
+        t.depth_slack = sf[l];
+        t.normal = NULL;
+        t.normal_len2 = 0.0f;
+        t.id = 0.0f;
+        psx[l] = ox[l];
+        psy[l] = oy[l];
+        sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
+    }
+}
+
+/* The back-check of the two-camera rigs for the block entries back[0 .. nback) (valid
+   matches of columns x0 + entry of row y), VW at a time: from the nearest source pixel,
+   at the source's depth there, back into the target, within tol pixels of the start
+   (sbl__stereo_rp_pixel's test); a failed one clears its ring column. */
+static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int y, int x0,
+                                 const double *psx, const double *psy, const int *back,
+                                 int nback, double tol)
+{
+    const int ch = s->src.color.ch;
+    int b, l;
+    for (b = 0; b < nback; b += SBL__VW) {
+        float zf[SBL__VW];
+        double px[SBL__VW], py[SBL__VW], bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
+        int ok;
+        for (l = 0; l < SBL__VW; ++l) {
+            const int e = back[b + l < nback ? b + l : b]; /* past the end: a copy */
+            px[l] = psx[e];
+            py[l] = psy[e];
+            zf[l] = sbl__valid_depth(&s->depth[1], SBL__CAST(int, floor(psx[e])), SBL__CAST(int, floor(psy[e])));
+        }
+        ok = sbl__cam_lanes(&s->to_target, px, py, zf, bx, by, bz);
+        for (l = 0; l < SBL__VW && b + l < nback; ++l) {
+            const int x = x0 + back[b + l];
+            const double ex = bx[l] - (x + 0.5), ey = by[l] - (y + 0.5);
+            if (!(((ok >> l) & 1) && zf[l] != 0.0f && ex * ex + ey * ey <= tol * tol))
+                sbl__ring_put(r, x, 0.0f, NULL, ch);
+        }
+    }
+}
+
 /* sbl__stereo_rp_pixel for columns [xa, xb) of row y through the row gather (plan in
    scalar with the rig's map called directly, taps in lanes, back-check in scalar on the
    matches the lanes kept); `map` is a constant where this is inlined. */
@@ -4264,15 +4341,18 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
     /* the plan in lanes: parallel rig without a disparity offset (the lane plan's
        positions are exact for m = +-f b / z), target depth packed and of the source's
        size, no target normals / ids, an interior row, images up to 2^15 */
-    const int lanes = map == sbl__stereo_map_parallel && s->offset == 0.0 && s->geo.depth.p &&
-                      s->geo.depth.step == 1 && !s->geo.normals.p && !s->geo.ids.p &&
-                      s->geo.width == sw && s->geo.height == sh && sw <= 32768 &&
-                      sh <= 32768 && y >= 1 && y + 1 < sh;
+    const int geo_lanes = s->geo.depth.p && s->geo.depth.step == 1 && !s->geo.normals.p &&
+                          !s->geo.ids.p && s->geo.width == sw && s->geo.height == sh &&
+                          y >= 1 && y + 1 < sh;
+    const int lanes = map == sbl__stereo_map_parallel && s->offset == 0.0 && geo_lanes &&
+                      sw <= 32768 && sh <= 32768;
+    /* the two-camera rigs: the maps in double lanes (sbl__cam_lanes) */
+    const int cam_lanes = map == sbl__stereo_map_cameras && geo_lanes;
     const int sky = 0;
     sbl__tap_plan p;
     double psx[SBL__BLOCK], psy[SBL__BLOCK];
     unsigned char snapped[SBL__BLOCK];
-    int x0, i;
+    int x0, i, back[SBL__BLOCK], nback;
     for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
         const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
         if (n < SBL__VW) {
@@ -4284,7 +4364,11 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
         }
         for (i = 0; i < n;) {
             int bits = 1, l = 1;
-            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
+            if (cam_lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
+                sbl__stereo_cam_plan(s, &p, i, x0 + i, y, psx + i, psy + i);
+                for (l = 0; l < SBL__VW; ++l) snapped[i + l] = 0;
+                bits = 0;
+            } else if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
                 /* the parallel rig in lanes: m = dir f b / z */
                 const sbl__v zero = sbl__set1(0.0f);
                 float fbz[SBL__VW];
@@ -4328,6 +4412,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
             i += l;
         }
         sbl__row_taps(&s->src, &p, n, fallback, r, x0, sky);
+        nback = 0;
         for (i = 0; i < n; ++i) {
             const int x = x0 + i;
             /* a far lane whose one tap failed: the pixel gather (the footprint's other
@@ -4336,6 +4421,8 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
             if (p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
                 sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, y, tmp), tmp, ch);
+            } else if (back_check && r->v[x] > 0.0f && map == sbl__stereo_map_cameras) {
+                back[nback++] = i; /* in lanes below */
             } else if (back_check && r->v[x] > 0.0f) {
                 /* as sbl__stereo_rp_pixel: from the nearest source pixel back */
                 double bx, by, bz, ex, ey;
@@ -4349,6 +4436,7 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
                 if (!ok) sbl__ring_put(r, x, 0.0f, NULL, ch);
             }
         }
+        if (nback) sbl__stereo_cam_back(s, r, y, x0, psx, psy, back, nback, tol);
     }
 }
 
