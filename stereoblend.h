@@ -4348,11 +4348,19 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
                       sw <= 32768 && sh <= 32768;
     /* the two-camera rigs: the maps in double lanes (sbl__cam_lanes) */
     const int cam_lanes = map == sbl__stereo_map_cameras && geo_lanes;
+    /* the disparity rig: m = dir d read from the map, in float lanes as the parallel rig
+       (the target may have no depth: then no slack, and no depth test either) */
+    const int disp_lanes = map == sbl__stereo_map_disparity && !s->geo.normals.p &&
+                           !s->geo.ids.p && s->geo.width == sw && s->geo.height == sh &&
+                           sw <= 32768 && sh <= 32768 &&
+                           (!s->geo.depth.p || (s->geo.depth.step == 1 && y >= 1 && y + 1 < sh));
+    int didx[SBL__VW];
     const int sky = 0;
     sbl__tap_plan p;
     double psx[SBL__BLOCK], psy[SBL__BLOCK];
     unsigned char snapped[SBL__BLOCK];
     int x0, i, back[SBL__BLOCK], nback;
+    for (i = 0; i < SBL__VW; ++i) didx[i] = disp_lanes ? i * SBL__CAST(int, s->disparity[0].step) : 0;
     for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
         const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
         if (n < SBL__VW) {
@@ -4368,6 +4376,28 @@ SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *
                 sbl__stereo_cam_plan(s, &p, i, x0 + i, y, psx + i, psy + i);
                 for (l = 0; l < SBL__VW; ++l) snapped[i + l] = 0;
                 bits = 0;
+            } else if (disp_lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
+                /* sbl__stereo_map_disparity in lanes: (x, y) + 0.5 + dir (d_x, d_y) */
+                const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+                const sbl__flat *dm = &s->disparity[0];
+                const float *dp = SBL__AT(*dm, x0 + i, y);
+                float dxs[SBL__VW], dys[SBL__VW];
+                sbl__v z = zero, slack = zero, mx, my;
+                sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x0 + i, y, &z, &slack)
+                                             : sbl__gt(one, zero);
+                mx = sbl__gatheri(dp, didx);
+                my = dm->ch > 1 ? sbl__gatheri(dp + 1, didx) : zero;
+                keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+                sbl__store(dxs, mx);
+                sbl__store(dys, my);
+                if (s->dir[0] < 0.0) { mx = sbl__sub(zero, mx); my = sbl__sub(zero, my); }
+                bits = sbl__plan_lanes(&s->src, &p, i, x0 + i, y, keep, z, slack, mx, my);
+                for (l = 0; l < SBL__VW; ++l) {
+                    psx[i + l] = x0 + i + l + 0.5 + s->dir[0] * SBL__CAST(double, dxs[l]);
+                    psy[i + l] = y + 0.5 + s->dir[0] * SBL__CAST(double, dys[l]);
+                    snapped[i + l] = 0;
+                }
+                l = SBL__VW;
             } else if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
                 /* the parallel rig in lanes: m = dir f b / z */
                 const sbl__v zero = sbl__set1(0.0f);
