@@ -14,6 +14,7 @@
    - sky:     target rows of sky (+inf) under moving content, history partly sky.
    - valid:   smooth moving content where every tap passes.
    - stereo cameras: the two-camera rigs' map and back-check in double lanes.
+   - stereo disparity: the disparity rig's plan in lanes, every eye / channel count.
    - far:     stereo rows of distant geometry (disparity below 1/256 px), parallel rig.
    Calls internal functions: includes the implementation statically. */
 #define STEREOBLEND_STATIC
@@ -493,6 +494,74 @@ static void test_stereo_cameras(void)
     CHECK(none > pixels / 20 && none < pixels / 2);
 }
 
+/* The disparity rig in lanes: one- and two-channel maps, both eyes as target (every
+   combination), target with and without depth, integer, sub-pixel, tiny and non-finite
+   disparities: the row gather against sbl__stereo_rp_pixel. */
+static void test_stereo_disparity(void)
+{
+    const int contracts = compiler_contracts();
+    sbt_rng rng = {6060};
+    int it, differ = 0;
+    long pixels = 0, none = 0;
+    for (it = 0; it < 96; ++it) {
+        int w = 4 + (int)(sbt_uniform(&rng) * 120), h = 3 + (int)(sbt_uniform(&rng) * 6);
+        int ch = 1 + (it / 8) % 4, e, x, y, c, tgt = it & 1, dch = 1 + (it >> 1) % 2;
+        int with_depth = (it >> 2) % 2 == 0;
+        sbt_img col[2], len[2], dep[2], dsp[2];
+        sbl_stereo_desc sd;
+        sbl_eye eye[2];
+        sbl__stereo_rp rp;
+        ring3 g;
+        for (e = 0; e < 2; ++e) {
+            col[e] = sbt_img_new(w, h, ch, 1);
+            len[e] = sbt_img_new(w, h, 1, 0);
+            dep[e] = sbt_img_new(w, h, 1, 1);
+            dsp[e] = sbt_img_new(w, h, dch, 1);
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    const double u = sbt_uniform(&rng);
+                    float *d = sbt_at(&dsp[e], x, y);
+                    for (c = 0; c < ch; ++c) sbt_at(&col[e], x, y)[c] = (float)sbt_uniform(&rng);
+                    *sbt_at(&len[e], x, y) = (float)(1 + sbt_uniform(&rng) * 20);
+                    *sbt_at(&dep[e], x, y) = u < 0.1 ? 2.0f : 4.0f;
+                    d[0] = u < 0.1 ? 5.0f : (float)(2.5 + 0.01 * x);
+                    if (dch > 1) d[1] = (float)(sbt_uniform(&rng) * 0.6 - 0.3);
+                    if (u > 0.95) d[0] = 3.0f;                               /* integer */
+                    else if (u > 0.93) d[0] = (float)(1e-4 * sbt_uniform(&rng)); /* tiny */
+                    else if (u > 0.92) d[dch - 1] = (float)HUGE_VAL - (float)HUGE_VAL;
+                    else if (u > 0.91) *sbt_at(&dep[e], x, y) = (float)HUGE_VAL;
+                    else if (u > 0.89) *sbt_at(&len[e], x, y) = 0.0f;
+                }
+            memset(&eye[e], 0, sizeof eye[e]);
+            eye[e].color = view(&col[e]);
+            eye[e].length = view(&len[e]);
+            if (with_depth) eye[e].gbuffer.depth = view(&dep[e]);
+            eye[e].disparity = view(&dsp[e]);
+        }
+        memset(&sd, 0, sizeof sd);
+        sd.rig = SBL_RIG_DISPARITY;
+        sd.reproject.no_fallback = it % 5 == 1;
+        if (it % 7 == 3) sd.reproject.disabled_tests = SBL_TEST_BACK_CHECK;
+        CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)tgt, &eye[tgt], &eye[!tgt], 1), SBL_OK);
+        ring3_init(&g);
+        for (y = 0; y < h; ++y) {
+            sbl__stereo_rp_row(&rp, &g.r[0], y, 0, w);
+            for (x = 0; x < w; ++x) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(&g.r[2], x, sbl__stereo_rp_pixel(&rp, x, y, tmp), tmp, ch);
+                none += !(g.r[2].n[x] > 0.0f);
+            }
+            differ += ring_diff(&g, 0, 2, 0, w, ch, contracts, "stereo disparity", it, y);
+            pixels += w;
+        }
+        for (e = 0; e < 2; ++e) { free(col[e].mem); free(len[e].mem); free(dep[e].mem); free(dsp[e].mem); }
+    }
+    printf("  %s stereo disparity rig: %ld pixels (%ld without a match), %d differ from the pixel gather\n",
+           SBL_SIMD_NAME, pixels, none, differ);
+    CHECK(differ == 0);
+    CHECK(none > pixels / 20 && none < pixels / 2);
+}
+
 /* Far tiles of the parallel rig: target rows of distant geometry (|d| = f b / z below
    1/256 px), with sky, near pixels, rejected taps and hostile values mixed in. The
    shortcut against the general path (tiles off): the same validity everywhere and, per
@@ -700,6 +769,7 @@ int main(void)
     test_camera_at_rest();
     test_camera_moving();
     test_stereo_cameras();
+    test_stereo_disparity();
     test_stereo_far();
     test_bands();
 #else
