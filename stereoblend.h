@@ -2866,6 +2866,68 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
     }
 }
 
+/* One block of a row gather: its plan, and what the stereo rigs keep of each match. */
+typedef struct sbl__block {
+    sbl__tap_plan p;
+    double psx[SBL__BLOCK], psy[SBL__BLOCK]; /* stereo: each match's position            */
+    unsigned char snapped[SBL__BLOCK];       /* stereo: a far lane (see SBL__FAR_PX)     */
+    int x0, n, y;                            /* columns [x0, x0 + n) of row y            */
+    int sky;                                 /* every planned entry expects sky          */
+    int mode;                                /* the rig's lane plan for this row (hooks) */
+} sbl__block;
+
+/* The one driver of the row gathers (temporal and stereo): columns [xa, xb) of row y in
+   blocks of SBL__BLOCK. Per block: `start` (the tile shortcuts: returns 1 when it wrote
+   the block; sets the block's sky and lane mode), the plan (`plan_vec` plans VW entries
+   from entry i in lanes and returns the entries it leaves to `plan_one`, or -1 where it
+   cannot), the tap stage, then the pixel gather for every entry handed back, or the
+   rig's own last step (`after`, when given: far lanes, back-check and that pixel
+   gather, in one pass). Blocks narrower than a vector take the pixel gather. Inlined
+   with constant hooks: no call through a pointer. */
+SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y, int xa,
+                                        int xb, const sbl__tap_src *src, int fallback,
+                                        sbl__gather_fn pixel,
+                                        int (*start)(const void *, sbl__ring_row *, sbl__block *),
+                                        int (*plan_vec)(const void *, sbl__block *, int),
+                                        void (*plan_one)(const void *, sbl__block *, int),
+                                        void (*after)(const void *, sbl__ring_row *, sbl__block *))
+{
+    const int ch = src->color.ch;
+    sbl__block b;
+    int i;
+    b.y = y;
+    for (b.x0 = xa; b.x0 < xb; b.x0 += SBL__BLOCK) {
+        b.n = xb - b.x0 < SBL__BLOCK ? xb - b.x0 : SBL__BLOCK;
+        if (b.n < SBL__VW) {
+            for (i = 0; i < b.n; ++i) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+            }
+            continue;
+        }
+        b.sky = 0;
+        b.mode = 0;
+        if (start(ctx, r, &b)) continue;
+        for (i = 0; i < b.n;) {
+            int bits = i + SBL__VW <= b.n ? plan_vec(ctx, &b, i) : -1, l = SBL__VW;
+            if (bits < 0) { bits = 1; l = 1; }
+            for (; bits; ++i, --l, bits >>= 1)
+                if (bits & 1) plan_one(ctx, &b, i);
+            i += l;
+        }
+        sbl__row_taps(src, &b.p, b.n, fallback, r, b.x0, b.sky);
+        if (after) {
+            after(ctx, r, &b);
+            continue;
+        }
+        for (i = 0; i < b.n; ++i)
+            if (b.p.redo[i]) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+            }
+    }
+}
+
 /* Can the row gather address every tap of this source with int offsets, and does it
    run the tests the lanes implement (not ids nor normals)? */
 static int sbl__row_gather_ok(const sbl__tap_src *s)
@@ -3301,65 +3363,52 @@ SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan
     }
 }
 
+/* The temporal row gather's hooks (sbl__row_gather_blocks). Lane modes: 1 motion
+   vectors, 2 the camera; bit 4: the row's tiles may take the shortcuts. */
+static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    if (sbl__temporal_tiles_ok(s)) {
+        const int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
+        if (kind == SBL__TILE_VOID) { sbl__void_tile(&s->src, r, b->x0, b->n); return 1; }
+        if (kind == SBL__TILE_REST) { sbl__rest_tile(s, r, b->y, b->x0, b->n); return 1; }
+        b->sky = kind == SBL__TILE_SKY;
+    }
+    b->mode = sbl__temporal_plan_lanes_ok(s, b->y) ? 1 : (sbl__camera_plan_lanes_ok(s, b->y) ? 2 : 0);
+    return 0;
+}
+
+static int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    const int x = b->x0 + i;
+    if (!b->mode || x < 1 || x + SBL__VW >= s->src.width) return -1;
+    if (b->mode == 2) {
+        sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
+        return 0;
+    }
+    return b->sky ? sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 1)
+                  : sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 0);
+}
+
+static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    sbl__tap_want t;
+    double sx, sy;
+    sbl__tap_plan_reset(&b->p, i);
+    if (sbl__temporal_rp_pos(s, b->x0 + i, b->y, &t, &sx, &sy))
+        sbl__tap_plan_set(&s->src, &b->p, i, &t, sx, sy);
+}
+
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
-    const int lanes = sbl__temporal_plan_lanes_ok(s, y);
-    const int cam_lanes = sbl__camera_plan_lanes_ok(s, y);
-    const int tiles = sbl__temporal_tiles_ok(s);
-    sbl__tap_plan p;
-    int x0, i, sky;
-    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
-        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
-        if (n < SBL__VW) {
-            for (i = 0; i < n; ++i) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
-            }
-            continue;
-        }
-        sky = 0;
-        if (tiles) {
-            const int kind = sbl__temporal_tile_class(s, y, x0, n);
-            if (kind == SBL__TILE_VOID) { sbl__void_tile(&s->src, r, x0, n); continue; }
-            if (kind == SBL__TILE_REST) { sbl__rest_tile(s, r, y, x0, n); continue; }
-            sky = kind == SBL__TILE_SKY;
-        }
-        for (i = 0; i < n;) {
-            int bits = 1, l;
-            if ((lanes || cam_lanes) && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width &&
-                i + SBL__VW <= n) {
-                if (cam_lanes) {
-                    sbl__camera_plan_lanes(s, &p, i, x0 + i, y);
-                    bits = 0;
-                } else {
-                    bits = sky ? sbl__temporal_plan_lanes(s, &p, i, x0 + i, y, 1)
-                               : sbl__temporal_plan_lanes(s, &p, i, x0 + i, y, 0);
-                }
-                l = SBL__VW;
-            } else {
-                l = 1;
-            }
-            for (; bits; ++i, --l, bits >>= 1) {
-                sbl__tap_want t;
-                double sx, sy;
-                if (!(bits & 1)) continue;
-                sbl__tap_plan_reset(&p, i);
-                if (sbl__temporal_rp_pos(s, x0 + i, y, &t, &sx, &sy))
-                    sbl__tap_plan_set(&s->src, &p, i, &t, sx, sy);
-            }
-            i += l;
-        }
-        sbl__row_taps(&s->src, &p, n, fallback, r, x0, sky);
-        for (i = 0; i < n; ++i)
-            if (p.redo[i]) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
-            }
-    }
+    sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
+                           sbl__temporal_block_start, sbl__temporal_plan_vec,
+                           sbl__temporal_plan_one, NULL);
 }
 #endif
 
@@ -4328,158 +4377,178 @@ static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int 
     }
 }
 
-/* sbl__stereo_rp_pixel for columns [xa, xb) of row y through the row gather (plan in
-   scalar with the rig's map called directly, taps in lanes, back-check in scalar on the
-   matches the lanes kept); `map` is a constant where this is inlined. */
-SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *r, int y,
-                                        int xa, int xb, sbl__stereo_map_fn map)
+/* The rig's map called directly (no pointer): s->map's function. */
+SBL__INLINE int sbl__stereo_map(const sbl__stereo_rp *s, int back, int ix, int iy, double px,
+                                double py, double *ox, double *oy, double *oz)
 {
-    const int sw = s->source->color.width, sh = s->source->color.height;
-    const int fallback = !s->d.reproject.no_fallback, ch = s->src.color.ch;
+    switch (s->d.rig) {
+    case SBL_RIG_PARALLEL: return sbl__stereo_map_parallel(s, back, ix, iy, px, py, ox, oy, oz);
+    case SBL_RIG_DISPARITY: return sbl__stereo_map_disparity(s, back, ix, iy, px, py, ox, oy, oz);
+    default: return sbl__stereo_map_cameras(s, back, ix, iy, px, py, ox, oy, oz);
+    }
+}
+
+/* The stereo row gather's hooks (sbl__row_gather_blocks): sbl__stereo_rp_pixel with the
+   plan in lanes where the rig allows (mode 1 parallel, 2 two cameras, 3 disparity map),
+   the taps in lanes, the back-check after them (in lanes for the two-camera rigs). */
+static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    const int sw = s->source->color.width, sh = s->source->color.height, y = b->y;
+    /* target depth packed and of the source's size, no target normals / ids, an
+       interior row (the depth slack reads both neighbours) */
+    const int geo = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw &&
+                    s->geo.height == sh && y >= 1 && y + 1 < sh;
+    const int depth = s->geo.depth.p && s->geo.depth.step == 1;
+    (void)r;
+    if (s->d.rig == SBL_RIG_PARALLEL)
+        /* without a disparity offset the float lane plan is exact for m = +-f b / z */
+        b->mode = geo && depth && s->offset == 0.0 && sw <= 32768 && sh <= 32768 ? 1 : 0;
+    else if (s->d.rig == SBL_RIG_DISPARITY)
+        /* (a target without depth has no slack and no depth test) */
+        b->mode = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw && s->geo.height == sh &&
+                          sw <= 32768 && sh <= 32768 &&
+                          (!s->geo.depth.p || (depth && y >= 1 && y + 1 < sh))
+                      ? 3
+                      : 0;
+    else
+        b->mode = geo && depth ? 2 : 0;
+    return 0;
+}
+
+static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    const int x = b->x0 + i, y = b->y;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    int l, bits;
+    if (!b->mode || x < 1 || x + SBL__VW >= s->source->color.width) return -1;
+    if (b->mode == 2) {
+        sbl__stereo_cam_plan(s, &b->p, i, x, y, b->psx + i, b->psy + i);
+        for (l = 0; l < SBL__VW; ++l) b->snapped[i + l] = 0;
+        return 0;
+    }
+    if (b->mode == 3) {
+        /* sbl__stereo_map_disparity in lanes: (x, y) + 0.5 + dir (d_x, d_y) */
+        const sbl__flat *dm = &s->disparity[0];
+        const float *dp = SBL__AT(*dm, x, y);
+        float dxs[SBL__VW], dys[SBL__VW];
+        int idx[SBL__VW];
+        sbl__v z = zero, slack = zero, mx, my;
+        sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+                                     : sbl__gt(one, zero);
+        for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, dm->step);
+        mx = sbl__gatheri(dp, idx);
+        my = dm->ch > 1 ? sbl__gatheri(dp + 1, idx) : zero;
+        keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+        sbl__store(dxs, mx);
+        sbl__store(dys, my);
+        if (s->dir[0] < 0.0) { mx = sbl__sub(zero, mx); my = sbl__sub(zero, my); }
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, mx, my);
+        for (l = 0; l < SBL__VW; ++l) {
+            b->psx[i + l] = x + l + 0.5 + s->dir[0] * SBL__CAST(double, dxs[l]);
+            b->psy[i + l] = y + 0.5 + s->dir[0] * SBL__CAST(double, dys[l]);
+            b->snapped[i + l] = 0;
+        }
+        return bits;
+    }
+    {   /* the parallel rig in lanes: m = dir f b / z */
+        float fbz[SBL__VW];
+        sbl__v z, slack, m;
+        sbl__m keep = sbl__lanes_want(&s->geo.depth, x, y, &z, &slack);
+        int far;
+        m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
+        keep = sbl__mandnot(keep, sbl__nonfinite(m));
+        sbl__store(fbz, m);
+        if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
+        /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the other
+           eye is read at the same pixel (see SBL__FAR_PX) */
+        far = s->tiles &&
+              !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
+              sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero);
+        for (l = 0; l < SBL__VW; ++l) {
+            b->psx[i + l] = x + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
+            b->psy[i + l] = y + 0.5;
+            b->snapped[i + l] = SBL__CAST(unsigned char, far);
+        }
+        return bits;
+    }
+}
+
+static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    const int sw = s->source->color.width, sh = s->source->color.height, x = b->x0 + i, y = b->y;
+    sbl__tap_want want;
+    double sx, sy, sz;
+    float z;
+    sbl__tap_plan_reset(&b->p, i);
+    b->psx[i] = b->psy[i] = 0.0;
+    b->snapped[i] = 0;
+    if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) return;
+    if (!sbl__stereo_map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) return;
+    if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh))) return;
+    want.depth = SBL__CAST(float, sz);
+    b->psx[i] = sx;
+    b->psy[i] = sy;
+    sbl__tap_plan_set(&s->src, &b->p, i, &want, sx, sy);
+}
+
+/* After the taps: the entries handed back, and far lanes whose one tap failed, go to
+   the pixel gather (the footprint's other tap may carry them); the back-check of the
+   others, as
+   sbl__stereo_rp_pixel does it: from the nearest source pixel back. `rig` is a
+   constant where this is inlined (the map is called directly). */
+SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r, sbl__block *b,
+                                       sbl_stereo_rig rig)
+{
     const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
+    const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
     const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
-    /* the plan in lanes: parallel rig without a disparity offset (the lane plan's
-       positions are exact for m = +-f b / z), target depth packed and of the source's
-       size, no target normals / ids, an interior row, images up to 2^15 */
-    const int geo_lanes = s->geo.depth.p && s->geo.depth.step == 1 && !s->geo.normals.p &&
-                          !s->geo.ids.p && s->geo.width == sw && s->geo.height == sh &&
-                          y >= 1 && y + 1 < sh;
-    const int lanes = map == sbl__stereo_map_parallel && s->offset == 0.0 && geo_lanes &&
-                      sw <= 32768 && sh <= 32768;
-    /* the two-camera rigs: the maps in double lanes (sbl__cam_lanes) */
-    const int cam_lanes = map == sbl__stereo_map_cameras && geo_lanes;
-    /* the disparity rig: m = dir d read from the map, in float lanes as the parallel rig
-       (the target may have no depth: then no slack, and no depth test either) */
-    const int disp_lanes = map == sbl__stereo_map_disparity && !s->geo.normals.p &&
-                           !s->geo.ids.p && s->geo.width == sw && s->geo.height == sh &&
-                           sw <= 32768 && sh <= 32768 &&
-                           (!s->geo.depth.p || (s->geo.depth.step == 1 && y >= 1 && y + 1 < sh));
-    int didx[SBL__VW];
-    const int sky = 0;
-    sbl__tap_plan p;
-    double psx[SBL__BLOCK], psy[SBL__BLOCK];
-    unsigned char snapped[SBL__BLOCK];
-    int x0, i, back[SBL__BLOCK], nback;
-    for (i = 0; i < SBL__VW; ++i) didx[i] = disp_lanes ? i * SBL__CAST(int, s->disparity[0].step) : 0;
-    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
-        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
-        if (n < SBL__VW) {
-            for (i = 0; i < n; ++i) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x0 + i, sbl__stereo_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
-            }
+    int i, back[SBL__BLOCK], nback = 0;
+    for (i = 0; i < b->n; ++i) {
+        const int x = b->x0 + i;
+        if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
             continue;
         }
-        for (i = 0; i < n;) {
-            int bits = 1, l = 1;
-            if (cam_lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
-                sbl__stereo_cam_plan(s, &p, i, x0 + i, y, psx + i, psy + i);
-                for (l = 0; l < SBL__VW; ++l) snapped[i + l] = 0;
-                bits = 0;
-            } else if (disp_lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
-                /* sbl__stereo_map_disparity in lanes: (x, y) + 0.5 + dir (d_x, d_y) */
-                const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
-                const sbl__flat *dm = &s->disparity[0];
-                const float *dp = SBL__AT(*dm, x0 + i, y);
-                float dxs[SBL__VW], dys[SBL__VW];
-                sbl__v z = zero, slack = zero, mx, my;
-                sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x0 + i, y, &z, &slack)
-                                             : sbl__gt(one, zero);
-                mx = sbl__gatheri(dp, didx);
-                my = dm->ch > 1 ? sbl__gatheri(dp + 1, didx) : zero;
-                keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
-                sbl__store(dxs, mx);
-                sbl__store(dys, my);
-                if (s->dir[0] < 0.0) { mx = sbl__sub(zero, mx); my = sbl__sub(zero, my); }
-                bits = sbl__plan_lanes(&s->src, &p, i, x0 + i, y, keep, z, slack, mx, my);
-                for (l = 0; l < SBL__VW; ++l) {
-                    psx[i + l] = x0 + i + l + 0.5 + s->dir[0] * SBL__CAST(double, dxs[l]);
-                    psy[i + l] = y + 0.5 + s->dir[0] * SBL__CAST(double, dys[l]);
-                    snapped[i + l] = 0;
-                }
-                l = SBL__VW;
-            } else if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
-                /* the parallel rig in lanes: m = dir f b / z */
-                const sbl__v zero = sbl__set1(0.0f);
-                float fbz[SBL__VW];
-                sbl__v z, slack, m;
-                sbl__m keep = sbl__lanes_want(&s->geo.depth, x0 + i, y, &z, &slack);
-                int far;
-                m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
-                keep = sbl__mandnot(keep, sbl__nonfinite(m));
-                sbl__store(fbz, m);
-                if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
-                /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the
-                   other eye is read at the same pixel (see SBL__FAR_PX) */
-                far = s->tiles &&
-                      !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
-                      sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
-                bits = sbl__plan_lanes(&s->src, &p, i, x0 + i, y, keep, z, slack, far ? zero : m, zero);
-                for (l = 0; l < SBL__VW; ++l) {
-                    psx[i + l] = x0 + i + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
-                    psy[i + l] = y + 0.5;
-                    snapped[i + l] = SBL__CAST(unsigned char, far);
-                }
-                l = SBL__VW;
+        if (!back_check || !(r->v[x] > 0.0f)) continue;
+        if (cams) {
+            back[nback++] = i; /* in lanes below */
+        } else {
+            const int ix = SBL__CAST(int, floor(b->psx[i])), iy = SBL__CAST(int, floor(b->psy[i]));
+            double bx, by, bz, ex, ey;
+            int ok = rig == SBL_RIG_PARALLEL
+                         ? sbl__stereo_map_parallel(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz)
+                         : sbl__stereo_map_disparity(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz);
+            if (ok) {
+                ex = bx - (x + 0.5);
+                ey = by - (b->y + 0.5);
+                ok = ex * ex + ey * ey <= tol * tol;
             }
-            for (; bits; ++i, --l, bits >>= 1) {
-                const int x = x0 + i;
-                sbl__tap_want want;
-                double sx, sy, sz;
-                float z;
-                if (!(bits & 1)) continue;
-                sbl__tap_plan_reset(&p, i);
-                psx[i] = psy[i] = 0.0;
-                snapped[i] = 0;
-                if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
-                if (!map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
-                if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh))) continue;
-                want.depth = SBL__CAST(float, sz);
-                psx[i] = sx;
-                psy[i] = sy;
-                sbl__tap_plan_set(&s->src, &p, i, &want, sx, sy);
-            }
-            i += l;
+            if (!ok) sbl__ring_put(r, x, 0.0f, NULL, s->src.color.ch);
         }
-        sbl__row_taps(&s->src, &p, n, fallback, r, x0, sky);
-        nback = 0;
-        for (i = 0; i < n; ++i) {
-            const int x = x0 + i;
-            /* a far lane whose one tap failed: the pixel gather (the footprint's other
-               tap may carry it) */
-            if (snapped[i] && p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) p.redo[i] = 1;
-            if (p.redo[i]) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, y, tmp), tmp, ch);
-            } else if (back_check && r->v[x] > 0.0f && map == sbl__stereo_map_cameras) {
-                back[nback++] = i; /* in lanes below */
-            } else if (back_check && r->v[x] > 0.0f) {
-                /* as sbl__stereo_rp_pixel: from the nearest source pixel back */
-                double bx, by, bz, ex, ey;
-                int ok = map(s, 1, SBL__CAST(int, floor(psx[i])), SBL__CAST(int, floor(psy[i])), psx[i], psy[i], &bx,
-                             &by, &bz);
-                if (ok) {
-                    ex = bx - (x + 0.5);
-                    ey = by - (y + 0.5);
-                    ok = ex * ex + ey * ey <= tol * tol;
-                }
-                if (!ok) sbl__ring_put(r, x, 0.0f, NULL, ch);
-            }
-        }
-        if (nback) sbl__stereo_cam_back(s, r, y, x0, psx, psy, back, nback, tol);
     }
+    if (nback) sbl__stereo_cam_back(s, r, b->y, b->x0, b->psx, b->psy, back, nback, tol);
+}
+
+static void sbl__stereo_block_after(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    if (s->d.rig == SBL_RIG_PARALLEL) sbl__stereo_after_rig(s, r, b, SBL_RIG_PARALLEL);
+    else if (s->d.rig == SBL_RIG_DISPARITY) sbl__stereo_after_rig(s, r, b, SBL_RIG_DISPARITY);
+    else sbl__stereo_after_rig(s, r, b, SBL_RIG_MATRICES);
 }
 
 /* The stereo reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa, int xb)
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
-    if (s->map == sbl__stereo_map_parallel)
-        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_parallel);
-    else if (s->map == sbl__stereo_map_disparity)
-        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_disparity);
-    else
-        sbl__stereo_rp_row_map(s, r, y, xa, xb, s->map);
+    sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
+                           sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
+                           sbl__stereo_plan_one, sbl__stereo_block_after);
 }
 #endif
 
