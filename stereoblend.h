@@ -2652,6 +2652,7 @@ typedef struct sbl__kernel {
        bias energy, and the prior variance of the bias pooled from the blocks */
     double *pool_m2, *pool_se2; /* per column: a block's sum_c mean_c^2, sum_c se_c^2 (< 0: none) */
     float *pool_r;
+    float *pool_col;         /* the lanes' planes of one chunk (SBL__POOL_PLANES)   */
     int pool_row;            /* row pool_r holds (-1: none: the ratio reads as 0)  */
 } sbl__kernel;
 
@@ -2668,10 +2669,16 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
 #define SBL__CHUNK 128
 #define SBL__CHUNK_COLS 144
 
+/* sbl__row_pool's lanes: pixels per chunk, and floats per plane (the chunk and the
+   SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
+#define SBL__POOL_CHUNK 128
+#define SBL__POOL_COLS 144
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 3)
+
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
    lane kernel's column sums: SBL__COL_PLANES * channels + 1 planes of SBL__CHUNK_COLS
-   floats */
+   floats; the pooled estimator's lanes: SBL__POOL_PLANES(channels) of SBL__POOL_COLS */
 static size_t sbl__plane_floats(int width)
 {
     return (SBL__CAST(size_t, width) + 15u) & ~SBL__CAST(size_t, 15u);
@@ -2685,7 +2692,8 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     /* + 5 planes: the pooled estimator's per-column block statistics (two double
        planes) and its ratio */
     return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2 + 5) * pf * sizeof(float) + 5 * pf + 64 +
-           SBL__CAST(size_t, SBL__COL_PLANES * channels + 1) * SBL__CHUNK_COLS * sizeof(float);
+           SBL__CAST(size_t, SBL__COL_PLANES * channels + 1) * SBL__CHUNK_COLS * sizeof(float) +
+           SBL__CAST(size_t, SBL__POOL_PLANES(channels)) * SBL__POOL_COLS * sizeof(float);
 }
 
 static void *sbl__align64(void *p)
@@ -2716,6 +2724,7 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->pool_row = -1;
     for (c = 0; c < k->ch; ++c) { k->col[c] = p; p += SBL__COL_PLANES * SBL__CHUNK_COLS; }
     k->col_n = p; p += SBL__CHUNK_COLS;
+    k->pool_col = p; p += SBL__POOL_PLANES(k->ch) * SBL__POOL_COLS;
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
         unsigned char *b = SBL__PCAST(unsigned char *, p);
         for (r = 0; r < 3; ++r) { k->ring[r].unsafe = b; b += pf; }
@@ -3738,7 +3747,7 @@ static void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R
     }
 }
 
-/* Pooled estimator, once per row before its pixels: the prior bias-to-noise ratio
+/* Pooled estimator, the double reference of sbl__row_pool: the prior bias-to-noise ratio
    r = tau^2 / se^2 at each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md
    section 3). Each 3x3 block of paired differences d = x* - y (pixels with a valid x*
    and finite values, at least 3) gives its squared mean m2 = sum_c mean_c^2 and the
@@ -3748,8 +3757,11 @@ static void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R
    the threshold, in units of the noise of their means. A ratio: independent of the
    scale of the values (HDR). Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image). Scalar, in double, in a fixed order:
-   the same value whatever span or vector width computes the row. */
-static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
+   the same value whatever span computes the row. The reference of the lanes
+   (sbl__row_pool), and what computes the pixels they cannot: rows narrower than a
+   vector can be made to fit, and pixels whose reach holds an unsafe value (the float
+   sums would overflow or underflow). */
+static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
 {
     const int ch = k->ch, w = k->w;
     int za = xa - SBL__POOL_STEP * SBL__POOL_BLOCKS, zb = xb + SBL__POOL_STEP * SBL__POOL_BLOCKS;
@@ -3797,7 +3809,6 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
         if (r > SBL__POOL_RATIO_CAP) r = SBL__POOL_RATIO_CAP;
         k->pool_r[x] = r > 0.0 ? SBL__CAST(float, r) : 0.0f;
     }
-    k->pool_row = R[1]->row;
 }
 
 /* The pooled prior bias-to-noise ratio at pixel x of row y (0 if not computed). */
@@ -4033,6 +4044,292 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 {
     st->pool_r = (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y)
                    ? sbl__load(k->pool_r + x) : sbl__set1(0.0f);
+}
+
+/* ---- the pooled estimator's prepass in lanes (sbl__row_pool) -----------------
+   The same statistic as sbl__row_pool_ref, in float, a chunk of SBL__POOL_CHUNK pixels
+   at a time through three passes over planes of k->pool_col: column sums, blocks,
+   ratios. Precision as the lane kernel's moments: every one-pass sum is taken about a
+   sample of the set summed. A column sums v (d - t) and its square about t, its first
+   valid pair's d (the top pair's own term is then 0 and left out); a block moves its
+   three columns to one shift s, its centre column's t (or, if that column has no pair,
+   its left or else its right one's: a shift taken from an empty column would be an
+   unrelated value), with sum (e + D)^2 = sum e^2 + D (2 sum e + n D). Then
+   n (mean - s)^2 <= n^2 var and 1e4 + noise keeps its variance. Lanes are independent
+   and each column, block and ratio is computed by the same operations whatever the
+   chunk, span or vector width. Values outside the lane range (unsafe, flagged at load:
+   non-finite, extreme or denormal) would overflow or underflow the float energies:
+   every pixel with an unsafe value within SBL__POOL_REACH columns of it, on the three
+   rows, is computed by sbl__row_pool_ref instead; so are rows narrower than 18 (the
+   lane kernel's rule), on every build. */
+
+/* the planes of k->pool_col: per channel c the column sums A (sum v (d - t)), B (sum of
+   its square) and T (t); then N (pairs per column), and per block centre M2 and SE2
+   (sum_c mean_c^2, sum_c var_c / n; 0 for no block) */
+#define SBL__POOL_A(c) (3 * (c))
+#define SBL__POOL_B(c) (3 * (c) + 1)
+#define SBL__POOL_T(c) (3 * (c) + 2)
+#define SBL__POOL_N(ch) (3 * (ch))
+#define SBL__POOL_M2(ch) (3 * (ch) + 1)
+#define SBL__POOL_SE2(ch) (3 * (ch) + 2)
+#define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
+
+/* The ring rows that exist (the image's first and last rows have fewer than three) */
+typedef struct sbl__pool_rows {
+    const float *y[3][4], *x[3][4], *v[3];
+    const unsigned char *unsafe[3];
+    int n;
+} sbl__pool_rows;
+
+/* Column sums of columns [ca, cb) (inside the image, cb - ca >= VW) of the np rows P,
+   stored at index column - base; the last vector overlaps the one before. */
+SBL__INLINE void sbl__pool_lanes_columns(sbl__kernel *k, const sbl__pool_rows *P, const int np,
+                                         const int ch, int ca, int cb, int base)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    float *pn = SBL__POOL_PLANE(k, SBL__POOL_N(ch));
+    int x = ca, c, j;
+    for (;;) {
+        const int i = x - base;
+        sbl__v v[3], n;
+        sbl__m ok[3];
+        for (j = 0; j < np; ++j) {
+            v[j] = sbl__load(P->v[j] + x);
+            ok[j] = sbl__gt(v[j], zero);
+        }
+        n = v[0];
+        for (j = 1; j < np; ++j) n = sbl__add(n, v[j]);
+        sbl__store(pn + i, n);
+        for (c = 0; c < ch; ++c) {
+            sbl__v d[3], t, a = zero, b = zero;
+            for (j = 0; j < np; ++j) d[j] = sbl__sub(sbl__load(P->x[j][c] + x), sbl__load(P->y[j][c] + x));
+            t = d[np - 1];
+            for (j = np - 2; j >= 0; --j) t = sbl__sel(ok[j], d[j], t);
+            if (np > 1) {
+                const sbl__v e = sbl__mul(v[1], sbl__sub(d[1], t));
+                a = e;
+                b = sbl__mul(e, e);
+            }
+            if (np > 2) {
+                const sbl__v e = sbl__mul(v[2], sbl__sub(d[2], t));
+                a = sbl__add(a, e);
+                b = sbl__add(b, sbl__mul(e, e));
+            }
+            sbl__store(SBL__POOL_PLANE(k, SBL__POOL_A(c)) + i, a);
+            sbl__store(SBL__POOL_PLANE(k, SBL__POOL_B(c)) + i, b);
+            sbl__store(SBL__POOL_PLANE(k, SBL__POOL_T(c)) + i, t);
+        }
+        if (x + SBL__VW >= cb) break;
+        x += SBL__VW;
+        if (x + SBL__VW > cb) x = cb - SBL__VW;
+    }
+}
+
+/* A column outside the image: no pairs, sums 0 (at index column - base). */
+static void sbl__pool_column_zero(sbl__kernel *k, int ch, int i)
+{
+    int c;
+    SBL__POOL_PLANE(k, SBL__POOL_N(ch))[i] = 0.0f;
+    for (c = 0; c < ch; ++c)
+        SBL__POOL_PLANE(k, SBL__POOL_A(c))[i] = SBL__POOL_PLANE(k, SBL__POOL_B(c))[i] =
+            SBL__POOL_PLANE(k, SBL__POOL_T(c))[i] = 0.0f;
+}
+
+/* One column of a block moved from its own shift t to the block's s: D = t - s,
+   sum (e + D) = a + n D, sum (e + D)^2 = b + D (a + (a + n D)) */
+#define SBL__POOL_SHIFT(A, B, D, N, OA, OB) \
+    do { \
+        (OA) = sbl__add((A), sbl__mul((D), (N))); \
+        (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
+    } while (0)
+
+/* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
+   sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs. */
+SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const int ch, int ba, int bb, int base)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
+    const float *pn = SBL__POOL_PLANE(k, SBL__POOL_N(ch));
+    float *pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
+    int x = ba, c;
+    for (;;) {
+        const int i = x - base;
+        const sbl__v nl = sbl__load(pn + i - 1), nc = sbl__load(pn + i), nr = sbl__load(pn + i + 1);
+        const sbl__v n = sbl__add(sbl__add(nl, nc), nr);
+        const sbl__m has_c = sbl__gt(nc, zero), has_l = sbl__gt(nl, zero), valid = sbl__gt(n, min_pairs);
+        const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
+        const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
+        sbl__v m2 = zero, se2 = zero;
+        for (c = 0; c < ch; ++c) {
+            const float *pa = SBL__POOL_PLANE(k, SBL__POOL_A(c)) + i;
+            const float *pb = SBL__POOL_PLANE(k, SBL__POOL_B(c)) + i;
+            const float *pt = SBL__POOL_PLANE(k, SBL__POOL_T(c)) + i;
+            const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
+            const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
+            sbl__v al, bl, ac, bc, ar, br, a, b, q, mean, var;
+            SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
+            SBL__POOL_SHIFT(sbl__load(pa), sbl__load(pb), sbl__sub(tc, s), nc, ac, bc);
+            SBL__POOL_SHIFT(sbl__load(pa + 1), sbl__load(pb + 1), sbl__sub(tr, s), nr, ar, br);
+            a = sbl__add(sbl__add(al, ac), ar);
+            b = sbl__add(sbl__add(bl, bc), br);
+            q = sbl__mul(a, inv_n);
+            mean = sbl__add(s, q);
+            /* sample variance (sum e^2 - n mean_e^2) / (n - 1), over n for its mean */
+            var = sbl__mul(sbl__max(sbl__sub(b, sbl__mul(a, q)), zero), inv_n1);
+            if (c == 0) {
+                m2 = sbl__mul(mean, mean);
+                se2 = sbl__mul(var, inv_n);
+            } else {
+                m2 = sbl__add(m2, sbl__mul(mean, mean));
+                se2 = sbl__add(se2, sbl__mul(var, inv_n));
+            }
+        }
+        sbl__store(pm + i, sbl__sel(valid, m2, zero));
+        sbl__store(ps + i, sbl__sel(valid, se2, zero));
+        if (x + SBL__VW >= bb) break;
+        x += SBL__VW;
+        if (x + SBL__VW > bb) x = bb - SBL__VW;
+    }
+}
+#undef SBL__POOL_SHIFT
+
+/* Ratios of pixels [xa, xb) (xb - xa >= VW) from the blocks at index column - base, as
+   sbl__row_pool_ref: pooled squared mean over pooled squared standard error, less the
+   threshold, in [0, cap]; no noise at all and a mean: the cap. */
+SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int xb, int base)
+{
+    const sbl__v zero = sbl__set1(0.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP));
+    const sbl__v thr = sbl__set1(SBL__CAST(float, SBL_POOLED_BLOCK_SE2));
+    const float *pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
+    int x = xa, b;
+    for (;;) {
+        const int i = x - base - SBL__POOL_STEP * SBL__POOL_BLOCKS;
+        sbl__v sm2 = sbl__load(pm + i), sse2 = sbl__load(ps + i), r;
+        for (b = 1; b <= 2 * SBL__POOL_BLOCKS; ++b) {
+            sm2 = sbl__add(sm2, sbl__load(pm + i + SBL__POOL_STEP * b));
+            sse2 = sbl__add(sse2, sbl__load(ps + i + SBL__POOL_STEP * b));
+        }
+        r = sbl__sub(sbl__div(sm2, sbl__max(sse2, tiny)), thr);
+        r = sbl__sel(sbl__gt(sse2, zero), r, sbl__sel(sbl__gt(sm2, zero), cap, zero));
+        sbl__store(k->pool_r + x, sbl__max(sbl__min(r, cap), zero));
+        if (x + SBL__VW >= xb) break;
+        x += SBL__VW;
+        if (x + SBL__VW > xb) x = xb - SBL__VW;
+    }
+}
+
+/* 1 if column x of any of the rows holds an unsafe value. */
+static int sbl__pool_column_unsafe(const sbl__pool_rows *P, int x)
+{
+    int j, u = 0;
+    for (j = 0; j < P->n; ++j) u |= P->unsafe[j][x];
+    return u;
+}
+
+/* The first run [*ra, *rb) of pixels of [xa, xb) each with an unsafe value within
+   SBL__POOL_REACH columns of it (the columns clamped to [0, w)); 0 if there is none. */
+static int sbl__pool_unsafe_run(const sbl__pool_rows *P, int w, int xa, int xb, int *ra, int *rb)
+{
+    int c = xa - SBL__POOL_REACH > 0 ? xa - SBL__POOL_REACH : 0;
+    const int ce = xb + SBL__POOL_REACH < w ? xb + SBL__POOL_REACH : w;
+    int b;
+    for (; c + 8 <= ce; c += 8) { /* eight columns at a time while they are clean */
+        uint64_t u = 0, t;
+        int j;
+        for (j = 0; j < P->n; ++j) {
+            memcpy(&t, P->unsafe[j] + c, 8);
+            u |= t;
+        }
+        if (u) break;
+    }
+    while (c < ce && !sbl__pool_column_unsafe(P, c)) ++c;
+    if (c >= ce) return 0;
+    *ra = c - SBL__POOL_REACH > xa ? c - SBL__POOL_REACH : xa;
+    b = c + SBL__POOL_REACH + 1 < xb ? c + SBL__POOL_REACH + 1 : xb;
+    /* unsafe columns whose pixels touch the run extend it */
+    for (++c; c < ce && c - SBL__POOL_REACH <= b; ++c)
+        if (sbl__pool_column_unsafe(P, c)) b = c + SBL__POOL_REACH + 1 < xb ? c + SBL__POOL_REACH + 1 : xb;
+    *rb = b;
+    return 1;
+}
+
+/* sbl__row_pool on a row of at least 18 columns, with np rows and ch channels constant. */
+SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const *R,
+                                     const sbl__pool_rows *P, const int np, const int ch, int xa,
+                                     int xb, int unsafe)
+{
+    const int w = k->w, reach = SBL__POOL_REACH, span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
+    int x = xa;
+    while (x < xb) {
+        int e = xb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : xb, base, a, b, covered = 0;
+        if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
+        base = x - reach;
+        /* a chunk whose every pixel goes to the reference is not computed in lanes */
+        if (unsafe && sbl__pool_unsafe_run(P, w, x, e, &a, &b)) covered = a == x && b == e;
+        if (!covered) {
+            const int ca = x - reach > 0 ? x - reach : 0, cb = e + reach < w ? e + reach : w;
+            const int ba = x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
+            int c;
+            sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
+            if (x - reach < 0) sbl__pool_column_zero(k, ch, -1 - base);
+            if (e + reach > w) sbl__pool_column_zero(k, ch, w - base);
+            sbl__pool_lanes_blocks(k, ch, ba, bb, base);
+            for (c = x - span; c < 0; ++c)
+                SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
+            for (c = w; c < e + span; ++c)
+                SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
+            sbl__pool_lanes_ratio(k, ch, x, e, base);
+        }
+        if (unsafe) {
+            int p = x;
+            while (p < e && sbl__pool_unsafe_run(P, w, p, e, &a, &b)) {
+                sbl__row_pool_ref(k, R, a, b);
+                p = b;
+            }
+        }
+        x = e;
+    }
+}
+
+/* Pooled estimator, once per row before its pixels: the prior bias-to-noise ratio r at
+   each pixel of [xa, xb) of row R[1]->row, as sbl__row_pool_ref (which see) computes it,
+   in lanes where it can (above). Reads the ring's columns [xa - SBL__POOL_REACH,
+   xb + SBL__POOL_REACH) (clamped to the image); on a row of at least 18 columns,
+   xb - xa >= 16 (sbl__kernel_run_span widens its span so). */
+static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
+{
+    sbl__pool_rows P;
+    int j, c, unsafe = 0;
+    k->pool_row = R[1]->row;
+    if (xa >= xb) return;
+    if (k->w - 2 < 16 || xb - xa < 16) { /* the second: not reached (see above) */
+        sbl__row_pool_ref(k, R, xa, xb);
+        return;
+    }
+    P.n = 0;
+    for (j = 0; j < 3; ++j) {
+        if (!R[j]) continue;
+        for (c = 0; c < k->ch; ++c) { P.y[P.n][c] = R[j]->y[c]; P.x[P.n][c] = R[j]->x[c]; }
+        P.v[P.n] = R[j]->v;
+        P.unsafe[P.n] = R[j]->unsafe;
+        unsafe |= R[j]->unsafe_count > 0;
+        ++P.n;
+    }
+#define SBL__POOL_CASE(np) \
+    switch (k->ch) { \
+    case 1: sbl__row_pool_lanes(k, R, &P, np, 1, xa, xb, unsafe); break; \
+    case 2: sbl__row_pool_lanes(k, R, &P, np, 2, xa, xb, unsafe); break; \
+    case 3: sbl__row_pool_lanes(k, R, &P, np, 3, xa, xb, unsafe); break; \
+    default: sbl__row_pool_lanes(k, R, &P, np, 4, xa, xb, unsafe); break; \
+    }
+    if (P.n == 3) {
+        SBL__POOL_CASE(3)
+    } else if (P.n == 2) {
+        SBL__POOL_CASE(2)
+    } else {
+        SBL__POOL_CASE(1)
+    }
+#undef SBL__POOL_CASE
 }
 
 /* Firefly limit of the own sample, as sbl__firefly_limit. */
