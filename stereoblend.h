@@ -4082,46 +4082,69 @@ typedef struct sbl__pool_rows {
 } sbl__pool_rows;
 
 /* Column sums of columns [ca, cb) (inside the image, cb - ca >= VW) of the np rows P,
-   stored at index column - base; the last vector overlaps the one before. */
+   stored at index column - base; the last vector overlaps the one before. One channel
+   at a time (a small loop body: the planes stay in registers). */
 SBL__INLINE void sbl__pool_lanes_columns(sbl__kernel *k, const sbl__pool_rows *P, const int np,
                                          const int ch, int ca, int cb, int base)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    float *pn = SBL__POOL_PLANE(k, SBL__POOL_N(ch));
-    int x = ca, c, j;
-    for (;;) {
-        const int i = x - base;
-        sbl__v v[3], n;
-        sbl__m ok[3];
-        for (j = 0; j < np; ++j) {
-            v[j] = sbl__load(P->v[j] + x);
-            ok[j] = sbl__gt(v[j], zero);
-        }
-        n = v[0];
-        for (j = 1; j < np; ++j) n = sbl__add(n, v[j]);
-        sbl__store(pn + i, n);
-        for (c = 0; c < ch; ++c) {
-            sbl__v d[3], t, a = zero, b = zero;
-            for (j = 0; j < np; ++j) d[j] = sbl__sub(sbl__load(P->x[j][c] + x), sbl__load(P->y[j][c] + x));
-            t = d[np - 1];
-            for (j = np - 2; j >= 0; --j) t = sbl__sel(ok[j], d[j], t);
-            if (np > 1) {
-                const sbl__v e = sbl__mul(v[1], sbl__sub(d[1], t));
-                a = e;
-                b = sbl__mul(e, e);
-            }
-            if (np > 2) {
-                const sbl__v e = sbl__mul(v[2], sbl__sub(d[2], t));
-                a = sbl__add(a, e);
-                b = sbl__add(b, sbl__mul(e, e));
-            }
-            sbl__store(SBL__POOL_PLANE(k, SBL__POOL_A(c)) + i, a);
-            sbl__store(SBL__POOL_PLANE(k, SBL__POOL_B(c)) + i, b);
-            sbl__store(SBL__POOL_PLANE(k, SBL__POOL_T(c)) + i, t);
-        }
+    float *const pool = k->pool_col;
+    int x, c, j;
+    for (x = ca;;) {
+        sbl__v n = sbl__load(P->v[0] + x);
+        for (j = 1; j < np; ++j) n = sbl__add(n, sbl__load(P->v[j] + x));
+        sbl__store(pool + SBL__POOL_N(ch) * SBL__POOL_COLS + (x - base), n);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
+    }
+    for (c = 0; c < ch; ++c) {
+        float *const pa = pool + SBL__POOL_A(c) * SBL__POOL_COLS;
+        float *const pb = pool + SBL__POOL_B(c) * SBL__POOL_COLS;
+        float *const pt = pool + SBL__POOL_T(c) * SBL__POOL_COLS;
+        if (np == 3) {
+            const float *const v0 = P->v[0], *const v1 = P->v[1], *const v2 = P->v[2];
+            const float *const y0 = P->y[0][c], *const y1 = P->y[1][c], *const y2 = P->y[2][c];
+            const float *const x0 = P->x[0][c], *const x1 = P->x[1][c], *const x2 = P->x[2][c];
+            for (x = ca;;) {
+                const sbl__v w1 = sbl__load(v1 + x), w2 = sbl__load(v2 + x);
+                const sbl__v d0 = sbl__sub(sbl__load(x0 + x), sbl__load(y0 + x)),
+                             d1 = sbl__sub(sbl__load(x1 + x), sbl__load(y1 + x)),
+                             d2 = sbl__sub(sbl__load(x2 + x), sbl__load(y2 + x));
+                /* t: the first valid pair's d; the top pair's own term is then 0 */
+                const sbl__v t = sbl__sel(sbl__gt(sbl__load(v0 + x), zero), d0,
+                                          sbl__sel(sbl__gt(w1, zero), d1, d2));
+                const sbl__v e1 = sbl__mul(w1, sbl__sub(d1, t)), e2 = sbl__mul(w2, sbl__sub(d2, t));
+                sbl__store(pa + (x - base), sbl__add(e1, e2));
+                sbl__store(pb + (x - base), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
+                sbl__store(pt + (x - base), t);
+                if (x + SBL__VW >= cb) break;
+                x += SBL__VW;
+                if (x + SBL__VW > cb) x = cb - SBL__VW;
+            }
+        } else {
+            /* the image's first or last row (or a one-row image): the same, over np rows */
+            for (x = ca;;) {
+                sbl__v d[3], v[3], t, a = zero, b = zero;
+                for (j = 0; j < np; ++j) {
+                    v[j] = sbl__load(P->v[j] + x);
+                    d[j] = sbl__sub(sbl__load(P->x[j][c] + x), sbl__load(P->y[j][c] + x));
+                }
+                t = d[np - 1];
+                for (j = np - 2; j >= 0; --j) t = sbl__sel(sbl__gt(v[j], zero), d[j], t);
+                for (j = 1; j < np; ++j) {
+                    const sbl__v e = sbl__mul(v[j], sbl__sub(d[j], t));
+                    a = j == 1 ? e : sbl__add(a, e);
+                    b = j == 1 ? sbl__mul(e, e) : sbl__add(b, sbl__mul(e, e));
+                }
+                sbl__store(pa + (x - base), a);
+                sbl__store(pb + (x - base), b);
+                sbl__store(pt + (x - base), t);
+                if (x + SBL__VW >= cb) break;
+                x += SBL__VW;
+                if (x + SBL__VW > cb) x = cb - SBL__VW;
+            }
+        }
     }
 }
 
@@ -4148,8 +4171,9 @@ static void sbl__pool_column_zero(sbl__kernel *k, int ch, int i)
 SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const int ch, int ba, int bb, int base)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
-    const float *pn = SBL__POOL_PLANE(k, SBL__POOL_N(ch));
-    float *pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
+    const float *const pool = k->pool_col;
+    const float *pn = pool + SBL__POOL_N(ch) * SBL__POOL_COLS;
+    float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
     int x = ba, c;
     for (;;) {
         const int i = x - base;
@@ -4160,17 +4184,17 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const int ch, int ba, in
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero;
         for (c = 0; c < ch; ++c) {
-            const float *pa = SBL__POOL_PLANE(k, SBL__POOL_A(c)) + i;
-            const float *pb = SBL__POOL_PLANE(k, SBL__POOL_B(c)) + i;
-            const float *pt = SBL__POOL_PLANE(k, SBL__POOL_T(c)) + i;
+            const float *pa = pool + SBL__POOL_A(c) * SBL__POOL_COLS + i;
+            const float *pb = pool + SBL__POOL_B(c) * SBL__POOL_COLS + i;
+            const float *pt = pool + SBL__POOL_T(c) * SBL__POOL_COLS + i;
             const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
             const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
-            sbl__v al, bl, ac, bc, ar, br, a, b, q, mean, var;
+            sbl__v al, bl, ar, br, a, b, q, mean, var;
+            /* the centre column needs no move: s is its t, or it has no pair (sums 0) */
             SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
-            SBL__POOL_SHIFT(sbl__load(pa), sbl__load(pb), sbl__sub(tc, s), nc, ac, bc);
             SBL__POOL_SHIFT(sbl__load(pa + 1), sbl__load(pb + 1), sbl__sub(tr, s), nr, ar, br);
-            a = sbl__add(sbl__add(al, ac), ar);
-            b = sbl__add(sbl__add(bl, bc), br);
+            a = sbl__add(sbl__add(al, sbl__load(pa)), ar);
+            b = sbl__add(sbl__add(bl, sbl__load(pb)), br);
             q = sbl__mul(a, inv_n);
             mean = sbl__add(s, q);
             /* sample variance (sum e^2 - n mean_e^2) / (n - 1), over n for its mean */
