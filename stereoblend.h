@@ -3333,41 +3333,50 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
     }
 }
 
+/* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
+SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
+                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1)
+{
+    const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
+                 y2 = sbl__load(W->y[2][c] + x);
+    const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
+    const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
+                 d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
+                 d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
+    /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t) is then
+       0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
+    const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
+    const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
+    float *cp = k->col[c] + i;
+    sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
+    sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
+    sbl__store(SBL__COLP(cp, SBL__COL_T), t);
+    sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
+    sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
+    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+        sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
+        sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
+    }
+}
+
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
-   column - ca; the last vector overlaps the one before (same values). */
+   column - ca; the last vector overlaps the one before (same values). The channels are
+   written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). */
 SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
-    int x = ca, c;
+    const int ch = k->ch;
+    int x = ca;
     for (;;) {
         const int i = x - ca;
         const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
                      v2 = sbl__load(W->v[2] + x);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
-        for (c = 0; c < ch; ++c) {
-            const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
-                         y2 = sbl__load(W->y[2][c] + x);
-            const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
-            const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
-                         d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
-                         d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
-            /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t)
-               is then 0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
-            const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
-            const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
-            float *cp = k->col[c] + i;
-            sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
-            sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
-            sbl__store(SBL__COLP(cp, SBL__COL_T), t);
-            sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
-            sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
-            if (clamp) {
-                sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
-                sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
-            }
-        }
+        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1);
+        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1);
+        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1);
+        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
@@ -3382,68 +3391,78 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
+/* Channel c of the moments of pixels [x, x + VW) (index i in the chunk), for
+   sbl__lanes_moments: nl / nr are the side columns' pair counts. */
+SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
+                                            int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
+                                            sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
+    const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
+    const float *y0 = W->y[0][c] + x;
+    const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
+    const sbl__v yc = sbl__load(W->y[1][c] + x);
+    const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
+    const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
+    const float *cp = k->col[c] + i;
+    const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
+    const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
+    sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
+    /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
+              three, al, bl);
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
+              three, ar, br);
+    a8 = sbl__add(sbl__add(al, ar), a2);
+    b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
+    a9 = sbl__add(a8, a1);
+    b9 = sbl__add(b8, sbl__mul(a1, a1));
+    q = sbl__mul(a9, ninth);
+    st->mean[c] = sbl__add(s, q);
+    st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
+    q = sbl__mul(a8, eighth);
+    st->m8[c] = sbl__add(s, q);
+    st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    /* pairs: side columns about the centre column's shift tc */
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
+              sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1),
+              sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) + 1), tc), nr, pr, qr);
+    d = sbl__add(sbl__add(pl, pr), da);
+    dd = sbl__add(sbl__add(ql, qr), db);
+    st->pd[c] = sbl__mul(d, st->inv_cnt);
+    /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
+    st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
+    st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
+    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+        const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
+        st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
+        st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
+    } else {
+        st->lo[c] = st->hi[c] = st->mean[c];
+    }
+    st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
+    st->yc[c] = yc;
+}
+
 /* Moments of pixels [x, x + VW) from the column sums of the chunk starting at column
-   ca (sbl__lanes_columns) and the window rows W. */
+   ca (sbl__lanes_columns) and the window rows W (channels written out, as there). */
 SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *W, int x, int ca,
                                     sbl__lane_stats *st)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), three = sbl__set1(3.0f);
-    const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const int i = x - ca, ch = k->ch;
     const sbl__v nl = sbl__load(k->col_n + i - 1), nr = sbl__load(k->col_n + i + 1);
     const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
     sbl__v inv_cnt1;
-    int c;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
     inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
-    for (c = 0; c < ch; ++c) {
-        const float *y0 = W->y[0][c] + x;
-        const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
-        const sbl__v yc = sbl__load(W->y[1][c] + x);
-        const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
-        const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
-        const float *cp = k->col[c] + i;
-        const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
-        const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
-        sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
-        /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
-                  three, al, bl);
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
-                  three, ar, br);
-        a8 = sbl__add(sbl__add(al, ar), a2);
-        b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
-        a9 = sbl__add(a8, a1);
-        b9 = sbl__add(b8, sbl__mul(a1, a1));
-        q = sbl__mul(a9, ninth);
-        st->mean[c] = sbl__add(s, q);
-        st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
-        q = sbl__mul(a8, eighth);
-        st->m8[c] = sbl__add(s, q);
-        st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
-        /* pairs: side columns about the centre column's shift tc */
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
-                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1),
-                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) + 1), tc), nr, pr, qr);
-        d = sbl__add(sbl__add(pl, pr), da);
-        dd = sbl__add(sbl__add(ql, qr), db);
-        st->pd[c] = sbl__mul(d, st->inv_cnt);
-        /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
-        st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
-        st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
-        if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
-            const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
-            st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
-            st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
-        } else {
-            st->lo[c] = st->hi[c] = st->mean[c];
-        }
-        st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
-        st->yc[c] = yc;
-    }
+    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, st);
+    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, st);
+    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, st);
+    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, st);
 }
 #undef SBL__SIDE
 
