@@ -3603,6 +3603,17 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
 /* Lane kernel over pixels [x0, x1) of an interior row (all nine neighbours exist and
    are lane-safe). Returns the first pixel it did not process (the tail goes to the
    reference path). */
+/* Channel c's terms of the weight's sums: dev2 = (x* - mean)^2, s2 = variance of Y,
+   pd2 = (mean paired difference)^2, pvs = variance of the paired differences. */
+SBL__INLINE void sbl__lanes_group_add(const sbl__lane_stats *st, int c, sbl__v *sums)
+{
+    const sbl__v e = sbl__sub(st->xs[c], st->mean[c]);
+    sums[0] = sbl__add(sums[0], sbl__mul(e, e));
+    sums[1] = sbl__add(sums[1], st->var[c]);
+    sums[2] = sbl__add(sums[2], sbl__mul(st->pd[c], st->pd[c]));
+    sums[3] = sbl__add(sums[3], st->pv[c]);
+}
+
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
 {
@@ -3627,8 +3638,6 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
             sbl__lane_stats st;
             sbl__v a[4], n_x, n_y, n_xc;
             sbl__m valid;
-            const int groups = per_channel ? ch : 1;
-            int g;
             n_x = sbl__load(R[1]->n + x);
             valid = sbl__gt(n_x, zero);
             n_y = nyrow ? sbl__load(nyrow + x) : one;
@@ -3636,18 +3645,21 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
             n_xc = sbl__max(sbl__min(n_x, cap), tiny);
             sbl__lanes_moments(k, &W, x, ca, &st);
             sbl__lanes_rectify(k, &st);
-            for (g = 0; g < groups; ++g) {
-                sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
-                int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
-                for (c = c0; c < c1; ++c) {
-                    sbl__v e = sbl__sub(st.xs[c], st.mean[c]);
-                    dev2 = sbl__add(dev2, sbl__mul(e, e));
-                    s2 = sbl__add(s2, st.var[c]);
-                    pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
-                    pvs = sbl__add(pvs, st.pv[c]);
+            if (per_channel) {
+                for (c = 0; c < ch; ++c) {
+                    sbl__v sums[4] = {zero, zero, zero, zero};
+                    sbl__lanes_group_add(&st, c, sums);
+                    a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
                 }
-                w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
-                for (c = c0; c < c1; ++c) a[c] = w;
+            } else {
+                /* one weight from the squares summed over the channels (written out) */
+                sbl__v sums[4] = {zero, zero, zero, zero}, w;
+                sbl__lanes_group_add(&st, 0, sums);
+                if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
+                if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
+                if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
+                w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+                for (c = 0; c < ch; ++c) a[c] = w;
             }
             sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
         }
