@@ -3122,6 +3122,43 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
         for (c = 0; c < ch; ++c) dst[SBL__CAST(ptrdiff_t, x) * step + c] = planes[c][x];
 }
 
+#ifdef SBL__ROW_GATHER
+/* Flags of own pixels [x, xb) a vector at a time, for sbl__ring_load_own; bytes one by
+   one only where a lane is unsafe (the planes in locals: a byte store may alias
+   anything, and would reload them). Returns the first pixel not flagged. */
+SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, int xb, int ch,
+                                     int *count)
+{
+    static const unsigned char safe_bytes[16] = {0};
+    const int all = (1 << SBL__VW) - 1;
+    const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
+                *y3 = ch > 3 ? r->y[3] : y0;
+    unsigned char *unsafe = r->unsafe;
+    for (; x + SBL__VW <= xb; x += SBL__VW) {
+        sbl__m ok = sbl__lane_ok(sbl__load(y0 + x));
+        int bits, l;
+        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y1 + x)));
+        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y2 + x)));
+        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y3 + x)));
+        if (ny) {
+            const sbl__v n = sbl__load(ny + x);
+            ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
+        }
+        bits = sbl__mbits(ok);
+        if (bits == all) {
+            memcpy(unsafe + x, safe_bytes, SBL__VW);
+            continue;
+        }
+        for (l = 0; l < SBL__VW; ++l) {
+            const int bad = !((bits >> l) & 1);
+            unsafe[x + l] = SBL__CAST(unsigned char, bad);
+            *count += bad;
+        }
+    }
+    return x;
+}
+#endif
+
 /* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
    pixels holding a value outside the lane range. Returns the number flagged. */
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
@@ -3135,32 +3172,10 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     x = xa;
 #ifdef SBL__ROW_GATHER
     if (ny_lanes) {
-        /* a vector at a time; bytes one by one only where a lane is unsafe (the planes
-           in locals: a byte store may alias anything, and would reload them) */
-        static const unsigned char safe_bytes[16] = {0};
-        const int all = (1 << SBL__VW) - 1;
-        const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
-                    *y3 = ch > 3 ? r->y[3] : y0;
-        unsigned char *unsafe = r->unsafe;
-        for (; x + SBL__VW <= xb; x += SBL__VW) {
-            sbl__m ok = sbl__mand(sbl__mand(sbl__lane_ok(sbl__load(y0 + x)), sbl__lane_ok(sbl__load(y1 + x))),
-                                  sbl__mand(sbl__lane_ok(sbl__load(y2 + x)), sbl__lane_ok(sbl__load(y3 + x))));
-            int bits, l;
-            if (ny) {
-                const sbl__v n = sbl__load(ny + x);
-                ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
-            }
-            bits = sbl__mbits(ok);
-            if (bits == all) {
-                memcpy(unsafe + x, safe_bytes, SBL__VW);
-                continue;
-            }
-            for (l = 0; l < SBL__VW; ++l) {
-                const int bad = !((bits >> l) & 1);
-                unsafe[x + l] = SBL__CAST(unsigned char, bad);
-                count += bad;
-            }
-        }
+        /* a vector at a time (the channel count a constant in each call) */
+        if (ch == 3) x = sbl__ring_flag_lanes(r, ny, x, xb, 3, &count);
+        else if (ch == 1) x = sbl__ring_flag_lanes(r, ny, x, xb, 1, &count);
+        else x = sbl__ring_flag_lanes(r, ny, x, xb, ch, &count);
     }
 #endif
     for (; x < xb; ++x) {
