@@ -1759,7 +1759,31 @@ typedef struct sbl__temporal_rp {
     sbl__flat motion;
     double motion_kx, motion_ky; /* see sbl__motion_scale */
     sbl__cam_map cam;
+    /* camera source: the frame's and the history's cameras are equal, so every pixel
+       that is not on a moving object maps to itself (sbl__temporal_rp_pos) */
+    int at_rest;
+    int moving_count;            /* listed objects whose two matrices differ          */
+    float moving_lo, moving_hi;  /* the range of their ids                            */
+    int tiles;                   /* 1: the row gather's tile shortcuts (tests: 0)     */
 } sbl__temporal_rp;
+
+/* Does an object's pose differ between the two frames? */
+static int sbl__object_moves(const sbl_object_motion *o)
+{
+    int i;
+    for (i = 0; i < 16; ++i)
+        if (o->object_to_world[i] != o->prev_object_to_world[i]) return 1;
+    return 0;
+}
+
+/* Is a pixel with this id on a moving object (camera source)? */
+static int sbl__on_moving_object(const sbl__temporal_rp *s, float id)
+{
+    const sbl_object_motion *o;
+    if (!s->moving_count || !(id >= s->moving_lo && id <= s->moving_hi)) return 0;
+    o = sbl__find_object(&s->cam, id);
+    return o && sbl__object_moves(o);
+}
 
 static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject_desc *desc,
                                         sbl_temporal_source source, const sbl_frame *frame,
@@ -1774,6 +1798,10 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     s->rp = sbl__reproject_defaults(desc);
     s->source = source;
     s->frame = frame;
+    s->at_rest = 0;
+    s->moving_count = 0;
+    s->moving_lo = s->moving_hi = 0.0f;
+    s->tiles = 1;
     sbl__motion_scale(&s->rp.motion, w, h, &s->motion_kx, &s->motion_ky);
     s->geo = sbl__target_geo_make(g, w, h);
     s->motion = sbl__flatten(&g->motion);
@@ -1798,6 +1826,23 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
                 return SBL_ERROR_INVALID_PARAM;
             s->cam.objects = frame->objects;
             s->cam.object_count = frame->object_count;
+            {   /* a camera at rest: the two cameras' values equal (the matrix chain of
+                   sbl__cam_map_apply would give the identity only within rounding) */
+                const sbl_camera *a = frame->camera, *b = s->history->camera;
+                int i;
+                s->at_rest = 1;
+                for (i = 0; i < 16; ++i)
+                    if (a->world_to_view[i] != b->world_to_view[i] ||
+                        a->view_to_clip[i] != b->view_to_clip[i])
+                        s->at_rest = 0;
+                for (i = 0; i < frame->object_count; ++i) {
+                    const sbl_object_motion *o = &frame->objects[i];
+                    if (!sbl__object_moves(o)) continue;
+                    if (!s->moving_count || o->id < s->moving_lo) s->moving_lo = o->id;
+                    if (!s->moving_count || o->id > s->moving_hi) s->moving_hi = o->id;
+                    ++s->moving_count;
+                }
+            }
         }
     }
     return SBL_OK;
@@ -1819,9 +1864,15 @@ SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sb
         *sy = y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
         sz = SBL__CAST(double, z); /* motion vectors carry no depth change: relative tolerance covers it */
     } else {
-        if (!sbl__cam_map_apply_id(&s->cam, s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f,
-                                   x + 0.5, y + 0.5, z, sx, sy, &sz))
+        const float id = s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f;
+        if (s->at_rest && !sbl__on_moving_object(s, id)) {
+            /* camera at rest, static surface: the pixel itself, exactly */
+            *sx = x + 0.5;
+            *sy = y + 0.5;
+            sz = SBL__CAST(double, z);
+        } else if (!sbl__cam_map_apply_id(&s->cam, id, x + 0.5, y + 0.5, z, sx, sy, &sz)) {
             return 0;
+        }
     }
     /* came in from outside the previous image: nothing to reuse (edge pixels would
        otherwise be replicated by the renormalisation and the 3x3 fallback) */
@@ -2704,9 +2755,11 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
    finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
    contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
    rest), read with plain vector loads where a view has one channel. Taps of weight 0
-   in every lane are skipped: they would add +0 everywhere. */
+   in every lane are skipped: they would add +0 everywhere.
+   sky: every planned lane expects sky (+inf), so its depth test is "the tap is sky"
+   (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
-                                 sbl__ring_row *r, int x, int ch, int contiguous)
+                                 sbl__ring_row *r, int x, int ch, int contiguous, int sky)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -2733,17 +2786,23 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         off[3] = s->depth.stride + s->depth.step;
         for (t = 0; t < 4; ++t) {
             if (t & skip) continue;
-            /* sbl__depth_match: sky matches only sky; else a finite, positive depth
-               within the tolerance */
-            const sbl__v d = contiguous && s->depth.step == 1
-                                 ? sbl__load(s->depth.p + off[t] + p->di[i])
-                                        : sbl__gatheri(s->depth.p + off[t], p->di + i);
-            const sbl__m inf_t = sbl__posinf(d);
-            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
-                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
-            const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
-                                          sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
-            ok[t] = sbl__mand(ok[t], match);
+            {
+                const sbl__v d = contiguous && s->depth.step == 1
+                                     ? sbl__load(s->depth.p + off[t] + p->di[i])
+                                     : sbl__gatheri(s->depth.p + off[t], p->di + i);
+                const sbl__m inf_t = sbl__posinf(d);
+                if (sky) {
+                    ok[t] = sbl__mand(ok[t], inf_t);
+                } else {
+                    /* sbl__depth_match: sky matches only sky; else a finite, positive
+                       depth within the tolerance */
+                    const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                                  sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+                    const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
+                                                  sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
+                    ok[t] = sbl__mand(ok[t], match);
+                }
+            }
         }
     }
     if (s->length.p) {
@@ -2751,11 +2810,13 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         off[3] = s->length.stride + s->length.step;
         for (t = 0; t < 4; ++t) {
             if (t & skip) continue;
-            const sbl__v nt = contiguous && s->length.step == 1
-                                  ? sbl__load(s->length.p + off[t] + p->li[i])
-                                         : sbl__gatheri(s->length.p + off[t], p->li + i);
-            ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
-            accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+            {
+                const sbl__v nt = contiguous && s->length.step == 1
+                                      ? sbl__load(s->length.p + off[t] + p->li[i])
+                                      : sbl__gatheri(s->length.p + off[t], p->li + i);
+                ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
+                accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+            }
         }
     } else {
         for (t = 0; t < 4; ++t)
@@ -2794,9 +2855,10 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
 }
 
 /* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
-   last vector overlaps the one before rather than running past the block. */
+   last vector overlaps the one before rather than running past the block. sky: every
+   planned entry expects sky (see sbl__lanes_taps). */
 static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
-                          sbl__ring_row *r, int x)
+                          sbl__ring_row *r, int x, int sky)
 {
     int i = 0;
     for (;;) {
@@ -2809,14 +2871,85 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
             contiguous &= (p->ci[i + l] - p->ci[i] == l * SBL__CAST(int, s->color.step)) &
                           (!s->use_depth || p->di[i + l] - p->di[i] == l * SBL__CAST(int, s->depth.step)) &
                           (!s->length.p || p->li[i + l] - p->li[i] == l * SBL__CAST(int, s->length.step));
-        switch (s->color.ch) {
-        case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
-        case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
-        case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous); break;
-        default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous); break;
+        if (sky) {
+            switch (s->color.ch) {
+            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 1); break;
+            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 1); break;
+            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 1); break;
+            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 1); break;
+            }
+        } else {
+            switch (s->color.ch) {
+            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 0); break;
+            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 0); break;
+            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 0); break;
+            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 0); break;
+            }
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
+    }
+}
+
+/* One block of a row gather: its plan, and what the stereo rigs keep of each match. */
+typedef struct sbl__block {
+    sbl__tap_plan p;
+    double psx[SBL__BLOCK], psy[SBL__BLOCK]; /* stereo: each match's position            */
+    unsigned char snapped[SBL__BLOCK];       /* stereo: a far lane (see SBL__FAR_PX)     */
+    int x0, n, y;                            /* columns [x0, x0 + n) of row y            */
+    int sky;                                 /* every planned entry expects sky          */
+    int mode;                                /* the rig's lane plan for this row (hooks) */
+} sbl__block;
+
+/* The one driver of the row gathers (temporal and stereo): columns [xa, xb) of row y in
+   blocks of SBL__BLOCK. Per block: `start` (the tile shortcuts: returns 1 when it wrote
+   the block; sets the block's sky and lane mode), the plan (`plan_vec` plans VW entries
+   from entry i in lanes and returns the entries it leaves to `plan_one`, or -1 where it
+   cannot), the tap stage, then the pixel gather for every entry handed back, or the
+   rig's own last step (`after`, when given: far lanes, back-check and that pixel
+   gather, in one pass). Blocks narrower than a vector take the pixel gather. Inlined
+   with constant hooks: no call through a pointer. */
+SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y, int xa,
+                                        int xb, const sbl__tap_src *src, int fallback,
+                                        sbl__gather_fn pixel,
+                                        int (*start)(const void *, sbl__ring_row *, sbl__block *),
+                                        int (*plan_vec)(const void *, sbl__block *, int),
+                                        void (*plan_one)(const void *, sbl__block *, int),
+                                        void (*after)(const void *, sbl__ring_row *, sbl__block *))
+{
+    const int ch = src->color.ch;
+    sbl__block b;
+    int i;
+    b.y = y;
+    for (b.x0 = xa; b.x0 < xb; b.x0 += SBL__BLOCK) {
+        b.n = xb - b.x0 < SBL__BLOCK ? xb - b.x0 : SBL__BLOCK;
+        if (b.n < SBL__VW) {
+            for (i = 0; i < b.n; ++i) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+            }
+            continue;
+        }
+        b.sky = 0;
+        b.mode = 0;
+        if (start(ctx, r, &b)) continue;
+        for (i = 0; i < b.n;) {
+            int bits = i + SBL__VW <= b.n ? plan_vec(ctx, &b, i) : -1, l = SBL__VW;
+            if (bits < 0) { bits = 1; l = 1; }
+            for (; bits; ++i, --l, bits >>= 1)
+                if (bits & 1) plan_one(ctx, &b, i);
+            i += l;
+        }
+        sbl__row_taps(src, &b.p, b.n, fallback, r, b.x0, b.sky);
+        if (after) {
+            after(ctx, r, &b);
+            continue;
+        }
+        for (i = 0; i < b.n; ++i)
+            if (b.p.redo[i]) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+            }
     }
 }
 
@@ -2940,14 +3073,17 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
 
 /* sbl__temporal_rp_pos and sbl__tap_plan_set in lanes (motion vectors in pixels) */
 SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
-                                         int x, int y)
+                                         int x, int y, int sky)
 {
     static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const float *mvp = SBL__AT(s->motion, x, y);
     sbl__v z = zero, slack = zero, mx, my;
-    sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
-                                 : sbl__gt(one, zero);
+    /* a sky tile: z = +inf, which is valid geometry with slack 0 (sbl__lanes_want) */
+    sbl__m keep = sky ? sbl__gt(one, zero)
+                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+                                        : sbl__gt(one, zero));
+    if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
     mx = sbl__gatheri(mvp, pair);
     my = sbl__gatheri(mvp + 1, pair);
     keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
@@ -2957,49 +3093,347 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
     return sbl__plan_lanes(&s->src, p, i, x, y, keep, z, slack, mx, my);
 }
 
+/* ---- tile classification -----------------------------------------------------
+   The row gather decides per tile (a block of up to SBL__BLOCK pixels of one row), from
+   the data it reads anyway, whether the tile needs the general plan:
+   - SBL__TILE_VOID: no target pixel has geometry (depth 0, negative or NaN): every
+     pixel resets, without reading motion or history;
+   - SBL__TILE_REST: every source position is the pixel itself (zero motion vectors, or
+     a camera at rest over static surfaces): the history is read at the same pixel, with
+     no position maths, no footprint and one tap test (sbl__rest_tile);
+   - SBL__TILE_SKY: every target pixel is sky (+inf) and moves: the general plan and
+     tap stage without the target's depth slack, and with the documented rule for sky
+     in its cheapest form as the depth test (the tap is sky);
+   - SBL__TILE_GENERAL: the plan and the tap stage, which itself drops the masks on its
+     sums (the fallback bookkeeping) for a vector whose taps all pass.
+   Each shortcut gives the general path's bits (the same operations on the values that
+   matter, or operations whose result is exactly the same), so no result depends on where
+   a band, a span or a tile starts. */
+enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2, SBL__TILE_SKY = 3 };
+
+/* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
+   vector loads packed (pixel step 1: depth, N), no target normals or ids (whose tests
+   the general path keeps)? */
+static int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
+{
+    const sbl__tap_src *src = &s->src;
+    return s->tiles && s->history && !s->geo.normals.p && !s->geo.ids.p && !src->use_id &&
+           !src->use_normal && (!s->geo.depth.p || s->geo.depth.step == 1) &&
+           (!src->use_depth || src->depth.step == 1) && (!src->length.p || src->length.step == 1) &&
+           (s->source == SBL_TEMPORAL_MOTION || s->at_rest);
+}
+
+/* The class of tile [x0, x0 + n) of row y (n >= VW; the call passed
+   sbl__temporal_tiles_ok). */
+static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, int n)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    int i;
+    int sky = 0;
+    if (s->geo.depth.p) { /* no geometry anywhere: NaN, -inf, 0 and negatives fail z > 0 */
+        const float *zp = SBL__AT(s->geo.depth, x0, y);
+        const int full = (1 << SBL__VW) - 1;
+        int any = 0, all_sky = full;
+        for (i = 0;; i += SBL__VW) {
+            sbl__v z;
+            if (i + SBL__VW > n) i = n - SBL__VW;
+            z = sbl__load(zp + i);
+            any |= sbl__mbits(sbl__gt(z, zero));
+            all_sky &= sbl__mbits(sbl__posinf(z));
+            if ((any && all_sky != full) || i + SBL__VW >= n) break;
+        }
+        if (!any) return SBL__TILE_VOID;
+        sky = all_sky == full;
+    }
+    if (s->source == SBL_TEMPORAL_MOTION) { /* every vector +-0 (kx * +-0 = +-0) */
+        const float *mp = SBL__AT(s->motion, x0, y);
+        if (s->motion.step == 2) {
+            for (i = 0;; i += SBL__VW) {
+                if (i + SBL__VW > 2 * n) i = 2 * n - SBL__VW;
+                if (~sbl__mbits(sbl__le(sbl__abs(sbl__load(mp + i)), zero)) &
+                    ((1 << SBL__VW) - 1))
+                    return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
+                if (i + SBL__VW >= 2 * n) break;
+            }
+        } else {
+            for (i = 0; i < n; ++i) {
+                const float *m = mp + SBL__CAST(ptrdiff_t, i) * s->motion.step;
+                if (!(fabsf(m[0]) <= 0.0f && fabsf(m[1]) <= 0.0f))
+                    return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
+            }
+        }
+        return SBL__TILE_REST;
+    }
+    /* camera at rest: a tile without a moving object's id (the call has no ids here
+       unless no object moves, see sbl__temporal_tiles_ok) */
+    return s->moving_count ? (sky ? SBL__TILE_SKY : SBL__TILE_GENERAL) : SBL__TILE_REST;
+}
+
+/* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
+   pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
+   sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
+   edge columns and rows, which take its bounds-checked path, give the same). So x* is
+   the history colour (+ 0: -0 becomes +0) and N its N wherever that tap passes; the
+   depth test passes when |history - target| <= tolerance * target (the slack only
+   widens it) or both are sky. Lanes with geometry that this does not settle (depth
+   moved beyond that, N <= 0, a NaN or inf) are handed to the pixel gather; lanes
+   without geometry reset. */
+SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0,
+                                   int n, int ch)
+{
+    const sbl__tap_src *src = &s->src;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const sbl__v tol = sbl__set1(src->depth_tolerance);
+    const float *zp = s->geo.depth.p ? SBL__AT(s->geo.depth, x0, y) : NULL;
+    const float *hp = src->use_depth ? SBL__AT(src->depth, x0, y) : NULL;
+    const float *np = src->length.p ? SBL__AT(src->length, x0, y) : NULL;
+    const float *cp = SBL__AT(src->color, x0, y);
+    const ptrdiff_t cs = src->color.step;
+    int i = 0, l, c, idx[SBL__VW];
+    for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
+    for (;;) {
+        int x, bits;
+        sbl__m keep, valid;
+        sbl__v nv = one, v[4];
+        if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
+        x = x0 + i;
+        for (c = 0; c < ch; ++c) /* the history colour, one channel per vector */
+            v[c] = cs == 1 ? sbl__load(cp + i + c) : sbl__gatheri(cp + SBL__CAST(ptrdiff_t, i) * cs + c, idx);
+        keep = zp ? sbl__gt(sbl__load(zp + i), zero) : sbl__gt(one, zero);
+        valid = keep;
+        if (hp) {
+            const sbl__v z = sbl__load(zp + i), d = sbl__load(hp + i);
+            const sbl__m inf_e = sbl__posinf(z), inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, z)), sbl__mul(tol, z)));
+            valid = sbl__mand(valid, sbl__mor(sbl__mand(inf_e, inf_t),
+                                              sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
+        }
+        if (np) {
+            nv = sbl__load(np + i);
+            valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+        }
+        for (c = 0; c < ch; ++c) valid = sbl__mandnot(valid, sbl__nonfinite(v[c]));
+        for (c = 0; c < ch; ++c) sbl__store(r->x[c] + x, sbl__sel(valid, sbl__add(zero, v[c]), zero));
+        sbl__store(r->n + x, sbl__sel(valid, nv, zero));
+        sbl__store(r->v + x, sbl__sel(valid, one, zero));
+        bits = sbl__mbits(sbl__mandnot(keep, valid));
+        for (l = 0; bits; ++l, bits >>= 1)
+            if (bits & 1) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
+            }
+        if (i + SBL__VW >= n) break;
+        i += SBL__VW;
+    }
+}
+
+static void sbl__rest_tile(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
+{
+    switch (s->src.color.ch) {
+    case 1: sbl__rest_tile_ch(s, r, y, x0, n, 1); break;
+    case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2); break;
+    case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3); break;
+    default: sbl__rest_tile_ch(s, r, y, x0, n, 4); break;
+    }
+}
+
+/* A tile without geometry: every pixel resets. */
+static void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x0, int n)
+{
+    int c;
+    memset(r->n + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
+    memset(r->v + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
+    for (c = 0; c < src->color.ch; ++c) memset(r->x[c] + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
+}
+
+/* ---- camera planning in lanes ---------------------------------------------------
+   The camera source's position maths (sbl__cam_map_apply: unproject at the target's
+   depth, carry into the history's view, project) in double lanes, with the reference's
+   operations in its order, so every lane gets its bits; the checks and the tap plan of
+   each lane then run in scalar (sbl__tap_plan_set). A few double operations suffice:
+   set1, load, store, add, sub, mul, div. */
+#if SBL__VW == 16
+#define SBL__DW 8
+typedef __m512d sbl__dv;
+#define sbl__dset1(a) _mm512_set1_pd(a)
+#define sbl__dload(p) _mm512_loadu_pd(p)
+#define sbl__dstore(p, a) _mm512_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm512_add_pd(a, b)
+#define sbl__dsub(a, b) _mm512_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm512_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm512_div_pd(a, b)
+#elif SBL__VW == 8
+#define SBL__DW 4
+typedef __m256d sbl__dv;
+#define sbl__dset1(a) _mm256_set1_pd(a)
+#define sbl__dload(p) _mm256_loadu_pd(p)
+#define sbl__dstore(p, a) _mm256_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm256_add_pd(a, b)
+#define sbl__dsub(a, b) _mm256_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm256_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm256_div_pd(a, b)
+#else
+#define SBL__DW 2
+typedef __m128d sbl__dv;
+#define sbl__dset1(a) _mm_set1_pd(a)
+#define sbl__dload(p) _mm_loadu_pd(p)
+#define sbl__dstore(p, a) _mm_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm_add_pd(a, b)
+#define sbl__dsub(a, b) _mm_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm_div_pd(a, b)
+#endif
+
+/* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
+   camera and no listed objects, no target normals or ids (their tests stay in
+   sbl__tap_want_init), an interior row (the depth slack reads both neighbours), target
+   depth packed. */
+static int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+{
+    return s->source == SBL_TEMPORAL_CAMERA && s->history && !s->at_rest &&
+           !s->cam.object_count && !s->geo.normals.p && !s->geo.ids.p && y >= 1 &&
+           y + 1 < s->src.height && s->geo.depth.step == 1;
+}
+
+/* sbl__cam_map_apply for VW positions (px[l], py[l]) at planar depths zf[l] (+inf: a
+   direction): (ox, oy, oz)[l]; bit l of the result is set where the map gives a
+   position (a ray through the pixel, in front of the other camera). The sums start
+   from 0.0 and take the terms in the reference's order (C * 0.0 included: it can turn
+   a -0 into +0). */
+SBL__INLINE int sbl__cam_lanes(const sbl__cam_map *m, const double *px, const double *py,
+                               const float *zf, double *ox, double *oy, double *oz)
+{
+    const double *C = m->clip_to_view, *V = m->view_to_view, *P = m->other_proj;
+    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
+                  half = sbl__dset1(0.5);
+    double zmul[SBL__VW], p3[SBL__VW], q3[SBL__VW], chk[SBL__VW], c3[SBL__VW];
+    int l, j, k, bits = 0;
+    for (l = 0; l < SBL__VW; ++l) { /* a direction for sky (+inf): p = q, p[3] = 0 */
+        const int sky = sbl__is_pos_inf(zf[l]);
+        zmul[l] = sky ? 1.0 : SBL__CAST(double, zf[l]);
+        p3[l] = sky ? 0.0 : 1.0;
+    }
+    for (j = 0; j < SBL__VW; j += SBL__DW) {
+        const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, sbl__dload(px + j)), sbl__dset1(m->width)), one);
+        const sbl__dv n1 = sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), sbl__dset1(m->height)));
+        sbl__dv q[4], a[3], pv[4], v[4], c[4], t, zm;
+        for (k = 0; k < 4; ++k) { /* q = clip_to_view (n0, n1, 0, 1) */
+            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(C[k * 4]), n0));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(C[k * 4 + 1]), n1));
+            t = sbl__dadd(t, sbl__dset1(C[k * 4 + 2] * 0.0));
+            q[k] = sbl__dadd(t, sbl__dset1(C[k * 4 + 3] * 1.0));
+        }
+        t = sbl__ddiv(sbl__dsub(zero, q[2]), q[3]); /* -q2 / q3 (negation exact) */
+        sbl__dstore(q3 + j, q[3]);
+        sbl__dstore(chk + j, t);
+        for (k = 0; k < 3; ++k) a[k] = sbl__ddiv(sbl__ddiv(q[k], q[3]), t);
+        zm = sbl__dload(zmul + j);
+        for (k = 0; k < 3; ++k) pv[k] = sbl__dmul(a[k], zm); /* a * 1.0 = a for sky */
+        pv[3] = sbl__dload(p3 + j);
+        for (k = 0; k < 4; ++k) {
+            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(V[k * 4]), pv[0]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 1]), pv[1]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 2]), pv[2]));
+            v[k] = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 3]), pv[3]));
+        }
+        for (k = 0; k < 4; ++k) {
+            if (k == 2) continue; /* (unused) */
+            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(P[k * 4]), v[0]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 1]), v[1]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 2]), v[2]));
+            c[k] = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 3]), v[3]));
+        }
+        sbl__dstore(c3 + j, c[3]);
+        sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c[0], c[3]), one), half),
+                                      sbl__dset1(m->other_width)));
+        sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c[1], c[3])), half),
+                                      sbl__dset1(m->other_height)));
+        sbl__dstore(oz + j, sbl__dsub(zero, v[2])); /* -v2 (v3 = 0: a direction, below) */
+        sbl__dstore(p3 + j, v[3]);
+    }
+    for (l = 0; l < SBL__VW; ++l) {
+        if (p3[l] == 0.0) oz[l] = HUGE_VAL;
+        if (!(q3[l] == 0.0 || chk[l] <= 0.0) && c3[l] > 0.0) bits |= 1 << l;
+    }
+    return bits;
+}
+
+/* sbl__temporal_rp_pos (camera source) and sbl__tap_plan_set for the VW pixels
+   x .. x + VW - 1 of row y. */
+SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                        int x, int y)
+{
+    const double w = SBL__CAST(double, s->frame->color.width), h = SBL__CAST(double, s->frame->color.height);
+    float zf[SBL__VW], sf[SBL__VW];
+    double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
+    sbl__v z, slack;
+    int keep, l;
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    sbl__store(zf, z);
+    sbl__store(sf, slack);
+    for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
+    keep &= sbl__cam_lanes(&s->cam, px, py, zf, ox, oy, oz);
+    for (l = 0; l < SBL__VW; ++l) {
+        sbl__tap_want t;
+        sbl__tap_plan_reset(p, i + l);
+        if (!((keep >> l) & 1)) continue; /* no geometry, no ray, behind */
+        if (!(ox[l] >= 0.0 && ox[l] < w && oy[l] >= 0.0 && oy[l] < h)) continue; /* outside */
+        t.depth = SBL__CAST(float, oz[l]);
+        t.depth_slack = sf[l];
+        t.normal = NULL;
+        t.normal_len2 = 0.0f;
+        t.id = 0.0f;
+        sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
+    }
+}
+
+/* The temporal row gather's hooks (sbl__row_gather_blocks). Lane modes: 1 motion
+   vectors, 2 the camera; bit 4: the row's tiles may take the shortcuts. */
+static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    if (sbl__temporal_tiles_ok(s)) {
+        const int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
+        if (kind == SBL__TILE_VOID) { sbl__void_tile(&s->src, r, b->x0, b->n); return 1; }
+        if (kind == SBL__TILE_REST) { sbl__rest_tile(s, r, b->y, b->x0, b->n); return 1; }
+        b->sky = kind == SBL__TILE_SKY;
+    }
+    b->mode = sbl__temporal_plan_lanes_ok(s, b->y) ? 1 : (sbl__camera_plan_lanes_ok(s, b->y) ? 2 : 0);
+    return 0;
+}
+
+static int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    const int x = b->x0 + i;
+    if (!b->mode || x < 1 || x + SBL__VW >= s->src.width) return -1;
+    if (b->mode == 2) {
+        sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
+        return 0;
+    }
+    return b->sky ? sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 1)
+                  : sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 0);
+}
+
+static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    sbl__tap_want t;
+    double sx, sy;
+    sbl__tap_plan_reset(&b->p, i);
+    if (sbl__temporal_rp_pos(s, b->x0 + i, b->y, &t, &sx, &sy))
+        sbl__tap_plan_set(&s->src, &b->p, i, &t, sx, sy);
+}
+
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
-    const int lanes = sbl__temporal_plan_lanes_ok(s, y);
-    sbl__tap_plan p;
-    int x0, i;
-    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
-        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
-        if (n < SBL__VW) {
-            for (i = 0; i < n; ++i) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
-            }
-            continue;
-        }
-        for (i = 0; i < n;) {
-            int bits = 1, l;
-            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width && i + SBL__VW <= n) {
-                bits = sbl__temporal_plan_lanes(s, &p, i, x0 + i, y);
-                l = SBL__VW;
-            } else {
-                l = 1;
-            }
-            for (; bits; ++i, --l, bits >>= 1) {
-                sbl__tap_want t;
-                double sx, sy;
-                if (!(bits & 1)) continue;
-                sbl__tap_plan_reset(&p, i);
-                if (sbl__temporal_rp_pos(s, x0 + i, y, &t, &sx, &sy))
-                    sbl__tap_plan_set(&s->src, &p, i, &t, sx, sy);
-            }
-            i += l;
-        }
-        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
-        for (i = 0; i < n; ++i)
-            if (p.redo[i]) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
-            }
-    }
+    sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
+                           sbl__temporal_block_start, sbl__temporal_plan_vec,
+                           sbl__temporal_plan_one, NULL);
 }
 #endif
 
@@ -3988,6 +4422,7 @@ typedef struct sbl__stereo_rp {
     float fb;                 /* parallel: focal_px * baseline                          */
     double offset;            /* parallel: disparity_offset                             */
     sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES, SBL_RIG_PINHOLE             */
+    int tiles;                /* 1: the row gather's far-tile shortcut (tests: 0)       */
 } sbl__stereo_rp;
 
 static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_color)
@@ -4134,6 +4569,7 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->dir[1] = -s->dir[0];
     s->fb = s->d.focal_px * s->d.baseline;
     s->offset = SBL__CAST(double, s->d.disparity_offset);
+    s->tiles = 1;
     switch (s->d.rig) {
     case SBL_RIG_PARALLEL: s->map = sbl__stereo_map_parallel; break;
     case SBL_RIG_DISPARITY: s->map = sbl__stereo_map_disparity; break;
@@ -4187,104 +4623,253 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 }
 
 #ifdef SBL__ROW_GATHER
-/* sbl__stereo_rp_pixel for columns [xa, xb) of row y through the row gather (plan in
-   scalar with the rig's map called directly, taps in lanes, back-check in scalar on the
-   matches the lanes kept); `map` is a constant where this is inlined. */
-SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *r, int y,
-                                        int xa, int xb, sbl__stereo_map_fn map)
+/* Far tiles of the parallel rig (issue 10): where every disparity of a vector of pixels
+   is below SBL__FAR_PX (geometry beyond 256 f b), the other eye is read at the pixel
+   itself, its one tap tested, instead of a footprint whose second tap weighs |d|. Where
+   that tap passes, x* and its N differ from the general path by at most
+   (|d| / (1 - |d|) + 2^-23) |c(x +- 1) - c(x)| + 2^-22 |x*|: under 0.4 % of the
+   contrast to the neighbour (tests/test_tiles.c); where it fails, the pixel gather
+   decides, so validity never changes. The back-check keeps the exact position. This is
+   the one result by which a build with the row gather (x86 SIMD) may differ from the
+   scalar reference build: within that bound, on far geometry only. */
+#define SBL__FAR_PX (1.0f / 256.0f)
+
+/* The two-camera rigs' plan for the VW pixels x .. x + VW - 1 of an interior row
+   (sbl__stereo_rp_pixel's target tests and map, sbl__tap_plan_set), the map in lanes;
+   the matches' positions into psx / psy (0 where there is none). */
+SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p, int i, int x,
+                                      int y, double *psx, double *psy)
 {
-    const int sw = s->source->color.width, sh = s->source->color.height;
-    const int fallback = !s->d.reproject.no_fallback, ch = s->src.color.ch;
-    const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
-    const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
-    /* the plan in lanes: parallel rig without a disparity offset (the lane plan's
-       positions are exact for m = +-f b / z), target depth packed and of the source's
-       size, no target normals / ids, an interior row, images up to 2^15 */
-    const int lanes = map == sbl__stereo_map_parallel && s->offset == 0.0 && s->geo.depth.p &&
-                      s->geo.depth.step == 1 && !s->geo.normals.p && !s->geo.ids.p &&
-                      s->geo.width == sw && s->geo.height == sh && sw <= 32768 &&
-                      sh <= 32768 && y >= 1 && y + 1 < sh;
-    sbl__tap_plan p;
-    double psx[SBL__BLOCK], psy[SBL__BLOCK];
-    int x0, i;
-    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
-        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
-        if (n < SBL__VW) {
-            for (i = 0; i < n; ++i) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x0 + i, sbl__stereo_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
-            }
-            continue;
+    const double sw = SBL__CAST(double, s->source->color.width), sh = SBL__CAST(double, s->source->color.height);
+    float zf[SBL__VW], sf[SBL__VW];
+    double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
+    sbl__v z, slack;
+    int keep, l;
+    /* sbl__tap_want_init and sbl__valid_depth agree: z > 0, or +inf */
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    sbl__store(zf, z);
+    sbl__store(sf, slack);
+    for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
+    keep &= sbl__cam_lanes(&s->to_source, px, py, zf, ox, oy, oz);
+    for (l = 0; l < SBL__VW; ++l) {
+        sbl__tap_want t;
+        sbl__tap_plan_reset(p, i + l);
+        psx[l] = psy[l] = 0.0;
+        if (!((keep >> l) & 1)) continue;
+        if (!(ox[l] >= 0.0 && ox[l] < sw && oy[l] >= 0.0 && oy[l] < sh)) continue;
+        t.depth = SBL__CAST(float, oz[l]);
+        t.depth_slack = sf[l];
+        t.normal = NULL;
+        t.normal_len2 = 0.0f;
+        t.id = 0.0f;
+        psx[l] = ox[l];
+        psy[l] = oy[l];
+        sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
+    }
+}
+
+/* The back-check of the two-camera rigs for the block entries back[0 .. nback) (valid
+   matches of columns x0 + entry of row y), VW at a time: from the nearest source pixel,
+   at the source's depth there, back into the target, within tol pixels of the start
+   (sbl__stereo_rp_pixel's test); a failed one clears its ring column. */
+static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int y, int x0,
+                                 const double *psx, const double *psy, const int *back,
+                                 int nback, double tol)
+{
+    const int ch = s->src.color.ch;
+    int b, l;
+    for (b = 0; b < nback; b += SBL__VW) {
+        float zf[SBL__VW];
+        double px[SBL__VW], py[SBL__VW], bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
+        int ok;
+        for (l = 0; l < SBL__VW; ++l) {
+            const int e = back[b + l < nback ? b + l : b]; /* past the end: a copy */
+            px[l] = psx[e];
+            py[l] = psy[e];
+            zf[l] = sbl__valid_depth(&s->depth[1], SBL__CAST(int, floor(psx[e])), SBL__CAST(int, floor(psy[e])));
         }
-        for (i = 0; i < n;) {
-            int bits = 1, l = 1;
-            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
-                /* the parallel rig in lanes: m = dir f b / z */
-                const sbl__v zero = sbl__set1(0.0f);
-                float fbz[SBL__VW];
-                sbl__v z, slack, m;
-                sbl__m keep = sbl__lanes_want(&s->geo.depth, x0 + i, y, &z, &slack);
-                m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
-                keep = sbl__mandnot(keep, sbl__nonfinite(m));
-                sbl__store(fbz, m);
-                if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
-                bits = sbl__plan_lanes(&s->src, &p, i, x0 + i, y, keep, z, slack, m, zero);
-                for (l = 0; l < SBL__VW; ++l) {
-                    psx[i + l] = x0 + i + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
-                    psy[i + l] = y + 0.5;
-                }
-                l = SBL__VW;
-            }
-            for (; bits; ++i, --l, bits >>= 1) {
-                const int x = x0 + i;
-                sbl__tap_want want;
-                double sx, sy, sz;
-                float z;
-                if (!(bits & 1)) continue;
-                sbl__tap_plan_reset(&p, i);
-                psx[i] = psy[i] = 0.0;
-                if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
-                if (!map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
-                if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh))) continue;
-                want.depth = SBL__CAST(float, sz);
-                psx[i] = sx;
-                psy[i] = sy;
-                sbl__tap_plan_set(&s->src, &p, i, &want, sx, sy);
-            }
-            i += l;
-        }
-        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
-        for (i = 0; i < n; ++i) {
-            const int x = x0 + i;
-            if (p.redo[i]) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, y, tmp), tmp, ch);
-            } else if (back_check && r->v[x] > 0.0f) {
-                /* as sbl__stereo_rp_pixel: from the nearest source pixel back */
-                double bx, by, bz, ex, ey;
-                int ok = map(s, 1, SBL__CAST(int, floor(psx[i])), SBL__CAST(int, floor(psy[i])), psx[i], psy[i], &bx,
-                             &by, &bz);
-                if (ok) {
-                    ex = bx - (x + 0.5);
-                    ey = by - (y + 0.5);
-                    ok = ex * ex + ey * ey <= tol * tol;
-                }
-                if (!ok) sbl__ring_put(r, x, 0.0f, NULL, ch);
-            }
+        ok = sbl__cam_lanes(&s->to_target, px, py, zf, bx, by, bz);
+        for (l = 0; l < SBL__VW && b + l < nback; ++l) {
+            const int x = x0 + back[b + l];
+            const double ex = bx[l] - (x + 0.5), ey = by[l] - (y + 0.5);
+            if (!(((ok >> l) & 1) && zf[l] != 0.0f && ex * ex + ey * ey <= tol * tol))
+                sbl__ring_put(r, x, 0.0f, NULL, ch);
         }
     }
+}
+
+/* The rig's map called directly (no pointer): s->map's function. */
+SBL__INLINE int sbl__stereo_map(const sbl__stereo_rp *s, int back, int ix, int iy, double px,
+                                double py, double *ox, double *oy, double *oz)
+{
+    switch (s->d.rig) {
+    case SBL_RIG_PARALLEL: return sbl__stereo_map_parallel(s, back, ix, iy, px, py, ox, oy, oz);
+    case SBL_RIG_DISPARITY: return sbl__stereo_map_disparity(s, back, ix, iy, px, py, ox, oy, oz);
+    default: return sbl__stereo_map_cameras(s, back, ix, iy, px, py, ox, oy, oz);
+    }
+}
+
+/* The stereo row gather's hooks (sbl__row_gather_blocks): sbl__stereo_rp_pixel with the
+   plan in lanes where the rig allows (mode 1 parallel, 2 two cameras, 3 disparity map),
+   the taps in lanes, the back-check after them (in lanes for the two-camera rigs). */
+static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    const int sw = s->source->color.width, sh = s->source->color.height, y = b->y;
+    /* target depth packed and of the source's size, no target normals / ids, an
+       interior row (the depth slack reads both neighbours) */
+    const int geo = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw &&
+                    s->geo.height == sh && y >= 1 && y + 1 < sh;
+    const int depth = s->geo.depth.p && s->geo.depth.step == 1;
+    (void)r;
+    if (s->d.rig == SBL_RIG_PARALLEL)
+        /* without a disparity offset the float lane plan is exact for m = +-f b / z */
+        b->mode = geo && depth && s->offset == 0.0 && sw <= 32768 && sh <= 32768 ? 1 : 0;
+    else if (s->d.rig == SBL_RIG_DISPARITY)
+        /* (a target without depth has no slack and no depth test) */
+        b->mode = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw && s->geo.height == sh &&
+                          sw <= 32768 && sh <= 32768 &&
+                          (!s->geo.depth.p || (depth && y >= 1 && y + 1 < sh))
+                      ? 3
+                      : 0;
+    else
+        b->mode = geo && depth ? 2 : 0;
+    return 0;
+}
+
+static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    const int x = b->x0 + i, y = b->y;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    int l, bits;
+    if (!b->mode || x < 1 || x + SBL__VW >= s->source->color.width) return -1;
+    if (b->mode == 2) {
+        sbl__stereo_cam_plan(s, &b->p, i, x, y, b->psx + i, b->psy + i);
+        for (l = 0; l < SBL__VW; ++l) b->snapped[i + l] = 0;
+        return 0;
+    }
+    if (b->mode == 3) {
+        /* sbl__stereo_map_disparity in lanes: (x, y) + 0.5 + dir (d_x, d_y) */
+        const sbl__flat *dm = &s->disparity[0];
+        const float *dp = SBL__AT(*dm, x, y);
+        float dxs[SBL__VW], dys[SBL__VW];
+        int idx[SBL__VW];
+        sbl__v z = zero, slack = zero, mx, my;
+        sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+                                     : sbl__gt(one, zero);
+        for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, dm->step);
+        mx = sbl__gatheri(dp, idx);
+        my = dm->ch > 1 ? sbl__gatheri(dp + 1, idx) : zero;
+        keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+        sbl__store(dxs, mx);
+        sbl__store(dys, my);
+        if (s->dir[0] < 0.0) { mx = sbl__sub(zero, mx); my = sbl__sub(zero, my); }
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, mx, my);
+        for (l = 0; l < SBL__VW; ++l) {
+            b->psx[i + l] = x + l + 0.5 + s->dir[0] * SBL__CAST(double, dxs[l]);
+            b->psy[i + l] = y + 0.5 + s->dir[0] * SBL__CAST(double, dys[l]);
+            b->snapped[i + l] = 0;
+        }
+        return bits;
+    }
+    {   /* the parallel rig in lanes: m = dir f b / z */
+        float fbz[SBL__VW];
+        sbl__v z, slack, m;
+        sbl__m keep = sbl__lanes_want(&s->geo.depth, x, y, &z, &slack);
+        int far;
+        m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
+        keep = sbl__mandnot(keep, sbl__nonfinite(m));
+        sbl__store(fbz, m);
+        if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
+        /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the other
+           eye is read at the same pixel (see SBL__FAR_PX) */
+        far = s->tiles &&
+              !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
+              sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero);
+        for (l = 0; l < SBL__VW; ++l) {
+            b->psx[i + l] = x + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
+            b->psy[i + l] = y + 0.5;
+            b->snapped[i + l] = SBL__CAST(unsigned char, far);
+        }
+        return bits;
+    }
+}
+
+static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    const int sw = s->source->color.width, sh = s->source->color.height, x = b->x0 + i, y = b->y;
+    sbl__tap_want want;
+    double sx, sy, sz;
+    float z;
+    sbl__tap_plan_reset(&b->p, i);
+    b->psx[i] = b->psy[i] = 0.0;
+    b->snapped[i] = 0;
+    if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) return;
+    if (!sbl__stereo_map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) return;
+    if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh))) return;
+    want.depth = SBL__CAST(float, sz);
+    b->psx[i] = sx;
+    b->psy[i] = sy;
+    sbl__tap_plan_set(&s->src, &b->p, i, &want, sx, sy);
+}
+
+/* After the taps: the entries handed back, and far lanes whose one tap failed, go to
+   the pixel gather (the footprint's other tap may carry them); the back-check of the
+   others, as
+   sbl__stereo_rp_pixel does it: from the nearest source pixel back. `rig` is a
+   constant where this is inlined (the map is called directly). */
+SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r, sbl__block *b,
+                                       sbl_stereo_rig rig)
+{
+    const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
+    const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
+    const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
+    int i, back[SBL__BLOCK], nback = 0;
+    for (i = 0; i < b->n; ++i) {
+        const int x = b->x0 + i;
+        if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
+            continue;
+        }
+        if (!back_check || !(r->v[x] > 0.0f)) continue;
+        if (cams) {
+            back[nback++] = i; /* in lanes below */
+        } else {
+            const int ix = SBL__CAST(int, floor(b->psx[i])), iy = SBL__CAST(int, floor(b->psy[i]));
+            double bx, by, bz, ex, ey;
+            int ok = rig == SBL_RIG_PARALLEL
+                         ? sbl__stereo_map_parallel(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz)
+                         : sbl__stereo_map_disparity(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz);
+            if (ok) {
+                ex = bx - (x + 0.5);
+                ey = by - (b->y + 0.5);
+                ok = ex * ex + ey * ey <= tol * tol;
+            }
+            if (!ok) sbl__ring_put(r, x, 0.0f, NULL, s->src.color.ch);
+        }
+    }
+    if (nback) sbl__stereo_cam_back(s, r, b->y, b->x0, b->psx, b->psy, back, nback, tol);
+}
+
+static void sbl__stereo_block_after(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    if (s->d.rig == SBL_RIG_PARALLEL) sbl__stereo_after_rig(s, r, b, SBL_RIG_PARALLEL);
+    else if (s->d.rig == SBL_RIG_DISPARITY) sbl__stereo_after_rig(s, r, b, SBL_RIG_DISPARITY);
+    else sbl__stereo_after_rig(s, r, b, SBL_RIG_MATRICES);
 }
 
 /* The stereo reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa, int xb)
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
-    if (s->map == sbl__stereo_map_parallel)
-        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_parallel);
-    else if (s->map == sbl__stereo_map_disparity)
-        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_disparity);
-    else
-        sbl__stereo_rp_row_map(s, r, y, xa, xb, s->map);
+    sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
+                           sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
+                           sbl__stereo_plan_one, sbl__stereo_block_after);
 }
 #endif
 
