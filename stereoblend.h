@@ -4417,7 +4417,7 @@ static int sbl__eye_height(const sbl_eye *e)
 }
 
 /* Planar depth of pixel (ix, iy) of an eye's depth view; 0 if not valid geometry. */
-static float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
+SBL__INLINE float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
 {
     float z = *SBL__AT(*depth, ix, iy);
     if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
@@ -4425,8 +4425,8 @@ static float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
 }
 
 /* SBL_RIG_PARALLEL: d = f b / z - offset (sky: -offset), rows aligned. */
-static int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, int ix, int iy,
-                                    double px, double py, double *ox, double *oy, double *oz)
+SBL__INLINE int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                         double px, double py, double *ox, double *oy, double *oz)
 {
     float z = sbl__valid_depth(&s->depth[back], ix, iy), fbz;
     if (z == 0.0f) return 0;
@@ -4439,8 +4439,8 @@ static int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, in
 }
 
 /* SBL_RIG_DISPARITY: the eye's own map, (d_x[, d_y]) left minus right. */
-static int sbl__stereo_map_disparity(const struct sbl__stereo_rp *s, int back, int ix, int iy,
-                                     double px, double py, double *ox, double *oy, double *oz)
+SBL__INLINE int sbl__stereo_map_disparity(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                          double px, double py, double *ox, double *oy, double *oz)
 {
     const sbl__flat *m = &s->disparity[back];
     const float *d = SBL__AT(*m, ix, iy);
