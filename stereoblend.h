@@ -2702,6 +2702,50 @@ SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v,
    in a sum) are redone by the pixel gather. */
 #define SBL__BLOCK 64
 
+/* Double lanes for the row gather: the camera maps (sbl__cam_map_apply: unproject at
+   the target's depth, carry into the other view, project) with the reference's
+   operations in its order, so every lane gets its bits, and the tap indices (y0 stride
+   + x0 step, exact in double). A few operations suffice: set1, load, store, add, sub,
+   mul, div; SBL__DW floats in (sbl__dfromf: from VW + 4 readable floats), SBL__DW ints
+   out (sbl__dstorei, truncating; the values are integers). */
+#if SBL__VW == 16
+#define SBL__DW 8
+typedef __m512d sbl__dv;
+#define sbl__dset1(a) _mm512_set1_pd(a)
+#define sbl__dload(p) _mm512_loadu_pd(p)
+#define sbl__dstore(p, a) _mm512_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm512_add_pd(a, b)
+#define sbl__dsub(a, b) _mm512_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm512_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm512_div_pd(a, b)
+#define sbl__dfromf(p) _mm512_cvtps_pd(_mm256_loadu_ps(p))
+#define sbl__dstorei(q, a) _mm256_storeu_si256(SBL__PCAST(__m256i *, q), _mm512_cvttpd_epi32(a))
+#elif SBL__VW == 8
+#define SBL__DW 4
+typedef __m256d sbl__dv;
+#define sbl__dset1(a) _mm256_set1_pd(a)
+#define sbl__dload(p) _mm256_loadu_pd(p)
+#define sbl__dstore(p, a) _mm256_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm256_add_pd(a, b)
+#define sbl__dsub(a, b) _mm256_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm256_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm256_div_pd(a, b)
+#define sbl__dfromf(p) _mm256_cvtps_pd(_mm_loadu_ps(p))
+#define sbl__dstorei(q, a) _mm_storeu_si128(SBL__PCAST(__m128i *, q), _mm256_cvttpd_epi32(a))
+#else
+#define SBL__DW 2
+typedef __m128d sbl__dv;
+#define sbl__dset1(a) _mm_set1_pd(a)
+#define sbl__dload(p) _mm_loadu_pd(p)
+#define sbl__dstore(p, a) _mm_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm_add_pd(a, b)
+#define sbl__dsub(a, b) _mm_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm_div_pd(a, b)
+#define sbl__dfromf(p) _mm_cvtps_pd(_mm_loadu_ps(p))
+#define sbl__dstorei(q, a) _mm_storel_epi64(SBL__PCAST(__m128i *, q), _mm_cvttpd_epi32(a))
+#endif
+
 typedef struct sbl__tap_plan {
     int ci[SBL__BLOCK], di[SBL__BLOCK], li[SBL__BLOCK]; /* tap (x0, y0) in colour, depth, N */
     float fx[SBL__BLOCK], fy[SBL__BLOCK];               /* bilinear fractions              */
@@ -3024,6 +3068,21 @@ SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int x, int y, sbl__v 
     return sbl__gt(*z, zero);
 }
 
+/* Tap indices y0 stride + x0 step of a view (NULL: 0) for VW lanes of integer-valued
+   floats, in double lanes (exact: the products stay below 2^53, the sums are valid
+   indices). */
+SBL__INLINE void sbl__plan_index(int *out, const float *x0s, const float *y0s, const sbl__flat *f)
+{
+    int j;
+    if (!f) {
+        for (j = 0; j < SBL__VW; ++j) out[j] = 0;
+        return;
+    }
+    for (j = 0; j < SBL__VW; j += SBL__DW)
+        sbl__dstorei(out + j, sbl__dadd(sbl__dmul(sbl__dfromf(y0s + j), sbl__dset1(SBL__CAST(double, f->stride))),
+                                        sbl__dmul(sbl__dfromf(x0s + j), sbl__dset1(SBL__CAST(double, f->step)))));
+}
+
 /* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
    (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
    results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
@@ -3041,7 +3100,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     sbl__v ax, ay, fmx, fmy, x0f, y0f;
     sbl__m exact, inside, fast;
     int l, bits_scalar, bits_fast, bits_keep;
-    float x0s[SBL__VW], y0s[SBL__VW];
+    float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     ax = sbl__abs(mx);
     ay = sbl__abs(my);
     exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
@@ -3067,21 +3126,16 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     sbl__store(p->depth + i, sbl__sel(fast, z, one));
     sbl__store(p->slack + i, sbl__sel(fast, slack, zero));
     sbl__store(p->fast + i, sbl__sel(fast, one, zero));
-    sbl__store(x0s, x0f);
-    sbl__store(y0s, y0f);
+    /* tap (0, 0) where not fast: a valid address, result unused */
+    sbl__store(x0s, sbl__sel(fast, x0f, zero));
+    sbl__store(y0s, sbl__sel(fast, y0f, zero));
     bits_fast = sbl__mbits(fast);
     bits_keep = sbl__mbits(keep);
-    for (l = 0; l < SBL__VW; ++l) {
-        const int f = (bits_fast >> l) & 1, x0 = f ? SBL__CAST(int, x0s[l]) : 0, y0 = f ? SBL__CAST(int, y0s[l]) : 0;
-        p->redo[i + l] = SBL__CAST(unsigned char, ((bits_keep >> l) & 1) & !f);
-        p->ci[i + l] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * src->color.stride + SBL__CAST(ptrdiff_t, x0) * src->color.step);
-        p->di[i + l] = src->use_depth
-                           ? SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * src->depth.stride + SBL__CAST(ptrdiff_t, x0) * src->depth.step)
-                           : 0;
-        p->li[i + l] = src->length.p ? SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * src->length.stride +
-                                             SBL__CAST(ptrdiff_t, x0) * src->length.step)
-                                     : 0;
-    }
+    for (l = 0; l < SBL__VW; ++l)
+        p->redo[i + l] = SBL__CAST(unsigned char, ((bits_keep >> l) & 1) & !((bits_fast >> l) & 1));
+    sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
+    sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
+    sbl__plan_index(p->li + i, x0s, y0s, src->length.p ? &src->length : NULL);
     return bits_scalar;
 }
 
@@ -3262,43 +3316,8 @@ static void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x0, in
 }
 
 /* ---- camera planning in lanes ---------------------------------------------------
-   The camera source's position maths (sbl__cam_map_apply: unproject at the target's
-   depth, carry into the history's view, project) in double lanes, with the reference's
-   operations in its order, so every lane gets its bits; the checks and the tap plan of
-   each lane then run in scalar (sbl__tap_plan_set). A few double operations suffice:
-   set1, load, store, add, sub, mul, div. */
-#if SBL__VW == 16
-#define SBL__DW 8
-typedef __m512d sbl__dv;
-#define sbl__dset1(a) _mm512_set1_pd(a)
-#define sbl__dload(p) _mm512_loadu_pd(p)
-#define sbl__dstore(p, a) _mm512_storeu_pd(p, a)
-#define sbl__dadd(a, b) _mm512_add_pd(a, b)
-#define sbl__dsub(a, b) _mm512_sub_pd(a, b)
-#define sbl__dmul(a, b) _mm512_mul_pd(a, b)
-#define sbl__ddiv(a, b) _mm512_div_pd(a, b)
-#elif SBL__VW == 8
-#define SBL__DW 4
-typedef __m256d sbl__dv;
-#define sbl__dset1(a) _mm256_set1_pd(a)
-#define sbl__dload(p) _mm256_loadu_pd(p)
-#define sbl__dstore(p, a) _mm256_storeu_pd(p, a)
-#define sbl__dadd(a, b) _mm256_add_pd(a, b)
-#define sbl__dsub(a, b) _mm256_sub_pd(a, b)
-#define sbl__dmul(a, b) _mm256_mul_pd(a, b)
-#define sbl__ddiv(a, b) _mm256_div_pd(a, b)
-#else
-#define SBL__DW 2
-typedef __m128d sbl__dv;
-#define sbl__dset1(a) _mm_set1_pd(a)
-#define sbl__dload(p) _mm_loadu_pd(p)
-#define sbl__dstore(p, a) _mm_storeu_pd(p, a)
-#define sbl__dadd(a, b) _mm_add_pd(a, b)
-#define sbl__dsub(a, b) _mm_sub_pd(a, b)
-#define sbl__dmul(a, b) _mm_mul_pd(a, b)
-#define sbl__ddiv(a, b) _mm_div_pd(a, b)
-#endif
-
+   The camera source's position maths in double lanes (the layer is at the top of the
+   row gather). */
 /* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
    camera and no listed objects, no target normals or ids (their tests stay in
    sbl__tap_want_init), an interior row (the depth slack reads both neighbours), target
