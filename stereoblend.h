@@ -3131,8 +3131,14 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     sbl__store(y0s, sbl__sel(fast, y0f, zero));
     bits_fast = sbl__mbits(fast);
     bits_keep = sbl__mbits(keep);
-    for (l = 0; l < SBL__VW; ++l)
-        p->redo[i + l] = SBL__CAST(unsigned char, ((bits_keep >> l) & 1) & !((bits_fast >> l) & 1));
+    {   /* redo bytes, four lanes per table entry (x86: little-endian bytes) */
+        static const unsigned int bytes[16] = {
+            0x00000000u, 0x00000001u, 0x00000100u, 0x00000101u, 0x00010000u, 0x00010001u,
+            0x00010100u, 0x00010101u, 0x01000000u, 0x01000001u, 0x01000100u, 0x01000101u,
+            0x01010000u, 0x01010001u, 0x01010100u, 0x01010101u};
+        const int redo = bits_keep & ~bits_fast;
+        for (l = 0; l < SBL__VW; l += 4) memcpy(p->redo + i + l, &bytes[(redo >> l) & 15], 4);
+    }
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
     sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
     sbl__plan_index(p->li + i, x0s, y0s, src->length.p ? &src->length : NULL);
