@@ -662,6 +662,51 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
                                           int y0, int y1, void *scratch,
                                           size_t scratch_bytes, long *blended_count);
 
+/* Adaptive stereo blend in one pass: the mask and the blend share one reprojection.
+   The two calls above reproject every pixel twice (once for the mask, once for the
+   blend on the marked tiles), so on an image where most tiles hold a marked pixel they
+   cost more than the blend everywhere. This call reprojects each row once, classifies
+   its pixels from that reprojection (the Weber test of sbl_stereo_consistency on the
+   eyes' colours: own colour against the other eye's colour at the back-checked match),
+   and runs the blend kernel only on the 16 x 16 tiles holding an inconsistent pixel,
+   reading the reprojection it already made. Result: sbl_stereo_blend's bit for bit on
+   the inconsistent pixels, the own colour and N (1 where it has none) elsewhere;
+   exactly what sbl_stereo_consistency + sbl_stereo_blend_masked give on the same
+   comparison. Cost: one reprojection (about 70 % of a blend on the shared scenes)
+   plus the kernel on the marked tiles; at most that of sbl_stereo_blend plus the test
+   and the copies, at least the reprojection. */
+typedef struct sbl_adaptive_desc {
+    float threshold;  /* Weber threshold T; 0 -> SBL_WEBER_THRESHOLD; < 0 or non-finite:
+                         SBL_ERROR_INVALID_PARAM                                     */
+    int per_channel;  /* 0: the Rec. 709 luminance 0.2126 c0 + 0.7152 c1 + 0.0722 c2 of
+                         3- and 4-channel colour (Weber's law is about luminance), each
+                         channel of 1- and 2-channel colour; 1: each channel (the
+                         largest ratio counts). Other values: SBL_ERROR_INVALID_PARAM */
+} sbl_adaptive_desc;
+
+/* Scratch of sbl_stereo_blend_adaptive: the blend's, plus the reprojection of 18 rows
+   and a 16-row mask (0: width or channels out of range). */
+SBLDEF size_t sbl_stereo_adaptive_scratch_size(int width, int channels);
+
+/* Rows [y0, y1) of out_color / out_length as described above. adaptive NULL or zeroed:
+   the defaults. mask (optional, NULL for none) receives each pixel's
+   sbl_consistency_class, counts (optional) the counts of these rows and tiles_blended
+   (optional) the tiles of these rows the kernel ran on, out of tiles_total (optional).
+   Row bands give the same output as one whole call. Errors: those of sbl_stereo_blend
+   (eyes, desc, outputs, rows), then SBL_ERROR_INVALID_PARAM (adaptive->threshold or
+   ->per_channel), SBL_ERROR_INVALID_STRIDE (mask_stride < width with a mask),
+   SBL_ERROR_OVERLAP (mask over an input or output), SBL_ERROR_NULL_POINTER /
+   SBL_ERROR_SCRATCH_TOO_SMALL (scratch); nothing is written on an error. */
+SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
+                                            const sbl_adaptive_desc *adaptive,
+                                            sbl_eye_index target_eye, const sbl_eye *target,
+                                            const sbl_eye *source, sbl_image out_color,
+                                            sbl_image out_length, unsigned char *mask,
+                                            int mask_stride, int y0, int y1, void *scratch,
+                                            size_t scratch_bytes,
+                                            sbl_consistency_counts *counts,
+                                            long *tiles_blended, long *tiles_total);
+
 #ifdef __cplusplus
 }
 #endif
@@ -4955,14 +5000,14 @@ static int sbl__tile_marked(const unsigned char *mask, int mask_stride, int x0, 
 }
 
 /* The own colour and N on the unmarked pixels of rows [y0, y1) (after the blend ran on
-   their tiles); returns the count of marked pixels. */
-static long sbl__keep_own(const sbl__kernel *k, const unsigned char *mask, int mask_stride,
+   their tiles); mask_rows holds row y0's classes. Returns the count of marked pixels. */
+static long sbl__keep_own(const sbl__kernel *k, const unsigned char *mask_rows, int mask_stride,
                           int y0, int y1)
 {
     long marked = 0;
     int x, y, c;
     for (y = y0; y < y1; ++y) {
-        const unsigned char *m = mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride);
+        const unsigned char *m = mask_rows + SBL__CAST(size_t, y - y0) * SBL__CAST(size_t, mask_stride);
         for (x = 0; x < k->w; ++x) { /* per pixel: views may have pixel steps */
             const float *own = sbl__px(k->own, x, y);
             float *o = sbl__px(&k->out, x, y);
@@ -5018,7 +5063,7 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
         }
         if (full0 >= 0) {
             sbl__kernel_run(&k, full0, b0);
-            marked += sbl__keep_own(&k, mask, mask_stride, full0, b0);
+            marked += sbl__keep_own(&k, mask + SBL__CAST(size_t, full0) * SBL__CAST(size_t, mask_stride), mask_stride, full0, b0);
             full0 = -1;
         }
         /* runs of marked tiles along the band become one span each; the step past the
@@ -5032,13 +5077,214 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
                 span0 = -1;
             }
         }
-        marked += sbl__keep_own(&k, mask, mask_stride, b0, b1);
+        marked += sbl__keep_own(&k, mask + SBL__CAST(size_t, b0) * SBL__CAST(size_t, mask_stride), mask_stride, b0, b1);
     }
     if (full0 >= 0) {
         sbl__kernel_run(&k, full0, y1);
-        marked += sbl__keep_own(&k, mask, mask_stride, full0, y1);
+        marked += sbl__keep_own(&k, mask + SBL__CAST(size_t, full0) * SBL__CAST(size_t, mask_stride), mask_stride, full0, y1);
     }
     if (blended_count) *blended_count = marked;
+    return SBL_OK;
+}
+
+/* ---- the one-pass adaptive blend --------------------------------------------------- */
+
+/* Rows of reprojection a band of tiles reads: its own and one above and below (the
+   kernel's 3x3 window). Row y lives in slot y % SBL__ADAPTIVE_ROWS: the two rows a
+   band shares with the next keep their slots, the others are overwritten only after
+   their band is done. */
+#define SBL__ADAPTIVE_ROWS (SBL__ADAPTIVE_TILE + 2)
+
+typedef struct sbl__adaptive_cache {
+    int w, ch;
+    sbl__gather_fn gather;           /* the stereo reprojection (pixel and row forms) */
+    sbl__row_gather_fn gather_row;   /* NULL: one pixel at a time                     */
+    const void *gather_ctx;
+    sbl__ring_row slot[SBL__ADAPTIVE_ROWS]; /* x*, N, validity of row .row (-1: none) */
+} sbl__adaptive_cache;
+
+SBLDEF size_t sbl_stereo_adaptive_scratch_size(int width, int channels)
+{
+    size_t kernel = sbl_stereo_scratch_size(width, channels), pf;
+    if (kernel == 0) return 0;
+    pf = sbl__plane_floats(width);
+    /* per slot: channels + 2 float planes; then one mask byte per pixel of a band */
+    return kernel + 64 + SBL__CAST(size_t, SBL__ADAPTIVE_ROWS * (channels + 2)) * pf * sizeof(float) +
+           SBL__CAST(size_t, SBL__ADAPTIVE_TILE) * pf;
+}
+
+/* The reprojection of image row y, made on first use. */
+static const sbl__ring_row *sbl__adaptive_row_of(sbl__adaptive_cache *c, int y)
+{
+    sbl__ring_row *r = &c->slot[y % SBL__ADAPTIVE_ROWS];
+    int x;
+    if (r->row == y) return r;
+    if (c->gather_row) {
+        c->gather_row(c->gather_ctx, r, y, 0, c->w);
+    } else {
+        for (x = 0; x < c->w; ++x) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, c->gather(c->gather_ctx, x, y, tmp), tmp, c->ch);
+        }
+    }
+    r->row = y;
+    return r;
+}
+
+/* The kernel's row gather during the adaptive pass: a copy of the cached reprojection
+   (equal bit for bit to gathering again). */
+static void sbl__adaptive_gather_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                     int xb)
+{
+    sbl__adaptive_cache *c = *SBL__PCAST(sbl__adaptive_cache *const *, ctx);
+    const sbl__ring_row *s = sbl__adaptive_row_of(c, y);
+    const size_t bytes = SBL__CAST(size_t, xb - xa) * sizeof(float);
+    int k;
+    if (xb <= xa) return;
+    for (k = 0; k < c->ch; ++k) memcpy(r->x[k] + xa, s->x[k] + xa, bytes);
+    memcpy(r->n + xa, s->n + xa, bytes);
+    memcpy(r->v + xa, s->v + xa, bytes);
+}
+
+/* Weber test of one pixel: own colour against the reprojected other eye's. */
+static unsigned char sbl__adaptive_class(const float *own, const sbl__ring_row *r, int x,
+                                         int ch, int luminance, double threshold)
+{
+    double worst = 0.0;
+    int k;
+    if (!(r->v[x] > 0.0f)) return SBL_NO_CORRESPONDENCE;
+    if (sbl__any_nonfinite(own, ch)) return SBL_INCONSISTENT;
+    if (luminance) {
+        /* in double from the floats: a float sum could round both sides differently */
+        double a = 0.2126 * SBL__CAST(double, own[0]) + 0.7152 * SBL__CAST(double, own[1]) +
+                   0.0722 * SBL__CAST(double, own[2]);
+        double b = 0.2126 * SBL__CAST(double, r->x[0][x]) + 0.7152 * SBL__CAST(double, r->x[1][x]) +
+                   0.0722 * SBL__CAST(double, r->x[2][x]);
+        double m = fabs(a) > fabs(b) ? fabs(a) : fabs(b);
+        worst = m > 0.0 ? fabs(a - b) / m : 0.0;
+    } else {
+        for (k = 0; k < ch; ++k) {
+            double q = sbl__weber_ratio(own[k], r->x[k][x]);
+            if (q > worst) worst = q;
+        }
+    }
+    return worst >= threshold ? SBL_INCONSISTENT : SBL_CONSISTENT;
+}
+
+SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
+                                            const sbl_adaptive_desc *adaptive,
+                                            sbl_eye_index target_eye, const sbl_eye *target,
+                                            const sbl_eye *source, sbl_image out_color,
+                                            sbl_image out_length, unsigned char *mask,
+                                            int mask_stride, int y0, int y1, void *scratch,
+                                            size_t scratch_bytes,
+                                            sbl_consistency_counts *counts,
+                                            long *tiles_blended, long *tiles_total)
+{
+    sbl__stereo_rp s;
+    sbl__kernel k;
+    sbl__adaptive_cache cache, *cache_ptr = &cache; /* the gather's context: a pointer to it */
+    sbl_adaptive_desc a;
+    sbl_result r;
+    unsigned char *band; /* classes of the band's rows, row stride pf */
+    size_t pf, need;
+    long n_ok = 0, n_bad = 0, n_none = 0, t_run = 0, t_all = 0;
+    double threshold;
+    int w, h, ch, by, luminance, i, j;
+    /* every check of the full blend: an empty row range validates and writes nothing */
+    if ((r = sbl_stereo_blend(desc, target_eye, target, source, out_color, out_length, y0, y0,
+                              scratch, scratch_bytes)) != SBL_OK)
+        return r;
+    if (adaptive) a = *adaptive;
+    else memset(&a, 0, sizeof a);
+    if (sbl__is_zero(a.threshold)) a.threshold = SBL_WEBER_THRESHOLD;
+    if (!sbl__finite(a.threshold) || !(a.threshold > 0.0f)) return SBL_ERROR_INVALID_PARAM;
+    if (a.per_channel != 0 && a.per_channel != 1) return SBL_ERROR_INVALID_PARAM;
+    w = target->color.width; h = target->color.height; ch = target->color.channels;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    if (mask) {
+        const char *m0 = SBL__PCAST(const char *, mask), *m1;
+        if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
+        m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
+        if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes(m0, m1, &out_length) ||
+            sbl__overlap_bytes_eye(m0, m1, target) || sbl__overlap_bytes_eye(m0, m1, source))
+            return SBL_ERROR_OVERLAP;
+    }
+    need = sbl_stereo_adaptive_scratch_size(w, ch);
+    if (need == 0) return SBL_ERROR_INVALID_SIZE;
+    if (scratch_bytes < need) return SBL_ERROR_SCRATCH_TOO_SMALL;
+    if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
+                                     &out_length)) != SBL_OK)
+        return r;
+    threshold = SBL__CAST(double, a.threshold);
+    luminance = !a.per_channel && ch >= 3;
+
+    /* the kernel as sbl_stereo_blend sets it up, then its gather redirected to the cache */
+    sbl__stereo_kernel_setup(&k, &s, target, &out_color, &out_length, NULL, scratch);
+    pf = sbl__plane_floats(w);
+    memset(&cache, 0, sizeof cache);
+    cache.w = w; cache.ch = ch;
+    cache.gather = k.gather; cache.gather_row = k.gather_row; cache.gather_ctx = k.gather_ctx;
+    {
+        float *p = SBL__PCAST(float *, sbl__align64(SBL__PCAST(char *, scratch) +
+                                                    sbl_stereo_scratch_size(w, ch)));
+        for (i = 0; i < SBL__ADAPTIVE_ROWS; ++i) {
+            for (j = 0; j < ch; ++j) { cache.slot[i].x[j] = p; p += pf; }
+            cache.slot[i].n = p; p += pf;
+            cache.slot[i].v = p; p += pf;
+            cache.slot[i].row = -1;
+        }
+        band = SBL__PCAST(unsigned char *, p);
+    }
+    k.gather_row = sbl__adaptive_gather_row;
+    k.gather_ctx = &cache_ptr;
+
+    for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
+        const int b0 = by > y0 ? by : y0;
+        const int b1 = by + SBL__ADAPTIVE_TILE < y1 ? by + SBL__ADAPTIVE_TILE : y1;
+        int y, x, tx, span0 = -1;
+        /* classify the band's pixels from the reprojection the kernel will read */
+        for (y = b0; y < b1; ++y) {
+            const sbl__ring_row *rr = sbl__adaptive_row_of(&cache, y);
+            unsigned char *m = band + SBL__CAST(size_t, y - b0) * pf;
+            for (x = 0; x < w; ++x) {
+                unsigned char cls = sbl__adaptive_class(sbl__px(&target->color, x, y), rr, x,
+                                                        ch, luminance, threshold);
+                m[x] = cls;
+                n_ok += cls == SBL_CONSISTENT;
+                n_bad += cls == SBL_INCONSISTENT;
+                n_none += cls == SBL_NO_CORRESPONDENCE;
+            }
+            if (mask)
+                memcpy(mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride), m,
+                       SBL__CAST(size_t, w));
+        }
+        /* runs of marked tiles along the band become one span each */
+        for (tx = 0; tx < w + SBL__ADAPTIVE_TILE; tx += SBL__ADAPTIVE_TILE) {
+            int marked_tile = 0;
+            if (tx < w) {
+                marked_tile = sbl__tile_marked(band, SBL__CAST(int, pf), tx, tx + SBL__ADAPTIVE_TILE,
+                                               w, 0, b1 - b0);
+                ++t_all;
+                t_run += marked_tile;
+            }
+            if (marked_tile && span0 < 0) span0 = tx;
+            if (!marked_tile && span0 >= 0) {
+                sbl__kernel_run_span(&k, b0, b1, span0, tx < w ? tx : w);
+                span0 = -1;
+            }
+        }
+        sbl__keep_own(&k, band, SBL__CAST(int, pf), b0, b1);
+    }
+    if (counts) {
+        counts->consistent = n_ok;
+        counts->inconsistent = n_bad;
+        counts->no_correspondence = n_none;
+        counts->inconsistent_ratio =
+            n_ok + n_bad > 0 ? SBL__CAST(double, n_bad) / SBL__CAST(double, n_ok + n_bad) : 0.0;
+    }
+    if (tiles_blended) *tiles_blended = t_run;
+    if (tiles_total) *tiles_total = t_all;
     return SBL_OK;
 }
 
