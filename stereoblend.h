@@ -5246,15 +5246,19 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
         /* classify the band's pixels from the reprojection the kernel will read */
         for (y = b0; y < b1; ++y) {
             const sbl__ring_row *rr = sbl__adaptive_row_of(&cache, y);
+            const float *own = sbl__px(&target->color, 0, y);
+            const ptrdiff_t step = sbl__step_of(&target->color);
             unsigned char *m = band + SBL__CAST(size_t, y - b0) * pf;
+            long n_cls[3] = {0, 0, 0};
             for (x = 0; x < w; ++x) {
-                unsigned char cls = sbl__adaptive_class(sbl__px(&target->color, x, y), rr, x,
+                unsigned char cls = sbl__adaptive_class(own + SBL__CAST(ptrdiff_t, x) * step, rr, x,
                                                         ch, luminance, threshold);
                 m[x] = cls;
-                n_ok += cls == SBL_CONSISTENT;
-                n_bad += cls == SBL_INCONSISTENT;
-                n_none += cls == SBL_NO_CORRESPONDENCE;
+                ++n_cls[cls];
             }
+            n_ok += n_cls[SBL_CONSISTENT];
+            n_bad += n_cls[SBL_INCONSISTENT];
+            n_none += n_cls[SBL_NO_CORRESPONDENCE];
             if (mask)
                 memcpy(mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride), m,
                        SBL__CAST(size_t, w));
