@@ -639,13 +639,19 @@ typedef struct sbl_consistency_counts {
 
 /* Classify rows [y0, y1) of `target_eye`: mask[y * mask_stride + x] receives an
    sbl_consistency_class. threshold 0 -> SBL_WEBER_THRESHOLD; negative or non-finite is
-   SBL_ERROR_INVALID_PARAM. counts (optional) receives the counts of these rows. */
+   SBL_ERROR_INVALID_PARAM. counts (optional) receives the counts of these rows.
+   scratch (optional: NULL and 0 for none) of sbl_stereo_consistency_scratch_size()
+   bytes lets the reprojection run a row at a time in vector lanes where the build and
+   the eyes allow it (SIMD, no normals or ids in the eyes, an int-addressable source):
+   the same mask, bit for bit, at a fraction of the cost; a smaller scratch is
+   SBL_ERROR_SCRATCH_TOO_SMALL. */
+SBLDEF size_t sbl_stereo_consistency_scratch_size(int width, int channels);
 SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
                                          sbl_eye_index target_eye, const sbl_eye *target,
                                          const sbl_eye *source, sbl_image target_value,
                                          sbl_image source_value, unsigned char *mask,
-                                         int mask_stride, int y0, int y1,
-                                         sbl_consistency_counts *counts);
+                                         int mask_stride, int y0, int y1, void *scratch,
+                                         size_t scratch_bytes, sbl_consistency_counts *counts);
 
 /* Adaptive stereo blend (Wu's adaptive pass): rows [y0, y1) of out_color / out_length
    receive sbl_stereo_blend's result (bit for bit) where mask[y * mask_stride + x] is
@@ -4914,18 +4920,41 @@ static int sbl__mask_overlaps(const unsigned char *mask, int mask_stride, int w,
     return sbl__overlap_bytes_eye(m0, m1, a) || sbl__overlap_bytes_eye(m0, m1, b);
 }
 
+SBLDEF size_t sbl_stereo_consistency_scratch_size(int width, int channels)
+{
+    if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
+    /* one reprojected row: channels + 2 float planes */
+    return SBL__CAST(size_t, channels + 2) * sbl__plane_floats(width) * sizeof(float) + 64;
+}
+
+/* Class of one pixel from its own value and the reprojected other value (n > 0: a
+   correspondence). */
+static unsigned char sbl__consistency_class(const float *own, const float *other, float n,
+                                            int ch, double threshold)
+{
+    double worst = 0.0;
+    int k;
+    if (!(n > 0.0f)) return SBL_NO_CORRESPONDENCE;
+    if (sbl__any_nonfinite(own, ch)) return SBL_INCONSISTENT;
+    for (k = 0; k < ch; ++k) {
+        double q = sbl__weber_ratio(own[k], other[k]);
+        if (q > worst) worst = q;
+    }
+    return worst >= threshold ? SBL_INCONSISTENT : SBL_CONSISTENT;
+}
+
 SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
                                          sbl_eye_index target_eye, const sbl_eye *target,
                                          const sbl_eye *source, sbl_image target_value,
                                          sbl_image source_value, unsigned char *mask,
-                                         int mask_stride, int y0, int y1,
-                                         sbl_consistency_counts *counts)
+                                         int mask_stride, int y0, int y1, void *scratch,
+                                         size_t scratch_bytes, sbl_consistency_counts *counts)
 {
     sbl__stereo_rp s;
     sbl_eye t, o; /* the eyes with the value images as their colour, without N */
     sbl_result r;
     long n_ok = 0, n_bad = 0, n_none = 0;
-    int x, y, k, w, h, ch;
+    int x, y, w, h, ch;
     if (!target || !source) return SBL_ERROR_NULL_POINTER;
     t = *target;
     o = *source;
@@ -4944,24 +4973,50 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
     if (sbl__mask_overlaps(mask, mask_stride, w, h, &t, &o) ||
         sbl__mask_overlaps(mask, mask_stride, w, h, target, source))
         return SBL_ERROR_OVERLAP;
+    if (scratch || scratch_bytes) {
+        if (!scratch) return SBL_ERROR_NULL_POINTER;
+        if (scratch_bytes < sbl_stereo_consistency_scratch_size(w, ch))
+            return SBL_ERROR_SCRATCH_TOO_SMALL;
+    }
+#ifdef SBL__ROW_GATHER
+    if (scratch && sbl__row_gather_ok(&s.src)) {
+        /* a row at a time into one ring row (the blend kernel's reprojection) */
+        const size_t pf = sbl__plane_floats(w);
+        float *p = SBL__PCAST(float *, sbl__align64(scratch));
+        sbl__ring_row row;
+        int k;
+        memset(&row, 0, sizeof row);
+        for (k = 0; k < ch; ++k) { row.x[k] = p; p += pf; }
+        row.n = p; p += pf;
+        row.v = p;
+        for (y = y0; y < y1; ++y) {
+            unsigned char *m = mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride);
+            const float *own = sbl__px(&target_value, 0, y);
+            const ptrdiff_t step = sbl__step_of(&target_value);
+            long n_cls[3] = {0, 0, 0};
+            sbl__stereo_rp_row(&s, &row, y, 0, w);
+            for (x = 0; x < w; ++x) {
+                float other[4] = {0, 0, 0, 0};
+                unsigned char cls;
+                for (k = 0; k < ch; ++k) other[k] = row.x[k][x];
+                cls = sbl__consistency_class(own + SBL__CAST(ptrdiff_t, x) * step, other, row.n[x], ch,
+                                             SBL__CAST(double, threshold));
+                m[x] = cls;
+                ++n_cls[cls];
+            }
+            n_ok += n_cls[SBL_CONSISTENT];
+            n_bad += n_cls[SBL_INCONSISTENT];
+            n_none += n_cls[SBL_NO_CORRESPONDENCE];
+        }
+    } else
+#endif
     for (y = y0; y < y1; ++y) {
         unsigned char *m = mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride);
         for (x = 0; x < w; ++x) {
             float other[4] = {0, 0, 0, 0};
-            const float *own = sbl__px(&target_value, x, y);
-            unsigned char cls;
-            if (!(sbl__stereo_rp_pixel(&s, x, y, other) > 0.0f)) {
-                cls = SBL_NO_CORRESPONDENCE;
-            } else if (sbl__any_nonfinite(own, ch)) {
-                cls = SBL_INCONSISTENT;
-            } else {
-                double worst = 0.0;
-                for (k = 0; k < ch; ++k) {
-                    double q = sbl__weber_ratio(own[k], other[k]);
-                    if (q > worst) worst = q;
-                }
-                cls = worst >= SBL__CAST(double, threshold) ? SBL_INCONSISTENT : SBL_CONSISTENT;
-            }
+            float n = sbl__stereo_rp_pixel(&s, x, y, other);
+            unsigned char cls = sbl__consistency_class(sbl__px(&target_value, x, y), other, n, ch,
+                                                       SBL__CAST(double, threshold));
             m[x] = cls;
             n_ok += cls == SBL_CONSISTENT;
             n_bad += cls == SBL_INCONSISTENT;

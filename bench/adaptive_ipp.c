@@ -76,7 +76,7 @@ int main(int argc, char **argv)
         sbl_consistency_counts c;
         sbl_stereo_consistency(&d, threshold, (sbl_eye_index)e, &eye[e], &eye[!e],
                                sbl_image_make(lum[e], w, h, 1), sbl_image_make(lum[!e], w, h, 1),
-                               mask[e], w, 0, h, &c);
+                               mask[e], w, 0, h, NULL, 0, &c);
         marked += c.inconsistent;
     }
     for (e = 0; e < 2; ++e)

@@ -471,7 +471,7 @@ static int sbr_stereo_masked(const sbl_stereo_desc *sd, float threshold, const s
     }
     for (e = 0; e < 2 && rc == 0; ++e) {
         rc = sbl_stereo_consistency(sd, threshold, (sbl_eye_index)e, &geo[e], &geo[!e], L[e],
-                                    L[!e], mask, w, 0, h, NULL);
+                                    L[!e], mask, w, 0, h, NULL, 0, NULL);
         if (rc == 0)
             rc = sbl_stereo_blend_masked(sd, (sbl_eye_index)e, &eye[e], &eye[!e], mask, w,
                                          sbl_image_make(disp[e], w, h, 3), sbl_image_make(NULL, 0, 0, 0),

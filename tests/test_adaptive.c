@@ -55,11 +55,46 @@ static void rig_free(rig *r)
     for (e = 0; e < 2; ++e) { free(r->dep[e].mem); free(r->val[e].mem); }
 }
 
+/* The mask by the pixel path (no scratch); every call also checks that the row path
+   (with scratch) writes the same classes and counts, bit for bit. */
 static sbl_result rig_mask(rig *r, float threshold, int t, unsigned char *mask, int y0, int y1,
                            sbl_consistency_counts *c)
 {
-    return sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
-                                  view(&r->val[t]), view(&r->val[!t]), mask, r->w, y0, y1, c);
+    const int ch = r->val[t].c;
+    size_t bytes = sbl_stereo_consistency_scratch_size(r->w, ch);
+    void *scratch = malloc(bytes);
+    unsigned char *m2 = (unsigned char *)malloc((size_t)r->w * r->h);
+    sbl_consistency_counts c1, c2;
+    sbl_result res, res2;
+    int y;
+    memcpy(m2, mask, (size_t)r->w * r->h);
+    res = sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
+                                 view(&r->val[t]), view(&r->val[!t]), mask, r->w, y0, y1, NULL, 0, &c1);
+    res2 = sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
+                                  view(&r->val[t]), view(&r->val[!t]), m2, r->w, y0, y1, scratch,
+                                  bytes, &c2);
+    CHECK_EQ(res2, res);
+    CHECK(memcmp(m2, mask, (size_t)r->w * r->h) == 0);
+    if (res == SBL_OK)
+        CHECK(c1.consistent == c2.consistent && c1.inconsistent == c2.inconsistent &&
+              c1.no_correspondence == c2.no_correspondence);
+    if (res == SBL_OK && y1 > y0) {
+        /* a scratch one byte short is refused, writing nothing */
+        for (y = y0; y < y1; ++y) memset(m2 + (size_t)y * r->w, 0x33, (size_t)r->w);
+        CHECK_EQ(sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
+                                        view(&r->val[t]), view(&r->val[!t]), m2, r->w, y0, y1,
+                                        scratch, bytes - 1, NULL),
+                 SBL_ERROR_SCRATCH_TOO_SMALL);
+        CHECK_EQ(sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
+                                        view(&r->val[t]), view(&r->val[!t]), m2, r->w, y0, y1,
+                                        NULL, bytes, NULL),
+                 SBL_ERROR_NULL_POINTER);
+        CHECK(m2[(size_t)y0 * r->w] == 0x33);
+    }
+    if (c) *c = c1;
+    free(scratch);
+    free(m2);
+    return res;
 }
 
 /* ---- 1. the hand-computed case ---------------------------------------------------- */
@@ -283,61 +318,61 @@ static void test_errors(void)
         CHECK(mask_untouched(mask, sizeof mask));                                        \
         CHECK(memcmp(&n, &n0, sizeof n) == 0);                                           \
     } while (0)
-    REJECT(sbl_stereo_consistency(NULL, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(NULL, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_NULL_POINTER);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, NULL, &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, NULL, &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_NULL_POINTER);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, NULL, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, NULL, w, 0, h, NULL, 0, &n),
            SBL_ERROR_NULL_POINTER);
-    REJECT(sbl_stereo_consistency(&r.d, -0.02f, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, -0.02f, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
-    REJECT(sbl_stereo_consistency(&r.d, nan, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, nan, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
-    REJECT(sbl_stereo_consistency(&r.d, (float)HUGE_VAL, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, (float)HUGE_VAL, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
-    REJECT(sbl_stereo_consistency(&r.d, 0, (sbl_eye_index)2, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, (sbl_eye_index)2, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w - 1, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w - 1, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_STRIDE);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h + 1, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h + 1, NULL, 0, &n),
            SBL_ERROR_INVALID_ROWS);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 3, 2, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 3, 2, NULL, 0, &n),
            SBL_ERROR_INVALID_ROWS);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, view(&other), mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, view(&other), mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_CHANNEL_MISMATCH);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, view(&small), mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, view(&small), mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_SIZE_MISMATCH);
     {   /* a value image without data */
         sbl_image none = a;
         none.data = NULL;
-        REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], none, b, mask, w, 0, h, &n),
+        REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], none, b, mask, w, 0, h, NULL, 0, &n),
                SBL_ERROR_NULL_POINTER);
     }
     /* parallel rig without depth in the source eye */
     e0 = r.eye[1];
     memset(&e0.gbuffer.depth, 0, sizeof e0.gbuffer.depth);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &e0, a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &e0, a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_MISSING_INPUT);
     d = r.d;
     d.focal_px = -1.0f;
-    REJECT(sbl_stereo_consistency(&d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
     {   /* the mask over an input: a value image or the depth */
         unsigned char *over = (unsigned char *)r.val[1].mem;
         unsigned char keep[sizeof(float) * 16];
         memcpy(keep, over, sizeof keep);
-        CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, over, w, 0, h, &n),
+        CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, over, w, 0, h, NULL, 0, &n),
                  SBL_ERROR_OVERLAP);
         CHECK(memcmp(keep, over, sizeof keep) == 0);
         over = (unsigned char *)r.dep[0].mem;
         memcpy(keep, over, sizeof keep);
-        CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, over, w, 0, h, &n),
+        CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, over, w, 0, h, NULL, 0, &n),
                  SBL_ERROR_OVERLAP);
         CHECK(memcmp(keep, over, sizeof keep) == 0);
     }
     /* accepted with counts NULL; an over-wide stride is fine */
     memset(mask, 0x5a, sizeof mask);
-    CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL),
+    CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, NULL),
              SBL_OK);
     CHECK(mask[0] == SBL_NO_CORRESPONDENCE && mask[2] == SBL_CONSISTENT);
     CHECK(mask[w * h] == 0x5a);
