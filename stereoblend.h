@@ -4929,7 +4929,7 @@ SBLDEF size_t sbl_stereo_consistency_scratch_size(int width, int channels)
 
 /* Class of one pixel from its own value and the reprojected other value (n > 0: a
    correspondence). */
-static unsigned char sbl__consistency_class(const float *own, const float *other, float n,
+SBL__INLINE unsigned char sbl__consistency_class(const float *own, const float *other, float n,
                                             int ch, double threshold)
 {
     double worst = 0.0;

@@ -600,64 +600,65 @@ static int cmp_double(const void *a, const void *b)
 typedef struct row { double ratio, mae, ms, marked, stage[STAGES]; } row;
 
 /* Every configuration on every frame of the scene at threshold T: ratio (2 %) of the
-   final pair, MAE against FSA (pixels with geometry, both eyes), median ms. */
+   final pair, MAE against FSA (pixels with geometry, both eyes), median ms. The runs are
+   side by side: on each frame, run r of every configuration before run r + 1 of any, so
+   that a change in the machine's load falls on all of them alike. */
 static void measure(const scene *s, float threshold, int reps, row *out)
 {
-    int c, f, r, e;
-    double *times = (double *)xmalloc(sizeof(double) * (size_t)(s->count * reps + 1));
-    for (c = 0; c < CONFIGS; ++c) memset(&out[c], 0, sizeof out[c]);
+    int c, f, r, e, k, nt = 0;
+    double *times[CONFIGS], stage_sum[CONFIGS][STAGES], marked_sum[CONFIGS], mae[CONFIGS];
+    long bad[CONFIGS], matched[CONFIGS], mae_n[CONFIGS];
     for (c = 0; c < CONFIGS; ++c) {
-        int nt = 0;
-        long bad = 0, matched = 0;
-        double mae = 0.0, marked_sum = 0.0, stage_sum[STAGES], st[STAGES];
-        int k;
-        long mae_n = 0;
-        for (f = 0; f < s->count; ++f) {
-            const pair *p = &s->frame[f];
-            const size_t n = (size_t)p->w * p->h;
-            maps m, ref;
-            double marked = 0.0;
-            maps_alloc(&m, p->w, n);
-            maps_alloc(&ref, p->w, n);
-            if (f == 0) memset(stage_sum, 0, sizeof stage_sum);
-            for (r = 0; r < reps; ++r) {
-                times[nt++] = run_config(p, &m, c, threshold, &marked, st);
-                for (k = 0; k < STAGES; ++k) stage_sum[k] += st[k];
-            }
-            marked_sum += marked;
-            (void)run_config(p, &ref, FSA, threshold, &marked, st);
-            {   /* consistency of the final pair at 2 % */
-                sbl_stereo_desc d = lib_desc(p);
-                sbl_eye eye[2];
-                eye[0] = lib_eye(p, 0);
-                eye[1] = lib_eye(p, 1);
-                for (e = 0; e < 2; ++e) {
-                    sbl_consistency_counts cnt;
-                    if (sbl_stereo_consistency(&d, 0.0f, (sbl_eye_index)e, &eye[e], &eye[!e],
-                                               sbl_image_make(m.A[e], p->w, p->h, 1),
-                                               sbl_image_make(m.A[!e], p->w, p->h, 1), m.mask[e], p->w,
-                                               0, p->h, NULL, 0, &cnt) != SBL_OK)
-                        exit(1);
-                    bad += cnt.inconsistent;
-                    matched += cnt.consistent + cnt.inconsistent;
-                }
-                for (e = 0; e < 2; ++e) {
-                    size_t i;
-                    for (i = 0; i < n; ++i)
-                        if (p->v[e].depth[i] > 0.0f) { mae += fabs((double)m.A[e][i] - ref.A[e][i]); ++mae_n; }
-                }
-            }
-            maps_free(&m);
-            maps_free(&ref);
-        }
-        qsort(times, (size_t)nt, sizeof(double), cmp_double);
-        out[c].ms = times[nt / 2];
-        out[c].ratio = matched ? 100.0 * (double)bad / (double)matched : 0.0;
-        out[c].mae = mae_n ? mae / (double)mae_n : 0.0;
-        out[c].marked = marked_sum / s->count;
-        for (k = 0; k < STAGES; ++k) out[c].stage[k] = stage_sum[k] / nt;
+        memset(&out[c], 0, sizeof out[c]);
+        times[c] = (double *)xmalloc(sizeof(double) * (size_t)(s->count * reps + 1));
+        memset(stage_sum[c], 0, sizeof stage_sum[c]);
+        marked_sum[c] = mae[c] = 0.0;
+        bad[c] = matched[c] = mae_n[c] = 0;
     }
-    free(times);
+    for (f = 0; f < s->count; ++f) {
+        const pair *p = &s->frame[f];
+        const size_t n = (size_t)p->w * p->h;
+        maps m[CONFIGS];
+        double marked[CONFIGS], st[STAGES];
+        for (c = 0; c < CONFIGS; ++c) maps_alloc(&m[c], p->w, n);
+        for (r = 0; r < reps; ++r, ++nt)
+            for (c = 0; c < CONFIGS; ++c) {
+                times[c][nt] = run_config(p, &m[c], c, threshold, &marked[c], st);
+                for (k = 0; k < STAGES; ++k) stage_sum[c][k] += st[k];
+            }
+        for (c = 0; c < CONFIGS; ++c) {
+            sbl_stereo_desc d = lib_desc(p);
+            sbl_eye eye[2];
+            marked_sum[c] += marked[c];
+            eye[0] = lib_eye(p, 0);
+            eye[1] = lib_eye(p, 1);
+            for (e = 0; e < 2; ++e) {   /* consistency of the final pair at 2 % */
+                sbl_consistency_counts cnt;
+                if (sbl_stereo_consistency(&d, 0.0f, (sbl_eye_index)e, &eye[e], &eye[!e],
+                                           sbl_image_make(m[c].A[e], p->w, p->h, 1),
+                                           sbl_image_make(m[c].A[!e], p->w, p->h, 1), m[c].mask[e], p->w,
+                                           0, p->h, NULL, 0, &cnt) != SBL_OK)
+                    exit(1);
+                bad[c] += cnt.inconsistent;
+                matched[c] += cnt.consistent + cnt.inconsistent;
+            }
+            for (e = 0; e < 2; ++e) {   /* MAE against FSA's result */
+                size_t i;
+                for (i = 0; i < n; ++i)
+                    if (p->v[e].depth[i] > 0.0f) { mae[c] += fabs((double)m[c].A[e][i] - m[FSA].A[e][i]); ++mae_n[c]; }
+            }
+        }
+        for (c = 0; c < CONFIGS; ++c) maps_free(&m[c]);
+    }
+    for (c = 0; c < CONFIGS; ++c) {
+        qsort(times[c], (size_t)nt, sizeof(double), cmp_double);
+        out[c].ms = times[c][nt / 2];
+        out[c].ratio = matched[c] ? 100.0 * (double)bad[c] / (double)matched[c] : 0.0;
+        out[c].mae = mae_n[c] ? mae[c] / (double)mae_n[c] : 0.0;
+        out[c].marked = marked_sum[c] / s->count;
+        for (k = 0; k < STAGES; ++k) out[c].stage[k] = stage_sum[c][k] / nt;
+        free(times[c]);
+    }
 }
 
 static void report(const scene *s, int reps, int sweep)
