@@ -30,7 +30,7 @@ EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 # each in every configuration
 TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive \
         test_accuracy
-HEADERS = stereoblend.h tests/sbl_test.h $(wildcard tools/*.h)
+HEADERS = stereoblend.h tests/sbl_test.h tests/sbl_test_alloc.h $(wildcard tools/*.h)
 
 # SIMD paths this CPU can run (the tests compare each against the scalar path)
 CPU_FLAGS := $(shell grep -m1 '^flags' /proc/cpuinfo 2>/dev/null)
@@ -39,7 +39,7 @@ FLAGS_scalar = -DSBL_NO_SIMD
 FLAGS_avx2   = -mavx2 -mfma
 FLAGS_avx512 = -mavx512f -mavx2 -mfma
 
-.PHONY: all check demo bench bench-quick bench-perf bench-ipp bench-adaptive ao clean tests
+.PHONY: all check demo bench bench-quick bench-perf bench-ipp ipp-watch bench-adaptive ao clean tests
 all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
 # make check / make tests / make check-robust: the configurations and the quiet runner
@@ -128,6 +128,10 @@ $(BUILD)/ipp-avx2: bench/ipp.c stereoblend.h
 	$(CC) -std=c99 -Wall -Wextra -O2 -g -mavx2 -mfma $< -o $@ $(LDLIBS)
 bench-ipp: $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2
 	@sh bench/ipp.sh $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2 -- $(IPP_CASES)
+
+# CI's speed watch: the SSE2 figures against bench/ipp_budget.txt (fails above budget)
+ipp-watch: $(BUILD)/ipp-sse2
+	@sh bench/ipp_watch.sh $(BUILD)/ipp-sse2
 
 # the same in under a minute (CI smoke run; never asserts timings)
 bench-quick: $(BUILD)/bench

@@ -102,7 +102,7 @@ RUN_ARGS_asan/fuzz_sbl = tests/fuzz_corpus/*
 
 # build/<config>/stereoblend.o, and build/<config>/<test> for every test of it
 define CONFIG_RULES
-$(BUILD)/$(1)/stereoblend.o: tests/sbl_impl.c stereoblend.h
+$(BUILD)/$(1)/stereoblend.o: tests/sbl_impl.c stereoblend.h tests/sbl_test_alloc.h
 	@mkdir -p $$(@D)
 	$$(Q)$$(CFG_CC_$(1)) $$(CFG_FLAGS_$(1)) -c $$< -o $$@
 $(BUILD)/$(1)/%: tests/%.c $(BUILD)/$(1)/stereoblend.o $$(HEADERS)

@@ -23,7 +23,7 @@ STRICT_COMPILERS = $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang) $(if $(HAVE_G
 STRICT_LOGS = $(foreach c,$(STRICT_COMPILERS),$(foreach p,$(STRICT_PATHS),$(BUILD)/strict/$(c)-$(p).log))
 
 define STRICT_RULE
-$(BUILD)/strict/$(1)-$(2).log: tests/sbl_impl.c stereoblend.h
+$(BUILD)/strict/$(1)-$(2).log: tests/sbl_impl.c stereoblend.h tests/sbl_test_alloc.h
 	@mkdir -p $$(@D)
 	@$$(STRICT_CC_$(1)) $$(STRICT_$(2)) -O2 -c $$< -o $$(@:.log=.o) > $$@ 2>&1 || echo "error: did not compile" >> $$@
 endef

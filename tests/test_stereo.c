@@ -6,28 +6,10 @@
    fronto-parallel far plane and, for occlusion, a near box in front of it. The right
    eye's match of left pixel u at depth z is u - f b / z. */
 #include <stdlib.h>
-
-/* Allocation hooks for the *_frame calls: the context counts calls and can fail them. */
-typedef struct tst_alloc { int fail, allocs, frees; } tst_alloc;
-static void *tst_malloc(size_t n, void *ctx)
-{
-    tst_alloc *a = (tst_alloc *)ctx;
-    if (a) {
-        if (a->fail) return NULL;
-        ++a->allocs;
-    }
-    return malloc(n);
-}
-static void tst_free(void *p, void *ctx)
-{
-    tst_alloc *a = (tst_alloc *)ctx;
-    if (a && p) ++a->frees;
-    free(p);
-}
-#define SBL_MALLOC(size, ctx) tst_malloc((size), (ctx))
-#define SBL_FREE(ptr, ctx) tst_free((ptr), (ctx))
-#define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
+/* tst_alloc: the context of the counting, failing allocator hooks that the
+   implementation object (tests/sbl_impl.c) is built with */
+#include "sbl_test_alloc.h"
 #include "sbl_test.h"
 
 static sbl_image view(const sbt_img *im)
