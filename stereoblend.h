@@ -684,9 +684,9 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
    eyes' colours: own colour against the other eye's colour at the back-checked match),
    and runs the blend kernel only on the 16 x 16 tiles holding an inconsistent pixel,
    reading the reprojection it already made. Result: sbl_stereo_blend's bit for bit on
-   the inconsistent pixels, the own colour and N (1 where it has none) elsewhere;
-   exactly what sbl_stereo_consistency + sbl_stereo_blend_masked give on the same
-   comparison. Cost: one reprojection (about 70 % of a blend on the shared scenes)
+   the marked tiles (per_pixel: on the inconsistent pixels only, exactly what
+   sbl_stereo_consistency + sbl_stereo_blend_masked give on the same comparison), the
+   own colour and N (1 where it has none) elsewhere. Cost: one reprojection (about 70 % of a blend on the shared scenes)
    plus the kernel on the marked tiles; at most that of sbl_stereo_blend plus the test
    and the copies, at least the reprojection. */
 typedef struct sbl_adaptive_desc {
@@ -696,6 +696,10 @@ typedef struct sbl_adaptive_desc {
                          3- and 4-channel colour (Weber's law is about luminance), each
                          channel of 1- and 2-channel colour; 1: each channel (the
                          largest ratio counts). Other values: SBL_ERROR_INVALID_PARAM */
+    int per_pixel;    /* 0: every pixel of a marked tile takes the blend (the kernel
+                         computed it anyway; a kept pixel next to a blended match can
+                         turn inconsistent); 1: only the inconsistent pixels, as
+                         sbl_stereo_blend_masked. Other values: SBL_ERROR_INVALID_PARAM */
 } sbl_adaptive_desc;
 
 /* Scratch of sbl_stereo_blend_adaptive: the blend's, plus the reprojection of 18 rows
@@ -5209,6 +5213,19 @@ static void sbl__adaptive_gather_row(const void *ctx, struct sbl__ring_row *r, i
     memcpy(r->v + xa, s->v + xa, bytes);
 }
 
+/* The own colour and N on rows [y0, y1), columns [x0, x1) (an unmarked tile). */
+static void sbl__keep_own_span(const sbl__kernel *k, int y0, int y1, int x0, int x1)
+{
+    int x, y, c;
+    for (y = y0; y < y1; ++y)
+        for (x = x0; x < x1; ++x) {
+            const float *own = sbl__px(k->own, x, y);
+            float *o = sbl__px(&k->out, x, y);
+            for (c = 0; c < k->ch; ++c) o[c] = own[c];
+            if (k->out_n.data) *sbl__px(&k->out_n, x, y) = sbl__own_n(k, x, y);
+        }
+}
+
 /* Weber test of one pixel: own colour against the reprojected other eye's. */
 static unsigned char sbl__adaptive_class(const float *own, const sbl__ring_row *r, int x,
                                          int ch, int luminance, double threshold)
@@ -5263,6 +5280,7 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
     if (sbl__is_zero(a.threshold)) a.threshold = SBL_WEBER_THRESHOLD;
     if (!sbl__finite(a.threshold) || !(a.threshold > 0.0f)) return SBL_ERROR_INVALID_PARAM;
     if (a.per_channel != 0 && a.per_channel != 1) return SBL_ERROR_INVALID_PARAM;
+    if (a.per_pixel != 0 && a.per_pixel != 1) return SBL_ERROR_INVALID_PARAM;
     w = target->color.width; h = target->color.height; ch = target->color.channels;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     if (mask) {
@@ -5303,15 +5321,17 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
     k.gather_ctx = &cache_ptr;
 
     for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
-        const int b0 = by > y0 ? by : y0;
-        const int b1 = by + SBL__ADAPTIVE_TILE < y1 ? by + SBL__ADAPTIVE_TILE : y1;
+        /* the tiles' rows [t0, t1) decide, whatever part of them this call writes
+           ([b0, b1)): row bands give the whole call's output */
+        const int t1 = by + SBL__ADAPTIVE_TILE < h ? by + SBL__ADAPTIVE_TILE : h;
+        const int b0 = by > y0 ? by : y0, b1 = t1 < y1 ? t1 : y1;
         int y, x, tx, span0 = -1;
-        /* classify the band's pixels from the reprojection the kernel will read */
-        for (y = b0; y < b1; ++y) {
+        /* classify the tiles' pixels from the reprojection the kernel will read */
+        for (y = by; y < t1; ++y) {
             const sbl__ring_row *rr = sbl__adaptive_row_of(&cache, y);
             const float *own = sbl__px(&target->color, 0, y);
             const ptrdiff_t step = sbl__step_of(&target->color);
-            unsigned char *m = band + SBL__CAST(size_t, y - b0) * pf;
+            unsigned char *m = band + SBL__CAST(size_t, y - by) * pf;
             long n_cls[3] = {0, 0, 0};
             for (x = 0; x < w; ++x) {
                 unsigned char cls = sbl__adaptive_class(own + SBL__CAST(ptrdiff_t, x) * step, rr, x,
@@ -5319,6 +5339,7 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
                 m[x] = cls;
                 ++n_cls[cls];
             }
+            if (y < b0 || y >= b1) continue;
             n_ok += n_cls[SBL_CONSISTENT];
             n_bad += n_cls[SBL_INCONSISTENT];
             n_none += n_cls[SBL_NO_CORRESPONDENCE];
@@ -5331,7 +5352,7 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
             int marked_tile = 0;
             if (tx < w) {
                 marked_tile = sbl__tile_marked(band, SBL__CAST(int, pf), tx, tx + SBL__ADAPTIVE_TILE,
-                                               w, 0, b1 - b0);
+                                               w, 0, t1 - by);
                 ++t_all;
                 t_run += marked_tile;
             }
@@ -5340,8 +5361,10 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
                 sbl__kernel_run_span(&k, b0, b1, span0, tx < w ? tx : w);
                 span0 = -1;
             }
+            if (!marked_tile && tx < w && !a.per_pixel)
+                sbl__keep_own_span(&k, b0, b1, tx, tx + SBL__ADAPTIVE_TILE < w ? tx + SBL__ADAPTIVE_TILE : w);
         }
-        sbl__keep_own(&k, band, SBL__CAST(int, pf), b0, b1);
+        if (a.per_pixel) sbl__keep_own(&k, band + SBL__CAST(size_t, b0 - by) * pf, SBL__CAST(int, pf), b0, b1);
     }
     if (counts) {
         counts->consistent = n_ok;

@@ -570,8 +570,10 @@ static void test_blend_adaptive(void)
             sbl_consistency_counts c, cb;
             long tiles, tiles_all, tb, tab, want_tiles;
             memset(&ad, 0, sizeof ad);
-            /* pass 0: default comparison; 1: each channel; 2: every pixel noisy (all marked) */
+            /* pass 0: default comparison, whole tiles; 1: each channel, marked pixels
+               only; 2: every pixel noisy (all marked), whole tiles */
             ad.per_channel = pass == 1;
+            ad.per_pixel = pass == 1;
             rig_init(&r, w, h, ch, 6.0f, 20, 34, 8, 25);
             for (e = 0; e < 2; ++e) {
                 col[e] = sbt_img_new(w, h, ch, e);
@@ -643,28 +645,51 @@ static void test_blend_adaptive(void)
                 if (pass < 2) CHECK(marked >= 2 && marked <= 4); /* right eye: + its NaN, + (2, 3), whose match lost
                                                                its N = 0 tap to the 3x3 fallback */
                 else CHECK(marked > w * h / 2);
-                /* the output: the masked blend with this mask (which is sbl_stereo_blend
-                   on the marked pixels and the own result elsewhere, test_blend_masked) */
-                CHECK_EQ(sbl_stereo_blend_masked(&r.d, (sbl_eye_index)t, &r.eye[t], &r.eye[!t], mask, ms,
-                                                 view(&ref), view(&refn), 0, h, scratch,
-                                                 sbl_stereo_scratch_size(w, ch), NULL), SBL_OK);
-                ok = 1;
-                for (y = 0; y < h; ++y)
-                    ok &= memcmp(sbt_at(&ref, 0, y), sbt_at(&out, 0, y), sizeof(float) * w * ch) == 0 &&
-                          memcmp(sbt_at(&refn, 0, y), sbt_at(&outn, 0, y), sizeof(float) * w) == 0;
-                CHECK(ok);
-                CHECK(sbt_canaries_ok(&out) && sbt_canaries_ok(&outn));
-                /* and on a marked pixel sbl_stereo_blend's own value, which differs from
-                   the own colour (the blend ran) */
+                /* the output: sbl_stereo_blend's on the marked tiles (per_pixel: pixels),
+                   the own colour and N (1 where 0) elsewhere */
                 CHECK_EQ(sbl_stereo_blend(&r.d, (sbl_eye_index)t, &r.eye[t], &r.eye[!t], view(&full),
                                           view(&fulln), 0, h, scratch, bytes), SBL_OK);
-                ok = 1;
-                for (y = 0; y < h; ++y)
-                    for (x = 0; x < w; ++x)
-                        if (mask[(size_t)y * ms + x] == SBL_INCONSISTENT)
-                            ok &= memcmp(sbt_at(&full, x, y), sbt_at(&out, x, y), sizeof(float) * ch) == 0 &&
-                                  *sbt_at(&fulln, x, y) == *sbt_at(&outn, x, y);
-                CHECK(ok);
+                {
+                    long bad = 0, blended = 0;
+                    for (y = 0; y < h; ++y)
+                        for (x = 0; x < w; ++x) {
+                            int yy, xx, take = 0;
+                            float own_n = *sbt_at(&len[t], x, y) > 0.0f ? *sbt_at(&len[t], x, y) : 1.0f;
+                            if (ad.per_pixel) take = mask[(size_t)y * ms + x] == SBL_INCONSISTENT;
+                            else
+                                for (yy = y / 16 * 16; yy < y / 16 * 16 + 16 && yy < h; ++yy)
+                                    for (xx = x / 16 * 16; xx < x / 16 * 16 + 16 && xx < w; ++xx)
+                                        take |= mask[(size_t)yy * ms + xx] == SBL_INCONSISTENT;
+                            blended += take;
+                            bad += memcmp(take ? sbt_at(&full, x, y) : sbt_at(&col[t], x, y),
+                                          sbt_at(&out, x, y), sizeof(float) * ch) != 0;
+                            bad += memcmp(take ? sbt_at(&fulln, x, y) : &own_n, sbt_at(&outn, x, y),
+                                          sizeof(float)) != 0;
+                        }
+                    CHECK_EQ(bad, 0);
+                    CHECK(blended > 0);
+                }
+                CHECK(sbt_canaries_ok(&out) && sbt_canaries_ok(&outn));
+                if (ad.per_pixel) {
+                    /* the two-call path with this mask gives the same image */
+                    CHECK_EQ(sbl_stereo_blend_masked(&r.d, (sbl_eye_index)t, &r.eye[t], &r.eye[!t], mask, ms,
+                                                     view(&ref), view(&refn), 0, h, scratch,
+                                                     sbl_stereo_scratch_size(w, ch), NULL), SBL_OK);
+                    ok = 1;
+                    for (y = 0; y < h; ++y)
+                        ok &= memcmp(sbt_at(&ref, 0, y), sbt_at(&out, 0, y), sizeof(float) * w * ch) == 0 &&
+                              memcmp(sbt_at(&refn, 0, y), sbt_at(&outn, 0, y), sizeof(float) * w) == 0;
+                    CHECK(ok);
+                }
+                /* the blend changed what it ran on (not a copy of the own result) */
+                {
+                    int changed = 0;
+                    for (y = 0; y < h; ++y)
+                        for (x = 0; x < w; ++x)
+                            changed += mask[(size_t)y * ms + x] == SBL_INCONSISTENT &&
+                                       memcmp(sbt_at(&out, x, y), sbt_at(&col[t], x, y), sizeof(float) * ch) != 0;
+                    CHECK(changed > 0);
+                }
                 /* tiles: those holding a marked pixel, out of 4 x 3 */
                 want_tiles = 0;
                 for (y = 0; y < h; y += 16)
@@ -738,6 +763,9 @@ static void test_blend_adaptive(void)
                 REJECT_A(&bad, mask, ms, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_PARAM);
                 bad = ad;
                 bad.per_channel = 2;
+                REJECT_A(&bad, mask, ms, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_PARAM);
+                bad = ad;
+                bad.per_pixel = -1;
                 REJECT_A(&bad, mask, ms, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_PARAM);
                 REJECT_A(&ad, mask, w - 1, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_STRIDE);
                 REJECT_A(&ad, mask, ms, h + 1, scratch, bytes, view(&outn), SBL_ERROR_INVALID_ROWS);
