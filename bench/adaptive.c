@@ -480,7 +480,8 @@ static void bench_scene(const sbr_seq *seq, int reps, int *met, int *total)
         c[i].r.ms = median(c[i].ms, reps);
         probe_free(&probe[i]);
     }
-    printf("\n| config | ms | x FSA | stereo ms (- Mono) | x FSA's | RMSE | eff spp | inconsistent %% |\n");
+    printf("\nWhole runs (bench/sbl_runner.h), wall ms = median over frames, median of the runs:\n\n"
+           "| config | wall ms | x FSA | stereo ms (- Mono) | x FSA's | RMSE | eff spp | inconsistent %% |\n");
     printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (i = 0; i < NC; ++i) {
         double st = c[i].r.ms - c[0].r.ms, fst = c[1].r.ms - c[0].r.ms;
@@ -507,18 +508,18 @@ static void bench_scene(const sbr_seq *seq, int reps, int *met, int *total)
             if (csv)
                 fprintf(csv, "%s,cpu:%s,%.4f,,,,%s\n", seq->name, stage_label[k], med[k], tl);
         }
-        printf("1-pass, T 0.02 (CPU): %+.2f pp from FSA's ratio, %.1f %% of FSA's time (Mono + blend): %s\n",
-               c[3].ratio - c[1].ratio, 100.0 * (mono + med[3]) / fsa,
-               c[3].ratio - c[1].ratio <= 0.5 && (mono + med[3]) / fsa <= 0.6 ? "met" : "MISSED");
+        for (i = 2; i <= 3; ++i) {
+            double share = 100.0 * (mono + med[i]) / fsa, gap = c[i].ratio - c[1].ratio;
+            int ok = gap <= 0.5 && share <= 60.0;
+            printf("%s: %+.2f pp from FSA's ratio (<= 0.5), %.1f %% of FSA's CPU time (<= 60 %%; the\n"
+                   "  stereo stage alone %.1f %% of FSA's blend): %s\n", c[i].label, gap, share,
+                   100.0 * med[i] / med[1], ok ? "met" : "MISSED");
+            if (i == 3) { *met += ok; ++*total; }
+        }
     }
-    for (i = 2; i <= 3; ++i) {
-        double time_share = c[1].r.ms > 0 ? 100.0 * c[i].r.ms / c[1].r.ms : 0;
-        double gap = c[i].ratio - c[1].ratio;
-        int ok = gap <= 0.5 && time_share <= 60.0;
-        printf("%s: %+.2f pp from FSA's ratio (<= 0.5), %.1f %% of FSA's time (<= 60 %%): %s\n",
-               c[i].label, gap, time_share, ok ? "met" : "MISSED");
-        if (i == 3) { *met += ok; ++*total; }
-    }
+    for (i = 2; i <= 3; ++i)
+        printf("(wall clock, which the shared machine's load moves by tens of %%: %s at %.1f %% of FSA's ms)\n",
+               c[i].label, c[1].r.ms > 0 ? 100.0 * c[i].r.ms / c[1].r.ms : 0.0);
     fflush(stdout);
 }
 
