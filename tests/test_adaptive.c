@@ -545,7 +545,7 @@ static void test_blend_masked(void)
    agree exactly wherever the match is a whole pixel. */
 static float scene_value(int lx, int y, int k)
 {
-    unsigned u = (unsigned)(lx * 73856093) ^ (unsigned)(y * 19349663) ^ (unsigned)(k * 83492791);
+    unsigned u = (unsigned)lx * 73856093u ^ (unsigned)y * 19349663u ^ (unsigned)k * 83492791u;
     u ^= u >> 13; u *= 0x5bd1e995u; u ^= u >> 15;
     return 0.2f + 0.6f * (float)(u & 0xffffu) / 65535.0f;
 }
