@@ -306,10 +306,11 @@ static double cpu_ms(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
-#define NS 7 /* stages timed */
+#define NS 8 /* stages timed */
 static const char *const stage_label[NS] = {"Mono: temporal filter, both eyes",
     "FSA: stereo blend, both eyes", "2-call: mask + masked blend, both eyes",
-    "1-pass, T 0.02", "1-pass, T 0.05", "1-pass, T 0.1", "1-pass, T 0.2"};
+    "1-pass, T 0.02", "1-pass, T 0.05", "1-pass, T 0.1", "1-pass, T 0.2",
+    "1-pass nearest, T 0.02"};
 
 /* The temporal filter per eye as the runner runs "history-aware", then on each frame
    >= frames/4: reps rounds, each timing every stage once in turn. Returns the medians
@@ -318,14 +319,14 @@ static void cpu_times(const sbr_seq *s, const sbr_method *mono, int reps, double
 {
     const int w = s->width, h = s->height, skip = s->frames / 4;
     const size_t n = (size_t)w * (size_t)h;
-    static const float T1[4] = {0.02f, 0.05f, 0.1f, 0.2f};
+    static const float T1[5] = {0.02f, 0.05f, 0.1f, 0.2f, 0.02f};
     float *hist[2][2], *len[2][2], *lum[2], *out[2];
     unsigned char *mask;
     size_t kb = sbl_stereo_scratch_size(w, 3), ab = sbl_stereo_adaptive_scratch_size(w, 3);
     size_t cb = sbl_stereo_consistency_scratch_size(w, 1);
     void *ks = malloc(kb), *as = malloc(ab), *cs = malloc(cb);
     double *t[NS];
-    long tb[4] = {0, 0, 0, 0}, ta[4] = {0, 0, 0, 0};
+    long tb[5] = {0, 0, 0, 0, 0}, ta[5] = {0, 0, 0, 0, 0};
     int ping[2] = {0, 0}, f, e, i, r, st, nt = 0;
     sbl_stereo_desc sd = mono->stereo_desc;
     sd.rig = SBL_RIG_PARALLEL;
@@ -386,6 +387,7 @@ static void cpu_times(const sbr_seq *s, const sbr_method *mono, int reps, double
                     sbl_adaptive_desc ad;
                     memset(&ad, 0, sizeof ad);
                     ad.threshold = T1[st - 3];
+                    ad.nearest = st == 7;
                     for (e = 0; e < 2 && rc == 0; ++e) {
                         long b = 0, a = 0;
                         rc = sbl_stereo_blend_adaptive(&sd, &ad, (sbl_eye_index)e, &eye[e], &eye[!e],
@@ -416,7 +418,7 @@ static void cpu_times(const sbr_seq *s, const sbr_method *mono, int reps, double
         if (f >= skip) nt += reps;
     }
     for (st = 0; st < NS; ++st) { med[st] = median(t[st], nt); free(t[st]); }
-    for (i = 0; i < 4; ++i) tiles[i] = ta[i] ? 100.0 * (double)tb[i] / (double)ta[i] : 0.0;
+    for (i = 0; i < 5; ++i) tiles[i] = ta[i] ? 100.0 * (double)tb[i] / (double)ta[i] : 0.0;
     for (e = 0; e < 2; ++e) {
         for (i = 0; i < 2; ++i) { free(hist[e][i]); free(len[e][i]); }
         free(lum[e]); free(out[e]);
@@ -448,8 +450,8 @@ static void converged_curve(const sbr_seq *s, int reps)
     size_t kb = sbl_stereo_scratch_size(w, 3), ab = sbl_stereo_adaptive_scratch_size(w, 3);
     void *ks = malloc(kb), *as = malloc(ab);
     float *out = (float *)malloc((size_t)w * h * 3 * sizeof(float));
-    double *t[5];
-    long tb[4] = {0, 0, 0, 0}, ta[4] = {0, 0, 0, 0};
+    double *t[9];
+    long tb[8] = {0, 0, 0, 0, 0, 0, 0, 0}, ta[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     int f, r, st, e, nt = 0;
     sbl_stereo_desc sd;
     if (!s->views[0].ref) { free(ks); free(as); free(out); return; }
@@ -457,7 +459,7 @@ static void converged_curve(const sbr_seq *s, int reps)
     sd.rig = SBL_RIG_PARALLEL;
     sd.focal_px = s->focal_px;
     sd.baseline = s->baseline;
-    for (st = 0; st < 5; ++st) t[st] = (double *)calloc((size_t)(s->frames * reps + 1), sizeof(double));
+    for (st = 0; st < 9; ++st) t[st] = (double *)calloc((size_t)(s->frames * reps + 1), sizeof(double));
     for (f = skip; f < s->frames; ++f) {
         sbl_eye eye[2];
         for (e = 0; e < 2; ++e) {
@@ -466,7 +468,7 @@ static void converged_curve(const sbr_seq *s, int reps)
             eye[e].gbuffer = sbr_gbuffer(&s->views[f * 2 + e], w, h, 0);
         }
         for (r = 0; r < reps; ++r, ++nt)
-            for (st = 0; st < 5; ++st) {
+            for (st = 0; st < 9; ++st) {
                 double t0 = cpu_ms();
                 for (e = 0; e < 2; ++e) {
                     if (st == 0) {
@@ -476,7 +478,8 @@ static void converged_curve(const sbr_seq *s, int reps)
                         sbl_adaptive_desc ad;
                         long b = 0, a = 0;
                         memset(&ad, 0, sizeof ad);
-                        ad.threshold = T[st - 1];
+                        ad.threshold = T[(st - 1) % 4];
+                        ad.nearest = st > 4;
                         sbl_stereo_blend_adaptive(&sd, &ad, (sbl_eye_index)e, &eye[e], &eye[!e],
                                                   sbl_image_make(out, w, h, 3), sbl_image_make(NULL, 0, 0, 0),
                                                   NULL, 0, 0, h, as, ab, NULL, &b, &a);
@@ -486,16 +489,19 @@ static void converged_curve(const sbr_seq *s, int reps)
                 t[st][nt] = cpu_ms() - t0;
             }
     }
-    printf("\nThe 1-pass call on a converged pair (the references as the per-eye results; CPU ms,\n"
-           "both eyes): FSA's blend %.3f ms;", median(t[0], nt));
-    for (st = 1; st < 5; ++st)
-        printf(" T %.2f: tiles %.1f %%, %.2f x%s", T[st - 1], ta[st - 1] ? 100.0 * tb[st - 1] / ta[st - 1] : 0.0,
-               median(t[st], nt) / median(t[0], nt), st < 4 ? ";" : ".\n");
-    if (csv)
-        for (st = 1; st < 5; ++st)
-            fprintf(csv, "%s,converged-1-pass-T%.2f,%.4f,,,,%.2f\n", s->name, T[st - 1], median(t[st], nt),
-                    ta[st - 1] ? 100.0 * tb[st - 1] / ta[st - 1] : 0.0);
-    for (st = 0; st < 5; ++st) free(t[st]);
+    printf("\nThe 1-pass call on a converged pair (the references as the per-eye results; CPU ms of\n"
+           "both eyes, x FSA's blend = %.3f ms):\n\n| T | tiles %% | 1-pass | tiles %% (nearest) | 1-pass nearest |\n"
+           "|---:|---:|---:|---:|---:|\n", median(t[0], nt));
+    for (st = 1; st < 5; ++st) {
+        printf("| %.2f | %.1f | %.2f | %.1f | %.2f |\n", T[st - 1],
+               ta[st - 1] ? 100.0 * tb[st - 1] / ta[st - 1] : 0.0, median(t[st], nt) / median(t[0], nt),
+               ta[st + 3] ? 100.0 * tb[st + 3] / ta[st + 3] : 0.0, median(t[st + 4], nt) / median(t[0], nt));
+        if (csv)
+            fprintf(csv, "%s,converged-1-pass-T%.2f,%.4f,,,,%.2f\n%s,converged-nearest-T%.2f,%.4f,,,,%.2f\n",
+                    s->name, T[st - 1], median(t[st], nt), ta[st - 1] ? 100.0 * tb[st - 1] / ta[st - 1] : 0.0,
+                    s->name, T[st - 1], median(t[st + 4], nt), ta[st + 3] ? 100.0 * tb[st + 3] / ta[st + 3] : 0.0);
+    }
+    for (st = 0; st < 9; ++st) free(t[st]);
     free(ks); free(as); free(out);
 }
 
@@ -556,7 +562,7 @@ static void bench_scene(const sbr_seq *seq, int reps, int *met, int *total)
                     c[i].r.eff_spp, c[i].ratio);
     }
     {
-        double med[NS], tiles[4], fsa, mono;
+        double med[NS], tiles[5], fsa, mono;
         cpu_times(seq, &c[0].m, reps, med, tiles);
         mono = med[0];
         fsa = med[0] + med[1];
