@@ -5354,7 +5354,8 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
     threshold = SBL__CAST(double, a.threshold);
     luminance = !a.per_channel && ch >= 3;
 
-    /* the kernel as sbl_stereo_blend sets it up, then its gather redirected to the cache */
+    /* the kernel as sbl_stereo_blend sets it up (its gather redirected to the cache
+       below unless the test reads the nearest pixel) */
     sbl__stereo_kernel_setup(&k, &s, target, &out_color, &out_length, NULL, scratch);
     pf = sbl__plane_floats(w);
     memset(&cache, 0, sizeof cache);
@@ -5377,11 +5378,12 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
     }
 
     for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
-        /* the tiles' rows [t0, t1) decide, whatever part of them this call writes
+        /* the tiles' rows [by, t1) decide, whatever part of them this call writes
            ([b0, b1)): row bands give the whole call's output */
         const int t1 = by + SBL__ADAPTIVE_TILE < h ? by + SBL__ADAPTIVE_TILE : h;
         const int b0 = by > y0 ? by : y0, b1 = t1 < y1 ? t1 : y1;
         int y, x, tx, span0 = -1;
+        if (b0 >= b1) continue; /* an empty row range */
         /* classify the tiles' pixels from the reprojection the kernel will read */
         for (y = by; y < t1; ++y) {
             const sbl__ring_row *rr = a.nearest ? NULL : sbl__adaptive_row_of(&cache, y);
