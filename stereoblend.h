@@ -5270,7 +5270,11 @@ static unsigned char sbl__adaptive_class_nearest(const sbl__stereo_rp *s, const 
     double sx, sy, sz, bx, by, bz, worst = 0.0;
     const float *other;
     int ix, iy, k;
-    if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) return SBL_NO_CORRESPONDENCE;
+    /* the parallel rig called directly, so that it inlines */
+    const int parallel = s->map == sbl__stereo_map_parallel;
+    if (!(parallel ? sbl__stereo_map_parallel(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)
+                   : s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)))
+        return SBL_NO_CORRESPONDENCE;
     if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh)))
         return SBL_NO_CORRESPONDENCE;
     ix = SBL__CAST(int, floor(sx));
@@ -5280,7 +5284,9 @@ static unsigned char sbl__adaptive_class_nearest(const sbl__stereo_rp *s, const 
         return SBL_NO_CORRESPONDENCE;
     if (!(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK)) {
         double ex, ey, tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
-        if (!s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)) return SBL_NO_CORRESPONDENCE;
+        if (!(parallel ? sbl__stereo_map_parallel(s, 1, ix, iy, sx, sy, &bx, &by, &bz)
+                       : s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)))
+            return SBL_NO_CORRESPONDENCE;
         ex = bx - (x + 0.5);
         ey = by - (y + 0.5);
         if (!(ex * ex + ey * ey <= tol * tol)) return SBL_NO_CORRESPONDENCE;
@@ -5407,6 +5413,22 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
             if (mask)
                 memcpy(mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride), m,
                        SBL__CAST(size_t, w));
+        }
+        if (a.nearest) {
+            /* a band with most tiles marked reads whole reprojected rows from the
+               cache (its border rows are then shared with the next band); a sparse
+               one reprojects only its spans */
+            int n_marked = 0, n_tiles = 0;
+            for (tx = 0; tx < w; tx += SBL__ADAPTIVE_TILE, ++n_tiles)
+                n_marked += sbl__tile_marked(band, SBL__CAST(int, pf), tx, tx + SBL__ADAPTIVE_TILE, w, 0,
+                                             t1 - by);
+            if (2 * n_marked >= n_tiles) {
+                k.gather_row = sbl__adaptive_gather_row;
+                k.gather_ctx = &cache_ptr;
+            } else {
+                k.gather_row = cache.gather_row;
+                k.gather_ctx = cache.gather_ctx;
+            }
         }
         /* runs of marked tiles along the band become one span each */
         for (tx = 0; tx < w + SBL__ADAPTIVE_TILE; tx += SBL__ADAPTIVE_TILE) {
