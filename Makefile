@@ -28,7 +28,7 @@ EXR_LIBS   := $(if $(HAVE_EXR),$(shell pkg-config --libs OpenEXR),)
 
 # the unit tests (tests/<name>.c): append new ones here; mk/check.mk builds and runs
 # each in every configuration
-TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive \
+TESTS = test_core test_metrics test_stereo test_robust test_paths test_engine test_adaptive test_tiles \
         test_accuracy
 HEADERS = stereoblend.h tests/sbl_test.h tests/sbl_test_alloc.h $(wildcard tools/*.h)
 

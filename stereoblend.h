@@ -1830,7 +1830,31 @@ typedef struct sbl__temporal_rp {
     sbl__flat motion;
     double motion_kx, motion_ky; /* see sbl__motion_scale */
     sbl__cam_map cam;
+    /* camera source: the frame's and the history's cameras are equal, so every pixel
+       that is not on a moving object maps to itself (sbl__temporal_rp_pos) */
+    int at_rest;
+    int moving_count;            /* listed objects whose two matrices differ          */
+    float moving_lo, moving_hi;  /* the range of their ids                            */
+    int tiles;                   /* 1: the row gather's tile shortcuts (tests: 0)     */
 } sbl__temporal_rp;
+
+/* Does an object's pose differ between the two frames? */
+static int sbl__object_moves(const sbl_object_motion *o)
+{
+    int i;
+    for (i = 0; i < 16; ++i)
+        if (o->object_to_world[i] != o->prev_object_to_world[i]) return 1;
+    return 0;
+}
+
+/* Is a pixel with this id on a moving object (camera source)? */
+static int sbl__on_moving_object(const sbl__temporal_rp *s, float id)
+{
+    const sbl_object_motion *o;
+    if (!s->moving_count || !(id >= s->moving_lo && id <= s->moving_hi)) return 0;
+    o = sbl__find_object(&s->cam, id);
+    return o && sbl__object_moves(o);
+}
 
 static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject_desc *desc,
                                         sbl_temporal_source source, const sbl_frame *frame,
@@ -1845,6 +1869,10 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
     s->rp = sbl__reproject_defaults(desc);
     s->source = source;
     s->frame = frame;
+    s->at_rest = 0;
+    s->moving_count = 0;
+    s->moving_lo = s->moving_hi = 0.0f;
+    s->tiles = 1;
     sbl__motion_scale(&s->rp.motion, w, h, &s->motion_kx, &s->motion_ky);
     s->geo = sbl__target_geo_make(g, w, h);
     s->motion = sbl__flatten(&g->motion);
@@ -1869,6 +1897,23 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
                 return SBL_ERROR_INVALID_PARAM;
             s->cam.objects = frame->objects;
             s->cam.object_count = frame->object_count;
+            {   /* a camera at rest: the two cameras' values equal (the matrix chain of
+                   sbl__cam_map_apply would give the identity only within rounding) */
+                const sbl_camera *a = frame->camera, *b = s->history->camera;
+                int i;
+                s->at_rest = 1;
+                for (i = 0; i < 16; ++i)
+                    if (a->world_to_view[i] != b->world_to_view[i] ||
+                        a->view_to_clip[i] != b->view_to_clip[i])
+                        s->at_rest = 0;
+                for (i = 0; i < frame->object_count; ++i) {
+                    const sbl_object_motion *o = &frame->objects[i];
+                    if (!sbl__object_moves(o)) continue;
+                    if (!s->moving_count || o->id < s->moving_lo) s->moving_lo = o->id;
+                    if (!s->moving_count || o->id > s->moving_hi) s->moving_hi = o->id;
+                    ++s->moving_count;
+                }
+            }
         }
     }
     return SBL_OK;
@@ -1890,9 +1935,15 @@ SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sb
         *sy = y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
         sz = SBL__CAST(double, z); /* motion vectors carry no depth change: relative tolerance covers it */
     } else {
-        if (!sbl__cam_map_apply_id(&s->cam, s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f,
-                                   x + 0.5, y + 0.5, z, sx, sy, &sz))
+        const float id = s->geo.ids.p ? *SBL__AT(s->geo.ids, x, y) : 0.0f;
+        if (s->at_rest && !sbl__on_moving_object(s, id)) {
+            /* camera at rest, static surface: the pixel itself, exactly */
+            *sx = x + 0.5;
+            *sy = y + 0.5;
+            sz = SBL__CAST(double, z);
+        } else if (!sbl__cam_map_apply_id(&s->cam, id, x + 0.5, y + 0.5, z, sx, sy, &sz)) {
             return 0;
+        }
     }
     /* came in from outside the previous image: nothing to reuse (edge pixels would
        otherwise be replicated by the renormalisation and the 3x3 fallback) */
@@ -2387,6 +2438,7 @@ typedef __mmask16 sbl__m;
 #define sbl__sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
 /* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
 #define SBL__ROW_GATHER 1
+#define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
     _mm512_i32gather_ps(_mm512_loadu_si512(SBL__PCAST(const void *, idx)), base, 4)
 #define sbl__le(a, b) _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
@@ -2401,13 +2453,12 @@ typedef __mmask16 sbl__m;
 #define sbl__posinf(a) \
     _mm512_cmpeq_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7f800000))
 #define sbl__floor(a) _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
-SBL__INLINE __mmask16 sbl__lane_ok(__m512 a) /* sbl__lane_value_ok per lane */
+SBL__INLINE __mmask16 sbl__lane_ok(__m512 a) /* sbl__lane_value_ok per lane (see SSE2) */
 {
     const __m512i b = _mm512_and_si512(_mm512_castps_si512(a), _mm512_set1_epi32(0x7fffffff));
-    const __m512i e = _mm512_srli_epi32(b, 23);
     return SBL__CAST(__mmask16, _mm512_cmpeq_epi32_mask(b, _mm512_setzero_si512()) |
-                                    (_mm512_cmpgt_epi32_mask(e, _mm512_set1_epi32(86)) &
-                                     _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(177), e)));
+                                    _mm512_cmplt_epu32_mask(_mm512_sub_epi32(b, _mm512_set1_epi32(0x2b800000)),
+                                                            _mm512_set1_epi32(0x2d000000)));
 }
 SBL__INLINE __m512 sbl__div_exact(__m512 n, __m512 a) /* see the SSE2 version */
 {
@@ -2441,6 +2492,7 @@ typedef __m256 sbl__m;
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
 #define SBL__ROW_GATHER 1
+#define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
     _mm256_i32gather_ps(base, _mm256_loadu_si256(SBL__PCAST(const __m256i *, idx)), 4)
 #define sbl__le(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
@@ -2456,14 +2508,13 @@ typedef __m256 sbl__m;
     _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), \
                                            _mm256_set1_epi32(0x7f800000)))
 #define sbl__floor(a) _mm256_floor_ps(a)
-SBL__INLINE __m256 sbl__lane_ok(__m256 a) /* sbl__lane_value_ok per lane */
+SBL__INLINE __m256 sbl__lane_ok(__m256 a) /* sbl__lane_value_ok per lane (see SSE2) */
 {
     const __m256i b = _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7fffffff));
-    const __m256i e = _mm256_srli_epi32(b, 23);
     return _mm256_castsi256_ps(_mm256_or_si256(
         _mm256_cmpeq_epi32(b, _mm256_setzero_si256()),
-        _mm256_and_si256(_mm256_cmpgt_epi32(e, _mm256_set1_epi32(86)),
-                         _mm256_cmpgt_epi32(_mm256_set1_epi32(177), e))));
+        _mm256_cmpgt_epi32(_mm256_set1_epi32(-0x53000000),
+                           _mm256_add_epi32(b, _mm256_set1_epi32(0x54800000)))));
 }
 SBL__INLINE __m256 sbl__div_exact(__m256 n, __m256 a) /* see the SSE2 version */
 {
@@ -2495,6 +2546,7 @@ typedef __m128 sbl__m;
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
 #define SBL__ROW_GATHER 1
+#define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
     _mm_setr_ps((base)[(idx)[0]], (base)[(idx)[1]], (base)[(idx)[2]], (base)[(idx)[3]])
 #define sbl__le(a, b) _mm_cmple_ps(a, b)
@@ -2518,15 +2570,15 @@ SBL__INLINE __m128 sbl__div_exact(__m128 n, __m128 a)
                                               _mm_cvtps_pd(_mm_movehl_ps(a, a))));
     return _mm_movelh_ps(lo, hi);
 }
-/* sbl__lane_value_ok per lane, on the bits (exponent in [87, 177), or +-0) */
+/* sbl__lane_value_ok per lane, on the bits b of |a|: b == 0, or the exponent in
+   [87, 177), i.e. b - (87 << 23) below (90 << 23) unsigned, compared signed with the top
+   bit flipped: b + 0x54800000 < 0xad000000 (= -0x53000000) */
 SBL__INLINE __m128 sbl__lane_ok(__m128 a)
 {
     const __m128i b = _mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7fffffff));
-    const __m128i e = _mm_srli_epi32(b, 23);
     return _mm_castsi128_ps(_mm_or_si128(
         _mm_cmpeq_epi32(b, _mm_setzero_si128()),
-        _mm_and_si128(_mm_cmpgt_epi32(e, _mm_set1_epi32(86)),
-                      _mm_cmplt_epi32(e, _mm_set1_epi32(177)))));
+        _mm_cmpgt_epi32(_mm_set1_epi32(-0x53000000), _mm_add_epi32(b, _mm_set1_epi32(0x54800000)))));
 }
 /* floor of |a| < 2^31 (SSE2 has no rounding mode op): truncate, then step down */
 SBL__INLINE __m128 sbl__floor(__m128 a)
@@ -2619,11 +2671,31 @@ typedef struct sbl__kernel {
     sbl_image out, out_n, out_a; /* out_n / out_a data may be NULL                */
     float *stage[4], *stage_n, *stage_a;
     unsigned char *window_unsafe; /* per row: 1 where the 3x3 window holds an unsafe value */
+    unsigned char *column_unsafe; /* per row: 1 where the column's three rows hold one */
     sbl__ring_row ring[3];
+    /* column sums of one chunk of the lane kernel (sbl__lanes_columns): per channel a
+       block of SBL__COL_PLANES planes (below), and the valid pairs per column */
+    float *col[4];
+    float *col_n;
 } sbl__kernel;
 
+/* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
+   A / B: sum of (y - y_top) and of its square over the column's three rows (y_top: the
+   column's top sample); T: the column's pair shift (its first valid x* - y); DA / DB:
+   sum of v (x* - y - t) and of its square; LO / HI: min / max of y (clamp only) */
+enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO, SBL__COL_HI,
+       SBL__COL_PLANES };
+#define SBL__COLP(block, plane) ((block) + (plane) * SBL__CHUNK_COLS)
+
+/* lane kernel chunk: columns per chunk, and floats per column plane (the chunk, its two
+   neighbour columns, padding) */
+#define SBL__CHUNK 128
+#define SBL__CHUNK_COLS 144
+
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
-   channels + 2 float planes and one byte plane; each plane padded to 64 bytes */
+   channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
+   lane kernel's column sums: SBL__COL_PLANES * channels + 1 planes of SBL__CHUNK_COLS
+   floats */
 static size_t sbl__plane_floats(int width)
 {
     return (SBL__CAST(size_t, width) + 15u) & ~SBL__CAST(size_t, 15u);
@@ -2634,7 +2706,8 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     size_t pf;
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
     pf = sbl__plane_floats(width);
-    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 4 * pf + 64;
+    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 5 * pf + 64 +
+           SBL__CAST(size_t, SBL__COL_PLANES * channels + 1) * SBL__CHUNK_COLS * sizeof(float);
 }
 
 static void *sbl__align64(void *p)
@@ -2659,10 +2732,13 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     for (c = 0; c < k->ch; ++c) { k->stage[c] = p; p += pf; }
     k->stage_n = p; p += pf;
     k->stage_a = p; p += pf;
+    for (c = 0; c < k->ch; ++c) { k->col[c] = p; p += SBL__COL_PLANES * SBL__CHUNK_COLS; }
+    k->col_n = p; p += SBL__CHUNK_COLS;
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
         unsigned char *b = SBL__PCAST(unsigned char *, p);
         for (r = 0; r < 3; ++r) { k->ring[r].unsafe = b; b += pf; }
-        k->window_unsafe = b;
+        k->window_unsafe = b; b += pf;
+        k->column_unsafe = b;
     }
 }
 
@@ -2750,9 +2826,11 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
    finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
    contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
    rest), read with plain vector loads where a view has one channel. Taps of weight 0
-   in every lane are skipped: they would add +0 everywhere. */
+   in every lane are skipped: they would add +0 everywhere.
+   sky: every planned lane expects sky (+inf), so its depth test is "the tap is sky"
+   (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
-                                 sbl__ring_row *r, int x, int ch, int contiguous)
+                                 sbl__ring_row *r, int x, int ch, int contiguous, int sky)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -2779,17 +2857,23 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         off[3] = s->depth.stride + s->depth.step;
         for (t = 0; t < 4; ++t) {
             if (t & skip) continue;
-            /* sbl__depth_match: sky matches only sky; else a finite, positive depth
-               within the tolerance */
-            const sbl__v d = contiguous && s->depth.step == 1
-                                 ? sbl__load(s->depth.p + off[t] + p->di[i])
-                                        : sbl__gatheri(s->depth.p + off[t], p->di + i);
-            const sbl__m inf_t = sbl__posinf(d);
-            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
-                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
-            const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
-                                          sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
-            ok[t] = sbl__mand(ok[t], match);
+            {
+                const sbl__v d = contiguous && s->depth.step == 1
+                                     ? sbl__load(s->depth.p + off[t] + p->di[i])
+                                     : sbl__gatheri(s->depth.p + off[t], p->di + i);
+                const sbl__m inf_t = sbl__posinf(d);
+                if (sky) {
+                    ok[t] = sbl__mand(ok[t], inf_t);
+                } else {
+                    /* sbl__depth_match: sky matches only sky; else a finite, positive
+                       depth within the tolerance */
+                    const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                                  sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+                    const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
+                                                  sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
+                    ok[t] = sbl__mand(ok[t], match);
+                }
+            }
         }
     }
     if (s->length.p) {
@@ -2797,11 +2881,13 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         off[3] = s->length.stride + s->length.step;
         for (t = 0; t < 4; ++t) {
             if (t & skip) continue;
-            const sbl__v nt = contiguous && s->length.step == 1
-                                  ? sbl__load(s->length.p + off[t] + p->li[i])
-                                         : sbl__gatheri(s->length.p + off[t], p->li + i);
-            ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
-            accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+            {
+                const sbl__v nt = contiguous && s->length.step == 1
+                                      ? sbl__load(s->length.p + off[t] + p->li[i])
+                                      : sbl__gatheri(s->length.p + off[t], p->li + i);
+                ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
+                accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
+            }
         }
     } else {
         for (t = 0; t < 4; ++t)
@@ -2840,9 +2926,10 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
 }
 
 /* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
-   last vector overlaps the one before rather than running past the block. */
+   last vector overlaps the one before rather than running past the block. sky: every
+   planned entry expects sky (see sbl__lanes_taps). */
 static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
-                          sbl__ring_row *r, int x)
+                          sbl__ring_row *r, int x, int sky)
 {
     int i = 0;
     for (;;) {
@@ -2855,14 +2942,85 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
             contiguous &= (p->ci[i + l] - p->ci[i] == l * SBL__CAST(int, s->color.step)) &
                           (!s->use_depth || p->di[i + l] - p->di[i] == l * SBL__CAST(int, s->depth.step)) &
                           (!s->length.p || p->li[i + l] - p->li[i] == l * SBL__CAST(int, s->length.step));
-        switch (s->color.ch) {
-        case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous); break;
-        case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous); break;
-        case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous); break;
-        default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous); break;
+        if (sky) {
+            switch (s->color.ch) {
+            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 1); break;
+            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 1); break;
+            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 1); break;
+            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 1); break;
+            }
+        } else {
+            switch (s->color.ch) {
+            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 0); break;
+            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 0); break;
+            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 0); break;
+            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 0); break;
+            }
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
+    }
+}
+
+/* One block of a row gather: its plan, and what the stereo rigs keep of each match. */
+typedef struct sbl__block {
+    sbl__tap_plan p;
+    double psx[SBL__BLOCK], psy[SBL__BLOCK]; /* stereo: each match's position            */
+    unsigned char snapped[SBL__BLOCK];       /* stereo: a far lane (see SBL__FAR_PX)     */
+    int x0, n, y;                            /* columns [x0, x0 + n) of row y            */
+    int sky;                                 /* every planned entry expects sky          */
+    int mode;                                /* the rig's lane plan for this row (hooks) */
+} sbl__block;
+
+/* The one driver of the row gathers (temporal and stereo): columns [xa, xb) of row y in
+   blocks of SBL__BLOCK. Per block: `start` (the tile shortcuts: returns 1 when it wrote
+   the block; sets the block's sky and lane mode), the plan (`plan_vec` plans VW entries
+   from entry i in lanes and returns the entries it leaves to `plan_one`, or -1 where it
+   cannot), the tap stage, then the pixel gather for every entry handed back, or the
+   rig's own last step (`after`, when given: far lanes, back-check and that pixel
+   gather, in one pass). Blocks narrower than a vector take the pixel gather. Inlined
+   with constant hooks: no call through a pointer. */
+SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y, int xa,
+                                        int xb, const sbl__tap_src *src, int fallback,
+                                        sbl__gather_fn pixel,
+                                        int (*start)(const void *, sbl__ring_row *, sbl__block *),
+                                        int (*plan_vec)(const void *, sbl__block *, int),
+                                        void (*plan_one)(const void *, sbl__block *, int),
+                                        void (*after)(const void *, sbl__ring_row *, sbl__block *))
+{
+    const int ch = src->color.ch;
+    sbl__block b;
+    int i;
+    b.y = y;
+    for (b.x0 = xa; b.x0 < xb; b.x0 += SBL__BLOCK) {
+        b.n = xb - b.x0 < SBL__BLOCK ? xb - b.x0 : SBL__BLOCK;
+        if (b.n < SBL__VW) {
+            for (i = 0; i < b.n; ++i) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+            }
+            continue;
+        }
+        b.sky = 0;
+        b.mode = 0;
+        if (start(ctx, r, &b)) continue;
+        for (i = 0; i < b.n;) {
+            int bits = i + SBL__VW <= b.n ? plan_vec(ctx, &b, i) : -1, l = SBL__VW;
+            if (bits < 0) { bits = 1; l = 1; }
+            for (; bits; ++i, --l, bits >>= 1)
+                if (bits & 1) plan_one(ctx, &b, i);
+            i += l;
+        }
+        sbl__row_taps(src, &b.p, b.n, fallback, r, b.x0, b.sky);
+        if (after) {
+            after(ctx, r, &b);
+            continue;
+        }
+        for (i = 0; i < b.n; ++i)
+            if (b.p.redo[i]) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+            }
     }
 }
 
@@ -2986,14 +3144,17 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
 
 /* sbl__temporal_rp_pos and sbl__tap_plan_set in lanes (motion vectors in pixels) */
 SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
-                                         int x, int y)
+                                         int x, int y, int sky)
 {
     static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const float *mvp = SBL__AT(s->motion, x, y);
     sbl__v z = zero, slack = zero, mx, my;
-    sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
-                                 : sbl__gt(one, zero);
+    /* a sky tile: z = +inf, which is valid geometry with slack 0 (sbl__lanes_want) */
+    sbl__m keep = sky ? sbl__gt(one, zero)
+                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+                                        : sbl__gt(one, zero));
+    if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
     mx = sbl__gatheri(mvp, pair);
     my = sbl__gatheri(mvp + 1, pair);
     keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
@@ -3003,81 +3164,505 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
     return sbl__plan_lanes(&s->src, p, i, x, y, keep, z, slack, mx, my);
 }
 
+/* ---- tile classification -----------------------------------------------------
+   The row gather decides per tile (a block of up to SBL__BLOCK pixels of one row), from
+   the data it reads anyway, whether the tile needs the general plan:
+   - SBL__TILE_VOID: no target pixel has geometry (depth 0, negative or NaN): every
+     pixel resets, without reading motion or history;
+   - SBL__TILE_REST: every source position is the pixel itself (zero motion vectors, or
+     a camera at rest over static surfaces): the history is read at the same pixel, with
+     no position maths, no footprint and one tap test (sbl__rest_tile);
+   - SBL__TILE_SKY: every target pixel is sky (+inf) and moves: the general plan and
+     tap stage without the target's depth slack, and with the documented rule for sky
+     in its cheapest form as the depth test (the tap is sky);
+   - SBL__TILE_GENERAL: the plan and the tap stage, which itself drops the masks on its
+     sums (the fallback bookkeeping) for a vector whose taps all pass.
+   Each shortcut gives the general path's bits (the same operations on the values that
+   matter, or operations whose result is exactly the same), so no result depends on where
+   a band, a span or a tile starts. */
+enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2, SBL__TILE_SKY = 3 };
+
+/* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
+   vector loads packed (pixel step 1: depth, N), no target normals or ids (whose tests
+   the general path keeps)? */
+static int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
+{
+    const sbl__tap_src *src = &s->src;
+    return s->tiles && s->history && !s->geo.normals.p && !s->geo.ids.p && !src->use_id &&
+           !src->use_normal && (!s->geo.depth.p || s->geo.depth.step == 1) &&
+           (!src->use_depth || src->depth.step == 1) && (!src->length.p || src->length.step == 1) &&
+           (s->source == SBL_TEMPORAL_MOTION || s->at_rest);
+}
+
+/* The class of tile [x0, x0 + n) of row y (n >= VW; the call passed
+   sbl__temporal_tiles_ok). */
+static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, int n)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    int i;
+    int sky = 0;
+    if (s->geo.depth.p) { /* no geometry anywhere: NaN, -inf, 0 and negatives fail z > 0 */
+        const float *zp = SBL__AT(s->geo.depth, x0, y);
+        const int full = (1 << SBL__VW) - 1;
+        int any = 0, all_sky = full;
+        for (i = 0;; i += SBL__VW) {
+            sbl__v z;
+            if (i + SBL__VW > n) i = n - SBL__VW;
+            z = sbl__load(zp + i);
+            any |= sbl__mbits(sbl__gt(z, zero));
+            all_sky &= sbl__mbits(sbl__posinf(z));
+            if ((any && all_sky != full) || i + SBL__VW >= n) break;
+        }
+        if (!any) return SBL__TILE_VOID;
+        sky = all_sky == full;
+    }
+    if (s->source == SBL_TEMPORAL_MOTION) { /* every vector +-0 (kx * +-0 = +-0) */
+        const float *mp = SBL__AT(s->motion, x0, y);
+        if (s->motion.step == 2) {
+            for (i = 0;; i += SBL__VW) {
+                if (i + SBL__VW > 2 * n) i = 2 * n - SBL__VW;
+                if (~sbl__mbits(sbl__le(sbl__abs(sbl__load(mp + i)), zero)) &
+                    ((1 << SBL__VW) - 1))
+                    return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
+                if (i + SBL__VW >= 2 * n) break;
+            }
+        } else {
+            for (i = 0; i < n; ++i) {
+                const float *m = mp + SBL__CAST(ptrdiff_t, i) * s->motion.step;
+                if (!(fabsf(m[0]) <= 0.0f && fabsf(m[1]) <= 0.0f))
+                    return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
+            }
+        }
+        return SBL__TILE_REST;
+    }
+    /* camera at rest: a tile without a moving object's id (the call has no ids here
+       unless no object moves, see sbl__temporal_tiles_ok) */
+    return s->moving_count ? (sky ? SBL__TILE_SKY : SBL__TILE_GENERAL) : SBL__TILE_REST;
+}
+
+/* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
+   pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
+   sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
+   edge columns and rows, which take its bounds-checked path, give the same). So x* is
+   the history colour (+ 0: -0 becomes +0) and N its N wherever that tap passes; the
+   depth test passes when |history - target| <= tolerance * target (the slack only
+   widens it) or both are sky. Lanes with geometry that this does not settle (depth
+   moved beyond that, N <= 0, a NaN or inf) are handed to the pixel gather; lanes
+   without geometry reset. */
+SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0,
+                                   int n, int ch)
+{
+    const sbl__tap_src *src = &s->src;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const sbl__v tol = sbl__set1(src->depth_tolerance);
+    const float *zp = s->geo.depth.p ? SBL__AT(s->geo.depth, x0, y) : NULL;
+    const float *hp = src->use_depth ? SBL__AT(src->depth, x0, y) : NULL;
+    const float *np = src->length.p ? SBL__AT(src->length, x0, y) : NULL;
+    const float *cp = SBL__AT(src->color, x0, y);
+    const ptrdiff_t cs = src->color.step;
+    int i = 0, l, c, idx[SBL__VW];
+    for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
+    for (;;) {
+        int x, bits;
+        sbl__m keep, valid;
+        sbl__v nv = one, v[4];
+        if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
+        x = x0 + i;
+        for (c = 0; c < ch; ++c) /* the history colour, one channel per vector */
+            v[c] = cs == 1 ? sbl__load(cp + i + c) : sbl__gatheri(cp + SBL__CAST(ptrdiff_t, i) * cs + c, idx);
+        keep = zp ? sbl__gt(sbl__load(zp + i), zero) : sbl__gt(one, zero);
+        valid = keep;
+        if (hp) {
+            const sbl__v z = sbl__load(zp + i), d = sbl__load(hp + i);
+            const sbl__m inf_e = sbl__posinf(z), inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, z)), sbl__mul(tol, z)));
+            valid = sbl__mand(valid, sbl__mor(sbl__mand(inf_e, inf_t),
+                                              sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
+        }
+        if (np) {
+            nv = sbl__load(np + i);
+            valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+        }
+        for (c = 0; c < ch; ++c) valid = sbl__mandnot(valid, sbl__nonfinite(v[c]));
+        for (c = 0; c < ch; ++c) sbl__store(r->x[c] + x, sbl__sel(valid, sbl__add(zero, v[c]), zero));
+        sbl__store(r->n + x, sbl__sel(valid, nv, zero));
+        sbl__store(r->v + x, sbl__sel(valid, one, zero));
+        bits = sbl__mbits(sbl__mandnot(keep, valid));
+        for (l = 0; bits; ++l, bits >>= 1)
+            if (bits & 1) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
+            }
+        if (i + SBL__VW >= n) break;
+        i += SBL__VW;
+    }
+}
+
+static void sbl__rest_tile(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
+{
+    switch (s->src.color.ch) {
+    case 1: sbl__rest_tile_ch(s, r, y, x0, n, 1); break;
+    case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2); break;
+    case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3); break;
+    default: sbl__rest_tile_ch(s, r, y, x0, n, 4); break;
+    }
+}
+
+/* A tile without geometry: every pixel resets. */
+static void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x0, int n)
+{
+    int c;
+    memset(r->n + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
+    memset(r->v + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
+    for (c = 0; c < src->color.ch; ++c) memset(r->x[c] + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
+}
+
+/* ---- camera planning in lanes ---------------------------------------------------
+   The camera source's position maths (sbl__cam_map_apply: unproject at the target's
+   depth, carry into the history's view, project) in double lanes, with the reference's
+   operations in its order, so every lane gets its bits; the checks and the tap plan of
+   each lane then run in scalar (sbl__tap_plan_set). A few double operations suffice:
+   set1, load, store, add, sub, mul, div. */
+#if SBL__VW == 16
+#define SBL__DW 8
+typedef __m512d sbl__dv;
+#define sbl__dset1(a) _mm512_set1_pd(a)
+#define sbl__dload(p) _mm512_loadu_pd(p)
+#define sbl__dstore(p, a) _mm512_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm512_add_pd(a, b)
+#define sbl__dsub(a, b) _mm512_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm512_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm512_div_pd(a, b)
+#elif SBL__VW == 8
+#define SBL__DW 4
+typedef __m256d sbl__dv;
+#define sbl__dset1(a) _mm256_set1_pd(a)
+#define sbl__dload(p) _mm256_loadu_pd(p)
+#define sbl__dstore(p, a) _mm256_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm256_add_pd(a, b)
+#define sbl__dsub(a, b) _mm256_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm256_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm256_div_pd(a, b)
+#else
+#define SBL__DW 2
+typedef __m128d sbl__dv;
+#define sbl__dset1(a) _mm_set1_pd(a)
+#define sbl__dload(p) _mm_loadu_pd(p)
+#define sbl__dstore(p, a) _mm_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm_add_pd(a, b)
+#define sbl__dsub(a, b) _mm_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm_div_pd(a, b)
+#endif
+
+/* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
+   camera and no listed objects, no target normals or ids (their tests stay in
+   sbl__tap_want_init), an interior row (the depth slack reads both neighbours), target
+   depth packed. */
+static int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+{
+    return s->source == SBL_TEMPORAL_CAMERA && s->history && !s->at_rest &&
+           !s->cam.object_count && !s->geo.normals.p && !s->geo.ids.p && y >= 1 &&
+           y + 1 < s->src.height && s->geo.depth.step == 1;
+}
+
+/* sbl__cam_map_apply for VW positions (px[l], py[l]) at planar depths zf[l] (+inf: a
+   direction): (ox, oy, oz)[l]; bit l of the result is set where the map gives a
+   position (a ray through the pixel, in front of the other camera). The sums start
+   from 0.0 and take the terms in the reference's order (C * 0.0 included: it can turn
+   a -0 into +0). */
+SBL__INLINE int sbl__cam_lanes(const sbl__cam_map *m, const double *px, const double *py,
+                               const float *zf, double *ox, double *oy, double *oz)
+{
+    const double *C = m->clip_to_view, *V = m->view_to_view, *P = m->other_proj;
+    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
+                  half = sbl__dset1(0.5);
+    double zmul[SBL__VW], p3[SBL__VW], q3[SBL__VW], chk[SBL__VW], c3[SBL__VW];
+    int l, j, k, bits = 0;
+    for (l = 0; l < SBL__VW; ++l) { /* a direction for sky (+inf): p = q, p[3] = 0 */
+        const int sky = sbl__is_pos_inf(zf[l]);
+        zmul[l] = sky ? 1.0 : SBL__CAST(double, zf[l]);
+        p3[l] = sky ? 0.0 : 1.0;
+    }
+    for (j = 0; j < SBL__VW; j += SBL__DW) {
+        const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, sbl__dload(px + j)), sbl__dset1(m->width)), one);
+        const sbl__dv n1 = sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), sbl__dset1(m->height)));
+        sbl__dv q[4], a[3], pv[4], v[4], c[4], t, zm;
+        for (k = 0; k < 4; ++k) { /* q = clip_to_view (n0, n1, 0, 1) */
+            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(C[k * 4]), n0));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(C[k * 4 + 1]), n1));
+            t = sbl__dadd(t, sbl__dset1(C[k * 4 + 2] * 0.0));
+            q[k] = sbl__dadd(t, sbl__dset1(C[k * 4 + 3] * 1.0));
+        }
+        t = sbl__ddiv(sbl__dsub(zero, q[2]), q[3]); /* -q2 / q3 (negation exact) */
+        sbl__dstore(q3 + j, q[3]);
+        sbl__dstore(chk + j, t);
+        for (k = 0; k < 3; ++k) a[k] = sbl__ddiv(sbl__ddiv(q[k], q[3]), t);
+        zm = sbl__dload(zmul + j);
+        for (k = 0; k < 3; ++k) pv[k] = sbl__dmul(a[k], zm); /* a * 1.0 = a for sky */
+        pv[3] = sbl__dload(p3 + j);
+        for (k = 0; k < 4; ++k) {
+            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(V[k * 4]), pv[0]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 1]), pv[1]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 2]), pv[2]));
+            v[k] = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 3]), pv[3]));
+        }
+        for (k = 0; k < 4; ++k) {
+            if (k == 2) continue; /* (unused) */
+            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(P[k * 4]), v[0]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 1]), v[1]));
+            t = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 2]), v[2]));
+            c[k] = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 3]), v[3]));
+        }
+        sbl__dstore(c3 + j, c[3]);
+        sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c[0], c[3]), one), half),
+                                      sbl__dset1(m->other_width)));
+        sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c[1], c[3])), half),
+                                      sbl__dset1(m->other_height)));
+        sbl__dstore(oz + j, sbl__dsub(zero, v[2])); /* -v2 (v3 = 0: a direction, below) */
+        sbl__dstore(p3 + j, v[3]);
+    }
+    for (l = 0; l < SBL__VW; ++l) {
+        if (p3[l] == 0.0) oz[l] = HUGE_VAL;
+        if (!(q3[l] == 0.0 || chk[l] <= 0.0) && c3[l] > 0.0) bits |= 1 << l;
+    }
+    return bits;
+}
+
+/* sbl__temporal_rp_pos (camera source) and sbl__tap_plan_set for the VW pixels
+   x .. x + VW - 1 of row y. */
+SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                        int x, int y)
+{
+    const double w = SBL__CAST(double, s->frame->color.width), h = SBL__CAST(double, s->frame->color.height);
+    float zf[SBL__VW], sf[SBL__VW];
+    double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
+    sbl__v z, slack;
+    int keep, l;
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    sbl__store(zf, z);
+    sbl__store(sf, slack);
+    for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
+    keep &= sbl__cam_lanes(&s->cam, px, py, zf, ox, oy, oz);
+    for (l = 0; l < SBL__VW; ++l) {
+        sbl__tap_want t;
+        sbl__tap_plan_reset(p, i + l);
+        if (!((keep >> l) & 1)) continue; /* no geometry, no ray, behind */
+        if (!(ox[l] >= 0.0 && ox[l] < w && oy[l] >= 0.0 && oy[l] < h)) continue; /* outside */
+        t.depth = SBL__CAST(float, oz[l]);
+        t.depth_slack = sf[l];
+        t.normal = NULL;
+        t.normal_len2 = 0.0f;
+        t.id = 0.0f;
+        sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
+    }
+}
+
+/* The temporal row gather's hooks (sbl__row_gather_blocks). Lane modes: 1 motion
+   vectors, 2 the camera; bit 4: the row's tiles may take the shortcuts. */
+static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    if (sbl__temporal_tiles_ok(s)) {
+        const int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
+        if (kind == SBL__TILE_VOID) { sbl__void_tile(&s->src, r, b->x0, b->n); return 1; }
+        if (kind == SBL__TILE_REST) { sbl__rest_tile(s, r, b->y, b->x0, b->n); return 1; }
+        b->sky = kind == SBL__TILE_SKY;
+    }
+    b->mode = sbl__temporal_plan_lanes_ok(s, b->y) ? 1 : (sbl__camera_plan_lanes_ok(s, b->y) ? 2 : 0);
+    return 0;
+}
+
+static int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    const int x = b->x0 + i;
+    if (!b->mode || x < 1 || x + SBL__VW >= s->src.width) return -1;
+    if (b->mode == 2) {
+        sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
+        return 0;
+    }
+    return b->sky ? sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 1)
+                  : sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 0);
+}
+
+static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    sbl__tap_want t;
+    double sx, sy;
+    sbl__tap_plan_reset(&b->p, i);
+    if (sbl__temporal_rp_pos(s, b->x0 + i, b->y, &t, &sx, &sy))
+        sbl__tap_plan_set(&s->src, &b->p, i, &t, sx, sy);
+}
+
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    const int fallback = !s->rp.no_fallback, ch = s->src.color.ch;
-    const int lanes = sbl__temporal_plan_lanes_ok(s, y);
-    sbl__tap_plan p;
-    int x0, i;
-    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
-        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
-        if (n < SBL__VW) {
-            for (i = 0; i < n; ++i) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
-            }
-            continue;
-        }
-        for (i = 0; i < n;) {
-            int bits = 1, l;
-            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < s->src.width && i + SBL__VW <= n) {
-                bits = sbl__temporal_plan_lanes(s, &p, i, x0 + i, y);
-                l = SBL__VW;
-            } else {
-                l = 1;
-            }
-            for (; bits; ++i, --l, bits >>= 1) {
-                sbl__tap_want t;
-                double sx, sy;
-                if (!(bits & 1)) continue;
-                sbl__tap_plan_reset(&p, i);
-                if (sbl__temporal_rp_pos(s, x0 + i, y, &t, &sx, &sy))
-                    sbl__tap_plan_set(&s->src, &p, i, &t, sx, sy);
-            }
-            i += l;
-        }
-        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
-        for (i = 0; i < n; ++i)
-            if (p.redo[i]) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x0 + i, sbl__temporal_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
-            }
-    }
+    sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
+                           sbl__temporal_block_start, sbl__temporal_plan_vec,
+                           sbl__temporal_plan_one, NULL);
 }
 #endif
+
+#ifdef SBL__SHUFFLE4
+SBL__INLINE void sbl__transpose4(__m128 *a, __m128 *b, __m128 *c, __m128 *d)
+{
+    const __m128 t0 = _mm_unpacklo_ps(*a, *b), t1 = _mm_unpacklo_ps(*c, *d);
+    const __m128 t2 = _mm_unpackhi_ps(*a, *b), t3 = _mm_unpackhi_ps(*c, *d);
+    *a = _mm_movelh_ps(t0, t1);
+    *b = _mm_movehl_ps(t1, t0);
+    *c = _mm_movelh_ps(t2, t3);
+    *d = _mm_movehl_ps(t3, t2);
+}
+#endif
+
+/* Pixels [xa, xb) of an interleaved row (pixel step `step` floats, `ch` channels used)
+   to one plane per channel, and back. Pure data movement: every build gives the same
+   planes; packed rows (step == ch) move four pixels per 128-bit shuffle group. */
+static void sbl__deinterleave(const float *src, ptrdiff_t step, int ch, float *const *planes,
+                              int xa, int xb)
+{
+    int x = xa, c;
+#ifdef SBL__SHUFFLE4
+    if (step == ch && ch >= 2) {
+        float *p0 = planes[0], *p1 = planes[1];
+        const float *s = src + SBL__CAST(ptrdiff_t, xa) * step;
+        if (ch == 2) {
+            for (; x + 4 <= xb; x += 4, s += 8) {
+                const __m128 a = _mm_loadu_ps(s), b = _mm_loadu_ps(s + 4);
+                _mm_storeu_ps(p0 + x, _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0)));
+                _mm_storeu_ps(p1 + x, _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1)));
+            }
+        } else if (ch == 3) {
+            float *p2 = planes[2];
+            for (; x + 4 <= xb; x += 4, s += 12) {
+                /* a = r0 g0 b0 r1, b = g1 b1 r2 g2, c = b2 r3 g3 b3 */
+                const __m128 a = _mm_loadu_ps(s), b = _mm_loadu_ps(s + 4), d = _mm_loadu_ps(s + 8);
+                const __m128 r = _mm_shuffle_ps(a, _mm_shuffle_ps(b, d, _MM_SHUFFLE(1, 1, 2, 2)),
+                                                _MM_SHUFFLE(2, 0, 3, 0));
+                const __m128 g = _mm_shuffle_ps(_mm_shuffle_ps(a, b, _MM_SHUFFLE(0, 0, 1, 1)),
+                                                _mm_shuffle_ps(b, d, _MM_SHUFFLE(2, 2, 3, 3)),
+                                                _MM_SHUFFLE(2, 0, 2, 0));
+                const __m128 bl = _mm_shuffle_ps(_mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 1, 2, 2)),
+                                                 _mm_shuffle_ps(d, d, _MM_SHUFFLE(3, 3, 0, 0)),
+                                                 _MM_SHUFFLE(2, 0, 2, 0));
+                _mm_storeu_ps(p0 + x, r);
+                _mm_storeu_ps(p1 + x, g);
+                _mm_storeu_ps(p2 + x, bl);
+            }
+        } else {
+            float *p2 = planes[2], *p3 = planes[3];
+            for (; x + 4 <= xb; x += 4, s += 16) {
+                __m128 a = _mm_loadu_ps(s), b = _mm_loadu_ps(s + 4), d = _mm_loadu_ps(s + 8),
+                       e = _mm_loadu_ps(s + 12);
+                sbl__transpose4(&a, &b, &d, &e);
+                _mm_storeu_ps(p0 + x, a);
+                _mm_storeu_ps(p1 + x, b);
+                _mm_storeu_ps(p2 + x, d);
+                _mm_storeu_ps(p3 + x, e);
+            }
+        }
+    }
+#endif
+    if (step == 1 && ch == 1 && x < xb) {
+        memcpy(planes[0] + x, src + x, SBL__CAST(size_t, xb - x) * sizeof(float));
+        return;
+    }
+    for (; x < xb; ++x)
+        for (c = 0; c < ch; ++c) planes[c][x] = src[SBL__CAST(ptrdiff_t, x) * step + c];
+}
+
+static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *const *planes,
+                            int xa, int xb)
+{
+    int x = xa, c;
+#ifdef SBL__SHUFFLE4
+    if (step == ch && ch >= 2) {
+        const float *p0 = planes[0], *p1 = planes[1];
+        float *d = dst + SBL__CAST(ptrdiff_t, xa) * step;
+        if (ch == 2) {
+            for (; x + 4 <= xb; x += 4, d += 8) {
+                const __m128 r = _mm_loadu_ps(p0 + x), g = _mm_loadu_ps(p1 + x);
+                _mm_storeu_ps(d, _mm_unpacklo_ps(r, g));
+                _mm_storeu_ps(d + 4, _mm_unpackhi_ps(r, g));
+            }
+        } else if (ch == 3) {
+            const float *p2 = planes[2];
+            for (; x + 4 <= xb; x += 4, d += 12) {
+                const __m128 r = _mm_loadu_ps(p0 + x), g = _mm_loadu_ps(p1 + x),
+                             b = _mm_loadu_ps(p2 + x);
+                _mm_storeu_ps(d, _mm_shuffle_ps(_mm_shuffle_ps(r, g, _MM_SHUFFLE(0, 0, 0, 0)),
+                                                _mm_shuffle_ps(b, r, _MM_SHUFFLE(1, 1, 0, 0)),
+                                                _MM_SHUFFLE(2, 0, 2, 0)));
+                _mm_storeu_ps(d + 4, _mm_shuffle_ps(_mm_shuffle_ps(g, b, _MM_SHUFFLE(1, 1, 1, 1)),
+                                                    _mm_shuffle_ps(r, g, _MM_SHUFFLE(2, 2, 2, 2)),
+                                                    _MM_SHUFFLE(2, 0, 2, 0)));
+                _mm_storeu_ps(d + 8, _mm_shuffle_ps(_mm_shuffle_ps(b, r, _MM_SHUFFLE(3, 3, 2, 2)),
+                                                    _mm_shuffle_ps(g, b, _MM_SHUFFLE(3, 3, 3, 3)),
+                                                    _MM_SHUFFLE(2, 0, 2, 0)));
+            }
+        } else {
+            const float *p2 = planes[2], *p3 = planes[3];
+            for (; x + 4 <= xb; x += 4, d += 16) {
+                __m128 a = _mm_loadu_ps(p0 + x), b = _mm_loadu_ps(p1 + x), e = _mm_loadu_ps(p2 + x),
+                       f = _mm_loadu_ps(p3 + x);
+                sbl__transpose4(&a, &b, &e, &f);
+                _mm_storeu_ps(d, a);
+                _mm_storeu_ps(d + 4, b);
+                _mm_storeu_ps(d + 8, e);
+                _mm_storeu_ps(d + 12, f);
+            }
+        }
+    }
+#endif
+    if (step == 1 && ch == 1 && x < xb) {
+        memcpy(dst + x, planes[0] + x, SBL__CAST(size_t, xb - x) * sizeof(float));
+        return;
+    }
+    for (; x < xb; ++x)
+        for (c = 0; c < ch; ++c) dst[SBL__CAST(ptrdiff_t, x) * step + c] = planes[c][x];
+}
 
 /* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
    pixels holding a value outside the lane range. Returns the number flagged. */
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
-    const float *src = sbl__px(k->own, 0, row);
-    const ptrdiff_t step = sbl__step_of(k->own);
     const float *ny = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, row) : NULL;
     const ptrdiff_t ny_step = ny ? SBL__CAST(ptrdiff_t, sbl__step_of(k->own_n)) : 0;
     /* the lanes load N_Y contiguously: another pixel step takes the reference path */
     const int ny_lanes = !ny || ny_step == 1;
     int x, c, ch = k->ch, count = 0;
+    sbl__deinterleave(sbl__px(k->own, 0, row), sbl__step_of(k->own), ch, r->y, xa, xb);
     x = xa;
 #ifdef SBL__ROW_GATHER
     if (ny_lanes) {
-        /* deinterleave, then flag a vector at a time */
-        for (x = xa; x < xb; ++x)
-            for (c = 0; c < ch; ++c) r->y[c][x] = src[SBL__CAST(ptrdiff_t, x) * step + c];
-        for (x = xa; x + SBL__VW <= xb; x += SBL__VW) {
-            sbl__m ok = sbl__lane_ok(sbl__load(r->y[0] + x));
+        /* a vector at a time; bytes one by one only where a lane is unsafe (the planes
+           in locals: a byte store may alias anything, and would reload them) */
+        static const unsigned char safe_bytes[16] = {0};
+        const int all = (1 << SBL__VW) - 1;
+        const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
+                    *y3 = ch > 3 ? r->y[3] : y0;
+        unsigned char *unsafe = r->unsafe;
+        for (; x + SBL__VW <= xb; x += SBL__VW) {
+            sbl__m ok = sbl__mand(sbl__mand(sbl__lane_ok(sbl__load(y0 + x)), sbl__lane_ok(sbl__load(y1 + x))),
+                                  sbl__mand(sbl__lane_ok(sbl__load(y2 + x)), sbl__lane_ok(sbl__load(y3 + x))));
             int bits, l;
-            for (c = 1; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->y[c] + x)));
             if (ny) {
                 const sbl__v n = sbl__load(ny + x);
                 ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
             }
             bits = sbl__mbits(ok);
+            if (bits == all) {
+                memcpy(unsafe + x, safe_bytes, SBL__VW);
+                continue;
+            }
             for (l = 0; l < SBL__VW; ++l) {
                 const int bad = !((bits >> l) & 1);
-                r->unsafe[x + l] = SBL__CAST(unsigned char, bad);
+                unsafe[x + l] = SBL__CAST(unsigned char, bad);
                 count += bad;
             }
         }
@@ -3085,11 +3670,7 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
 #endif
     for (; x < xb; ++x) {
         int safe = ny_lanes;
-        for (c = 0; c < ch; ++c) {
-            float v = src[SBL__CAST(ptrdiff_t, x) * step + c];
-            r->y[c][x] = v;
-            safe &= sbl__lane_value_ok(v);
-        }
+        for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(r->y[c][x]);
         /* N_Y: the reference path sanitises it */
         if (ny) {
             float n = ny[SBL__CAST(ptrdiff_t, x) * ny_step];
@@ -3207,17 +3788,28 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
     k->stage_a[x] = a;
 }
 
-#define SBL__SUM9(P, X) \
-    sbl__add(sbl__add(sbl__add(sbl__load((P)[0] + (X) - 1), sbl__load((P)[0] + (X))), \
-                      sbl__add(sbl__load((P)[0] + (X) + 1), sbl__load((P)[1] + (X) - 1))), \
-             sbl__add(sbl__add(sbl__add(sbl__load((P)[1] + (X)), sbl__load((P)[1] + (X) + 1)), \
-                               sbl__add(sbl__load((P)[2] + (X) - 1), sbl__load((P)[2] + (X)))), \
-                      sbl__load((P)[2] + (X) + 1)))
-
 /* The lane kernel, as stages named like their reference-path counterparts:
    sbl__lanes_moments (sbl__moments_core), sbl__lanes_rectify (sbl__rectify),
    sbl__lanes_weight (sbl__weight) and sbl__lanes_blend (the rest of sbl__blend_pixel
-   and Eq. 5). Same algebra as the reference path with count = 9, in float. */
+   and Eq. 5). Same algebra as the reference path with count = 9, in float.
+
+   The 3x3 sums are separable: sbl__lanes_columns sums each column's three rows once
+   per output row (a chunk of SBL__CHUNK columns at a time), and sbl__lanes_moments
+   adds three columns per pixel, instead of nine loads per pixel and statistic.
+   Precision policy: the sums are one-pass (sum of squares minus n mean^2), so every
+   sum is taken about a shift that is a sample of the set summed, never about 0: then
+   n (mean - shift)^2 <= n^2 variance and the subtraction loses at most a few bits,
+   however large the mean (1e4 + noise 1e-3 keeps its variance, as the two-pass form
+   did). A column is summed about its own top sample (Y) and its first valid x* - y
+   (pairs); the pixel moves its side columns to the window's shift with
+   sum (e + D)^2 = sum e^2 + D (2 sum e + n D), exact algebra whose terms are bounded
+   by the window's own spread. The window's shifts: Y about its top-centre sample,
+   which also belongs to the leave-centre-out set of the robust estimator (m8, v8 are
+   summed without the centre, never as the 9-sums minus it: a firefly at the centre
+   would cancel the neighbours' variance away); the pairs about the centre column's
+   shift (the centre pair when it is the column's first valid one). Lanes are
+   independent and every column is computed by the same operations whatever the chunk
+   or the vector width, so spans, bands and every build give the same bits. */
 
 /* Statistics of one vector of pixels: Y's 3x3 moments and the paired differences. */
 typedef struct sbl__lane_stats {
@@ -3231,59 +3823,134 @@ typedef struct sbl__lane_stats {
     sbl__m has_pairs, two_pairs;
 } sbl__lane_stats;
 
-SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const float *const (*yp)[3],
-                                    const float *const (*xp)[3], const float *const *vp, int x,
+/* The planes of the three window rows, gathered once per call of the lane kernel (one
+   load per plane in the channel loops instead of two). */
+typedef struct sbl__lane_rows {
+    const float *y[3][4], *x[3][4], *v[3];
+} sbl__lane_rows;
+
+static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, int ch)
+{
+    int j, c;
+    for (j = 0; j < 3; ++j) {
+        for (c = 0; c < ch; ++c) { W->y[j][c] = R[j]->y[c]; W->x[j][c] = R[j]->x[c]; }
+        W->v[j] = R[j]->v;
+    }
+}
+
+/* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
+   column - ca; the last vector overlaps the one before (same values). */
+SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
+    int x = ca, c;
+    for (;;) {
+        const int i = x - ca;
+        const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
+                     v2 = sbl__load(W->v[2] + x);
+        const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
+        sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
+        for (c = 0; c < ch; ++c) {
+            const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
+                         y2 = sbl__load(W->y[2][c] + x);
+            const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
+            const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
+                         d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
+                         d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
+            /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t)
+               is then 0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
+            const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
+            const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
+            float *cp = k->col[c] + i;
+            sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
+            sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
+            sbl__store(SBL__COLP(cp, SBL__COL_T), t);
+            sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
+            sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
+            if (clamp) {
+                sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
+                sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
+            }
+        }
+        if (x + SBL__VW >= cb) break;
+        x += SBL__VW;
+        if (x + SBL__VW > cb) x = cb - SBL__VW;
+    }
+}
+
+/* One side column moved from its own shift to the window's: D = its shift minus the
+   window's, n its count; sum (e + D) = a + n D, sum (e + D)^2 = b + D (a + (a + n D)) */
+#define SBL__SIDE(A, B, D, N, OA, OB) \
+    do { \
+        (OA) = sbl__add((A), sbl__mul((D), (N))); \
+        (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
+    } while (0)
+
+/* Moments of pixels [x, x + VW) from the column sums of the chunk starting at column
+   ca (sbl__lanes_columns) and the window rows W. */
+SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *W, int x, int ca,
                                     sbl__lane_stats *st)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), ninth = sbl__set1(1.0f / 9.0f);
-    sbl__v cnt = SBL__SUM9(vp, x), inv_cnt1;
-    int c, j;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), three = sbl__set1(3.0f);
+    const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
+    const int i = x - ca, ch = k->ch;
+    const sbl__v nl = sbl__load(k->col_n + i - 1), nr = sbl__load(k->col_n + i + 1);
+    const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    sbl__v inv_cnt1;
+    int c;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
     inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
-    for (c = 0; c < k->ch; ++c) {
-        const float *const *P = yp[c];
-        sbl__v m = sbl__mul(SBL__SUM9(P, x), ninth), v = zero, d = zero, dd = zero;
-        /* the pairs are summed shifted by the centre's difference, so that a bias
-           well above the noise does not cancel the one-pass variance away */
-        sbl__v shift = sbl__sub(sbl__load(xp[c][1] + x), sbl__load(yp[c][1] + x));
-        sbl__v lo = m, hi = m; /* the mean lies inside [min, max]: a neutral start */
-        /* robust estimator: Y without the centre, centred on its own mean */
-        sbl__v m8 = sbl__mul(sbl__sub(sbl__mul(m, sbl__set1(9.0f)), sbl__load(yp[c][1] + x)),
-                             sbl__set1(0.125f)), v8 = zero;
-        for (j = 0; j < 3; ++j) {
-            int i;
-            for (i = -1; i <= 1; ++i) {
-                sbl__v yy = sbl__load(yp[c][j] + x + i);
-                sbl__v e = sbl__sub(yy, m), e8 = sbl__sub(yy, m8);
-                sbl__v pdiff;
-                v = sbl__add(v, sbl__mul(e, e));
-                if (j != 1 || i != 0) v8 = sbl__add(v8, sbl__mul(e8, e8));
-                pdiff = sbl__mul(sbl__load(vp[j] + x + i),
-                                 sbl__sub(sbl__sub(sbl__load(xp[c][j] + x + i), yy), shift));
-                d = sbl__add(d, pdiff);
-                dd = sbl__add(dd, sbl__mul(pdiff, pdiff));
-                if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
-                    lo = sbl__min(lo, yy);
-                    hi = sbl__max(hi, yy);
-                }
-            }
-        }
-        st->mean[c] = m;
-        st->var[c] = sbl__mul(v, ninth);
-        st->m8[c] = m8;
-        st->v8[c] = sbl__mul(v8, sbl__set1(0.125f));
-        st->lo[c] = lo;
-        st->hi[c] = hi;
+    for (c = 0; c < ch; ++c) {
+        const float *y0 = W->y[0][c] + x;
+        const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
+        const sbl__v yc = sbl__load(W->y[1][c] + x);
+        const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
+        const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
+        const float *cp = k->col[c] + i;
+        const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
+        const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
+        sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
+        /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
+        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
+                  three, al, bl);
+        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
+                  three, ar, br);
+        a8 = sbl__add(sbl__add(al, ar), a2);
+        b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
+        a9 = sbl__add(a8, a1);
+        b9 = sbl__add(b8, sbl__mul(a1, a1));
+        q = sbl__mul(a9, ninth);
+        st->mean[c] = sbl__add(s, q);
+        st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
+        q = sbl__mul(a8, eighth);
+        st->m8[c] = sbl__add(s, q);
+        st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+        /* pairs: side columns about the centre column's shift tc */
+        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
+                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
+        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1),
+                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) + 1), tc), nr, pr, qr);
+        d = sbl__add(sbl__add(pl, pr), da);
+        dd = sbl__add(sbl__add(ql, qr), db);
         st->pd[c] = sbl__mul(d, st->inv_cnt);
-        /* sample variance of the pairs, one pass: (sum d^2 - n mean^2) / (n - 1) */
+        /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
         st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
-        st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], shift), zero);
-        st->xs[c] = st->xr[c] = sbl__load(xp[c][1] + x);
-        st->yc[c] = sbl__load(yp[c][1] + x);
+        st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
+        if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+            const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
+            st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
+            st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
+        } else {
+            st->lo[c] = st->hi[c] = st->mean[c];
+        }
+        st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
+        st->yc[c] = yc;
     }
 }
+#undef SBL__SIDE
 
 /* Firefly limit of the own sample, as sbl__firefly_limit. */
 SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
@@ -3422,49 +4089,66 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
 /* Lane kernel over pixels [x0, x1) of an interior row (all nine neighbours exist and
    are lane-safe). Returns the first pixel it did not process (the tail goes to the
    reference path). */
-static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int x0, int x1)
+SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
+                                     int x0, int x1, const int ch)
 {
-    const int ch = k->ch, y = R[1]->row;
+    /* a copy whose channel count is a constant in each instance below (the stages read
+       k->ch): their channel loops unroll, with no plane pointer reloaded per channel */
+    sbl__kernel k_ch = *k_in, *k = &k_ch;
+    const int y = R[1]->row;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap);
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     const int per_channel = k->wp.mode == SBL_WEIGHT_PER_CHANNEL;
-    const float *yp[4][3], *xp[4][3], *vp[3];
-    int x, c, j;
-    for (j = 0; j < 3; ++j) {
-        for (c = 0; c < ch; ++c) { yp[c][j] = R[j]->y[c]; xp[c][j] = R[j]->x[c]; }
-        vp[j] = R[j]->v;
-    }
-    for (x = x0; x + SBL__VW <= x1; x += SBL__VW) {
-        sbl__lane_stats st;
-        sbl__v a[4], n_x, n_y, n_xc;
-        sbl__m valid;
-        const int groups = per_channel ? ch : 1;
-        int g;
-        n_x = sbl__load(R[1]->n + x);
-        valid = sbl__gt(n_x, zero);
-        n_y = nyrow ? sbl__load(nyrow + x) : one;
-        n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
-        n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-        sbl__lanes_moments(k, SBL__PCAST(const float *const(*)[3], yp), SBL__PCAST(const float *const(*)[3], xp),
-                           vp, x, &st);
-        sbl__lanes_rectify(k, &st);
-        for (g = 0; g < groups; ++g) {
-            sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
-            int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
-            for (c = c0; c < c1; ++c) {
-                sbl__v e = sbl__sub(st.xs[c], st.mean[c]);
-                dev2 = sbl__add(dev2, sbl__mul(e, e));
-                s2 = sbl__add(s2, st.var[c]);
-                pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
-                pvs = sbl__add(pvs, st.pv[c]);
+    const int end = x0 + (x1 - x0) / SBL__VW * SBL__VW; /* whole vectors only */
+    sbl__lane_rows W;
+    int x = x0, c;
+    k_ch.ch = ch;
+    sbl__lane_rows_of(&W, R, ch);
+    while (x < end) {
+        /* one chunk: its column sums (with the neighbour columns), then its pixels */
+        const int ca = x - 1, ce = end - x > SBL__CHUNK ? x + SBL__CHUNK : end;
+        sbl__lanes_columns(k, &W, ca, ce + 1);
+        for (; x < ce; x += SBL__VW) {
+            sbl__lane_stats st;
+            sbl__v a[4], n_x, n_y, n_xc;
+            sbl__m valid;
+            const int groups = per_channel ? ch : 1;
+            int g;
+            n_x = sbl__load(R[1]->n + x);
+            valid = sbl__gt(n_x, zero);
+            n_y = nyrow ? sbl__load(nyrow + x) : one;
+            n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+            n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+            sbl__lanes_moments(k, &W, x, ca, &st);
+            sbl__lanes_rectify(k, &st);
+            for (g = 0; g < groups; ++g) {
+                sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
+                int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
+                for (c = c0; c < c1; ++c) {
+                    sbl__v e = sbl__sub(st.xs[c], st.mean[c]);
+                    dev2 = sbl__add(dev2, sbl__mul(e, e));
+                    s2 = sbl__add(s2, st.var[c]);
+                    pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
+                    pvs = sbl__add(pvs, st.pv[c]);
+                }
+                w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
+                for (c = c0; c < c1; ++c) a[c] = w;
             }
-            w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
-            for (c = c0; c < c1; ++c) a[c] = w;
+            sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
         }
-        sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
     }
     return x;
+}
+
+static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int x0, int x1)
+{
+    switch (k->ch) {
+    case 1: return sbl__kernel_lanes_ch(k, R, x0, x1, 1);
+    case 2: return sbl__kernel_lanes_ch(k, R, x0, x1, 2);
+    case 3: return sbl__kernel_lanes_ch(k, R, x0, x1, 3);
+    default: return sbl__kernel_lanes_ch(k, R, x0, x1, 4);
+    }
 }
 
 /* Lane kernel over the pixels of [xa, xb) (interior columns of an interior row) whose
@@ -3473,6 +4157,34 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
    [la, lb) (loaded columns, at least 16 wide), whose extra lanes are either recomputed
    identically or overwritten by the reference path afterwards: lanes are independent,
    so no result depends on the vector width. */
+/* The first of bytes [a, b) of p that is not 0, else b; eight bytes at a time. */
+static int sbl__find_set(const unsigned char *p, int a, int b)
+{
+    for (; a + 8 <= b; a += 8) {
+        uint64_t w;
+        memcpy(&w, p + a, 8);
+        if (w) break;
+    }
+    while (a < b && !p[a]) ++a;
+    return a;
+}
+
+/* d[i] = a[i] | b[i] | c[i] for i in [0, n), eight bytes at a time. */
+static void sbl__or3_bytes(unsigned char *d, const unsigned char *a, const unsigned char *b,
+                           const unsigned char *c, int n)
+{
+    int i = 0;
+    for (; i + 8 <= n; i += 8) {
+        uint64_t u, v, w;
+        memcpy(&u, a + i, 8);
+        memcpy(&v, b + i, 8);
+        memcpy(&w, c + i, 8);
+        u |= v | w;
+        memcpy(d + i, &u, 8);
+    }
+    for (; i < n; ++i) d[i] = SBL__CAST(unsigned char, a[i] | b[i] | c[i]);
+}
+
 static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
                                    int xb, int la, int lb, const unsigned char *win)
 {
@@ -3482,10 +4194,10 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
         if (win) {
             while (a < xb && win[a]) ++a;
             if (a >= xb) break;
+            b = sbl__find_set(win, a + 1, xb);
+        } else {
+            b = xb;
         }
-        b = a + 1;
-        if (win) { while (b < xb && !win[b]) ++b; }
-        else b = xb;
         if (b - a >= SBL__VW) {
             int e = sbl__kernel_lanes(k, R, a, b);
             /* the tail: one more vector ending at b, overlapping pixels already done
@@ -3509,7 +4221,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
     /* rows narrower than the widest vector (plus the two border pixels) take the
        reference path on every build, so that no build depends on its vector width */
     const int lanes_w = k->w - 2 >= 16;
-    int y, x, c, j, la = x0, lb = x1, xa, xb;
+    int y, x, j, la = x0, lb = x1, xa, xb;
     if (x0 < 0) x0 = 0;
     if (x1 > k->w) x1 = k->w;
     if (y0 >= y1 || x0 >= x1) return;
@@ -3538,42 +4250,36 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
             if (lanes_ok) {
                 if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
-                    /* per pixel: 1 if any of the nine values of its window is unsafe */
-                    unsigned char *w = k->window_unsafe;
-                    const unsigned char *u0 = R[0]->unsafe, *u1 = R[1]->unsafe,
-                                        *u2 = R[2]->unsafe;
-                    for (x = xa - 1; x <= xb; ++x) w[x] = SBL__CAST(unsigned char, u0[x] | u1[x] | u2[x]);
-                    {
-                        unsigned char prev = w[xa - 1], cur = w[xa];
-                        for (x = xa; x < xb; ++x) {
-                            unsigned char next = w[x + 1];
-                            w[x] = SBL__CAST(unsigned char, prev | cur | next);
-                            prev = cur;
-                            cur = next;
-                        }
-                    }
-                    win = w;
+                    /* per pixel: 1 if any of the nine values of its window is unsafe
+                       (per column over its three rows, then over three columns) */
+                    unsigned char *cu = k->column_unsafe;
+                    sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
+                                   R[2]->unsafe + xa - 1, xb - xa + 2);
+                    sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
+                    win = k->window_unsafe;
                 }
                 sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
             }
-            for (x = x0; x < x1; ++x)
-                if (!lanes_ok || x < xa || x >= xb || (win && win[x]))
-                    sbl__kernel_pixel_ref(k, R, x);
+            if (!lanes_ok) {
+                for (x = x0; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
+            } else {
+                /* the reference path: the span's border columns, and inside [xa, xb)
+                   the pixels whose window holds an unsafe value */
+                for (x = x0; x < xa; ++x) sbl__kernel_pixel_ref(k, R, x);
+                if (win)
+                    for (x = sbl__find_set(win, xa, xb); x < xb; x = sbl__find_set(win, x + 1, xb))
+                        sbl__kernel_pixel_ref(k, R, x);
+                for (x = xb; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
+            }
             {   /* interleave the staged row into the outputs */
-                float *o = sbl__px(&k->out, 0, y);
-                const ptrdiff_t step = sbl__step_of(&k->out);
-                for (x = x0; x < x1; ++x)
-                    for (c = 0; c < k->ch; ++c) o[SBL__CAST(ptrdiff_t, x) * step + c] = k->stage[c][x];
-                if (k->out_n.data) {
-                    float *on = sbl__px(&k->out_n, 0, y);
-                    const ptrdiff_t ns = sbl__step_of(&k->out_n);
-                    for (x = x0; x < x1; ++x) on[SBL__CAST(ptrdiff_t, x) * ns] = k->stage_n[x];
-                }
-                if (k->out_a.data) {
-                    float *oa = sbl__px(&k->out_a, 0, y);
-                    const ptrdiff_t as = sbl__step_of(&k->out_a);
-                    for (x = x0; x < x1; ++x) oa[SBL__CAST(ptrdiff_t, x) * as] = k->stage_a[x];
-                }
+                const float *const *stage = SBL__PCAST(const float *const *, k->stage);
+                sbl__interleave(sbl__px(&k->out, 0, y), sbl__step_of(&k->out), k->ch, stage, x0, x1);
+                if (k->out_n.data)
+                    sbl__interleave(sbl__px(&k->out_n, 0, y), sbl__step_of(&k->out_n), 1,
+                                    SBL__PCAST(const float *const *, &k->stage_n), x0, x1);
+                if (k->out_a.data)
+                    sbl__interleave(sbl__px(&k->out_a, 0, y), sbl__step_of(&k->out_a), 1,
+                                    SBL__PCAST(const float *const *, &k->stage_a), x0, x1);
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
                 sbl__ring_row t = k->ring[0];
@@ -3738,6 +4444,7 @@ typedef struct sbl__stereo_rp {
     float fb;                 /* parallel: focal_px * baseline                          */
     double offset;            /* parallel: disparity_offset                             */
     sbl__cam_map to_source, to_target; /* SBL_RIG_MATRICES, SBL_RIG_PINHOLE             */
+    int tiles;                /* 1: the row gather's far-tile shortcut (tests: 0)       */
 } sbl__stereo_rp;
 
 static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_color)
@@ -3884,6 +4591,7 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->dir[1] = -s->dir[0];
     s->fb = s->d.focal_px * s->d.baseline;
     s->offset = SBL__CAST(double, s->d.disparity_offset);
+    s->tiles = 1;
     switch (s->d.rig) {
     case SBL_RIG_PARALLEL: s->map = sbl__stereo_map_parallel; break;
     case SBL_RIG_DISPARITY: s->map = sbl__stereo_map_disparity; break;
@@ -3937,104 +4645,253 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 }
 
 #ifdef SBL__ROW_GATHER
-/* sbl__stereo_rp_pixel for columns [xa, xb) of row y through the row gather (plan in
-   scalar with the rig's map called directly, taps in lanes, back-check in scalar on the
-   matches the lanes kept); `map` is a constant where this is inlined. */
-SBL__INLINE void sbl__stereo_rp_row_map(const sbl__stereo_rp *s, sbl__ring_row *r, int y,
-                                        int xa, int xb, sbl__stereo_map_fn map)
+/* Far tiles of the parallel rig (issue 10): where every disparity of a vector of pixels
+   is below SBL__FAR_PX (geometry beyond 256 f b), the other eye is read at the pixel
+   itself, its one tap tested, instead of a footprint whose second tap weighs |d|. Where
+   that tap passes, x* and its N differ from the general path by at most
+   (|d| / (1 - |d|) + 2^-23) |c(x +- 1) - c(x)| + 2^-22 |x*|: under 0.4 % of the
+   contrast to the neighbour (tests/test_tiles.c); where it fails, the pixel gather
+   decides, so validity never changes. The back-check keeps the exact position. This is
+   the one result by which a build with the row gather (x86 SIMD) may differ from the
+   scalar reference build: within that bound, on far geometry only. */
+#define SBL__FAR_PX (1.0f / 256.0f)
+
+/* The two-camera rigs' plan for the VW pixels x .. x + VW - 1 of an interior row
+   (sbl__stereo_rp_pixel's target tests and map, sbl__tap_plan_set), the map in lanes;
+   the matches' positions into psx / psy (0 where there is none). */
+SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p, int i, int x,
+                                      int y, double *psx, double *psy)
 {
-    const int sw = s->source->color.width, sh = s->source->color.height;
-    const int fallback = !s->d.reproject.no_fallback, ch = s->src.color.ch;
-    const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
-    const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
-    /* the plan in lanes: parallel rig without a disparity offset (the lane plan's
-       positions are exact for m = +-f b / z), target depth packed and of the source's
-       size, no target normals / ids, an interior row, images up to 2^15 */
-    const int lanes = map == sbl__stereo_map_parallel && s->offset == 0.0 && s->geo.depth.p &&
-                      s->geo.depth.step == 1 && !s->geo.normals.p && !s->geo.ids.p &&
-                      s->geo.width == sw && s->geo.height == sh && sw <= 32768 &&
-                      sh <= 32768 && y >= 1 && y + 1 < sh;
-    sbl__tap_plan p;
-    double psx[SBL__BLOCK], psy[SBL__BLOCK];
-    int x0, i;
-    for (x0 = xa; x0 < xb; x0 += SBL__BLOCK) {
-        const int n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
-        if (n < SBL__VW) {
-            for (i = 0; i < n; ++i) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x0 + i, sbl__stereo_rp_pixel(s, x0 + i, y, tmp), tmp, ch);
-            }
-            continue;
+    const double sw = SBL__CAST(double, s->source->color.width), sh = SBL__CAST(double, s->source->color.height);
+    float zf[SBL__VW], sf[SBL__VW];
+    double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
+    sbl__v z, slack;
+    int keep, l;
+    /* sbl__tap_want_init and sbl__valid_depth agree: z > 0, or +inf */
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    sbl__store(zf, z);
+    sbl__store(sf, slack);
+    for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
+    keep &= sbl__cam_lanes(&s->to_source, px, py, zf, ox, oy, oz);
+    for (l = 0; l < SBL__VW; ++l) {
+        sbl__tap_want t;
+        sbl__tap_plan_reset(p, i + l);
+        psx[l] = psy[l] = 0.0;
+        if (!((keep >> l) & 1)) continue;
+        if (!(ox[l] >= 0.0 && ox[l] < sw && oy[l] >= 0.0 && oy[l] < sh)) continue;
+        t.depth = SBL__CAST(float, oz[l]);
+        t.depth_slack = sf[l];
+        t.normal = NULL;
+        t.normal_len2 = 0.0f;
+        t.id = 0.0f;
+        psx[l] = ox[l];
+        psy[l] = oy[l];
+        sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
+    }
+}
+
+/* The back-check of the two-camera rigs for the block entries back[0 .. nback) (valid
+   matches of columns x0 + entry of row y), VW at a time: from the nearest source pixel,
+   at the source's depth there, back into the target, within tol pixels of the start
+   (sbl__stereo_rp_pixel's test); a failed one clears its ring column. */
+static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int y, int x0,
+                                 const double *psx, const double *psy, const int *back,
+                                 int nback, double tol)
+{
+    const int ch = s->src.color.ch;
+    int b, l;
+    for (b = 0; b < nback; b += SBL__VW) {
+        float zf[SBL__VW];
+        double px[SBL__VW], py[SBL__VW], bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
+        int ok;
+        for (l = 0; l < SBL__VW; ++l) {
+            const int e = back[b + l < nback ? b + l : b]; /* past the end: a copy */
+            px[l] = psx[e];
+            py[l] = psy[e];
+            zf[l] = sbl__valid_depth(&s->depth[1], SBL__CAST(int, floor(psx[e])), SBL__CAST(int, floor(psy[e])));
         }
-        for (i = 0; i < n;) {
-            int bits = 1, l = 1;
-            if (lanes && x0 + i >= 1 && x0 + i + SBL__VW < sw && i + SBL__VW <= n) {
-                /* the parallel rig in lanes: m = dir f b / z */
-                const sbl__v zero = sbl__set1(0.0f);
-                float fbz[SBL__VW];
-                sbl__v z, slack, m;
-                sbl__m keep = sbl__lanes_want(&s->geo.depth, x0 + i, y, &z, &slack);
-                m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
-                keep = sbl__mandnot(keep, sbl__nonfinite(m));
-                sbl__store(fbz, m);
-                if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
-                bits = sbl__plan_lanes(&s->src, &p, i, x0 + i, y, keep, z, slack, m, zero);
-                for (l = 0; l < SBL__VW; ++l) {
-                    psx[i + l] = x0 + i + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
-                    psy[i + l] = y + 0.5;
-                }
-                l = SBL__VW;
-            }
-            for (; bits; ++i, --l, bits >>= 1) {
-                const int x = x0 + i;
-                sbl__tap_want want;
-                double sx, sy, sz;
-                float z;
-                if (!(bits & 1)) continue;
-                sbl__tap_plan_reset(&p, i);
-                psx[i] = psy[i] = 0.0;
-                if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
-                if (!map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
-                if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh))) continue;
-                want.depth = SBL__CAST(float, sz);
-                psx[i] = sx;
-                psy[i] = sy;
-                sbl__tap_plan_set(&s->src, &p, i, &want, sx, sy);
-            }
-            i += l;
-        }
-        sbl__row_taps(&s->src, &p, n, fallback, r, x0);
-        for (i = 0; i < n; ++i) {
-            const int x = x0 + i;
-            if (p.redo[i]) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, y, tmp), tmp, ch);
-            } else if (back_check && r->v[x] > 0.0f) {
-                /* as sbl__stereo_rp_pixel: from the nearest source pixel back */
-                double bx, by, bz, ex, ey;
-                int ok = map(s, 1, SBL__CAST(int, floor(psx[i])), SBL__CAST(int, floor(psy[i])), psx[i], psy[i], &bx,
-                             &by, &bz);
-                if (ok) {
-                    ex = bx - (x + 0.5);
-                    ey = by - (y + 0.5);
-                    ok = ex * ex + ey * ey <= tol * tol;
-                }
-                if (!ok) sbl__ring_put(r, x, 0.0f, NULL, ch);
-            }
+        ok = sbl__cam_lanes(&s->to_target, px, py, zf, bx, by, bz);
+        for (l = 0; l < SBL__VW && b + l < nback; ++l) {
+            const int x = x0 + back[b + l];
+            const double ex = bx[l] - (x + 0.5), ey = by[l] - (y + 0.5);
+            if (!(((ok >> l) & 1) && zf[l] != 0.0f && ex * ex + ey * ey <= tol * tol))
+                sbl__ring_put(r, x, 0.0f, NULL, ch);
         }
     }
+}
+
+/* The rig's map called directly (no pointer): s->map's function. */
+SBL__INLINE int sbl__stereo_map(const sbl__stereo_rp *s, int back, int ix, int iy, double px,
+                                double py, double *ox, double *oy, double *oz)
+{
+    switch (s->d.rig) {
+    case SBL_RIG_PARALLEL: return sbl__stereo_map_parallel(s, back, ix, iy, px, py, ox, oy, oz);
+    case SBL_RIG_DISPARITY: return sbl__stereo_map_disparity(s, back, ix, iy, px, py, ox, oy, oz);
+    default: return sbl__stereo_map_cameras(s, back, ix, iy, px, py, ox, oy, oz);
+    }
+}
+
+/* The stereo row gather's hooks (sbl__row_gather_blocks): sbl__stereo_rp_pixel with the
+   plan in lanes where the rig allows (mode 1 parallel, 2 two cameras, 3 disparity map),
+   the taps in lanes, the back-check after them (in lanes for the two-camera rigs). */
+static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    const int sw = s->source->color.width, sh = s->source->color.height, y = b->y;
+    /* target depth packed and of the source's size, no target normals / ids, an
+       interior row (the depth slack reads both neighbours) */
+    const int geo = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw &&
+                    s->geo.height == sh && y >= 1 && y + 1 < sh;
+    const int depth = s->geo.depth.p && s->geo.depth.step == 1;
+    (void)r;
+    if (s->d.rig == SBL_RIG_PARALLEL)
+        /* without a disparity offset the float lane plan is exact for m = +-f b / z */
+        b->mode = geo && depth && s->offset == 0.0 && sw <= 32768 && sh <= 32768 ? 1 : 0;
+    else if (s->d.rig == SBL_RIG_DISPARITY)
+        /* (a target without depth has no slack and no depth test) */
+        b->mode = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw && s->geo.height == sh &&
+                          sw <= 32768 && sh <= 32768 &&
+                          (!s->geo.depth.p || (depth && y >= 1 && y + 1 < sh))
+                      ? 3
+                      : 0;
+    else
+        b->mode = geo && depth ? 2 : 0;
+    return 0;
+}
+
+static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    const int x = b->x0 + i, y = b->y;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    int l, bits;
+    if (!b->mode || x < 1 || x + SBL__VW >= s->source->color.width) return -1;
+    if (b->mode == 2) {
+        sbl__stereo_cam_plan(s, &b->p, i, x, y, b->psx + i, b->psy + i);
+        for (l = 0; l < SBL__VW; ++l) b->snapped[i + l] = 0;
+        return 0;
+    }
+    if (b->mode == 3) {
+        /* sbl__stereo_map_disparity in lanes: (x, y) + 0.5 + dir (d_x, d_y) */
+        const sbl__flat *dm = &s->disparity[0];
+        const float *dp = SBL__AT(*dm, x, y);
+        float dxs[SBL__VW], dys[SBL__VW];
+        int idx[SBL__VW];
+        sbl__v z = zero, slack = zero, mx, my;
+        sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+                                     : sbl__gt(one, zero);
+        for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, dm->step);
+        mx = sbl__gatheri(dp, idx);
+        my = dm->ch > 1 ? sbl__gatheri(dp + 1, idx) : zero;
+        keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+        sbl__store(dxs, mx);
+        sbl__store(dys, my);
+        if (s->dir[0] < 0.0) { mx = sbl__sub(zero, mx); my = sbl__sub(zero, my); }
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, mx, my);
+        for (l = 0; l < SBL__VW; ++l) {
+            b->psx[i + l] = x + l + 0.5 + s->dir[0] * SBL__CAST(double, dxs[l]);
+            b->psy[i + l] = y + 0.5 + s->dir[0] * SBL__CAST(double, dys[l]);
+            b->snapped[i + l] = 0;
+        }
+        return bits;
+    }
+    {   /* the parallel rig in lanes: m = dir f b / z */
+        float fbz[SBL__VW];
+        sbl__v z, slack, m;
+        sbl__m keep = sbl__lanes_want(&s->geo.depth, x, y, &z, &slack);
+        int far;
+        m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
+        keep = sbl__mandnot(keep, sbl__nonfinite(m));
+        sbl__store(fbz, m);
+        if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
+        /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the other
+           eye is read at the same pixel (see SBL__FAR_PX) */
+        far = s->tiles &&
+              !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
+              sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero);
+        for (l = 0; l < SBL__VW; ++l) {
+            b->psx[i + l] = x + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
+            b->psy[i + l] = y + 0.5;
+            b->snapped[i + l] = SBL__CAST(unsigned char, far);
+        }
+        return bits;
+    }
+}
+
+static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    const int sw = s->source->color.width, sh = s->source->color.height, x = b->x0 + i, y = b->y;
+    sbl__tap_want want;
+    double sx, sy, sz;
+    float z;
+    sbl__tap_plan_reset(&b->p, i);
+    b->psx[i] = b->psy[i] = 0.0;
+    b->snapped[i] = 0;
+    if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) return;
+    if (!sbl__stereo_map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) return;
+    if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh))) return;
+    want.depth = SBL__CAST(float, sz);
+    b->psx[i] = sx;
+    b->psy[i] = sy;
+    sbl__tap_plan_set(&s->src, &b->p, i, &want, sx, sy);
+}
+
+/* After the taps: the entries handed back, and far lanes whose one tap failed, go to
+   the pixel gather (the footprint's other tap may carry them); the back-check of the
+   others, as
+   sbl__stereo_rp_pixel does it: from the nearest source pixel back. `rig` is a
+   constant where this is inlined (the map is called directly). */
+SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r, sbl__block *b,
+                                       sbl_stereo_rig rig)
+{
+    const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
+    const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
+    const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
+    int i, back[SBL__BLOCK], nback = 0;
+    for (i = 0; i < b->n; ++i) {
+        const int x = b->x0 + i;
+        if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
+            continue;
+        }
+        if (!back_check || !(r->v[x] > 0.0f)) continue;
+        if (cams) {
+            back[nback++] = i; /* in lanes below */
+        } else {
+            const int ix = SBL__CAST(int, floor(b->psx[i])), iy = SBL__CAST(int, floor(b->psy[i]));
+            double bx, by, bz, ex, ey;
+            int ok = rig == SBL_RIG_PARALLEL
+                         ? sbl__stereo_map_parallel(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz)
+                         : sbl__stereo_map_disparity(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz);
+            if (ok) {
+                ex = bx - (x + 0.5);
+                ey = by - (b->y + 0.5);
+                ok = ex * ex + ey * ey <= tol * tol;
+            }
+            if (!ok) sbl__ring_put(r, x, 0.0f, NULL, s->src.color.ch);
+        }
+    }
+    if (nback) sbl__stereo_cam_back(s, r, b->y, b->x0, b->psx, b->psy, back, nback, tol);
+}
+
+static void sbl__stereo_block_after(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    if (s->d.rig == SBL_RIG_PARALLEL) sbl__stereo_after_rig(s, r, b, SBL_RIG_PARALLEL);
+    else if (s->d.rig == SBL_RIG_DISPARITY) sbl__stereo_after_rig(s, r, b, SBL_RIG_DISPARITY);
+    else sbl__stereo_after_rig(s, r, b, SBL_RIG_MATRICES);
 }
 
 /* The stereo reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa, int xb)
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
-    if (s->map == sbl__stereo_map_parallel)
-        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_parallel);
-    else if (s->map == sbl__stereo_map_disparity)
-        sbl__stereo_rp_row_map(s, r, y, xa, xb, sbl__stereo_map_disparity);
-    else
-        sbl__stereo_rp_row_map(s, r, y, xa, xb, s->map);
+    sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
+                           sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
+                           sbl__stereo_plan_one, sbl__stereo_block_after);
 }
 #endif
 

@@ -15,7 +15,9 @@
    (compare their ms with the `temporal` row of the same size: the issue asks for
    hard <= 1.5x, tiny <= 1.2x, static <= 1.2x the floor).
 
-   usage: perf [--quick] [--reps N] [--out DIR] */
+   usage: perf [--quick] [--reps N] [--out DIR] [--size 720|1080|2160] [--only PIPELINE]...
+   (--size, --only: run that size / those pipelines only, e.g. --size 1080 --only temporal
+   --only temporal-static: the same-run ratio of one case without the whole table) */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
@@ -225,14 +227,20 @@ int main(int argc, char **argv)
 {
     static const int sizes[3][2] = {{1280, 720}, {1920, 1080}, {3840, 2160}};
     const char *out = "bench/out";
-    int reps = 9, quick = 0, si, eyes, pipe, threads, i, r;
+    int reps = 9, quick = 0, si, eyes, pipe, threads, i, r, only_size = 0, only_count = 0;
+    const char *only[8];
     char path[1024];
     FILE *csv;
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0) quick = 1;
         else if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = atoi(argv[++i]);
         else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
-        else { fprintf(stderr, "usage: perf [--quick] [--reps N] [--out DIR]\n"); return 2; }
+        else if (strcmp(argv[i], "--size") == 0 && i + 1 < argc) only_size = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc && only_count < 8) only[only_count++] = argv[++i];
+        else {
+            fprintf(stderr, "usage: perf [--quick] [--reps N] [--out DIR] [--size 720|1080|2160] [--only PIPELINE]...\n");
+            return 2;
+        }
     }
     if (quick) reps = 3;
     if (reps < 1) reps = 1;
@@ -257,6 +265,7 @@ int main(int argc, char **argv)
         eye_bufs e[2];
         void *scratch[8];
         size_t bytes = sbl_temporal_scratch_size(w, 3);
+        if (only_size && only_size != h) continue;
         fill_eye(&e[0], w, h, 0);
         fill_eye(&e[1], w, h, 1);
         for (i = 0; i < 8; ++i) scratch[i] = malloc(bytes);
@@ -267,6 +276,11 @@ int main(int argc, char **argv)
                 const int kind = pipe >= 3 ? 0 : pipe; /* the extra contents run temporal */
                 if (eyes == 1 && pipe != 0 && pipe < 3) continue; /* stereo needs two eyes */
                 if (eyes == 2 && pipe >= 3) continue;
+                if (only_count) {
+                    int k, hit = 0;
+                    for (k = 0; k < only_count; ++k) hit |= strcmp(only[k], names[pipe]) == 0;
+                    if (!hit) continue;
+                }
                 if (pipe >= 3) make_case(&e[0], w, h, pipe == 3 ? 4 : (pipe == 4 ? 3 : 5));
                 for (threads = 1; threads <= (pipe >= 3 ? 1 : 2); ++threads) {
                     double t_lib[64], t_floor[64], t_cv[64], ms, fms, cvms = -1.0;

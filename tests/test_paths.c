@@ -385,6 +385,116 @@ static void test_stereo_row_gather(void)
 #endif
 }
 
+
+/* Precision of the lane kernel's one-pass 3x3 sums (sbl__lanes_columns /
+   sbl__lanes_moments) against the same statistics in double, on the cases a naive sum of
+   squares cancels away: a mean 1e4 above noise of 0.05 (mean^2 / variance ~ 4e10), a
+   bias of 500 between x* and Y over pair noise of 0.05, and a firefly centre 1e4 times
+   its neighbours (which the leave-centre-out m8 / v8 must not see). Variances within
+   1e-4 relative (a naive one-pass sum is off by ~100 %), means within 1e-6 of scale. */
+static void test_moments_precision(void)
+{
+    static float own[PH * PW * 4];
+    static paths_gather G;
+    sbt_rng rng = {99};
+    double worst_var = 0, worst_v8 = 0, worst_pv = 0, worst_mean = 0;
+    int it, compared = 0;
+    for (it = 0; it < 300; ++it) {
+        sbl__kernel k;
+        sbl_image im;
+        void *scratch;
+        const sbl__ring_row *R[3];
+        sbl__lane_rows W;
+        const int ch = 1 + it % 4, kind = (it / 4) % 3;
+        const double base = kind == 2 ? 1.0 : (it % 2 ? 1e4 : -3e3), noise = kind == 2 ? 0.01 : 0.05;
+        int x, y, c, i, l;
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x) {
+                for (c = 0; c < 4; ++c) {
+                    double v = base + noise * (sbt_uniform(&rng) - 0.5);
+                    if (kind == 2 && y == 1 && x % 3 == 0) v = 1e4 * (1.0 + sbt_uniform(&rng));
+                    own[(y * PW + x) * 4 + c] = (float)v;
+                    G.x[y][x][c] = (float)(v + (kind == 1 ? 500.0 : 0.0) + noise * (sbt_uniform(&rng) - 0.5));
+                }
+                G.n[y][x] = sbt_uniform(&rng) < 0.3 ? 0.0f : 4.0f;
+            }
+        memset(&k, 0, sizeof k);
+        im = sbl_image_make(own, PW, PH, 4);
+        im.channels = ch;
+        k.w = PW; k.h = PH; k.ch = ch;
+        k.wp.estimator = SBL_ESTIMATOR_ROBUST;
+        k.wp.rectify = (sbl_rectify)(it % SBL_RECTIFY_COUNT);
+        k.n_cap = 64.0f;
+        k.temporal = 1;
+        k.own = &im;
+        k.gather = paths_gather_fn;
+        k.gather_ctx = &G;
+        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
+        sbl__kernel_bind(&k, scratch);
+        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
+        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        CHECK_EQ(R[0]->unsafe_count + R[1]->unsafe_count + R[2]->unsafe_count, 0);
+        sbl__lane_rows_of(&W, R, ch);
+        sbl__lanes_columns(&k, &W, 0, PW);
+        for (x = 1; x + SBL__VW <= PW - 1; x += SBL__VW) {
+            sbl__lane_stats st;
+            float f[6][SBL__VW];
+            sbl__lanes_moments(&k, &W, x, 0, &st);
+            for (c = 0; c < ch; ++c) {
+                sbl__store(f[0], st.mean[c]); sbl__store(f[1], st.var[c]);
+                sbl__store(f[2], st.m8[c]); sbl__store(f[3], st.v8[c]);
+                sbl__store(f[4], st.pd[c]); sbl__store(f[5], st.pv[c]);
+                for (l = 0; l < SBL__VW; ++l) {
+                    const int px = x + l;
+                    double s9 = 0, s8 = 0, v9 = 0, v8 = 0, sd = 0, vd = 0, m9, m8, md, scale;
+                    int n = 0, j, dx;
+                    for (j = 0; j < 3; ++j)
+                        for (dx = -1; dx <= 1; ++dx) {
+                            const double yy = R[j]->y[c][px + dx];
+                            s9 += yy;
+                            if (j != 1 || dx != 0) s8 += yy;
+                            if (R[j]->v[px + dx] > 0.0f) { sd += (double)R[j]->x[c][px + dx] - yy; ++n; }
+                        }
+                    m9 = s9 / 9; m8 = s8 / 8; md = n ? sd / n : 0.0;
+                    for (j = 0; j < 3; ++j)
+                        for (dx = -1; dx <= 1; ++dx) {
+                            const double yy = R[j]->y[c][px + dx];
+                            v9 += (yy - m9) * (yy - m9);
+                            if (j != 1 || dx != 0) v8 += (yy - m8) * (yy - m8);
+                            if (R[j]->v[px + dx] > 0.0f) {
+                                const double d = (double)R[j]->x[c][px + dx] - yy - md;
+                                vd += d * d;
+                            }
+                        }
+                    v9 /= 9; v8 /= 8; vd = n > 1 ? vd / (n - 1) : 0.0;
+                    scale = fabs(m9) + sqrt(v9);
+                    if (fabs(f[0][l] - m9) / scale > worst_mean) worst_mean = fabs(f[0][l] - m9) / scale;
+                    if (fabs(f[2][l] - m8) / scale > worst_mean) worst_mean = fabs(f[2][l] - m8) / scale;
+                    /* pairs: only where x* of the centre is valid (else the output resets to Y
+                       and the pair statistics are not used) */
+                    if (!(R[1]->v[px] > 0.0f)) n = 0;
+                    if (n && fabs(f[4][l] - md) / (fabs(md) + sqrt(vd) + 1e-30) > worst_mean)
+                        worst_mean = fabs(f[4][l] - md) / (fabs(md) + sqrt(vd) + 1e-30);
+                    if (fabs(f[1][l] - v9) / v9 > worst_var) worst_var = fabs(f[1][l] - v9) / v9;
+                    if (fabs(f[3][l] - v8) / v8 > worst_v8) worst_v8 = fabs(f[3][l] - v8) / v8;
+                    if (n > 1 && vd > 0 && fabs(f[5][l] - vd) / vd > worst_pv) worst_pv = fabs(f[5][l] - vd) / vd;
+                    ++compared;
+                }
+            }
+        }
+        free(scratch);
+    }
+    printf("  %s one-pass 3x3 sums vs double (offset 1e4 / noise 0.05, bias 500, firefly 1e4): "
+           "%d pixel-channels, worst relative error variance %.3g, leave-centre-out %.3g, "
+           "pairs %.3g, means %.3g of scale\n",
+           SBL_SIMD_NAME, compared, worst_var, worst_v8, worst_pv, worst_mean);
+    CHECK(compared > 0);
+    CHECK(worst_var <= 1e-4);
+    CHECK(worst_v8 <= 1e-4);
+    CHECK(worst_pv <= 1e-4);
+    CHECK(worst_mean <= 1e-6);
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -473,6 +583,7 @@ int main(void)
            SBL_SIMD_NAME, compared, worst, refused);
     CHECK(refused > 0);
     test_spans();
+    test_moments_precision();
     test_row_gather();
     test_stereo_row_gather();
     return sbt_finish("test_paths");
