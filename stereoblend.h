@@ -3627,6 +3627,43 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
         for (c = 0; c < ch; ++c) dst[SBL__CAST(ptrdiff_t, x) * step + c] = planes[c][x];
 }
 
+#ifdef SBL__ROW_GATHER
+/* Flags of own pixels [x, xb) a vector at a time, for sbl__ring_load_own; bytes one by
+   one only where a lane is unsafe (the planes in locals: a byte store may alias
+   anything, and would reload them). Returns the first pixel not flagged. */
+SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, int xb, int ch,
+                                     int *count)
+{
+    static const unsigned char safe_bytes[16] = {0};
+    const int all = (1 << SBL__VW) - 1;
+    const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
+                *y3 = ch > 3 ? r->y[3] : y0;
+    unsigned char *unsafe = r->unsafe;
+    for (; x + SBL__VW <= xb; x += SBL__VW) {
+        sbl__m ok = sbl__lane_ok(sbl__load(y0 + x));
+        int bits, l;
+        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y1 + x)));
+        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y2 + x)));
+        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y3 + x)));
+        if (ny) {
+            const sbl__v n = sbl__load(ny + x);
+            ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
+        }
+        bits = sbl__mbits(ok);
+        if (bits == all) {
+            memcpy(unsafe + x, safe_bytes, SBL__VW);
+            continue;
+        }
+        for (l = 0; l < SBL__VW; ++l) {
+            const int bad = !((bits >> l) & 1);
+            unsafe[x + l] = SBL__CAST(unsigned char, bad);
+            *count += bad;
+        }
+    }
+    return x;
+}
+#endif
+
 /* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
    pixels holding a value outside the lane range. Returns the number flagged. */
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
@@ -3640,32 +3677,10 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     x = xa;
 #ifdef SBL__ROW_GATHER
     if (ny_lanes) {
-        /* a vector at a time; bytes one by one only where a lane is unsafe (the planes
-           in locals: a byte store may alias anything, and would reload them) */
-        static const unsigned char safe_bytes[16] = {0};
-        const int all = (1 << SBL__VW) - 1;
-        const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
-                    *y3 = ch > 3 ? r->y[3] : y0;
-        unsigned char *unsafe = r->unsafe;
-        for (; x + SBL__VW <= xb; x += SBL__VW) {
-            sbl__m ok = sbl__mand(sbl__mand(sbl__lane_ok(sbl__load(y0 + x)), sbl__lane_ok(sbl__load(y1 + x))),
-                                  sbl__mand(sbl__lane_ok(sbl__load(y2 + x)), sbl__lane_ok(sbl__load(y3 + x))));
-            int bits, l;
-            if (ny) {
-                const sbl__v n = sbl__load(ny + x);
-                ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
-            }
-            bits = sbl__mbits(ok);
-            if (bits == all) {
-                memcpy(unsafe + x, safe_bytes, SBL__VW);
-                continue;
-            }
-            for (l = 0; l < SBL__VW; ++l) {
-                const int bad = !((bits >> l) & 1);
-                unsafe[x + l] = SBL__CAST(unsigned char, bad);
-                count += bad;
-            }
-        }
+        /* a vector at a time (the channel count a constant in each call) */
+        if (ch == 3) x = sbl__ring_flag_lanes(r, ny, x, xb, 3, &count);
+        else if (ch == 1) x = sbl__ring_flag_lanes(r, ny, x, xb, 1, &count);
+        else x = sbl__ring_flag_lanes(r, ny, x, xb, ch, &count);
     }
 #endif
     for (; x < xb; ++x) {
@@ -3798,18 +3813,21 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
    adds three columns per pixel, instead of nine loads per pixel and statistic.
    Precision policy: the sums are one-pass (sum of squares minus n mean^2), so every
    sum is taken about a shift that is a sample of the set summed, never about 0: then
-   n (mean - shift)^2 <= n^2 variance and the subtraction loses at most a few bits,
-   however large the mean (1e4 + noise 1e-3 keeps its variance, as the two-pass form
-   did). A column is summed about its own top sample (Y) and its first valid x* - y
-   (pairs); the pixel moves its side columns to the window's shift with
-   sum (e + D)^2 = sum e^2 + D (2 sum e + n D), exact algebra whose terms are bounded
-   by the window's own spread. The window's shifts: Y about its top-centre sample,
-   which also belongs to the leave-centre-out set of the robust estimator (m8, v8 are
-   summed without the centre, never as the 9-sums minus it: a firefly at the centre
-   would cancel the neighbours' variance away); the pairs about the centre column's
-   shift (the centre pair when it is the column's first valid one). Lanes are
-   independent and every column is computed by the same operations whatever the chunk
-   or the vector width, so spans, bands and every build give the same bits. */
+   (mean - shift)^2 <= n variance, the subtracted term is at most n times the result,
+   and the subtraction loses at most log2(n + 1) bits however large the mean
+   (tests/test_paths.c: 1e4 + noise 0.05, a bias of 500, a firefly of 1e4: variances
+   measured within 2e-6 relative of double; a sum about 0 is off 1e5-fold). A column
+   is summed about its own top sample (Y) and its first valid x* - y (pairs); the
+   pixel moves its side columns to the window's shift with sum (e + D)^2 = sum e^2 +
+   D (2 sum e + n D), exact algebra whose terms are bounded by the window's spread.
+   The window's shifts: Y about its top-centre sample, which also belongs to the
+   leave-centre-out set of the robust estimator (m8, v8 are summed without the centre,
+   never as the 9-sums minus it: a firefly at the centre would cancel the neighbours'
+   variance away); the pairs about the centre column's shift (a valid pair of the
+   window wherever the centre's x* is valid; elsewhere the output resets to Y and the
+   pair sums are not used). Lanes are independent and every column is computed by the
+   same operations whatever the chunk or the vector width, so spans, bands and every
+   build give the same bits. */
 
 /* Statistics of one vector of pixels: Y's 3x3 moments and the paired differences. */
 typedef struct sbl__lane_stats {
@@ -3838,41 +3856,50 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
     }
 }
 
+/* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
+SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
+                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1)
+{
+    const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
+                 y2 = sbl__load(W->y[2][c] + x);
+    const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
+    const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
+                 d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
+                 d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
+    /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t) is then
+       0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
+    const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
+    const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
+    float *cp = k->col[c] + i;
+    sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
+    sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
+    sbl__store(SBL__COLP(cp, SBL__COL_T), t);
+    sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
+    sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
+    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+        sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
+        sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
+    }
+}
+
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
-   column - ca; the last vector overlaps the one before (same values). */
+   column - ca; the last vector overlaps the one before (same values). The channels are
+   written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). */
 SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
-    int x = ca, c;
+    const int ch = k->ch;
+    int x = ca;
     for (;;) {
         const int i = x - ca;
         const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
                      v2 = sbl__load(W->v[2] + x);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
-        for (c = 0; c < ch; ++c) {
-            const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
-                         y2 = sbl__load(W->y[2][c] + x);
-            const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
-            const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
-                         d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
-                         d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
-            /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t)
-               is then 0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
-            const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
-            const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
-            float *cp = k->col[c] + i;
-            sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
-            sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
-            sbl__store(SBL__COLP(cp, SBL__COL_T), t);
-            sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
-            sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
-            if (clamp) {
-                sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
-                sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
-            }
-        }
+        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1);
+        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1);
+        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1);
+        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
@@ -3887,68 +3914,78 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
+/* Channel c of the moments of pixels [x, x + VW) (index i in the chunk), for
+   sbl__lanes_moments: nl / nr are the side columns' pair counts. */
+SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
+                                            int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
+                                            sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
+    const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
+    const float *y0 = W->y[0][c] + x;
+    const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
+    const sbl__v yc = sbl__load(W->y[1][c] + x);
+    const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
+    const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
+    const float *cp = k->col[c] + i;
+    const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
+    const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
+    sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
+    /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
+              three, al, bl);
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
+              three, ar, br);
+    a8 = sbl__add(sbl__add(al, ar), a2);
+    b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
+    a9 = sbl__add(a8, a1);
+    b9 = sbl__add(b8, sbl__mul(a1, a1));
+    q = sbl__mul(a9, ninth);
+    st->mean[c] = sbl__add(s, q);
+    st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
+    q = sbl__mul(a8, eighth);
+    st->m8[c] = sbl__add(s, q);
+    st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    /* pairs: side columns about the centre column's shift tc */
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
+              sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1),
+              sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) + 1), tc), nr, pr, qr);
+    d = sbl__add(sbl__add(pl, pr), da);
+    dd = sbl__add(sbl__add(ql, qr), db);
+    st->pd[c] = sbl__mul(d, st->inv_cnt);
+    /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
+    st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
+    st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
+    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+        const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
+        st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
+        st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
+    } else {
+        st->lo[c] = st->hi[c] = st->mean[c];
+    }
+    st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
+    st->yc[c] = yc;
+}
+
 /* Moments of pixels [x, x + VW) from the column sums of the chunk starting at column
-   ca (sbl__lanes_columns) and the window rows W. */
+   ca (sbl__lanes_columns) and the window rows W (channels written out, as there). */
 SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *W, int x, int ca,
                                     sbl__lane_stats *st)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), three = sbl__set1(3.0f);
-    const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const int i = x - ca, ch = k->ch;
     const sbl__v nl = sbl__load(k->col_n + i - 1), nr = sbl__load(k->col_n + i + 1);
     const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
     sbl__v inv_cnt1;
-    int c;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
     inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
-    for (c = 0; c < ch; ++c) {
-        const float *y0 = W->y[0][c] + x;
-        const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
-        const sbl__v yc = sbl__load(W->y[1][c] + x);
-        const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
-        const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
-        const float *cp = k->col[c] + i;
-        const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
-        const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
-        sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
-        /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
-                  three, al, bl);
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
-                  three, ar, br);
-        a8 = sbl__add(sbl__add(al, ar), a2);
-        b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
-        a9 = sbl__add(a8, a1);
-        b9 = sbl__add(b8, sbl__mul(a1, a1));
-        q = sbl__mul(a9, ninth);
-        st->mean[c] = sbl__add(s, q);
-        st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
-        q = sbl__mul(a8, eighth);
-        st->m8[c] = sbl__add(s, q);
-        st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
-        /* pairs: side columns about the centre column's shift tc */
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
-                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1),
-                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) + 1), tc), nr, pr, qr);
-        d = sbl__add(sbl__add(pl, pr), da);
-        dd = sbl__add(sbl__add(ql, qr), db);
-        st->pd[c] = sbl__mul(d, st->inv_cnt);
-        /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
-        st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
-        st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
-        if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
-            const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
-            st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
-            st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
-        } else {
-            st->lo[c] = st->hi[c] = st->mean[c];
-        }
-        st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
-        st->yc[c] = yc;
-    }
+    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, st);
+    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, st);
+    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, st);
+    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, st);
 }
 #undef SBL__SIDE
 
@@ -4089,6 +4126,17 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
 /* Lane kernel over pixels [x0, x1) of an interior row (all nine neighbours exist and
    are lane-safe). Returns the first pixel it did not process (the tail goes to the
    reference path). */
+/* Channel c's terms of the weight's sums: dev2 = (x* - mean)^2, s2 = variance of Y,
+   pd2 = (mean paired difference)^2, pvs = variance of the paired differences. */
+SBL__INLINE void sbl__lanes_group_add(const sbl__lane_stats *st, int c, sbl__v *sums)
+{
+    const sbl__v e = sbl__sub(st->xs[c], st->mean[c]);
+    sums[0] = sbl__add(sums[0], sbl__mul(e, e));
+    sums[1] = sbl__add(sums[1], st->var[c]);
+    sums[2] = sbl__add(sums[2], sbl__mul(st->pd[c], st->pd[c]));
+    sums[3] = sbl__add(sums[3], st->pv[c]);
+}
+
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
 {
@@ -4113,8 +4161,6 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
             sbl__lane_stats st;
             sbl__v a[4], n_x, n_y, n_xc;
             sbl__m valid;
-            const int groups = per_channel ? ch : 1;
-            int g;
             n_x = sbl__load(R[1]->n + x);
             valid = sbl__gt(n_x, zero);
             n_y = nyrow ? sbl__load(nyrow + x) : one;
@@ -4122,18 +4168,21 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
             n_xc = sbl__max(sbl__min(n_x, cap), tiny);
             sbl__lanes_moments(k, &W, x, ca, &st);
             sbl__lanes_rectify(k, &st);
-            for (g = 0; g < groups; ++g) {
-                sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
-                int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
-                for (c = c0; c < c1; ++c) {
-                    sbl__v e = sbl__sub(st.xs[c], st.mean[c]);
-                    dev2 = sbl__add(dev2, sbl__mul(e, e));
-                    s2 = sbl__add(s2, st.var[c]);
-                    pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
-                    pvs = sbl__add(pvs, st.pv[c]);
+            if (per_channel) {
+                for (c = 0; c < ch; ++c) {
+                    sbl__v sums[4] = {zero, zero, zero, zero};
+                    sbl__lanes_group_add(&st, c, sums);
+                    a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
                 }
-                w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
-                for (c = c0; c < c1; ++c) a[c] = w;
+            } else {
+                /* one weight from the squares summed over the channels (written out) */
+                sbl__v sums[4] = {zero, zero, zero, zero}, w;
+                sbl__lanes_group_add(&st, 0, sums);
+                if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
+                if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
+                if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
+                w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+                for (c = 0; c < ch; ++c) a[c] = w;
             }
             sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
         }
