@@ -627,9 +627,14 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
      - a pixel without a correspondence is SBL_NO_CORRESPONDENCE whatever its values.
    The eyes' colour and length are not read (only their geometry); the rig, focal
    length, baseline and tap tests are those of `desc`.
-   Cost: one stereo reprojection per pixel, about 70 % of a stereo blend's instructions,
-   so the mask pays where the work it lets skip costs more than that (Wu's stereo-aware
-   SSAO), or where most pixels are already consistent. */
+   Cost: one stereo reprojection per pixel, about 70 % of a stereo blend's instructions
+   pixel by pixel; with scratch and eyes holding depth alone, a row at a time in lanes
+   (about 440 instructions per pixel on SSE2 against 1200). The mask pays where the
+   work it lets skip costs more than that (Wu's stereo-aware SSAO) and where the two
+   values are smooth: on Monte-Carlo colour it marks noise (independent noise of
+   relative sd s in each eye marks a share 2 Phi(-T / (sqrt(2) s)), so fewer than 10 %
+   at T = 2 % needs s < 0.9 %: 256-spp references of the shared scenes still mark a
+   third of their pixels). */
 typedef enum sbl_consistency_class {
     SBL_CONSISTENT = 0,         /* r < threshold                                      */
     SBL_INCONSISTENT = 1,       /* r >= threshold, or a non-finite target value       */
@@ -646,20 +651,29 @@ typedef struct sbl_consistency_counts {
 
 /* Classify rows [y0, y1) of `target_eye`: mask[y * mask_stride + x] receives an
    sbl_consistency_class. threshold 0 -> SBL_WEBER_THRESHOLD; negative or non-finite is
-   SBL_ERROR_INVALID_PARAM. counts (optional) receives the counts of these rows. */
+   SBL_ERROR_INVALID_PARAM. counts (optional) receives the counts of these rows.
+   scratch (optional: NULL and 0 for none) of sbl_stereo_consistency_scratch_size()
+   bytes lets the reprojection run a row at a time in vector lanes where the build and
+   the eyes allow it (SIMD, no normals or ids in the eyes, an int-addressable source):
+   the same mask, bit for bit, at a fraction of the cost; a smaller scratch is
+   SBL_ERROR_SCRATCH_TOO_SMALL. */
+SBLDEF size_t sbl_stereo_consistency_scratch_size(int width, int channels);
 SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
                                          sbl_eye_index target_eye, const sbl_eye *target,
                                          const sbl_eye *source, sbl_image target_value,
                                          sbl_image source_value, unsigned char *mask,
-                                         int mask_stride, int y0, int y1,
-                                         sbl_consistency_counts *counts);
+                                         int mask_stride, int y0, int y1, void *scratch,
+                                         size_t scratch_bytes, sbl_consistency_counts *counts);
 
 /* Adaptive stereo blend (Wu's adaptive pass): rows [y0, y1) of out_color / out_length
    receive sbl_stereo_blend's result (bit for bit) where mask[y * mask_stride + x] is
    SBL_INCONSISTENT, and the target eye's own colour and N (1 where it has no length)
    everywhere else. The blend runs only on the tiles of 16 x 16 pixels that hold a
-   marked pixel, so its time follows the share of such tiles. The mask is typically sbl_stereo_consistency's
-   on the two eyes' per-eye results (it is read whole, so compute all of it first).
+   marked pixel, so its time follows the share of such tiles. The mask is typically
+   sbl_stereo_consistency's on the two eyes' per-eye results (it is read whole, so
+   compute all of it first). With the mask's own reprojection this costs more than the
+   blend everywhere unless few tiles are marked: sbl_stereo_blend_adaptive does both in
+   one pass.
    Scratch: sbl_stereo_scratch_size(). blended_count (optional): marked pixels of these
    rows. Arguments are checked as by sbl_stereo_blend, before anything is written. */
 SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
@@ -668,6 +682,63 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
                                           sbl_image out_color, sbl_image out_length,
                                           int y0, int y1, void *scratch,
                                           size_t scratch_bytes, long *blended_count);
+
+/* Adaptive stereo blend in one pass: the mask and the blend share one reprojection.
+   The two calls above reproject every pixel twice (once for the mask, once for the
+   blend on the marked tiles), so on an image where most tiles hold a marked pixel they
+   cost more than the blend everywhere. This call reprojects each row once, classifies
+   its pixels from that reprojection (the Weber test of sbl_stereo_consistency on the
+   eyes' colours: own colour against the other eye's colour at the back-checked match),
+   and runs the blend kernel only on the 16 x 16 tiles holding an inconsistent pixel,
+   reading the reprojection it already made. Result: sbl_stereo_blend's bit for bit on
+   the marked tiles (per_pixel: on the inconsistent pixels only, exactly what
+   sbl_stereo_consistency + sbl_stereo_blend_masked give on the same comparison), the
+   own colour and N (1 where it has none) elsewhere. Cost: one reprojection (about 70 % of a blend on the shared scenes)
+   plus the kernel on the marked tiles; at most that of sbl_stereo_blend plus the test
+   and the copies, at least the reprojection. */
+typedef struct sbl_adaptive_desc {
+    float threshold;  /* Weber threshold T; 0 -> SBL_WEBER_THRESHOLD; < 0 or non-finite:
+                         SBL_ERROR_INVALID_PARAM                                     */
+    int per_channel;  /* 0: the Rec. 709 luminance 0.2126 c0 + 0.7152 c1 + 0.0722 c2 of
+                         3- and 4-channel colour (Weber's law is about luminance), each
+                         channel of 1- and 2-channel colour; 1: each channel (the
+                         largest ratio counts). Other values: SBL_ERROR_INVALID_PARAM */
+    int per_pixel;    /* 0: every pixel of a marked tile takes the blend (the kernel
+                         computed it anyway; a kept pixel next to a blended match can
+                         turn inconsistent); 1: only the inconsistent pixels, as
+                         sbl_stereo_blend_masked. Other values: SBL_ERROR_INVALID_PARAM */
+    int nearest;      /* 0: the test reads the reprojection the blend uses (bilinear, every
+                         tap test: the classes of sbl_stereo_consistency); 1: the other
+                         eye's value at the nearest pixel of the match (depth test and
+                         back-check only), so that nothing is reprojected but the marked
+                         tiles (and the row above and below each band of them): cheaper
+                         below about a third of the tiles, 20-30 % dearer where all are
+                         marked; on sub-pixel matches it marks more than the bilinear
+                         test. Other values: SBL_ERROR_INVALID_PARAM                     */
+} sbl_adaptive_desc;
+
+/* Scratch of sbl_stereo_blend_adaptive: the blend's, plus the reprojection of 18 rows
+   and a 16-row mask (0: width or channels out of range). */
+SBLDEF size_t sbl_stereo_adaptive_scratch_size(int width, int channels);
+
+/* Rows [y0, y1) of out_color / out_length as described above. adaptive NULL or zeroed:
+   the defaults. mask (optional, NULL for none) receives each pixel's
+   sbl_consistency_class, counts (optional) the counts of these rows and tiles_blended
+   (optional) the tiles of these rows the kernel ran on, out of tiles_total (optional).
+   Row bands give the same output as one whole call. Errors: those of sbl_stereo_blend
+   (eyes, desc, outputs, rows), then SBL_ERROR_INVALID_PARAM (adaptive->threshold or
+   ->per_channel), SBL_ERROR_INVALID_STRIDE (mask_stride < width with a mask),
+   SBL_ERROR_OVERLAP (mask over an input or output), SBL_ERROR_NULL_POINTER /
+   SBL_ERROR_SCRATCH_TOO_SMALL (scratch); nothing is written on an error. */
+SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
+                                            const sbl_adaptive_desc *adaptive,
+                                            sbl_eye_index target_eye, const sbl_eye *target,
+                                            const sbl_eye *source, sbl_image out_color,
+                                            sbl_image out_length, unsigned char *mask,
+                                            int mask_stride, int y0, int y1, void *scratch,
+                                            size_t scratch_bytes,
+                                            sbl_consistency_counts *counts,
+                                            long *tiles_blended, long *tiles_total);
 
 #ifdef __cplusplus
 }
@@ -2764,6 +2835,50 @@ SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v,
    in a sum) are redone by the pixel gather. */
 #define SBL__BLOCK 64
 
+/* Double lanes for the row gather: the camera maps (sbl__cam_map_apply: unproject at
+   the target's depth, carry into the other view, project) with the reference's
+   operations in its order, so every lane gets its bits, and the tap indices (y0 stride
+   + x0 step, exact in double). A few operations suffice: set1, load, store, add, sub,
+   mul, div; SBL__DW floats in (sbl__dfromf: from VW + 4 readable floats), SBL__DW ints
+   out (sbl__dstorei, truncating; the values are integers). */
+#if SBL__VW == 16
+#define SBL__DW 8
+typedef __m512d sbl__dv;
+#define sbl__dset1(a) _mm512_set1_pd(a)
+#define sbl__dload(p) _mm512_loadu_pd(p)
+#define sbl__dstore(p, a) _mm512_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm512_add_pd(a, b)
+#define sbl__dsub(a, b) _mm512_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm512_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm512_div_pd(a, b)
+#define sbl__dfromf(p) _mm512_cvtps_pd(_mm256_loadu_ps(p))
+#define sbl__dstorei(q, a) _mm256_storeu_si256(SBL__PCAST(__m256i *, q), _mm512_cvttpd_epi32(a))
+#elif SBL__VW == 8
+#define SBL__DW 4
+typedef __m256d sbl__dv;
+#define sbl__dset1(a) _mm256_set1_pd(a)
+#define sbl__dload(p) _mm256_loadu_pd(p)
+#define sbl__dstore(p, a) _mm256_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm256_add_pd(a, b)
+#define sbl__dsub(a, b) _mm256_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm256_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm256_div_pd(a, b)
+#define sbl__dfromf(p) _mm256_cvtps_pd(_mm_loadu_ps(p))
+#define sbl__dstorei(q, a) _mm_storeu_si128(SBL__PCAST(__m128i *, q), _mm256_cvttpd_epi32(a))
+#else
+#define SBL__DW 2
+typedef __m128d sbl__dv;
+#define sbl__dset1(a) _mm_set1_pd(a)
+#define sbl__dload(p) _mm_loadu_pd(p)
+#define sbl__dstore(p, a) _mm_storeu_pd(p, a)
+#define sbl__dadd(a, b) _mm_add_pd(a, b)
+#define sbl__dsub(a, b) _mm_sub_pd(a, b)
+#define sbl__dmul(a, b) _mm_mul_pd(a, b)
+#define sbl__ddiv(a, b) _mm_div_pd(a, b)
+#define sbl__dfromf(p) _mm_cvtps_pd(_mm_loadu_ps(p))
+#define sbl__dstorei(q, a) _mm_storel_epi64(SBL__PCAST(__m128i *, q), _mm_cvttpd_epi32(a))
+#endif
+
 typedef struct sbl__tap_plan {
     int ci[SBL__BLOCK], di[SBL__BLOCK], li[SBL__BLOCK]; /* tap (x0, y0) in colour, depth, N */
     float fx[SBL__BLOCK], fy[SBL__BLOCK];               /* bilinear fractions              */
@@ -2916,6 +3031,21 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         if (bits & 1) p->redo[i + t] = 1;
 }
 
+/* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
+   SSE2 integer compares (every build with the row gather has them); the sums wrap like
+   the vector adds, and valid tap indices are far from the int range's ends. */
+SBL__INLINE int sbl__ints_step(const int *a, int step)
+{
+    const __m128i off = _mm_setr_epi32(0, step, 2 * step, 3 * step);
+    int k, same = 0xffff;
+    for (k = 0; k < SBL__VW; k += 4) {
+        const unsigned first = SBL__CAST(unsigned, a[0]) + SBL__CAST(unsigned, k) * SBL__CAST(unsigned, step);
+        const __m128i want = _mm_add_epi32(_mm_set1_epi32(SBL__CAST(int, first)), off);
+        same &= _mm_movemask_epi8(_mm_cmpeq_epi32(_mm_loadu_si128(SBL__PCAST(const __m128i *, a + k)), want));
+    }
+    return same == 0xffff;
+}
+
 /* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
    last vector overlaps the one before rather than running past the block. sky: every
    planned entry expects sky (see sbl__lanes_taps). */
@@ -2924,15 +3054,14 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
 {
     int i = 0;
     for (;;) {
-        int l, contiguous = 1;
+        int contiguous;
         if (i + SBL__VW > n) i = n - SBL__VW;
         /* every lane's first tap one pixel after the previous lane's, in every view
            (each lane's index is a valid one, so the vector load reads exactly the
            addresses the gather would) */
-        for (l = 1; l < SBL__VW; ++l)
-            contiguous &= (p->ci[i + l] - p->ci[i] == l * SBL__CAST(int, s->color.step)) &
-                          (!s->use_depth || p->di[i + l] - p->di[i] == l * SBL__CAST(int, s->depth.step)) &
-                          (!s->length.p || p->li[i + l] - p->li[i] == l * SBL__CAST(int, s->length.step));
+        contiguous = sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
+                     (!s->use_depth || sbl__ints_step(p->di + i, SBL__CAST(int, s->depth.step))) &&
+                     (!s->length.p || sbl__ints_step(p->li + i, SBL__CAST(int, s->length.step)));
         if (sky) {
             switch (s->color.ch) {
             case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 1); break;
@@ -3072,6 +3201,21 @@ SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int x, int y, sbl__v 
     return sbl__gt(*z, zero);
 }
 
+/* Tap indices y0 stride + x0 step of a view (NULL: 0) for VW lanes of integer-valued
+   floats, in double lanes (exact: the products stay below 2^53, the sums are valid
+   indices). */
+SBL__INLINE void sbl__plan_index(int *out, const float *x0s, const float *y0s, const sbl__flat *f)
+{
+    int j;
+    if (!f) {
+        for (j = 0; j < SBL__VW; ++j) out[j] = 0;
+        return;
+    }
+    for (j = 0; j < SBL__VW; j += SBL__DW)
+        sbl__dstorei(out + j, sbl__dadd(sbl__dmul(sbl__dfromf(y0s + j), sbl__dset1(SBL__CAST(double, f->stride))),
+                                        sbl__dmul(sbl__dfromf(x0s + j), sbl__dset1(SBL__CAST(double, f->step)))));
+}
+
 /* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
    (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
    results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
@@ -3089,7 +3233,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     sbl__v ax, ay, fmx, fmy, x0f, y0f;
     sbl__m exact, inside, fast;
     int l, bits_scalar, bits_fast, bits_keep;
-    float x0s[SBL__VW], y0s[SBL__VW];
+    float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     ax = sbl__abs(mx);
     ay = sbl__abs(my);
     exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
@@ -3115,21 +3259,22 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     sbl__store(p->depth + i, sbl__sel(fast, z, one));
     sbl__store(p->slack + i, sbl__sel(fast, slack, zero));
     sbl__store(p->fast + i, sbl__sel(fast, one, zero));
-    sbl__store(x0s, x0f);
-    sbl__store(y0s, y0f);
+    /* tap (0, 0) where not fast: a valid address, result unused */
+    sbl__store(x0s, sbl__sel(fast, x0f, zero));
+    sbl__store(y0s, sbl__sel(fast, y0f, zero));
     bits_fast = sbl__mbits(fast);
     bits_keep = sbl__mbits(keep);
-    for (l = 0; l < SBL__VW; ++l) {
-        const int f = (bits_fast >> l) & 1, x0 = f ? SBL__CAST(int, x0s[l]) : 0, y0 = f ? SBL__CAST(int, y0s[l]) : 0;
-        p->redo[i + l] = SBL__CAST(unsigned char, ((bits_keep >> l) & 1) & !f);
-        p->ci[i + l] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * src->color.stride + SBL__CAST(ptrdiff_t, x0) * src->color.step);
-        p->di[i + l] = src->use_depth
-                           ? SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * src->depth.stride + SBL__CAST(ptrdiff_t, x0) * src->depth.step)
-                           : 0;
-        p->li[i + l] = src->length.p ? SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * src->length.stride +
-                                             SBL__CAST(ptrdiff_t, x0) * src->length.step)
-                                     : 0;
+    {   /* redo bytes, four lanes per table entry (x86: little-endian bytes) */
+        static const unsigned int bytes[16] = {
+            0x00000000u, 0x00000001u, 0x00000100u, 0x00000101u, 0x00010000u, 0x00010001u,
+            0x00010100u, 0x00010101u, 0x01000000u, 0x01000001u, 0x01000100u, 0x01000101u,
+            0x01010000u, 0x01010001u, 0x01010100u, 0x01010101u};
+        const int redo = bits_keep & ~bits_fast;
+        for (l = 0; l < SBL__VW; l += 4) memcpy(p->redo + i + l, &bytes[(redo >> l) & 15], 4);
     }
+    sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
+    sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
+    sbl__plan_index(p->li + i, x0s, y0s, src->length.p ? &src->length : NULL);
     return bits_scalar;
 }
 
@@ -3310,43 +3455,8 @@ static void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x0, in
 }
 
 /* ---- camera planning in lanes ---------------------------------------------------
-   The camera source's position maths (sbl__cam_map_apply: unproject at the target's
-   depth, carry into the history's view, project) in double lanes, with the reference's
-   operations in its order, so every lane gets its bits; the checks and the tap plan of
-   each lane then run in scalar (sbl__tap_plan_set). A few double operations suffice:
-   set1, load, store, add, sub, mul, div. */
-#if SBL__VW == 16
-#define SBL__DW 8
-typedef __m512d sbl__dv;
-#define sbl__dset1(a) _mm512_set1_pd(a)
-#define sbl__dload(p) _mm512_loadu_pd(p)
-#define sbl__dstore(p, a) _mm512_storeu_pd(p, a)
-#define sbl__dadd(a, b) _mm512_add_pd(a, b)
-#define sbl__dsub(a, b) _mm512_sub_pd(a, b)
-#define sbl__dmul(a, b) _mm512_mul_pd(a, b)
-#define sbl__ddiv(a, b) _mm512_div_pd(a, b)
-#elif SBL__VW == 8
-#define SBL__DW 4
-typedef __m256d sbl__dv;
-#define sbl__dset1(a) _mm256_set1_pd(a)
-#define sbl__dload(p) _mm256_loadu_pd(p)
-#define sbl__dstore(p, a) _mm256_storeu_pd(p, a)
-#define sbl__dadd(a, b) _mm256_add_pd(a, b)
-#define sbl__dsub(a, b) _mm256_sub_pd(a, b)
-#define sbl__dmul(a, b) _mm256_mul_pd(a, b)
-#define sbl__ddiv(a, b) _mm256_div_pd(a, b)
-#else
-#define SBL__DW 2
-typedef __m128d sbl__dv;
-#define sbl__dset1(a) _mm_set1_pd(a)
-#define sbl__dload(p) _mm_loadu_pd(p)
-#define sbl__dstore(p, a) _mm_storeu_pd(p, a)
-#define sbl__dadd(a, b) _mm_add_pd(a, b)
-#define sbl__dsub(a, b) _mm_sub_pd(a, b)
-#define sbl__dmul(a, b) _mm_mul_pd(a, b)
-#define sbl__ddiv(a, b) _mm_div_pd(a, b)
-#endif
-
+   The camera source's position maths in double lanes (the layer is at the top of the
+   row gather). */
 /* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
    camera and no listed objects, no target normals or ids (their tests stay in
    sbl__tap_want_init), an interior row (the depth slack reads both neighbours), target
@@ -3618,6 +3728,43 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
         for (c = 0; c < ch; ++c) dst[SBL__CAST(ptrdiff_t, x) * step + c] = planes[c][x];
 }
 
+#ifdef SBL__ROW_GATHER
+/* Flags of own pixels [x, xb) a vector at a time, for sbl__ring_load_own; bytes one by
+   one only where a lane is unsafe (the planes in locals: a byte store may alias
+   anything, and would reload them). Returns the first pixel not flagged. */
+SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, int xb, int ch,
+                                     int *count)
+{
+    static const unsigned char safe_bytes[16] = {0};
+    const int all = (1 << SBL__VW) - 1;
+    const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
+                *y3 = ch > 3 ? r->y[3] : y0;
+    unsigned char *unsafe = r->unsafe;
+    for (; x + SBL__VW <= xb; x += SBL__VW) {
+        sbl__m ok = sbl__lane_ok(sbl__load(y0 + x));
+        int bits, l;
+        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y1 + x)));
+        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y2 + x)));
+        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y3 + x)));
+        if (ny) {
+            const sbl__v n = sbl__load(ny + x);
+            ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
+        }
+        bits = sbl__mbits(ok);
+        if (bits == all) {
+            memcpy(unsafe + x, safe_bytes, SBL__VW);
+            continue;
+        }
+        for (l = 0; l < SBL__VW; ++l) {
+            const int bad = !((bits >> l) & 1);
+            unsafe[x + l] = SBL__CAST(unsigned char, bad);
+            *count += bad;
+        }
+    }
+    return x;
+}
+#endif
+
 /* Own colour Y of columns [xa, xb) of one row, deinterleaved into planes; flags the
    pixels holding a value outside the lane range. Returns the number flagged. */
 static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
@@ -3631,32 +3778,10 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     x = xa;
 #ifdef SBL__ROW_GATHER
     if (ny_lanes) {
-        /* a vector at a time; bytes one by one only where a lane is unsafe (the planes
-           in locals: a byte store may alias anything, and would reload them) */
-        static const unsigned char safe_bytes[16] = {0};
-        const int all = (1 << SBL__VW) - 1;
-        const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
-                    *y3 = ch > 3 ? r->y[3] : y0;
-        unsigned char *unsafe = r->unsafe;
-        for (; x + SBL__VW <= xb; x += SBL__VW) {
-            sbl__m ok = sbl__mand(sbl__mand(sbl__lane_ok(sbl__load(y0 + x)), sbl__lane_ok(sbl__load(y1 + x))),
-                                  sbl__mand(sbl__lane_ok(sbl__load(y2 + x)), sbl__lane_ok(sbl__load(y3 + x))));
-            int bits, l;
-            if (ny) {
-                const sbl__v n = sbl__load(ny + x);
-                ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
-            }
-            bits = sbl__mbits(ok);
-            if (bits == all) {
-                memcpy(unsafe + x, safe_bytes, SBL__VW);
-                continue;
-            }
-            for (l = 0; l < SBL__VW; ++l) {
-                const int bad = !((bits >> l) & 1);
-                unsafe[x + l] = SBL__CAST(unsigned char, bad);
-                count += bad;
-            }
-        }
+        /* a vector at a time (the channel count a constant in each call) */
+        if (ch == 3) x = sbl__ring_flag_lanes(r, ny, x, xb, 3, &count);
+        else if (ch == 1) x = sbl__ring_flag_lanes(r, ny, x, xb, 1, &count);
+        else x = sbl__ring_flag_lanes(r, ny, x, xb, ch, &count);
     }
 #endif
     for (; x < xb; ++x) {
@@ -3883,18 +4008,21 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
    adds three columns per pixel, instead of nine loads per pixel and statistic.
    Precision policy: the sums are one-pass (sum of squares minus n mean^2), so every
    sum is taken about a shift that is a sample of the set summed, never about 0: then
-   n (mean - shift)^2 <= n^2 variance and the subtraction loses at most a few bits,
-   however large the mean (1e4 + noise 1e-3 keeps its variance, as the two-pass form
-   did). A column is summed about its own top sample (Y) and its first valid x* - y
-   (pairs); the pixel moves its side columns to the window's shift with
-   sum (e + D)^2 = sum e^2 + D (2 sum e + n D), exact algebra whose terms are bounded
-   by the window's own spread. The window's shifts: Y about its top-centre sample,
-   which also belongs to the leave-centre-out set of the robust estimator (m8, v8 are
-   summed without the centre, never as the 9-sums minus it: a firefly at the centre
-   would cancel the neighbours' variance away); the pairs about the centre column's
-   shift (the centre pair when it is the column's first valid one). Lanes are
-   independent and every column is computed by the same operations whatever the chunk
-   or the vector width, so spans, bands and every build give the same bits. */
+   (mean - shift)^2 <= n variance, the subtracted term is at most n times the result,
+   and the subtraction loses at most log2(n + 1) bits however large the mean
+   (tests/test_paths.c: 1e4 + noise 0.05, a bias of 500, a firefly of 1e4: variances
+   measured within 2e-6 relative of double; a sum about 0 is off 1e5-fold). A column
+   is summed about its own top sample (Y) and its first valid x* - y (pairs); the
+   pixel moves its side columns to the window's shift with sum (e + D)^2 = sum e^2 +
+   D (2 sum e + n D), exact algebra whose terms are bounded by the window's spread.
+   The window's shifts: Y about its top-centre sample, which also belongs to the
+   leave-centre-out set of the robust estimator (m8, v8 are summed without the centre,
+   never as the 9-sums minus it: a firefly at the centre would cancel the neighbours'
+   variance away); the pairs about the centre column's shift (a valid pair of the
+   window wherever the centre's x* is valid; elsewhere the output resets to Y and the
+   pair sums are not used). Lanes are independent and every column is computed by the
+   same operations whatever the chunk or the vector width, so spans, bands and every
+   build give the same bits. */
 
 /* Statistics of one vector of pixels: Y's 3x3 moments and the paired differences. */
 typedef struct sbl__lane_stats {
@@ -3924,41 +4052,50 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
     }
 }
 
+/* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
+SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
+                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1)
+{
+    const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
+                 y2 = sbl__load(W->y[2][c] + x);
+    const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
+    const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
+                 d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
+                 d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
+    /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t) is then
+       0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
+    const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
+    const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
+    float *cp = k->col[c] + i;
+    sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
+    sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
+    sbl__store(SBL__COLP(cp, SBL__COL_T), t);
+    sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
+    sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
+    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+        sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
+        sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
+    }
+}
+
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
-   column - ca; the last vector overlaps the one before (same values). */
+   column - ca; the last vector overlaps the one before (same values). The channels are
+   written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). */
 SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
-    int x = ca, c;
+    const int ch = k->ch;
+    int x = ca;
     for (;;) {
         const int i = x - ca;
         const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
                      v2 = sbl__load(W->v[2] + x);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
-        for (c = 0; c < ch; ++c) {
-            const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
-                         y2 = sbl__load(W->y[2][c] + x);
-            const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
-            const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
-                         d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
-                         d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
-            /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t)
-               is then 0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
-            const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
-            const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
-            float *cp = k->col[c] + i;
-            sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
-            sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
-            sbl__store(SBL__COLP(cp, SBL__COL_T), t);
-            sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
-            sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
-            if (clamp) {
-                sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
-                sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
-            }
-        }
+        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1);
+        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1);
+        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1);
+        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
@@ -3973,68 +4110,78 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
+/* Channel c of the moments of pixels [x, x + VW) (index i in the chunk), for
+   sbl__lanes_moments: nl / nr are the side columns' pair counts. */
+SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
+                                            int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
+                                            sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
+    const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
+    const float *y0 = W->y[0][c] + x;
+    const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
+    const sbl__v yc = sbl__load(W->y[1][c] + x);
+    const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
+    const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
+    const float *cp = k->col[c] + i;
+    const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
+    const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
+    sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
+    /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
+              three, al, bl);
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
+              three, ar, br);
+    a8 = sbl__add(sbl__add(al, ar), a2);
+    b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
+    a9 = sbl__add(a8, a1);
+    b9 = sbl__add(b8, sbl__mul(a1, a1));
+    q = sbl__mul(a9, ninth);
+    st->mean[c] = sbl__add(s, q);
+    st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
+    q = sbl__mul(a8, eighth);
+    st->m8[c] = sbl__add(s, q);
+    st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    /* pairs: side columns about the centre column's shift tc */
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
+              sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
+    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1),
+              sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) + 1), tc), nr, pr, qr);
+    d = sbl__add(sbl__add(pl, pr), da);
+    dd = sbl__add(sbl__add(ql, qr), db);
+    st->pd[c] = sbl__mul(d, st->inv_cnt);
+    /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
+    st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
+    st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
+    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+        const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
+        st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
+        st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
+    } else {
+        st->lo[c] = st->hi[c] = st->mean[c];
+    }
+    st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
+    st->yc[c] = yc;
+}
+
 /* Moments of pixels [x, x + VW) from the column sums of the chunk starting at column
-   ca (sbl__lanes_columns) and the window rows W. */
+   ca (sbl__lanes_columns) and the window rows W (channels written out, as there). */
 SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *W, int x, int ca,
                                     sbl__lane_stats *st)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), three = sbl__set1(3.0f);
-    const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const int i = x - ca, ch = k->ch;
     const sbl__v nl = sbl__load(k->col_n + i - 1), nr = sbl__load(k->col_n + i + 1);
     const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
     sbl__v inv_cnt1;
-    int c;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
     inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
-    for (c = 0; c < ch; ++c) {
-        const float *y0 = W->y[0][c] + x;
-        const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
-        const sbl__v yc = sbl__load(W->y[1][c] + x);
-        const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
-        const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
-        const float *cp = k->col[c] + i;
-        const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
-        const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
-        sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
-        /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
-                  three, al, bl);
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
-                  three, ar, br);
-        a8 = sbl__add(sbl__add(al, ar), a2);
-        b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
-        a9 = sbl__add(a8, a1);
-        b9 = sbl__add(b8, sbl__mul(a1, a1));
-        q = sbl__mul(a9, ninth);
-        st->mean[c] = sbl__add(s, q);
-        st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
-        q = sbl__mul(a8, eighth);
-        st->m8[c] = sbl__add(s, q);
-        st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
-        /* pairs: side columns about the centre column's shift tc */
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
-                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
-        SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1),
-                  sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) + 1), tc), nr, pr, qr);
-        d = sbl__add(sbl__add(pl, pr), da);
-        dd = sbl__add(sbl__add(ql, qr), db);
-        st->pd[c] = sbl__mul(d, st->inv_cnt);
-        /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
-        st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
-        st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
-        if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
-            const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
-            st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
-            st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
-        } else {
-            st->lo[c] = st->hi[c] = st->mean[c];
-        }
-        st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
-        st->yc[c] = yc;
-    }
+    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, st);
+    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, st);
+    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, st);
+    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, st);
 }
 #undef SBL__SIDE
 
@@ -4505,6 +4652,17 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
 /* Lane kernel over pixels [x0, x1) of an interior row (all nine neighbours exist and
    are lane-safe). Returns the first pixel it did not process (the tail goes to the
    reference path). */
+/* Channel c's terms of the weight's sums: dev2 = (x* - mean)^2, s2 = variance of Y,
+   pd2 = (mean paired difference)^2, pvs = variance of the paired differences. */
+SBL__INLINE void sbl__lanes_group_add(const sbl__lane_stats *st, int c, sbl__v *sums)
+{
+    const sbl__v e = sbl__sub(st->xs[c], st->mean[c]);
+    sums[0] = sbl__add(sums[0], sbl__mul(e, e));
+    sums[1] = sbl__add(sums[1], st->var[c]);
+    sums[2] = sbl__add(sums[2], sbl__mul(st->pd[c], st->pd[c]));
+    sums[3] = sbl__add(sums[3], st->pv[c]);
+}
+
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
 {
@@ -4529,8 +4687,6 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
             sbl__lane_stats st;
             sbl__v a[4], n_x, n_y, n_xc;
             sbl__m valid;
-            const int groups = per_channel ? ch : 1;
-            int g;
             n_x = sbl__load(R[1]->n + x);
             valid = sbl__gt(n_x, zero);
             n_y = nyrow ? sbl__load(nyrow + x) : one;
@@ -4539,18 +4695,21 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
             sbl__lanes_moments(k, &W, x, ca, &st);
             sbl__lanes_pool(k, x, y, &st);
             sbl__lanes_rectify(k, &st);
-            for (g = 0; g < groups; ++g) {
-                sbl__v dev2 = zero, s2 = zero, pd2 = zero, pvs = zero, w;
-                int c0 = per_channel ? g : 0, c1 = per_channel ? g + 1 : ch;
-                for (c = c0; c < c1; ++c) {
-                    sbl__v e = sbl__sub(st.xs[c], st.mean[c]);
-                    dev2 = sbl__add(dev2, sbl__mul(e, e));
-                    s2 = sbl__add(s2, st.var[c]);
-                    pd2 = sbl__add(pd2, sbl__mul(st.pd[c], st.pd[c]));
-                    pvs = sbl__add(pvs, st.pv[c]);
+            if (per_channel) {
+                for (c = 0; c < ch; ++c) {
+                    sbl__v sums[4] = {zero, zero, zero, zero};
+                    sbl__lanes_group_add(&st, c, sums);
+                    a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
                 }
-                w = sbl__lanes_weight(&k->wp, &st, dev2, s2, pd2, pvs, n_xc, n_y);
-                for (c = c0; c < c1; ++c) a[c] = w;
+            } else {
+                /* one weight from the squares summed over the channels (written out) */
+                sbl__v sums[4] = {zero, zero, zero, zero}, w;
+                sbl__lanes_group_add(&st, 0, sums);
+                if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
+                if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
+                if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
+                w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+                for (c = 0; c < ch; ++c) a[c] = w;
             }
             sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
         }
@@ -4910,7 +5069,7 @@ static int sbl__eye_height(const sbl_eye *e)
 }
 
 /* Planar depth of pixel (ix, iy) of an eye's depth view; 0 if not valid geometry. */
-static float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
+SBL__INLINE float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
 {
     float z = *SBL__AT(*depth, ix, iy);
     if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
@@ -4918,8 +5077,8 @@ static float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
 }
 
 /* SBL_RIG_PARALLEL: d = f b / z - offset (sky: -offset), rows aligned. */
-static int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, int ix, int iy,
-                                    double px, double py, double *ox, double *oy, double *oz)
+SBL__INLINE int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                         double px, double py, double *ox, double *oy, double *oz)
 {
     float z = sbl__valid_depth(&s->depth[back], ix, iy), fbz;
     if (z == 0.0f) return 0;
@@ -4932,8 +5091,8 @@ static int sbl__stereo_map_parallel(const struct sbl__stereo_rp *s, int back, in
 }
 
 /* SBL_RIG_DISPARITY: the eye's own map, (d_x[, d_y]) left minus right. */
-static int sbl__stereo_map_disparity(const struct sbl__stereo_rp *s, int back, int ix, int iy,
-                                     double px, double py, double *ox, double *oy, double *oz)
+SBL__INLINE int sbl__stereo_map_disparity(const struct sbl__stereo_rp *s, int back, int ix, int iy,
+                                          double px, double py, double *ox, double *oy, double *oz)
 {
     const sbl__flat *m = &s->disparity[back];
     const float *d = SBL__AT(*m, ix, iy);
@@ -6219,18 +6378,41 @@ static int sbl__mask_overlaps(const unsigned char *mask, int mask_stride, int w,
     return sbl__overlap_bytes_eye(m0, m1, a) || sbl__overlap_bytes_eye(m0, m1, b);
 }
 
+SBLDEF size_t sbl_stereo_consistency_scratch_size(int width, int channels)
+{
+    if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
+    /* one reprojected row: channels + 2 float planes */
+    return SBL__CAST(size_t, channels + 2) * sbl__plane_floats(width) * sizeof(float) + 64;
+}
+
+/* Class of one pixel from its own value and the reprojected other value (n > 0: a
+   correspondence). */
+SBL__INLINE unsigned char sbl__consistency_class(const float *own, const float *other, float n,
+                                            int ch, double threshold)
+{
+    double worst = 0.0;
+    int k;
+    if (!(n > 0.0f)) return SBL_NO_CORRESPONDENCE;
+    if (sbl__any_nonfinite(own, ch)) return SBL_INCONSISTENT;
+    for (k = 0; k < ch; ++k) {
+        double q = sbl__weber_ratio(own[k], other[k]);
+        if (q > worst) worst = q;
+    }
+    return worst >= threshold ? SBL_INCONSISTENT : SBL_CONSISTENT;
+}
+
 SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float threshold,
                                          sbl_eye_index target_eye, const sbl_eye *target,
                                          const sbl_eye *source, sbl_image target_value,
                                          sbl_image source_value, unsigned char *mask,
-                                         int mask_stride, int y0, int y1,
-                                         sbl_consistency_counts *counts)
+                                         int mask_stride, int y0, int y1, void *scratch,
+                                         size_t scratch_bytes, sbl_consistency_counts *counts)
 {
     sbl__stereo_rp s;
     sbl_eye t, o; /* the eyes with the value images as their colour, without N */
     sbl_result r;
     long n_ok = 0, n_bad = 0, n_none = 0;
-    int x, y, k, w, h, ch;
+    int x, y, w, h, ch;
     if (!target || !source) return SBL_ERROR_NULL_POINTER;
     t = *target;
     o = *source;
@@ -6249,24 +6431,50 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
     if (sbl__mask_overlaps(mask, mask_stride, w, h, &t, &o) ||
         sbl__mask_overlaps(mask, mask_stride, w, h, target, source))
         return SBL_ERROR_OVERLAP;
+    if (scratch || scratch_bytes) {
+        if (!scratch) return SBL_ERROR_NULL_POINTER;
+        if (scratch_bytes < sbl_stereo_consistency_scratch_size(w, ch))
+            return SBL_ERROR_SCRATCH_TOO_SMALL;
+    }
+#ifdef SBL__ROW_GATHER
+    if (scratch && sbl__row_gather_ok(&s.src)) {
+        /* a row at a time into one ring row (the blend kernel's reprojection) */
+        const size_t pf = sbl__plane_floats(w);
+        float *p = SBL__PCAST(float *, sbl__align64(scratch));
+        sbl__ring_row row;
+        int k;
+        memset(&row, 0, sizeof row);
+        for (k = 0; k < ch; ++k) { row.x[k] = p; p += pf; }
+        row.n = p; p += pf;
+        row.v = p;
+        for (y = y0; y < y1; ++y) {
+            unsigned char *m = mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride);
+            const float *own = sbl__px(&target_value, 0, y);
+            const ptrdiff_t step = sbl__step_of(&target_value);
+            long n_cls[3] = {0, 0, 0};
+            sbl__stereo_rp_row(&s, &row, y, 0, w);
+            for (x = 0; x < w; ++x) {
+                float other[4] = {0, 0, 0, 0};
+                unsigned char cls;
+                for (k = 0; k < ch; ++k) other[k] = row.x[k][x];
+                cls = sbl__consistency_class(own + SBL__CAST(ptrdiff_t, x) * step, other, row.n[x], ch,
+                                             SBL__CAST(double, threshold));
+                m[x] = cls;
+                ++n_cls[cls];
+            }
+            n_ok += n_cls[SBL_CONSISTENT];
+            n_bad += n_cls[SBL_INCONSISTENT];
+            n_none += n_cls[SBL_NO_CORRESPONDENCE];
+        }
+    } else
+#endif
     for (y = y0; y < y1; ++y) {
         unsigned char *m = mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride);
         for (x = 0; x < w; ++x) {
             float other[4] = {0, 0, 0, 0};
-            const float *own = sbl__px(&target_value, x, y);
-            unsigned char cls;
-            if (!(sbl__stereo_rp_pixel(&s, x, y, other) > 0.0f)) {
-                cls = SBL_NO_CORRESPONDENCE;
-            } else if (sbl__any_nonfinite(own, ch)) {
-                cls = SBL_INCONSISTENT;
-            } else {
-                double worst = 0.0;
-                for (k = 0; k < ch; ++k) {
-                    double q = sbl__weber_ratio(own[k], other[k]);
-                    if (q > worst) worst = q;
-                }
-                cls = worst >= SBL__CAST(double, threshold) ? SBL_INCONSISTENT : SBL_CONSISTENT;
-            }
+            float n = sbl__stereo_rp_pixel(&s, x, y, other);
+            unsigned char cls = sbl__consistency_class(sbl__px(&target_value, x, y), other, n, ch,
+                                                       SBL__CAST(double, threshold));
             m[x] = cls;
             n_ok += cls == SBL_CONSISTENT;
             n_bad += cls == SBL_INCONSISTENT;
@@ -6305,14 +6513,14 @@ static int sbl__tile_marked(const unsigned char *mask, int mask_stride, int x0, 
 }
 
 /* The own colour and N on the unmarked pixels of rows [y0, y1) (after the blend ran on
-   their tiles); returns the count of marked pixels. */
-static long sbl__keep_own(const sbl__kernel *k, const unsigned char *mask, int mask_stride,
+   their tiles); mask_rows holds row y0's classes. Returns the count of marked pixels. */
+static long sbl__keep_own(const sbl__kernel *k, const unsigned char *mask_rows, int mask_stride,
                           int y0, int y1)
 {
     long marked = 0;
     int x, y, c;
     for (y = y0; y < y1; ++y) {
-        const unsigned char *m = mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride);
+        const unsigned char *m = mask_rows + SBL__CAST(size_t, y - y0) * SBL__CAST(size_t, mask_stride);
         for (x = 0; x < k->w; ++x) { /* per pixel: views may have pixel steps */
             const float *own = sbl__px(k->own, x, y);
             float *o = sbl__px(&k->out, x, y);
@@ -6368,7 +6576,7 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
         }
         if (full0 >= 0) {
             sbl__kernel_run(&k, full0, b0);
-            marked += sbl__keep_own(&k, mask, mask_stride, full0, b0);
+            marked += sbl__keep_own(&k, mask + SBL__CAST(size_t, full0) * SBL__CAST(size_t, mask_stride), mask_stride, full0, b0);
             full0 = -1;
         }
         /* runs of marked tiles along the band become one span each; the step past the
@@ -6382,13 +6590,312 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
                 span0 = -1;
             }
         }
-        marked += sbl__keep_own(&k, mask, mask_stride, b0, b1);
+        marked += sbl__keep_own(&k, mask + SBL__CAST(size_t, b0) * SBL__CAST(size_t, mask_stride), mask_stride, b0, b1);
     }
     if (full0 >= 0) {
         sbl__kernel_run(&k, full0, y1);
-        marked += sbl__keep_own(&k, mask, mask_stride, full0, y1);
+        marked += sbl__keep_own(&k, mask + SBL__CAST(size_t, full0) * SBL__CAST(size_t, mask_stride), mask_stride, full0, y1);
     }
     if (blended_count) *blended_count = marked;
+    return SBL_OK;
+}
+
+/* ---- the one-pass adaptive blend --------------------------------------------------- */
+
+/* Rows of reprojection a band of tiles reads: its own and one above and below (the
+   kernel's 3x3 window). Row y lives in slot y % SBL__ADAPTIVE_ROWS: the two rows a
+   band shares with the next keep their slots, the others are overwritten only after
+   their band is done. */
+#define SBL__ADAPTIVE_ROWS (SBL__ADAPTIVE_TILE + 2)
+
+typedef struct sbl__adaptive_cache {
+    int w, ch;
+    sbl__gather_fn gather;           /* the stereo reprojection (pixel and row forms) */
+    sbl__row_gather_fn gather_row;   /* NULL: one pixel at a time                     */
+    const void *gather_ctx;
+    sbl__ring_row slot[SBL__ADAPTIVE_ROWS]; /* x*, N, validity of row .row (-1: none) */
+} sbl__adaptive_cache;
+
+SBLDEF size_t sbl_stereo_adaptive_scratch_size(int width, int channels)
+{
+    size_t kernel = sbl_stereo_scratch_size(width, channels), pf;
+    if (kernel == 0) return 0;
+    pf = sbl__plane_floats(width);
+    /* per slot: channels + 2 float planes; then one mask byte per pixel of a band */
+    return kernel + 64 + SBL__CAST(size_t, SBL__ADAPTIVE_ROWS * (channels + 2)) * pf * sizeof(float) +
+           SBL__CAST(size_t, SBL__ADAPTIVE_TILE) * pf;
+}
+
+/* The reprojection of image row y, made on first use. */
+static const sbl__ring_row *sbl__adaptive_row_of(sbl__adaptive_cache *c, int y)
+{
+    sbl__ring_row *r = &c->slot[y % SBL__ADAPTIVE_ROWS];
+    int x;
+    if (r->row == y) return r;
+    if (c->gather_row) {
+        c->gather_row(c->gather_ctx, r, y, 0, c->w);
+    } else {
+        for (x = 0; x < c->w; ++x) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, c->gather(c->gather_ctx, x, y, tmp), tmp, c->ch);
+        }
+    }
+    r->row = y;
+    return r;
+}
+
+/* The kernel's row gather during the adaptive pass: a copy of the cached reprojection
+   (equal bit for bit to gathering again). */
+static void sbl__adaptive_gather_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                     int xb)
+{
+    sbl__adaptive_cache *c = *SBL__PCAST(sbl__adaptive_cache *const *, ctx);
+    const sbl__ring_row *s = sbl__adaptive_row_of(c, y);
+    const size_t bytes = SBL__CAST(size_t, xb - xa) * sizeof(float);
+    int k;
+    if (xb <= xa) return;
+    for (k = 0; k < c->ch; ++k) memcpy(r->x[k] + xa, s->x[k] + xa, bytes);
+    memcpy(r->n + xa, s->n + xa, bytes);
+    memcpy(r->v + xa, s->v + xa, bytes);
+}
+
+/* The own colour and N on rows [y0, y1), columns [x0, x1) (an unmarked tile). */
+static void sbl__keep_own_span(const sbl__kernel *k, int y0, int y1, int x0, int x1)
+{
+    int x, y, c;
+    for (y = y0; y < y1; ++y)
+        for (x = x0; x < x1; ++x) {
+            const float *own = sbl__px(k->own, x, y);
+            float *o = sbl__px(&k->out, x, y);
+            for (c = 0; c < k->ch; ++c) o[c] = own[c];
+            if (k->out_n.data) *sbl__px(&k->out_n, x, y) = sbl__own_n(k, x, y);
+        }
+}
+
+/* Weber test of one pixel: own colour against the reprojected other eye's. */
+static unsigned char sbl__adaptive_class(const float *own, const sbl__ring_row *r, int x,
+                                         int ch, int luminance, double threshold)
+{
+    double worst = 0.0;
+    int k;
+    if (!(r->v[x] > 0.0f)) return SBL_NO_CORRESPONDENCE;
+    if (sbl__any_nonfinite(own, ch)) return SBL_INCONSISTENT;
+    if (luminance) {
+        /* in double from the floats: a float sum could round both sides differently */
+        double a = 0.2126 * SBL__CAST(double, own[0]) + 0.7152 * SBL__CAST(double, own[1]) +
+                   0.0722 * SBL__CAST(double, own[2]);
+        double b = 0.2126 * SBL__CAST(double, r->x[0][x]) + 0.7152 * SBL__CAST(double, r->x[1][x]) +
+                   0.0722 * SBL__CAST(double, r->x[2][x]);
+        double m = fabs(a) > fabs(b) ? fabs(a) : fabs(b);
+        worst = m > 0.0 ? fabs(a - b) / m : 0.0;
+    } else {
+        for (k = 0; k < ch; ++k) {
+            double q = sbl__weber_ratio(own[k], r->x[k][x]);
+            if (q > worst) worst = q;
+        }
+    }
+    return worst >= threshold ? SBL_INCONSISTENT : SBL_CONSISTENT;
+}
+
+/* The Weber test on the nearest pixel of the match (sbl_adaptive_desc.nearest): the
+   rig's map there and back (the back-check of the reprojection) and the depth test on
+   that one pixel; a non-finite value there is no correspondence, as a dropped tap. */
+static unsigned char sbl__adaptive_class_nearest(const sbl__stereo_rp *s, const float *own,
+                                                 int x, int y, int ch, int luminance,
+                                                 double threshold)
+{
+    const int sw = s->source->color.width, sh = s->source->color.height;
+    double sx, sy, sz, bx, by, bz, worst = 0.0;
+    const float *other;
+    int ix, iy, k;
+    /* the parallel rig called directly, so that it inlines */
+    const int parallel = s->map == sbl__stereo_map_parallel;
+    if (!(parallel ? sbl__stereo_map_parallel(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)
+                   : s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)))
+        return SBL_NO_CORRESPONDENCE;
+    if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh)))
+        return SBL_NO_CORRESPONDENCE;
+    ix = SBL__CAST(int, floor(sx));
+    iy = SBL__CAST(int, floor(sy));
+    if (s->src.use_depth && sz > 0.0 &&
+        !sbl__depth_match(SBL__CAST(float, sz), *SBL__AT(s->src.depth, ix, iy), s->src.depth_tolerance, 0.0f))
+        return SBL_NO_CORRESPONDENCE;
+    if (!(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK)) {
+        double ex, ey, tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
+        if (!(parallel ? sbl__stereo_map_parallel(s, 1, ix, iy, sx, sy, &bx, &by, &bz)
+                       : s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)))
+            return SBL_NO_CORRESPONDENCE;
+        ex = bx - (x + 0.5);
+        ey = by - (y + 0.5);
+        if (!(ex * ex + ey * ey <= tol * tol)) return SBL_NO_CORRESPONDENCE;
+    }
+    other = sbl__px(&s->source->color, ix, iy);
+    if (sbl__any_nonfinite(other, ch)) return SBL_NO_CORRESPONDENCE;
+    if (sbl__any_nonfinite(own, ch)) return SBL_INCONSISTENT;
+    if (luminance) {
+        double a = 0.2126 * SBL__CAST(double, own[0]) + 0.7152 * SBL__CAST(double, own[1]) +
+                   0.0722 * SBL__CAST(double, own[2]);
+        double b = 0.2126 * SBL__CAST(double, other[0]) + 0.7152 * SBL__CAST(double, other[1]) +
+                   0.0722 * SBL__CAST(double, other[2]);
+        double m = fabs(a) > fabs(b) ? fabs(a) : fabs(b);
+        worst = m > 0.0 ? fabs(a - b) / m : 0.0;
+    } else {
+        for (k = 0; k < ch; ++k) {
+            double q = sbl__weber_ratio(own[k], other[k]);
+            if (q > worst) worst = q;
+        }
+    }
+    return worst >= threshold ? SBL_INCONSISTENT : SBL_CONSISTENT;
+}
+
+SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
+                                            const sbl_adaptive_desc *adaptive,
+                                            sbl_eye_index target_eye, const sbl_eye *target,
+                                            const sbl_eye *source, sbl_image out_color,
+                                            sbl_image out_length, unsigned char *mask,
+                                            int mask_stride, int y0, int y1, void *scratch,
+                                            size_t scratch_bytes,
+                                            sbl_consistency_counts *counts,
+                                            long *tiles_blended, long *tiles_total)
+{
+    sbl__stereo_rp s;
+    sbl__kernel k;
+    sbl__adaptive_cache cache, *cache_ptr = &cache; /* the gather's context: a pointer to it */
+    sbl_adaptive_desc a;
+    sbl_result r;
+    unsigned char *band; /* classes of the band's rows, row stride pf */
+    size_t pf, need;
+    long n_ok = 0, n_bad = 0, n_none = 0, t_run = 0, t_all = 0;
+    double threshold;
+    int w, h, ch, by, luminance, i, j;
+    /* every check of the full blend: an empty row range validates and writes nothing */
+    if ((r = sbl_stereo_blend(desc, target_eye, target, source, out_color, out_length, y0, y0,
+                              scratch, scratch_bytes)) != SBL_OK)
+        return r;
+    if (adaptive) a = *adaptive;
+    else memset(&a, 0, sizeof a);
+    if (sbl__is_zero(a.threshold)) a.threshold = SBL_WEBER_THRESHOLD;
+    if (!sbl__finite(a.threshold) || !(a.threshold > 0.0f)) return SBL_ERROR_INVALID_PARAM;
+    if (a.per_channel != 0 && a.per_channel != 1) return SBL_ERROR_INVALID_PARAM;
+    if (a.per_pixel != 0 && a.per_pixel != 1) return SBL_ERROR_INVALID_PARAM;
+    if (a.nearest != 0 && a.nearest != 1) return SBL_ERROR_INVALID_PARAM;
+    w = target->color.width; h = target->color.height; ch = target->color.channels;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    if (mask) {
+        const char *m0 = SBL__PCAST(const char *, mask), *m1;
+        if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
+        m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
+        if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes(m0, m1, &out_length) ||
+            sbl__overlap_bytes_eye(m0, m1, target) || sbl__overlap_bytes_eye(m0, m1, source))
+            return SBL_ERROR_OVERLAP;
+    }
+    need = sbl_stereo_adaptive_scratch_size(w, ch);
+    if (need == 0) return SBL_ERROR_INVALID_SIZE;
+    if (scratch_bytes < need) return SBL_ERROR_SCRATCH_TOO_SMALL;
+    if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
+                                     &out_length)) != SBL_OK)
+        return r;
+    threshold = SBL__CAST(double, a.threshold);
+    luminance = !a.per_channel && ch >= 3;
+
+    /* the kernel as sbl_stereo_blend sets it up (its gather redirected to the cache
+       below unless the test reads the nearest pixel) */
+    sbl__stereo_kernel_setup(&k, &s, target, &out_color, &out_length, NULL, scratch);
+    pf = sbl__plane_floats(w);
+    memset(&cache, 0, sizeof cache);
+    cache.w = w; cache.ch = ch;
+    cache.gather = k.gather; cache.gather_row = k.gather_row; cache.gather_ctx = k.gather_ctx;
+    {
+        float *p = SBL__PCAST(float *, sbl__align64(SBL__PCAST(char *, scratch) +
+                                                    sbl_stereo_scratch_size(w, ch)));
+        for (i = 0; i < SBL__ADAPTIVE_ROWS; ++i) {
+            for (j = 0; j < ch; ++j) { cache.slot[i].x[j] = p; p += pf; }
+            cache.slot[i].n = p; p += pf;
+            cache.slot[i].v = p; p += pf;
+            cache.slot[i].row = -1;
+        }
+        band = SBL__PCAST(unsigned char *, p);
+    }
+    if (!a.nearest) { /* the kernel reads the rows the test reprojected */
+        k.gather_row = sbl__adaptive_gather_row;
+        k.gather_ctx = &cache_ptr;
+    }
+
+    for (by = y0 - y0 % SBL__ADAPTIVE_TILE; by < y1; by += SBL__ADAPTIVE_TILE) {
+        /* the tiles' rows [by, t1) decide, whatever part of them this call writes
+           ([b0, b1)): row bands give the whole call's output */
+        const int t1 = by + SBL__ADAPTIVE_TILE < h ? by + SBL__ADAPTIVE_TILE : h;
+        const int b0 = by > y0 ? by : y0, b1 = t1 < y1 ? t1 : y1;
+        int y, x, tx, span0 = -1;
+        if (b0 >= b1) continue; /* an empty row range */
+        /* classify the tiles' pixels from the reprojection the kernel will read */
+        for (y = by; y < t1; ++y) {
+            const sbl__ring_row *rr = a.nearest ? NULL : sbl__adaptive_row_of(&cache, y);
+            const float *own = sbl__px(&target->color, 0, y);
+            const ptrdiff_t step = sbl__step_of(&target->color);
+            unsigned char *m = band + SBL__CAST(size_t, y - by) * pf;
+            long n_cls[3] = {0, 0, 0};
+            for (x = 0; x < w; ++x) {
+                unsigned char cls =
+                    rr ? sbl__adaptive_class(own + SBL__CAST(ptrdiff_t, x) * step, rr, x, ch,
+                                             luminance, threshold)
+                       : sbl__adaptive_class_nearest(&s, own + SBL__CAST(ptrdiff_t, x) * step, x, y,
+                                                     ch, luminance, threshold);
+                m[x] = cls;
+                ++n_cls[cls];
+            }
+            if (y < b0 || y >= b1) continue;
+            n_ok += n_cls[SBL_CONSISTENT];
+            n_bad += n_cls[SBL_INCONSISTENT];
+            n_none += n_cls[SBL_NO_CORRESPONDENCE];
+            if (mask)
+                memcpy(mask + SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride), m,
+                       SBL__CAST(size_t, w));
+        }
+        if (a.nearest) {
+            /* a band with most tiles marked reads whole reprojected rows from the
+               cache (its border rows are then shared with the next band); a sparse
+               one reprojects only its spans */
+            int n_marked = 0, n_tiles = 0;
+            for (tx = 0; tx < w; tx += SBL__ADAPTIVE_TILE, ++n_tiles)
+                n_marked += sbl__tile_marked(band, SBL__CAST(int, pf), tx, tx + SBL__ADAPTIVE_TILE, w, 0,
+                                             t1 - by);
+            if (2 * n_marked >= n_tiles) {
+                k.gather_row = sbl__adaptive_gather_row;
+                k.gather_ctx = &cache_ptr;
+            } else {
+                k.gather_row = cache.gather_row;
+                k.gather_ctx = cache.gather_ctx;
+            }
+        }
+        /* runs of marked tiles along the band become one span each */
+        for (tx = 0; tx < w + SBL__ADAPTIVE_TILE; tx += SBL__ADAPTIVE_TILE) {
+            int marked_tile = 0;
+            if (tx < w) {
+                marked_tile = sbl__tile_marked(band, SBL__CAST(int, pf), tx, tx + SBL__ADAPTIVE_TILE,
+                                               w, 0, t1 - by);
+                ++t_all;
+                t_run += marked_tile;
+            }
+            if (marked_tile && span0 < 0) span0 = tx;
+            if (!marked_tile && span0 >= 0) {
+                sbl__kernel_run_span(&k, b0, b1, span0, tx < w ? tx : w);
+                span0 = -1;
+            }
+            if (!marked_tile && tx < w && !a.per_pixel)
+                sbl__keep_own_span(&k, b0, b1, tx, tx + SBL__ADAPTIVE_TILE < w ? tx + SBL__ADAPTIVE_TILE : w);
+        }
+        if (a.per_pixel) sbl__keep_own(&k, band + SBL__CAST(size_t, b0 - by) * pf, SBL__CAST(int, pf), b0, b1);
+    }
+    if (counts) {
+        counts->consistent = n_ok;
+        counts->inconsistent = n_bad;
+        counts->no_correspondence = n_none;
+        counts->inconsistent_ratio =
+            n_ok + n_bad > 0 ? SBL__CAST(double, n_bad) / SBL__CAST(double, n_ok + n_bad) : 0.0;
+    }
+    if (tiles_blended) *tiles_blended = t_run;
+    if (tiles_total) *tiles_total = t_all;
     return SBL_OK;
 }
 

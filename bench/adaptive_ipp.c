@@ -51,7 +51,7 @@ int main(int argc, char **argv)
     void *scratch;
     sbl_stereo_desc d;
     sbl_eye eye[2];
-    long marked = 0, blended;
+    long marked = 0, blended, tiles_run = 0, tiles_all = 0;
     if (argc < 2) { fprintf(stderr, "usage: adaptive_ipp SCENE_DIR [FRAME] [THRESHOLD]\n"); return 2; }
     if (sbr_seq_dataset(&s, argv[1], frame + 1, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
     w = s.width; h = s.height; n = (size_t)w * h;
@@ -76,18 +76,34 @@ int main(int argc, char **argv)
         sbl_consistency_counts c;
         sbl_stereo_consistency(&d, threshold, (sbl_eye_index)e, &eye[e], &eye[!e],
                                sbl_image_make(lum[e], w, h, 1), sbl_image_make(lum[!e], w, h, 1),
-                               mask[e], w, 0, h, &c);
+                               mask[e], w, 0, h, NULL, 0, &c);
         marked += c.inconsistent;
     }
     for (e = 0; e < 2; ++e)
         sbl_stereo_blend(&d, (sbl_eye_index)e, &eye[e], &eye[!e], sbl_image_make(out, w, h, 3),
                          sbl_image_make(NULL, 0, 0, 0), 0, h, scratch, bytes);
+    {   /* the one-pass call on the colour's luminance (the same test as above) */
+        size_t ab = sbl_stereo_adaptive_scratch_size(w, 3);
+        void *as = malloc(ab);
+        sbl_adaptive_desc ad;
+        memset(&ad, 0, sizeof ad);
+        ad.threshold = threshold;
+        for (e = 0; e < 2; ++e) {
+            long tb = 0, ta = 0;
+            sbl_stereo_blend_adaptive(&d, &ad, (sbl_eye_index)e, &eye[e], &eye[!e],
+                                      sbl_image_make(out, w, h, 3), sbl_image_make(NULL, 0, 0, 0),
+                                      NULL, 0, 0, h, as, ab, NULL, &tb, &ta);
+            tiles_run += tb; tiles_all += ta;
+        }
+        free(as);
+    }
     for (e = 0; e < 2; ++e)
         sbl_stereo_blend_masked(&d, (sbl_eye_index)e, &eye[e], &eye[!e], mask[e], w,
                                 sbl_image_make(out, w, h, 3), sbl_image_make(NULL, 0, 0, 0), 0, h,
                                 scratch, bytes, &blended);
-    printf("%s frame %d: %d x %d, %d frames filtered, marked %.2f %% of all pixels (threshold %.3f)\n",
+    printf("%s frame %d: %d x %d, %d frames filtered, marked %.2f %% of all pixels, tiles %.2f %% (threshold %.3f)\n",
            s.name, frame, w, h, frame + 1, 100.0 * (double)marked / (2.0 * (double)n),
+           tiles_all ? 100.0 * (double)tiles_run / (double)tiles_all : 0.0,
            threshold > 0 ? threshold : SBL_WEBER_THRESHOLD);
     sbr_seq_free(&s);
     return 0;

@@ -22,8 +22,11 @@ awk -v n=$b -v px=$px 'BEGIN { printf "| stereo blend everywhere (FSA) | | | %.0
 for th in $thresholds; do
     m=$(count sbl_stereo_consistency "$th")
     k=$(count sbl_stereo_blend_masked "$th")
+    f=$(count sbl_stereo_blend_adaptive "$th")
     share=$($bin "$dir" "$frame" "$th" | sed -n 's/.*marked \([0-9.]*\) %.*/\1/p')
+    tiles=$($bin "$dir" "$frame" "$th" | sed -n 's/.*tiles \([0-9.]*\) %.*/\1/p')
     awk -v n=$m -v px=$px -v t=$th -v s=$share 'BEGIN { printf "| consistency mask | %.2f | %s | %.0f |\n", t, s, n / (px * 2) }'
     awk -v n=$k -v px=$px -v t=$th -v s=$share 'BEGIN { printf "| masked blend | %.2f | %s | %.0f |\n", t, s, n / (px * 2) }'
+    awk -v n=$f -v px=$px -v t=$th -v s=$share -v tl=$tiles 'BEGIN { printf "| one-pass adaptive (tiles run %s %%) | %.2f | %s | %.0f |\n", tl, t, s, n / (px * 2) }'
 done
 rm -rf "$tmp"

@@ -48,8 +48,10 @@ typedef enum sbr_stereo_mode {
     SBR_STEREO_FILL,      /* trace the left eye; right = left reprojected, holes traced */
     SBR_STEREO_FIXED,     /* beta 0.5 */
     SBR_STEREO_ADAPTIVE,  /* beta by the chosen estimator */
-    SBR_STEREO_MASKED     /* the same blend only where the eyes' luminances differ by
+    SBR_STEREO_MASKED,    /* the same blend only where the eyes' luminances differ by
                              the Weber threshold (sbl_stereo_consistency), else own */
+    SBR_STEREO_ONE_PASS   /* the same in one call, mask and blend sharing the
+                             reprojection (sbl_stereo_blend_adaptive, luminance) */
 } sbr_stereo_mode;
 
 /* Oracle weights (bench only): the library's reprojection stage, then
@@ -451,15 +453,27 @@ void sbr_luminance(const float *rgb, float *lum, size_t n)
 /* SBR_STEREO_MASKED: the consistency mask of each eye on the two eyes' luminances, then
    the stereo blend where it marks a pixel. lum: 2 * W*H floats, mask: W*H bytes. */
 static int sbr_stereo_masked(const sbl_stereo_desc *sd, float threshold, const sbl_eye *eye,
-                             float *const *disp, float *lum, unsigned char *mask, int w, int h)
+                             float *const *disp, float *lum, unsigned char *mask, int w, int h,
+                             int one_pass)
 {
     const size_t n = (size_t)w * (size_t)h;
-    size_t bytes = sbl_stereo_scratch_size(w, 3);
+    size_t bytes = one_pass ? sbl_stereo_adaptive_scratch_size(w, 3) : sbl_stereo_scratch_size(w, 3);
     void *scratch = malloc(bytes);
     sbl_image L[2];
     sbl_eye geo[2];
     int e, rc = 0;
     if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
+    if (one_pass) {
+        sbl_adaptive_desc ad;
+        memset(&ad, 0, sizeof ad);
+        ad.threshold = threshold;
+        for (e = 0; e < 2 && rc == 0; ++e)
+            rc = sbl_stereo_blend_adaptive(sd, &ad, (sbl_eye_index)e, &eye[e], &eye[!e],
+                                           sbl_image_make(disp[e], w, h, 3), sbl_image_make(NULL, 0, 0, 0),
+                                           NULL, 0, 0, h, scratch, bytes, NULL, NULL, NULL);
+        free(scratch);
+        return rc;
+    }
     for (e = 0; e < 2; ++e) {
         sbr_luminance(eye[e].color.data, lum + e * n, n);
         L[e] = sbl_image_make(lum + e * n, w, h, 1);
@@ -468,7 +482,7 @@ static int sbr_stereo_masked(const sbl_stereo_desc *sd, float threshold, const s
     }
     for (e = 0; e < 2 && rc == 0; ++e) {
         rc = sbl_stereo_consistency(sd, threshold, (sbl_eye_index)e, &geo[e], &geo[!e], L[e],
-                                    L[!e], mask, w, 0, h, NULL);
+                                    L[!e], mask, w, 0, h, NULL, 0, NULL);
         if (rc == 0)
             rc = sbl_stereo_blend_masked(sd, (sbl_eye_index)e, &eye[e], &eye[!e], mask, w,
                                          sbl_image_make(disp[e], w, h, 3), sbl_image_make(NULL, 0, 0, 0),
@@ -609,7 +623,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 rc = sbl_stereo_blend_frame(&sd, &eye[0], &eye[1], sbl_image_make(disp[0], w, h, 3),
                                             sbl_image_make(disp[1], w, h, 3));
             }
-        } else if (rc == 0 && m->stereo == SBR_STEREO_MASKED) {
+        } else if (rc == 0 && (m->stereo == SBR_STEREO_MASKED || m->stereo == SBR_STEREO_ONE_PASS)) {
             sbl_eye eye[2];
             for (e = 0; e < 2; ++e) {
                 memset(&eye[e], 0, sizeof eye[e]);
@@ -617,7 +631,8 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 if (m->temporal) eye[e].length = sbl_image_make(len[e][ping[e]], w, h, 1);
                 eye[e].gbuffer = sbr_gbuffer(v[e], w, h, 0);
             }
-            rc = sbr_stereo_masked(&sd, m->weber_threshold, eye, disp, tmp_a, mask, w, h);
+            rc = sbr_stereo_masked(&sd, m->weber_threshold, eye, disp, tmp_a, mask, w, h,
+                                   m->stereo == SBR_STEREO_ONE_PASS);
         } else if (rc == 0) {
             for (e = 0; e < 2; ++e) memcpy(disp[e], tout[e], n * 3 * sizeof(float));
         }

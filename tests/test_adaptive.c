@@ -55,11 +55,46 @@ static void rig_free(rig *r)
     for (e = 0; e < 2; ++e) { free(r->dep[e].mem); free(r->val[e].mem); }
 }
 
+/* The mask by the pixel path (no scratch); every call also checks that the row path
+   (with scratch) writes the same classes and counts, bit for bit. */
 static sbl_result rig_mask(rig *r, float threshold, int t, unsigned char *mask, int y0, int y1,
                            sbl_consistency_counts *c)
 {
-    return sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
-                                  view(&r->val[t]), view(&r->val[!t]), mask, r->w, y0, y1, c);
+    const int ch = r->val[t].c;
+    size_t bytes = sbl_stereo_consistency_scratch_size(r->w, ch);
+    void *scratch = malloc(bytes);
+    unsigned char *m2 = (unsigned char *)malloc((size_t)r->w * r->h);
+    sbl_consistency_counts c1, c2;
+    sbl_result res, res2;
+    int y;
+    memcpy(m2, mask, (size_t)r->w * r->h);
+    res = sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
+                                 view(&r->val[t]), view(&r->val[!t]), mask, r->w, y0, y1, NULL, 0, &c1);
+    res2 = sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
+                                  view(&r->val[t]), view(&r->val[!t]), m2, r->w, y0, y1, scratch,
+                                  bytes, &c2);
+    CHECK_EQ(res2, res);
+    CHECK(memcmp(m2, mask, (size_t)r->w * r->h) == 0);
+    if (res == SBL_OK)
+        CHECK(c1.consistent == c2.consistent && c1.inconsistent == c2.inconsistent &&
+              c1.no_correspondence == c2.no_correspondence);
+    if (res == SBL_OK && y1 > y0) {
+        /* a scratch one byte short is refused, writing nothing */
+        for (y = y0; y < y1; ++y) memset(m2 + (size_t)y * r->w, 0x33, (size_t)r->w);
+        CHECK_EQ(sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
+                                        view(&r->val[t]), view(&r->val[!t]), m2, r->w, y0, y1,
+                                        scratch, bytes - 1, NULL),
+                 SBL_ERROR_SCRATCH_TOO_SMALL);
+        CHECK_EQ(sbl_stereo_consistency(&r->d, threshold, (sbl_eye_index)t, &r->eye[t], &r->eye[!t],
+                                        view(&r->val[t]), view(&r->val[!t]), m2, r->w, y0, y1,
+                                        NULL, bytes, NULL),
+                 SBL_ERROR_NULL_POINTER);
+        CHECK(m2[(size_t)y0 * r->w] == 0x33);
+    }
+    if (c) *c = c1;
+    free(scratch);
+    free(m2);
+    return res;
 }
 
 /* ---- 1. the hand-computed case ---------------------------------------------------- */
@@ -283,61 +318,61 @@ static void test_errors(void)
         CHECK(mask_untouched(mask, sizeof mask));                                        \
         CHECK(memcmp(&n, &n0, sizeof n) == 0);                                           \
     } while (0)
-    REJECT(sbl_stereo_consistency(NULL, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(NULL, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_NULL_POINTER);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, NULL, &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, NULL, &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_NULL_POINTER);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, NULL, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, NULL, w, 0, h, NULL, 0, &n),
            SBL_ERROR_NULL_POINTER);
-    REJECT(sbl_stereo_consistency(&r.d, -0.02f, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, -0.02f, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
-    REJECT(sbl_stereo_consistency(&r.d, nan, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, nan, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
-    REJECT(sbl_stereo_consistency(&r.d, (float)HUGE_VAL, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, (float)HUGE_VAL, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
-    REJECT(sbl_stereo_consistency(&r.d, 0, (sbl_eye_index)2, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, (sbl_eye_index)2, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w - 1, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w - 1, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_STRIDE);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h + 1, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h + 1, NULL, 0, &n),
            SBL_ERROR_INVALID_ROWS);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 3, 2, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 3, 2, NULL, 0, &n),
            SBL_ERROR_INVALID_ROWS);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, view(&other), mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, view(&other), mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_CHANNEL_MISMATCH);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, view(&small), mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, view(&small), mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_SIZE_MISMATCH);
     {   /* a value image without data */
         sbl_image none = a;
         none.data = NULL;
-        REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], none, b, mask, w, 0, h, &n),
+        REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], none, b, mask, w, 0, h, NULL, 0, &n),
                SBL_ERROR_NULL_POINTER);
     }
     /* parallel rig without depth in the source eye */
     e0 = r.eye[1];
     memset(&e0.gbuffer.depth, 0, sizeof e0.gbuffer.depth);
-    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &e0, a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &e0, a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_MISSING_INPUT);
     d = r.d;
     d.focal_px = -1.0f;
-    REJECT(sbl_stereo_consistency(&d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, &n),
+    REJECT(sbl_stereo_consistency(&d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, &n),
            SBL_ERROR_INVALID_PARAM);
     {   /* the mask over an input: a value image or the depth */
         unsigned char *over = (unsigned char *)r.val[1].mem;
         unsigned char keep[sizeof(float) * 16];
         memcpy(keep, over, sizeof keep);
-        CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, over, w, 0, h, &n),
+        CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, over, w, 0, h, NULL, 0, &n),
                  SBL_ERROR_OVERLAP);
         CHECK(memcmp(keep, over, sizeof keep) == 0);
         over = (unsigned char *)r.dep[0].mem;
         memcpy(keep, over, sizeof keep);
-        CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, over, w, 0, h, &n),
+        CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, over, w, 0, h, NULL, 0, &n),
                  SBL_ERROR_OVERLAP);
         CHECK(memcmp(keep, over, sizeof keep) == 0);
     }
     /* accepted with counts NULL; an over-wide stride is fine */
     memset(mask, 0x5a, sizeof mask);
-    CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL),
+    CHECK_EQ(sbl_stereo_consistency(&r.d, 0, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], a, b, mask, w, 0, h, NULL, 0, NULL),
              SBL_OK);
     CHECK(mask[0] == SBL_NO_CORRESPONDENCE && mask[2] == SBL_CONSISTENT);
     CHECK(mask[w * h] == 0x5a);
@@ -503,6 +538,299 @@ static void test_blend_masked(void)
     rig_free(&r);
 }
 
+
+/* ---- 6. the one-pass adaptive blend ------------------------------------------------- */
+
+/* A colour that depends on the scene point only (left column lx, row y): the two eyes
+   agree exactly wherever the match is a whole pixel. */
+static float scene_value(int lx, int y, int k)
+{
+    unsigned u = (unsigned)lx * 73856093u ^ (unsigned)y * 19349663u ^ (unsigned)k * 83492791u;
+    u ^= u >> 13; u *= 0x5bd1e995u; u ^= u >> 15;
+    return 0.2f + 0.6f * (float)(u & 0xffffu) / 65535.0f;
+}
+
+static void test_blend_adaptive(void)
+{
+    const int w = 61, h = 37, ms = w + 5;
+    int ch, pass, t, x, y, k, e, y0, ok;
+    for (ch = 1; ch <= 4; ++ch)
+        for (pass = 0; pass < 5; ++pass) {
+            rig r;
+            sbt_img col[2], len[2], full = sbt_img_new(w, h, ch, 1), fulln = sbt_img_new(w, h, 1, 2);
+            sbt_img out = sbt_img_new(w, h, ch, 3), outn = sbt_img_new(w, h, 1, 1);
+            sbt_img ref = sbt_img_new(w, h, ch, 0), refn = sbt_img_new(w, h, 1, 0);
+            sbt_img rp = sbt_img_new(w, h, ch, 0), rpv = sbt_img_new(w, h, 1, 0);
+            unsigned char *mask = (unsigned char *)malloc((size_t)ms * h);
+            unsigned char *mask2 = (unsigned char *)malloc((size_t)ms * h);
+            size_t bytes = sbl_stereo_adaptive_scratch_size(w, ch);
+            void *scratch = malloc(bytes);
+            sbt_rng rng = {(unsigned)(7 + ch * 3 + pass)};
+            sbl_adaptive_desc ad;
+            sbl_consistency_counts c, cb;
+            long tiles, tiles_all, tb, tab, want_tiles;
+            memset(&ad, 0, sizeof ad);
+            /* pass 0: default comparison, whole tiles; 1: each channel, marked pixels
+               only; 2: every pixel noisy (all marked), whole tiles; 3 and 4: as 0 and 2,
+               the test on the nearest pixel of the match */
+            ad.per_channel = pass == 1;
+            ad.per_pixel = pass == 1;
+            ad.nearest = pass >= 3;
+            rig_init(&r, w, h, ch, 6.0f, 20, 34, 8, 25);
+            for (e = 0; e < 2; ++e) {
+                col[e] = sbt_img_new(w, h, ch, e);
+                len[e] = sbt_img_new(w, h, 1, 1);
+                for (y = 0; y < h; ++y)
+                    for (x = 0; x < w; ++x) {
+                        int box = *sbt_at(&r.dep[e], x, y) == 1.0f;
+                        int lx = e ? x + (box ? 12 : 2) : x;
+                        for (k = 0; k < ch; ++k) {
+                            float v = scene_value(lx, y, k);
+                            if (pass == 2 || pass == 4) v *= (float)(1.0 + 0.1 * sbt_gauss(&rng));
+                            /* every match here is a whole pixel: the nearest pixel is the
+                               bilinear value wherever its tap passes */
+                            sbt_at(&col[e], x, y)[k] = v;
+                        }
+                        *sbt_at(&len[e], x, y) = (float)(1 + (int)(sbt_uniform(&rng) * 8));
+                    }
+                r.eye[e].color = view(&col[e]);
+                r.eye[e].length = view(&len[e]);
+            }
+            /* a few visibly different pixels in the left eye (tiles (0,0) and (2,1)), a
+               NaN in the right eye (tile (3,2)), a 1 % difference (consistent) */
+            for (k = 0; k < ch; ++k) {
+                sbt_at(&col[0], 5, 5)[k] *= 1.1f;
+                sbt_at(&col[0], 40, 20)[k] *= 0.85f;
+                sbt_at(&col[0], 50, 10)[k] *= 1.01f;
+            }
+            sbt_at(&col[1], 52, 34)[0] = (float)(HUGE_VAL - HUGE_VAL);
+            *sbt_at(&len[0], 4, 3) = 0.0f; /* the own N of an unmarked pixel: 1 */
+            for (t = 0; t < 2; ++t) {
+                long bad_cls = 0, marked = 0;
+                /* the classes from their definition: the reprojection of the other eye's
+                   colour and the documented Weber test */
+                CHECK_EQ(sbl_reproject_stereo(&r.d, (sbl_eye_index)t, &r.eye[t], &r.eye[!t], view(&rp),
+                                              view(&rpv), 0, h), SBL_OK);
+                memset(mask, 0x77, (size_t)ms * h);
+                CHECK_EQ(sbl_stereo_blend_adaptive(&r.d, &ad, (sbl_eye_index)t, &r.eye[t], &r.eye[!t],
+                                                   view(&out), view(&outn), mask, ms, 0, h, scratch,
+                                                   bytes, &c, &tiles, &tiles_all), SBL_OK);
+                for (y = 0; y < h; ++y)
+                    for (x = 0; x < w; ++x) {
+                        const float *a = sbt_at(&col[t], x, y), *b = sbt_at(&rp, x, y);
+                        double q = 0.0;
+                        int want, nonfinite = 0;
+                        for (k = 0; k < ch; ++k) nonfinite |= !isfinite(a[k]);
+                        if (!(*sbt_at(&rpv, x, y) > 0.0f)) want = SBL_NO_CORRESPONDENCE;
+                        else if (nonfinite) want = SBL_INCONSISTENT;
+                        else {
+                            if (ch >= 3 && pass != 1) {
+                                double la = 0.2126 * a[0] + 0.7152 * a[1] + 0.0722 * a[2];
+                                double lb = 0.2126 * b[0] + 0.7152 * b[1] + 0.0722 * b[2];
+                                double m = fabs(la) > fabs(lb) ? fabs(la) : fabs(lb);
+                                q = m > 0 ? fabs(la - lb) / m : 0.0;
+                            } else {
+                                for (k = 0; k < ch; ++k) {
+                                    double m = fabs((double)a[k]) > fabs((double)b[k]) ? fabs((double)a[k]) : fabs((double)b[k]);
+                                    double qk = m > 0 ? fabs((double)a[k] - (double)b[k]) / m : 0.0;
+                                    if (qk > q) q = qk;
+                                }
+                            }
+                            want = q >= 0.02 ? SBL_INCONSISTENT : SBL_CONSISTENT;
+                        }
+                        bad_cls += mask[(size_t)y * ms + x] != want;
+                        marked += want == SBL_INCONSISTENT;
+                    }
+                if (ad.nearest) {
+                    /* the pixel whose tap has N = 0 (the reprojection's 3x3 fallback) and
+                       the NaN's match (dropped tap) may differ; nothing else */
+                    CHECK(bad_cls <= 2);
+                    CHECK(c.inconsistent >= marked - 2 && c.inconsistent <= marked);
+                } else {
+                    CHECK_EQ(bad_cls, 0);
+                    CHECK_EQ(c.inconsistent, marked);
+                }
+                CHECK_EQ(c.consistent + c.inconsistent + c.no_correspondence, (long)w * h);
+                CHECK(c.no_correspondence > 0);
+                CHECK(mask[w] == 0x77); /* nothing past the width */
+                if (pass != 2 && pass != 4) CHECK(marked >= 2 && marked <= 4); /* right eye: + its NaN, + (2, 3), whose match lost
+                                                               its N = 0 tap to the 3x3 fallback */
+                else CHECK(marked > w * h / 2);
+                /* the output: sbl_stereo_blend's on the marked tiles (per_pixel: pixels),
+                   the own colour and N (1 where 0) elsewhere */
+                CHECK_EQ(sbl_stereo_blend(&r.d, (sbl_eye_index)t, &r.eye[t], &r.eye[!t], view(&full),
+                                          view(&fulln), 0, h, scratch, bytes), SBL_OK);
+                {
+                    long bad = 0, blended = 0;
+                    for (y = 0; y < h; ++y)
+                        for (x = 0; x < w; ++x) {
+                            int yy, xx, take = 0;
+                            float own_n = *sbt_at(&len[t], x, y) > 0.0f ? *sbt_at(&len[t], x, y) : 1.0f;
+                            if (ad.per_pixel) take = mask[(size_t)y * ms + x] == SBL_INCONSISTENT;
+                            else
+                                for (yy = y / 16 * 16; yy < y / 16 * 16 + 16 && yy < h; ++yy)
+                                    for (xx = x / 16 * 16; xx < x / 16 * 16 + 16 && xx < w; ++xx)
+                                        take |= mask[(size_t)yy * ms + xx] == SBL_INCONSISTENT;
+                            blended += take;
+                            bad += memcmp(take ? sbt_at(&full, x, y) : sbt_at(&col[t], x, y),
+                                          sbt_at(&out, x, y), sizeof(float) * ch) != 0;
+                            bad += memcmp(take ? sbt_at(&fulln, x, y) : &own_n, sbt_at(&outn, x, y),
+                                          sizeof(float)) != 0;
+                        }
+                    CHECK_EQ(bad, 0);
+                    CHECK(blended > 0);
+                }
+                CHECK(sbt_canaries_ok(&out) && sbt_canaries_ok(&outn));
+                if (ad.per_pixel) {
+                    /* the two-call path with this mask gives the same image */
+                    CHECK_EQ(sbl_stereo_blend_masked(&r.d, (sbl_eye_index)t, &r.eye[t], &r.eye[!t], mask, ms,
+                                                     view(&ref), view(&refn), 0, h, scratch,
+                                                     sbl_stereo_scratch_size(w, ch), NULL), SBL_OK);
+                    ok = 1;
+                    for (y = 0; y < h; ++y)
+                        ok &= memcmp(sbt_at(&ref, 0, y), sbt_at(&out, 0, y), sizeof(float) * w * ch) == 0 &&
+                              memcmp(sbt_at(&refn, 0, y), sbt_at(&outn, 0, y), sizeof(float) * w) == 0;
+                    CHECK(ok);
+                }
+                /* the blend changed what it ran on (not a copy of the own result) */
+                {
+                    int changed = 0;
+                    for (y = 0; y < h; ++y)
+                        for (x = 0; x < w; ++x)
+                            changed += mask[(size_t)y * ms + x] == SBL_INCONSISTENT &&
+                                       memcmp(sbt_at(&out, x, y), sbt_at(&col[t], x, y), sizeof(float) * ch) != 0;
+                    CHECK(changed > 0);
+                }
+                /* tiles: those holding a marked pixel, out of 4 x 3 */
+                want_tiles = 0;
+                for (y = 0; y < h; y += 16)
+                    for (x = 0; x < w; x += 16) {
+                        int yy, xx, any = 0;
+                        for (yy = y; yy < y + 16 && yy < h; ++yy)
+                            for (xx = x; xx < x + 16 && xx < w; ++xx)
+                                any |= mask[(size_t)yy * ms + xx] == SBL_INCONSISTENT;
+                        want_tiles += any;
+                    }
+                CHECK_EQ(tiles_all, 12);
+                CHECK_EQ(tiles, want_tiles);
+                if (pass != 2 && pass != 4) CHECK(tiles >= 1 && tiles <= 3);
+                /* row bands of random heights equal the whole call */
+                memset(mask2, 0x77, (size_t)ms * h);
+                memset(&cb, 0, sizeof cb);
+                for (y0 = 0; y0 < h;) {
+                    int y1 = y0 + 1 + (int)(sbt_uniform(&rng) * 20.0);
+                    sbl_consistency_counts cc;
+                    if (y1 > h) y1 = h;
+                    CHECK_EQ(sbl_stereo_blend_adaptive(&r.d, &ad, (sbl_eye_index)t, &r.eye[t], &r.eye[!t],
+                                                       view(&ref), view(&refn), mask2, ms, y0, y1,
+                                                       scratch, bytes, &cc, &tb, &tab), SBL_OK);
+                    cb.consistent += cc.consistent; cb.inconsistent += cc.inconsistent;
+                    cb.no_correspondence += cc.no_correspondence;
+                    y0 = y1;
+                }
+                CHECK(memcmp(mask, mask2, (size_t)ms * h) == 0);
+                CHECK(cb.consistent == c.consistent && cb.inconsistent == c.inconsistent &&
+                      cb.no_correspondence == c.no_correspondence);
+                ok = 1;
+                for (y = 0; y < h; ++y)
+                    ok &= memcmp(sbt_at(&ref, 0, y), sbt_at(&out, 0, y), sizeof(float) * w * ch) == 0 &&
+                          memcmp(sbt_at(&refn, 0, y), sbt_at(&outn, 0, y), sizeof(float) * w) == 0;
+                CHECK(ok);
+                {   /* an empty row range writes and counts nothing */
+                    sbl_consistency_counts ce;
+                    const size_t nb = sizeof(float) * (size_t)ref.stride * h;
+                    float *snap = (float *)malloc(nb);
+                    memset(mask2, 0x77, (size_t)ms * h);
+                    memcpy(snap, ref.mem, nb);
+                    CHECK_EQ(sbl_stereo_blend_adaptive(&r.d, &ad, (sbl_eye_index)t, &r.eye[t], &r.eye[!t],
+                                                       view(&ref), view(&refn), mask2, ms, 5, 5, scratch,
+                                                       bytes, &ce, &tb, &tab), SBL_OK);
+                    CHECK(ce.consistent == 0 && ce.inconsistent == 0 && ce.no_correspondence == 0);
+                    CHECK(tb == 0 && tab == 0 && mask2[5 * ms] == 0x77);
+                    CHECK(memcmp(ref.mem, snap, nb) == 0);
+                    free(snap);
+                }
+                /* without the optional outputs: the same image */
+                CHECK_EQ(sbl_stereo_blend_adaptive(&r.d, NULL, (sbl_eye_index)t, &r.eye[t], &r.eye[!t],
+                                                   view(&ref), view(&refn), NULL, 0, 0, h, scratch,
+                                                   bytes, NULL, NULL, NULL), SBL_OK);
+                if (pass == 0) {
+                    ok = 1;
+                    for (y = 0; y < h; ++y)
+                        ok &= memcmp(sbt_at(&ref, 0, y), sbt_at(&out, 0, y), sizeof(float) * w * ch) == 0;
+                    CHECK(ok);
+                }
+            }
+            if (ch == 3 && pass == 0) {
+                /* rejected calls write nothing */
+                sbl_result got;
+                size_t nf = (size_t)out.stride * h;
+                float *keep = (float *)malloc(nf * sizeof(float));
+                unsigned char *mkeep = (unsigned char *)malloc((size_t)ms * h);
+                sbl_adaptive_desc bad = ad;
+                for (y = 0; y < h; ++y)
+                    for (x = 0; x < w; ++x) for (k = 0; k < ch; ++k) sbt_at(&out, x, y)[k] = -7.0f;
+                memcpy(keep, out.mem, nf * sizeof(float));
+                memset(mask, 0x5a, (size_t)ms * h);
+                memcpy(mkeep, mask, (size_t)ms * h);
+#define REJECT_A(desc_, m_, stride_, y1_, scr_, nb_, outn_, code)                               \
+                do {                                                                            \
+                    got = sbl_stereo_blend_adaptive(&r.d, desc_, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], \
+                                                    view(&out), outn_, m_, stride_, 0, y1_, scr_,  \
+                                                    nb_, &c, NULL, NULL);                        \
+                    CHECK_EQ(got, code);                                                        \
+                    CHECK(memcmp(keep, out.mem, nf * sizeof(float)) == 0);                      \
+                    CHECK(memcmp(mkeep, mask, (size_t)ms * h) == 0);                            \
+                } while (0)
+                bad.threshold = -0.01f;
+                REJECT_A(&bad, mask, ms, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_PARAM);
+                bad.threshold = (float)(HUGE_VAL - HUGE_VAL);
+                REJECT_A(&bad, mask, ms, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_PARAM);
+                bad = ad;
+                bad.per_channel = 2;
+                REJECT_A(&bad, mask, ms, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_PARAM);
+                bad = ad;
+                bad.per_pixel = -1;
+                REJECT_A(&bad, mask, ms, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_PARAM);
+                bad = ad;
+                bad.nearest = 2;
+                REJECT_A(&bad, mask, ms, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_PARAM);
+                REJECT_A(&ad, mask, w - 1, h, scratch, bytes, view(&outn), SBL_ERROR_INVALID_STRIDE);
+                REJECT_A(&ad, mask, ms, h + 1, scratch, bytes, view(&outn), SBL_ERROR_INVALID_ROWS);
+                REJECT_A(&ad, mask, ms, h, scratch, bytes - 1, view(&outn), SBL_ERROR_SCRATCH_TOO_SMALL);
+                /* the blend's own scratch is not enough */
+                REJECT_A(&ad, mask, ms, h, scratch, sbl_stereo_scratch_size(w, ch), view(&outn),
+                         SBL_ERROR_SCRATCH_TOO_SMALL);
+                REJECT_A(&ad, mask, ms, h, NULL, bytes, view(&outn), SBL_ERROR_NULL_POINTER);
+                REJECT_A(&ad, mask, ms, h, scratch, bytes, view(&col[0]), SBL_ERROR_INVALID_CHANNELS);
+                REJECT_A(&ad, mask, ms, h, scratch, bytes, view(&r.dep[0]), SBL_ERROR_OVERLAP);
+                /* the mask over an output or an input */
+                memcpy(mkeep, mask, (size_t)ms * h);
+                got = sbl_stereo_blend_adaptive(&r.d, &ad, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], view(&out),
+                                                view(&outn), (unsigned char *)outn.mem, w, 0, h,
+                                                scratch, bytes, NULL, NULL, NULL);
+                CHECK_EQ(got, SBL_ERROR_OVERLAP);
+                CHECK(memcmp(keep, out.mem, nf * sizeof(float)) == 0);
+                got = sbl_stereo_blend_adaptive(&r.d, &ad, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], view(&out),
+                                                view(&outn), (unsigned char *)r.dep[1].mem, w, 0, h,
+                                                scratch, bytes, NULL, NULL, NULL);
+                CHECK_EQ(got, SBL_ERROR_OVERLAP);
+                CHECK(memcmp(keep, out.mem, nf * sizeof(float)) == 0);
+                CHECK(isfinite(*sbt_at(&r.dep[1], 0, 0)));
+                CHECK_EQ(sbl_stereo_adaptive_scratch_size(0, 3), 0);
+                CHECK_EQ(sbl_stereo_adaptive_scratch_size(w, 5), 0);
+                CHECK(sbl_stereo_adaptive_scratch_size(w, 3) > sbl_stereo_scratch_size(w, 3));
+#undef REJECT_A
+                free(keep); free(mkeep);
+            }
+            for (e = 0; e < 2; ++e) { free(col[e].mem); free(len[e].mem); }
+            free(full.mem); free(fulln.mem); free(out.mem); free(outn.mem); free(ref.mem);
+            free(refn.mem); free(rp.mem); free(rpv.mem);
+            free(mask); free(mask2); free(scratch);
+            rig_free(&r);
+        }
+}
+
 int main(void)
 {
     test_hand_case();
@@ -510,5 +838,6 @@ int main(void)
     test_bands();
     test_errors();
     test_blend_masked();
+    test_blend_adaptive();
     return sbt_finish("test_adaptive");
 }
