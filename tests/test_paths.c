@@ -59,7 +59,7 @@ static void test_spans(void)
     for (it = 0; it < 400; ++it) {
         sbl__kernel k;
         sbl_image im, imn;
-        int ch = 1 + it % 4, stereo = (it >> 2) & 1, x, y, c, t, o, w = it % 3 == 0 ? 17 : SW;
+        int ch = 1 + it % 4, stereo = (it >> 2) & 1, x, y, c, t, o, w = (it / SBL_ESTIMATOR_COUNT) % 3 == 0 ? 17 : SW;
         for (y = 0; y < SH; ++y)
             for (x = 0; x < SW; ++x) {
                 for (c = 0; c < 4; ++c) {
