@@ -363,8 +363,13 @@ SBLDEF sbl_result sbl_moments_3x3(sbl_image src, sbl_image mean, sbl_image varia
 /* ======================================================================== */
 
 typedef enum sbl_estimator {
-    SBL_ESTIMATOR_HISTORY_AWARE = 0, /* default: var_X from tracked N, bias from paired
-                                        3x3 differences beyond their noise level       */
+    SBL_ESTIMATOR_POOLED = 0,        /* default: robust (below), plus bias evidence pooled
+                                        along the row (empirical Bayes over five 3x3
+                                        blocks, 15 px): catches small changes that cover
+                                        a region; see docs/ESTIMATORS.md                 */
+    SBL_ESTIMATOR_HISTORY_AWARE,     /* var_X from tracked N, bias from paired 3x3
+                                        differences beyond their noise level (the
+                                        default before the pooled estimator)            */
     SBL_ESTIMATOR_PAPER,             /* Philippi Eq. 4 with Eq. 10/11: a = d^2/(d^2+s^2) */
     SBL_ESTIMATOR_PROGRESSIVE,       /* a = N_Y / (N_X + N_Y): 1/(N+1) for temporal     */
     SBL_ESTIMATOR_CONSTANT,          /* a = constant (alpha 0.1 / beta 0.5 by default)  */
@@ -409,9 +414,10 @@ typedef struct sbl_temporal_desc {
     float alpha_min;        /* lower bound on alpha after estimation; 0 -> none        */
     float max_history;      /* cap on N; 0 -> 64                                        */
     float clip_gamma;       /* SBL_RECTIFY_VARIANCE_CLIP box half-width in sigmas; 0 -> 1.25 */
-    float bias_threshold;   /* history-aware: bias counts only beyond this many standard
-                               errors of the mean paired difference (a paired t-test);
-                               0 -> 3                                                    */
+    float bias_threshold;   /* history-aware / robust: bias counts (fully / with half
+                               its posterior) beyond this many standard errors of the
+                               mean paired difference; pooled: the local test at 4/3 of
+                               it; 0 -> 3                                               */
     sbl_reproject_desc reproject;
     void *alloc_context;    /* passed to SBL_MALLOC / SBL_FREE in *_frame calls        */
 } sbl_temporal_desc;
@@ -485,7 +491,8 @@ typedef struct sbl_stereo_desc {
     float disparity_offset; /* parallel rig: cx_right - cx_left in pixels (Middlebury
                                doffs; asymmetric per-eye frusta); 0: same principal point */
     sbl_pinhole_rig pinhole;/* SBL_RIG_PINHOLE                                           */
-    sbl_estimator estimator;/* HISTORY_AWARE (default), PAPER, PROGRESSIVE, CONSTANT    */
+    sbl_estimator estimator;/* POOLED (default), HISTORY_AWARE, PAPER, PROGRESSIVE,
+                               CONSTANT, ROBUST                                          */
     sbl_rectify rectify;
     sbl_weight_mode weight_mode;
     float constant_beta;    /* SBL_ESTIMATOR_CONSTANT; 0 -> 0.5                         */
@@ -2030,6 +2037,8 @@ typedef struct sbl__moments {
     double mean8[4], var8[4];   /* mean / population variance of Y without the centre
                                    sample (firefly limit); 0 without a centre         */
     int count, pair_count;
+    double pool_r;              /* pooled estimator: prior bias-to-noise ratio tau^2 / se^2
+                                   from the blocks along the row (sbl__row_pool); 0 if none */
 } sbl__moments;
 
 /* vals[i][c]: the n finite neighbours (centre included, at index `centre`, or -1);
@@ -2055,6 +2064,7 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
     }
     m->count = n;
     m->pair_count = 0;
+    m->pool_r = 0.0;
     for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
     for (k = 0; k < ch; ++k) {
         double s = 0.0, v = 0.0, pd = 0.0;
@@ -2169,6 +2179,23 @@ typedef struct sbl__weight_params {
 #define SBL_FIREFLY_SIGMAS 6.0
 #endif
 
+/* Pooled estimator (docs/ESTIMATORS.md section 3): a block's squared mean paired
+   difference counts as bias energy only beyond SBL_POOLED_BLOCK_SE2 of its squared
+   standard errors, and the pixel's own 3x3 test asks for SBL_POOLED_LOCAL_SCALE times
+   bias_threshold standard errors. Blocks: 3x3 windows centred SBL__POOL_STEP apart on
+   the pixel's row, SBL__POOL_BLOCKS each side. */
+#ifndef SBL_POOLED_BLOCK_SE2
+#define SBL_POOLED_BLOCK_SE2 3.5
+#endif
+#ifndef SBL_POOLED_LOCAL_SCALE
+#define SBL_POOLED_LOCAL_SCALE (4.0 / 3.0)
+#endif
+#define SBL__POOL_STEP 3
+#define SBL__POOL_RATIO_CAP 1e6
+#define SBL__POOL_BLOCKS 2
+/* columns a pixel's pooled statistic reads beyond it: the farthest block centre + 1 */
+#define SBL__POOL_REACH (SBL__POOL_STEP * SBL__POOL_BLOCKS + 1)
+
 /* Posterior probability that a window changed, from the squared mean paired difference
    pd2 and its squared standard error se2 (robust estimator): 1 / (1 + rho^4.5), rho =
    (1 + k2/8) / (1 + t^2/8), t^2 = pd2 / se2. 0.5 at t^2 = k2, about 0.03 at t = 0 and
@@ -2193,7 +2220,8 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
    variance of the paired differences x*_i - y_i. */
 static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, double pd2,
-                         double pv, int count, int pair_count, float n_x, float n_y)
+                         double pv, int count, int pair_count, float n_x, float n_y,
+                         double pool_r)
 {
     double a;
     double progressive = SBL__CAST(double, n_y) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
@@ -2208,6 +2236,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
     case SBL_ESTIMATOR_CONSTANT:
         a = SBL__CAST(double, p->constant);
         break;
+    case SBL_ESTIMATOR_POOLED:
     case SBL_ESTIMATOR_ROBUST: {
         /* As history-aware, but the bias enters with the posterior probability that
            the window changed: t = mean paired difference / its standard error is
@@ -2215,8 +2244,12 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
            alternative the odds of change grow as (1 + t^2/8)^4.5, set to 1 at t^2 = k^2
            (bias_threshold). Soft, and polynomial rather than exponential in t^2, so
            heavy-tailed noise cannot make a near-certain change out of one sample. */
-        double k2 = SBL__CAST(double, p->bias_threshold) * SBL__CAST(double, p->bias_threshold);
+        double k = SBL__CAST(double, p->bias_threshold), k2;
         double var_x, var_y, se2, bias2 = 0.0;
+        /* pooled: the local test only has to catch what the blocks cannot (a change
+           confined to a few pixels), so it asks for more evidence */
+        if (p->estimator == SBL_ESTIMATOR_POOLED) k *= SBL_POOLED_LOCAL_SCALE;
+        k2 = k * k;
         if (pair_count > 1) {
             var_y = pv * SBL__CAST(double, n_x) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
             var_x = pv - var_y;
@@ -2230,6 +2263,13 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             bias2 = sbl__change_posterior(pd2, se2, k2,
                                           p->temporal && SBL_HISTORY_PRIOR ? 0.5 * (SBL__CAST(double, n_x) + 1.0)
                                                                           : 1.0) * pd2;
+        if (pair_count > 1 && pool_r > 0.0) {
+            /* empirical Bayes: with B ~ N(0, tau^2) and pd = B + noise(se2), the
+               posterior mean of B^2 is sh^2 pd2 + sh se2, sh = tau^2 / (tau^2 + se2) =
+               r / (1 + r), r = tau^2 / se2 pooled from the blocks */
+            double sh = pool_r / (1.0 + pool_r), b_eb = sh * sh * pd2 + sh * se2;
+            if (b_eb > bias2) bias2 = b_eb;
+        }
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
         break;
@@ -2359,7 +2399,8 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     float a_mean = 0.0f;
     int k;
     float ylim[4];
-    if (p->estimator == SBL_ESTIMATOR_ROBUST && m->count > 1) {
+    if ((p->estimator == SBL_ESTIMATOR_ROBUST || p->estimator == SBL_ESTIMATOR_POOLED) &&
+        m->count > 1) {
         sbl__firefly_limit(m, y, xs, ch, ylim);
         y = ylim;
     }
@@ -2368,7 +2409,8 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
         for (k = 0; k < ch; ++k) {
             double dev = SBL__CAST(double, xs[k]) - m->mean[k];
             a[k] = sbl__weight(p, dev * dev, m->var[k], m->pair_diff[k] * m->pair_diff[k],
-                               m->pair_var[k], m->count, m->pair_count, n_x, n_y);
+                               m->pair_var[k], m->count, m->pair_count, n_x, n_y,
+                               m->pool_r);
             a_mean += a[k];
         }
         a_mean /= SBL__CAST(float, ch);
@@ -2381,7 +2423,7 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
             pd2 += m->pair_diff[k] * m->pair_diff[k];
             pv += m->pair_var[k];
         }
-        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y);
+        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y, m->pool_r);
         for (k = 0; k < ch; ++k) a[k] = a_mean;
     }
     for (k = 0; k < ch; ++k) {
@@ -2677,6 +2719,11 @@ typedef struct sbl__kernel {
        block of SBL__COL_PLANES planes (below), and the valid pairs per column */
     float *col[4];
     float *col_n;
+    /* pooled estimator (sbl__row_pool): per column of row pool_row, each 3x3 block's
+       bias energy, and the prior variance of the bias pooled from the blocks */
+    double *pool_m2, *pool_se2; /* per column: a block's sum_c mean_c^2, sum_c se_c^2 (< 0: none) */
+    float *pool_r;
+    int pool_row;            /* row pool_r holds (-1: none: the ratio reads as 0)  */
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -2706,7 +2753,9 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     size_t pf;
     if (width <= 0 || channels < 1 || channels > 4 || width > INT_MAX / 8) return 0;
     pf = sbl__plane_floats(width);
-    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2) * pf * sizeof(float) + 5 * pf + 64 +
+    /* + 5 planes: the pooled estimator's per-column block statistics (two double
+       planes) and its ratio */
+    return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2 + 5) * pf * sizeof(float) + 5 * pf + 64 +
            SBL__CAST(size_t, SBL__COL_PLANES * channels + 1) * SBL__CHUNK_COLS * sizeof(float);
 }
 
@@ -2732,6 +2781,10 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     for (c = 0; c < k->ch; ++c) { k->stage[c] = p; p += pf; }
     k->stage_n = p; p += pf;
     k->stage_a = p; p += pf;
+    k->pool_m2 = SBL__PCAST(double *, p); p += 2 * pf; /* 64-byte aligned: fit for doubles */
+    k->pool_se2 = SBL__PCAST(double *, p); p += 2 * pf;
+    k->pool_r = p; p += pf;
+    k->pool_row = -1;
     for (c = 0; c < k->ch; ++c) { k->col[c] = p; p += SBL__COL_PLANES * SBL__CHUNK_COLS; }
     k->col_n = p; p += SBL__CHUNK_COLS;
     {   /* byte planes last (pf is a multiple of 16: each stays 16-byte aligned) */
@@ -3787,6 +3840,97 @@ static float sbl__own_n(const sbl__kernel *k, int x, int y)
     return (sbl__finite(n) && n > 0.0f) ? n : 1.0f;
 }
 
+/* One column of the blocks: over rows R[0..2] at column x, the count of pairs (valid
+   x*, finite values) and per channel the sums of d = x* - y and of d^2: out[0],
+   out[1 + c], out[5 + c]. Zero outside the image. */
+static void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                             double *out)
+{
+    int j, c;
+    for (c = 0; c < 9; ++c) out[c] = 0.0;
+    if (x < 0 || x >= k->w) return;
+    for (j = 0; j < 3; ++j) {
+        double d[4];
+        int ok = 1;
+        if (!R[j] || !(R[j]->v[x] > 0.0f)) continue;
+        for (c = 0; c < k->ch; ++c) {
+            ok &= sbl__finite(R[j]->y[c][x]) & sbl__finite(R[j]->x[c][x]);
+            d[c] = SBL__CAST(double, R[j]->x[c][x]) - SBL__CAST(double, R[j]->y[c][x]);
+        }
+        if (!ok) continue;
+        out[0] += 1.0;
+        for (c = 0; c < k->ch; ++c) { out[1 + c] += d[c]; out[5 + c] += d[c] * d[c]; }
+    }
+}
+
+/* Pooled estimator, once per row before its pixels: the prior bias-to-noise ratio
+   r = tau^2 / se^2 at each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md
+   section 3). Each 3x3 block of paired differences d = x* - y (pixels with a valid x*
+   and finite values, at least 3) gives its squared mean m2 = sum_c mean_c^2 and the
+   squared standard error of that mean se2 = sum_c var_c / n (var_c the sample
+   variance); over the blocks centred at x + SBL__POOL_STEP b, |b| <= SBL__POOL_BLOCKS,
+   r = max(0, sum m2 / sum se2 - SBL_POOLED_BLOCK_SE2): the blocks' bias energy beyond
+   the threshold, in units of the noise of their means. A ratio: independent of the
+   scale of the values (HDR). Reads the ring's columns [xa - SBL__POOL_REACH,
+   xb + SBL__POOL_REACH) (clamped to the image). Scalar, in double, in a fixed order:
+   the same value whatever span or vector width computes the row. */
+static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
+{
+    const int ch = k->ch, w = k->w;
+    int za = xa - SBL__POOL_STEP * SBL__POOL_BLOCKS, zb = xb + SBL__POOL_STEP * SBL__POOL_BLOCKS;
+    int x, c, i;
+    double col[3][9]; /* columns x - 1, x, x + 1 */
+    if (za < 0) za = 0;
+    if (zb > w) zb = w;
+    if (za < zb) {
+        sbl__pool_column(k, R, za - 1, col[0]);
+        sbl__pool_column(k, R, za, col[1]);
+    }
+    for (x = za; x < zb; ++x) {
+        double m2 = 0.0, se2 = 0.0, n;
+        sbl__pool_column(k, R, x + 1, col[2]);
+        /* the block: three column sums, always added in this order (the same value
+           whatever column the row's span starts at) */
+        n = col[0][0] + col[1][0] + col[2][0];
+        k->pool_m2[x] = 0.0;
+        k->pool_se2[x] = -1.0; /* no block here */
+        if (n >= 3.0) {
+            for (c = 0; c < ch; ++c) {
+                double s1 = col[0][1 + c] + col[1][1 + c] + col[2][1 + c];
+                double s2 = col[0][5 + c] + col[1][5 + c] + col[2][5 + c];
+                double mu = s1 / n, v = (s2 - n * mu * mu) / (n - 1.0);
+                m2 += mu * mu;
+                se2 += (v > 0.0 ? v : 0.0) / n;
+            }
+            k->pool_m2[x] = m2;
+            k->pool_se2[x] = se2;
+        }
+        for (i = 0; i < 9; ++i) { col[0][i] = col[1][i]; col[1][i] = col[2][i]; }
+    }
+    for (x = xa; x < xb; ++x) {
+        double sm2 = 0.0, sse2 = 0.0, r;
+        int b;
+        for (b = -SBL__POOL_BLOCKS; b <= SBL__POOL_BLOCKS; ++b) {
+            int cx = x + SBL__POOL_STEP * b;
+            if (cx < 0 || cx >= w || k->pool_se2[cx] < 0.0) continue;
+            sm2 += k->pool_m2[cx];
+            sse2 += k->pool_se2[cx];
+        }
+        /* pooled squared mean over pooled squared standard error, less the threshold;
+           no noise at all and a mean: certain change (capped) */
+        r = sse2 > 0.0 ? sm2 / sse2 - SBL_POOLED_BLOCK_SE2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
+        if (r > SBL__POOL_RATIO_CAP) r = SBL__POOL_RATIO_CAP;
+        k->pool_r[x] = r > 0.0 ? SBL__CAST(float, r) : 0.0f;
+    }
+    k->pool_row = R[1]->row;
+}
+
+/* The pooled prior bias-to-noise ratio at pixel x of row y (0 if not computed). */
+static float sbl__pool_ratio(const sbl__kernel *k, int x, int y)
+{
+    return (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y) ? k->pool_r[x] : 0.0f;
+}
+
 /* Reference path for one pixel: borders, non-finite and extreme values. */
 static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R, int x)
 {
@@ -3833,6 +3977,7 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
         }
         sbl__moments_core(&m, SBL__PCAST(const float(*)[4], vals), SBL__PCAST(const float(*)[4], xvals), xvalid, n, ch,
                           centre);
+        m.pool_r = SBL__CAST(double, sbl__pool_ratio(k, x, y));
         if (n_x > k->n_cap) n_x = k->n_cap;
         n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
     }
@@ -3878,6 +4023,7 @@ typedef struct sbl__lane_stats {
     sbl__v m8[4], v8[4]; /* mean / population variance of Y without the centre (robust) */
     sbl__v inv_cnt; /* 1 / max(pairs, 1)                                            */
     sbl__m has_pairs, two_pairs;
+    sbl__v pool_r;  /* pooled estimator: prior bias-to-noise ratio (sbl__row_pool)     */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one
@@ -4028,6 +4174,14 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
 }
 #undef SBL__SIDE
 
+/* Pooled estimator: the prior variance of the bias of pixels [x, x + VW) of row y, as
+   sbl__pool_ratio (computed for the row by sbl__row_pool). */
+SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_stats *st)
+{
+    st->pool_r = (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y)
+                   ? sbl__load(k->pool_r + x) : sbl__set1(0.0f);
+}
+
 /* Firefly limit of the own sample, as sbl__firefly_limit. */
 SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
 {
@@ -4056,7 +4210,8 @@ SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
     const sbl__v gamma = sbl__set1(k->wp.gamma);
     int c, ch = k->ch;
     for (c = 0; c < ch; ++c) st->yb[c] = st->yc[c];
-    if (k->wp.estimator == SBL_ESTIMATOR_ROBUST) sbl__lanes_firefly(k, st);
+    if (k->wp.estimator == SBL_ESTIMATOR_ROBUST || k->wp.estimator == SBL_ESTIMATOR_POOLED)
+        sbl__lanes_firefly(k, st);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
     } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
@@ -4091,9 +4246,12 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         w = prog;
     } else if (p->estimator == SBL_ESTIMATOR_CONSTANT) {
         w = sbl__set1(p->constant);
-    } else if (p->estimator == SBL_ESTIMATOR_ROBUST) {
+    } else if (p->estimator == SBL_ESTIMATOR_ROBUST || p->estimator == SBL_ESTIMATOR_POOLED) {
         /* as sbl__weight: the bias enters with its posterior (sbl__change_posterior) */
-        const sbl__v k2e = sbl__set1(1.0f + p->bias_threshold * p->bias_threshold * 0.125f);
+        const float kb = p->estimator == SBL_ESTIMATOR_POOLED
+                             ? SBL__CAST(float, SBL__CAST(double, p->bias_threshold) * SBL_POOLED_LOCAL_SCALE)
+                             : p->bias_threshold;
+        const sbl__v k2e = sbl__set1(SBL__CAST(float, 1.0 + SBL__CAST(double, kb) * SBL__CAST(double, kb) * 0.125));
         sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
         sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
         sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
@@ -4108,7 +4266,15 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         sbl__v odds = p->temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
         sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
         sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
-        sbl__v num = sbl__add(b2, vx), den = sbl__add(num, vy);
+        sbl__v num, den;
+        if (p->estimator == SBL_ESTIMATOR_POOLED) {
+            /* empirical Bayes, as sbl__weight: sh^2 pd2 + sh se2, sh = r / (1 + r) */
+            sbl__v sh = sbl__div(st->pool_r, sbl__add(one, st->pool_r));
+            sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
+            b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
+        }
+        num = sbl__add(b2, vx);
+        den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
@@ -4206,6 +4372,7 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
             n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
             n_xc = sbl__max(sbl__min(n_x, cap), tiny);
             sbl__lanes_moments(k, &W, x, ca, &st);
+            sbl__lanes_pool(k, x, y, &st);
             sbl__lanes_rectify(k, &st);
             if (per_channel) {
                 for (c = 0; c < ch; ++c) {
@@ -4323,9 +4490,13 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
     }
     {   /* ring columns: the lane columns and the span, each with its neighbours */
         int ra = (la < x0 ? la : x0) - 1, rb = (lb > x1 ? lb : x1) + 1;
+        /* pooled estimator: sbl__row_pool computes [pa, pb) and reads further */
+        const int pool = k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->fill;
+        const int pa = lanes_w && la < x0 ? la : x0, pb = lanes_w && lb > x1 ? lb : x1;
+        if (!lanes_w) { ra = x0 - 1; rb = x1 + 1; }
+        if (pool) { ra = pa - SBL__POOL_REACH; rb = pb + SBL__POOL_REACH; }
         if (ra < 0) ra = 0;
         if (rb > k->w) rb = k->w;
-        if (!lanes_w) { ra = x0 > 0 ? x0 - 1 : 0; rb = x1 < k->w ? x1 + 1 : k->w; }
         for (j = 0; j < 3; ++j) {
             int ry = y0 - 1 + j;
             k->ring[j].row = -1;
@@ -4336,6 +4507,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
             const unsigned char *win = NULL;
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
+            if (pool) sbl__row_pool(k, R, pa, pb);
             if (lanes_ok) {
                 if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
                     /* per pixel: 1 if any of the nine values of its window is unsafe

@@ -67,6 +67,11 @@ typedef struct sbr_method {
     sbr_stereo_mode stereo;
     sbl_stereo_desc stereo_desc;   /* rig / focal / baseline filled in by the runner */
     float weber_threshold;         /* SBR_STEREO_MASKED: 0 -> SBL_WEBER_THRESHOLD */
+    /* prototypes (not in the standard table): if set, the temporal stage is the library's
+       reprojection, then this blend (y = input, xs / nx = x* and its N, 0 = invalid) */
+    void (*temporal_blend)(void *ctx, int w, int h, const float *y, const float *xs,
+                           const float *nx, float cap, float *out, float *nout);
+    void *temporal_blend_ctx;
 } sbr_method;
 
 typedef struct sbr_result {
@@ -320,6 +325,7 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n++] = sbr_method_make("history-aware-per-ch", 1, HA, RN, WP, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_default("default", SBR_STEREO_NONE);
     all[n++] = sbr_method_make("robust", 1, SBL_ESTIMATOR_ROBUST, RN, WS, SBR_STEREO_NONE, HA);
+    all[n++] = sbr_method_make("pooled", 1, SBL_ESTIMATOR_POOLED, RN, WS, SBR_STEREO_NONE, HA);
     all[n++] = sbr_method_oracle("oracle", 1, SBR_STEREO_NONE, SBR_ORACLE_TEMPORAL);
     /* stereo alone (on the 1-spp input) */
     all[n++] = sbr_method_make("stereo-fill", 0, HA, RN, WS, SBR_STEREO_FILL, HA);
@@ -327,6 +333,7 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n++] = sbr_method_make("stereo-paper", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, P);
     all[n++] = sbr_method_make("stereo-history-aware", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, HA);
     all[n++] = sbr_method_make("stereo-robust", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_ROBUST);
+    all[n++] = sbr_method_make("stereo-pooled", 0, HA, RN, WS, SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_POOLED);
     all[n++] = sbr_method_oracle("stereo-oracle", 0, SBR_STEREO_ADAPTIVE, SBR_ORACLE_STEREO);
     /* stereo after the temporal filter (history-aware temporal) */
     all[n++] = sbr_method_make("ha+stereo-fill", 1, HA, RN, WS, SBR_STEREO_FILL, HA);
@@ -342,6 +349,10 @@ int sbr_standard_methods(sbr_method *m, int max)
                                SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_ROBUST);
     all[n++] = sbr_method_make("robust+stereo-ha", 1, SBL_ESTIMATOR_ROBUST, RN, WS,
                                SBR_STEREO_ADAPTIVE, HA);
+    all[n++] = sbr_method_make("pooled+stereo-ha", 1, SBL_ESTIMATOR_POOLED, RN, WS,
+                               SBR_STEREO_ADAPTIVE, HA);
+    all[n++] = sbr_method_make("pooled+stereo-pooled", 1, SBL_ESTIMATOR_POOLED, RN, WS,
+                               SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_POOLED);
     /* the library's default combined pipeline, and the oracle of the same pipeline */
     all[n++] = sbr_method_default("default-stereo", SBR_STEREO_ADAPTIVE);
     all[n++] = sbr_method_oracle("oracle+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,
@@ -565,7 +576,15 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
                 out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
                 if (alpha[e]) out.alpha = sbl_image_make(alpha[e], w, h, 1);
-                if (m->oracle & SBR_ORACLE_TEMPORAL) {
+                if (m->temporal_blend) {
+                    sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
+                    rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
+                                                sbl_image_make(ox, w, h, 3),
+                                                sbl_image_make(onx, w, h, 1), 0, h);
+                    if (rc == 0)
+                        m->temporal_blend(m->temporal_blend_ctx, w, h, input[e], ox, onx,
+                                          td.max_history, hist[e][!ping[e]], len[e][!ping[e]]);
+                } else if (m->oracle & SBR_ORACLE_TEMPORAL) {
                     sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
                     rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
                                                 sbl_image_make(ox, w, h, 3),

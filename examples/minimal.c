@@ -62,7 +62,7 @@ int main(void)
     void *scratch = malloc(sbl_temporal_scratch_size(W, 3));
     size_t scratch_bytes = sbl_temporal_scratch_size(W, 3);
     int e, f, b, ping = 0;
-    sbl_temporal_desc td = {0}; /* zeros: the defaults (history-aware estimator) */
+    sbl_temporal_desc td = {0}; /* zeros: the defaults (pooled estimator) */
     sbl_stereo_desc sd = {0};
     sd.focal_px = FOCAL;
     sd.baseline = BASELINE;

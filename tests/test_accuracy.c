@@ -115,6 +115,7 @@ static firefly_result firefly_run(sbl_estimator e)
 static void test_firefly(void)
 {
     firefly_result rb = firefly_run(SBL_ESTIMATOR_ROBUST), ha = firefly_run(SBL_ESTIMATOR_HISTORY_AWARE);
+    firefly_result po = firefly_run(SBL_ESTIMATOR_POOLED);
     sbl_temporal_desc def;
     memset(&def, 0, sizeof def);
     printf("  firefly (500 in a flat 0.5 +- 0.1 region, after 40 frames): robust: error %.4f -> %.4f -> "
@@ -131,6 +132,15 @@ static void test_firefly(void)
     CHECK(rb.n_nb_min > 0.5 * rb.n_before);
     /* decays: 10 frames later the error is back near the converged level */
     CHECK(rb.err_decay < 0.05);
+    /* the pooled estimator has the same limit; a firefly must not pass for a change of
+       the blocks around it either */
+    printf("  firefly, pooled: error %.4f -> %.4f -> %.4f 10 frames later, N %.1f -> %.1f "
+           "(neighbours >= %.1f)\n", po.err_before, po.err_after, po.err_decay, po.n_before,
+           po.n_after, po.n_nb_min);
+    CHECK(po.err_after < 0.1);
+    CHECK(po.n_after > 0.5 * po.n_before);
+    CHECK(po.n_nb_min > 0.5 * po.n_before);
+    CHECK(po.err_decay < 0.05);
 }
 
 /* ---- static convergence and a step change (as test_core's, for robust) ----------- */
@@ -186,9 +196,18 @@ static void convergence_run(sbl_estimator e, double *rmse, double *rmse_mean, do
 
 static void test_convergence_and_step(void)
 {
-    double r_rb, m_rb, s_rb, r_ha, m_ha, s_ha;
+    double r_rb, m_rb, s_rb, r_ha, m_ha, s_ha, r_po, m_po, s_po;
     convergence_run(SBL_ESTIMATOR_ROBUST, &r_rb, &m_rb, &s_rb);
     convergence_run(SBL_ESTIMATOR_HISTORY_AWARE, &r_ha, &m_ha, &s_ha);
+    convergence_run(SBL_ESTIMATOR_POOLED, &r_po, &m_po, &s_po);
+    printf("  static, 32 frames, noise 0.2: RMSE pooled %.5f; step +1, 8 frames after: pooled %.4f\n",
+           r_po, s_po);
+    /* the pooled estimator (the default): as quiet as the history-aware one on a static
+       scene, and as fast after a step */
+    CHECK(r_po <= 1.20 * m_po);
+    CHECK(r_po <= 1.03 * r_ha);
+    CHECK(s_po < 0.1);
+    CHECK(s_po <= s_ha * 1.05);
     printf("  static, 32 frames, noise 0.2: RMSE robust %.5f, history-aware %.5f, mean of 32 %.5f; "
            "step +1, 8 frames after: robust %.4f, history-aware %.4f\n", r_rb, r_ha, m_rb, s_rb, s_ha);
     /* converges about like the mean of the samples (1/(N+1)): within 20 % of its RMSE
@@ -258,8 +277,9 @@ static void test_moving_light(void)
     static const double cases[4][3] = {{0.5, 8.0, 0.1}, {2.0, 8.0, 0.1}, {0.5, 16.0, 0.3}, {1.0, 24.0, 0.5}};
     int k;
     for (k = 0; k < 4; ++k) {
-        double r_rb, r_ha, r_prog;
+        double r_rb, r_ha, r_prog, r_po;
         double lag_rb = moving_light_lag(SBL_ESTIMATOR_ROBUST, cases[k][0], cases[k][1], cases[k][2], &r_rb);
+        double lag_po = moving_light_lag(SBL_ESTIMATOR_POOLED, cases[k][0], cases[k][1], cases[k][2], &r_po);
         double lag_ha = moving_light_lag(SBL_ESTIMATOR_HISTORY_AWARE, cases[k][0], cases[k][1], cases[k][2], &r_ha);
         double lag_prog = moving_light_lag(SBL_ESTIMATOR_PROGRESSIVE, cases[k][0], cases[k][1], cases[k][2], &r_prog);
         printf("  moving light edge (%.1f px/frame, ramp %.0f px, noise %.1f): lag in frames robust %.2f "
@@ -270,6 +290,10 @@ static void test_moving_light(void)
         CHECK(lag_rb <= 4.5);
         CHECK(lag_rb <= lag_ha + 0.25);
         CHECK(r_rb <= r_ha * 1.02);
+        printf("    pooled: lag %.2f frames (RMSE %.4f)\n", lag_po, r_po);
+        CHECK(lag_po <= 4.5);
+        CHECK(lag_po <= lag_ha + 0.25);
+        CHECK(r_po <= r_ha * 1.02);
     }
 }
 
@@ -356,12 +380,13 @@ static void stereo_measure(sbl_estimator e, int flat, double sigma, unsigned lon
 
 static void test_stereo_edge_and_flat(void)
 {
-    static const sbl_estimator est[4] = {SBL_ESTIMATOR_ROBUST, SBL_ESTIMATOR_HISTORY_AWARE,
-                                         SBL_ESTIMATOR_PAPER, SBL_ESTIMATOR_CONSTANT};
-    static const char *const names[4] = {"robust", "history-aware", "paper", "beta 0.5"};
-    double edge_in[4], edge_out[4], all_in[4], all_out[4], flat_out[4], flat_in[4], dummy1, dummy2;
+    static const sbl_estimator est[5] = {SBL_ESTIMATOR_POOLED, SBL_ESTIMATOR_HISTORY_AWARE,
+                                         SBL_ESTIMATOR_PAPER, SBL_ESTIMATOR_CONSTANT,
+                                         SBL_ESTIMATOR_ROBUST};
+    static const char *const names[5] = {"pooled", "history-aware", "paper", "beta 0.5", "robust"};
+    double edge_in[5], edge_out[5], all_in[5], all_out[5], flat_out[5], flat_in[5], dummy1, dummy2;
     int k, s;
-    for (k = 0; k < 4; ++k) {
+    for (k = 0; k < 5; ++k) {
         edge_in[k] = edge_out[k] = all_in[k] = all_out[k] = flat_out[k] = flat_in[k] = 0;
         for (s = 0; s < 8; ++s) {
             double ei, eo, ai, ao, fi, fo;

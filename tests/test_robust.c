@@ -994,6 +994,9 @@ static void test_hdr_scale_invariance(void)
                             if (split && (x == w / 2 - 1 || x == w / 2 || x == w / 2 - 2 ||
                                           x == w / 2 + 1))
                                 continue;
+                            /* the pooled estimator reads blocks up to 7 columns away */
+                            if (split && e == SBL_ESTIMATOR_POOLED && x >= w / 2 - 9 && x <= w / 2 + 8)
+                                continue;
                             ea = fabs(*px(&s.outa, x, y) - *px(&ref.outa, x, y));
                             en = fabs(*px(&s.outn, x, y) - *px(&ref.outn, x, y)) / *px(&ref.outn, x, y);
                             if (ea > worst_a) worst_a = ea;
@@ -1225,16 +1228,17 @@ static double ref_reproject(const refin *in, const refp *p, int x, int y, double
 }
 
 static double ref_weight(const refp *p, double dev2, double s2, double pd2, double pv,
-                         int count, int pairs, double nx, double ny)
+                         int count, int pairs, double nx, double ny, double pool_r)
 {
     double prog = ny / (nx + ny), a;
     if (p->est == SBL_ESTIMATOR_PAPER) a = dev2 + s2 > 0 ? dev2 / (dev2 + s2) : prog;
     else if (p->est == SBL_ESTIMATOR_PROGRESSIVE) a = prog;
     else if (p->est == SBL_ESTIMATOR_CONSTANT) a = p->constant;
-    else if (p->est == SBL_ESTIMATOR_ROBUST) {
+    else if (p->est == SBL_ESTIMATOR_ROBUST || p->est == SBL_ESTIMATOR_POOLED) {
         /* as below, the bias weighted by the posterior of change: t^2 = pd2 / se2,
            rho = (1 + k^2/8) / (1 + t^2/8), posterior 1 / (1 + odds rho^4.5) */
-        double k2 = p->bias_thr * p->bias_thr, vy, vx, se2, b2 = 0;
+        double kk = p->est == SBL_ESTIMATOR_POOLED ? p->bias_thr * 4.0 / 3.0 : p->bias_thr;
+        double k2 = kk * kk, vy, vx, se2, b2 = 0;
         if (pairs > 1) {
             vy = pv * nx / (nx + ny);
             vx = pv - vy;
@@ -1250,6 +1254,12 @@ static double ref_weight(const refp *p, double dev2, double s2, double pd2, doub
             /* prior odds against change (N + 1) / 2 (the temporal filter: rule of
                succession on the history length) */
             b2 = pd2 / (1 + 0.5 * (nx + 1) * pow(rho, 4.5));
+        }
+        if (p->est == SBL_ESTIMATOR_POOLED && pairs > 1 && pool_r > 0) {
+            /* empirical Bayes with the prior bias-to-noise ratio r pooled along the row:
+               E[B^2 | pd] = sh^2 pd2 + sh se2, sh = r / (1 + r) */
+            double sh = pool_r / (1 + pool_r);
+            if (sh * sh * pd2 + sh * se2 > b2) b2 = sh * sh * pd2 + sh * se2;
         }
         a = b2 + vx + vy > 0 ? (b2 + vx) / (b2 + vx + vy) : prog;
     } else {
@@ -1287,12 +1297,52 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
     const int w = in->w, h = in->h, c = in->c;
     double *xs = (double *)malloc(sizeof(double) * (size_t)w * h * c);
     double *xn = (double *)malloc(sizeof(double) * (size_t)w * h);
+    double *pool = (double *)malloc(sizeof(double) * (size_t)w * h);
     int x, y, k, i, j;
     for (y = 0; y < h; ++y)
         for (x = 0; x < w; ++x) {
             double v[4] = {0, 0, 0, 0};
             xn[y * w + x] = ref_reproject(in, p, x, y, v);
             for (k = 0; k < c; ++k) xs[(y * w + x) * c + k] = v[k];
+        }
+    /* pooled estimator: over the 3x3 blocks centred at x + 3b, |b| <= 2, in the image
+       and with >= 3 pairs (valid x*, finite values), the sum of the blocks'
+       sum_c mean_c^2 over the sum of their sum_c (sample var_c / n), less 3.5 (capped at
+       1e6); r is that if positive, else 0 */
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) {
+            double sm2 = 0, sse2 = 0, r;
+            int b;
+            pool[y * w + x] = 0;
+            if (p->est != SBL_ESTIMATOR_POOLED) continue;
+            for (b = -2; b <= 2; ++b) {
+                int cx = x + 3 * b, n = 0;
+                double s1[4] = {0, 0, 0, 0}, s2[4] = {0, 0, 0, 0};
+                if (cx < 0 || cx >= w) continue;
+                for (j = y - 1; j <= y + 1; ++j)
+                    for (i = cx - 1; i <= cx + 1; ++i) {
+                        int f = 1;
+                        if (i < 0 || j < 0 || i >= w || j >= h || !(xn[j * w + i] > 0)) continue;
+                        for (k = 0; k < c; ++k)
+                            f &= fin(px(in->cur, i, j)[k]) && fin((float)xs[(j * w + i) * c + k]);
+                        if (!f) continue;
+                        for (k = 0; k < c; ++k) {
+                            double dd = xs[(j * w + i) * c + k] - px(in->cur, i, j)[k];
+                            s1[k] += dd;
+                            s2[k] += dd * dd;
+                        }
+                        ++n;
+                    }
+                if (n < 3) continue;
+                for (k = 0; k < c; ++k) {
+                    double mu = s1[k] / n, vv = (s2[k] - n * mu * mu) / (n - 1);
+                    sm2 += mu * mu;
+                    sse2 += (vv > 0 ? vv : 0) / n;
+                }
+            }
+            r = sse2 > 0 ? sm2 / sse2 - 3.5 : (sm2 > 0 ? 1e6 : 0);
+            if (r > 1e6) r = 1e6;
+            if (r > 0) pool[y * w + x] = r;
         }
     for (y = 0; y < h; ++y)
         for (x = 0; x < w; ++x) {
@@ -1357,7 +1407,8 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     }
                     x1[k] = xs[(y * w + x) * c + k];
                 }
-                if (pass == 0 && p->est == SBL_ESTIMATOR_ROBUST && cnt > 1) {
+                if (pass == 0 && (p->est == SBL_ESTIMATOR_ROBUST || p->est == SBL_ESTIMATOR_POOLED) &&
+                    cnt > 1) {
                     /* neighbours without the centre: mean and population variance,
                        summed over channels; bound = max(their mean, x*) + 6 sigma */
                     double sy = 0, sm = 0, sx = 0, sv = 0, bound, t = 1;
@@ -1395,7 +1446,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     a = 0;
                     for (k = 0; k < c; ++k) {
                         ak[k] = ref_weight(p, (x1[k] - mean[k]) * (x1[k] - mean[k]), var[k],
-                                           pd[k] * pd[k], pv[k], cnt, pairs, nx, 1.0);
+                                           pd[k] * pd[k], pv[k], cnt, pairs, nx, 1.0, pool[y * w + x]);
                         a += ak[k];
                     }
                     a /= c;
@@ -1407,7 +1458,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                         pd2 += pd[k] * pd[k];
                         pvs += pv[k];
                     }
-                    a = ref_weight(p, dev2, s2, pd2, pvs, cnt, pairs, nx, 1.0);
+                    a = ref_weight(p, dev2, s2, pd2, pvs, cnt, pairs, nx, 1.0, pool[y * w + x]);
                     for (k = 0; k < c; ++k) ak[k] = a;
                 }
                 for (k = 0; k < c; ++k) o[k] = x1[k] + ak[k] * (yl[k] - x1[k]);
@@ -1419,6 +1470,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
         }
     free(xs);
     free(xn);
+    free(pool);
 }
 
 static void refin_from(refin *in, const tscene *s, int with_history)

@@ -1268,7 +1268,7 @@ static void test_errors(void)
         CHECK_NEAR(r.reproject.back_check_pixels, 1.0, 0);
         CHECK_NEAR(r.reproject.depth_tolerance, 0.05, 1e-9);
         CHECK_EQ(r.rig, SBL_RIG_PARALLEL);
-        CHECK_EQ(r.estimator, SBL_ESTIMATOR_HISTORY_AWARE);
+        CHECK_EQ(r.estimator, SBL_ESTIMATOR_POOLED);
         z.constant_beta = 0.25f;
         CHECK_NEAR(sbl_stereo_defaults(&z).constant_beta, 0.25, 0);
         CHECK_NEAR(sbl_stereo_defaults(NULL).constant_beta, 0.5, 0);

@@ -1,0 +1,254 @@
+/* Prototype of temporal estimators (scratch, issue 11): the library's reprojection, then
+   a candidate blend written here in double over the whole image, measured with the
+   bench's runner on every scene. usage: proto_estimators [scenes] */
+#define _POSIX_C_SOURCE 200809L
+#define STEREOBLEND_IMPLEMENTATION
+#include "../stereoblend.h"
+#define SBL_SCENE_IMPLEMENTATION
+#include "sbl_scene.h"
+#define SBL_METRICS_IMPLEMENTATION
+#include "sbl_metrics.h"
+#define SBL_RUNNER_IMPLEMENTATION
+#include "sbl_runner.h"
+#include "sbl_exr.h"
+#include <math.h>
+#include <stdio.h>
+
+typedef struct cand {
+    const char *name;
+    int radius;      /* wide window: 3 rows x (2 radius + 1) columns; 0: none */
+    int soft;        /* 0: hard t-test at k; 1: Student-t posterior with the history prior */
+    double k, kw;    /* thresholds, 3x3 and wide */
+    int firefly;     /* firefly limit of the blended sample */
+    int wide_prior;  /* prior odds on the wide test too */
+    int combine;     /* 0 max of bias^2; 1 bias from wide only */
+    int soft_w;      /* wide test: 0 hard (pd^2 - kw^2 se^2), 1 soft */
+    double c_eb;     /* >0: also the empirical-Bayes bias from 5 blocks, c = c_eb */
+    int normalized;  /* blocks' bias-to-noise ratio pooled instead of their energy */
+} cand;
+
+static double post_t(double pd2, double se2, double k, double nu, double odds)
+{
+    double t2 = se2 > 0 ? pd2 / se2 : (pd2 > 0 ? HUGE_VAL : 0);
+    double rho = (1 + k * k / nu) / (1 + t2 / nu);
+    return 1.0 / (1.0 + odds * pow(rho, 0.5 * (nu + 1)));
+}
+
+static void blend(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                  float cap, float *out, float *nout)
+{
+    const cand *c = (const cand *)ctx;
+    int px, py, i, j, ch;
+    for (py = 0; py < h; ++py)
+        for (px = 0; px < w; ++px) {
+            size_t p = (size_t)py * w + px;
+            double m[3] = {0}, v[3] = {0}, m8[3] = {0}, v8[3] = {0}, pd[3] = {0}, pv[3] = {0};
+            double pdw[3] = {0}, pvw[3] = {0};
+            double n_x = nx[p], n_y = 1.0, yb[3], a, var_x, var_y, b2 = 0, pd2 = 0, pvs = 0, s2 = 0;
+            int n = 0, np = 0, nw = 0;
+            if (!(n_x > 0)) {
+                for (ch = 0; ch < 3; ++ch) out[p * 3 + ch] = y[p * 3 + ch];
+                nout[p] = 1.0f;
+                continue;
+            }
+            if (n_x > cap) n_x = cap;
+            /* 3x3 */
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    q = (size_t)j * w + i;
+                    ++n;
+                    for (ch = 0; ch < 3; ++ch) m[ch] += y[q * 3 + ch];
+                    if (nx[q] > 0) {
+                        ++np;
+                        for (ch = 0; ch < 3; ++ch) pd[ch] += (double)xs[q * 3 + ch] - y[q * 3 + ch];
+                    }
+                }
+            for (ch = 0; ch < 3; ++ch) {
+                m[ch] /= n;
+                m8[ch] = (m[ch] * n - y[p * 3 + ch]) / (n - 1);
+                pd[ch] = np ? pd[ch] / np : 0;
+            }
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    q = (size_t)j * w + i;
+                    for (ch = 0; ch < 3; ++ch) {
+                        double e = y[q * 3 + ch] - m[ch], e8 = y[q * 3 + ch] - m8[ch];
+                        v[ch] += e * e;
+                        if (q != p) v8[ch] += e8 * e8;
+                        if (nx[q] > 0) {
+                            double d = (double)xs[q * 3 + ch] - y[q * 3 + ch] - pd[ch];
+                            pv[ch] += d * d;
+                        }
+                    }
+                }
+            for (ch = 0; ch < 3; ++ch) {
+                v[ch] /= n;
+                v8[ch] /= (n - 1);
+                pv[ch] = np > 1 ? pv[ch] / (np - 1) : 0;
+                pd2 += pd[ch] * pd[ch];
+                pvs += pv[ch];
+                s2 += v[ch];
+            }
+            /* wide */
+            if (c->radius > 0) {
+                for (j = py - 1; j <= py + 1; ++j)
+                    for (i = px - c->radius; i <= px + c->radius; ++i) {
+                        size_t q;
+                        if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                        q = (size_t)j * w + i;
+                        if (!(nx[q] > 0)) continue;
+                        ++nw;
+                        for (ch = 0; ch < 3; ++ch) {
+                            double d = (double)xs[q * 3 + ch] - y[q * 3 + ch];
+                            pdw[ch] += d;
+                            pvw[ch] += d * d;
+                        }
+                    }
+            }
+            /* firefly limit */
+            for (ch = 0; ch < 3; ++ch) yb[ch] = y[p * 3 + ch];
+            if (c->firefly) {
+                double sy = 0, sm = 0, sx = 0, sv = 0, bound;
+                for (ch = 0; ch < 3; ++ch) {
+                    sy += y[p * 3 + ch]; sm += m8[ch]; sx += xs[p * 3 + ch]; sv += v8[ch];
+                }
+                bound = (sm > sx ? sm : sx) + 6.0 * sqrt(sv);
+                if (bound < 0) bound = 0;
+                if (sy > bound) for (ch = 0; ch < 3; ++ch) yb[ch] *= bound / sy;
+            }
+            if (np > 1) {
+                var_y = pvs * n_x / (n_x + n_y);
+                var_x = pvs - var_y;
+            } else {
+                var_y = n > 1 ? s2 * n / (n - 1) : 0;
+                var_x = var_y * n_y / n_x;
+            }
+            {
+                double odds = 0.5 * (n_x + 1), se2 = np > 1 ? pvs / np : var_x + var_y;
+                double b3 = 0, bw = 0;
+                if (np > 0) {
+                    if (c->soft) b3 = post_t(pd2, se2, c->k, 8, odds) * pd2;
+                    else b3 = pd2 - c->k * c->k * se2 > 0 ? pd2 - c->k * c->k * se2 : 0;
+                }
+                if (nw > 2) {
+                    double pdw2 = 0, pvws = 0, sew2;
+                    for (ch = 0; ch < 3; ++ch) {
+                        double mu = pdw[ch] / nw;
+                        double vv = (pvw[ch] - nw * mu * mu) / (nw - 1);
+                        pdw2 += mu * mu;
+                        pvws += vv > 0 ? vv : 0;
+                    }
+                    sew2 = pvws / nw;
+                    if (c->soft_w) bw = post_t(pdw2, sew2, c->kw, nw - 1, c->wide_prior ? odds : 1.0) * pdw2;
+                    else bw = pdw2 - c->kw * c->kw * sew2 > 0 ? pdw2 - c->kw * c->kw * sew2 : 0;
+                }
+                if (c->combine == 2 || c->c_eb > 0) {
+                    double cc = c->c_eb > 0 ? c->c_eb : c->kw; double bmean = c->combine == 2 ? 0 : bw;
+                    /* empirical Bayes: prior variance of the bias from 5 3x3 blocks at
+                       columns px + 3b, b = -2..2 */
+                    double zs = 0, sse = 0; int nb = 0, b;
+                    for (b = -2; b <= 2; ++b) {
+                        double s1[3] = {0}, s2c[3] = {0}; int cnt = 0, cx = px + 3 * b;
+                        for (j = py - 1; j <= py + 1; ++j)
+                            for (i = cx - 1; i <= cx + 1; ++i) {
+                                size_t q;
+                                if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                                q = (size_t)j * w + i;
+                                if (!(nx[q] > 0)) continue;
+                                ++cnt;
+                                for (ch = 0; ch < 3; ++ch) {
+                                    double d = (double)xs[q * 3 + ch] - y[q * 3 + ch];
+                                    s1[ch] += d; s2c[ch] += d * d;
+                                }
+                            }
+                        if (cnt > 2) {
+                            double z = 0, m2 = 0, se = 0;
+                            for (ch = 0; ch < 3; ++ch) {
+                                double mu = s1[ch] / cnt, vv = (s2c[ch] - cnt * mu * mu) / (cnt - 1);
+                                z += mu * mu - cc * (vv > 0 ? vv : 0) / cnt;
+                                m2 += mu * mu; se += (vv > 0 ? vv : 0) / cnt;
+                            }
+                            if (c->normalized == 1) z = se > 0 ? m2 / se - cc : (m2 > 0 ? 1e6 : -cc);
+                            if (c->normalized == 2) { z = m2; sse += se; }
+                            zs += z; ++nb;
+                        }
+                    }
+                    if (nb > 0 && np > 1) {
+                        double tau2 = zs / nb, sh;
+                        if (c->normalized == 2) tau2 = sse > 0 ? zs / sse - cc : (zs > 0 ? 1e6 : 0);
+                        if (tau2 < 0) tau2 = 0;
+                        if (c->normalized) tau2 *= se2;
+                        sh = tau2 / (tau2 + se2);
+                        bw = sh * sh * pd2 + sh * se2;
+                    }
+                    if (bmean > bw) bw = bmean;
+                }
+                b2 = c->combine == 1 && nw > 2 ? bw : (b3 > bw ? b3 : bw);
+            }
+            a = (b2 + var_x + var_y > 0) ? (b2 + var_x) / (b2 + var_x + var_y) : n_y / (n_x + n_y);
+            if (a < 0) a = 0;
+            if (a > 1) a = 1;
+            for (ch = 0; ch < 3; ++ch)
+                out[p * 3 + ch] = (float)((1 - a) * xs[p * 3 + ch] + a * yb[ch]);
+            nout[p] = sbl_blend_sample_count((float)a, (float)n_x, (float)n_y);
+            if (nout[p] > cap) nout[p] = cap;
+        }
+}
+
+static cand cands[] = {
+    {"ha (check)", 0, 0, 3, 3, 0, 0, 0, 0, 0, 0},
+    {"s4 + EBs c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0, 2},
+    {"s4 + EBs c2.5", 7, 1, 4, 2.5, 1, 0, 2, 0, 0, 2},
+    {"s4 + EBn c3.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 1},
+};
+
+int main(int argc, char **argv)
+{
+    const char *only = argc > 1 ? argv[1] : NULL;
+    const char *only_c = argc > 2 ? argv[2] : NULL;
+    static const struct { const char *name; sbl_scene_kind kind; int jitter; } synth[] = {
+        {"synthetic-dynamic", SBL_SCENE_DYNAMIC, 1},
+        {"synthetic-static", SBL_SCENE_STATIC, 0},
+        {"synthetic-shadow", SBL_SCENE_SHADOW, 0},
+        {"synthetic-pan", SBL_SCENE_PAN, 0},
+    };
+    static const char *const real[] = {"atrium", "gallery"};
+    int s, i, nc = (int)(sizeof cands / sizeof cands[0]);
+    char err[256], path[512];
+    for (s = 0; s < 6; ++s) {
+        sbr_seq seq;
+        const char *nm = s < 4 ? synth[s].name : real[s - 4];
+        if (only && !strstr(only, nm)) continue;
+        if (s < 4) {
+            sbl_scene_desc d;
+            memset(&d, 0, sizeof d);
+            d.kind = synth[s].kind; d.jitter = synth[s].jitter;
+            d.width = 160; d.height = 90; d.frames = 24; d.ref_spp = 128; d.seed = 7;
+            if (sbr_seq_synthetic(&seq, &d, nm, 1) != 0) return 1;
+        } else {
+            snprintf(path, sizeof path, "../shared/data/%s", nm);
+            if (sbr_seq_dataset(&seq, path, 0, err, sizeof err) != 0) { printf("%s\n", err); continue; }
+        }
+        for (i = 0; i < nc; ++i) {
+            sbr_method m;
+            sbr_result r;
+            char nbuf[8];
+            snprintf(nbuf, sizeof nbuf, ",%d,", i);
+            if (only_c && !strstr(only_c, nbuf)) continue;
+            memset(&m, 0, sizeof m);
+            snprintf(m.name, sizeof m.name, "%s", cands[i].name);
+            m.temporal = 1;
+            m.temporal_blend = blend;
+            m.temporal_blend_ctx = &cands[i];
+            if (sbr_run(&seq, &m, &r, NULL, NULL) != 0) return 1;
+            printf("%-18s %-22s eff %6.2f  rmse %.5f\n", nm, cands[i].name, r.eff_spp, r.rmse);
+            fflush(stdout);
+        }
+        sbr_seq_free(&seq);
+    }
+    return 0;
+}
