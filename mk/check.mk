@@ -11,8 +11,8 @@
 #
 #   gcc             C99 pedantic -Werror, $(OPT), default SIMD path (SSE2 / NEON); + test_simd
 #   clang           the same with clang
-#   cxx             the same as C++ (g++, else clang++)
-#   scalar          -DSBL_NO_SIMD (the reference path)
+#   cxx             the same as C++ (g++, else clang++), but test_paths and test_tiles
+#   scalar          -DSBL_NO_SIMD (the reference path; no test_tiles: no row gather)
 #   avx2, avx512    each SIMD path the CPU can run; + test_simd (against the scalar path);
 #                   test_robust on the widest path is O3native's (-march=native)
 #   O0, O3native    test_robust at -O0 and at -O3 -march=native
@@ -31,6 +31,10 @@ Q := $(if $(filter 1,$(V)),,@)
 CC_GCC := $(if $(HAVE_GCC),gcc,$(CC))
 HEADER_TESTS = $(filter-out test_metrics,$(TESTS))
 VALGRIND_TESTS ?= test_core test_stereo
+# tests of the internal row gather and its tiles: each compiles its own copy of the
+# implementation, so they run where the code differs (gcc, clang, each SIMD path, asan),
+# not again as C++ (the C++ compile of that code is checked by strict/header)
+ROW_GATHER_TESTS = test_paths test_tiles
 # tests that configure the implementation (STEREOBLEND_STATIC, SBL_MALLOC) or call its
 # internal functions compile their own copy of it
 SELF_IMPL_RE := define (STEREOBLEND_STATIC|SBL_MALLOC)|sbl__[a-z0-9_]+[(]
@@ -63,11 +67,11 @@ CFG_TESTS_clang = $(TESTS)
 
 CFG_CC_cxx = $(CXX_TEST) -x c++
 CFG_FLAGS_cxx = $(CXXFLAGS_STRICT) $(OPT)
-CFG_TESTS_cxx = $(TESTS)
+CFG_TESTS_cxx = $(filter-out $(ROW_GATHER_TESTS),$(TESTS))
 
 CFG_CC_scalar = $(CC_GCC)
 CFG_FLAGS_scalar = $(CFLAGS_STRICT) $(OPT) -DSBL_NO_SIMD
-CFG_TESTS_scalar = $(HEADER_TESTS)
+CFG_TESTS_scalar = $(filter-out test_tiles,$(HEADER_TESTS))  # no row gather, no tiles
 
 CFG_CC_avx2 = $(CC_GCC)
 CFG_FLAGS_avx2 = $(CFLAGS_STRICT) $(OPT) $(FLAGS_avx2)
@@ -100,11 +104,28 @@ CFG_ENV_asan = $(SAN_ENV)
 $(BUILD)/asan/fuzz_sbl: EXTRA_FLAGS = -DSBL_FUZZ_STANDALONE
 RUN_ARGS_asan/fuzz_sbl = tests/fuzz_corpus/*
 
+# Configurations whose implementation object is the one a strict/header compile
+# (mk/strict.mk) builds anyway: same compiler, same code path, -O2; only the warning
+# flags differ, and they do not change the code. Saves six compiles of the header.
+STRICT_OBJ_OK := $(filter -O2,$(strip $(OPT)))
+STRICT_OBJ_gcc    = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-default.o))
+STRICT_OBJ_scalar = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-scalar.o))
+STRICT_OBJ_avx2   = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-avx2.o))
+STRICT_OBJ_avx512 = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-avx512.o))
+STRICT_OBJ_clang  = $(if $(STRICT_OBJ_OK),$(if $(HAVE_CLANG),$(BUILD)/strict/clang-default.o))
+STRICT_OBJ_cxx    = $(if $(STRICT_OBJ_OK),$(if $(filter g++,$(CXX_TEST)),$(BUILD)/strict/gxx-default.o))
+
 # build/<config>/stereoblend.o, and build/<config>/<test> for every test of it
 define CONFIG_RULES
+ifeq ($$(STRICT_OBJ_$(1)),)
 $(BUILD)/$(1)/stereoblend.o: tests/sbl_impl.c stereoblend.h tests/sbl_test_alloc.h
 	@mkdir -p $$(@D)
 	$$(Q)$$(CFG_CC_$(1)) $$(CFG_FLAGS_$(1)) -c $$< -o $$@
+else
+$(BUILD)/$(1)/stereoblend.o: $$(STRICT_OBJ_$(1))
+	@mkdir -p $$(@D)
+	$$(Q)cp $$< $$@
+endif
 $(BUILD)/$(1)/%: tests/%.c $(BUILD)/$(1)/stereoblend.o $$(HEADERS)
 	@mkdir -p $$(@D)
 	$$(Q)$$(CFG_CC_$(1)) $$(CFG_FLAGS_$(1)) $$(EXTRA_FLAGS) -Itools \
