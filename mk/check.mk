@@ -40,7 +40,8 @@ ROW_GATHER_TESTS = test_paths test_tiles
 SELF_IMPL_RE := define (STEREOBLEND_STATIC|SBL_MALLOC)|sbl__[a-z0-9_]+[(]
 SELF_IMPL_TESTS := $(basename $(notdir $(shell grep -l -E '$(SELF_IMPL_RE)' tests/*.c 2>/dev/null)))
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1
+SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+           SBL_TEST_SKIP_LONG=1 # test_robust: its 10,000-frame drift runs are numerics only
 
 # the first compiler that links and runs a program with the sanitizers (probed once, and
 # only when a recipe needs it)
@@ -63,7 +64,7 @@ CFG_TESTS_gcc = $(TESTS) test_simd
 
 CFG_CC_clang = clang
 CFG_FLAGS_clang = $(CFLAGS_STRICT) $(OPT)
-CFG_TESTS_clang = $(TESTS)
+CFG_TESTS_clang = $(filter-out test_tiles,$(TESTS))  # the tiles: gcc, each SIMD path, asan
 
 CFG_CC_cxx = $(CXX_TEST) -x c++
 CFG_FLAGS_cxx = $(CXXFLAGS_STRICT) $(OPT)

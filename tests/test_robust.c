@@ -2260,9 +2260,16 @@ int main(void)
     test_constant_images();
     test_reference_random();
     test_reference_hdr();
-    test_stress_progressive_10000();
-    test_stress_all_estimators();
-    test_decay_to_black();
+    /* the long runs (10,000 frames) check numerical drift, which the sanitizers do not
+       change: make check's asan configuration sets SBL_TEST_SKIP_LONG=1, and every
+       other configuration runs them */
+    if (!getenv("SBL_TEST_SKIP_LONG")) {
+        test_stress_progressive_10000();
+        test_stress_all_estimators();
+        test_decay_to_black();
+    } else {
+        printf("  10,000-frame drift runs skipped (SBL_TEST_SKIP_LONG is set)\n");
+    }
     test_denormal_timing();
     test_stereo_sanitise();
     test_scalar_helpers();
