@@ -2885,6 +2885,9 @@ typedef struct sbl__tap_plan {
     float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
     float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
     unsigned char redo[SBL__BLOCK]; /* 1: the pixel gather decides                          */
+    /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
+       pixels in every view (planned so together: uniform integer motion) */
+    unsigned char uniform[SBL__BLOCK];
 } sbl__tap_plan;
 
 static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
@@ -2895,6 +2898,7 @@ static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
     p->slack[i] = 0.0f;
     p->fast[i] = 0.0f;
     p->redo[i] = 0;
+    p->uniform[i] = 0;
 }
 
 /* Plan entry i from a source position, as sbl__gather_ch decides: 0 reset, else the
@@ -2925,95 +2929,117 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
     p->fast[i] = 1.0f;
 }
 
+/* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
+   (x0, y0 + 1), (x0 + 1, y0 + 1). Its tests narrow *ok, then its weighted N, colour and
+   weight join the sums (each sum takes the taps in the order 0 .. 3, as the pixel
+   gather adds them). Written once and inlined per tap with t constant, so the offsets
+   fold and every vector stays in a register. plain: no lane expects sky and every
+   depth limit is finite, so sbl__depth_match reduces to d > 0 and |d - z| <= limit (a
+   non-finite d fails the second). cidx: the colour's lane indices from the first tap. */
+SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
+                                sbl__v w, sbl__m ok, sbl__v ze, sbl__v lim, sbl__m inf_e,
+                                int plain, const int *cidx, const float *cbase, sbl__v *acc,
+                                sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int sky)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    if (s->use_depth) {
+        const ptrdiff_t o = ty * s->depth.stride + tx * s->depth.step;
+        const sbl__v d = contiguous ? sbl__load(s->depth.p + o + p->di[i])
+                                    : sbl__gatheri(s->depth.p + o, p->di + i);
+        if (sky) {
+            ok = sbl__mand(ok, sbl__posinf(d));
+        } else if (plain) {
+            ok = sbl__mand(ok, sbl__mand(sbl__gt(d, zero), sbl__le(sbl__abs(sbl__sub(d, ze)), lim)));
+        } else {
+            /* sbl__depth_match: sky matches only sky; else a finite, positive depth
+               within the tolerance */
+            const sbl__m inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
+                                          sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
+            ok = sbl__mand(ok, match);
+        }
+    }
+    if (s->length.p) {
+        const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
+        const sbl__v nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
+                                     : sbl__gatheri(s->length.p + o, p->li + i);
+        ok = sbl__mand(ok, sbl__gt(nt, zero));
+        *accn = sbl__add(*accn, sbl__sel(ok, sbl__mul(w, nt), zero));
+    } else {
+        *accn = sbl__add(*accn, sbl__sel(ok, w, zero));
+    }
+    {   /* the channels written out (gcc -O2 keeps a loop over them, and the sums in
+           memory) */
+        const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
+        const sbl__v v0 = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp)
+                                                                      : sbl__gatheri(cp, cidx);
+        acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, v0), zero));
+        if (ch > 1) acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 1, cidx)), zero));
+        if (ch > 2) acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 2, cidx)), zero));
+        if (ch > 3) acc[3] = sbl__add(acc[3], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 3, cidx)), zero));
+    }
+    *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
+}
+
 /* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
    renormalisation and saturation) for plan entries [i, i + VW), into ring columns
    [x, x + VW): the same float operations in the same order per lane (a skipped tap
    adds +0 to a sum that cannot be -0), hence the same bits. Lanes whose sums are not
    finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
-   contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
-   rest), read with plain vector loads where a view has one channel. Taps of weight 0
-   in every lane are skipped: they would add +0 everywhere.
+   contiguous: the lanes' taps are consecutive pixels in every view (uniform motion, a
+   camera at rest, a row of a parallel rig; depth and N packed), read with plain vector
+   loads, the colour with one fixed set of lane offsets (cstep: l * its pixel step).
+   Taps of weight 0 in every lane are skipped: they would add +0 everywhere.
    sky: every planned lane expects sky (+inf), so its depth test is "the tap is sky"
    (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
-                                 sbl__ring_row *r, int x, int ch, int contiguous, int sky)
+                                 sbl__ring_row *r, int x, const int *cstep, int ch,
+                                 int contiguous, int sky)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
     const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
     const sbl__m fast = sbl__gt(sbl__load(p->fast + i), zero);
-    sbl__v w[4], acc[4], accn = zero, wsum = zero, inv, n;
-    sbl__m ok[4], redo, lo, valid;
-    ptrdiff_t off[4];
-    int t, c, bits, skip = 0;
+    const int *cidx = contiguous ? cstep : p->ci + i;
+    const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
+    sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = zero, lim = zero;
+    sbl__m redo, lo, valid, inf_e = sbl__gt(zero, zero);
+    int c, bits, plain = 0;
     /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
        in every lane (a camera at rest; the rows of a parallel stereo rig) */
-    if (!sbl__mbits(sbl__gt(fx, zero))) skip |= 1;
-    if (!sbl__mbits(sbl__gt(fy, zero))) skip |= 2;
-    w[0] = sbl__mul(gx, gy);
-    w[1] = sbl__mul(fx, gy);
-    w[2] = sbl__mul(gx, fy);
-    w[3] = sbl__mul(fx, fy);
-    for (t = 0; t < 4; ++t) ok[t] = sbl__gt(w[t], zero);
-    if (s->use_depth) {
-        const sbl__v ze = sbl__load(p->depth + i), sl = sbl__load(p->slack + i);
-        const sbl__v lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sl);
-        const sbl__m inf_e = sbl__posinf(ze);
-        off[0] = 0; off[1] = s->depth.step; off[2] = s->depth.stride;
-        off[3] = s->depth.stride + s->depth.step;
-        for (t = 0; t < 4; ++t) {
-            if (t & skip) continue;
-            {
-                const sbl__v d = contiguous && s->depth.step == 1
-                                     ? sbl__load(s->depth.p + off[t] + p->di[i])
-                                     : sbl__gatheri(s->depth.p + off[t], p->di + i);
-                const sbl__m inf_t = sbl__posinf(d);
-                if (sky) {
-                    ok[t] = sbl__mand(ok[t], inf_t);
-                } else {
-                    /* sbl__depth_match: sky matches only sky; else a finite, positive
-                       depth within the tolerance */
-                    const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
-                                                  sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
-                    const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
-                                                  sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
-                    ok[t] = sbl__mand(ok[t], match);
-                }
-            }
-        }
+    const int skip_x = !sbl__mbits(sbl__gt(fx, zero)), skip_y = !sbl__mbits(sbl__gt(fy, zero));
+    w0 = sbl__mul(gx, gy);
+    w1 = sbl__mul(fx, gy);
+    w2 = sbl__mul(gx, fy);
+    w3 = sbl__mul(fx, fy);
+    if (s->use_depth && !sky) {
+        ze = sbl__load(p->depth + i);
+        lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sbl__load(p->slack + i));
+        inf_e = sbl__posinf(ze);
+        plain = !sbl__mbits(sbl__mor(inf_e, sbl__nonfinite(lim)));
     }
-    if (s->length.p) {
-        off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
-        off[3] = s->length.stride + s->length.step;
-        for (t = 0; t < 4; ++t) {
-            if (t & skip) continue;
-            {
-                const sbl__v nt = contiguous && s->length.step == 1
-                                      ? sbl__load(s->length.p + off[t] + p->li[i])
-                                      : sbl__gatheri(s->length.p + off[t], p->li + i);
-                ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
-                accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
-            }
-        }
-    } else {
-        for (t = 0; t < 4; ++t)
-            if (!(t & skip)) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
-    }
-    off[0] = 0; off[1] = s->color.step; off[2] = s->color.stride;
-    off[3] = s->color.stride + s->color.step;
-    for (c = 0; c < ch; ++c) acc[c] = zero;
-    for (t = 0; t < 4; ++t) {
-        if (t & skip) continue;
-        for (c = 0; c < ch; ++c) {
-            const sbl__v v = contiguous && s->color.step == 1
-                                 ? sbl__load(s->color.p + off[t] + p->ci[i])
-                                 : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
-            acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
-        }
-        wsum = sbl__add(wsum, sbl__sel(ok[t], w[t], zero));
+    acc[0] = acc[1] = acc[2] = acc[3] = zero;
+    sbl__lanes_tap(s, p, i, 0, w0, sbl__gt(w0, zero), ze, lim, inf_e, plain, cidx, cbase, acc,
+                   &accn, &wsum, ch, contiguous, sky);
+    if (!skip_x)
+        sbl__lanes_tap(s, p, i, 1, w1, sbl__gt(w1, zero), ze, lim, inf_e, plain, cidx, cbase,
+                       acc, &accn, &wsum, ch, contiguous, sky);
+    if (!skip_y) {
+        sbl__lanes_tap(s, p, i, 2, w2, sbl__gt(w2, zero), ze, lim, inf_e, plain, cidx, cbase,
+                       acc, &accn, &wsum, ch, contiguous, sky);
+        if (!skip_x)
+            sbl__lanes_tap(s, p, i, 3, w3, sbl__gt(w3, zero), ze, lim, inf_e, plain, cidx,
+                           cbase, acc, &accn, &wsum, ch, contiguous, sky);
     }
     redo = sbl__nonfinite(accn);
-    for (c = 0; c < ch; ++c) redo = sbl__mor(redo, sbl__nonfinite(acc[c]));
+    /* (the channels written out, as in sbl__lanes_tap) */
+    redo = sbl__mor(redo, sbl__nonfinite(acc[0]));
+    if (ch > 1) redo = sbl__mor(redo, sbl__nonfinite(acc[1]));
+    if (ch > 2) redo = sbl__mor(redo, sbl__nonfinite(acc[2]));
+    if (ch > 3) redo = sbl__mor(redo, sbl__nonfinite(acc[3]));
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
     if (fallback) redo = sbl__mor(redo, lo);
     redo = sbl__mand(redo, fast);
@@ -3022,13 +3048,16 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
     sbl__store(r->n + x, sbl__sel(valid, n, zero));
     sbl__store(r->v + x, sbl__sel(valid, one, zero));
-    for (c = 0; c < ch; ++c) {
-        const sbl__v o = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax);
-        sbl__store(r->x[c] + x, sbl__sel(valid, o, zero));
-    }
+#define SBL__TAPS_OUT(c) \
+    sbl__store(r->x[c] + x, sbl__sel(valid, sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax), zero))
+    SBL__TAPS_OUT(0);
+    if (ch > 1) SBL__TAPS_OUT(1);
+    if (ch > 2) SBL__TAPS_OUT(2);
+    if (ch > 3) SBL__TAPS_OUT(3);
+#undef SBL__TAPS_OUT
     bits = sbl__mbits(redo);
-    for (t = 0; bits; ++t, bits >>= 1)
-        if (bits & 1) p->redo[i + t] = 1;
+    for (c = 0; bits; ++c, bits >>= 1)
+        if (bits & 1) p->redo[i + c] = 1;
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -3046,39 +3075,52 @@ SBL__INLINE int sbl__ints_step(const int *a, int step)
     return same == 0xffff;
 }
 
+/* sbl__row_taps for one channel count and sky flag (constants where inlined). */
+SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+                                  sbl__ring_row *r, int x, int ch, int sky)
+{
+    /* contiguous vectors need depth and N packed (plain loads); the colour's fixed lane
+       offsets (|step| < INT_MAX / VW: sbl__row_gather_ok) */
+    const int packed = (!s->use_depth || s->depth.step == 1) && (!s->length.p || s->length.step == 1);
+    int cstep[SBL__VW], i = 0, l;
+    for (l = 0; l < SBL__VW; ++l) cstep[l] = l * SBL__CAST(int, s->color.step);
+    for (;;) {
+        if (i + SBL__VW > n) i = n - SBL__VW;
+        /* every lane's first tap one pixel after the previous lane's, in every view
+           (each lane's index is a valid one, so the vector load reads exactly the
+           addresses the gather would) */
+        if (packed && (p->uniform[i] ||
+                       (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
+                        (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
+                        (!s->length.p || sbl__ints_step(p->li + i, 1)))))
+            sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky);
+        else
+            sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky);
+        if (i + SBL__VW >= n) break;
+        i += SBL__VW;
+    }
+}
+
 /* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
    last vector overlaps the one before rather than running past the block. sky: every
    planned entry expects sky (see sbl__lanes_taps). */
 static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
                           sbl__ring_row *r, int x, int sky)
 {
-    int i = 0;
-    for (;;) {
-        int contiguous;
-        if (i + SBL__VW > n) i = n - SBL__VW;
-        /* every lane's first tap one pixel after the previous lane's, in every view
-           (each lane's index is a valid one, so the vector load reads exactly the
-           addresses the gather would) */
-        contiguous = sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
-                     (!s->use_depth || sbl__ints_step(p->di + i, SBL__CAST(int, s->depth.step))) &&
-                     (!s->length.p || sbl__ints_step(p->li + i, SBL__CAST(int, s->length.step)));
-        if (sky) {
-            switch (s->color.ch) {
-            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 1); break;
-            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 1); break;
-            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 1); break;
-            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 1); break;
-            }
-        } else {
-            switch (s->color.ch) {
-            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 0); break;
-            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 0); break;
-            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 0); break;
-            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 0); break;
-            }
+    if (sky) {
+        switch (s->color.ch) {
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1); break;
         }
-        if (i + SBL__VW >= n) break;
-        i += SBL__VW;
+    } else {
+        switch (s->color.ch) {
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0); break;
+        }
     }
 }
 
@@ -3136,11 +3178,17 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             after(ctx, r, &b);
             continue;
         }
-        for (i = 0; i < b.n; ++i)
+        for (i = 0; i < b.n; ++i) {
+            if (i + 8 <= b.n) { /* eight entries at a time: redo is rare */
+                uint64_t any;
+                memcpy(&any, b.p.redo + i, 8);
+                if (!any) { i += 7; continue; }
+            }
             if (b.p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
                 sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
             }
+        }
     }
 }
 
@@ -3216,6 +3264,24 @@ SBL__INLINE void sbl__plan_index(int *out, const float *x0s, const float *y0s, c
                                         sbl__dmul(sbl__dfromf(x0s + j), sbl__dset1(SBL__CAST(double, f->step)))));
 }
 
+/* Tap indices of a view (NULL: 0) for VW lanes whose first taps are consecutive pixels
+   from (x0, y0): y0 stride + (x0 + l) step, in int lanes (each a valid index, and the
+   sums exact: |index| < INT_MAX / 2, sbl__row_gather_ok). */
+SBL__INLINE void sbl__plan_index_run(int *out, int x0, int y0, const sbl__flat *f)
+{
+    int j, first, step;
+    if (!f) {
+        for (j = 0; j < SBL__VW; ++j) out[j] = 0;
+        return;
+    }
+    first = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * f->stride + SBL__CAST(ptrdiff_t, x0) * f->step);
+    step = SBL__CAST(int, f->step);
+    for (j = 0; j < SBL__VW; j += 4)
+        _mm_storeu_si128(SBL__PCAST(__m128i *, out + j),
+                         _mm_add_epi32(_mm_set1_epi32(first + j * step),
+                                       _mm_setr_epi32(0, step, 2 * step, 3 * step)));
+}
+
 /* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
    (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
    results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
@@ -3234,6 +3300,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     sbl__m exact, inside, fast;
     int l, bits_scalar, bits_fast, bits_keep;
     float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    int uniform;
     ax = sbl__abs(mx);
     ay = sbl__abs(my);
     exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
@@ -3271,6 +3338,21 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
             0x01010000u, 0x01010001u, 0x01010100u, 0x01010101u};
         const int redo = bits_keep & ~bits_fast;
         for (l = 0; l < SBL__VW; l += 4) memcpy(p->redo + i + l, &bytes[(redo >> l) & 15], 4);
+    }
+    /* every lane fast, at one integer offset (x0 - x, y0 - y equal in all lanes: uniform
+       motion): consecutive first taps, indexed in int lanes and flagged for the taps */
+    uniform = bits_fast == (1 << SBL__VW) - 1 &&
+              sbl__mbits(sbl__mand(sbl__le(fmx, sbl__set1(x0s[0] - SBL__CAST(float, x))),
+                                   sbl__le(sbl__set1(x0s[0] - SBL__CAST(float, x)), fmx))) == (1 << SBL__VW) - 1 &&
+              sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) == (1 << SBL__VW) - 1;
+    memset(p->uniform + i, 0, SBL__VW);
+    if (uniform) {
+        const int cx = SBL__CAST(int, x0s[0]), cy = SBL__CAST(int, y0s[0]);
+        p->uniform[i] = 1;
+        sbl__plan_index_run(p->ci + i, cx, cy, &src->color);
+        sbl__plan_index_run(p->di + i, cx, cy, src->use_depth ? &src->depth : NULL);
+        sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL);
+        return bits_scalar;
     }
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
     sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
