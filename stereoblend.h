@@ -2888,6 +2888,7 @@ typedef struct sbl__tap_plan {
     /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
        pixels in every view (planned so together: uniform integer motion) */
     unsigned char uniform[SBL__BLOCK];
+    int lane_step[3][SBL__VW];      /* l * pixel step of colour, depth, N (set per call) */
 } sbl__tap_plan;
 
 static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
@@ -2974,8 +2975,24 @@ SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, i
     {   /* the channels written out (gcc -O2 keeps a loop over them, and the sums in
            memory) */
         const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
-        const sbl__v v0 = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp)
-                                                                      : sbl__gatheri(cp, cidx);
+        sbl__v v0;
+#if SBL__VW == 4
+        if (contiguous && ch == 3 && s->color.step == 3) {
+            /* packed RGB, four consecutive pixels (SSE2 emulates a gather with four
+               loads): three loads and seven shuffles, the same values */
+            const __m128 a = _mm_loadu_ps(cp), b = _mm_loadu_ps(cp + 4), e = _mm_loadu_ps(cp + 8);
+            const __m128 rr = _mm_shuffle_ps(b, e, _MM_SHUFFLE(0, 1, 0, 2));   /* r2 . r3 . */
+            const __m128 g01 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(0, 0, 1, 1));  /* g0 g0 g1 g1 */
+            const __m128 g23 = _mm_shuffle_ps(b, e, _MM_SHUFFLE(2, 2, 3, 3));  /* g2 g2 g3 g3 */
+            const __m128 b01 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 1, 2, 2));  /* b0 b0 b1 b1 */
+            acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, _mm_shuffle_ps(a, rr, _MM_SHUFFLE(2, 0, 3, 0))), zero));
+            acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, _mm_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0))), zero));
+            acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, _mm_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0))), zero));
+            *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
+            return;
+        }
+#endif
+        v0 = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
         acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, v0), zero));
         if (ch > 1) acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 1, cidx)), zero));
         if (ch > 2) acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 2, cidx)), zero));
@@ -3080,10 +3097,10 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                                   sbl__ring_row *r, int x, int ch, int sky)
 {
     /* contiguous vectors need depth and N packed (plain loads); the colour's fixed lane
-       offsets (|step| < INT_MAX / VW: sbl__row_gather_ok) */
+       offsets are the plan's lane steps */
     const int packed = (!s->use_depth || s->depth.step == 1) && (!s->length.p || s->length.step == 1);
-    int cstep[SBL__VW], i = 0, l;
-    for (l = 0; l < SBL__VW; ++l) cstep[l] = l * SBL__CAST(int, s->color.step);
+    const int *cstep = p->lane_step[0];
+    int i = 0;
     for (;;) {
         if (i + SBL__VW > n) i = n - SBL__VW;
         /* every lane's first tap one pixel after the previous lane's, in every view
@@ -3154,6 +3171,11 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
     sbl__block b;
     int i;
     b.y = y;
+    for (i = 0; i < SBL__VW; ++i) { /* |step| < INT_MAX / VW: sbl__row_gather_ok */
+        b.p.lane_step[0][i] = i * SBL__CAST(int, src->color.step);
+        b.p.lane_step[1][i] = i * SBL__CAST(int, src->depth.step);
+        b.p.lane_step[2][i] = i * SBL__CAST(int, src->length.step);
+    }
     for (b.x0 = xa; b.x0 < xb; b.x0 += SBL__BLOCK) {
         b.n = xb - b.x0 < SBL__BLOCK ? xb - b.x0 : SBL__BLOCK;
         if (b.n < SBL__VW) {
@@ -3267,19 +3289,19 @@ SBL__INLINE void sbl__plan_index(int *out, const float *x0s, const float *y0s, c
 /* Tap indices of a view (NULL: 0) for VW lanes whose first taps are consecutive pixels
    from (x0, y0): y0 stride + (x0 + l) step, in int lanes (each a valid index, and the
    sums exact: |index| < INT_MAX / 2, sbl__row_gather_ok). */
-SBL__INLINE void sbl__plan_index_run(int *out, int x0, int y0, const sbl__flat *f)
+SBL__INLINE void sbl__plan_index_run(int *out, int x0, int y0, const sbl__flat *f,
+                                     const int *lane_step)
 {
-    int j, first, step;
+    int j, first;
     if (!f) {
         for (j = 0; j < SBL__VW; ++j) out[j] = 0;
         return;
     }
     first = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * f->stride + SBL__CAST(ptrdiff_t, x0) * f->step);
-    step = SBL__CAST(int, f->step);
     for (j = 0; j < SBL__VW; j += 4)
         _mm_storeu_si128(SBL__PCAST(__m128i *, out + j),
-                         _mm_add_epi32(_mm_set1_epi32(first + j * step),
-                                       _mm_setr_epi32(0, step, 2 * step, 3 * step)));
+                         _mm_add_epi32(_mm_set1_epi32(first),
+                                       _mm_loadu_si128(SBL__PCAST(const __m128i *, lane_step + j))));
 }
 
 /* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
@@ -3337,7 +3359,8 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
             0x00010100u, 0x00010101u, 0x01000000u, 0x01000001u, 0x01000100u, 0x01000101u,
             0x01010000u, 0x01010001u, 0x01010100u, 0x01010101u};
         const int redo = bits_keep & ~bits_fast;
-        for (l = 0; l < SBL__VW; l += 4) memcpy(p->redo + i + l, &bytes[(redo >> l) & 15], 4);
+        if (!redo) memset(p->redo + i, 0, SBL__VW);
+        else for (l = 0; l < SBL__VW; l += 4) memcpy(p->redo + i + l, &bytes[(redo >> l) & 15], 4);
     }
     /* every lane fast, at one integer offset (x0 - x, y0 - y equal in all lanes: uniform
        motion): consecutive first taps, indexed in int lanes and flagged for the taps */
@@ -3349,9 +3372,9 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     if (uniform) {
         const int cx = SBL__CAST(int, x0s[0]), cy = SBL__CAST(int, y0s[0]);
         p->uniform[i] = 1;
-        sbl__plan_index_run(p->ci + i, cx, cy, &src->color);
-        sbl__plan_index_run(p->di + i, cx, cy, src->use_depth ? &src->depth : NULL);
-        sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL);
+        sbl__plan_index_run(p->ci + i, cx, cy, &src->color, p->lane_step[0]);
+        sbl__plan_index_run(p->di + i, cx, cy, src->use_depth ? &src->depth : NULL, p->lane_step[1]);
+        sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL, p->lane_step[2]);
         return bits_scalar;
     }
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
