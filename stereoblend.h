@@ -2840,7 +2840,8 @@ SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v,
    operations in its order, so every lane gets its bits, and the tap indices (y0 stride
    + x0 step, exact in double). A few operations suffice: set1, load, store, add, sub,
    mul, div; SBL__DW floats in (sbl__dfromf: from VW + 4 readable floats), SBL__DW ints
-   out (sbl__dstorei, truncating; the values are integers). */
+   out (sbl__dstorei, truncating; the values are integers); min / max (x86: the second
+   operand where one is NaN) and a bit mask of a <= b. */
 #if SBL__VW == 16
 #define SBL__DW 8
 typedef __m512d sbl__dv;
@@ -2853,6 +2854,9 @@ typedef __m512d sbl__dv;
 #define sbl__ddiv(a, b) _mm512_div_pd(a, b)
 #define sbl__dfromf(p) _mm512_cvtps_pd(_mm256_loadu_ps(p))
 #define sbl__dstorei(q, a) _mm256_storeu_si256(SBL__PCAST(__m256i *, q), _mm512_cvttpd_epi32(a))
+#define sbl__dmin(a, b) _mm512_min_pd(a, b)
+#define sbl__dmax(a, b) _mm512_max_pd(a, b)
+#define sbl__dle_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ))
 #elif SBL__VW == 8
 #define SBL__DW 4
 typedef __m256d sbl__dv;
@@ -2865,6 +2869,9 @@ typedef __m256d sbl__dv;
 #define sbl__ddiv(a, b) _mm256_div_pd(a, b)
 #define sbl__dfromf(p) _mm256_cvtps_pd(_mm_loadu_ps(p))
 #define sbl__dstorei(q, a) _mm_storeu_si128(SBL__PCAST(__m128i *, q), _mm256_cvttpd_epi32(a))
+#define sbl__dmin(a, b) _mm256_min_pd(a, b)
+#define sbl__dmax(a, b) _mm256_max_pd(a, b)
+#define sbl__dle_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LE_OQ))
 #else
 #define SBL__DW 2
 typedef __m128d sbl__dv;
@@ -2877,6 +2884,9 @@ typedef __m128d sbl__dv;
 #define sbl__ddiv(a, b) _mm_div_pd(a, b)
 #define sbl__dfromf(p) _mm_cvtps_pd(_mm_loadu_ps(p))
 #define sbl__dstorei(q, a) _mm_storel_epi64(SBL__PCAST(__m128i *, q), _mm_cvttpd_epi32(a))
+#define sbl__dmin(a, b) _mm_min_pd(a, b)
+#define sbl__dmax(a, b) _mm_max_pd(a, b)
+#define sbl__dle_bits(a, b) _mm_movemask_pd(_mm_cmple_pd(a, b))
 #endif
 
 typedef struct sbl__tap_plan {
@@ -5482,7 +5492,8 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         return bits;
     }
     {   /* the parallel rig in lanes: m = dir f b / z */
-        float fbz[SBL__VW];
+        static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
+        float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
         sbl__v z, slack, m;
         sbl__m keep = sbl__lanes_want(&s->geo.depth, x, y, &z, &slack);
         int far;
@@ -5496,11 +5507,14 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
               !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
               sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
         bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero);
-        for (l = 0; l < SBL__VW; ++l) {
-            b->psx[i + l] = x + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
-            b->psy[i + l] = y + 0.5;
-            b->snapped[i + l] = SBL__CAST(unsigned char, far);
+        for (l = 0; l < SBL__VW; l += SBL__DW) { /* x + l + 0.5 + dir (f b / z - offset), as the map */
+            sbl__dstore(b->psx + i + l,
+                        sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + l + 0.5)),
+                                  sbl__dmul(sbl__dset1(s->dir[0]),
+                                            sbl__dsub(sbl__dfromf(fbz + l), sbl__dset1(s->offset)))));
+            sbl__dstore(b->psy + i + l, sbl__dset1(y + 0.5));
         }
+        memset(b->snapped + i, far, SBL__VW);
         return bits;
     }
 }
@@ -5529,37 +5543,104 @@ static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
    others, as
    sbl__stereo_rp_pixel does it: from the nearest source pixel back. `rig` is a
    constant where this is inlined (the map is called directly). */
+SBL__INLINE void sbl__stereo_after_one(const sbl__stereo_rp *s, sbl__ring_row *r,
+                                       const sbl__block *b, int i, sbl_stereo_rig rig,
+                                       int back_check, double tol, int *back, int *nback)
+{
+    const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
+    const int x = b->x0 + i;
+    if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+        float tmp[4] = {0, 0, 0, 0};
+        sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
+        return;
+    }
+    if (!back_check || !(r->v[x] > 0.0f)) return;
+    if (cams) {
+        back[(*nback)++] = i; /* in lanes, by the caller */
+    } else {
+        const int ix = SBL__CAST(int, floor(b->psx[i])), iy = SBL__CAST(int, floor(b->psy[i]));
+        double bx, by, bz, ex, ey;
+        int ok = rig == SBL_RIG_PARALLEL
+                     ? sbl__stereo_map_parallel(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz)
+                     : sbl__stereo_map_disparity(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz);
+        if (ok) {
+            ex = bx - (x + 0.5);
+            ey = by - (b->y + 0.5);
+            ok = ex * ex + ey * ey <= tol * tol;
+        }
+        if (!ok) sbl__ring_put(r, x, 0.0f, NULL, s->src.color.ch);
+    }
+}
+
+/* sbl__stereo_map_parallel's back-check (from the nearest source pixel, at the source's
+   depth there, within tol of the start) for block entries [i, i + VW) in lanes, on a
+   row in lane mode 1 (no disparity offset: every match lies on the pixel's row, inside
+   the source where it is valid): the same double operations in the same order, the
+   float division exact. Returns the bits of the lanes whose check fails (meaningful
+   where the match is valid; the others read a clamped, valid address). */
+SBL__INLINE int sbl__stereo_back_parallel(const sbl__stereo_rp *s, const sbl__block *b, int i,
+                                          double tol)
+{
+    static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
+    const sbl__flat *d = &s->depth[1];
+    const int x = b->x0 + i;
+    const sbl__dv hi = sbl__dset1(SBL__CAST(double, s->source->color.width - 1)), lo = sbl__dset1(0.0);
+    float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    int idx[SBL__VW], j, ok = 0;
+    sbl__v z, f;
+    sbl__m good;
+    for (j = 0; j < SBL__VW; j += SBL__DW) /* floor(sx) of sx in [0, w): its truncation */
+        sbl__dstorei(idx + j, sbl__dmax(sbl__dmin(sbl__dload(b->psx + i + j), hi), lo));
+    if (d->step != 1)
+        for (j = 0; j < SBL__VW; ++j) idx[j] *= SBL__CAST(int, d->step);
+    z = sbl__gatheri(SBL__AT(*d, 0, b->y), idx);
+    /* sbl__valid_depth: z > 0 (+inf included); f b / +inf = 0, as the map's sky case */
+    good = sbl__gt(z, sbl__set1(0.0f));
+    f = sbl__div_exact(sbl__set1(s->fb), z);
+    good = sbl__mandnot(good, sbl__nonfinite(f));
+    sbl__store(fbz, f);
+    for (j = 0; j < SBL__VW; j += SBL__DW) {
+        const sbl__dv bx = sbl__dadd(sbl__dload(b->psx + i + j),
+                                     sbl__dmul(sbl__dset1(s->dir[1]),
+                                               sbl__dsub(sbl__dfromf(fbz + j), sbl__dset1(s->offset))));
+        const sbl__dv ex = sbl__dsub(bx, sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5)));
+        const sbl__dv ey = sbl__dsub(sbl__dload(b->psy + i + j), sbl__dset1(b->y + 0.5));
+        ok |= sbl__dle_bits(sbl__dadd(sbl__dmul(ex, ex), sbl__dmul(ey, ey)), sbl__dset1(tol * tol)) << j;
+    }
+    return ~(ok & sbl__mbits(good)) & ((1 << SBL__VW) - 1);
+}
+
+/* After the taps, per block: sbl__stereo_after_one on every entry; on a parallel-rig
+   row in lane mode 1, VW entries at a time where none is handed back (redo) or far,
+   the back-check in lanes. `rig` is a constant where this is inlined. */
 SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r, sbl__block *b,
                                        sbl_stereo_rig rig)
 {
     const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
-    const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
     const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
-    int i, back[SBL__BLOCK], nback = 0;
-    for (i = 0; i < b->n; ++i) {
-        const int x = b->x0 + i;
-        if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
-            float tmp[4] = {0, 0, 0, 0};
-            sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
-            continue;
-        }
-        if (!back_check || !(r->v[x] > 0.0f)) continue;
-        if (cams) {
-            back[nback++] = i; /* in lanes below */
-        } else {
-            const int ix = SBL__CAST(int, floor(b->psx[i])), iy = SBL__CAST(int, floor(b->psy[i]));
-            double bx, by, bz, ex, ey;
-            int ok = rig == SBL_RIG_PARALLEL
-                         ? sbl__stereo_map_parallel(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz)
-                         : sbl__stereo_map_disparity(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz);
-            if (ok) {
-                ex = bx - (x + 0.5);
-                ey = by - (b->y + 0.5);
-                ok = ex * ex + ey * ey <= tol * tol;
+    int i = 0, l, back[SBL__BLOCK], nback = 0;
+    if (rig == SBL_RIG_PARALLEL && b->mode == 1 && back_check) {
+        for (; i + SBL__VW <= b->n; i += SBL__VW) {
+            uint32_t any = 0, u, v;
+            int bits;
+            for (l = 0; l < SBL__VW; l += 4) {
+                memcpy(&u, b->snapped + i + l, 4);
+                memcpy(&v, b->p.redo + i + l, 4);
+                any |= u | v;
             }
-            if (!ok) sbl__ring_put(r, x, 0.0f, NULL, s->src.color.ch);
+            if (any) {
+                for (l = 0; l < SBL__VW; ++l)
+                    sbl__stereo_after_one(s, r, b, i + l, rig, back_check, tol, back, &nback);
+                continue;
+            }
+            bits = sbl__mbits(sbl__gt(sbl__load(r->v + b->x0 + i), sbl__set1(0.0f)));
+            if (!bits) continue;
+            bits &= sbl__stereo_back_parallel(s, b, i, tol);
+            for (l = 0; bits; ++l, bits >>= 1)
+                if (bits & 1) sbl__ring_put(r, b->x0 + i + l, 0.0f, NULL, s->src.color.ch);
         }
     }
+    for (; i < b->n; ++i) sbl__stereo_after_one(s, r, b, i, rig, back_check, tol, back, &nback);
     if (nback) sbl__stereo_cam_back(s, r, b->y, b->x0, b->psx, b->psy, back, nback, tol);
 }
 
