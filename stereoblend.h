@@ -2940,6 +2940,22 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
     p->fast[i] = 1.0f;
 }
 
+#if SBL__VW == 4
+/* Four consecutive packed RGB pixels (12 floats) to one vector per channel: three loads
+   and seven shuffles (SSE2 emulates a gather with four loads). */
+SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
+{
+    const __m128 a = _mm_loadu_ps(p), c = _mm_loadu_ps(p + 4), e = _mm_loadu_ps(p + 8);
+    const __m128 rr = _mm_shuffle_ps(c, e, _MM_SHUFFLE(0, 1, 0, 2));  /* r2 . r3 .    */
+    const __m128 g01 = _mm_shuffle_ps(a, c, _MM_SHUFFLE(0, 0, 1, 1)); /* g0 g0 g1 g1 */
+    const __m128 g23 = _mm_shuffle_ps(c, e, _MM_SHUFFLE(2, 2, 3, 3)); /* g2 g2 g3 g3 */
+    const __m128 b01 = _mm_shuffle_ps(a, c, _MM_SHUFFLE(1, 1, 2, 2)); /* b0 b0 b1 b1 */
+    *r = _mm_shuffle_ps(a, rr, _MM_SHUFFLE(2, 0, 3, 0));
+    *g = _mm_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0));
+    *b = _mm_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0));
+}
+#endif
+
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
    (x0, y0 + 1), (x0 + 1, y0 + 1). Its tests narrow *ok, then its weighted N, colour and
    weight join the sums (each sum takes the taps in the order 0 .. 3, as the pixel
@@ -2987,17 +3003,12 @@ SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, i
         const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
         sbl__v v0;
 #if SBL__VW == 4
-        if (contiguous && ch == 3 && s->color.step == 3) {
-            /* packed RGB, four consecutive pixels (SSE2 emulates a gather with four
-               loads): three loads and seven shuffles, the same values */
-            const __m128 a = _mm_loadu_ps(cp), b = _mm_loadu_ps(cp + 4), e = _mm_loadu_ps(cp + 8);
-            const __m128 rr = _mm_shuffle_ps(b, e, _MM_SHUFFLE(0, 1, 0, 2));   /* r2 . r3 . */
-            const __m128 g01 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(0, 0, 1, 1));  /* g0 g0 g1 g1 */
-            const __m128 g23 = _mm_shuffle_ps(b, e, _MM_SHUFFLE(2, 2, 3, 3));  /* g2 g2 g3 g3 */
-            const __m128 b01 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 1, 2, 2));  /* b0 b0 b1 b1 */
-            acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, _mm_shuffle_ps(a, rr, _MM_SHUFFLE(2, 0, 3, 0))), zero));
-            acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, _mm_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0))), zero));
-            acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, _mm_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0))), zero));
+        if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB (sbl__rgb4) */
+            __m128 cr, cg, cb;
+            sbl__rgb4(cp, &cr, &cg, &cb);
+            acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, cr), zero));
+            acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, cg), zero));
+            acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, cb), zero));
             *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
             return;
         }
@@ -3511,7 +3522,7 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     const float *np = src->length.p ? SBL__AT(src->length, x0, y) : NULL;
     const float *cp = SBL__AT(src->color, x0, y);
     const ptrdiff_t cs = src->color.step;
-    int i = 0, l, c, idx[SBL__VW];
+    int i = 0, l, idx[SBL__VW];
     for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
     for (;;) {
         int x, bits;
@@ -3519,8 +3530,22 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         sbl__v nv = one, v[4];
         if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
         x = x0 + i;
-        for (c = 0; c < ch; ++c) /* the history colour, one channel per vector */
-            v[c] = cs == 1 ? sbl__load(cp + i + c) : sbl__gatheri(cp + SBL__CAST(ptrdiff_t, i) * cs + c, idx);
+        /* the history colour, one channel per vector (the channels written out: gcc -O2
+           keeps a loop over them, with the vectors in memory) */
+#if SBL__VW == 4
+        if (ch == 3 && cs == 3) {
+            sbl__rgb4(cp + SBL__CAST(ptrdiff_t, i) * 3, &v[0], &v[1], &v[2]);
+        } else
+#endif
+        if (cs == 1) { /* (one channel) */
+            v[0] = v[1] = v[2] = v[3] = sbl__load(cp + i);
+        } else {
+            const float *hp_i = cp + SBL__CAST(ptrdiff_t, i) * cs;
+            v[0] = sbl__gatheri(hp_i, idx);
+            if (ch > 1) v[1] = sbl__gatheri(hp_i + 1, idx);
+            if (ch > 2) v[2] = sbl__gatheri(hp_i + 2, idx);
+            if (ch > 3) v[3] = sbl__gatheri(hp_i + 3, idx);
+        }
         keep = zp ? sbl__gt(sbl__load(zp + i), zero) : sbl__gt(one, zero);
         valid = keep;
         if (hp) {
@@ -3535,8 +3560,14 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
             nv = sbl__load(np + i);
             valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
         }
-        for (c = 0; c < ch; ++c) valid = sbl__mandnot(valid, sbl__nonfinite(v[c]));
-        for (c = 0; c < ch; ++c) sbl__store(r->x[c] + x, sbl__sel(valid, sbl__add(zero, v[c]), zero));
+        valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
+        if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
+        if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
+        if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
+        sbl__store(r->x[0] + x, sbl__sel(valid, sbl__add(zero, v[0]), zero));
+        if (ch > 1) sbl__store(r->x[1] + x, sbl__sel(valid, sbl__add(zero, v[1]), zero));
+        if (ch > 2) sbl__store(r->x[2] + x, sbl__sel(valid, sbl__add(zero, v[2]), zero));
+        if (ch > 3) sbl__store(r->x[3] + x, sbl__sel(valid, sbl__add(zero, v[3]), zero));
         sbl__store(r->n + x, sbl__sel(valid, nv, zero));
         sbl__store(r->v + x, sbl__sel(valid, one, zero));
         bits = sbl__mbits(sbl__mandnot(keep, valid));
