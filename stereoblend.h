@@ -3340,8 +3340,8 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     const sbl__v wf = sbl__set1(SBL__CAST(float, src->width)), hf = sbl__set1(SBL__CAST(float, src->height));
     const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane)), yf = sbl__set1(SBL__CAST(float, y));
     sbl__v ax, ay, fmx, fmy, x0f, y0f;
-    sbl__m exact, inside, fast;
-    int l, bits_scalar, bits_fast, bits_keep;
+    sbl__m exact, fast;
+    int l, bits_scalar, bits_fast, bits_redo;
     float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     int uniform;
     ax = sbl__abs(mx);
@@ -3349,12 +3349,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
                       sbl__mor(sbl__le(ay, zero), sbl__mand(sbl__le(lo, ay), sbl__gt(hi, ay))));
     bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
-    /* x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
-    inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
-                       sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
-    inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
-                                         sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
-    keep = sbl__mand(sbl__mand(keep, exact), inside);
+    keep = sbl__mand(keep, exact);
     fmx = sbl__floor(mx);
     fmy = sbl__floor(my);
     x0f = sbl__add(xf, fmx);
@@ -3363,6 +3358,18 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__gt(wf, sbl__add(x0f, one))),
                      sbl__mand(sbl__le(zero, y0f), sbl__gt(hf, sbl__add(y0f, one))));
     fast = sbl__mand(fast, keep);
+    /* the others kept: the pixel gather where the position is inside the image, else a
+       reset (four taps inside imply the position inside: only those need the test);
+       x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
+    bits_fast = sbl__mbits(fast);
+    bits_redo = sbl__mbits(sbl__mandnot(keep, fast));
+    if (bits_redo) {
+        sbl__m inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
+                                  sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
+        inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
+                                             sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
+        bits_redo &= sbl__mbits(inside);
+    }
     /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
     sbl__store(p->fx + i, sbl__sel(fast, sbl__add(sbl__sub(mx, fmx), zero), zero));
     sbl__store(p->fy + i, sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
@@ -3372,14 +3379,12 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     /* tap (0, 0) where not fast: a valid address, result unused */
     sbl__store(x0s, sbl__sel(fast, x0f, zero));
     sbl__store(y0s, sbl__sel(fast, y0f, zero));
-    bits_fast = sbl__mbits(fast);
-    bits_keep = sbl__mbits(keep);
     {   /* redo bytes, four lanes per table entry (x86: little-endian bytes) */
         static const unsigned int bytes[16] = {
             0x00000000u, 0x00000001u, 0x00000100u, 0x00000101u, 0x00010000u, 0x00010001u,
             0x00010100u, 0x00010101u, 0x01000000u, 0x01000001u, 0x01000100u, 0x01000101u,
             0x01010000u, 0x01010001u, 0x01010100u, 0x01010101u};
-        const int redo = bits_keep & ~bits_fast;
+        const int redo = bits_redo;
         if (!redo) memset(p->redo + i, 0, SBL__VW);
         else for (l = 0; l < SBL__VW; l += 4) memcpy(p->redo + i + l, &bytes[(redo >> l) & 15], 4);
     }
