@@ -2966,17 +2966,18 @@ SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
 SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
                                 sbl__v w, sbl__m ok, sbl__v ze, sbl__v lim, sbl__m inf_e,
                                 int plain, const int *cidx, const float *cbase, sbl__v *acc,
-                                sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int sky)
+                                sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int sky,
+                                int full)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
-    if (s->use_depth) {
+    if (full || s->use_depth) {
         const ptrdiff_t o = ty * s->depth.stride + tx * s->depth.step;
         const sbl__v d = contiguous ? sbl__load(s->depth.p + o + p->di[i])
                                     : sbl__gatheri(s->depth.p + o, p->di + i);
-        if (sky) {
+        if (sky && !full) {
             ok = sbl__mand(ok, sbl__posinf(d));
-        } else if (plain) {
+        } else if (full || plain) {
             ok = sbl__mand(ok, sbl__mand(sbl__gt(d, zero), sbl__le(sbl__abs(sbl__sub(d, ze)), lim)));
         } else {
             /* sbl__depth_match: sky matches only sky; else a finite, positive depth
@@ -2989,7 +2990,7 @@ SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, i
             ok = sbl__mand(ok, match);
         }
     }
-    if (s->length.p) {
+    if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
         const sbl__v nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
                                      : sbl__gatheri(s->length.p + o, p->li + i);
@@ -3035,7 +3036,7 @@ SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, i
    (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                  sbl__ring_row *r, int x, const int *cstep, int ch,
-                                 int contiguous, int sky)
+                                 int contiguous, int sky, int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -3053,24 +3054,26 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     w1 = sbl__mul(fx, gy);
     w2 = sbl__mul(gx, fy);
     w3 = sbl__mul(fx, fy);
-    if (s->use_depth && !sky) {
+    if (full || (s->use_depth && !sky)) {
         ze = sbl__load(p->depth + i);
         lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sbl__load(p->slack + i));
-        inf_e = sbl__posinf(ze);
-        plain = !sbl__mbits(sbl__mor(inf_e, sbl__nonfinite(lim)));
+        if (!full) {
+            inf_e = sbl__posinf(ze);
+            plain = !sbl__mbits(sbl__mor(inf_e, sbl__nonfinite(lim)));
+        }
     }
     acc[0] = acc[1] = acc[2] = acc[3] = zero;
     sbl__lanes_tap(s, p, i, 0, w0, sbl__gt(w0, zero), ze, lim, inf_e, plain, cidx, cbase, acc,
-                   &accn, &wsum, ch, contiguous, sky);
+                   &accn, &wsum, ch, contiguous, sky, full);
     if (!skip_x)
         sbl__lanes_tap(s, p, i, 1, w1, sbl__gt(w1, zero), ze, lim, inf_e, plain, cidx, cbase,
-                       acc, &accn, &wsum, ch, contiguous, sky);
+                       acc, &accn, &wsum, ch, contiguous, sky, full);
     if (!skip_y) {
         sbl__lanes_tap(s, p, i, 2, w2, sbl__gt(w2, zero), ze, lim, inf_e, plain, cidx, cbase,
-                       acc, &accn, &wsum, ch, contiguous, sky);
+                       acc, &accn, &wsum, ch, contiguous, sky, full);
         if (!skip_x)
             sbl__lanes_tap(s, p, i, 3, w3, sbl__gt(w3, zero), ze, lim, inf_e, plain, cidx,
-                           cbase, acc, &accn, &wsum, ch, contiguous, sky);
+                           cbase, acc, &accn, &wsum, ch, contiguous, sky, full);
     }
     redo = sbl__nonfinite(accn);
     /* (the channels written out, as in sbl__lanes_tap) */
@@ -3120,20 +3123,35 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
     /* contiguous vectors need depth and N packed (plain loads); the colour's fixed lane
        offsets are the plan's lane steps */
     const int packed = (!s->use_depth || s->depth.step == 1) && (!s->length.p || s->length.step == 1);
+    /* the common views: depth and N tested; "full" vectors also have every depth limit
+       finite and no lane expecting sky (the plain depth test), and take the variant of
+       the taps without the tests of the views' presence */
+    const int both = !sky && s->use_depth && s->length.p;
+    const sbl__v tol = sbl__set1(s->depth_tolerance);
     const int *cstep = p->lane_step[0];
     int i = 0;
     for (;;) {
+        int contiguous, full = 0;
         if (i + SBL__VW > n) i = n - SBL__VW;
         /* every lane's first tap one pixel after the previous lane's, in every view
            (each lane's index is a valid one, so the vector load reads exactly the
            addresses the gather would) */
-        if (packed && (p->uniform[i] ||
-                       (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
-                        (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
-                        (!s->length.p || sbl__ints_step(p->li + i, 1)))))
-            sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky);
-        else
-            sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky);
+        contiguous = packed && (p->uniform[i] ||
+                                (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
+                                 (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
+                                 (!s->length.p || sbl__ints_step(p->li + i, 1))));
+        if (both) {
+            const sbl__v ze = sbl__load(p->depth + i);
+            full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
+                                        sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
+        }
+        if (contiguous) {
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0);
+        } else {
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0);
+        }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
     }
