@@ -5658,8 +5658,9 @@ SBL__INLINE int sbl__stereo_back_parallel(const sbl__stereo_rp *s, const sbl__bl
                                      sbl__dmul(sbl__dset1(s->dir[1]),
                                                sbl__dsub(sbl__dfromf(fbz + j), sbl__dset1(s->offset))));
         const sbl__dv ex = sbl__dsub(bx, sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5)));
-        const sbl__dv ey = sbl__dsub(sbl__dload(b->psy + i + j), sbl__dset1(b->y + 0.5));
-        ok |= sbl__dle_bits(sbl__dadd(sbl__dmul(ex, ex), sbl__dmul(ey, ey)), sbl__dset1(tol * tol)) << j;
+        /* ey = by - (y + 0.5) is 0 (by = the match's y, which is y + 0.5 on this row),
+           and ex ex + 0 0 = ex ex exactly */
+        ok |= sbl__dle_bits(sbl__dmul(ex, ex), sbl__dset1(tol * tol)) << j;
     }
     return ~(ok & sbl__mbits(good)) & ((1 << SBL__VW) - 1);
 }
