@@ -1667,14 +1667,48 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
            not overflow before the division */
         int cx = SBL__CAST(int, floor(sx)), cy = SBL__CAST(int, floor(sy)), cnt = 0;
         double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
-        for (j = -1; j <= 1; ++j)
-            for (i = -1; i <= 1; ++i)
-                if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
+        if (cx >= 1 && cy >= 1 && cx + 1 < s->width && cy + 1 < s->height && !s->use_id &&
+            !s->use_normal) {
+            /* the window inside the image, no id or normal test (the common case of a
+               disocclusion): sbl__tap_ok's tests written out, the depth test's limit
+               formed once (the same float expression) */
+            const int inf_e = sbl__is_pos_inf(t->depth);
+            const float lim = s->depth_tolerance * t->depth + t->depth_slack;
+            for (j = -1; j <= 1; ++j)
+                for (i = -1; i <= 1; ++i) {
                     const float *c = SBL__AT(s->color, cx + i, cy + j);
-                    for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
-                    dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
+                    float n = 1.0f;
+                    if (s->use_depth) { /* sbl__depth_match */
+                        const float d = *SBL__AT(s->depth, cx + i, cy + j);
+                        const int inf_t = sbl__is_pos_inf(d);
+                        if (inf_e || inf_t) {
+                            if (!(inf_e && inf_t)) continue;
+                        } else if (!sbl__finite(d) || !(d > 0.0f) || !(fabsf(d - t->depth) <= lim)) {
+                            continue;
+                        }
+                    }
+                    if (sbl__any_nonfinite(c, ch)) continue;
+                    if (s->length.p) {
+                        n = *SBL__AT(s->length, cx + i, cy + j);
+                        if (!(n > 0.0f) || !sbl__finite(n)) continue;
+                    }
+                    dacc[0] += SBL__CAST(double, c[0]);
+                    if (ch > 1) dacc[1] += SBL__CAST(double, c[1]);
+                    if (ch > 2) dacc[2] += SBL__CAST(double, c[2]);
+                    if (ch > 3) dacc[3] += SBL__CAST(double, c[3]);
+                    dn += SBL__CAST(double, n); /* 1.0 without N */
                     ++cnt;
                 }
+        } else {
+            for (j = -1; j <= 1; ++j)
+                for (i = -1; i <= 1; ++i)
+                    if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
+                        const float *c = SBL__AT(s->color, cx + i, cy + j);
+                        for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
+                        dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
+                        ++cnt;
+                    }
+        }
         if (!cnt) return 0.0f;
         for (k = 0; k < ch; ++k) out[k] = SBL__CAST(float, dacc[k] / cnt);
         dn /= cnt;
