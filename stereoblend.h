@@ -4079,15 +4079,16 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
 }
 
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
-   column - ca; the last vector overlaps the one before (same values). The channels are
+   column - base; the last vector overlaps the one before (same values). The channels are
    written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). */
-SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb)
+SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
+                                    int base)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const int ch = k->ch;
     int x = ca;
     for (;;) {
-        const int i = x - ca;
+        const int i = x - base;
         const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
                      v2 = sbl__load(W->v[2] + x);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
@@ -4295,14 +4296,30 @@ SBL__INLINE void sbl__pool_lanes_columns(sbl__kernel *k, const sbl__pool_rows *P
     }
 }
 
-/* A column outside the image: no pairs, sums 0 (at index column - base). */
-static void sbl__pool_column_zero(sbl__kernel *k, int ch, int i)
+/* Where the blocks read their column sums: the prepass's own planes (pool_col), or the
+   lane kernel's column sums (k->col, col_n), which hold the same values on an interior
+   row (sbl__kernel_lanes_pooled). */
+typedef struct sbl__pool_planes {
+    float *a[4], *b[4], *t[4], *n;
+} sbl__pool_planes;
+
+static void sbl__pool_planes_own(const sbl__kernel *k, int ch, sbl__pool_planes *Q)
 {
     int c;
-    SBL__POOL_PLANE(k, SBL__POOL_N(ch))[i] = 0.0f;
-    for (c = 0; c < ch; ++c)
-        SBL__POOL_PLANE(k, SBL__POOL_A(c))[i] = SBL__POOL_PLANE(k, SBL__POOL_B(c))[i] =
-            SBL__POOL_PLANE(k, SBL__POOL_T(c))[i] = 0.0f;
+    for (c = 0; c < ch; ++c) {
+        Q->a[c] = SBL__POOL_PLANE(k, SBL__POOL_A(c));
+        Q->b[c] = SBL__POOL_PLANE(k, SBL__POOL_B(c));
+        Q->t[c] = SBL__POOL_PLANE(k, SBL__POOL_T(c));
+    }
+    Q->n = SBL__POOL_PLANE(k, SBL__POOL_N(ch));
+}
+
+/* A column outside the image: no pairs, sums 0 (at index column - base). */
+static void sbl__pool_column_zero(const sbl__pool_planes *Q, int ch, int i)
+{
+    int c;
+    Q->n[i] = 0.0f;
+    for (c = 0; c < ch; ++c) Q->a[c][i] = Q->b[c][i] = Q->t[c][i] = 0.0f;
 }
 
 /* One column of a block moved from its own shift t to the block's s: D = t - s,
@@ -4315,11 +4332,11 @@ static void sbl__pool_column_zero(sbl__kernel *k, int ch, int i)
 
 /* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
    sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs. */
-SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const int ch, int ba, int bb, int base)
+SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
+                                        int ba, int bb, int base)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
-    const float *const pool = k->pool_col;
-    const float *pn = pool + SBL__POOL_N(ch) * SBL__POOL_COLS;
+    const float *pn = Q->n;
     float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
     int x = ba, c;
     for (;;) {
@@ -4331,9 +4348,7 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const int ch, int ba, in
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero;
         for (c = 0; c < ch; ++c) {
-            const float *pa = pool + SBL__POOL_A(c) * SBL__POOL_COLS + i;
-            const float *pb = pool + SBL__POOL_B(c) * SBL__POOL_COLS + i;
-            const float *pt = pool + SBL__POOL_T(c) * SBL__POOL_COLS + i;
+            const float *pa = Q->a[c] + i, *pb = Q->b[c] + i, *pt = Q->t[c] + i;
             const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
             const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
             sbl__v al, bl, ar, br, a, b, q, mean, var;
@@ -4440,11 +4455,13 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
         if (!covered) {
             const int ca = x - reach > 0 ? x - reach : 0, cb = e + reach < w ? e + reach : w;
             const int ba = x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
+            sbl__pool_planes Q;
             int c;
+            sbl__pool_planes_own(k, ch, &Q);
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
-            if (x - reach < 0) sbl__pool_column_zero(k, ch, -1 - base);
-            if (e + reach > w) sbl__pool_column_zero(k, ch, w - base);
-            sbl__pool_lanes_blocks(k, ch, ba, bb, base);
+            if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
+            if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -4663,6 +4680,44 @@ SBL__INLINE void sbl__lanes_group_add(const sbl__lane_stats *st, int c, sbl__v *
     sums[3] = sbl__add(sums[3], st->pv[c]);
 }
 
+/* One vector of pixels [x, x + VW) of row y: moments from the column sums at index
+   column - base (sbl__lanes_columns), the estimator, the blend, staged. */
+SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                   const float *nyrow, int x, int base, int y, const int ch)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap);
+    sbl__lane_stats st;
+    sbl__v a[4], n_x, n_y, n_xc;
+    sbl__m valid;
+    int c;
+    n_x = sbl__load(n_row + x);
+    valid = sbl__gt(n_x, zero);
+    n_y = nyrow ? sbl__load(nyrow + x) : one;
+    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+    sbl__lanes_moments(k, W, x, base, &st);
+    sbl__lanes_pool(k, x, y, &st);
+    sbl__lanes_rectify(k, &st);
+    if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
+        for (c = 0; c < ch; ++c) {
+            sbl__v sums[4] = {zero, zero, zero, zero};
+            sbl__lanes_group_add(&st, c, sums);
+            a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+        }
+    } else {
+        /* one weight from the squares summed over the channels (written out) */
+        sbl__v sums[4] = {zero, zero, zero, zero}, w;
+        sbl__lanes_group_add(&st, 0, sums);
+        if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
+        if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
+        if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
+        w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+        for (c = 0; c < ch; ++c) a[c] = w;
+    }
+    sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
+}
+
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
 {
@@ -4670,49 +4725,17 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
        k->ch): their channel loops unroll, with no plane pointer reloaded per channel */
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int y = R[1]->row;
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
-    const sbl__v cap = sbl__set1(k->n_cap);
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
-    const int per_channel = k->wp.mode == SBL_WEIGHT_PER_CHANNEL;
     const int end = x0 + (x1 - x0) / SBL__VW * SBL__VW; /* whole vectors only */
     sbl__lane_rows W;
-    int x = x0, c;
+    int x = x0;
     k_ch.ch = ch;
     sbl__lane_rows_of(&W, R, ch);
     while (x < end) {
         /* one chunk: its column sums (with the neighbour columns), then its pixels */
         const int ca = x - 1, ce = end - x > SBL__CHUNK ? x + SBL__CHUNK : end;
-        sbl__lanes_columns(k, &W, ca, ce + 1);
-        for (; x < ce; x += SBL__VW) {
-            sbl__lane_stats st;
-            sbl__v a[4], n_x, n_y, n_xc;
-            sbl__m valid;
-            n_x = sbl__load(R[1]->n + x);
-            valid = sbl__gt(n_x, zero);
-            n_y = nyrow ? sbl__load(nyrow + x) : one;
-            n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
-            n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-            sbl__lanes_moments(k, &W, x, ca, &st);
-            sbl__lanes_pool(k, x, y, &st);
-            sbl__lanes_rectify(k, &st);
-            if (per_channel) {
-                for (c = 0; c < ch; ++c) {
-                    sbl__v sums[4] = {zero, zero, zero, zero};
-                    sbl__lanes_group_add(&st, c, sums);
-                    a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
-                }
-            } else {
-                /* one weight from the squares summed over the channels (written out) */
-                sbl__v sums[4] = {zero, zero, zero, zero}, w;
-                sbl__lanes_group_add(&st, 0, sums);
-                if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
-                if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
-                if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
-                w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
-                for (c = 0; c < ch; ++c) a[c] = w;
-            }
-            sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
-        }
+        sbl__lanes_columns(k, &W, ca, ce + 1, ca);
+        for (; x < ce; x += SBL__VW) sbl__lanes_vector(k, &W, R[1]->n, nyrow, x, ca, y, ch);
     }
     return x;
 }
@@ -4724,6 +4747,77 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
     case 2: return sbl__kernel_lanes_ch(k, R, x0, x1, 2);
     case 3: return sbl__kernel_lanes_ch(k, R, x0, x1, 3);
     default: return sbl__kernel_lanes_ch(k, R, x0, x1, 4);
+    }
+}
+
+/* The pooled estimator's prepass and the lane kernel in one pass over a clean interior
+   row: the three ring rows exist and hold no unsafe value in the columns loaded. The
+   prepass's column sums over three rows (pairs N, A = sum v (d - t), B, T) are the same
+   operations on the same values as the lane kernel's (col_n, DA, DB, T: compare
+   sbl__pool_lanes_columns with sbl__lanes_column), so each chunk sums its columns once,
+   over the prepass's reach, and both read them: bit for bit what sbl__row_pool then
+   sbl__kernel_lanes_runs give. Computes the ratio of pixels [pa, pb) (pb - pa >= 16)
+   and the lanes of pixels [xa, xb) (inside [1, w - 1), within [pa, pb)); extra pixels a
+   widened vector computes lie inside [1, w - 1), where every pixel of a clean row takes
+   the lanes. */
+SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
+                                             int pa, int pb, int xa, int xb, const int ch)
+{
+    sbl__kernel k_ch = *k_in, *k = &k_ch;
+    const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
+    const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
+    const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
+    float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
+    sbl__lane_rows W;
+    sbl__pool_planes Q;
+    int x = pa, c;
+    k_ch.ch = ch;
+    sbl__lane_rows_of(&W, R, ch);
+    for (c = 0; c < ch; ++c) {
+        Q.a[c] = SBL__COLP(k->col[c], SBL__COL_DA);
+        Q.b[c] = SBL__COLP(k->col[c], SBL__COL_DB);
+        Q.t[c] = SBL__COLP(k->col[c], SBL__COL_T);
+    }
+    Q.n = k->col_n;
+    while (x < pb) {
+        int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
+        if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
+        base = x - reach;
+        sbl__lanes_columns(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w, base);
+        if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
+        if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
+        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base);
+        for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
+        for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
+        sbl__pool_lanes_ratio(k, ch, x, e, base);
+        /* the chunk's lanes: whole vectors, the last one ending at hi; a part narrower
+           than a vector is covered by one inside [x - span, e + span) and [1, w - 1)
+           (its column sums are computed) */
+        lo = x > xa ? x : xa;
+        hi = e < xb ? e : xb;
+        if (hi - lo >= SBL__VW) {
+            for (p = lo; p + SBL__VW <= hi; p += SBL__VW)
+                sbl__lanes_vector(k, &W, R[1]->n, nyrow, p, base, y, ch);
+            if (p < hi) sbl__lanes_vector(k, &W, R[1]->n, nyrow, hi - SBL__VW, base, y, ch);
+        } else if (lo < hi) {
+            p = hi - SBL__VW;
+            if (p < x - span) p = x - span;
+            if (p < 1) p = 1;
+            sbl__lanes_vector(k, &W, R[1]->n, nyrow, p, base, y, ch);
+        }
+        x = e;
+    }
+}
+
+static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
+                                     int pb, int xa, int xb)
+{
+    k->pool_row = R[1]->row;
+    switch (k->ch) {
+    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, 1); break;
+    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, 2); break;
+    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, 3); break;
+    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, 4); break;
     }
 }
 
@@ -4828,18 +4922,25 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
             const unsigned char *win = NULL;
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
-            if (pool) sbl__row_pool(k, R, pa, pb);
-            if (lanes_ok) {
-                if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
-                    /* per pixel: 1 if any of the nine values of its window is unsafe
-                       (per column over its three rows, then over three columns) */
-                    unsigned char *cu = k->column_unsafe;
-                    sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
-                                   R[2]->unsafe + xa - 1, xb - xa + 2);
-                    sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
-                    win = k->window_unsafe;
+            if (pool && lanes_ok &&
+                !(R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count)) {
+                /* a clean interior row: prepass and lanes share their column sums */
+                sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb);
+            } else {
+                if (pool) sbl__row_pool(k, R, pa, pb);
+                if (lanes_ok) {
+                    if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
+                        /* per pixel: 1 if any of the nine values of its window is unsafe
+                           (per column over its three rows, then over three columns) */
+                        unsigned char *cu = k->column_unsafe;
+                        sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
+                                       R[2]->unsafe + xa - 1, xb - xa + 2);
+                        sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1,
+                                       xb - xa);
+                        win = k->window_unsafe;
+                    }
+                    sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
                 }
-                sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
             }
             if (!lanes_ok) {
                 for (x = x0; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
