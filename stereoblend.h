@@ -2793,6 +2793,7 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->pool_se2 = SBL__PCAST(double *, p); p += 2 * pf;
     k->pool_r = p; p += pf;
     k->pool_row = -1;
+    /* consecutive blocks, one per channel (sbl__pool_planes_of counts on it) */
     for (c = 0; c < k->ch; ++c) { k->col[c] = p; p += SBL__COL_PLANES * SBL__CHUNK_COLS; }
     k->col_n = p; p += SBL__CHUNK_COLS;
     k->pool_col = p; p += SBL__POOL_PLANES(k->ch) * SBL__POOL_COLS;
@@ -4301,17 +4302,21 @@ SBL__INLINE void sbl__pool_lanes_columns(sbl__kernel *k, const sbl__pool_rows *P
    row (sbl__kernel_lanes_pooled). */
 typedef struct sbl__pool_planes {
     float *a[4], *b[4], *t[4], *n;
+    ptrdiff_t cstep; /* a[c] - a[0] = c cstep, and so for b and t */
 } sbl__pool_planes;
 
-static void sbl__pool_planes_own(const sbl__kernel *k, int ch, sbl__pool_planes *Q)
+/* own = 1: the prepass's planes; 0: the lane kernel's (per channel one block of
+   SBL__COL_PLANES planes, the blocks consecutive: sbl__kernel_bind) */
+SBL__INLINE void sbl__pool_planes_of(const sbl__kernel *k, int ch, int own, sbl__pool_planes *Q)
 {
     int c;
+    Q->cstep = own ? 3 * SBL__POOL_COLS : SBL__COL_PLANES * SBL__CHUNK_COLS;
     for (c = 0; c < ch; ++c) {
-        Q->a[c] = SBL__POOL_PLANE(k, SBL__POOL_A(c));
-        Q->b[c] = SBL__POOL_PLANE(k, SBL__POOL_B(c));
-        Q->t[c] = SBL__POOL_PLANE(k, SBL__POOL_T(c));
+        Q->a[c] = own ? SBL__POOL_PLANE(k, SBL__POOL_A(c)) : SBL__COLP(k->col[c], SBL__COL_DA);
+        Q->b[c] = own ? SBL__POOL_PLANE(k, SBL__POOL_B(c)) : SBL__COLP(k->col[c], SBL__COL_DB);
+        Q->t[c] = own ? SBL__POOL_PLANE(k, SBL__POOL_T(c)) : SBL__COLP(k->col[c], SBL__COL_T);
     }
-    Q->n = SBL__POOL_PLANE(k, SBL__POOL_N(ch));
+    Q->n = own ? SBL__POOL_PLANE(k, SBL__POOL_N(ch)) : k->col_n;
 }
 
 /* A column outside the image: no pairs, sums 0 (at index column - base). */
@@ -4337,6 +4342,10 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
     const float *pn = Q->n;
+    /* channel c's planes at a constant distance from channel 0's (every caller's layout,
+       sbl__pool_planes_of): fixed offsets from one pointer, not three loads per channel */
+    const float *const a0 = Q->a[0], *const b0 = Q->b[0], *const t0 = Q->t[0];
+    const ptrdiff_t cstep = Q->cstep;
     float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
     int x = ba, c;
     for (;;) {
@@ -4348,7 +4357,7 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero;
         for (c = 0; c < ch; ++c) {
-            const float *pa = Q->a[c] + i, *pb = Q->b[c] + i, *pt = Q->t[c] + i;
+            const float *pa = a0 + c * cstep + i, *pb = b0 + c * cstep + i, *pt = t0 + c * cstep + i;
             const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
             const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
             sbl__v al, bl, ar, br, a, b, q, mean, var;
@@ -4391,10 +4400,19 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
     for (;;) {
         const int i = x - base - SBL__POOL_STEP * SBL__POOL_BLOCKS;
         sbl__v sm2 = sbl__load(pm + i), sse2 = sbl__load(ps + i), r;
+#if SBL__POOL_BLOCKS == 2 && SBL__POOL_STEP == 3
+        /* written out (the same additions in the same order as the loop) */
+        sm2 = sbl__add(sbl__add(sbl__add(sbl__add(sm2, sbl__load(pm + i + 3)), sbl__load(pm + i + 6)),
+                                sbl__load(pm + i + 9)), sbl__load(pm + i + 12));
+        sse2 = sbl__add(sbl__add(sbl__add(sbl__add(sse2, sbl__load(ps + i + 3)), sbl__load(ps + i + 6)),
+                                 sbl__load(ps + i + 9)), sbl__load(ps + i + 12));
+        (void)b;
+#else
         for (b = 1; b <= 2 * SBL__POOL_BLOCKS; ++b) {
             sm2 = sbl__add(sm2, sbl__load(pm + i + SBL__POOL_STEP * b));
             sse2 = sbl__add(sse2, sbl__load(ps + i + SBL__POOL_STEP * b));
         }
+#endif
         r = sbl__sub(sbl__div(sm2, sbl__max(sse2, tiny)), thr);
         r = sbl__sel(sbl__gt(sse2, zero), r, sbl__sel(sbl__gt(sm2, zero), cap, zero));
         sbl__store(k->pool_r + x, sbl__max(sbl__min(r, cap), zero));
@@ -4457,7 +4475,7 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
             const int ba = x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
             sbl__pool_planes Q;
             int c;
-            sbl__pool_planes_own(k, ch, &Q);
+            sbl__pool_planes_of(k, ch, 1, &Q);
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
@@ -4770,15 +4788,10 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
     sbl__lane_rows W;
     sbl__pool_planes Q;
-    int x = pa, c;
+    int x = pa;
     k_ch.ch = ch;
     sbl__lane_rows_of(&W, R, ch);
-    for (c = 0; c < ch; ++c) {
-        Q.a[c] = SBL__COLP(k->col[c], SBL__COL_DA);
-        Q.b[c] = SBL__COLP(k->col[c], SBL__COL_DB);
-        Q.t[c] = SBL__COLP(k->col[c], SBL__COL_T);
-    }
-    Q.n = k->col_n;
+    sbl__pool_planes_of(k, ch, 0, &Q);
     while (x < pb) {
         int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
