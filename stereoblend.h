@@ -2048,31 +2048,41 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
                               const float (*xvals)[4], const int *xvalid, int n, int ch,
                               int centre)
 {
-    int i, k;
-    for (k = 0; k < ch; ++k) {
-        /* the window without its centre, centred on its own mean (a firefly at the
-           centre cannot cancel the others' spread away) */
-        double s8 = 0.0, v8 = 0.0;
-        m->mean8[k] = m->var8[k] = 0.0;
-        if (centre < 0 || n < 2) continue;
-        for (i = 0; i < n; ++i) if (i != centre) s8 += SBL__CAST(double, vals[i][k]);
-        s8 /= n - 1;
-        for (i = 0; i < n; ++i)
-            if (i != centre) v8 += (SBL__CAST(double, vals[i][k]) - s8) * (SBL__CAST(double, vals[i][k]) - s8);
-        m->mean8[k] = s8;
-        m->var8[k] = v8 / (n - 1);
-    }
+    /* one channel's values in double, and its valid pairs' x* - y, converted once; each
+       sum is taken in the order of the samples (the window without its centre as two
+       runs around it): the same additions whatever the loop shape */
+    double yv[9], dv[9];
+    int i, k, np = 0;
     m->count = n;
-    m->pair_count = 0;
     m->pool_r = 0.0;
-    for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
+    if (xvalid)
+        for (i = 0; i < n; ++i) np += xvalid[i] != 0;
+    m->pair_count = np;
     for (k = 0; k < ch; ++k) {
         double s = 0.0, v = 0.0, pd = 0.0;
         float lo = 0.0f, hi = 0.0f;
-        for (i = 0; i < n; ++i) s += SBL__CAST(double, vals[i][k]);
+        int j = 0;
+        for (i = 0; i < n; ++i) {
+            yv[i] = SBL__CAST(double, vals[i][k]);
+            if (xvalid && xvalid[i]) dv[j++] = SBL__CAST(double, xvals[i][k]) - yv[i];
+        }
+        /* the window without its centre, centred on its own mean (a firefly at the
+           centre cannot cancel the others' spread away) */
+        m->mean8[k] = m->var8[k] = 0.0;
+        if (centre >= 0 && n >= 2) {
+            double s8 = 0.0, v8 = 0.0;
+            for (i = 0; i < centre; ++i) s8 += yv[i];
+            for (i = centre + 1; i < n; ++i) s8 += yv[i];
+            s8 /= n - 1;
+            for (i = 0; i < centre; ++i) v8 += (yv[i] - s8) * (yv[i] - s8);
+            for (i = centre + 1; i < n; ++i) v8 += (yv[i] - s8) * (yv[i] - s8);
+            m->mean8[k] = s8;
+            m->var8[k] = v8 / (n - 1);
+        }
+        for (i = 0; i < n; ++i) s += yv[i];
         s = n ? s / n : 0.0;
         for (i = 0; i < n; ++i) {
-            double d = SBL__CAST(double, vals[i][k]) - s;
+            const double d = yv[i] - s;
             v += d * d;
             if (i == 0 || vals[i][k] < lo) lo = vals[i][k];
             if (i == 0 || vals[i][k] > hi) hi = vals[i][k];
@@ -2081,19 +2091,16 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
         m->var[k] = n ? v / n : 0.0;
         m->lo[k] = lo;
         m->hi[k] = hi;
-        if (xvalid)
-            for (i = 0; i < n; ++i)
-                if (xvalid[i]) pd += SBL__CAST(double, xvals[i][k]) - SBL__CAST(double, vals[i][k]);
-        m->pair_diff[k] = m->pair_count ? pd / m->pair_count : 0.0;
+        for (i = 0; i < np; ++i) pd += dv[i];
+        m->pair_diff[k] = np ? pd / np : 0.0;
         m->pair_var[k] = 0.0;
-        if (xvalid && m->pair_count > 1) {
+        if (np > 1) {
             double pv = 0.0;
-            for (i = 0; i < n; ++i)
-                if (xvalid[i]) {
-                    double e = (SBL__CAST(double, xvals[i][k]) - SBL__CAST(double, vals[i][k])) - m->pair_diff[k];
-                    pv += e * e;
-                }
-            m->pair_var[k] = pv / (m->pair_count - 1);
+            for (i = 0; i < np; ++i) {
+                const double e = dv[i] - m->pair_diff[k];
+                pv += e * e;
+            }
+            m->pair_var[k] = pv / (np - 1);
         }
     }
 }
@@ -4055,7 +4062,7 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
 
 /* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
 SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
-                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1)
+                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1, int clamp)
 {
     const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
                  y2 = sbl__load(W->y[2][c] + x);
@@ -4073,7 +4080,7 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
     sbl__store(SBL__COLP(cp, SBL__COL_T), t);
     sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
     sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
-    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+    if (clamp) {
         sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
         sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
     }
@@ -4086,7 +4093,7 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
                                     int base)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const int ch = k->ch;
+    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
     int x = ca;
     for (;;) {
         const int i = x - base;
@@ -4094,10 +4101,10 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
                      v2 = sbl__load(W->v[2] + x);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
-        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1);
-        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1);
-        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1);
-        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1);
+        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp);
+        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp);
+        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp);
+        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1, clamp);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
@@ -4786,6 +4793,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
+    const float *const n_row = R[1]->n;
     sbl__lane_rows W;
     sbl__pool_planes Q;
     int x = pa;
@@ -4810,13 +4818,13 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         hi = e < xb ? e : xb;
         if (hi - lo >= SBL__VW) {
             for (p = lo; p + SBL__VW <= hi; p += SBL__VW)
-                sbl__lanes_vector(k, &W, R[1]->n, nyrow, p, base, y, ch);
-            if (p < hi) sbl__lanes_vector(k, &W, R[1]->n, nyrow, hi - SBL__VW, base, y, ch);
+                sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
+            if (p < hi) sbl__lanes_vector(k, &W, n_row, nyrow, hi - SBL__VW, base, y, ch);
         } else if (lo < hi) {
             p = hi - SBL__VW;
             if (p < x - span) p = x - span;
             if (p < 1) p = 1;
-            sbl__lanes_vector(k, &W, R[1]->n, nyrow, p, base, y, ch);
+            sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
         }
         x = e;
     }
