@@ -4342,8 +4342,38 @@ static void sbl__pool_column_zero(const sbl__pool_planes *Q, int ch, int i)
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
+/* Channel c's terms of the blocks of sbl__pool_lanes_blocks at index i: the squared
+   mean and the squared standard error, added to *m2 / *se2 (set by channel 0). */
+SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const float *pt,
+                                         sbl__m has_c, sbl__m has_l, sbl__v nl, sbl__v nr,
+                                         sbl__v inv_n, sbl__v inv_n1, int c, sbl__v *m2,
+                                         sbl__v *se2)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
+    const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
+    sbl__v al, bl, ar, br, a, b, q, mean, var;
+    /* the centre column needs no move: s is its t, or it has no pair (sums 0) */
+    SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
+    SBL__POOL_SHIFT(sbl__load(pa + 1), sbl__load(pb + 1), sbl__sub(tr, s), nr, ar, br);
+    a = sbl__add(sbl__add(al, sbl__load(pa)), ar);
+    b = sbl__add(sbl__add(bl, sbl__load(pb)), br);
+    q = sbl__mul(a, inv_n);
+    mean = sbl__add(s, q);
+    /* sample variance (sum e^2 - n mean_e^2) / (n - 1), over n for its mean */
+    var = sbl__mul(sbl__max(sbl__sub(b, sbl__mul(a, q)), zero), inv_n1);
+    if (c == 0) {
+        *m2 = sbl__mul(mean, mean);
+        *se2 = sbl__mul(var, inv_n);
+    } else {
+        *m2 = sbl__add(*m2, sbl__mul(mean, mean));
+        *se2 = sbl__add(*se2, sbl__mul(var, inv_n));
+    }
+}
+
 /* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
-   sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs. */
+   sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs.
+   The channels written out (ch is a constant in each instance), in channel order. */
 SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
                                         int ba, int bb, int base)
 {
@@ -4354,7 +4384,7 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     const float *const a0 = Q->a[0], *const b0 = Q->b[0], *const t0 = Q->t[0];
     const ptrdiff_t cstep = Q->cstep;
     float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
-    int x = ba, c;
+    int x = ba;
     for (;;) {
         const int i = x - base;
         const sbl__v nl = sbl__load(pn + i - 1), nc = sbl__load(pn + i), nr = sbl__load(pn + i + 1);
@@ -4363,28 +4393,14 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
         const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero;
-        for (c = 0; c < ch; ++c) {
-            const float *pa = a0 + c * cstep + i, *pb = b0 + c * cstep + i, *pt = t0 + c * cstep + i;
-            const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
-            const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
-            sbl__v al, bl, ar, br, a, b, q, mean, var;
-            /* the centre column needs no move: s is its t, or it has no pair (sums 0) */
-            SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
-            SBL__POOL_SHIFT(sbl__load(pa + 1), sbl__load(pb + 1), sbl__sub(tr, s), nr, ar, br);
-            a = sbl__add(sbl__add(al, sbl__load(pa)), ar);
-            b = sbl__add(sbl__add(bl, sbl__load(pb)), br);
-            q = sbl__mul(a, inv_n);
-            mean = sbl__add(s, q);
-            /* sample variance (sum e^2 - n mean_e^2) / (n - 1), over n for its mean */
-            var = sbl__mul(sbl__max(sbl__sub(b, sbl__mul(a, q)), zero), inv_n1);
-            if (c == 0) {
-                m2 = sbl__mul(mean, mean);
-                se2 = sbl__mul(var, inv_n);
-            } else {
-                m2 = sbl__add(m2, sbl__mul(mean, mean));
-                se2 = sbl__add(se2, sbl__mul(var, inv_n));
-            }
-        }
+#define SBL__POOL_BLOCK_CH(c) \
+        sbl__pool_block_channel(a0 + (c) * cstep + i, b0 + (c) * cstep + i, t0 + (c) * cstep + i, \
+                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2)
+        SBL__POOL_BLOCK_CH(0);
+        if (ch > 1) SBL__POOL_BLOCK_CH(1);
+        if (ch > 2) SBL__POOL_BLOCK_CH(2);
+        if (ch > 3) SBL__POOL_BLOCK_CH(3);
+#undef SBL__POOL_BLOCK_CH
         sbl__store(pm + i, sbl__sel(valid, m2, zero));
         sbl__store(ps + i, sbl__sel(valid, se2, zero));
         if (x + SBL__VW >= bb) break;
