@@ -3863,21 +3863,39 @@ static float sbl__own_n(const sbl__kernel *k, int x, int y)
 static void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
                              double *out)
 {
-    int j, c;
-    for (c = 0; c < 9; ++c) out[c] = 0.0;
-    if (x < 0 || x >= k->w) return;
-    for (j = 0; j < 3; ++j) {
-        double d[4];
-        int ok = 1;
-        if (!R[j] || !(R[j]->v[x] > 0.0f)) continue;
-        for (c = 0; c < k->ch; ++c) {
-            ok &= sbl__finite(R[j]->y[c][x]) & sbl__finite(R[j]->x[c][x]);
-            d[c] = SBL__CAST(double, R[j]->x[c][x]) - SBL__CAST(double, R[j]->y[c][x]);
+    /* the channels written out into locals (registers; stores to out could alias the
+       ring's floats), each sum in the order of the rows */
+    const int ch = k->ch;
+    double n = 0.0, s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0;
+    int j;
+    if (x >= 0 && x < k->w)
+        for (j = 0; j < 3; ++j) {
+            const sbl__ring_row *r = R[j];
+            double d0, d1 = 0.0, d2 = 0.0, d3 = 0.0;
+            int ok;
+            if (!r || !(r->v[x] > 0.0f)) continue;
+#define SBL__POOL_D(c, d) \
+            do { \
+                const float yv = r->y[c][x], xv = r->x[c][x]; \
+                ok &= sbl__finite(yv) & sbl__finite(xv); \
+                d = SBL__CAST(double, xv) - SBL__CAST(double, yv); \
+            } while (0)
+            ok = 1;
+            SBL__POOL_D(0, d0);
+            if (ch > 1) SBL__POOL_D(1, d1);
+            if (ch > 2) SBL__POOL_D(2, d2);
+            if (ch > 3) SBL__POOL_D(3, d3);
+#undef SBL__POOL_D
+            if (!ok) continue;
+            n += 1.0;
+            s0 += d0; q0 += d0 * d0;
+            if (ch > 1) { s1 += d1; q1 += d1 * d1; }
+            if (ch > 2) { s2 += d2; q2 += d2 * d2; }
+            if (ch > 3) { s3 += d3; q3 += d3 * d3; }
         }
-        if (!ok) continue;
-        out[0] += 1.0;
-        for (c = 0; c < k->ch; ++c) { out[1 + c] += d[c]; out[5 + c] += d[c] * d[c]; }
-    }
+    out[0] = n;
+    out[1] = s0; out[2] = s1; out[3] = s2; out[4] = s3;
+    out[5] = q0; out[6] = q1; out[7] = q2; out[8] = q3;
 }
 
 /* Pooled estimator, the double reference of sbl__row_pool: the prior bias-to-noise ratio
@@ -3898,8 +3916,9 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
 {
     const int ch = k->ch, w = k->w;
     int za = xa - SBL__POOL_STEP * SBL__POOL_BLOCKS, zb = xb + SBL__POOL_STEP * SBL__POOL_BLOCKS;
-    int x, c, i;
-    double col[3][9]; /* columns x - 1, x, x + 1 */
+    int x, c;
+    double cols[3][9], *col[3]; /* columns x - 1, x, x + 1 (rotated) */
+    col[0] = cols[0]; col[1] = cols[1]; col[2] = cols[2];
     if (za < 0) za = 0;
     if (zb > w) zb = w;
     if (za < zb) {
@@ -3907,7 +3926,7 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
         sbl__pool_column(k, R, za, col[1]);
     }
     for (x = za; x < zb; ++x) {
-        double m2 = 0.0, se2 = 0.0, n;
+        double m2 = 0.0, se2 = 0.0, n, *t;
         sbl__pool_column(k, R, x + 1, col[2]);
         /* the block: three column sums, always added in this order (the same value
            whatever column the row's span starts at) */
@@ -3925,7 +3944,7 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
             k->pool_m2[x] = m2;
             k->pool_se2[x] = se2;
         }
-        for (i = 0; i < 9; ++i) { col[0][i] = col[1][i]; col[1][i] = col[2][i]; }
+        t = col[0]; col[0] = col[1]; col[1] = col[2]; col[2] = t;
     }
     for (x = xa; x < xb; ++x) {
         double sm2 = 0.0, sse2 = 0.0, r;
