@@ -4544,25 +4544,33 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
    in lanes where it can (above). Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image); on a row of at least 18 columns,
    xb - xa >= 16 (sbl__kernel_run_span widens its span so). */
+/* The ring rows that exist, as sbl__pool_rows; returns 1 if one holds an unsafe value. */
+static int sbl__pool_rows_of(sbl__pool_rows *P, const sbl__ring_row *const *R, int ch)
+{
+    int j, c, unsafe = 0;
+    P->n = 0;
+    for (j = 0; j < 3; ++j) {
+        if (!R[j]) continue;
+        for (c = 0; c < ch; ++c) { P->y[P->n][c] = R[j]->y[c]; P->x[P->n][c] = R[j]->x[c]; }
+        P->v[P->n] = R[j]->v;
+        P->unsafe[P->n] = R[j]->unsafe;
+        unsafe |= R[j]->unsafe_count > 0;
+        ++P->n;
+    }
+    return unsafe;
+}
+
 static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
 {
     sbl__pool_rows P;
-    int j, c, unsafe = 0;
+    int unsafe;
     k->pool_row = R[1]->row;
     if (xa >= xb) return;
     if (k->w - 2 < 16 || xb - xa < 16) { /* the second: not reached (see above) */
         sbl__row_pool_ref(k, R, xa, xb);
         return;
     }
-    P.n = 0;
-    for (j = 0; j < 3; ++j) {
-        if (!R[j]) continue;
-        for (c = 0; c < k->ch; ++c) { P.y[P.n][c] = R[j]->y[c]; P.x[P.n][c] = R[j]->x[c]; }
-        P.v[P.n] = R[j]->v;
-        P.unsafe[P.n] = R[j]->unsafe;
-        unsafe |= R[j]->unsafe_count > 0;
-        ++P.n;
-    }
+    unsafe = sbl__pool_rows_of(&P, R, k->ch);
 #define SBL__POOL_CASE(np) \
     switch (k->ch) { \
     case 1: sbl__row_pool_lanes(k, R, &P, np, 1, xa, xb, unsafe); break; \
@@ -4810,73 +4818,6 @@ static int sbl__kernel_lanes(sbl__kernel *k, const sbl__ring_row *const *R, int 
     }
 }
 
-/* The pooled estimator's prepass and the lane kernel in one pass over a clean interior
-   row: the three ring rows exist and hold no unsafe value in the columns loaded. The
-   prepass's column sums over three rows (pairs N, A = sum v (d - t), B, T) are the same
-   operations on the same values as the lane kernel's (col_n, DA, DB, T: compare
-   sbl__pool_lanes_columns with sbl__lanes_column), so each chunk sums its columns once,
-   over the prepass's reach, and both read them: bit for bit what sbl__row_pool then
-   sbl__kernel_lanes_runs give. Computes the ratio of pixels [pa, pb) (pb - pa >= 16)
-   and the lanes of pixels [xa, xb) (inside [1, w - 1), within [pa, pb)); extra pixels a
-   widened vector computes lie inside [1, w - 1), where every pixel of a clean row takes
-   the lanes. */
-SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
-                                             int pa, int pb, int xa, int xb, const int ch)
-{
-    sbl__kernel k_ch = *k_in, *k = &k_ch;
-    const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
-    const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
-    const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
-    float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
-    const float *const n_row = R[1]->n;
-    sbl__lane_rows W;
-    sbl__pool_planes Q;
-    int x = pa;
-    k_ch.ch = ch;
-    sbl__lane_rows_of(&W, R, ch);
-    sbl__pool_planes_of(k, ch, 0, &Q);
-    while (x < pb) {
-        int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
-        if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
-        base = x - reach;
-        sbl__lanes_columns(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w, base);
-        if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
-        if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base);
-        for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
-        for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
-        sbl__pool_lanes_ratio(k, ch, x, e, base);
-        /* the chunk's lanes: whole vectors, the last one ending at hi; a part narrower
-           than a vector is covered by one inside [x - span, e + span) and [1, w - 1)
-           (its column sums are computed) */
-        lo = x > xa ? x : xa;
-        hi = e < xb ? e : xb;
-        if (hi - lo >= SBL__VW) {
-            for (p = lo; p + SBL__VW <= hi; p += SBL__VW)
-                sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
-            if (p < hi) sbl__lanes_vector(k, &W, n_row, nyrow, hi - SBL__VW, base, y, ch);
-        } else if (lo < hi) {
-            p = hi - SBL__VW;
-            if (p < x - span) p = x - span;
-            if (p < 1) p = 1;
-            sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
-        }
-        x = e;
-    }
-}
-
-static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
-                                     int pb, int xa, int xb)
-{
-    k->pool_row = R[1]->row;
-    switch (k->ch) {
-    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, 1); break;
-    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, 2); break;
-    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, 3); break;
-    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, 4); break;
-    }
-}
-
 /* Lane kernel over the pixels of [xa, xb) (interior columns of an interior row) whose
    3x3 window holds no unsafe value; the others are left to the reference path. A run
    of such pixels narrower than a vector is computed by a vector widened inside
@@ -4938,6 +4879,95 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
     }
 }
 
+/* The pooled estimator's prepass and the lane kernel in one pass over an interior row
+   (the three ring rows exist). The prepass's column sums over three rows (pairs N,
+   A = sum v (d - t), B, T) are the same operations on the same values as the lane
+   kernel's (col_n, DA, DB, T: compare sbl__pool_lanes_columns with sbl__lanes_column),
+   so each chunk sums its columns once, over the prepass's reach, and both read them: bit
+   for bit what sbl__row_pool then sbl__kernel_lanes_runs give. Computes the ratio of
+   pixels [pa, pb) (pb - pa >= 16), and the lanes of the pixels of [xa, xb) (inside
+   [1, w - 1), within [pa, pb)) whose window is safe (win: 1 where it is not; NULL: all
+   safe). As there, sums over unsafe values only reach pixels that the references
+   recompute: the ratio of a pixel with an unsafe value within SBL__POOL_REACH
+   (sbl__row_pool_ref, per chunk before its lanes), the lanes of a pixel with an unsafe
+   window (sbl__kernel_pixel_ref, after the row). A run of the chunk narrower than a
+   vector is covered by one inside [x - span, e + span) and [1, w - 1) (its column sums
+   are computed); its extra pixels either take the lanes too (the same values: lanes are
+   independent; one past the chunk is computed again by the next) or are recomputed by
+   the reference path. */
+SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
+                                             int pa, int pb, int xa, int xb,
+                                             const unsigned char *win, const int ch)
+{
+    sbl__kernel k_ch = *k_in, *k = &k_ch;
+    const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
+    const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
+    const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
+    float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
+    const float *const n_row = R[1]->n;
+    sbl__lane_rows W;
+    sbl__pool_planes Q;
+    sbl__pool_rows P;
+    int x = pa, unsafe;
+    k_ch.ch = ch;
+    sbl__lane_rows_of(&W, R, ch);
+    sbl__pool_planes_of(k, ch, 0, &Q);
+    unsafe = sbl__pool_rows_of(&P, R, ch);
+    while (x < pb) {
+        int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
+        if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
+        base = x - reach;
+        sbl__lanes_columns(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w, base);
+        if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
+        if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
+        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base);
+        for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
+        for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
+        sbl__pool_lanes_ratio(k, ch, x, e, base);
+        if (unsafe) {
+            int ra, rb;
+            for (p = x; p < e && sbl__pool_unsafe_run(&P, w, p, e, &ra, &rb); p = rb)
+                sbl__row_pool_ref(k, R, ra, rb);
+        }
+        /* the chunk's lanes: each run of safe windows in whole vectors, the last one
+           ending at the run's end */
+        lo = x > xa ? x : xa;
+        hi = e < xb ? e : xb;
+        while (lo < hi) {
+            int b = hi;
+            if (win) {
+                while (lo < hi && win[lo]) ++lo;
+                if (lo >= hi) break;
+                b = sbl__find_set(win, lo + 1, hi);
+            }
+            if (b - lo >= SBL__VW) {
+                for (p = lo; p + SBL__VW <= b; p += SBL__VW)
+                    sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
+                if (p < b) sbl__lanes_vector(k, &W, n_row, nyrow, b - SBL__VW, base, y, ch);
+            } else {
+                p = b - SBL__VW;
+                if (p < x - span) p = x - span;
+                if (p < 1) p = 1;
+                sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
+            }
+            lo = b;
+        }
+        x = e;
+    }
+}
+
+static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
+                                     int pb, int xa, int xb, const unsigned char *win)
+{
+    k->pool_row = R[1]->row;
+    switch (k->ch) {
+    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1); break;
+    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2); break;
+    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3); break;
+    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4); break;
+    }
+}
+
 /* Filter columns [x0, x1) of rows [y0, y1) into k->out (and out_n / out_a); nothing
    else of the outputs is written. Every written pixel equals the one a whole-image run
    gives, bit for bit: the ring holds the columns [x0 - 1, x1 + 1) (clamped), widened
@@ -4978,25 +5008,21 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
             const unsigned char *win = NULL;
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
-            if (pool && lanes_ok &&
-                !(R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count)) {
-                /* a clean interior row: prepass and lanes share their column sums */
-                sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb);
+            if (lanes_ok && (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count)) {
+                /* per pixel: 1 if any of the nine values of its window is unsafe (per
+                   column over its three rows, then over three columns) */
+                unsigned char *cu = k->column_unsafe;
+                sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
+                               R[2]->unsafe + xa - 1, xb - xa + 2);
+                sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
+                win = k->window_unsafe;
+            }
+            if (pool && lanes_ok) {
+                /* an interior row: prepass and lanes share their column sums */
+                sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
             } else {
                 if (pool) sbl__row_pool(k, R, pa, pb);
-                if (lanes_ok) {
-                    if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
-                        /* per pixel: 1 if any of the nine values of its window is unsafe
-                           (per column over its three rows, then over three columns) */
-                        unsigned char *cu = k->column_unsafe;
-                        sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
-                                       R[2]->unsafe + xa - 1, xb - xa + 2);
-                        sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1,
-                                       xb - xa);
-                        win = k->window_unsafe;
-                    }
-                    sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
-                }
+                if (lanes_ok) sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
             }
             if (!lanes_ok) {
                 for (x = x0; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
