@@ -2049,8 +2049,7 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
                               int centre)
 {
     /* one channel's values in double, and its valid pairs' x* - y, converted once; each
-       sum is taken in the order of the samples (the window without its centre as two
-       runs around it): the same additions whatever the loop shape */
+       sum is taken in the order of the samples: the same additions as one loop per sum */
     double yv[9], dv[9];
     int i, k, np = 0;
     m->count = n;
@@ -2059,39 +2058,40 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
         for (i = 0; i < n; ++i) np += xvalid[i] != 0;
     m->pair_count = np;
     for (k = 0; k < ch; ++k) {
-        double s = 0.0, v = 0.0, pd = 0.0;
+        /* first pass: the values in double, their sum, the sum without the centre (the
+           window without its centre, centred on its own mean: a firefly at the centre
+           cannot cancel the others' spread away), the pairs' differences and their sum */
+        double s = 0.0, v = 0.0, pd = 0.0, s8 = 0.0, v8 = 0.0;
         float lo = 0.0f, hi = 0.0f;
+        const int has8 = centre >= 0 && n >= 2;
         int j = 0;
         for (i = 0; i < n; ++i) {
-            yv[i] = SBL__CAST(double, vals[i][k]);
-            if (xvalid && xvalid[i]) dv[j++] = SBL__CAST(double, xvals[i][k]) - yv[i];
+            const double yi = SBL__CAST(double, vals[i][k]);
+            yv[i] = yi;
+            s += yi;
+            if (i != centre) s8 += yi;
+            if (xvalid && xvalid[i]) {
+                const double di = SBL__CAST(double, xvals[i][k]) - yi;
+                dv[j++] = di;
+                pd += di;
+            }
         }
-        /* the window without its centre, centred on its own mean (a firefly at the
-           centre cannot cancel the others' spread away) */
-        m->mean8[k] = m->var8[k] = 0.0;
-        if (centre >= 0 && n >= 2) {
-            double s8 = 0.0, v8 = 0.0;
-            for (i = 0; i < centre; ++i) s8 += yv[i];
-            for (i = centre + 1; i < n; ++i) s8 += yv[i];
-            s8 /= n - 1;
-            for (i = 0; i < centre; ++i) v8 += (yv[i] - s8) * (yv[i] - s8);
-            for (i = centre + 1; i < n; ++i) v8 += (yv[i] - s8) * (yv[i] - s8);
-            m->mean8[k] = s8;
-            m->var8[k] = v8 / (n - 1);
-        }
-        for (i = 0; i < n; ++i) s += yv[i];
         s = n ? s / n : 0.0;
+        if (has8) s8 /= n - 1;
+        /* second pass: the squares about the means, min / max */
         for (i = 0; i < n; ++i) {
             const double d = yv[i] - s;
             v += d * d;
+            if (i != centre) v8 += (yv[i] - s8) * (yv[i] - s8);
             if (i == 0 || vals[i][k] < lo) lo = vals[i][k];
             if (i == 0 || vals[i][k] > hi) hi = vals[i][k];
         }
+        m->mean8[k] = has8 ? s8 : 0.0;
+        m->var8[k] = has8 ? v8 / (n - 1) : 0.0;
         m->mean[k] = s;
         m->var[k] = n ? v / n : 0.0;
         m->lo[k] = lo;
         m->hi[k] = hi;
-        for (i = 0; i < np; ++i) pd += dv[i];
         m->pair_diff[k] = np ? pd / np : 0.0;
         m->pair_var[k] = 0.0;
         if (np > 1) {
