@@ -2082,52 +2082,59 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
                               const float (*xvals)[4], const int *xvalid, int n, int ch,
                               int centre)
 {
-    int i, k;
-    for (k = 0; k < ch; ++k) {
-        /* the window without its centre, centred on its own mean (a firefly at the
-           centre cannot cancel the others' spread away) */
-        double s8 = 0.0, v8 = 0.0;
-        m->mean8[k] = m->var8[k] = 0.0;
-        if (centre < 0 || n < 2) continue;
-        for (i = 0; i < n; ++i) if (i != centre) s8 += SBL__CAST(double, vals[i][k]);
-        s8 /= n - 1;
-        for (i = 0; i < n; ++i)
-            if (i != centre) v8 += (SBL__CAST(double, vals[i][k]) - s8) * (SBL__CAST(double, vals[i][k]) - s8);
-        m->mean8[k] = s8;
-        m->var8[k] = v8 / (n - 1);
-    }
+    /* one channel's values in double, and its valid pairs' x* - y, converted once; each
+       sum is taken in the order of the samples: the same additions as one loop per sum */
+    double yv[9], dv[9];
+    int i, k, np = 0;
     m->count = n;
-    m->pair_count = 0;
     m->pool_r = 0.0;
-    for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
+    if (xvalid)
+        for (i = 0; i < n; ++i) np += xvalid[i] != 0;
+    m->pair_count = np;
     for (k = 0; k < ch; ++k) {
-        double s = 0.0, v = 0.0, pd = 0.0;
+        /* first pass: the values in double, their sum, the sum without the centre (the
+           window without its centre, centred on its own mean: a firefly at the centre
+           cannot cancel the others' spread away), the pairs' differences and their sum */
+        double s = 0.0, v = 0.0, pd = 0.0, s8 = 0.0, v8 = 0.0;
         float lo = 0.0f, hi = 0.0f;
-        for (i = 0; i < n; ++i) s += SBL__CAST(double, vals[i][k]);
-        s = n ? s / n : 0.0;
+        const int has8 = centre >= 0 && n >= 2;
+        int j = 0;
         for (i = 0; i < n; ++i) {
-            double d = SBL__CAST(double, vals[i][k]) - s;
+            const double yi = SBL__CAST(double, vals[i][k]);
+            yv[i] = yi;
+            s += yi;
+            if (i != centre) s8 += yi;
+            if (xvalid && xvalid[i]) {
+                const double di = SBL__CAST(double, xvals[i][k]) - yi;
+                dv[j++] = di;
+                pd += di;
+            }
+        }
+        s = n ? s / n : 0.0;
+        if (has8) s8 /= n - 1;
+        /* second pass: the squares about the means, min / max */
+        for (i = 0; i < n; ++i) {
+            const double d = yv[i] - s;
             v += d * d;
+            if (i != centre) v8 += (yv[i] - s8) * (yv[i] - s8);
             if (i == 0 || vals[i][k] < lo) lo = vals[i][k];
             if (i == 0 || vals[i][k] > hi) hi = vals[i][k];
         }
+        m->mean8[k] = has8 ? s8 : 0.0;
+        m->var8[k] = has8 ? v8 / (n - 1) : 0.0;
         m->mean[k] = s;
         m->var[k] = n ? v / n : 0.0;
         m->lo[k] = lo;
         m->hi[k] = hi;
-        if (xvalid)
-            for (i = 0; i < n; ++i)
-                if (xvalid[i]) pd += SBL__CAST(double, xvals[i][k]) - SBL__CAST(double, vals[i][k]);
-        m->pair_diff[k] = m->pair_count ? pd / m->pair_count : 0.0;
+        m->pair_diff[k] = np ? pd / np : 0.0;
         m->pair_var[k] = 0.0;
-        if (xvalid && m->pair_count > 1) {
+        if (np > 1) {
             double pv = 0.0;
-            for (i = 0; i < n; ++i)
-                if (xvalid[i]) {
-                    double e = (SBL__CAST(double, xvals[i][k]) - SBL__CAST(double, vals[i][k])) - m->pair_diff[k];
-                    pv += e * e;
-                }
-            m->pair_var[k] = pv / (m->pair_count - 1);
+            for (i = 0; i < np; ++i) {
+                const double e = dv[i] - m->pair_diff[k];
+                pv += e * e;
+            }
+            m->pair_var[k] = pv / (np - 1);
         }
     }
 }
@@ -2827,6 +2834,7 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->pool_se2 = SBL__PCAST(double *, p); p += 2 * pf;
     k->pool_r = p; p += pf;
     k->pool_row = -1;
+    /* consecutive blocks, one per channel (sbl__pool_planes_of counts on it) */
     for (c = 0; c < k->ch; ++c) { k->col[c] = p; p += SBL__COL_PLANES * SBL__CHUNK_COLS; }
     k->col_n = p; p += SBL__CHUNK_COLS;
     k->pool_col = p; p += SBL__POOL_PLANES(k->ch) * SBL__POOL_COLS;
@@ -4058,21 +4066,39 @@ static float sbl__own_n(const sbl__kernel *k, int x, int y)
 static void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
                              double *out)
 {
-    int j, c;
-    for (c = 0; c < 9; ++c) out[c] = 0.0;
-    if (x < 0 || x >= k->w) return;
-    for (j = 0; j < 3; ++j) {
-        double d[4];
-        int ok = 1;
-        if (!R[j] || !(R[j]->v[x] > 0.0f)) continue;
-        for (c = 0; c < k->ch; ++c) {
-            ok &= sbl__finite(R[j]->y[c][x]) & sbl__finite(R[j]->x[c][x]);
-            d[c] = SBL__CAST(double, R[j]->x[c][x]) - SBL__CAST(double, R[j]->y[c][x]);
+    /* the channels written out into locals (registers; stores to out could alias the
+       ring's floats), each sum in the order of the rows */
+    const int ch = k->ch;
+    double n = 0.0, s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0;
+    int j;
+    if (x >= 0 && x < k->w)
+        for (j = 0; j < 3; ++j) {
+            const sbl__ring_row *r = R[j];
+            double d0, d1 = 0.0, d2 = 0.0, d3 = 0.0;
+            int ok;
+            if (!r || !(r->v[x] > 0.0f)) continue;
+#define SBL__POOL_D(c, d) \
+            do { \
+                const float yv = r->y[c][x], xv = r->x[c][x]; \
+                ok &= sbl__finite(yv) & sbl__finite(xv); \
+                d = SBL__CAST(double, xv) - SBL__CAST(double, yv); \
+            } while (0)
+            ok = 1;
+            SBL__POOL_D(0, d0);
+            if (ch > 1) SBL__POOL_D(1, d1);
+            if (ch > 2) SBL__POOL_D(2, d2);
+            if (ch > 3) SBL__POOL_D(3, d3);
+#undef SBL__POOL_D
+            if (!ok) continue;
+            n += 1.0;
+            s0 += d0; q0 += d0 * d0;
+            if (ch > 1) { s1 += d1; q1 += d1 * d1; }
+            if (ch > 2) { s2 += d2; q2 += d2 * d2; }
+            if (ch > 3) { s3 += d3; q3 += d3 * d3; }
         }
-        if (!ok) continue;
-        out[0] += 1.0;
-        for (c = 0; c < k->ch; ++c) { out[1 + c] += d[c]; out[5 + c] += d[c] * d[c]; }
-    }
+    out[0] = n;
+    out[1] = s0; out[2] = s1; out[3] = s2; out[4] = s3;
+    out[5] = q0; out[6] = q1; out[7] = q2; out[8] = q3;
 }
 
 /* Pooled estimator, the double reference of sbl__row_pool: the prior bias-to-noise ratio
@@ -4093,8 +4119,9 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
 {
     const int ch = k->ch, w = k->w;
     int za = xa - SBL__POOL_STEP * SBL__POOL_BLOCKS, zb = xb + SBL__POOL_STEP * SBL__POOL_BLOCKS;
-    int x, c, i;
-    double col[3][9]; /* columns x - 1, x, x + 1 */
+    int x, c;
+    double cols[3][9], *col[3]; /* columns x - 1, x, x + 1 (rotated) */
+    col[0] = cols[0]; col[1] = cols[1]; col[2] = cols[2];
     if (za < 0) za = 0;
     if (zb > w) zb = w;
     if (za < zb) {
@@ -4102,7 +4129,7 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
         sbl__pool_column(k, R, za, col[1]);
     }
     for (x = za; x < zb; ++x) {
-        double m2 = 0.0, se2 = 0.0, n;
+        double m2 = 0.0, se2 = 0.0, n, *t;
         sbl__pool_column(k, R, x + 1, col[2]);
         /* the block: three column sums, always added in this order (the same value
            whatever column the row's span starts at) */
@@ -4120,7 +4147,7 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
             k->pool_m2[x] = m2;
             k->pool_se2[x] = se2;
         }
-        for (i = 0; i < 9; ++i) { col[0][i] = col[1][i]; col[1][i] = col[2][i]; }
+        t = col[0]; col[0] = col[1]; col[1] = col[2]; col[2] = t;
     }
     for (x = xa; x < xb; ++x) {
         double sm2 = 0.0, sse2 = 0.0, r;
@@ -4257,7 +4284,7 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
 
 /* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
 SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
-                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1)
+                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1, int clamp)
 {
     const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
                  y2 = sbl__load(W->y[2][c] + x);
@@ -4275,30 +4302,31 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
     sbl__store(SBL__COLP(cp, SBL__COL_T), t);
     sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
     sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
-    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+    if (clamp) {
         sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
         sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
     }
 }
 
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
-   column - ca; the last vector overlaps the one before (same values). The channels are
+   column - base; the last vector overlaps the one before (same values). The channels are
    written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). */
-SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb)
+SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
+                                    int base)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const int ch = k->ch;
+    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
     int x = ca;
     for (;;) {
-        const int i = x - ca;
+        const int i = x - base;
         const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
                      v2 = sbl__load(W->v[2] + x);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
-        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1);
-        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1);
-        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1);
-        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1);
+        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp);
+        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp);
+        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp);
+        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1, clamp);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
@@ -4498,14 +4526,34 @@ SBL__INLINE void sbl__pool_lanes_columns(sbl__kernel *k, const sbl__pool_rows *P
     }
 }
 
-/* A column outside the image: no pairs, sums 0 (at index column - base). */
-static void sbl__pool_column_zero(sbl__kernel *k, int ch, int i)
+/* Where the blocks read their column sums: the prepass's own planes (pool_col), or the
+   lane kernel's column sums (k->col, col_n), which hold the same values on an interior
+   row (sbl__kernel_lanes_pooled). */
+typedef struct sbl__pool_planes {
+    float *a[4], *b[4], *t[4], *n;
+    ptrdiff_t cstep; /* a[c] - a[0] = c cstep, and so for b and t */
+} sbl__pool_planes;
+
+/* own = 1: the prepass's planes; 0: the lane kernel's (per channel one block of
+   SBL__COL_PLANES planes, the blocks consecutive: sbl__kernel_bind) */
+SBL__INLINE void sbl__pool_planes_of(const sbl__kernel *k, int ch, int own, sbl__pool_planes *Q)
 {
     int c;
-    SBL__POOL_PLANE(k, SBL__POOL_N(ch))[i] = 0.0f;
-    for (c = 0; c < ch; ++c)
-        SBL__POOL_PLANE(k, SBL__POOL_A(c))[i] = SBL__POOL_PLANE(k, SBL__POOL_B(c))[i] =
-            SBL__POOL_PLANE(k, SBL__POOL_T(c))[i] = 0.0f;
+    Q->cstep = own ? 3 * SBL__POOL_COLS : SBL__COL_PLANES * SBL__CHUNK_COLS;
+    for (c = 0; c < ch; ++c) {
+        Q->a[c] = own ? SBL__POOL_PLANE(k, SBL__POOL_A(c)) : SBL__COLP(k->col[c], SBL__COL_DA);
+        Q->b[c] = own ? SBL__POOL_PLANE(k, SBL__POOL_B(c)) : SBL__COLP(k->col[c], SBL__COL_DB);
+        Q->t[c] = own ? SBL__POOL_PLANE(k, SBL__POOL_T(c)) : SBL__COLP(k->col[c], SBL__COL_T);
+    }
+    Q->n = own ? SBL__POOL_PLANE(k, SBL__POOL_N(ch)) : k->col_n;
+}
+
+/* A column outside the image: no pairs, sums 0 (at index column - base). */
+static void sbl__pool_column_zero(const sbl__pool_planes *Q, int ch, int i)
+{
+    int c;
+    Q->n[i] = 0.0f;
+    for (c = 0; c < ch; ++c) Q->a[c][i] = Q->b[c][i] = Q->t[c][i] = 0.0f;
 }
 
 /* One column of a block moved from its own shift t to the block's s: D = t - s,
@@ -4516,15 +4564,49 @@ static void sbl__pool_column_zero(sbl__kernel *k, int ch, int i)
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
+/* Channel c's terms of the blocks of sbl__pool_lanes_blocks at index i: the squared
+   mean and the squared standard error, added to *m2 / *se2 (set by channel 0). */
+SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const float *pt,
+                                         sbl__m has_c, sbl__m has_l, sbl__v nl, sbl__v nr,
+                                         sbl__v inv_n, sbl__v inv_n1, int c, sbl__v *m2,
+                                         sbl__v *se2)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
+    const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
+    sbl__v al, bl, ar, br, a, b, q, mean, var;
+    /* the centre column needs no move: s is its t, or it has no pair (sums 0) */
+    SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
+    SBL__POOL_SHIFT(sbl__load(pa + 1), sbl__load(pb + 1), sbl__sub(tr, s), nr, ar, br);
+    a = sbl__add(sbl__add(al, sbl__load(pa)), ar);
+    b = sbl__add(sbl__add(bl, sbl__load(pb)), br);
+    q = sbl__mul(a, inv_n);
+    mean = sbl__add(s, q);
+    /* sample variance (sum e^2 - n mean_e^2) / (n - 1), over n for its mean */
+    var = sbl__mul(sbl__max(sbl__sub(b, sbl__mul(a, q)), zero), inv_n1);
+    if (c == 0) {
+        *m2 = sbl__mul(mean, mean);
+        *se2 = sbl__mul(var, inv_n);
+    } else {
+        *m2 = sbl__add(*m2, sbl__mul(mean, mean));
+        *se2 = sbl__add(*se2, sbl__mul(var, inv_n));
+    }
+}
+
 /* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
-   sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs. */
-SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const int ch, int ba, int bb, int base)
+   sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs.
+   The channels written out (ch is a constant in each instance), in channel order. */
+SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
+                                        int ba, int bb, int base)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
-    const float *const pool = k->pool_col;
-    const float *pn = pool + SBL__POOL_N(ch) * SBL__POOL_COLS;
+    const float *pn = Q->n;
+    /* channel c's planes at a constant distance from channel 0's (every caller's layout,
+       sbl__pool_planes_of): fixed offsets from one pointer, not three loads per channel */
+    const float *const a0 = Q->a[0], *const b0 = Q->b[0], *const t0 = Q->t[0];
+    const ptrdiff_t cstep = Q->cstep;
     float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
-    int x = ba, c;
+    int x = ba;
     for (;;) {
         const int i = x - base;
         const sbl__v nl = sbl__load(pn + i - 1), nc = sbl__load(pn + i), nr = sbl__load(pn + i + 1);
@@ -4533,30 +4615,14 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const int ch, int ba, in
         const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero;
-        for (c = 0; c < ch; ++c) {
-            const float *pa = pool + SBL__POOL_A(c) * SBL__POOL_COLS + i;
-            const float *pb = pool + SBL__POOL_B(c) * SBL__POOL_COLS + i;
-            const float *pt = pool + SBL__POOL_T(c) * SBL__POOL_COLS + i;
-            const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
-            const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
-            sbl__v al, bl, ar, br, a, b, q, mean, var;
-            /* the centre column needs no move: s is its t, or it has no pair (sums 0) */
-            SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
-            SBL__POOL_SHIFT(sbl__load(pa + 1), sbl__load(pb + 1), sbl__sub(tr, s), nr, ar, br);
-            a = sbl__add(sbl__add(al, sbl__load(pa)), ar);
-            b = sbl__add(sbl__add(bl, sbl__load(pb)), br);
-            q = sbl__mul(a, inv_n);
-            mean = sbl__add(s, q);
-            /* sample variance (sum e^2 - n mean_e^2) / (n - 1), over n for its mean */
-            var = sbl__mul(sbl__max(sbl__sub(b, sbl__mul(a, q)), zero), inv_n1);
-            if (c == 0) {
-                m2 = sbl__mul(mean, mean);
-                se2 = sbl__mul(var, inv_n);
-            } else {
-                m2 = sbl__add(m2, sbl__mul(mean, mean));
-                se2 = sbl__add(se2, sbl__mul(var, inv_n));
-            }
-        }
+#define SBL__POOL_BLOCK_CH(c) \
+        sbl__pool_block_channel(a0 + (c) * cstep + i, b0 + (c) * cstep + i, t0 + (c) * cstep + i, \
+                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2)
+        SBL__POOL_BLOCK_CH(0);
+        if (ch > 1) SBL__POOL_BLOCK_CH(1);
+        if (ch > 2) SBL__POOL_BLOCK_CH(2);
+        if (ch > 3) SBL__POOL_BLOCK_CH(3);
+#undef SBL__POOL_BLOCK_CH
         sbl__store(pm + i, sbl__sel(valid, m2, zero));
         sbl__store(ps + i, sbl__sel(valid, se2, zero));
         if (x + SBL__VW >= bb) break;
@@ -4579,10 +4645,19 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
     for (;;) {
         const int i = x - base - SBL__POOL_STEP * SBL__POOL_BLOCKS;
         sbl__v sm2 = sbl__load(pm + i), sse2 = sbl__load(ps + i), r;
+#if SBL__POOL_BLOCKS == 2 && SBL__POOL_STEP == 3
+        /* written out (the same additions in the same order as the loop) */
+        sm2 = sbl__add(sbl__add(sbl__add(sbl__add(sm2, sbl__load(pm + i + 3)), sbl__load(pm + i + 6)),
+                                sbl__load(pm + i + 9)), sbl__load(pm + i + 12));
+        sse2 = sbl__add(sbl__add(sbl__add(sbl__add(sse2, sbl__load(ps + i + 3)), sbl__load(ps + i + 6)),
+                                 sbl__load(ps + i + 9)), sbl__load(ps + i + 12));
+        (void)b;
+#else
         for (b = 1; b <= 2 * SBL__POOL_BLOCKS; ++b) {
             sm2 = sbl__add(sm2, sbl__load(pm + i + SBL__POOL_STEP * b));
             sse2 = sbl__add(sse2, sbl__load(ps + i + SBL__POOL_STEP * b));
         }
+#endif
         r = sbl__sub(sbl__div(sm2, sbl__max(sse2, tiny)), thr);
         r = sbl__sel(sbl__gt(sse2, zero), r, sbl__sel(sbl__gt(sm2, zero), cap, zero));
         sbl__store(k->pool_r + x, sbl__max(sbl__min(r, cap), zero));
@@ -4643,11 +4718,13 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
         if (!covered) {
             const int ca = x - reach > 0 ? x - reach : 0, cb = e + reach < w ? e + reach : w;
             const int ba = x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
+            sbl__pool_planes Q;
             int c;
+            sbl__pool_planes_of(k, ch, 1, &Q);
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
-            if (x - reach < 0) sbl__pool_column_zero(k, ch, -1 - base);
-            if (e + reach > w) sbl__pool_column_zero(k, ch, w - base);
-            sbl__pool_lanes_blocks(k, ch, ba, bb, base);
+            if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
+            if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -4670,25 +4747,33 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
    in lanes where it can (above). Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image); on a row of at least 18 columns,
    xb - xa >= 16 (sbl__kernel_run_span widens its span so). */
+/* The ring rows that exist, as sbl__pool_rows; returns 1 if one holds an unsafe value. */
+static int sbl__pool_rows_of(sbl__pool_rows *P, const sbl__ring_row *const *R, int ch)
+{
+    int j, c, unsafe = 0;
+    P->n = 0;
+    for (j = 0; j < 3; ++j) {
+        if (!R[j]) continue;
+        for (c = 0; c < ch; ++c) { P->y[P->n][c] = R[j]->y[c]; P->x[P->n][c] = R[j]->x[c]; }
+        P->v[P->n] = R[j]->v;
+        P->unsafe[P->n] = R[j]->unsafe;
+        unsafe |= R[j]->unsafe_count > 0;
+        ++P->n;
+    }
+    return unsafe;
+}
+
 static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
 {
     sbl__pool_rows P;
-    int j, c, unsafe = 0;
+    int unsafe;
     k->pool_row = R[1]->row;
     if (xa >= xb) return;
     if (k->w - 2 < 16 || xb - xa < 16) { /* the second: not reached (see above) */
         sbl__row_pool_ref(k, R, xa, xb);
         return;
     }
-    P.n = 0;
-    for (j = 0; j < 3; ++j) {
-        if (!R[j]) continue;
-        for (c = 0; c < k->ch; ++c) { P.y[P.n][c] = R[j]->y[c]; P.x[P.n][c] = R[j]->x[c]; }
-        P.v[P.n] = R[j]->v;
-        P.unsafe[P.n] = R[j]->unsafe;
-        unsafe |= R[j]->unsafe_count > 0;
-        ++P.n;
-    }
+    unsafe = sbl__pool_rows_of(&P, R, k->ch);
 #define SBL__POOL_CASE(np) \
     switch (k->ch) { \
     case 1: sbl__row_pool_lanes(k, R, &P, np, 1, xa, xb, unsafe); break; \
@@ -4866,6 +4951,44 @@ SBL__INLINE void sbl__lanes_group_add(const sbl__lane_stats *st, int c, sbl__v *
     sums[3] = sbl__add(sums[3], st->pv[c]);
 }
 
+/* One vector of pixels [x, x + VW) of row y: moments from the column sums at index
+   column - base (sbl__lanes_columns), the estimator, the blend, staged. */
+SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                   const float *nyrow, int x, int base, int y, const int ch)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap);
+    sbl__lane_stats st;
+    sbl__v a[4], n_x, n_y, n_xc;
+    sbl__m valid;
+    int c;
+    n_x = sbl__load(n_row + x);
+    valid = sbl__gt(n_x, zero);
+    n_y = nyrow ? sbl__load(nyrow + x) : one;
+    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+    sbl__lanes_moments(k, W, x, base, &st);
+    sbl__lanes_pool(k, x, y, &st);
+    sbl__lanes_rectify(k, &st);
+    if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
+        for (c = 0; c < ch; ++c) {
+            sbl__v sums[4] = {zero, zero, zero, zero};
+            sbl__lanes_group_add(&st, c, sums);
+            a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+        }
+    } else {
+        /* one weight from the squares summed over the channels (written out) */
+        sbl__v sums[4] = {zero, zero, zero, zero}, w;
+        sbl__lanes_group_add(&st, 0, sums);
+        if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
+        if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
+        if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
+        w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+        for (c = 0; c < ch; ++c) a[c] = w;
+    }
+    sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
+}
+
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
 {
@@ -4873,49 +4996,17 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
        k->ch): their channel loops unroll, with no plane pointer reloaded per channel */
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int y = R[1]->row;
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
-    const sbl__v cap = sbl__set1(k->n_cap);
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
-    const int per_channel = k->wp.mode == SBL_WEIGHT_PER_CHANNEL;
     const int end = x0 + (x1 - x0) / SBL__VW * SBL__VW; /* whole vectors only */
     sbl__lane_rows W;
-    int x = x0, c;
+    int x = x0;
     k_ch.ch = ch;
     sbl__lane_rows_of(&W, R, ch);
     while (x < end) {
         /* one chunk: its column sums (with the neighbour columns), then its pixels */
         const int ca = x - 1, ce = end - x > SBL__CHUNK ? x + SBL__CHUNK : end;
-        sbl__lanes_columns(k, &W, ca, ce + 1);
-        for (; x < ce; x += SBL__VW) {
-            sbl__lane_stats st;
-            sbl__v a[4], n_x, n_y, n_xc;
-            sbl__m valid;
-            n_x = sbl__load(R[1]->n + x);
-            valid = sbl__gt(n_x, zero);
-            n_y = nyrow ? sbl__load(nyrow + x) : one;
-            n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
-            n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-            sbl__lanes_moments(k, &W, x, ca, &st);
-            sbl__lanes_pool(k, x, y, &st);
-            sbl__lanes_rectify(k, &st);
-            if (per_channel) {
-                for (c = 0; c < ch; ++c) {
-                    sbl__v sums[4] = {zero, zero, zero, zero};
-                    sbl__lanes_group_add(&st, c, sums);
-                    a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
-                }
-            } else {
-                /* one weight from the squares summed over the channels (written out) */
-                sbl__v sums[4] = {zero, zero, zero, zero}, w;
-                sbl__lanes_group_add(&st, 0, sums);
-                if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
-                if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
-                if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
-                w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
-                for (c = 0; c < ch; ++c) a[c] = w;
-            }
-            sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
-        }
+        sbl__lanes_columns(k, &W, ca, ce + 1, ca);
+        for (; x < ce; x += SBL__VW) sbl__lanes_vector(k, &W, R[1]->n, nyrow, x, ca, y, ch);
     }
     return x;
 }
@@ -4991,6 +5082,95 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
     }
 }
 
+/* The pooled estimator's prepass and the lane kernel in one pass over an interior row
+   (the three ring rows exist). The prepass's column sums over three rows (pairs N,
+   A = sum v (d - t), B, T) are the same operations on the same values as the lane
+   kernel's (col_n, DA, DB, T: compare sbl__pool_lanes_columns with sbl__lanes_column),
+   so each chunk sums its columns once, over the prepass's reach, and both read them: bit
+   for bit what sbl__row_pool then sbl__kernel_lanes_runs give. Computes the ratio of
+   pixels [pa, pb) (pb - pa >= 16), and the lanes of the pixels of [xa, xb) (inside
+   [1, w - 1), within [pa, pb)) whose window is safe (win: 1 where it is not; NULL: all
+   safe). As there, sums over unsafe values only reach pixels that the references
+   recompute: the ratio of a pixel with an unsafe value within SBL__POOL_REACH
+   (sbl__row_pool_ref, per chunk before its lanes), the lanes of a pixel with an unsafe
+   window (sbl__kernel_pixel_ref, after the row). A run of the chunk narrower than a
+   vector is covered by one inside [x - span, e + span) and [1, w - 1) (its column sums
+   are computed); its extra pixels either take the lanes too (the same values: lanes are
+   independent; one past the chunk is computed again by the next) or are recomputed by
+   the reference path. */
+SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
+                                             int pa, int pb, int xa, int xb,
+                                             const unsigned char *win, const int ch)
+{
+    sbl__kernel k_ch = *k_in, *k = &k_ch;
+    const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
+    const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
+    const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
+    float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
+    const float *const n_row = R[1]->n;
+    sbl__lane_rows W;
+    sbl__pool_planes Q;
+    sbl__pool_rows P;
+    int x = pa, unsafe;
+    k_ch.ch = ch;
+    sbl__lane_rows_of(&W, R, ch);
+    sbl__pool_planes_of(k, ch, 0, &Q);
+    unsafe = sbl__pool_rows_of(&P, R, ch);
+    while (x < pb) {
+        int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
+        if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
+        base = x - reach;
+        sbl__lanes_columns(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w, base);
+        if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
+        if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
+        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base);
+        for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
+        for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
+        sbl__pool_lanes_ratio(k, ch, x, e, base);
+        if (unsafe) {
+            int ra, rb;
+            for (p = x; p < e && sbl__pool_unsafe_run(&P, w, p, e, &ra, &rb); p = rb)
+                sbl__row_pool_ref(k, R, ra, rb);
+        }
+        /* the chunk's lanes: each run of safe windows in whole vectors, the last one
+           ending at the run's end */
+        lo = x > xa ? x : xa;
+        hi = e < xb ? e : xb;
+        while (lo < hi) {
+            int b = hi;
+            if (win) {
+                while (lo < hi && win[lo]) ++lo;
+                if (lo >= hi) break;
+                b = sbl__find_set(win, lo + 1, hi);
+            }
+            if (b - lo >= SBL__VW) {
+                for (p = lo; p + SBL__VW <= b; p += SBL__VW)
+                    sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
+                if (p < b) sbl__lanes_vector(k, &W, n_row, nyrow, b - SBL__VW, base, y, ch);
+            } else {
+                p = b - SBL__VW;
+                if (p < x - span) p = x - span;
+                if (p < 1) p = 1;
+                sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
+            }
+            lo = b;
+        }
+        x = e;
+    }
+}
+
+static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
+                                     int pb, int xa, int xb, const unsigned char *win)
+{
+    k->pool_row = R[1]->row;
+    switch (k->ch) {
+    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1); break;
+    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2); break;
+    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3); break;
+    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4); break;
+    }
+}
+
 /* Filter columns [x0, x1) of rows [y0, y1) into k->out (and out_n / out_a); nothing
    else of the outputs is written. Every written pixel equals the one a whole-image run
    gives, bit for bit: the ring holds the columns [x0 - 1, x1 + 1) (clamped), widened
@@ -5031,18 +5211,21 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
             const unsigned char *win = NULL;
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
-            if (pool) sbl__row_pool(k, R, pa, pb);
-            if (lanes_ok) {
-                if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
-                    /* per pixel: 1 if any of the nine values of its window is unsafe
-                       (per column over its three rows, then over three columns) */
-                    unsigned char *cu = k->column_unsafe;
-                    sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
-                                   R[2]->unsafe + xa - 1, xb - xa + 2);
-                    sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
-                    win = k->window_unsafe;
-                }
-                sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
+            if (lanes_ok && (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count)) {
+                /* per pixel: 1 if any of the nine values of its window is unsafe (per
+                   column over its three rows, then over three columns) */
+                unsigned char *cu = k->column_unsafe;
+                sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
+                               R[2]->unsafe + xa - 1, xb - xa + 2);
+                sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
+                win = k->window_unsafe;
+            }
+            if (pool && lanes_ok) {
+                /* an interior row: prepass and lanes share their column sums */
+                sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
+            } else {
+                if (pool) sbl__row_pool(k, R, pa, pb);
+                if (lanes_ok) sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
             }
             if (!lanes_ok) {
                 for (x = x0; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
