@@ -1751,12 +1751,26 @@ static sbl__target_geo sbl__target_geo_make(const sbl_gbuffer *g, int w, int h)
     return t;
 }
 
+/* One axis of the slack from its one-sided differences da, db (>= 0 or NaN): the value
+   of `da < db ? da : db` where finite, else 0. A NaN db gives 0, a NaN da gives db's
+   answer. Written so that no NaN reaches the comparison: under -ffast-math the compiler
+   may turn it into a min with its operands in either order (sbl__lanes_want has the
+   same rule in lanes). */
+static float sbl__slack_axis(float da, float db)
+{
+    float d;
+    if (sbl__is_nan(db)) return 0.0f;
+    if (sbl__is_nan(da)) da = db;
+    d = da < db ? da : db;
+    return sbl__finite(d) ? d : 0.0f;
+}
+
 /* Slack for the depth test from the target's own depth slope (one-sided minimum so a
    silhouette next to the pixel does not open the tolerance). */
 static float sbl__depth_slack(const sbl__target_geo *g, int x, int y, float z)
 {
     const float *p = SBL__AT(g->depth, x, y);
-    float sx = 0.0f, sy = 0.0f, d;
+    float sx = 0.0f, sy = 0.0f;
     int w = g->width, h = g->height;
     if (!sbl__finite(z)) return 0.0f;
     if (w > 1) {
@@ -1765,8 +1779,7 @@ static float sbl__depth_slack(const sbl__target_geo *g, int x, int y, float z)
         float da = fabsf(z - a), db = fabsf(b - z);
         if (x == 0) da = db;
         if (x + 1 == w) db = da;
-        d = da < db ? da : db;
-        if (sbl__finite(d)) sx = d;
+        sx = sbl__slack_axis(da, db);
     }
     if (h > 1) {
         float a = y > 0 ? *(p - g->depth.stride) : z;
@@ -1774,8 +1787,7 @@ static float sbl__depth_slack(const sbl__target_geo *g, int x, int y, float z)
         float da = fabsf(z - a), db = fabsf(b - z);
         if (y == 0) da = db;
         if (y + 1 == h) db = da;
-        d = da < db ? da : db;
-        if (sbl__finite(d)) sy = d;
+        sy = sbl__slack_axis(da, db);
     }
     return sx + sy;
 }
@@ -3329,26 +3341,42 @@ static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 
 /* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 of an interior
    row (all with both neighbours), when the target has depth and no normals or ids:
-   valid geometry is z > 0 (NaN and -inf fail, +inf is sky); the slack is the smaller
-   one-sided difference per axis where finite (x86 min returns its second operand
-   when one is NaN, as `da < db ? da : db` does), 0 for a non-finite z. */
+   valid geometry is z > 0 (NaN and -inf fail, +inf is sky); the slack is
+   sbl__depth_slack's (sbl__slack_axis per axis, 0 for a non-finite z).
+   No NaN may reach a min: -ffast-math (finite-math-only, no signed zeros) makes gcc's
+   min intrinsics commutative, so a NaN operand's result depends on register allocation.
+   Where every difference is finite (then so is z: the common case) the slack is the sum
+   of the mins; else every lane takes sbl__slack_axis's rule written out on the bits. */
 SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int x, int y, sbl__v *z,
                                    sbl__v *slack)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const float *dp = SBL__AT(*depth, x, y);
     const ptrdiff_t ds = depth->stride;
-    sbl__v da, db, sx, sy;
+    sbl__v dax, dbx, day, dby;
     *z = sbl__load(dp);
-    da = sbl__abs(sbl__sub(*z, sbl__load(dp - 1)));
-    db = sbl__abs(sbl__sub(sbl__load(dp + 1), *z));
-    sx = sbl__min(da, db);
-    sx = sbl__sel(sbl__nonfinite(sx), zero, sx);
-    da = sbl__abs(sbl__sub(*z, sbl__load(dp - ds)));
-    db = sbl__abs(sbl__sub(sbl__load(dp + ds), *z));
-    sy = sbl__min(da, db);
-    sy = sbl__sel(sbl__nonfinite(sy), zero, sy);
-    *slack = sbl__sel(sbl__nonfinite(*z), zero, sbl__add(sx, sy));
+    dax = sbl__abs(sbl__sub(*z, sbl__load(dp - 1)));
+    dbx = sbl__abs(sbl__sub(sbl__load(dp + 1), *z));
+    day = sbl__abs(sbl__sub(*z, sbl__load(dp - ds)));
+    dby = sbl__abs(sbl__sub(sbl__load(dp + ds), *z));
+    /* >= 0 each: the sum is finite iff all four are (or it overflows: the exact path) */
+    if (!sbl__mbits(sbl__nonfinite(sbl__add(sbl__add(dax, dbx), sbl__add(day, dby))))) {
+        *slack = sbl__add(sbl__min(dax, dbx), sbl__min(day, dby));
+    } else {
+        /* da < db ? da : db, then 0 if not finite: a NaN db gives 0 (db -> 0), a NaN da
+           gives db (da -> +inf, as is an infinite da); the min of the NaN-free values */
+        const sbl__v inf = sbl__set1(SBL__CAST(float, HUGE_VAL));
+        sbl__v sx, sy;
+        dax = sbl__sel(sbl__nonfinite(dax), inf, dax);
+        dbx = sbl__sel(sbl__mandnot(sbl__nonfinite(dbx), sbl__posinf(dbx)), zero, dbx);
+        sx = sbl__min(dax, dbx);
+        sx = sbl__sel(sbl__nonfinite(sx), zero, sx);
+        day = sbl__sel(sbl__nonfinite(day), inf, day);
+        dby = sbl__sel(sbl__mandnot(sbl__nonfinite(dby), sbl__posinf(dby)), zero, dby);
+        sy = sbl__min(day, dby);
+        sy = sbl__sel(sbl__nonfinite(sy), zero, sy);
+        *slack = sbl__sel(sbl__nonfinite(*z), zero, sbl__add(sx, sy));
+    }
     return sbl__gt(*z, zero);
 }
 
