@@ -1751,18 +1751,22 @@ static sbl__target_geo sbl__target_geo_make(const sbl_gbuffer *g, int w, int h)
     return t;
 }
 
-/* One axis of the slack from its one-sided differences da, db (>= 0 or NaN): the value
-   of `da < db ? da : db` where finite, else 0. A NaN db gives 0, a NaN da gives db's
-   answer. Written so that no NaN reaches the comparison: under -ffast-math the compiler
-   may turn it into a min with its operands in either order (sbl__lanes_want has the
-   same rule in lanes). */
+/* One axis of the slack from its one-sided differences da, db (fabsf results: >= 0 or
+   NaN, sign bit clear): the value of `da < db ? da : db` where finite, else 0 (a NaN db
+   gives 0, a NaN da gives db's answer). On the bits, where unsigned order is the order
+   of such floats with NaN above +inf: under -ffast-math the compiler may turn the float
+   comparison into a min whose NaN result depends on its operand order (sbl__lanes_want
+   has the same rule in lanes). */
 static float sbl__slack_axis(float da, float db)
 {
+    unsigned int a, b, m;
     float d;
-    if (sbl__is_nan(db)) return 0.0f;
-    if (sbl__is_nan(da)) da = db;
-    d = da < db ? da : db;
-    return sbl__finite(d) ? d : 0.0f;
+    memcpy(&a, &da, sizeof a);
+    memcpy(&b, &db, sizeof b);
+    m = a < b ? a : b; /* a NaN da (above every non-NaN b) yields b */
+    if (m >= 0x7f800000u || b > 0x7f800000u) return 0.0f;
+    memcpy(&d, &m, sizeof d);
+    return d;
 }
 
 /* Slack for the depth test from the target's own depth slope (one-sided minimum so a
