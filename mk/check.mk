@@ -16,7 +16,7 @@
 #   avx2, avx512    each SIMD path the CPU can run; + test_simd (against the scalar path);
 #                   test_robust on the widest path is O3native's (-march=native)
 #   O0, O3native    test_robust at -O0 and at -O3 -march=native
-#   fastmath        test_robust with gcc -ffast-math (FTZ/DAZ set by crtfastmath.o)
+#   fastmath        test_robust, test_paths with gcc -ffast-math (FTZ/DAZ set by crtfastmath.o)
 #   clang-fastmath  test_robust with clang -O3 -march=native -ffast-math
 #   asan            every test under -fsanitize=address,undefined at -O0 (clang, else gcc;
 #                   -O0: a third of the compile time of -O1, and nothing optimised away), and
@@ -92,7 +92,7 @@ CFG_TESTS_O3native = test_robust
 
 CFG_CC_fastmath = $(CC_GCC)
 CFG_FLAGS_fastmath = $(CFLAGS_STRICT) -O2 -ffast-math
-CFG_TESTS_fastmath = test_robust
+CFG_TESTS_fastmath = test_robust test_paths  # paths: the row gather's tap decisions
 
 CFG_CC_clang-fastmath = clang
 CFG_FLAGS_clang-fastmath = $(CFLAGS_STRICT) -O3 -march=native -ffast-math
