@@ -5807,7 +5807,10 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         int far;
         m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
         keep = sbl__mandnot(keep, sbl__nonfinite(m));
-        sbl__store(fbz, m);
+        /* the positions finite in every lane (0 where m is not: such a lane has no
+           match): sbl__stereo_back_parallel clamps them with a min and a max, whose NaN
+           result -ffast-math leaves to the operand order gcc picks */
+        sbl__store(fbz, sbl__sel(keep, m, zero));
         if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
         /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the other
            eye is read at the same pixel (see SBL__FAR_PX) */
