@@ -2216,12 +2216,32 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
 #define SBL_HISTORY_PRIOR 1
 #endif
 
+/* The spatial lean of the pooled stereo beta (docs/ESTIMATORS.md section 4): a0 the
+   weight of the two-estimate blend, V_Y the noise variance of Y and v8u the sample
+   variance of its neighbours (without the centre, n8 of them), E = sum (m8 - x*)(y - x*)
+   and D = sum (y - x*)^2 (m8 the neighbours' mean): the point of the segment x* .. y
+   nearest the posterior mean of the pixel given x*, y and the prior N(m8, V_M),
+   V_M = max(0, v8u - V_Y) + V_Y / n8 (the neighbours' spread beyond noise, plus the
+   noise of their mean): a = (a0 + q e) / (1 + q), q = a0 V_Y / V_M (<= n8), e = E / D. */
+static double sbl__lean(double a0, double var_y, double v8u, double n8, double lean_e,
+                        double lean_d)
+{
+    double tex = v8u - var_y, vm, q, den;
+    if (tex < 0.0) tex = 0.0;
+    vm = tex + var_y / n8;
+    if (!(vm > 0.0)) return a0;
+    q = a0 * var_y / vm;
+    den = (1.0 + q) * lean_d;
+    return den > 0.0 ? (a0 * lean_d + q * lean_e) / den : a0;
+}
+
 /* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
-   variance of the paired differences x*_i - y_i. */
+   variance of the paired differences x*_i - y_i; v8 = population variance of Y
+   without the centre, lean_e / lean_d as sbl__lean (the pooled stereo beta). */
 static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, double pd2,
                          double pv, int count, int pair_count, float n_x, float n_y,
-                         double pool_r)
+                         double pool_r, double v8, double lean_e, double lean_d)
 {
     double a;
     double progressive = SBL__CAST(double, n_y) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
@@ -2272,6 +2292,9 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         }
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
+        /* stereo: the neighbours of Y as a third estimate, where they agree (flat) */
+        if (p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal && count > 2 && n_y <= 1.0f)
+            a = sbl__lean(a, var_y, v8 * (count - 1) / (count - 2), count - 1.0, lean_e, lean_d);
         break;
     }
     case SBL_ESTIMATOR_HISTORY_AWARE:
@@ -2408,22 +2431,29 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     if (p->mode == SBL_WEIGHT_PER_CHANNEL) {
         for (k = 0; k < ch; ++k) {
             double dev = SBL__CAST(double, xs[k]) - m->mean[k];
+            double dy = SBL__CAST(double, y[k]) - SBL__CAST(double, xs[k]);
             a[k] = sbl__weight(p, dev * dev, m->var[k], m->pair_diff[k] * m->pair_diff[k],
                                m->pair_var[k], m->count, m->pair_count, n_x, n_y,
-                               m->pool_r);
+                               m->pool_r, m->var8[k], (m->mean8[k] - SBL__CAST(double, xs[k])) * dy,
+                               dy * dy);
             a_mean += a[k];
         }
         a_mean /= SBL__CAST(float, ch);
     } else {
-        double dev2 = 0.0, s2 = 0.0, pd2 = 0.0, pv = 0.0;
+        double dev2 = 0.0, s2 = 0.0, pd2 = 0.0, pv = 0.0, v8 = 0.0, le = 0.0, ld = 0.0;
         for (k = 0; k < ch; ++k) {
             double dev = SBL__CAST(double, xs[k]) - m->mean[k];
+            double dy = SBL__CAST(double, y[k]) - SBL__CAST(double, xs[k]);
             dev2 += dev * dev;
             s2 += m->var[k];
             pd2 += m->pair_diff[k] * m->pair_diff[k];
             pv += m->pair_var[k];
+            v8 += m->var8[k];
+            le += (m->mean8[k] - SBL__CAST(double, xs[k])) * dy;
+            ld += dy * dy;
         }
-        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y, m->pool_r);
+        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y, m->pool_r,
+                             v8, le, ld);
         for (k = 0; k < ch; ++k) a[k] = a_mean;
     }
     for (k = 0; k < ch; ++k) {
@@ -4550,12 +4580,35 @@ SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
     }
 }
 
-/* Weight of Y from the squares summed over one group of channels, as sbl__weight:
+/* The pooled stereo beta's spatial lean over channels [c0, c1), as sbl__lean (count 9:
+   the neighbours' sample variance is 8/7 of their population variance v8). Bounded:
+   q <= 8 and D <= the lane range's squares, so no product overflows. */
+SBL__INLINE sbl__v sbl__lanes_lean(const sbl__lane_stats *st, sbl__v a0, sbl__v var_y, int c0,
+                                   int c1)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    sbl__v v8 = zero, e = zero, d = zero, vm, q, den;
+    int c;
+    for (c = c0; c < c1; ++c) {
+        const sbl__v dy = sbl__sub(st->yb[c], st->xs[c]);
+        v8 = sbl__add(v8, st->v8[c]);
+        e = sbl__add(e, sbl__mul(sbl__sub(st->m8[c], st->xs[c]), dy));
+        d = sbl__add(d, sbl__mul(dy, dy));
+    }
+    vm = sbl__add(sbl__max(sbl__sub(sbl__mul(v8, sbl__set1(8.0f / 7.0f)), var_y), zero),
+                  sbl__mul(var_y, sbl__set1(0.125f)));
+    q = sbl__sel(sbl__gt(vm, zero), sbl__div(sbl__mul(a0, var_y), sbl__max(vm, tiny)), zero);
+    den = sbl__mul(sbl__add(one, q), d);
+    return sbl__sel(sbl__gt(den, zero),
+                    sbl__div(sbl__add(sbl__mul(a0, d), sbl__mul(q, e)), sbl__max(den, tiny)), a0);
+}
+
+/* Weight of Y from the squares summed over channels [c0, c1), as sbl__weight:
    dev2 = (x* - mean)^2, s2 = variance of Y, pd2 = (mean paired difference)^2, pvs =
    variance of the paired differences; n_xc = capped N_X, n_y = N_Y. */
 SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lane_stats *st,
                                      sbl__v dev2, sbl__v s2, sbl__v pd2, sbl__v pvs,
-                                     sbl__v n_xc, sbl__v n_y)
+                                     sbl__v n_xc, sbl__v n_y, int c0, int c1)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
@@ -4597,6 +4650,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
+        if (p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal)
+            w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, c0, c1));
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
         const sbl__v k2 = sbl__set1(p->bias_threshold * p->bias_threshold);
@@ -4699,7 +4754,7 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
                 for (c = 0; c < ch; ++c) {
                     sbl__v sums[4] = {zero, zero, zero, zero};
                     sbl__lanes_group_add(&st, c, sums);
-                    a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+                    a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, c, c + 1);
                 }
             } else {
                 /* one weight from the squares summed over the channels (written out) */
@@ -4708,7 +4763,7 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
                 if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
                 if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
                 if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
-                w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+                w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, 0, ch);
                 for (c = 0; c < ch; ++c) a[c] = w;
             }
             sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
