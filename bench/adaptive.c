@@ -1,7 +1,7 @@
 /* make bench-adaptive: the adaptive stereo blend (section 10) against its two bounds, on
    the synthetic scenes and on the rendered sequences in ../shared/data:
-     Mono      the temporal filter per eye only (history-aware), no stereo work
-     FSA       + the stereo blend on every pixel (sbl_stereo_blend, history-aware beta)
+     Mono      the library's default temporal filter per eye only, no stereo work
+     FSA       + the default stereo blend on every pixel (sbl_stereo_blend)
      2-call    + the consistency mask on the two eyes' luminances (Weber, 2 %) and the
                same blend only on the tiles it marks (sbl_stereo_consistency +
                sbl_stereo_blend_masked: two reprojections)
@@ -312,7 +312,7 @@ static const char *const stage_label[NS] = {"Mono: temporal filter, both eyes",
     "1-pass, T 0.02", "1-pass, T 0.05", "1-pass, T 0.1", "1-pass, T 0.2",
     "1-pass nearest, T 0.02"};
 
-/* The temporal filter per eye as the runner runs "history-aware", then on each frame
+/* The temporal filter per eye as the runner runs "default", then on each frame
    >= frames/4: reps rounds, each timing every stage once in turn. Returns the medians
    (ms per stereo frame) in med[], the 1-pass tile shares (%) in tiles[]. */
 static void cpu_times(const sbr_seq *s, const sbr_method *mono, int reps, double *med, double *tiles)
@@ -512,8 +512,8 @@ static void bench_scene(const sbr_seq *seq, int reps, int *met, int *total)
     int i, k;
     if (reps > 32) reps = 32;
     memset(c, 0, sizeof c);
-    if (sbr_find_method("history-aware", &c[0].m) != 0 || sbr_find_method("ha+stereo-ha", &c[1].m) != 0) {
-        fprintf(stderr, "method table changed: history-aware / ha+stereo-ha not found\n");
+    if (sbr_find_method("default", &c[0].m) != 0 || sbr_find_method("default-stereo", &c[1].m) != 0) {
+        fprintf(stderr, "method table changed: default / default-stereo not found\n");
         exit(1);
     }
     c[0].label = "Mono";

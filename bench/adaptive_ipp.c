@@ -2,7 +2,7 @@
    callgrind (bench/adaptive_ipp.sh), which does not drift with the machine's load:
    the per-eye temporal filter (Mono), the consistency mask on the two eyes' luminances,
    the stereo blend everywhere (FSA) and the masked blend with that mask, at frame F of
-   the sequence (the temporal outputs come from bench/sbl_runner.h's "history-aware").
+   the sequence (the temporal outputs come from bench/sbl_runner.h's "default").
 
    usage: adaptive_ipp SCENE_DIR [FRAME] [THRESHOLD]   (prints the marked share) */
 #define _POSIX_C_SOURCE 200809L
@@ -55,7 +55,7 @@ int main(int argc, char **argv)
     if (argc < 2) { fprintf(stderr, "usage: adaptive_ipp SCENE_DIR [FRAME] [THRESHOLD]\n"); return 2; }
     if (sbr_seq_dataset(&s, argv[1], frame + 1, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
     w = s.width; h = s.height; n = (size_t)w * h;
-    if (sbr_find_method("history-aware", &mono) != 0) return 1;
+    if (sbr_find_method("default", &mono) != 0) return 1;
     g.frame = frame;
     for (e = 0; e < 2; ++e) {
         g.rgb[e] = (float *)malloc(n * 3 * sizeof(float));
