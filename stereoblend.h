@@ -366,7 +366,10 @@ typedef enum sbl_estimator {
     SBL_ESTIMATOR_POOLED = 0,        /* default: robust (below), plus bias evidence pooled
                                         along the row (empirical Bayes over five 3x3
                                         blocks, 15 px): catches small changes that cover
-                                        a region; see docs/ESTIMATORS.md                 */
+                                        a region. Stereo beta on a raw own eye (N <= 1):
+                                        also leans towards its neighbours' mean where
+                                        they are flat (a third estimate); see
+                                        docs/ESTIMATORS.md                               */
     SBL_ESTIMATOR_HISTORY_AWARE,     /* var_X from tracked N, bias from paired 3x3
                                         differences beyond their noise level (the
                                         default before the pooled estimator)            */
@@ -2297,14 +2300,6 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
                r / (1 + r), r = tau^2 / se2 pooled from the blocks */
             double sh = pool_r / (1.0 + pool_r), b_eb = sh * sh * pd2 + sh * se2;
             if (b_eb > bias2) bias2 = b_eb;
-        }
-        if (p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal && pair_count > 1) {
-            /* stereo: the pixel's own pair d = x* - y (lean_d = |d|^2) tested against the
-               pairs' spread, as the window's mean: a bias confined to the pixel (a
-               silhouette's mixed colour matched to one layer) is diluted ninefold in
-               the window's mean, not in its own pair */
-            double b_px = sbl__change_posterior(lean_d, pv, k2, 1.0) * lean_d;
-            if (b_px > bias2) bias2 = b_px;
         }
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
@@ -4618,14 +4613,16 @@ SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
    q <= 8 and D within the lane range's squares, so no product overflows (V_M N_X may
    overflow to inf: q = 0, no lean). */
 SBL__INLINE sbl__v sbl__lanes_lean(const sbl__lane_stats *st, sbl__v a0, sbl__v var_y,
-                                   sbl__v n_xc, sbl__v d, int c0, int c1)
+                                   sbl__v n_xc, int c0, int c1)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
-    sbl__v v8 = zero, e = zero, vm, q, den;
+    sbl__v v8 = zero, e = zero, d = zero, vm, q, den;
     int c;
     for (c = c0; c < c1; ++c) {
+        const sbl__v dy = sbl__sub(st->yb[c], st->xs[c]);
         v8 = sbl__add(v8, st->v8[c]);
-        e = sbl__add(e, sbl__mul(sbl__sub(st->m8[c], st->xs[c]), sbl__sub(st->yb[c], st->xs[c])));
+        e = sbl__add(e, sbl__mul(sbl__sub(st->m8[c], st->xs[c]), dy));
+        d = sbl__add(d, sbl__mul(dy, dy));
     }
     vm = sbl__add(sbl__max(sbl__sub(sbl__mul(v8, sbl__set1(8.0f / 7.0f)), var_y), zero),
                   sbl__mul(var_y, sbl__set1(0.125f)));
@@ -4646,7 +4643,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
-    sbl__v w, w2, dpx = zero;
+    sbl__v w, w2;
     int c;
     if (p->estimator == SBL_ESTIMATOR_PAPER) {
         sbl__v den = sbl__add(dev2, s2);
@@ -4681,20 +4678,6 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             sbl__v sh = sbl__div(st->pool_r, sbl__add(one, st->pool_r));
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
             b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
-            if (!p->temporal) {
-                /* the pixel's own pair, as sbl__weight */
-                sbl__v rp;
-                dpx = zero;
-                for (c = c0; c < c1; ++c) {
-                    const sbl__v dy = sbl__sub(st->yb[c], st->xs[c]);
-                    dpx = sbl__add(dpx, sbl__mul(dy, dy));
-                }
-                rp = sbl__div(k2e, sbl__add(one, sbl__mul(sbl__div(dpx, sbl__max(pvs, tiny)),
-                                                          sbl__set1(0.125f))));
-                rp = sbl__div(one, sbl__add(one, sbl__mul(sbl__mul(sbl__mul(rp, rp), sbl__mul(rp, rp)),
-                                                          sbl__sqrt(rp))));
-                b2 = sbl__sel(st->two_pairs, sbl__max(b2, sbl__mul(rp, dpx)), b2);
-            }
         }
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
@@ -4702,7 +4685,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         if (p->estimator == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !p->temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
             for (c = c0; c < c1; ++c) st->a2[c] = w2;
-            w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, dpx, c0, c1));
+            w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
             return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
         }
     } else {
