@@ -1670,14 +1670,48 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
            not overflow before the division */
         int cx = SBL__CAST(int, floor(sx)), cy = SBL__CAST(int, floor(sy)), cnt = 0;
         double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
-        for (j = -1; j <= 1; ++j)
-            for (i = -1; i <= 1; ++i)
-                if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
+        if (cx >= 1 && cy >= 1 && cx + 1 < s->width && cy + 1 < s->height && !s->use_id &&
+            !s->use_normal) {
+            /* the window inside the image, no id or normal test (the common case of a
+               disocclusion): sbl__tap_ok's tests written out, the depth test's limit
+               formed once (the same float expression) */
+            const int inf_e = sbl__is_pos_inf(t->depth);
+            const float lim = s->depth_tolerance * t->depth + t->depth_slack;
+            for (j = -1; j <= 1; ++j)
+                for (i = -1; i <= 1; ++i) {
                     const float *c = SBL__AT(s->color, cx + i, cy + j);
-                    for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
-                    dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
+                    float n = 1.0f;
+                    if (s->use_depth) { /* sbl__depth_match */
+                        const float d = *SBL__AT(s->depth, cx + i, cy + j);
+                        const int inf_t = sbl__is_pos_inf(d);
+                        if (inf_e || inf_t) {
+                            if (!(inf_e && inf_t)) continue;
+                        } else if (!sbl__finite(d) || !(d > 0.0f) || !(fabsf(d - t->depth) <= lim)) {
+                            continue;
+                        }
+                    }
+                    if (sbl__any_nonfinite(c, ch)) continue;
+                    if (s->length.p) {
+                        n = *SBL__AT(s->length, cx + i, cy + j);
+                        if (!(n > 0.0f) || !sbl__finite(n)) continue;
+                    }
+                    dacc[0] += SBL__CAST(double, c[0]);
+                    if (ch > 1) dacc[1] += SBL__CAST(double, c[1]);
+                    if (ch > 2) dacc[2] += SBL__CAST(double, c[2]);
+                    if (ch > 3) dacc[3] += SBL__CAST(double, c[3]);
+                    dn += SBL__CAST(double, n); /* 1.0 without N */
                     ++cnt;
                 }
+        } else {
+            for (j = -1; j <= 1; ++j)
+                for (i = -1; i <= 1; ++i)
+                    if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
+                        const float *c = SBL__AT(s->color, cx + i, cy + j);
+                        for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
+                        dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
+                        ++cnt;
+                    }
+        }
         if (!cnt) return 0.0f;
         for (k = 0; k < ch; ++k) out[k] = SBL__CAST(float, dacc[k] / cnt);
         dn /= cnt;
@@ -2051,52 +2085,59 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
                               const float (*xvals)[4], const int *xvalid, int n, int ch,
                               int centre)
 {
-    int i, k;
-    for (k = 0; k < ch; ++k) {
-        /* the window without its centre, centred on its own mean (a firefly at the
-           centre cannot cancel the others' spread away) */
-        double s8 = 0.0, v8 = 0.0;
-        m->mean8[k] = m->var8[k] = 0.0;
-        if (centre < 0 || n < 2) continue;
-        for (i = 0; i < n; ++i) if (i != centre) s8 += SBL__CAST(double, vals[i][k]);
-        s8 /= n - 1;
-        for (i = 0; i < n; ++i)
-            if (i != centre) v8 += (SBL__CAST(double, vals[i][k]) - s8) * (SBL__CAST(double, vals[i][k]) - s8);
-        m->mean8[k] = s8;
-        m->var8[k] = v8 / (n - 1);
-    }
+    /* one channel's values in double, and its valid pairs' x* - y, converted once; each
+       sum is taken in the order of the samples: the same additions as one loop per sum */
+    double yv[9], dv[9];
+    int i, k, np = 0;
     m->count = n;
-    m->pair_count = 0;
     m->pool_r = 0.0;
-    for (i = 0; i < n; ++i) m->pair_count += xvalid ? xvalid[i] != 0 : 0;
+    if (xvalid)
+        for (i = 0; i < n; ++i) np += xvalid[i] != 0;
+    m->pair_count = np;
     for (k = 0; k < ch; ++k) {
-        double s = 0.0, v = 0.0, pd = 0.0;
+        /* first pass: the values in double, their sum, the sum without the centre (the
+           window without its centre, centred on its own mean: a firefly at the centre
+           cannot cancel the others' spread away), the pairs' differences and their sum */
+        double s = 0.0, v = 0.0, pd = 0.0, s8 = 0.0, v8 = 0.0;
         float lo = 0.0f, hi = 0.0f;
-        for (i = 0; i < n; ++i) s += SBL__CAST(double, vals[i][k]);
-        s = n ? s / n : 0.0;
+        const int has8 = centre >= 0 && n >= 2;
+        int j = 0;
         for (i = 0; i < n; ++i) {
-            double d = SBL__CAST(double, vals[i][k]) - s;
+            const double yi = SBL__CAST(double, vals[i][k]);
+            yv[i] = yi;
+            s += yi;
+            if (i != centre) s8 += yi;
+            if (xvalid && xvalid[i]) {
+                const double di = SBL__CAST(double, xvals[i][k]) - yi;
+                dv[j++] = di;
+                pd += di;
+            }
+        }
+        s = n ? s / n : 0.0;
+        if (has8) s8 /= n - 1;
+        /* second pass: the squares about the means, min / max */
+        for (i = 0; i < n; ++i) {
+            const double d = yv[i] - s;
             v += d * d;
+            if (i != centre) v8 += (yv[i] - s8) * (yv[i] - s8);
             if (i == 0 || vals[i][k] < lo) lo = vals[i][k];
             if (i == 0 || vals[i][k] > hi) hi = vals[i][k];
         }
+        m->mean8[k] = has8 ? s8 : 0.0;
+        m->var8[k] = has8 ? v8 / (n - 1) : 0.0;
         m->mean[k] = s;
         m->var[k] = n ? v / n : 0.0;
         m->lo[k] = lo;
         m->hi[k] = hi;
-        if (xvalid)
-            for (i = 0; i < n; ++i)
-                if (xvalid[i]) pd += SBL__CAST(double, xvals[i][k]) - SBL__CAST(double, vals[i][k]);
-        m->pair_diff[k] = m->pair_count ? pd / m->pair_count : 0.0;
+        m->pair_diff[k] = np ? pd / np : 0.0;
         m->pair_var[k] = 0.0;
-        if (xvalid && m->pair_count > 1) {
+        if (np > 1) {
             double pv = 0.0;
-            for (i = 0; i < n; ++i)
-                if (xvalid[i]) {
-                    double e = (SBL__CAST(double, xvals[i][k]) - SBL__CAST(double, vals[i][k])) - m->pair_diff[k];
-                    pv += e * e;
-                }
-            m->pair_var[k] = pv / (m->pair_count - 1);
+            for (i = 0; i < np; ++i) {
+                const double e = dv[i] - m->pair_diff[k];
+                pv += e * e;
+            }
+            m->pair_var[k] = pv / (np - 1);
         }
     }
 }
@@ -2850,6 +2891,7 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->pool_se2 = SBL__PCAST(double *, p); p += 2 * pf;
     k->pool_r = p; p += pf;
     k->pool_row = -1;
+    /* consecutive blocks, one per channel (sbl__pool_planes_of counts on it) */
     for (c = 0; c < k->ch; ++c) { k->col[c] = p; p += SBL__COL_PLANES * SBL__CHUNK_COLS; }
     k->col_n = p; p += SBL__CHUNK_COLS;
     k->pool_col = p; p += SBL__POOL_PLANES(k->ch) * SBL__POOL_COLS;
@@ -2897,7 +2939,8 @@ SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v,
    operations in its order, so every lane gets its bits, and the tap indices (y0 stride
    + x0 step, exact in double). A few operations suffice: set1, load, store, add, sub,
    mul, div; SBL__DW floats in (sbl__dfromf: from VW + 4 readable floats), SBL__DW ints
-   out (sbl__dstorei, truncating; the values are integers). */
+   out (sbl__dstorei, truncating; the values are integers); min / max (x86: the second
+   operand where one is NaN) and a bit mask of a <= b. */
 #if SBL__VW == 16
 #define SBL__DW 8
 typedef __m512d sbl__dv;
@@ -2910,6 +2953,9 @@ typedef __m512d sbl__dv;
 #define sbl__ddiv(a, b) _mm512_div_pd(a, b)
 #define sbl__dfromf(p) _mm512_cvtps_pd(_mm256_loadu_ps(p))
 #define sbl__dstorei(q, a) _mm256_storeu_si256(SBL__PCAST(__m256i *, q), _mm512_cvttpd_epi32(a))
+#define sbl__dmin(a, b) _mm512_min_pd(a, b)
+#define sbl__dmax(a, b) _mm512_max_pd(a, b)
+#define sbl__dle_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ))
 #elif SBL__VW == 8
 #define SBL__DW 4
 typedef __m256d sbl__dv;
@@ -2922,6 +2968,9 @@ typedef __m256d sbl__dv;
 #define sbl__ddiv(a, b) _mm256_div_pd(a, b)
 #define sbl__dfromf(p) _mm256_cvtps_pd(_mm_loadu_ps(p))
 #define sbl__dstorei(q, a) _mm_storeu_si128(SBL__PCAST(__m128i *, q), _mm256_cvttpd_epi32(a))
+#define sbl__dmin(a, b) _mm256_min_pd(a, b)
+#define sbl__dmax(a, b) _mm256_max_pd(a, b)
+#define sbl__dle_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LE_OQ))
 #else
 #define SBL__DW 2
 typedef __m128d sbl__dv;
@@ -2934,6 +2983,9 @@ typedef __m128d sbl__dv;
 #define sbl__ddiv(a, b) _mm_div_pd(a, b)
 #define sbl__dfromf(p) _mm_cvtps_pd(_mm_loadu_ps(p))
 #define sbl__dstorei(q, a) _mm_storel_epi64(SBL__PCAST(__m128i *, q), _mm_cvttpd_epi32(a))
+#define sbl__dmin(a, b) _mm_min_pd(a, b)
+#define sbl__dmax(a, b) _mm_max_pd(a, b)
+#define sbl__dle_bits(a, b) _mm_movemask_pd(_mm_cmple_pd(a, b))
 #endif
 
 typedef struct sbl__tap_plan {
@@ -2942,6 +2994,10 @@ typedef struct sbl__tap_plan {
     float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
     float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
     unsigned char redo[SBL__BLOCK]; /* 1: the pixel gather decides                          */
+    /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
+       pixels in every view (planned so together: uniform integer motion) */
+    unsigned char uniform[SBL__BLOCK];
+    int lane_step[3][SBL__VW];      /* l * pixel step of colour, depth, N (set per call) */
 } sbl__tap_plan;
 
 static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
@@ -2952,6 +3008,7 @@ static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
     p->slack[i] = 0.0f;
     p->fast[i] = 0.0f;
     p->redo[i] = 0;
+    p->uniform[i] = 0;
 }
 
 /* Plan entry i from a source position, as sbl__gather_ch decides: 0 reset, else the
@@ -2982,95 +3039,147 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
     p->fast[i] = 1.0f;
 }
 
+#if SBL__VW == 4
+/* Four consecutive packed RGB pixels (12 floats) to one vector per channel: three loads
+   and seven shuffles (SSE2 emulates a gather with four loads). */
+SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
+{
+    const __m128 a = _mm_loadu_ps(p), c = _mm_loadu_ps(p + 4), e = _mm_loadu_ps(p + 8);
+    const __m128 rr = _mm_shuffle_ps(c, e, _MM_SHUFFLE(0, 1, 0, 2));  /* r2 . r3 .    */
+    const __m128 g01 = _mm_shuffle_ps(a, c, _MM_SHUFFLE(0, 0, 1, 1)); /* g0 g0 g1 g1 */
+    const __m128 g23 = _mm_shuffle_ps(c, e, _MM_SHUFFLE(2, 2, 3, 3)); /* g2 g2 g3 g3 */
+    const __m128 b01 = _mm_shuffle_ps(a, c, _MM_SHUFFLE(1, 1, 2, 2)); /* b0 b0 b1 b1 */
+    *r = _mm_shuffle_ps(a, rr, _MM_SHUFFLE(2, 0, 3, 0));
+    *g = _mm_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0));
+    *b = _mm_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0));
+}
+#endif
+
+/* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
+   (x0, y0 + 1), (x0 + 1, y0 + 1). Its tests narrow *ok, then its weighted N, colour and
+   weight join the sums (each sum takes the taps in the order 0 .. 3, as the pixel
+   gather adds them). Written once and inlined per tap with t constant, so the offsets
+   fold and every vector stays in a register. plain: no lane expects sky and every
+   depth limit is finite, so sbl__depth_match reduces to d > 0 and |d - z| <= limit (a
+   non-finite d fails the second). cidx: the colour's lane indices from the first tap. */
+SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
+                                sbl__v w, sbl__m ok, sbl__v ze, sbl__v lim, sbl__m inf_e,
+                                int plain, const int *cidx, const float *cbase, sbl__v *acc,
+                                sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int sky,
+                                int full)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    if (full || s->use_depth) {
+        const ptrdiff_t o = ty * s->depth.stride + tx * s->depth.step;
+        const sbl__v d = contiguous ? sbl__load(s->depth.p + o + p->di[i])
+                                    : sbl__gatheri(s->depth.p + o, p->di + i);
+        if (sky && !full) {
+            ok = sbl__mand(ok, sbl__posinf(d));
+        } else if (full || plain) {
+            ok = sbl__mand(ok, sbl__mand(sbl__gt(d, zero), sbl__le(sbl__abs(sbl__sub(d, ze)), lim)));
+        } else {
+            /* sbl__depth_match: sky matches only sky; else a finite, positive depth
+               within the tolerance */
+            const sbl__m inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
+                                          sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
+            ok = sbl__mand(ok, match);
+        }
+    }
+    if (full || s->length.p) {
+        const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
+        const sbl__v nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
+                                     : sbl__gatheri(s->length.p + o, p->li + i);
+        ok = sbl__mand(ok, sbl__gt(nt, zero));
+        *accn = sbl__add(*accn, sbl__sel(ok, sbl__mul(w, nt), zero));
+    } else {
+        *accn = sbl__add(*accn, sbl__sel(ok, w, zero));
+    }
+    {   /* the channels written out (gcc -O2 keeps a loop over them, and the sums in
+           memory) */
+        const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
+        sbl__v v0;
+#if SBL__VW == 4
+        if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB (sbl__rgb4) */
+            __m128 cr, cg, cb;
+            sbl__rgb4(cp, &cr, &cg, &cb);
+            acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, cr), zero));
+            acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, cg), zero));
+            acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, cb), zero));
+            *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
+            return;
+        }
+#endif
+        v0 = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
+        acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, v0), zero));
+        if (ch > 1) acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 1, cidx)), zero));
+        if (ch > 2) acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 2, cidx)), zero));
+        if (ch > 3) acc[3] = sbl__add(acc[3], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 3, cidx)), zero));
+    }
+    *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
+}
+
 /* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
    renormalisation and saturation) for plan entries [i, i + VW), into ring columns
    [x, x + VW): the same float operations in the same order per lane (a skipped tap
    adds +0 to a sum that cannot be -0), hence the same bits. Lanes whose sums are not
    finite, or whose weight is below 1e-3 with the fallback on, are marked for redo.
-   contiguous: the lanes' taps are consecutive pixels (uniform motion, a camera at
-   rest), read with plain vector loads where a view has one channel. Taps of weight 0
-   in every lane are skipped: they would add +0 everywhere.
+   contiguous: the lanes' taps are consecutive pixels in every view (uniform motion, a
+   camera at rest, a row of a parallel rig; depth and N packed), read with plain vector
+   loads, the colour with one fixed set of lane offsets (cstep: l * its pixel step).
+   Taps of weight 0 in every lane are skipped: they would add +0 everywhere.
    sky: every planned lane expects sky (+inf), so its depth test is "the tap is sky"
    (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
-                                 sbl__ring_row *r, int x, int ch, int contiguous, int sky)
+                                 sbl__ring_row *r, int x, const int *cstep, int ch,
+                                 int contiguous, int sky, int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
     const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
     const sbl__m fast = sbl__gt(sbl__load(p->fast + i), zero);
-    sbl__v w[4], acc[4], accn = zero, wsum = zero, inv, n;
-    sbl__m ok[4], redo, lo, valid;
-    ptrdiff_t off[4];
-    int t, c, bits, skip = 0;
+    const int *cidx = contiguous ? cstep : p->ci + i;
+    const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
+    sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = zero, lim = zero;
+    sbl__m redo, lo, valid, inf_e = sbl__gt(zero, zero);
+    int c, bits, plain = 0;
     /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
        in every lane (a camera at rest; the rows of a parallel stereo rig) */
-    if (!sbl__mbits(sbl__gt(fx, zero))) skip |= 1;
-    if (!sbl__mbits(sbl__gt(fy, zero))) skip |= 2;
-    w[0] = sbl__mul(gx, gy);
-    w[1] = sbl__mul(fx, gy);
-    w[2] = sbl__mul(gx, fy);
-    w[3] = sbl__mul(fx, fy);
-    for (t = 0; t < 4; ++t) ok[t] = sbl__gt(w[t], zero);
-    if (s->use_depth) {
-        const sbl__v ze = sbl__load(p->depth + i), sl = sbl__load(p->slack + i);
-        const sbl__v lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sl);
-        const sbl__m inf_e = sbl__posinf(ze);
-        off[0] = 0; off[1] = s->depth.step; off[2] = s->depth.stride;
-        off[3] = s->depth.stride + s->depth.step;
-        for (t = 0; t < 4; ++t) {
-            if (t & skip) continue;
-            {
-                const sbl__v d = contiguous && s->depth.step == 1
-                                     ? sbl__load(s->depth.p + off[t] + p->di[i])
-                                     : sbl__gatheri(s->depth.p + off[t], p->di + i);
-                const sbl__m inf_t = sbl__posinf(d);
-                if (sky) {
-                    ok[t] = sbl__mand(ok[t], inf_t);
-                } else {
-                    /* sbl__depth_match: sky matches only sky; else a finite, positive
-                       depth within the tolerance */
-                    const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
-                                                  sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
-                    const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
-                                                  sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
-                    ok[t] = sbl__mand(ok[t], match);
-                }
-            }
+    const int skip_x = !sbl__mbits(sbl__gt(fx, zero)), skip_y = !sbl__mbits(sbl__gt(fy, zero));
+    w0 = sbl__mul(gx, gy);
+    w1 = sbl__mul(fx, gy);
+    w2 = sbl__mul(gx, fy);
+    w3 = sbl__mul(fx, fy);
+    if (full || (s->use_depth && !sky)) {
+        ze = sbl__load(p->depth + i);
+        lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sbl__load(p->slack + i));
+        if (!full) {
+            inf_e = sbl__posinf(ze);
+            plain = !sbl__mbits(sbl__mor(inf_e, sbl__nonfinite(lim)));
         }
     }
-    if (s->length.p) {
-        off[0] = 0; off[1] = s->length.step; off[2] = s->length.stride;
-        off[3] = s->length.stride + s->length.step;
-        for (t = 0; t < 4; ++t) {
-            if (t & skip) continue;
-            {
-                const sbl__v nt = contiguous && s->length.step == 1
-                                      ? sbl__load(s->length.p + off[t] + p->li[i])
-                                      : sbl__gatheri(s->length.p + off[t], p->li + i);
-                ok[t] = sbl__mand(ok[t], sbl__gt(nt, zero));
-                accn = sbl__add(accn, sbl__sel(ok[t], sbl__mul(w[t], nt), zero));
-            }
-        }
-    } else {
-        for (t = 0; t < 4; ++t)
-            if (!(t & skip)) accn = sbl__add(accn, sbl__sel(ok[t], w[t], zero));
-    }
-    off[0] = 0; off[1] = s->color.step; off[2] = s->color.stride;
-    off[3] = s->color.stride + s->color.step;
-    for (c = 0; c < ch; ++c) acc[c] = zero;
-    for (t = 0; t < 4; ++t) {
-        if (t & skip) continue;
-        for (c = 0; c < ch; ++c) {
-            const sbl__v v = contiguous && s->color.step == 1
-                                 ? sbl__load(s->color.p + off[t] + p->ci[i])
-                                 : sbl__gatheri(s->color.p + off[t] + c, p->ci + i);
-            acc[c] = sbl__add(acc[c], sbl__sel(ok[t], sbl__mul(w[t], v), zero));
-        }
-        wsum = sbl__add(wsum, sbl__sel(ok[t], w[t], zero));
+    acc[0] = acc[1] = acc[2] = acc[3] = zero;
+    sbl__lanes_tap(s, p, i, 0, w0, sbl__gt(w0, zero), ze, lim, inf_e, plain, cidx, cbase, acc,
+                   &accn, &wsum, ch, contiguous, sky, full);
+    if (!skip_x)
+        sbl__lanes_tap(s, p, i, 1, w1, sbl__gt(w1, zero), ze, lim, inf_e, plain, cidx, cbase,
+                       acc, &accn, &wsum, ch, contiguous, sky, full);
+    if (!skip_y) {
+        sbl__lanes_tap(s, p, i, 2, w2, sbl__gt(w2, zero), ze, lim, inf_e, plain, cidx, cbase,
+                       acc, &accn, &wsum, ch, contiguous, sky, full);
+        if (!skip_x)
+            sbl__lanes_tap(s, p, i, 3, w3, sbl__gt(w3, zero), ze, lim, inf_e, plain, cidx,
+                           cbase, acc, &accn, &wsum, ch, contiguous, sky, full);
     }
     redo = sbl__nonfinite(accn);
-    for (c = 0; c < ch; ++c) redo = sbl__mor(redo, sbl__nonfinite(acc[c]));
+    /* (the channels written out, as in sbl__lanes_tap) */
+    redo = sbl__mor(redo, sbl__nonfinite(acc[0]));
+    if (ch > 1) redo = sbl__mor(redo, sbl__nonfinite(acc[1]));
+    if (ch > 2) redo = sbl__mor(redo, sbl__nonfinite(acc[2]));
+    if (ch > 3) redo = sbl__mor(redo, sbl__nonfinite(acc[3]));
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
     if (fallback) redo = sbl__mor(redo, lo);
     redo = sbl__mand(redo, fast);
@@ -3079,13 +3188,16 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
     sbl__store(r->n + x, sbl__sel(valid, n, zero));
     sbl__store(r->v + x, sbl__sel(valid, one, zero));
-    for (c = 0; c < ch; ++c) {
-        const sbl__v o = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax);
-        sbl__store(r->x[c] + x, sbl__sel(valid, o, zero));
-    }
+#define SBL__TAPS_OUT(c) \
+    sbl__store(r->x[c] + x, sbl__sel(valid, sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax), zero))
+    SBL__TAPS_OUT(0);
+    if (ch > 1) SBL__TAPS_OUT(1);
+    if (ch > 2) SBL__TAPS_OUT(2);
+    if (ch > 3) SBL__TAPS_OUT(3);
+#undef SBL__TAPS_OUT
     bits = sbl__mbits(redo);
-    for (t = 0; bits; ++t, bits >>= 1)
-        if (bits & 1) p->redo[i + t] = 1;
+    for (c = 0; bits; ++c, bits >>= 1)
+        if (bits & 1) p->redo[i + c] = 1;
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -3103,39 +3215,67 @@ SBL__INLINE int sbl__ints_step(const int *a, int step)
     return same == 0xffff;
 }
 
+/* sbl__row_taps for one channel count and sky flag (constants where inlined). */
+SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+                                  sbl__ring_row *r, int x, int ch, int sky)
+{
+    /* contiguous vectors need depth and N packed (plain loads); the colour's fixed lane
+       offsets are the plan's lane steps */
+    const int packed = (!s->use_depth || s->depth.step == 1) && (!s->length.p || s->length.step == 1);
+    /* the common views: depth and N tested; "full" vectors also have every depth limit
+       finite and no lane expecting sky (the plain depth test), and take the variant of
+       the taps without the tests of the views' presence */
+    const int both = !sky && s->use_depth && s->length.p;
+    const sbl__v tol = sbl__set1(s->depth_tolerance);
+    const int *cstep = p->lane_step[0];
+    int i = 0;
+    for (;;) {
+        int contiguous, full = 0;
+        if (i + SBL__VW > n) i = n - SBL__VW;
+        /* every lane's first tap one pixel after the previous lane's, in every view
+           (each lane's index is a valid one, so the vector load reads exactly the
+           addresses the gather would) */
+        contiguous = packed && (p->uniform[i] ||
+                                (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
+                                 (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
+                                 (!s->length.p || sbl__ints_step(p->li + i, 1))));
+        if (both) {
+            const sbl__v ze = sbl__load(p->depth + i);
+            full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
+                                        sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
+        }
+        if (contiguous) {
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0);
+        } else {
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0);
+        }
+        if (i + SBL__VW >= n) break;
+        i += SBL__VW;
+    }
+}
+
 /* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
    last vector overlaps the one before rather than running past the block. sky: every
    planned entry expects sky (see sbl__lanes_taps). */
 static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
                           sbl__ring_row *r, int x, int sky)
 {
-    int i = 0;
-    for (;;) {
-        int contiguous;
-        if (i + SBL__VW > n) i = n - SBL__VW;
-        /* every lane's first tap one pixel after the previous lane's, in every view
-           (each lane's index is a valid one, so the vector load reads exactly the
-           addresses the gather would) */
-        contiguous = sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
-                     (!s->use_depth || sbl__ints_step(p->di + i, SBL__CAST(int, s->depth.step))) &&
-                     (!s->length.p || sbl__ints_step(p->li + i, SBL__CAST(int, s->length.step)));
-        if (sky) {
-            switch (s->color.ch) {
-            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 1); break;
-            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 1); break;
-            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 1); break;
-            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 1); break;
-            }
-        } else {
-            switch (s->color.ch) {
-            case 1: sbl__lanes_taps(s, p, i, fallback, r, x + i, 1, contiguous, 0); break;
-            case 2: sbl__lanes_taps(s, p, i, fallback, r, x + i, 2, contiguous, 0); break;
-            case 3: sbl__lanes_taps(s, p, i, fallback, r, x + i, 3, contiguous, 0); break;
-            default: sbl__lanes_taps(s, p, i, fallback, r, x + i, 4, contiguous, 0); break;
-            }
+    if (sky) {
+        switch (s->color.ch) {
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1); break;
         }
-        if (i + SBL__VW >= n) break;
-        i += SBL__VW;
+    } else {
+        switch (s->color.ch) {
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0); break;
+        }
     }
 }
 
@@ -3169,6 +3309,11 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
     sbl__block b;
     int i;
     b.y = y;
+    for (i = 0; i < SBL__VW; ++i) { /* |step| < INT_MAX / VW: sbl__row_gather_ok */
+        b.p.lane_step[0][i] = i * SBL__CAST(int, src->color.step);
+        b.p.lane_step[1][i] = i * SBL__CAST(int, src->depth.step);
+        b.p.lane_step[2][i] = i * SBL__CAST(int, src->length.step);
+    }
     for (b.x0 = xa; b.x0 < xb; b.x0 += SBL__BLOCK) {
         b.n = xb - b.x0 < SBL__BLOCK ? xb - b.x0 : SBL__BLOCK;
         if (b.n < SBL__VW) {
@@ -3193,11 +3338,17 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             after(ctx, r, &b);
             continue;
         }
-        for (i = 0; i < b.n; ++i)
+        for (i = 0; i < b.n; ++i) {
+            if (i + 8 <= b.n) { /* eight entries at a time: redo is rare */
+                uint64_t any;
+                memcpy(&any, b.p.redo + i, 8);
+                if (!any) { i += 7; continue; }
+            }
             if (b.p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
                 sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
             }
+        }
     }
 }
 
@@ -3273,6 +3424,24 @@ SBL__INLINE void sbl__plan_index(int *out, const float *x0s, const float *y0s, c
                                         sbl__dmul(sbl__dfromf(x0s + j), sbl__dset1(SBL__CAST(double, f->step)))));
 }
 
+/* Tap indices of a view (NULL: 0) for VW lanes whose first taps are consecutive pixels
+   from (x0, y0): y0 stride + (x0 + l) step, in int lanes (each a valid index, and the
+   sums exact: |index| < INT_MAX / 2, sbl__row_gather_ok). */
+SBL__INLINE void sbl__plan_index_run(int *out, int x0, int y0, const sbl__flat *f,
+                                     const int *lane_step)
+{
+    int j, first;
+    if (!f) {
+        for (j = 0; j < SBL__VW; ++j) out[j] = 0;
+        return;
+    }
+    first = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * f->stride + SBL__CAST(ptrdiff_t, x0) * f->step);
+    for (j = 0; j < SBL__VW; j += 4)
+        _mm_storeu_si128(SBL__PCAST(__m128i *, out + j),
+                         _mm_add_epi32(_mm_set1_epi32(first),
+                                       _mm_loadu_si128(SBL__PCAST(const __m128i *, lane_step + j))));
+}
+
 /* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
    (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
    results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
@@ -3288,20 +3457,16 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     const sbl__v wf = sbl__set1(SBL__CAST(float, src->width)), hf = sbl__set1(SBL__CAST(float, src->height));
     const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane)), yf = sbl__set1(SBL__CAST(float, y));
     sbl__v ax, ay, fmx, fmy, x0f, y0f;
-    sbl__m exact, inside, fast;
-    int l, bits_scalar, bits_fast, bits_keep;
+    sbl__m exact, fast;
+    int l, bits_scalar, bits_fast, bits_redo;
     float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    int uniform;
     ax = sbl__abs(mx);
     ay = sbl__abs(my);
     exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
                       sbl__mor(sbl__le(ay, zero), sbl__mand(sbl__le(lo, ay), sbl__gt(hi, ay))));
     bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
-    /* x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
-    inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
-                       sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
-    inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
-                                         sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
-    keep = sbl__mand(sbl__mand(keep, exact), inside);
+    keep = sbl__mand(keep, exact);
     fmx = sbl__floor(mx);
     fmy = sbl__floor(my);
     x0f = sbl__add(xf, fmx);
@@ -3310,6 +3475,18 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__gt(wf, sbl__add(x0f, one))),
                      sbl__mand(sbl__le(zero, y0f), sbl__gt(hf, sbl__add(y0f, one))));
     fast = sbl__mand(fast, keep);
+    /* the others kept: the pixel gather where the position is inside the image, else a
+       reset (four taps inside imply the position inside: only those need the test);
+       x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
+    bits_fast = sbl__mbits(fast);
+    bits_redo = sbl__mbits(sbl__mandnot(keep, fast));
+    if (bits_redo) {
+        sbl__m inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
+                                  sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
+        inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
+                                             sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
+        bits_redo &= sbl__mbits(inside);
+    }
     /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
     sbl__store(p->fx + i, sbl__sel(fast, sbl__add(sbl__sub(mx, fmx), zero), zero));
     sbl__store(p->fy + i, sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
@@ -3319,15 +3496,29 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     /* tap (0, 0) where not fast: a valid address, result unused */
     sbl__store(x0s, sbl__sel(fast, x0f, zero));
     sbl__store(y0s, sbl__sel(fast, y0f, zero));
-    bits_fast = sbl__mbits(fast);
-    bits_keep = sbl__mbits(keep);
     {   /* redo bytes, four lanes per table entry (x86: little-endian bytes) */
         static const unsigned int bytes[16] = {
             0x00000000u, 0x00000001u, 0x00000100u, 0x00000101u, 0x00010000u, 0x00010001u,
             0x00010100u, 0x00010101u, 0x01000000u, 0x01000001u, 0x01000100u, 0x01000101u,
             0x01010000u, 0x01010001u, 0x01010100u, 0x01010101u};
-        const int redo = bits_keep & ~bits_fast;
-        for (l = 0; l < SBL__VW; l += 4) memcpy(p->redo + i + l, &bytes[(redo >> l) & 15], 4);
+        const int redo = bits_redo;
+        if (!redo) memset(p->redo + i, 0, SBL__VW);
+        else for (l = 0; l < SBL__VW; l += 4) memcpy(p->redo + i + l, &bytes[(redo >> l) & 15], 4);
+    }
+    /* every lane fast, at one integer offset (x0 - x, y0 - y equal in all lanes: uniform
+       motion): consecutive first taps, indexed in int lanes and flagged for the taps */
+    uniform = bits_fast == (1 << SBL__VW) - 1 &&
+              sbl__mbits(sbl__mand(sbl__le(fmx, sbl__set1(x0s[0] - SBL__CAST(float, x))),
+                                   sbl__le(sbl__set1(x0s[0] - SBL__CAST(float, x)), fmx))) == (1 << SBL__VW) - 1 &&
+              sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) == (1 << SBL__VW) - 1;
+    memset(p->uniform + i, 0, SBL__VW);
+    if (uniform) {
+        const int cx = SBL__CAST(int, x0s[0]), cy = SBL__CAST(int, y0s[0]);
+        p->uniform[i] = 1;
+        sbl__plan_index_run(p->ci + i, cx, cy, &src->color, p->lane_step[0]);
+        sbl__plan_index_run(p->di + i, cx, cy, src->use_depth ? &src->depth : NULL, p->lane_step[1]);
+        sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL, p->lane_step[2]);
+        return bits_scalar;
     }
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
     sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
@@ -3453,7 +3644,7 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     const float *np = src->length.p ? SBL__AT(src->length, x0, y) : NULL;
     const float *cp = SBL__AT(src->color, x0, y);
     const ptrdiff_t cs = src->color.step;
-    int i = 0, l, c, idx[SBL__VW];
+    int i = 0, l, idx[SBL__VW];
     for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
     for (;;) {
         int x, bits;
@@ -3461,8 +3652,22 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         sbl__v nv = one, v[4];
         if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
         x = x0 + i;
-        for (c = 0; c < ch; ++c) /* the history colour, one channel per vector */
-            v[c] = cs == 1 ? sbl__load(cp + i + c) : sbl__gatheri(cp + SBL__CAST(ptrdiff_t, i) * cs + c, idx);
+        /* the history colour, one channel per vector (the channels written out: gcc -O2
+           keeps a loop over them, with the vectors in memory) */
+#if SBL__VW == 4
+        if (ch == 3 && cs == 3) {
+            sbl__rgb4(cp + SBL__CAST(ptrdiff_t, i) * 3, &v[0], &v[1], &v[2]);
+        } else
+#endif
+        if (cs == 1) { /* (one channel) */
+            v[0] = v[1] = v[2] = v[3] = sbl__load(cp + i);
+        } else {
+            const float *hp_i = cp + SBL__CAST(ptrdiff_t, i) * cs;
+            v[0] = sbl__gatheri(hp_i, idx);
+            if (ch > 1) v[1] = sbl__gatheri(hp_i + 1, idx);
+            if (ch > 2) v[2] = sbl__gatheri(hp_i + 2, idx);
+            if (ch > 3) v[3] = sbl__gatheri(hp_i + 3, idx);
+        }
         keep = zp ? sbl__gt(sbl__load(zp + i), zero) : sbl__gt(one, zero);
         valid = keep;
         if (hp) {
@@ -3477,8 +3682,14 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
             nv = sbl__load(np + i);
             valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
         }
-        for (c = 0; c < ch; ++c) valid = sbl__mandnot(valid, sbl__nonfinite(v[c]));
-        for (c = 0; c < ch; ++c) sbl__store(r->x[c] + x, sbl__sel(valid, sbl__add(zero, v[c]), zero));
+        valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
+        if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
+        if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
+        if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
+        sbl__store(r->x[0] + x, sbl__sel(valid, sbl__add(zero, v[0]), zero));
+        if (ch > 1) sbl__store(r->x[1] + x, sbl__sel(valid, sbl__add(zero, v[1]), zero));
+        if (ch > 2) sbl__store(r->x[2] + x, sbl__sel(valid, sbl__add(zero, v[2]), zero));
+        if (ch > 3) sbl__store(r->x[3] + x, sbl__sel(valid, sbl__add(zero, v[3]), zero));
         sbl__store(r->n + x, sbl__sel(valid, nv, zero));
         sbl__store(r->v + x, sbl__sel(valid, one, zero));
         bits = sbl__mbits(sbl__mandnot(keep, valid));
@@ -3912,21 +4123,39 @@ static float sbl__own_n(const sbl__kernel *k, int x, int y)
 static void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
                              double *out)
 {
-    int j, c;
-    for (c = 0; c < 9; ++c) out[c] = 0.0;
-    if (x < 0 || x >= k->w) return;
-    for (j = 0; j < 3; ++j) {
-        double d[4];
-        int ok = 1;
-        if (!R[j] || !(R[j]->v[x] > 0.0f)) continue;
-        for (c = 0; c < k->ch; ++c) {
-            ok &= sbl__finite(R[j]->y[c][x]) & sbl__finite(R[j]->x[c][x]);
-            d[c] = SBL__CAST(double, R[j]->x[c][x]) - SBL__CAST(double, R[j]->y[c][x]);
+    /* the channels written out into locals (registers; stores to out could alias the
+       ring's floats), each sum in the order of the rows */
+    const int ch = k->ch;
+    double n = 0.0, s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0;
+    int j;
+    if (x >= 0 && x < k->w)
+        for (j = 0; j < 3; ++j) {
+            const sbl__ring_row *r = R[j];
+            double d0, d1 = 0.0, d2 = 0.0, d3 = 0.0;
+            int ok;
+            if (!r || !(r->v[x] > 0.0f)) continue;
+#define SBL__POOL_D(c, d) \
+            do { \
+                const float yv = r->y[c][x], xv = r->x[c][x]; \
+                ok &= sbl__finite(yv) & sbl__finite(xv); \
+                d = SBL__CAST(double, xv) - SBL__CAST(double, yv); \
+            } while (0)
+            ok = 1;
+            SBL__POOL_D(0, d0);
+            if (ch > 1) SBL__POOL_D(1, d1);
+            if (ch > 2) SBL__POOL_D(2, d2);
+            if (ch > 3) SBL__POOL_D(3, d3);
+#undef SBL__POOL_D
+            if (!ok) continue;
+            n += 1.0;
+            s0 += d0; q0 += d0 * d0;
+            if (ch > 1) { s1 += d1; q1 += d1 * d1; }
+            if (ch > 2) { s2 += d2; q2 += d2 * d2; }
+            if (ch > 3) { s3 += d3; q3 += d3 * d3; }
         }
-        if (!ok) continue;
-        out[0] += 1.0;
-        for (c = 0; c < k->ch; ++c) { out[1 + c] += d[c]; out[5 + c] += d[c] * d[c]; }
-    }
+    out[0] = n;
+    out[1] = s0; out[2] = s1; out[3] = s2; out[4] = s3;
+    out[5] = q0; out[6] = q1; out[7] = q2; out[8] = q3;
 }
 
 /* Pooled estimator, the double reference of sbl__row_pool: the prior bias-to-noise ratio
@@ -3947,8 +4176,9 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
 {
     const int ch = k->ch, w = k->w;
     int za = xa - SBL__POOL_STEP * SBL__POOL_BLOCKS, zb = xb + SBL__POOL_STEP * SBL__POOL_BLOCKS;
-    int x, c, i;
-    double col[3][9]; /* columns x - 1, x, x + 1 */
+    int x, c;
+    double cols[3][9], *col[3]; /* columns x - 1, x, x + 1 (rotated) */
+    col[0] = cols[0]; col[1] = cols[1]; col[2] = cols[2];
     if (za < 0) za = 0;
     if (zb > w) zb = w;
     if (za < zb) {
@@ -3956,7 +4186,7 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
         sbl__pool_column(k, R, za, col[1]);
     }
     for (x = za; x < zb; ++x) {
-        double m2 = 0.0, se2 = 0.0, n;
+        double m2 = 0.0, se2 = 0.0, n, *t;
         sbl__pool_column(k, R, x + 1, col[2]);
         /* the block: three column sums, always added in this order (the same value
            whatever column the row's span starts at) */
@@ -3974,7 +4204,7 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
             k->pool_m2[x] = m2;
             k->pool_se2[x] = se2;
         }
-        for (i = 0; i < 9; ++i) { col[0][i] = col[1][i]; col[1][i] = col[2][i]; }
+        t = col[0]; col[0] = col[1]; col[1] = col[2]; col[2] = t;
     }
     for (x = xa; x < xb; ++x) {
         double sm2 = 0.0, sse2 = 0.0, r;
@@ -4112,7 +4342,7 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
 
 /* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
 SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
-                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1)
+                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1, int clamp)
 {
     const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
                  y2 = sbl__load(W->y[2][c] + x);
@@ -4130,30 +4360,31 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
     sbl__store(SBL__COLP(cp, SBL__COL_T), t);
     sbl__store(SBL__COLP(cp, SBL__COL_DA), sbl__add(e1, e2));
     sbl__store(SBL__COLP(cp, SBL__COL_DB), sbl__add(sbl__mul(e1, e1), sbl__mul(e2, e2)));
-    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+    if (clamp) {
         sbl__store(SBL__COLP(cp, SBL__COL_LO), sbl__min(sbl__min(y0, y1), y2));
         sbl__store(SBL__COLP(cp, SBL__COL_HI), sbl__max(sbl__max(y0, y1), y2));
     }
 }
 
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
-   column - ca; the last vector overlaps the one before (same values). The channels are
+   column - base; the last vector overlaps the one before (same values). The channels are
    written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). */
-SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb)
+SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
+                                    int base)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const int ch = k->ch;
+    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
     int x = ca;
     for (;;) {
-        const int i = x - ca;
+        const int i = x - base;
         const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
                      v2 = sbl__load(W->v[2] + x);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
-        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1);
-        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1);
-        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1);
-        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1);
+        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp);
+        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp);
+        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp);
+        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1, clamp);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
@@ -4353,14 +4584,34 @@ SBL__INLINE void sbl__pool_lanes_columns(sbl__kernel *k, const sbl__pool_rows *P
     }
 }
 
-/* A column outside the image: no pairs, sums 0 (at index column - base). */
-static void sbl__pool_column_zero(sbl__kernel *k, int ch, int i)
+/* Where the blocks read their column sums: the prepass's own planes (pool_col), or the
+   lane kernel's column sums (k->col, col_n), which hold the same values on an interior
+   row (sbl__kernel_lanes_pooled). */
+typedef struct sbl__pool_planes {
+    float *a[4], *b[4], *t[4], *n;
+    ptrdiff_t cstep; /* a[c] - a[0] = c cstep, and so for b and t */
+} sbl__pool_planes;
+
+/* own = 1: the prepass's planes; 0: the lane kernel's (per channel one block of
+   SBL__COL_PLANES planes, the blocks consecutive: sbl__kernel_bind) */
+SBL__INLINE void sbl__pool_planes_of(const sbl__kernel *k, int ch, int own, sbl__pool_planes *Q)
 {
     int c;
-    SBL__POOL_PLANE(k, SBL__POOL_N(ch))[i] = 0.0f;
-    for (c = 0; c < ch; ++c)
-        SBL__POOL_PLANE(k, SBL__POOL_A(c))[i] = SBL__POOL_PLANE(k, SBL__POOL_B(c))[i] =
-            SBL__POOL_PLANE(k, SBL__POOL_T(c))[i] = 0.0f;
+    Q->cstep = own ? 3 * SBL__POOL_COLS : SBL__COL_PLANES * SBL__CHUNK_COLS;
+    for (c = 0; c < ch; ++c) {
+        Q->a[c] = own ? SBL__POOL_PLANE(k, SBL__POOL_A(c)) : SBL__COLP(k->col[c], SBL__COL_DA);
+        Q->b[c] = own ? SBL__POOL_PLANE(k, SBL__POOL_B(c)) : SBL__COLP(k->col[c], SBL__COL_DB);
+        Q->t[c] = own ? SBL__POOL_PLANE(k, SBL__POOL_T(c)) : SBL__COLP(k->col[c], SBL__COL_T);
+    }
+    Q->n = own ? SBL__POOL_PLANE(k, SBL__POOL_N(ch)) : k->col_n;
+}
+
+/* A column outside the image: no pairs, sums 0 (at index column - base). */
+static void sbl__pool_column_zero(const sbl__pool_planes *Q, int ch, int i)
+{
+    int c;
+    Q->n[i] = 0.0f;
+    for (c = 0; c < ch; ++c) Q->a[c][i] = Q->b[c][i] = Q->t[c][i] = 0.0f;
 }
 
 /* One column of a block moved from its own shift t to the block's s: D = t - s,
@@ -4371,15 +4622,49 @@ static void sbl__pool_column_zero(sbl__kernel *k, int ch, int i)
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
+/* Channel c's terms of the blocks of sbl__pool_lanes_blocks at index i: the squared
+   mean and the squared standard error, added to *m2 / *se2 (set by channel 0). */
+SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const float *pt,
+                                         sbl__m has_c, sbl__m has_l, sbl__v nl, sbl__v nr,
+                                         sbl__v inv_n, sbl__v inv_n1, int c, sbl__v *m2,
+                                         sbl__v *se2)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
+    const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
+    sbl__v al, bl, ar, br, a, b, q, mean, var;
+    /* the centre column needs no move: s is its t, or it has no pair (sums 0) */
+    SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
+    SBL__POOL_SHIFT(sbl__load(pa + 1), sbl__load(pb + 1), sbl__sub(tr, s), nr, ar, br);
+    a = sbl__add(sbl__add(al, sbl__load(pa)), ar);
+    b = sbl__add(sbl__add(bl, sbl__load(pb)), br);
+    q = sbl__mul(a, inv_n);
+    mean = sbl__add(s, q);
+    /* sample variance (sum e^2 - n mean_e^2) / (n - 1), over n for its mean */
+    var = sbl__mul(sbl__max(sbl__sub(b, sbl__mul(a, q)), zero), inv_n1);
+    if (c == 0) {
+        *m2 = sbl__mul(mean, mean);
+        *se2 = sbl__mul(var, inv_n);
+    } else {
+        *m2 = sbl__add(*m2, sbl__mul(mean, mean));
+        *se2 = sbl__add(*se2, sbl__mul(var, inv_n));
+    }
+}
+
 /* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
-   sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs. */
-SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const int ch, int ba, int bb, int base)
+   sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs.
+   The channels written out (ch is a constant in each instance), in channel order. */
+SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
+                                        int ba, int bb, int base)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
-    const float *const pool = k->pool_col;
-    const float *pn = pool + SBL__POOL_N(ch) * SBL__POOL_COLS;
+    const float *pn = Q->n;
+    /* channel c's planes at a constant distance from channel 0's (every caller's layout,
+       sbl__pool_planes_of): fixed offsets from one pointer, not three loads per channel */
+    const float *const a0 = Q->a[0], *const b0 = Q->b[0], *const t0 = Q->t[0];
+    const ptrdiff_t cstep = Q->cstep;
     float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
-    int x = ba, c;
+    int x = ba;
     for (;;) {
         const int i = x - base;
         const sbl__v nl = sbl__load(pn + i - 1), nc = sbl__load(pn + i), nr = sbl__load(pn + i + 1);
@@ -4388,30 +4673,14 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const int ch, int ba, in
         const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero;
-        for (c = 0; c < ch; ++c) {
-            const float *pa = pool + SBL__POOL_A(c) * SBL__POOL_COLS + i;
-            const float *pb = pool + SBL__POOL_B(c) * SBL__POOL_COLS + i;
-            const float *pt = pool + SBL__POOL_T(c) * SBL__POOL_COLS + i;
-            const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
-            const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
-            sbl__v al, bl, ar, br, a, b, q, mean, var;
-            /* the centre column needs no move: s is its t, or it has no pair (sums 0) */
-            SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
-            SBL__POOL_SHIFT(sbl__load(pa + 1), sbl__load(pb + 1), sbl__sub(tr, s), nr, ar, br);
-            a = sbl__add(sbl__add(al, sbl__load(pa)), ar);
-            b = sbl__add(sbl__add(bl, sbl__load(pb)), br);
-            q = sbl__mul(a, inv_n);
-            mean = sbl__add(s, q);
-            /* sample variance (sum e^2 - n mean_e^2) / (n - 1), over n for its mean */
-            var = sbl__mul(sbl__max(sbl__sub(b, sbl__mul(a, q)), zero), inv_n1);
-            if (c == 0) {
-                m2 = sbl__mul(mean, mean);
-                se2 = sbl__mul(var, inv_n);
-            } else {
-                m2 = sbl__add(m2, sbl__mul(mean, mean));
-                se2 = sbl__add(se2, sbl__mul(var, inv_n));
-            }
-        }
+#define SBL__POOL_BLOCK_CH(c) \
+        sbl__pool_block_channel(a0 + (c) * cstep + i, b0 + (c) * cstep + i, t0 + (c) * cstep + i, \
+                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2)
+        SBL__POOL_BLOCK_CH(0);
+        if (ch > 1) SBL__POOL_BLOCK_CH(1);
+        if (ch > 2) SBL__POOL_BLOCK_CH(2);
+        if (ch > 3) SBL__POOL_BLOCK_CH(3);
+#undef SBL__POOL_BLOCK_CH
         sbl__store(pm + i, sbl__sel(valid, m2, zero));
         sbl__store(ps + i, sbl__sel(valid, se2, zero));
         if (x + SBL__VW >= bb) break;
@@ -4434,10 +4703,19 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
     for (;;) {
         const int i = x - base - SBL__POOL_STEP * SBL__POOL_BLOCKS;
         sbl__v sm2 = sbl__load(pm + i), sse2 = sbl__load(ps + i), r;
+#if SBL__POOL_BLOCKS == 2 && SBL__POOL_STEP == 3
+        /* written out (the same additions in the same order as the loop) */
+        sm2 = sbl__add(sbl__add(sbl__add(sbl__add(sm2, sbl__load(pm + i + 3)), sbl__load(pm + i + 6)),
+                                sbl__load(pm + i + 9)), sbl__load(pm + i + 12));
+        sse2 = sbl__add(sbl__add(sbl__add(sbl__add(sse2, sbl__load(ps + i + 3)), sbl__load(ps + i + 6)),
+                                 sbl__load(ps + i + 9)), sbl__load(ps + i + 12));
+        (void)b;
+#else
         for (b = 1; b <= 2 * SBL__POOL_BLOCKS; ++b) {
             sm2 = sbl__add(sm2, sbl__load(pm + i + SBL__POOL_STEP * b));
             sse2 = sbl__add(sse2, sbl__load(ps + i + SBL__POOL_STEP * b));
         }
+#endif
         r = sbl__sub(sbl__div(sm2, sbl__max(sse2, tiny)), thr);
         r = sbl__sel(sbl__gt(sse2, zero), r, sbl__sel(sbl__gt(sm2, zero), cap, zero));
         sbl__store(k->pool_r + x, sbl__max(sbl__min(r, cap), zero));
@@ -4498,11 +4776,13 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
         if (!covered) {
             const int ca = x - reach > 0 ? x - reach : 0, cb = e + reach < w ? e + reach : w;
             const int ba = x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
+            sbl__pool_planes Q;
             int c;
+            sbl__pool_planes_of(k, ch, 1, &Q);
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
-            if (x - reach < 0) sbl__pool_column_zero(k, ch, -1 - base);
-            if (e + reach > w) sbl__pool_column_zero(k, ch, w - base);
-            sbl__pool_lanes_blocks(k, ch, ba, bb, base);
+            if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
+            if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -4525,25 +4805,33 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
    in lanes where it can (above). Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image); on a row of at least 18 columns,
    xb - xa >= 16 (sbl__kernel_run_span widens its span so). */
+/* The ring rows that exist, as sbl__pool_rows; returns 1 if one holds an unsafe value. */
+static int sbl__pool_rows_of(sbl__pool_rows *P, const sbl__ring_row *const *R, int ch)
+{
+    int j, c, unsafe = 0;
+    P->n = 0;
+    for (j = 0; j < 3; ++j) {
+        if (!R[j]) continue;
+        for (c = 0; c < ch; ++c) { P->y[P->n][c] = R[j]->y[c]; P->x[P->n][c] = R[j]->x[c]; }
+        P->v[P->n] = R[j]->v;
+        P->unsafe[P->n] = R[j]->unsafe;
+        unsafe |= R[j]->unsafe_count > 0;
+        ++P->n;
+    }
+    return unsafe;
+}
+
 static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
 {
     sbl__pool_rows P;
-    int j, c, unsafe = 0;
+    int unsafe;
     k->pool_row = R[1]->row;
     if (xa >= xb) return;
     if (k->w - 2 < 16 || xb - xa < 16) { /* the second: not reached (see above) */
         sbl__row_pool_ref(k, R, xa, xb);
         return;
     }
-    P.n = 0;
-    for (j = 0; j < 3; ++j) {
-        if (!R[j]) continue;
-        for (c = 0; c < k->ch; ++c) { P.y[P.n][c] = R[j]->y[c]; P.x[P.n][c] = R[j]->x[c]; }
-        P.v[P.n] = R[j]->v;
-        P.unsafe[P.n] = R[j]->unsafe;
-        unsafe |= R[j]->unsafe_count > 0;
-        ++P.n;
-    }
+    unsafe = sbl__pool_rows_of(&P, R, k->ch);
 #define SBL__POOL_CASE(np) \
     switch (k->ch) { \
     case 1: sbl__row_pool_lanes(k, R, &P, np, 1, xa, xb, unsafe); break; \
@@ -4760,6 +5048,44 @@ SBL__INLINE void sbl__lanes_group_add(const sbl__lane_stats *st, int c, sbl__v *
     sums[3] = sbl__add(sums[3], st->pv[c]);
 }
 
+/* One vector of pixels [x, x + VW) of row y: moments from the column sums at index
+   column - base (sbl__lanes_columns), the estimator, the blend, staged. */
+SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                   const float *nyrow, int x, int base, int y, const int ch)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap);
+    sbl__lane_stats st;
+    sbl__v a[4], n_x, n_y, n_xc;
+    sbl__m valid;
+    int c;
+    n_x = sbl__load(n_row + x);
+    valid = sbl__gt(n_x, zero);
+    n_y = nyrow ? sbl__load(nyrow + x) : one;
+    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+    sbl__lanes_moments(k, W, x, base, &st);
+    sbl__lanes_pool(k, x, y, &st);
+    sbl__lanes_rectify(k, &st);
+    if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
+        for (c = 0; c < ch; ++c) {
+            sbl__v sums[4] = {zero, zero, zero, zero};
+            sbl__lanes_group_add(&st, c, sums);
+            a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, c, c + 1);
+        }
+    } else {
+        /* one weight from the squares summed over the channels (written out) */
+        sbl__v sums[4] = {zero, zero, zero, zero}, w;
+        sbl__lanes_group_add(&st, 0, sums);
+        if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
+        if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
+        if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
+        w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, 0, ch);
+        for (c = 0; c < ch; ++c) a[c] = w;
+    }
+    sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
+}
+
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
 {
@@ -4767,49 +5093,17 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
        k->ch): their channel loops unroll, with no plane pointer reloaded per channel */
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int y = R[1]->row;
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
-    const sbl__v cap = sbl__set1(k->n_cap);
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
-    const int per_channel = k->wp.mode == SBL_WEIGHT_PER_CHANNEL;
     const int end = x0 + (x1 - x0) / SBL__VW * SBL__VW; /* whole vectors only */
     sbl__lane_rows W;
-    int x = x0, c;
+    int x = x0;
     k_ch.ch = ch;
     sbl__lane_rows_of(&W, R, ch);
     while (x < end) {
         /* one chunk: its column sums (with the neighbour columns), then its pixels */
         const int ca = x - 1, ce = end - x > SBL__CHUNK ? x + SBL__CHUNK : end;
-        sbl__lanes_columns(k, &W, ca, ce + 1);
-        for (; x < ce; x += SBL__VW) {
-            sbl__lane_stats st;
-            sbl__v a[4], n_x, n_y, n_xc;
-            sbl__m valid;
-            n_x = sbl__load(R[1]->n + x);
-            valid = sbl__gt(n_x, zero);
-            n_y = nyrow ? sbl__load(nyrow + x) : one;
-            n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
-            n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-            sbl__lanes_moments(k, &W, x, ca, &st);
-            sbl__lanes_pool(k, x, y, &st);
-            sbl__lanes_rectify(k, &st);
-            if (per_channel) {
-                for (c = 0; c < ch; ++c) {
-                    sbl__v sums[4] = {zero, zero, zero, zero};
-                    sbl__lanes_group_add(&st, c, sums);
-                    a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, c, c + 1);
-                }
-            } else {
-                /* one weight from the squares summed over the channels (written out) */
-                sbl__v sums[4] = {zero, zero, zero, zero}, w;
-                sbl__lanes_group_add(&st, 0, sums);
-                if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
-                if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
-                if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
-                w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, 0, ch);
-                for (c = 0; c < ch; ++c) a[c] = w;
-            }
-            sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
-        }
+        sbl__lanes_columns(k, &W, ca, ce + 1, ca);
+        for (; x < ce; x += SBL__VW) sbl__lanes_vector(k, &W, R[1]->n, nyrow, x, ca, y, ch);
     }
     return x;
 }
@@ -4885,6 +5179,95 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
     }
 }
 
+/* The pooled estimator's prepass and the lane kernel in one pass over an interior row
+   (the three ring rows exist). The prepass's column sums over three rows (pairs N,
+   A = sum v (d - t), B, T) are the same operations on the same values as the lane
+   kernel's (col_n, DA, DB, T: compare sbl__pool_lanes_columns with sbl__lanes_column),
+   so each chunk sums its columns once, over the prepass's reach, and both read them: bit
+   for bit what sbl__row_pool then sbl__kernel_lanes_runs give. Computes the ratio of
+   pixels [pa, pb) (pb - pa >= 16), and the lanes of the pixels of [xa, xb) (inside
+   [1, w - 1), within [pa, pb)) whose window is safe (win: 1 where it is not; NULL: all
+   safe). As there, sums over unsafe values only reach pixels that the references
+   recompute: the ratio of a pixel with an unsafe value within SBL__POOL_REACH
+   (sbl__row_pool_ref, per chunk before its lanes), the lanes of a pixel with an unsafe
+   window (sbl__kernel_pixel_ref, after the row). A run of the chunk narrower than a
+   vector is covered by one inside [x - span, e + span) and [1, w - 1) (its column sums
+   are computed); its extra pixels either take the lanes too (the same values: lanes are
+   independent; one past the chunk is computed again by the next) or are recomputed by
+   the reference path. */
+SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
+                                             int pa, int pb, int xa, int xb,
+                                             const unsigned char *win, const int ch)
+{
+    sbl__kernel k_ch = *k_in, *k = &k_ch;
+    const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
+    const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
+    const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
+    float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
+    const float *const n_row = R[1]->n;
+    sbl__lane_rows W;
+    sbl__pool_planes Q;
+    sbl__pool_rows P;
+    int x = pa, unsafe;
+    k_ch.ch = ch;
+    sbl__lane_rows_of(&W, R, ch);
+    sbl__pool_planes_of(k, ch, 0, &Q);
+    unsafe = sbl__pool_rows_of(&P, R, ch);
+    while (x < pb) {
+        int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
+        if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
+        base = x - reach;
+        sbl__lanes_columns(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w, base);
+        if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
+        if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
+        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base);
+        for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
+        for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
+        sbl__pool_lanes_ratio(k, ch, x, e, base);
+        if (unsafe) {
+            int ra, rb;
+            for (p = x; p < e && sbl__pool_unsafe_run(&P, w, p, e, &ra, &rb); p = rb)
+                sbl__row_pool_ref(k, R, ra, rb);
+        }
+        /* the chunk's lanes: each run of safe windows in whole vectors, the last one
+           ending at the run's end */
+        lo = x > xa ? x : xa;
+        hi = e < xb ? e : xb;
+        while (lo < hi) {
+            int b = hi;
+            if (win) {
+                while (lo < hi && win[lo]) ++lo;
+                if (lo >= hi) break;
+                b = sbl__find_set(win, lo + 1, hi);
+            }
+            if (b - lo >= SBL__VW) {
+                for (p = lo; p + SBL__VW <= b; p += SBL__VW)
+                    sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
+                if (p < b) sbl__lanes_vector(k, &W, n_row, nyrow, b - SBL__VW, base, y, ch);
+            } else {
+                p = b - SBL__VW;
+                if (p < x - span) p = x - span;
+                if (p < 1) p = 1;
+                sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
+            }
+            lo = b;
+        }
+        x = e;
+    }
+}
+
+static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
+                                     int pb, int xa, int xb, const unsigned char *win)
+{
+    k->pool_row = R[1]->row;
+    switch (k->ch) {
+    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1); break;
+    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2); break;
+    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3); break;
+    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4); break;
+    }
+}
+
 /* Filter columns [x0, x1) of rows [y0, y1) into k->out (and out_n / out_a); nothing
    else of the outputs is written. Every written pixel equals the one a whole-image run
    gives, bit for bit: the ring holds the columns [x0 - 1, x1 + 1) (clamped), widened
@@ -4925,18 +5308,21 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
             const unsigned char *win = NULL;
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
-            if (pool) sbl__row_pool(k, R, pa, pb);
-            if (lanes_ok) {
-                if (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count) {
-                    /* per pixel: 1 if any of the nine values of its window is unsafe
-                       (per column over its three rows, then over three columns) */
-                    unsigned char *cu = k->column_unsafe;
-                    sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
-                                   R[2]->unsafe + xa - 1, xb - xa + 2);
-                    sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
-                    win = k->window_unsafe;
-                }
-                sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
+            if (lanes_ok && (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count)) {
+                /* per pixel: 1 if any of the nine values of its window is unsafe (per
+                   column over its three rows, then over three columns) */
+                unsigned char *cu = k->column_unsafe;
+                sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
+                               R[2]->unsafe + xa - 1, xb - xa + 2);
+                sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
+                win = k->window_unsafe;
+            }
+            if (pool && lanes_ok) {
+                /* an interior row: prepass and lanes share their column sums */
+                sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
+            } else {
+                if (pool) sbl__row_pool(k, R, pa, pb);
+                if (lanes_ok) sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
             }
             if (!lanes_ok) {
                 for (x = x0; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
@@ -5474,7 +5860,8 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         return bits;
     }
     {   /* the parallel rig in lanes: m = dir f b / z */
-        float fbz[SBL__VW];
+        static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
+        float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
         sbl__v z, slack, m;
         sbl__m keep = sbl__lanes_want(&s->geo.depth, x, y, &z, &slack);
         int far;
@@ -5488,11 +5875,14 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
               !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
               sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
         bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero);
-        for (l = 0; l < SBL__VW; ++l) {
-            b->psx[i + l] = x + l + 0.5 + s->dir[0] * (SBL__CAST(double, fbz[l]) - s->offset);
-            b->psy[i + l] = y + 0.5;
-            b->snapped[i + l] = SBL__CAST(unsigned char, far);
+        for (l = 0; l < SBL__VW; l += SBL__DW) { /* x + l + 0.5 + dir (f b / z - offset), as the map */
+            sbl__dstore(b->psx + i + l,
+                        sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + l + 0.5)),
+                                  sbl__dmul(sbl__dset1(s->dir[0]),
+                                            sbl__dsub(sbl__dfromf(fbz + l), sbl__dset1(s->offset)))));
+            sbl__dstore(b->psy + i + l, sbl__dset1(y + 0.5));
         }
+        memset(b->snapped + i, far, SBL__VW);
         return bits;
     }
 }
@@ -5521,37 +5911,105 @@ static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
    others, as
    sbl__stereo_rp_pixel does it: from the nearest source pixel back. `rig` is a
    constant where this is inlined (the map is called directly). */
+SBL__INLINE void sbl__stereo_after_one(const sbl__stereo_rp *s, sbl__ring_row *r,
+                                       const sbl__block *b, int i, sbl_stereo_rig rig,
+                                       int back_check, double tol, int *back, int *nback)
+{
+    const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
+    const int x = b->x0 + i;
+    if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+        float tmp[4] = {0, 0, 0, 0};
+        sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
+        return;
+    }
+    if (!back_check || !(r->v[x] > 0.0f)) return;
+    if (cams) {
+        back[(*nback)++] = i; /* in lanes, by the caller */
+    } else {
+        const int ix = SBL__CAST(int, floor(b->psx[i])), iy = SBL__CAST(int, floor(b->psy[i]));
+        double bx, by, bz, ex, ey;
+        int ok = rig == SBL_RIG_PARALLEL
+                     ? sbl__stereo_map_parallel(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz)
+                     : sbl__stereo_map_disparity(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz);
+        if (ok) {
+            ex = bx - (x + 0.5);
+            ey = by - (b->y + 0.5);
+            ok = ex * ex + ey * ey <= tol * tol;
+        }
+        if (!ok) sbl__ring_put(r, x, 0.0f, NULL, s->src.color.ch);
+    }
+}
+
+/* sbl__stereo_map_parallel's back-check (from the nearest source pixel, at the source's
+   depth there, within tol of the start) for block entries [i, i + VW) in lanes, on a
+   row in lane mode 1 (no disparity offset: every match lies on the pixel's row, inside
+   the source where it is valid): the same double operations in the same order, the
+   float division exact. Returns the bits of the lanes whose check fails (meaningful
+   where the match is valid; the others read a clamped, valid address). */
+SBL__INLINE int sbl__stereo_back_parallel(const sbl__stereo_rp *s, const sbl__block *b, int i,
+                                          double tol)
+{
+    static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
+    const sbl__flat *d = &s->depth[1];
+    const int x = b->x0 + i;
+    const sbl__dv hi = sbl__dset1(SBL__CAST(double, s->source->color.width - 1)), lo = sbl__dset1(0.0);
+    float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    int idx[SBL__VW], j, ok = 0;
+    sbl__v z, f;
+    sbl__m good;
+    for (j = 0; j < SBL__VW; j += SBL__DW) /* floor(sx) of sx in [0, w): its truncation */
+        sbl__dstorei(idx + j, sbl__dmax(sbl__dmin(sbl__dload(b->psx + i + j), hi), lo));
+    if (d->step != 1)
+        for (j = 0; j < SBL__VW; ++j) idx[j] *= SBL__CAST(int, d->step);
+    z = sbl__gatheri(SBL__AT(*d, 0, b->y), idx);
+    /* sbl__valid_depth: z > 0 (+inf included); f b / +inf = 0, as the map's sky case */
+    good = sbl__gt(z, sbl__set1(0.0f));
+    f = sbl__div_exact(sbl__set1(s->fb), z);
+    good = sbl__mandnot(good, sbl__nonfinite(f));
+    sbl__store(fbz, f);
+    for (j = 0; j < SBL__VW; j += SBL__DW) {
+        const sbl__dv bx = sbl__dadd(sbl__dload(b->psx + i + j),
+                                     sbl__dmul(sbl__dset1(s->dir[1]),
+                                               sbl__dsub(sbl__dfromf(fbz + j), sbl__dset1(s->offset))));
+        const sbl__dv ex = sbl__dsub(bx, sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5)));
+        /* ey = by - (y + 0.5) is 0 (by = the match's y, which is y + 0.5 on this row),
+           and ex ex + 0 0 = ex ex exactly */
+        ok |= sbl__dle_bits(sbl__dmul(ex, ex), sbl__dset1(tol * tol)) << j;
+    }
+    return ~(ok & sbl__mbits(good)) & ((1 << SBL__VW) - 1);
+}
+
+/* After the taps, per block: sbl__stereo_after_one on every entry; on a parallel-rig
+   row in lane mode 1, VW entries at a time where none is handed back (redo) or far,
+   the back-check in lanes. `rig` is a constant where this is inlined. */
 SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r, sbl__block *b,
                                        sbl_stereo_rig rig)
 {
     const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
-    const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
     const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
-    int i, back[SBL__BLOCK], nback = 0;
-    for (i = 0; i < b->n; ++i) {
-        const int x = b->x0 + i;
-        if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
-            float tmp[4] = {0, 0, 0, 0};
-            sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
-            continue;
-        }
-        if (!back_check || !(r->v[x] > 0.0f)) continue;
-        if (cams) {
-            back[nback++] = i; /* in lanes below */
-        } else {
-            const int ix = SBL__CAST(int, floor(b->psx[i])), iy = SBL__CAST(int, floor(b->psy[i]));
-            double bx, by, bz, ex, ey;
-            int ok = rig == SBL_RIG_PARALLEL
-                         ? sbl__stereo_map_parallel(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz)
-                         : sbl__stereo_map_disparity(s, 1, ix, iy, b->psx[i], b->psy[i], &bx, &by, &bz);
-            if (ok) {
-                ex = bx - (x + 0.5);
-                ey = by - (b->y + 0.5);
-                ok = ex * ex + ey * ey <= tol * tol;
+    int i = 0, l, back[SBL__BLOCK], nback = 0;
+    if (rig == SBL_RIG_PARALLEL && b->mode == 1 && back_check) {
+        for (; i + SBL__VW <= b->n; i += SBL__VW) {
+            uint32_t any = 0, u, v;
+            int bits;
+            for (l = 0; l < SBL__VW; l += 4) {
+                memcpy(&u, b->snapped + i + l, 4);
+                memcpy(&v, b->p.redo + i + l, 4);
+                any |= u | v;
             }
-            if (!ok) sbl__ring_put(r, x, 0.0f, NULL, s->src.color.ch);
+            if (any) {
+                for (l = 0; l < SBL__VW; ++l)
+                    sbl__stereo_after_one(s, r, b, i + l, rig, back_check, tol, back, &nback);
+                continue;
+            }
+            bits = sbl__mbits(sbl__gt(sbl__load(r->v + b->x0 + i), sbl__set1(0.0f)));
+            if (!bits) continue;
+            bits &= sbl__stereo_back_parallel(s, b, i, tol);
+            for (l = 0; bits; ++l, bits >>= 1)
+                if (bits & 1) sbl__ring_put(r, b->x0 + i + l, 0.0f, NULL, s->src.color.ch);
         }
     }
+    for (; i < b->n; ++i) sbl__stereo_after_one(s, r, b, i, rig, back_check, tol, back, &nback);
     if (nback) sbl__stereo_cam_back(s, r, b->y, b->x0, b->psx, b->psy, back, nback, tol);
 }
 

@@ -435,7 +435,7 @@ static void test_moments_precision(void)
         R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
         CHECK_EQ(R[0]->unsafe_count + R[1]->unsafe_count + R[2]->unsafe_count, 0);
         sbl__lane_rows_of(&W, R, ch);
-        sbl__lanes_columns(&k, &W, 0, PW);
+        sbl__lanes_columns(&k, &W, 0, PW, 0);
         for (x = 1; x + SBL__VW <= PW - 1; x += SBL__VW) {
             sbl__lane_stats st;
             float f[6][SBL__VW];
