@@ -1491,8 +1491,13 @@ static int sbl__depth_match(float expected, float tap, float tol, float slack)
     return fabsf(tap - expected) <= tol * expected + slack;
 }
 
-#if defined(__GNUC__) || defined(__clang__)
+/* Forced inlining keeps the lane code in registers when optimising; without optimisation
+   (debug and sanitizer builds) it only multiplies the compile time (about 15x for the row
+   gather's written-out taps under -O0 -fsanitize), so there the compiler decides. */
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__OPTIMIZE__)
 #define SBL__INLINE static __inline__ __attribute__((always_inline))
+#elif defined(__GNUC__) || defined(__clang__)
+#define SBL__INLINE static __inline__
 #elif defined(_MSC_VER)
 #define SBL__INLINE static __forceinline
 #else
