@@ -366,7 +366,10 @@ typedef enum sbl_estimator {
     SBL_ESTIMATOR_POOLED = 0,        /* default: robust (below), plus bias evidence pooled
                                         along the row (empirical Bayes over five 3x3
                                         blocks, 15 px): catches small changes that cover
-                                        a region; see docs/ESTIMATORS.md                 */
+                                        a region. Stereo beta on a raw own eye (N <= 1):
+                                        also leans towards its neighbours' mean where
+                                        they are flat (a third estimate); see
+                                        docs/ESTIMATORS.md                               */
     SBL_ESTIMATOR_HISTORY_AWARE,     /* var_X from tracked N, bias from paired 3x3
                                         differences beyond their noise level (the
                                         default before the pooled estimator)            */
@@ -2278,14 +2281,42 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
 #define SBL_HISTORY_PRIOR 1
 #endif
 
+/* The spatial lean of the pooled stereo beta (docs/ESTIMATORS.md section 4.2): a0 the
+   weight of the two-estimate blend, V_Y the noise variance of Y and v8u the sample
+   variance of its neighbours (without the centre, n8 of them), E = sum (m8 - x*)(y - x*)
+   and D = sum (y - x*)^2 (m8 the neighbours' mean): the point of the segment x* .. y
+   nearest the posterior mean of the pixel given x*, y and the prior N(m8, V_M),
+   V_M = max(0, v8u - V_Y) + V_Y / n8 (the neighbours' spread beyond noise, plus the
+   noise of their mean): a = (a0 + q e) / (1 + q), q = a0 V_Y / (V_M max(N_X, 1)) <= n8,
+   e = E / D. The prior counts once per history: a history of N_X samples took it in
+   N_X times, with the same texture bias each time (1 for a raw other eye). */
+static double sbl__lean(double a0, double var_y, double v8u, double n8, double n_x,
+                        double lean_e, double lean_d)
+{
+    double tex = v8u - var_y, vm, q, den;
+    if (tex < 0.0) tex = 0.0;
+    vm = tex + var_y / n8;
+    if (!(vm > 0.0)) return a0;
+    q = a0 * var_y / (vm * (n_x > 1.0 ? n_x : 1.0));
+    den = (1.0 + q) * lean_d;
+    return den > 0.0 ? (a0 * lean_d + q * lean_e) / den : a0;
+}
+
+/* The lean in the temporal blend too (measured, not the default: the neighbours'
+   texture bias accumulates in the history; docs/ESTIMATORS.md section 4.2) */
+#ifndef SBL_LEAN_TEMPORAL
+#define SBL_LEAN_TEMPORAL 0
+#endif
 /* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
-   variance of the paired differences x*_i - y_i. */
+   variance of the paired differences x*_i - y_i; v8 = population variance of Y
+   without the centre, lean_e / lean_d as sbl__lean (the pooled estimator). *a_two:
+   the weight of the two-estimate blend, before the lean (what Eq. 5 counts). */
 static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, double pd2,
                          double pv, int count, int pair_count, float n_x, float n_y,
-                         double pool_r)
+                         double pool_r, double v8, double lean_e, double lean_d, float *a_two)
 {
-    double a;
+    double a, a2 = -1.0;
     double progressive = SBL__CAST(double, n_y) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
     switch (p->estimator) {
     case SBL_ESTIMATOR_PAPER:
@@ -2334,6 +2365,16 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         }
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
+        /* stereo: the neighbours of Y as a third estimate, where they agree (flat).
+           Only for a raw own eye (N_Y <= 1): the prior assumes the neighbours' noise
+           independent of each other and of y, which a temporally filtered eye's is
+           not (its pixels share history through the bilinear reprojection) */
+        if (p->estimator == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !p->temporal) &&
+            count > 2 && n_y <= 1.0f) {
+            a2 = a;
+            a = sbl__lean(a, var_y, v8 * (count - 1) / (count - 2), count - 1.0,
+                          SBL__CAST(double, n_x), lean_e, lean_d);
+        }
         break;
     }
     case SBL_ESTIMATOR_HISTORY_AWARE:
@@ -2360,9 +2401,14 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         break;
     }
     }
+    if (a2 < 0.0) a2 = a;
     if (a < SBL__CAST(double, p->alpha_min)) a = SBL__CAST(double, p->alpha_min);
     if (!(a >= 0.0)) a = 0.0; /* NaN lands here too */
     if (a > 1.0) a = 1.0;
+    if (a2 < SBL__CAST(double, p->alpha_min)) a2 = SBL__CAST(double, p->alpha_min);
+    if (!(a2 >= 0.0)) a2 = 0.0;
+    if (a2 > 1.0) a2 = 1.0;
+    *a_two = SBL__CAST(float, a2);
     return SBL__CAST(float, a);
 }
 
@@ -2457,8 +2503,8 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
                               const float *y, float *xs, float n_x, float n_y, int ch,
                               float *out, float *alpha_out)
 {
-    float a[4];
-    float a_mean = 0.0f;
+    float a[4], a2[4];
+    float a_mean = 0.0f, a2_mean = 0.0f;
     int k;
     float ylim[4];
     if ((p->estimator == SBL_ESTIMATOR_ROBUST || p->estimator == SBL_ESTIMATOR_POOLED) &&
@@ -2470,22 +2516,31 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     if (p->mode == SBL_WEIGHT_PER_CHANNEL) {
         for (k = 0; k < ch; ++k) {
             double dev = SBL__CAST(double, xs[k]) - m->mean[k];
+            double dy = SBL__CAST(double, y[k]) - SBL__CAST(double, xs[k]);
             a[k] = sbl__weight(p, dev * dev, m->var[k], m->pair_diff[k] * m->pair_diff[k],
                                m->pair_var[k], m->count, m->pair_count, n_x, n_y,
-                               m->pool_r);
+                               m->pool_r, m->var8[k], (m->mean8[k] - SBL__CAST(double, xs[k])) * dy,
+                               dy * dy, &a2[k]);
             a_mean += a[k];
+            a2_mean += a2[k];
         }
         a_mean /= SBL__CAST(float, ch);
+        a2_mean /= SBL__CAST(float, ch);
     } else {
-        double dev2 = 0.0, s2 = 0.0, pd2 = 0.0, pv = 0.0;
+        double dev2 = 0.0, s2 = 0.0, pd2 = 0.0, pv = 0.0, v8 = 0.0, le = 0.0, ld = 0.0;
         for (k = 0; k < ch; ++k) {
             double dev = SBL__CAST(double, xs[k]) - m->mean[k];
+            double dy = SBL__CAST(double, y[k]) - SBL__CAST(double, xs[k]);
             dev2 += dev * dev;
             s2 += m->var[k];
             pd2 += m->pair_diff[k] * m->pair_diff[k];
             pv += m->pair_var[k];
+            v8 += m->var8[k];
+            le += (m->mean8[k] - SBL__CAST(double, xs[k])) * dy;
+            ld += dy * dy;
         }
-        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y, m->pool_r);
+        a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y, m->pool_r,
+                             v8, le, ld, &a2_mean);
         for (k = 0; k < ch; ++k) a[k] = a_mean;
     }
     for (k = 0; k < ch; ++k) {
@@ -2500,7 +2555,9 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
         out[k] = v;
     }
     *alpha_out = a_mean;
-    return sbl_blend_sample_count(a_mean, n_x, n_y);
+    /* the count of the two-estimate blend: the lean's gain from the neighbours is not
+       counted (their noise is shared with the neighbours' own outputs) */
+    return sbl_blend_sample_count(a2_mean, n_x, n_y);
 }
 
 /* ---- thin SIMD layer ------------------------------------------------------
@@ -4302,6 +4359,7 @@ typedef struct sbl__lane_stats {
     sbl__v inv_cnt; /* 1 / max(pairs, 1)                                            */
     sbl__m has_pairs, two_pairs;
     sbl__v pool_r;  /* pooled estimator: prior bias-to-noise ratio (sbl__row_pool)     */
+    sbl__v a2[4];   /* weight of the two-estimate blend (before the pooled lean): Eq. 5 */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one
@@ -4875,16 +4933,43 @@ SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
     }
 }
 
-/* Weight of Y from the squares summed over one group of channels, as sbl__weight:
+/* The pooled stereo beta's spatial lean over channels [c0, c1), as sbl__lean (count 9:
+   the neighbours' sample variance is 8/7 of their population variance v8). Bounded:
+   q <= 8 and D within the lane range's squares, so no product overflows (V_M N_X may
+   overflow to inf: q = 0, no lean). */
+SBL__INLINE sbl__v sbl__lanes_lean(const sbl__lane_stats *st, sbl__v a0, sbl__v var_y,
+                                   sbl__v n_xc, int c0, int c1)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    sbl__v v8 = zero, e = zero, d = zero, vm, q, den;
+    int c;
+    for (c = c0; c < c1; ++c) {
+        const sbl__v dy = sbl__sub(st->yb[c], st->xs[c]);
+        v8 = sbl__add(v8, st->v8[c]);
+        e = sbl__add(e, sbl__mul(sbl__sub(st->m8[c], st->xs[c]), dy));
+        d = sbl__add(d, sbl__mul(dy, dy));
+    }
+    vm = sbl__add(sbl__max(sbl__sub(sbl__mul(v8, sbl__set1(8.0f / 7.0f)), var_y), zero),
+                  sbl__mul(var_y, sbl__set1(0.125f)));
+    vm = sbl__mul(vm, sbl__max(n_xc, one));
+    q = sbl__sel(sbl__gt(vm, zero), sbl__div(sbl__mul(a0, var_y), sbl__max(vm, tiny)), zero);
+    den = sbl__mul(sbl__add(one, q), d);
+    return sbl__sel(sbl__gt(den, zero),
+                    sbl__div(sbl__add(sbl__mul(a0, d), sbl__mul(q, e)), sbl__max(den, tiny)), a0);
+}
+
+/* Weight of Y from the squares summed over channels [c0, c1), as sbl__weight:
    dev2 = (x* - mean)^2, s2 = variance of Y, pd2 = (mean paired difference)^2, pvs =
-   variance of the paired differences; n_xc = capped N_X, n_y = N_Y. */
-SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lane_stats *st,
+   variance of the paired differences; n_xc = capped N_X, n_y = N_Y. Sets st->a2 of
+   the group (the weight before the lean). */
+SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stats *st,
                                      sbl__v dev2, sbl__v s2, sbl__v pd2, sbl__v pvs,
-                                     sbl__v n_xc, sbl__v n_y)
+                                     sbl__v n_xc, sbl__v n_y, int c0, int c1)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
-    sbl__v w;
+    sbl__v w, w2;
+    int c;
     if (p->estimator == SBL_ESTIMATOR_PAPER) {
         sbl__v den = sbl__add(dev2, s2);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(dev2, sbl__max(den, tiny)), prog);
@@ -4922,6 +5007,12 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
+        if (p->estimator == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !p->temporal)) {
+            w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
+            for (c = c0; c < c1; ++c) st->a2[c] = w2;
+            w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
+            return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
+        }
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
         const sbl__v k2 = sbl__set1(p->bias_threshold * p->bias_threshold);
@@ -4940,7 +5031,9 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, const sbl__lan
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
     }
-    return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
+    w = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
+    for (c = c0; c < c1; ++c) st->a2[c] = w;
+    return w;
 }
 
 /* The blend, Eq. 5 and the staged outputs of pixels [x, x + VW); invalid x* resets. */
@@ -4949,7 +5042,7 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap);
-    sbl__v a_mean = zero, n_out, one_m, den;
+    sbl__v a_mean = zero, a2_mean = zero, n_out, one_m, den;
     int c;
     for (c = 0; c < k->ch; ++c) {
         /* two-sided lerp, as in sbl__blend_pixel */
@@ -4963,9 +5056,13 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
     }
     a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, k->ch)));
     if (k->fill) a_mean = zero;
-    /* Eq. 5: N = N_X N_Y / ((1-a)^2 N_Y + a^2 N_X) */
-    one_m = sbl__sub(one, a_mean);
-    den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a_mean, a_mean), n_xc));
+    /* Eq. 5: N = N_X N_Y / ((1-a)^2 N_Y + a^2 N_X), with the weight of the two-estimate
+       blend (before the pooled estimator's lean, as sbl__blend_pixel) */
+    for (c = 0; c < k->ch; ++c) a2_mean = c ? sbl__add(a2_mean, st->a2[c]) : st->a2[c];
+    a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, k->ch)));
+    if (k->fill) a2_mean = zero;
+    one_m = sbl__sub(one, a2_mean);
+    den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
     n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
                      sbl__add(n_xc, n_y));
     if (k->fill) n_out = n_xc;
@@ -5011,7 +5108,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
         for (c = 0; c < ch; ++c) {
             sbl__v sums[4] = {zero, zero, zero, zero};
             sbl__lanes_group_add(&st, c, sums);
-            a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+            a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, c, c + 1);
         }
     } else {
         /* one weight from the squares summed over the channels (written out) */
@@ -5020,7 +5117,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
         if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
         if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
         if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
-        w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y);
+        w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, 0, ch);
         for (c = 0; c < ch; ++c) a[c] = w;
     }
     sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
