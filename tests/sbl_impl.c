@@ -35,3 +35,51 @@ static void tst_free(void *p, void *ctx)
 #define SBL_FREE(ptr, ctx) tst_free((ptr), (ctx))
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
+
+#ifndef __cplusplus
+/* the SIMD path of this object, for tests that link it (test_simd prints it) */
+const char *tst_simd_name(void);
+const char *tst_simd_name(void) { return SBL_SIMD_NAME; }
+
+/* With SBL_TEST_INTERNAL (the C builds of this file in `make check` / `make strict`): the
+   tests that call internal sbl__ functions (tests/test_paths.c, tests/test_tiles.c) are
+   compiled into this translation unit, after the implementation, with their main
+   renamed. They then link against the configuration's one implementation object like
+   every other test (tests/internal_main.c is their main) instead of compiling a copy of
+   the implementation each (about 10 s of the compiler per test and configuration).
+   Their code is checked under the tests' warning flags (make check's -Wall -Wextra
+   -pedantic -Werror), not under make strict's, which are for the header: the pragmas
+   below apply from here on, after all of the header. */
+#ifdef SBL_TEST_INTERNAL
+#if defined(__GNUC__) || defined(__clang__)
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wdouble-promotion"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wcast-qual"
+#pragma GCC diagnostic ignored "-Wstrict-prototypes"
+#pragma GCC diagnostic ignored "-Wmissing-prototypes"
+#endif
+int tst_test_paths_main(void);
+int tst_test_tiles_main(void);
+
+#define main tst_test_paths_main
+#include "test_paths.c"
+#undef main
+#undef PW
+#undef PH
+#undef SW
+#undef SH
+
+/* static helpers both files define */
+#define view tiles_view
+#define same_float tiles_same_float
+#define compiler_contracts tiles_compiler_contracts
+#define main tst_test_tiles_main
+#include "test_tiles.c"
+#undef main
+#undef view
+#undef same_float
+#undef compiler_contracts
+#endif /* SBL_TEST_INTERNAL */
+#endif /* !__cplusplus */

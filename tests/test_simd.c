@@ -11,11 +11,12 @@
    measured up to 1e-6 relative). The tolerance allows that: 1e-5 relative on colour,
    1e-4 relative on N, 1e-5 on the weight; where the compiler does not contract (gcc in
    ISO C mode; probed at run time) the comparison is exact. */
-#define STEREOBLEND_STATIC
-#define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
 #include "sbl_test.h"
 
+/* the path under test is the configuration's implementation object (tests/sbl_impl.c) */
+const char *tst_simd_name(void);
+#define SBL_SIMD_NAME tst_simd_name()
 const char *scalar_simd_name(void);
 sbl_result scalar_temporal_filter(const sbl_temporal_desc *d, const sbl_frame *f,
                                   const sbl_history *h, const sbl_temporal_output *o);
