@@ -126,6 +126,20 @@ STRICT_OBJ_avx512 = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-a
 STRICT_OBJ_clang  = $(if $(STRICT_OBJ_OK),$(if $(HAVE_CLANG),$(BUILD)/strict/clang-default.o))
 STRICT_OBJ_cxx    = $(if $(STRICT_OBJ_OK),$(if $(filter g++,$(CXX_TEST)),$(BUILD)/strict/gxx-default.o))
 
+# A test's own code is the same in the gcc, scalar and SIMD configurations: their flags
+# differ only by -DSBL_NO_SIMD / -m..., which select the implementation's path, and the
+# tests preprocess to the same text under each (checked with gcc -E) and gcc in ISO C
+# mode does not contract a*b+c. So these tests are compiled once (build/gcc/<test>.o)
+# and linked against each of these configurations' objects. A test that looks at the
+# SIMD macros (PATH_TESTS_RE) is compiled in each configuration instead.
+SHARED_OBJ_CONFIGS = gcc scalar $(filter-out scalar,$(SIMD_VARIANTS))
+PATH_TESTS_RE := SBL_NO_SIMD|SBL_SIMD|__AVX|__SSE|__FMA|__ARM_NEON|__aarch64__
+PATH_TESTS := $(basename $(notdir $(shell grep -l -E '$(PATH_TESTS_RE)' tests/*.c 2>/dev/null)))
+SHARED_TESTS = $(filter-out $(INTERNAL_TESTS) $(SELF_IMPL_TESTS) test_simd $(PATH_TESTS),$(TESTS))
+$(addprefix $(BUILD)/gcc/,$(addsuffix .o,$(SHARED_TESTS))): $(BUILD)/gcc/%.o: tests/%.c $(HEADERS)
+	@mkdir -p $(@D)
+	$(Q)$(CFG_CC_gcc) $(CFG_FLAGS_gcc) -Itools -DSTEREOBLEND_IMPLEMENTATION_DONE -c $< -o $@
+
 # build/<config>/stereoblend.o, and build/<config>/<test> for every test of it
 INTERNAL_DEPS = tests/sbl_test.h $(addprefix tests/,$(addsuffix .c,$(INTERNAL_TESTS)))
 CFG_INTERNAL = $(if $(filter $(INTERNAL_TESTS),$(CFG_TESTS_$(1))),-DSBL_TEST_INTERNAL)
@@ -139,6 +153,8 @@ $(BUILD)/$(1)/stereoblend.o: $$(STRICT_OBJ_$(1))
 	@mkdir -p $$(@D)
 	$$(Q)cp $$< $$@
 endif
+$(foreach t,$(filter $(SHARED_TESTS),$(CFG_TESTS_$(1))),$(if $(filter $(1),$(SHARED_OBJ_CONFIGS)),$(BUILD)/$(1)/$(t))): $(BUILD)/$(1)/%: $(BUILD)/gcc/%.o $(BUILD)/$(1)/stereoblend.o
+	$$(Q)$$(CFG_CC_$(1)) $$< $$(@D)/stereoblend.o -o $$@ $$(LDLIBS)
 $(BUILD)/$(1)/%: tests/%.c $(BUILD)/$(1)/stereoblend.o $$(HEADERS)
 	@mkdir -p $$(@D)
 	$$(Q)$$(CFG_CC_$(1)) $$(CFG_FLAGS_$(1)) $$(EXTRA_FLAGS) -Itools \

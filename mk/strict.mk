@@ -22,15 +22,16 @@ STRICT_COMPILERS = $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang) $(if $(HAVE_G
                    $(if $(HAVE_CLANGXX),clangxx)
 STRICT_LOGS = $(foreach c,$(STRICT_COMPILERS),$(foreach p,$(STRICT_PATHS),$(BUILD)/strict/$(c)-$(p).log))
 
-# The C compiles also hold the tests of internal functions (SBL_TEST_INTERNAL, see
+# The compiles whose objects are also check's implementation objects (mk/check.mk,
+# STRICT_OBJ_*) hold the tests of internal functions too (SBL_TEST_INTERNAL, see
 # tests/sbl_impl.c: their code comes after the header and is not checked under these
 # flags), so that check's configurations use these objects as they are.
-STRICT_INTERNAL_gcc   = -DSBL_TEST_INTERNAL
-STRICT_INTERNAL_clang = -DSBL_TEST_INTERNAL
+STRICT_INTERNAL_SET = gcc-default gcc-scalar gcc-avx2 gcc-avx512 clang-default
+STRICT_INTERNAL = $(if $(filter $(1),$(STRICT_INTERNAL_SET)),-DSBL_TEST_INTERNAL)
 define STRICT_RULE
-$(BUILD)/strict/$(1)-$(2).log: tests/sbl_impl.c stereoblend.h tests/sbl_test_alloc.h $$(if $$(STRICT_INTERNAL_$(1)),$$(INTERNAL_DEPS))
+$(BUILD)/strict/$(1)-$(2).log: tests/sbl_impl.c stereoblend.h tests/sbl_test_alloc.h $$(if $$(call STRICT_INTERNAL,$(1)-$(2)),$$(INTERNAL_DEPS))
 	@mkdir -p $$(@D)
-	@$$(STRICT_CC_$(1)) $$(STRICT_$(2)) $$(STRICT_INTERNAL_$(1)) -O2 -c $$< -o $$(@:.log=.o) > $$@ 2>&1 || echo "error: did not compile" >> $$@
+	@$$(STRICT_CC_$(1)) $$(STRICT_$(2)) $$(call STRICT_INTERNAL,$(1)-$(2)) -O2 -c $$< -o $$(@:.log=.o) > $$@ 2>&1 || echo "error: did not compile" >> $$@
 endef
 $(foreach c,$(STRICT_COMPILERS),$(foreach p,$(STRICT_PATHS),$(eval $(call STRICT_RULE,$(c),$(p)))))
 
