@@ -126,13 +126,16 @@ STRICT_OBJ_avx512 = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-a
 STRICT_OBJ_clang  = $(if $(STRICT_OBJ_OK),$(if $(HAVE_CLANG),$(BUILD)/strict/clang-default.o))
 STRICT_OBJ_cxx    = $(if $(STRICT_OBJ_OK),$(if $(filter g++,$(CXX_TEST)),$(BUILD)/strict/gxx-default.o))
 
-# A test's own code is the same in the gcc, scalar and SIMD configurations: their flags
-# differ only by -DSBL_NO_SIMD / -m..., which select the implementation's path, and the
-# tests preprocess to the same text under each (checked with gcc -E) and gcc in ISO C
-# mode does not contract a*b+c. So these tests are compiled once (build/gcc/<test>.o)
-# and linked against each of these configurations' objects. A test that looks at the
-# SIMD macros (PATH_TESTS_RE) is compiled in each configuration instead.
-SHARED_OBJ_CONFIGS = gcc scalar $(filter-out scalar,$(SIMD_VARIANTS))
+# A test's own code is the same in the gcc, scalar, SIMD and O3native configurations:
+# their flags differ only by -DSBL_NO_SIMD / -m... / -O3, which select the
+# implementation's path and optimisation; the tests preprocess to the same text under
+# each (checked with gcc -E), and gcc in ISO C mode does not contract a*b+c. So these
+# tests are compiled once (build/gcc/<test>.o) and linked against each of these
+# configurations' objects: what differs between them is the object. A test that looks
+# at the SIMD macros (PATH_TESTS_RE) is compiled in each configuration instead; one
+# whose code depends on other flags (-ffast-math: test_robust's FAST_MATH) is in a
+# configuration not listed here.
+SHARED_OBJ_CONFIGS = gcc scalar $(filter-out scalar,$(SIMD_VARIANTS)) O3native
 PATH_TESTS_RE := SBL_NO_SIMD|SBL_SIMD|__AVX|__SSE|__FMA|__ARM_NEON|__aarch64__
 PATH_TESTS := $(basename $(notdir $(shell grep -l -E '$(PATH_TESTS_RE)' tests/*.c 2>/dev/null)))
 SHARED_TESTS = $(filter-out $(INTERNAL_TESTS) $(SELF_IMPL_TESTS) test_simd $(PATH_TESTS),$(TESTS))
@@ -166,15 +169,27 @@ $(foreach t,$(filter $(INTERNAL_TESTS),$(CFG_TESTS_$(1))),$(BUILD)/$(1)/$(t)): $
 endef
 $(foreach c,$(CHECK_CONFIGS),$(eval $(call CONFIG_RULES,$(c))))
 
-# test_simd: this configuration's SIMD path (its object) against the scalar path
-# (tests/simd_scalar_tu.c: the implementation with every function static, -DSBL_NO_SIMD)
+# test_simd: this configuration's SIMD path (its object) against the scalar path: the
+# scalar configuration's object with its global symbols renamed scalar_<name> (objcopy:
+# one compile fewer), else a static copy of the implementation (tests/simd_scalar_tu.c)
+HAVE_OBJCOPY := $(shell command -v objcopy 2>/dev/null)
+SIMD_SCALAR_OBJS = $(BUILD)/simd_scalar_tu.o $(if $(HAVE_OBJCOPY),$(BUILD)/simd_scalar.o)
+ifneq ($(HAVE_OBJCOPY),)
+$(BUILD)/simd_scalar.o: $(BUILD)/scalar/stereoblend.o
+	$(Q)nm -g --defined-only -P $< | awk '{ print $$1 " scalar_" $$1 }' > $@.syms
+	$(Q)objcopy --redefine-syms=$@.syms $< $@
+$(BUILD)/simd_scalar_tu.o: tests/simd_scalar_tu.c stereoblend.h
+	@mkdir -p $(@D)
+	$(Q)$(CC_GCC) $(CFLAGS_STRICT) $(OPT) -DSIMD_SCALAR_RENAMED -c $< -o $@
+else
 $(BUILD)/simd_scalar_tu.o: tests/simd_scalar_tu.c stereoblend.h
 	@mkdir -p $(@D)
 	$(Q)$(CC_GCC) $(CFLAGS_STRICT) $(OPT) -DSBL_NO_SIMD -c $< -o $@
+endif
 define SIMD_TEST_RULE
-$(BUILD)/$(1)/test_simd: tests/test_simd.c $(BUILD)/simd_scalar_tu.o $(BUILD)/$(1)/stereoblend.o $$(HEADERS)
+$(BUILD)/$(1)/test_simd: tests/test_simd.c $(SIMD_SCALAR_OBJS) $(BUILD)/$(1)/stereoblend.o $$(HEADERS)
 	@mkdir -p $$(@D)
-	$$(Q)$$(CFG_CC_$(1)) $$(CFG_FLAGS_$(1)) -Itools $$< -x none $(BUILD)/simd_scalar_tu.o $$(@D)/stereoblend.o -o $$@ $$(LDLIBS)
+	$$(Q)$$(CFG_CC_$(1)) $$(CFG_FLAGS_$(1)) -Itools $$< -x none $(SIMD_SCALAR_OBJS) $$(@D)/stereoblend.o -o $$@ $$(LDLIBS)
 endef
 $(foreach c,$(CHECK_CONFIGS),$(if $(filter test_simd,$(CFG_TESTS_$(c))),$(eval $(call SIMD_TEST_RULE,$(c)))))
 
@@ -219,7 +234,7 @@ check:
 STRICT_FIRST = gcc-avx512 gxx-default gcc-avx2 gcc-default gcc-scalar clang-avx512 clang-default
 CHECK_FIRST = $(BUILD)/O3native/stereoblend.o $(BUILD)/fastmath/stereoblend.o \
               $(foreach c,$(STRICT_FIRST),$(if $(filter $(firstword $(subst -, ,$(c))),$(STRICT_COMPILERS_CHECK)),$(BUILD)/strict/$(c).log)) \
-              $(if $(HAVE_CLANG),$(BUILD)/clang-fastmath/stereoblend.o) $(BUILD)/simd_scalar_tu.o
+              $(if $(HAVE_CLANG),$(BUILD)/clang-fastmath/stereoblend.o) $(if $(HAVE_OBJCOPY),,$(BUILD)/simd_scalar_tu.o)
 STRICT_COMPILERS_CHECK = $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang) $(if $(HAVE_GXX),gxx)
 check-results: $(CHECK_FIRST) $(CHECK_RESULTS)
 
