@@ -10,7 +10,7 @@
 # functions (INTERNAL_TESTS) are compiled into that object (tests/sbl_impl.c with
 # -DSBL_TEST_INTERNAL, their main renamed) and get tests/internal_main.c as main;
 # test_simd links it too, with the scalar path in a second object
-# (tests/simd_scalar_tu.c). Only the fuzz harness compiles its own copy.
+# (tests/simd_scalar_tu.c).
 #
 #   gcc             C99 pedantic -Werror, $(OPT), default SIMD path (SSE2 / NEON); + test_simd
 #   clang           the same with clang
@@ -46,9 +46,9 @@ VALGRIND_TESTS ?= test_core test_stereo
 # strict/header)
 INTERNAL_TESTS = test_paths test_tiles
 ROW_GATHER_TESTS = $(INTERNAL_TESTS)
-# tests that compile their own copy of the implementation (the fuzz harness: it builds
-# without the test allocator)
-SELF_IMPL_TESTS := fuzz_sbl
+# tests that compile their own copy of the implementation (none; a test that must
+# configure the implementation differently from tests/sbl_impl.c would be listed here)
+SELF_IMPL_TESTS :=
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
            SBL_TEST_SKIP_LONG=1 # test_robust: its 10,000-frame drift runs are numerics only
