@@ -31,7 +31,7 @@ STRICT_INTERNAL = $(if $(filter $(1),$(STRICT_INTERNAL_SET)),-DSBL_TEST_INTERNAL
 define STRICT_RULE
 $(BUILD)/strict/$(1)-$(2).log: tests/sbl_impl.c stereoblend.h tests/sbl_test_alloc.h $$(if $$(call STRICT_INTERNAL,$(1)-$(2)),$$(INTERNAL_DEPS))
 	@mkdir -p $$(@D)
-	@$$(STRICT_CC_$(1)) $$(STRICT_$(2)) $$(call STRICT_INTERNAL,$(1)-$(2)) -O2 -c $$< -o $$(@:.log=.o) > $$@ 2>&1 || echo "error: did not compile" >> $$@
+	@rm -f $$(@:.log=.o); $$(STRICT_CC_$(1)) $$(STRICT_$(2)) $$(call STRICT_INTERNAL,$(1)-$(2)) -O2 -c $$< -o $$(@:.log=.o) > $$@ 2>&1 || echo "error: did not compile" >> $$@
 endef
 $(foreach c,$(STRICT_COMPILERS),$(foreach p,$(STRICT_PATHS),$(eval $(call STRICT_RULE,$(c),$(p)))))
 
@@ -44,7 +44,8 @@ strict: $(STRICT_LOGS)
 	for f in $(STRICT_LOGS); do grep -h -o -E '\[-W[a-z0-9=-]+\]' $$f; done | sort | uniq -c | sort -rn; \
 	echo "strict: $$total warnings"; test $$total -eq 0
 
-# the object of a strict compile (a compile that failed left none: say why)
+# the object of a strict compile (a compile that failed left none, the rule above removes
+# the previous one: say why)
 $(BUILD)/strict/%.o: $(BUILD)/strict/%.log
 	@test -f $@ || { cat $<; echo "$@: the strict compile failed"; exit 1; }
 
