@@ -31,9 +31,12 @@
 # a SKIP line, never a failure. V=1 shows the compiler commands.
 #
 # Cost (make -j2 check from a clean clone): the implementation is one big translation
-# unit (~10 s of gcc -O2), so the rule is one implementation compile per configuration;
-# the biggest compiles are started first (CHECK_FIRST) so that neither core idles at
-# the end. Measure with SHELL=<a wrapper that runs /usr/bin/time per command>.
+# unit (~12 s of gcc -O2, 2/3 of the CPU time of check), so the rule is one
+# implementation compile per configuration, six of them shared with the strict compiles,
+# and tests that do not differ between configurations are compiled once; the longest
+# compiles are started first (CHECK_FIRST) so that neither core idles at the end. The
+# cost of each command: make -j2 check SHELL=mk/timed.sh CHECK_TIMES=FILE, then
+# sh mk/timed.sh --table FILE.
 
 Q := $(if $(filter 1,$(V)),,@)
 CC_GCC := $(if $(HAVE_GCC),gcc,$(CC))
