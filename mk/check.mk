@@ -231,7 +231,7 @@ check:
 	@$(MAKE) -k --no-print-directory check-results || true
 	@$(RUN_TEST) --summary "$(CHECK_SKIPS)" $(CHECK_RESULTS)
 
-# the longest compiles first (measured CPU seconds, gcc 12 / clang 14, in the comments):
+# the longest compiles first, in the order of their measured CPU time (gcc 12, clang 14):
 # with -j2 make starts prerequisites in order, and a long compile started last would
 # leave the other core idle at the end
 STRICT_FIRST = gcc-avx512 gxx-default gcc-avx2 gcc-default gcc-scalar clang-avx512 clang-default

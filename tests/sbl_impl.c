@@ -1,7 +1,7 @@
 /* The implementation of stereoblend.h in a translation unit of its own: `make check`
    compiles it once per configuration and links it into every test of that
    configuration (tests are then compiled with -DSTEREOBLEND_IMPLEMENTATION_DONE).
-   Tests that define STEREOBLEND_STATIC or call internal functions build their own.
+   The tests of internal functions are compiled into it (SBL_TEST_INTERNAL, below).
    It is built with allocator hooks that count and can fail (tests/sbl_test_alloc.h),
    so that the *_frame calls' use of SBL_MALLOC / SBL_FREE is tested without a second
    copy of the implementation. */
@@ -71,7 +71,9 @@ int tst_test_tiles_main(void);
 #undef SW
 #undef SH
 
-/* static helpers both files define */
+/* static helpers both files define (a test file's macros and static names share one
+   translation unit here: a name both define is renamed for the second, its macros are
+   undefined after it) */
 #define view tiles_view
 #define same_float tiles_same_float
 #define compiler_contracts tiles_compiler_contracts
