@@ -121,7 +121,7 @@ RUN_ARGS_asan/fuzz_sbl = tests/fuzz_corpus/*
 # Configurations whose implementation object is the one a strict/header compile
 # (mk/strict.mk) builds anyway: same compiler, same code path, -O2; only the warning
 # flags differ, and they do not change the code. Saves six compiles of the header.
-STRICT_OBJ_OK := $(filter -O2,$(strip $(OPT)))
+STRICT_OBJ_OK := $(if $(filter-out -O2,$(strip $(OPT))),,$(filter -O2,$(strip $(OPT)))) # OPT exactly -O2
 STRICT_OBJ_gcc    = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-default.o))
 STRICT_OBJ_scalar = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-scalar.o))
 STRICT_OBJ_avx2   = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-avx2.o))
