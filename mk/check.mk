@@ -121,7 +121,8 @@ RUN_ARGS_asan/fuzz_sbl = tests/fuzz_corpus/*
 # Configurations whose implementation object is the one a strict/header compile
 # (mk/strict.mk) builds anyway: same compiler, same code path, -O2; only the warning
 # flags differ, and they do not change the code. Saves six compiles of the header.
-STRICT_OBJ_OK := $(if $(filter-out -O2,$(strip $(OPT))),,$(filter -O2,$(strip $(OPT)))) # OPT exactly -O2
+# (only when OPT is exactly -O2)
+STRICT_OBJ_OK := $(if $(filter-out -O2,$(strip $(OPT))),,$(filter -O2,$(strip $(OPT))))
 STRICT_OBJ_gcc    = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-default.o))
 STRICT_OBJ_scalar = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-scalar.o))
 STRICT_OBJ_avx2   = $(if $(STRICT_OBJ_OK),$(if $(HAVE_GCC),$(BUILD)/strict/gcc-avx2.o))
@@ -137,8 +138,12 @@ STRICT_OBJ_cxx    = $(if $(STRICT_OBJ_OK),$(if $(filter g++,$(CXX_TEST)),$(BUILD
 # configurations' objects: what differs between them is the object. A test that looks
 # at the SIMD macros (PATH_TESTS_RE) is compiled in each configuration instead; one
 # whose code depends on other flags (-ffast-math: test_robust's FAST_MATH) is in a
-# configuration not listed here.
-SHARED_OBJ_CONFIGS = gcc scalar $(filter-out scalar,$(SIMD_VARIANTS)) O3native
+# configuration not listed here. The clang configuration links them too: what it
+# checks that the others do not is the implementation compiled by clang (its object);
+# the tests' own code is compiled by clang in the asan configuration (clang -O0
+# -Werror, when clang links the sanitizers) and in clang-fastmath (test_robust).
+SHARED_OBJ_CONFIGS = gcc scalar $(filter-out scalar,$(SIMD_VARIANTS)) O3native \
+                     $(if $(HAVE_CLANG),clang)
 PATH_TESTS_RE := SBL_NO_SIMD|SBL_SIMD|__AVX|__SSE|__FMA|__ARM_NEON|__aarch64__
 PATH_TESTS := $(basename $(notdir $(shell grep -l -E '$(PATH_TESTS_RE)' tests/*.c 2>/dev/null)))
 SHARED_TESTS = $(filter-out $(INTERNAL_TESTS) $(SELF_IMPL_TESTS) test_simd $(PATH_TESTS),$(TESTS))
