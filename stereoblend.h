@@ -2863,7 +2863,7 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
    SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 3)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 5)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -4437,10 +4437,12 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
     } while (0)
 
 /* Channel c of the moments of pixels [x, x + VW) (index i in the chunk), for
-   sbl__lanes_moments: nl / nr are the side columns' pair counts. */
+   sbl__lanes_moments: nl / nr are the side columns' pair counts. fast (a constant: the
+   default configuration, sbl__kernel_lanes_pooled): no pair moments (the pooled
+   prepass's blocks hold them), no clamp box. */
 SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
                                             int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
-                                            sbl__lane_stats *st)
+                                            sbl__lane_stats *st, const int fast)
 {
     const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
     const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
@@ -4468,6 +4470,9 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     q = sbl__mul(a8, eighth);
     st->m8[c] = sbl__add(s, q);
     st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
+    st->yc[c] = yc;
+    if (fast) return;
     /* pairs: side columns about the centre column's shift tc */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
               sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
@@ -4484,16 +4489,14 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
         st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
         st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
     } else {
-        st->lo[c] = st->hi[c] = st->mean[c];
+        st->lo[c] = st->hi[c] = st->mean[c]; /* unread (set for the compiler's sake) */
     }
-    st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
-    st->yc[c] = yc;
 }
 
 /* Moments of pixels [x, x + VW) from the column sums of the chunk starting at column
    ca (sbl__lanes_columns) and the window rows W (channels written out, as there). */
-SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *W, int x, int ca,
-                                    sbl__lane_stats *st)
+SBL__INLINE void sbl__lanes_moments_cfg(const sbl__kernel *k, const sbl__lane_rows *W, int x,
+                                        int ca, sbl__lane_stats *st, const int fast)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const int i = x - ca, ch = k->ch;
@@ -4503,11 +4506,17 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
-    inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
-    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, st);
-    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, st);
-    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, st);
-    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, st);
+    inv_cnt1 = fast ? one : sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
+    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, st, fast);
+    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, st, fast);
+    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, st, fast);
+    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, st, fast);
+}
+
+SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *W, int x, int ca,
+                                    sbl__lane_stats *st)
+{
+    sbl__lanes_moments_cfg(k, W, x, ca, st, 0);
 }
 #undef SBL__SIDE
 
@@ -4538,13 +4547,16 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 
 /* the planes of k->pool_col: per channel c the column sums A (sum v (d - t)), B (sum of
    its square) and T (t); then N (pairs per column), and per block centre M2 and SE2
-   (sum_c mean_c^2, sum_c var_c / n; 0 for no block) */
+   (sum_c mean_c^2, sum_c var_c / n; 0 for no block), and PD2 / PV (sum_c mean_c^2 and
+   sum_c var_c whatever the count: the lane kernel's pair terms, sbl__kernel_lanes_pooled) */
 #define SBL__POOL_A(c) (3 * (c))
 #define SBL__POOL_B(c) (3 * (c) + 1)
 #define SBL__POOL_T(c) (3 * (c) + 2)
 #define SBL__POOL_N(ch) (3 * (ch))
 #define SBL__POOL_M2(ch) (3 * (ch) + 1)
 #define SBL__POOL_SE2(ch) (3 * (ch) + 2)
+#define SBL__POOL_PD2(ch) (3 * (ch) + 3)
+#define SBL__POOL_PV(ch) (3 * (ch) + 4)
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -4664,7 +4676,7 @@ static void sbl__pool_column_zero(const sbl__pool_planes *Q, int ch, int i)
 SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const float *pt,
                                          sbl__m has_c, sbl__m has_l, sbl__v nl, sbl__v nr,
                                          sbl__v inv_n, sbl__v inv_n1, int c, sbl__v *m2,
-                                         sbl__v *se2)
+                                         sbl__v *se2, sbl__v *pv)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
@@ -4682,17 +4694,20 @@ SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const
     if (c == 0) {
         *m2 = sbl__mul(mean, mean);
         *se2 = sbl__mul(var, inv_n);
+        *pv = var;
     } else {
         *m2 = sbl__add(*m2, sbl__mul(mean, mean));
         *se2 = sbl__add(*se2, sbl__mul(var, inv_n));
+        *pv = sbl__add(*pv, var);
     }
 }
 
 /* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
    sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs.
-   The channels written out (ch is a constant in each instance), in channel order. */
+   The channels written out (ch is a constant in each instance), in channel order.
+   pairs = 1 (the lane kernel's column sums): also PD2 and PV, whatever the count. */
 SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
-                                        int ba, int bb, int base)
+                                        int ba, int bb, int base, const int pairs)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
     const float *pn = Q->n;
@@ -4701,6 +4716,7 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     const float *const a0 = Q->a[0], *const b0 = Q->b[0], *const t0 = Q->t[0];
     const ptrdiff_t cstep = Q->cstep;
     float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
+    float *const ppd = SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)), *const ppv = SBL__POOL_PLANE(k, SBL__POOL_PV(ch));
     int x = ba;
     for (;;) {
         const int i = x - base;
@@ -4709,10 +4725,10 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
         const sbl__m has_c = sbl__gt(nc, zero), has_l = sbl__gt(nl, zero), valid = sbl__gt(n, min_pairs);
         const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
-        sbl__v m2 = zero, se2 = zero;
+        sbl__v m2 = zero, se2 = zero, pv = zero;
 #define SBL__POOL_BLOCK_CH(c) \
         sbl__pool_block_channel(a0 + (c) * cstep + i, b0 + (c) * cstep + i, t0 + (c) * cstep + i, \
-                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2)
+                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv)
         SBL__POOL_BLOCK_CH(0);
         if (ch > 1) SBL__POOL_BLOCK_CH(1);
         if (ch > 2) SBL__POOL_BLOCK_CH(2);
@@ -4720,6 +4736,10 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
 #undef SBL__POOL_BLOCK_CH
         sbl__store(pm + i, sbl__sel(valid, m2, zero));
         sbl__store(ps + i, sbl__sel(valid, se2, zero));
+        if (pairs) {
+            sbl__store(ppd + i, m2);
+            sbl__store(ppv + i, pv);
+        }
         if (x + SBL__VW >= bb) break;
         x += SBL__VW;
         if (x + SBL__VW > bb) x = bb - SBL__VW;
@@ -4819,7 +4839,7 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 0);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -4908,17 +4928,19 @@ SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
 
 /* Neighbourhood clamp / variance clip of x*, as sbl__rectify (after the firefly limit
    of the robust estimator, as in sbl__blend_pixel). */
-SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
+SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st, const int fast)
 {
     const sbl__v one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v gamma = sbl__set1(k->wp.gamma);
+    const int est = fast ? SBL_ESTIMATOR_POOLED : SBL__CAST(int, k->wp.estimator);
+    const int rect = fast ? SBL_RECTIFY_NONE : SBL__CAST(int, k->wp.rectify);
     int c, ch = k->ch;
     for (c = 0; c < ch; ++c) st->yb[c] = st->yc[c];
-    if (k->wp.estimator == SBL_ESTIMATOR_ROBUST || k->wp.estimator == SBL_ESTIMATOR_POOLED)
+    if (est == SBL_ESTIMATOR_ROBUST || est == SBL_ESTIMATOR_POOLED)
         sbl__lanes_firefly(k, st);
-    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
+    if (rect == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
-    } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
+    } else if (rect == SBL_RECTIFY_VARIANCE_CLIP) {
         sbl__v t = one;
         for (c = 0; c < ch; ++c) {
             sbl__v half = sbl__max(sbl__mul(gamma, sbl__sqrt(st->var[c])),
@@ -4964,22 +4986,23 @@ SBL__INLINE sbl__v sbl__lanes_lean(const sbl__lane_stats *st, sbl__v a0, sbl__v 
    the group (the weight before the lean). */
 SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stats *st,
                                      sbl__v dev2, sbl__v s2, sbl__v pd2, sbl__v pvs,
-                                     sbl__v n_xc, sbl__v n_y, int c0, int c1)
+                                     sbl__v n_xc, sbl__v n_y, int c0, int c1, const int fast)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
+    const int est = fast ? SBL_ESTIMATOR_POOLED : SBL__CAST(int, p->estimator);
     sbl__v w, w2;
     int c;
-    if (p->estimator == SBL_ESTIMATOR_PAPER) {
+    if (est == SBL_ESTIMATOR_PAPER) {
         sbl__v den = sbl__add(dev2, s2);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(dev2, sbl__max(den, tiny)), prog);
-    } else if (p->estimator == SBL_ESTIMATOR_PROGRESSIVE) {
+    } else if (est == SBL_ESTIMATOR_PROGRESSIVE) {
         w = prog;
-    } else if (p->estimator == SBL_ESTIMATOR_CONSTANT) {
+    } else if (est == SBL_ESTIMATOR_CONSTANT) {
         w = sbl__set1(p->constant);
-    } else if (p->estimator == SBL_ESTIMATOR_ROBUST || p->estimator == SBL_ESTIMATOR_POOLED) {
+    } else if (est == SBL_ESTIMATOR_ROBUST || est == SBL_ESTIMATOR_POOLED) {
         /* as sbl__weight: the bias enters with its posterior (sbl__change_posterior) */
-        const float kb = p->estimator == SBL_ESTIMATOR_POOLED
+        const float kb = est == SBL_ESTIMATOR_POOLED
                              ? SBL__CAST(float, SBL__CAST(double, p->bias_threshold) * SBL_POOLED_LOCAL_SCALE)
                              : p->bias_threshold;
         const sbl__v k2e = sbl__set1(SBL__CAST(float, 1.0 + SBL__CAST(double, kb) * SBL__CAST(double, kb) * 0.125));
@@ -4998,7 +5021,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
         sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
         sbl__v num, den;
-        if (p->estimator == SBL_ESTIMATOR_POOLED) {
+        if (est == SBL_ESTIMATOR_POOLED) {
             /* empirical Bayes, as sbl__weight: sh^2 pd2 + sh se2, sh = r / (1 + r) */
             sbl__v sh = sbl__div(st->pool_r, sbl__add(one, st->pool_r));
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
@@ -5007,7 +5030,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
-        if (p->estimator == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !p->temporal)) {
+        if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !p->temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
             for (c = c0; c < c1; ++c) st->a2[c] = w2;
             w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
@@ -5038,10 +5061,12 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
 
 /* The blend, Eq. 5 and the staged outputs of pixels [x, x + VW); invalid x* resets. */
 SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *st,
-                                  const sbl__v *a, sbl__m valid, sbl__v n_xc, sbl__v n_y)
+                                  const sbl__v *a, sbl__m valid, sbl__v n_xc, sbl__v n_y,
+                                  const int fast)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap);
+    const int fill = fast ? 0 : k->fill;
     sbl__v a_mean = zero, a2_mean = zero, n_out, one_m, den;
     int c;
     for (c = 0; c < k->ch; ++c) {
@@ -5050,22 +5075,22 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
                             sbl__add(st->yb[c], sbl__mul(sbl__sub(one, a[c]),
                                                          sbl__sub(st->xs[c], st->yb[c]))),
                             sbl__add(st->xs[c], sbl__mul(a[c], sbl__sub(st->yb[c], st->xs[c]))));
-        if (k->fill) o = st->xr[c]; /* fill takes x* unrectified, as the reference path */
+        if (fill) o = st->xr[c]; /* fill takes x* unrectified, as the reference path */
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, st->yc[c]));
         a_mean = sbl__add(a_mean, a[c]);
     }
     a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, k->ch)));
-    if (k->fill) a_mean = zero;
+    if (fill) a_mean = zero;
     /* Eq. 5: N = N_X N_Y / ((1-a)^2 N_Y + a^2 N_X), with the weight of the two-estimate
        blend (before the pooled estimator's lean, as sbl__blend_pixel) */
     for (c = 0; c < k->ch; ++c) a2_mean = c ? sbl__add(a2_mean, st->a2[c]) : st->a2[c];
     a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, k->ch)));
-    if (k->fill) a2_mean = zero;
+    if (fill) a2_mean = zero;
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
     n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
                      sbl__add(n_xc, n_y));
-    if (k->fill) n_out = n_xc;
+    if (fill) n_out = n_xc;
     n_out = sbl__min(n_out, cap);
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
@@ -5086,9 +5111,14 @@ SBL__INLINE void sbl__lanes_group_add(const sbl__lane_stats *st, int c, sbl__v *
 }
 
 /* One vector of pixels [x, x + VW) of row y: moments from the column sums at index
-   column - base (sbl__lanes_columns), the estimator, the blend, staged. */
+   column - base (sbl__lanes_columns), the estimator, the blend, staged. fast (a
+   constant): the default configuration (pooled estimator, no rectification, one weight
+   for the channels, no fill) inside sbl__kernel_lanes_pooled, whose blocks centred at the
+   pixels hold the pair terms (sbl__pool_lanes_blocks: the same sums about the same
+   shift wherever the centre's x* is valid, the only pixels that use them). */
 SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
-                                   const float *nyrow, int x, int base, int y, const int ch)
+                                   const float *nyrow, int x, int base, int y, const int ch,
+                                   const int fast)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap);
@@ -5101,14 +5131,24 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-    sbl__lanes_moments(k, W, x, base, &st);
+    sbl__lanes_moments_cfg(k, W, x, base, &st, fast);
     sbl__lanes_pool(k, x, y, &st);
-    sbl__lanes_rectify(k, &st);
-    if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
+    sbl__lanes_rectify(k, &st, fast);
+    if (fast) {
+        /* the variance of Y summed as sbl__lanes_group_add; the pair terms the blocks' */
+        const int i = x - base;
+        sbl__v s2 = st.var[0], w;
+        if (ch > 1) s2 = sbl__add(s2, st.var[1]);
+        if (ch > 2) s2 = sbl__add(s2, st.var[2]);
+        if (ch > 3) s2 = sbl__add(s2, st.var[3]);
+        w = sbl__lanes_weight(&k->wp, &st, zero, s2, sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)) + i),
+                              sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PV(ch)) + i), n_xc, n_y, 0, ch, 1);
+        for (c = 0; c < ch; ++c) a[c] = w;
+    } else if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
         for (c = 0; c < ch; ++c) {
             sbl__v sums[4] = {zero, zero, zero, zero};
             sbl__lanes_group_add(&st, c, sums);
-            a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, c, c + 1);
+            a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, c, c + 1, 0);
         }
     } else {
         /* one weight from the squares summed over the channels (written out) */
@@ -5117,10 +5157,10 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
         if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
         if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
         if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
-        w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, 0, ch);
+        w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, 0, ch, 0);
         for (c = 0; c < ch; ++c) a[c] = w;
     }
-    sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
+    sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y, fast);
 }
 
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
@@ -5140,7 +5180,7 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
         /* one chunk: its column sums (with the neighbour columns), then its pixels */
         const int ca = x - 1, ce = end - x > SBL__CHUNK ? x + SBL__CHUNK : end;
         sbl__lanes_columns(k, &W, ca, ce + 1, ca);
-        for (; x < ce; x += SBL__VW) sbl__lanes_vector(k, &W, R[1]->n, nyrow, x, ca, y, ch);
+        for (; x < ce; x += SBL__VW) sbl__lanes_vector(k, &W, R[1]->n, nyrow, x, ca, y, ch, 0);
     }
     return x;
 }
@@ -5234,7 +5274,7 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
    the reference path. */
 SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                              int pa, int pb, int xa, int xb,
-                                             const unsigned char *win, const int ch)
+                                             const unsigned char *win, const int ch, const int fast)
 {
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
@@ -5257,7 +5297,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         sbl__lanes_columns(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w, base);
         if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
         if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base);
+        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base,
+                               fast);
         for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
         for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
         sbl__pool_lanes_ratio(k, ch, x, e, base);
@@ -5279,13 +5320,13 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             }
             if (b - lo >= SBL__VW) {
                 for (p = lo; p + SBL__VW <= b; p += SBL__VW)
-                    sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
-                if (p < b) sbl__lanes_vector(k, &W, n_row, nyrow, b - SBL__VW, base, y, ch);
+                    sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch, fast);
+                if (p < b) sbl__lanes_vector(k, &W, n_row, nyrow, b - SBL__VW, base, y, ch, fast);
             } else {
                 p = b - SBL__VW;
                 if (p < x - span) p = x - span;
                 if (p < 1) p = 1;
-                sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
+                sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch, fast);
             }
             lo = b;
         }
@@ -5296,12 +5337,23 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
                                      int pb, int xa, int xb, const unsigned char *win)
 {
+    /* the default configuration in its own instances (sbl__lanes_vector's fast) */
+    const int fast = k->wp.rectify == SBL_RECTIFY_NONE && k->wp.mode == SBL_WEIGHT_SCALAR && !k->fill;
     k->pool_row = R[1]->row;
+    if (fast) {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 1); break;
+        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 1); break;
+        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 1); break;
+        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 1); break;
+        }
+        return;
+    }
     switch (k->ch) {
-    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1); break;
-    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2); break;
-    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3); break;
-    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4); break;
+    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 0); break;
+    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 0); break;
+    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 0); break;
+    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 0); break;
     }
 }
 
