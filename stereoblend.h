@@ -4436,13 +4436,11 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
-/* Channel c of the moments of pixels [x, x + VW) (index i in the chunk), for
-   sbl__lanes_moments: nl / nr are the side columns' pair counts. fast (a constant: the
-   default configuration, sbl__kernel_lanes_pooled): no pair moments (the pooled
-   prepass's blocks hold them), no clamp box. */
-SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
-                                            int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
-                                            sbl__lane_stats *st, const int fast)
+/* Channel c of Y's moments of pixels [x, x + VW) (index i in the chunk): mean and
+   population variance of the window, of the window without its centre, the centre. */
+SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x, int i,
+                                      int c, sbl__v *mean, sbl__v *var, sbl__v *m8, sbl__v *v8,
+                                      sbl__v *yc_out)
 {
     const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
     const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
@@ -4452,10 +4450,8 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
     const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
     const float *cp = k->col[c] + i;
-    const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
-    const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
-    sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
-    /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
+    sbl__v al, bl, ar, br, a8, b8, a9, b9, q;
+    /* side columns about s (their top sample is s + D, counted by n = 3) */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
               three, al, bl);
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
@@ -4465,14 +4461,28 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     a9 = sbl__add(a8, a1);
     b9 = sbl__add(b8, sbl__mul(a1, a1));
     q = sbl__mul(a9, ninth);
-    st->mean[c] = sbl__add(s, q);
-    st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
+    *mean = sbl__add(s, q);
+    *var = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
     q = sbl__mul(a8, eighth);
-    st->m8[c] = sbl__add(s, q);
-    st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    *m8 = sbl__add(s, q);
+    *v8 = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    *yc_out = yc;
+}
+
+/* Channel c of the moments of pixels [x, x + VW) (index i in the chunk), for
+   sbl__lanes_moments: nl / nr are the side columns' pair counts. */
+SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
+                                            int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
+                                            sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const float *cp = k->col[c] + i;
+    const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
+    const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
+    sbl__v pl, ql, pr, qr, d, dd;
+    sbl__lanes_y_channel(k, W, x, i, c, &st->mean[c], &st->var[c], &st->m8[c], &st->v8[c],
+                         &st->yc[c]);
     st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
-    st->yc[c] = yc;
-    if (fast) return;
     /* pairs: side columns about the centre column's shift tc */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
               sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
@@ -4489,14 +4499,14 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
         st->lo[c] = sbl__min(sbl__min(sbl__load(lo - 1), sbl__load(lo)), sbl__load(lo + 1));
         st->hi[c] = sbl__max(sbl__max(sbl__load(hi - 1), sbl__load(hi)), sbl__load(hi + 1));
     } else {
-        st->lo[c] = st->hi[c] = st->mean[c]; /* unread (set for the compiler's sake) */
+        st->lo[c] = st->hi[c] = st->mean[c];
     }
 }
 
 /* Moments of pixels [x, x + VW) from the column sums of the chunk starting at column
    ca (sbl__lanes_columns) and the window rows W (channels written out, as there). */
-SBL__INLINE void sbl__lanes_moments_cfg(const sbl__kernel *k, const sbl__lane_rows *W, int x,
-                                        int ca, sbl__lane_stats *st, const int fast)
+SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *W, int x, int ca,
+                                    sbl__lane_stats *st)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const int i = x - ca, ch = k->ch;
@@ -4506,17 +4516,11 @@ SBL__INLINE void sbl__lanes_moments_cfg(const sbl__kernel *k, const sbl__lane_ro
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
-    inv_cnt1 = fast ? one : sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
-    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, st, fast);
-    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, st, fast);
-    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, st, fast);
-    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, st, fast);
-}
-
-SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *W, int x, int ca,
-                                    sbl__lane_stats *st)
-{
-    sbl__lanes_moments_cfg(k, W, x, ca, st, 0);
+    inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
+    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, st);
+    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, st);
+    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, st);
+    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, st);
 }
 #undef SBL__SIDE
 
@@ -4928,19 +4932,17 @@ SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
 
 /* Neighbourhood clamp / variance clip of x*, as sbl__rectify (after the firefly limit
    of the robust estimator, as in sbl__blend_pixel). */
-SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st, const int fast)
+SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
 {
     const sbl__v one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v gamma = sbl__set1(k->wp.gamma);
-    const int est = fast ? SBL_ESTIMATOR_POOLED : SBL__CAST(int, k->wp.estimator);
-    const int rect = fast ? SBL_RECTIFY_NONE : SBL__CAST(int, k->wp.rectify);
     int c, ch = k->ch;
     for (c = 0; c < ch; ++c) st->yb[c] = st->yc[c];
-    if (est == SBL_ESTIMATOR_ROBUST || est == SBL_ESTIMATOR_POOLED)
+    if (k->wp.estimator == SBL_ESTIMATOR_ROBUST || k->wp.estimator == SBL_ESTIMATOR_POOLED)
         sbl__lanes_firefly(k, st);
-    if (rect == SBL_RECTIFY_CLAMP) {
+    if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
-    } else if (rect == SBL_RECTIFY_VARIANCE_CLIP) {
+    } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
         sbl__v t = one;
         for (c = 0; c < ch; ++c) {
             sbl__v half = sbl__max(sbl__mul(gamma, sbl__sqrt(st->var[c])),
@@ -4991,6 +4993,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
     const int est = fast ? SBL_ESTIMATOR_POOLED : SBL__CAST(int, p->estimator);
+    const int temporal = fast ? fast == 1 : p->temporal; /* fast: 1 temporal, 2 stereo */
     sbl__v w, w2;
     int c;
     if (est == SBL_ESTIMATOR_PAPER) {
@@ -5017,7 +5020,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         sbl__v t2 = sbl__div(pd2, sbl__max(se2, tiny));
         sbl__v rho = sbl__div(k2e, sbl__add(one, sbl__mul(t2, sbl__set1(0.125f))));
         sbl__v r2 = sbl__mul(rho, rho);
-        sbl__v odds = p->temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
+        sbl__v odds = temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
         sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
         sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
         sbl__v num, den;
@@ -5030,7 +5033,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
-        if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !p->temporal)) {
+        if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
             for (c = c0; c < c1; ++c) st->a2[c] = w2;
             w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
@@ -5061,12 +5064,11 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
 
 /* The blend, Eq. 5 and the staged outputs of pixels [x, x + VW); invalid x* resets. */
 SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *st,
-                                  const sbl__v *a, sbl__m valid, sbl__v n_xc, sbl__v n_y,
-                                  const int fast)
+                                  const sbl__v *a, sbl__m valid, sbl__v n_xc, sbl__v n_y)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap);
-    const int fill = fast ? 0 : k->fill;
+    const int fill = k->fill;
     sbl__v a_mean = zero, a2_mean = zero, n_out, one_m, den;
     int c;
     for (c = 0; c < k->ch; ++c) {
@@ -5111,14 +5113,9 @@ SBL__INLINE void sbl__lanes_group_add(const sbl__lane_stats *st, int c, sbl__v *
 }
 
 /* One vector of pixels [x, x + VW) of row y: moments from the column sums at index
-   column - base (sbl__lanes_columns), the estimator, the blend, staged. fast (a
-   constant): the default configuration (pooled estimator, no rectification, one weight
-   for the channels, no fill) inside sbl__kernel_lanes_pooled, whose blocks centred at the
-   pixels hold the pair terms (sbl__pool_lanes_blocks: the same sums about the same
-   shift wherever the centre's x* is valid, the only pixels that use them). */
+   column - base (sbl__lanes_columns), the estimator, the blend, staged. */
 SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
-                                   const float *nyrow, int x, int base, int y, const int ch,
-                                   const int fast)
+                                   const float *nyrow, int x, int base, int y, const int ch)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap);
@@ -5131,20 +5128,10 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-    sbl__lanes_moments_cfg(k, W, x, base, &st, fast);
+    sbl__lanes_moments(k, W, x, base, &st);
     sbl__lanes_pool(k, x, y, &st);
-    sbl__lanes_rectify(k, &st, fast);
-    if (fast) {
-        /* the variance of Y summed as sbl__lanes_group_add; the pair terms the blocks' */
-        const int i = x - base;
-        sbl__v s2 = st.var[0], w;
-        if (ch > 1) s2 = sbl__add(s2, st.var[1]);
-        if (ch > 2) s2 = sbl__add(s2, st.var[2]);
-        if (ch > 3) s2 = sbl__add(s2, st.var[3]);
-        w = sbl__lanes_weight(&k->wp, &st, zero, s2, sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)) + i),
-                              sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PV(ch)) + i), n_xc, n_y, 0, ch, 1);
-        for (c = 0; c < ch; ++c) a[c] = w;
-    } else if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
+    sbl__lanes_rectify(k, &st);
+    if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
         for (c = 0; c < ch; ++c) {
             sbl__v sums[4] = {zero, zero, zero, zero};
             sbl__lanes_group_add(&st, c, sums);
@@ -5160,8 +5147,101 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
         w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, 0, ch, 0);
         for (c = 0; c < ch; ++c) a[c] = w;
     }
-    sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y, fast);
+    sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
 }
+
+/* sbl__lanes_vector in the default configuration (fast: 1 temporal, 2 stereo) with the
+   channels written out, so that the per-channel values stay in registers (loops over
+   the channels keep the lane statistics in memory): the same operations in the same
+   order as sbl__lanes_moments, sbl__lanes_firefly, sbl__lanes_weight and
+   sbl__lanes_blend (bit for bit). The pair terms: the pooled prepass's blocks. */
+#define SBL__LANES_CH(M) do { M(0); if (ch > 1) M(1); if (ch > 2) M(2); if (ch > 3) M(3); } while (0)
+SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                        const float *nyrow, int x, int base, int y, const int ch,
+                                        const int fast)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
+    const int i = x - base;
+    sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
+    sbl__v yc[4], xs[4], yb[4], m8[4], v8[4], var[4], mean;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
+    sbl__m valid, hi_w, low_t;
+    n_x = sbl__load(n_row + x);
+    valid = sbl__gt(n_x, zero);
+    n_y = nyrow ? sbl__load(nyrow + x) : one;
+    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+    /* pair counts (sbl__lanes_moments) */
+    nl = sbl__load(k->col_n + i - 1);
+    nr = sbl__load(k->col_n + i + 1);
+    cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    st.has_pairs = sbl__gt(cnt, zero);
+    st.two_pairs = sbl__gt(cnt, one);
+    st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
+    /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
+#define SBL__FAST_Y(c) \
+    do { \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c]); \
+        xs[c] = sbl__load(W->x[1][c] + x); \
+        sum_y = sbl__add(sum_y, yc[c]); \
+        sum_m8 = sbl__add(sum_m8, m8[c]); \
+        sum_x = sbl__add(sum_x, xs[c]); \
+        sum_v8 = sbl__add(sum_v8, v8[c]); \
+    } while (0)
+    SBL__LANES_CH(SBL__FAST_Y);
+#undef SBL__FAST_Y
+    bound = sbl__add(sbl__max(sum_m8, sum_x),
+                     sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
+    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
+    bound = sbl__max(bound, zero);
+    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    low_t = sbl__gt(one, t);
+#define SBL__FAST_YB(c) \
+    do { \
+        yb[c] = sbl__sel(low_t, sbl__mul(yc[c], t), yc[c]); \
+        if (fast == 2) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
+    } while (0)
+    SBL__LANES_CH(SBL__FAST_YB);
+#undef SBL__FAST_YB
+    /* the weight: Y's variance summed over the channels, the blocks' pair terms */
+    sbl__lanes_pool(k, x, y, &st);
+    s2 = var[0];
+    if (ch > 1) s2 = sbl__add(s2, var[1]);
+    if (ch > 2) s2 = sbl__add(s2, var[2]);
+    if (ch > 3) s2 = sbl__add(s2, var[3]);
+    w = sbl__lanes_weight(&k->wp, &st, zero, s2, sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)) + i),
+                          sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PV(ch)) + i), n_xc, n_y, 0, ch, fast);
+    w2 = st.a2[0]; /* every channel's */
+    /* the blend (sbl__lanes_blend with one weight, no fill) */
+    hi_w = sbl__gt(w, half);
+    one_w = sbl__sub(one, w);
+    a_mean = zero;
+#define SBL__FAST_BLEND(c) \
+    do { \
+        const sbl__v o = sbl__sel(hi_w, sbl__add(yb[c], sbl__mul(one_w, sbl__sub(xs[c], yb[c]))), \
+                                  sbl__add(xs[c], sbl__mul(w, sbl__sub(yb[c], xs[c])))); \
+        sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c])); \
+        a_mean = sbl__add(a_mean, w); \
+    } while (0)
+    SBL__LANES_CH(SBL__FAST_BLEND);
+#undef SBL__FAST_BLEND
+    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    a2_mean = w2;
+    if (ch > 1) a2_mean = sbl__add(a2_mean, w2);
+    if (ch > 2) a2_mean = sbl__add(a2_mean, w2);
+    if (ch > 3) a2_mean = sbl__add(a2_mean, w2);
+    a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    one_m = sbl__sub(one, a2_mean);
+    den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
+    n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
+                     sbl__add(n_xc, n_y));
+    n_out = sbl__min(n_out, cap);
+    sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
+    sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
+}
+#undef SBL__LANES_CH
 
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
@@ -5180,7 +5260,7 @@ SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_ro
         /* one chunk: its column sums (with the neighbour columns), then its pixels */
         const int ca = x - 1, ce = end - x > SBL__CHUNK ? x + SBL__CHUNK : end;
         sbl__lanes_columns(k, &W, ca, ce + 1, ca);
-        for (; x < ce; x += SBL__VW) sbl__lanes_vector(k, &W, R[1]->n, nyrow, x, ca, y, ch, 0);
+        for (; x < ce; x += SBL__VW) sbl__lanes_vector(k, &W, R[1]->n, nyrow, x, ca, y, ch);
     }
     return x;
 }
@@ -5278,6 +5358,11 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
 {
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
+#define SBL__POOLED_VECTOR(px) \
+    do { \
+        if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast); \
+        else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
+    } while (0)
     const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
@@ -5320,32 +5405,42 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             }
             if (b - lo >= SBL__VW) {
                 for (p = lo; p + SBL__VW <= b; p += SBL__VW)
-                    sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch, fast);
-                if (p < b) sbl__lanes_vector(k, &W, n_row, nyrow, b - SBL__VW, base, y, ch, fast);
+                    SBL__POOLED_VECTOR(p);
+                if (p < b) SBL__POOLED_VECTOR(b - SBL__VW);
             } else {
                 p = b - SBL__VW;
                 if (p < x - span) p = x - span;
                 if (p < 1) p = 1;
-                sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch, fast);
+                SBL__POOLED_VECTOR(p);
             }
             lo = b;
         }
         x = e;
     }
+#undef SBL__POOLED_VECTOR
 }
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
                                      int pb, int xa, int xb, const unsigned char *win)
 {
-    /* the default configuration in its own instances (sbl__lanes_vector's fast) */
+    /* the default configuration in its own instances (sbl__lanes_vector_fast) */
     const int fast = k->wp.rectify == SBL_RECTIFY_NONE && k->wp.mode == SBL_WEIGHT_SCALAR && !k->fill;
     k->pool_row = R[1]->row;
-    if (fast) {
+    if (fast && k->wp.temporal) {
         switch (k->ch) {
         case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 1); break;
         case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 1); break;
         case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 1); break;
         default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 1); break;
+        }
+        return;
+    }
+    if (fast) {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 2); break;
+        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 2); break;
+        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 2); break;
+        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 2); break;
         }
         return;
     }
