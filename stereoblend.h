@@ -3405,15 +3405,16 @@ static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
            (!s->geo.depth.p || s->geo.depth.step == 1);
 }
 
-/* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 of an interior
-   row (all with both neighbours), when the target has depth and no normals or ids:
+/* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 (in [0, w)) of
+   an interior row (rows y - 1 and y + 1 exist), when the target has depth and no normals
+   or ids:
    valid geometry is z > 0 (NaN and -inf fail, +inf is sky); the slack is
    sbl__depth_slack's (sbl__slack_axis per axis, 0 for a non-finite z).
    No NaN may reach a min: -ffast-math (finite-math-only, no signed zeros) makes gcc's
    min intrinsics commutative, so a NaN operand's result depends on register allocation.
    Where every difference is finite (then so is z: the common case) the slack is the sum
    of the mins; else every lane takes sbl__slack_axis's rule written out on the bits. */
-SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int x, int y, sbl__v *z,
+SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int w, int x, int y, sbl__v *z,
                                    sbl__v *slack)
 {
     const sbl__v zero = sbl__set1(0.0f);
@@ -3423,6 +3424,15 @@ SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int x, int y, sbl__v 
     *z = sbl__load(dp);
     dax = sbl__abs(sbl__sub(*z, sbl__load(dp - 1)));
     dbx = sbl__abs(sbl__sub(sbl__load(dp + 1), *z));
+    if (x == 0 || x + SBL__VW == w) {
+        /* an edge column (its missing neighbour read from the previous or next row in
+           memory, a valid address on an interior row, then replaced before any test): the
+           one-sided difference is the other side's, as sbl__depth_slack takes it */
+        static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+        const sbl__v xl = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane));
+        dax = sbl__sel(sbl__le(xl, zero), dbx, dax);
+        dbx = sbl__sel(sbl__le(sbl__set1(SBL__CAST(float, w - 1)), xl), dax, dbx);
+    }
     day = sbl__abs(sbl__sub(*z, sbl__load(dp - ds)));
     dby = sbl__abs(sbl__sub(sbl__load(dp + ds), *z));
     /* >= 0 each: the sum is finite iff all four are (or it overflows: the exact path) */
@@ -3573,7 +3583,7 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
     sbl__v z = zero, slack = zero, mx, my;
     /* a sky tile: z = +inf, which is valid geometry with slack 0 (sbl__lanes_want) */
     sbl__m keep = sky ? sbl__gt(one, zero)
-                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                         : sbl__gt(one, zero));
     if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
     mx = sbl__gatheri(mvp, pair);
@@ -3846,7 +3856,7 @@ SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan
     double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
     sbl__v z, slack;
     int keep, l;
-    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack));
     sbl__store(zf, z);
     sbl__store(sf, slack);
     for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
@@ -3884,7 +3894,7 @@ static int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     const int x = b->x0 + i;
-    if (!b->mode || x < 1 || x + SBL__VW >= s->src.width) return -1;
+    if (!b->mode || x < 0 || x + SBL__VW > s->src.width) return -1;
     if (b->mode == 2) {
         sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
         return 0;
@@ -5916,7 +5926,7 @@ SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p,
     sbl__v z, slack;
     int keep, l;
     /* sbl__tap_want_init and sbl__valid_depth agree: z > 0, or +inf */
-    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack));
     sbl__store(zf, z);
     sbl__store(sf, slack);
     for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
@@ -6013,7 +6023,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
     const int x = b->x0 + i, y = b->y;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     int l, bits;
-    if (!b->mode || x < 1 || x + SBL__VW >= s->source->color.width) return -1;
+    if (!b->mode || x < 0 || x + SBL__VW > s->source->color.width) return -1;
     if (b->mode == 2) {
         sbl__stereo_cam_plan(s, &b->p, i, x, y, b->psx + i, b->psy + i);
         for (l = 0; l < SBL__VW; ++l) b->snapped[i + l] = 0;
@@ -6026,7 +6036,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         float dxs[SBL__VW], dys[SBL__VW];
         int idx[SBL__VW];
         sbl__v z = zero, slack = zero, mx, my;
-        sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+        sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                      : sbl__gt(one, zero);
         for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, dm->step);
         mx = sbl__gatheri(dp, idx);
@@ -6047,7 +6057,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
         float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
         sbl__v z, slack, m;
-        sbl__m keep = sbl__lanes_want(&s->geo.depth, x, y, &z, &slack);
+        sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
         int far;
         m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
         keep = sbl__mandnot(keep, sbl__nonfinite(m));
