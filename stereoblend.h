@@ -4415,12 +4415,13 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
 
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
    column - base; the last vector overlaps the one before (same values). The channels are
-   written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). */
-SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
-                                    int base)
+   written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). fast (a
+   constant, sbl__kernel_lanes_pooled's default configuration): no clamp box. */
+SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
+                                        int base, const int fast)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
+    const int ch = k->ch, clamp = !fast && k->wp.rectify == SBL_RECTIFY_CLAMP;
     int x = ca;
     for (;;) {
         const int i = x - base;
@@ -4436,6 +4437,12 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
     }
+}
+
+SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
+                                    int base)
+{
+    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0);
 }
 
 /* One side column moved from its own shift to the window's: D = its shift minus the
@@ -5215,8 +5222,10 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     } while (0)
     SBL__LANES_CH(SBL__FAST_YB);
 #undef SBL__FAST_YB
-    /* the weight: Y's variance summed over the channels, the blocks' pair terms */
-    sbl__lanes_pool(k, x, y, &st);
+    /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
+       pooled ratio of this row (sbl__kernel_lanes_pooled computed it: sbl__lanes_pool) */
+    st.pool_r = sbl__load(k->pool_r + x);
+    (void)y;
     s2 = var[0];
     if (ch > 1) s2 = sbl__add(s2, var[1]);
     if (ch > 2) s2 = sbl__add(s2, var[2]);
@@ -5389,7 +5398,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
         base = x - reach;
-        sbl__lanes_columns(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w, base);
+        sbl__lanes_columns_cfg(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w,
+                               base, fast);
         if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
         if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
         sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base,
