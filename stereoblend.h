@@ -291,6 +291,19 @@ typedef enum sbl_test_flags {
     SBL_TEST_ALL = 31
 } sbl_test_flags;
 
+/* How the temporal history is resampled at a sub-pixel position (sbl_reproject_desc.
+   history_filter). Bilinear averages its taps, so a history carried by sub-pixel motion
+   is low-passed again every frame; Catmull-Rom interpolates without that blur
+   (docs/ESTIMATORS.md section 5). Temporal calls only: the stereo warp reads one frame
+   once and stays bilinear whatever the field says. */
+typedef enum sbl_history_filter {
+    SBL_HISTORY_BILINEAR = 0, /* 2x2 taps, renormalised over those that pass the tests  */
+    SBL_HISTORY_CATMULL_ROM   /* 4x4 Catmull-Rom taps, clamped to the range of the inner
+                                 2x2; the bilinear result wherever a tap it needs fails a
+                                 test or lies outside the image. N as bilinear. Runs on the
+                                 per-pixel path (slower than the default's row gather). */
+} sbl_history_filter;
+
 /* Per-tap consistency tests. Zeros mean defaults; a test runs when both views have its
    buffer and its bit is not in disabled_tests. */
 typedef struct sbl_reproject_desc {
@@ -301,6 +314,7 @@ typedef struct sbl_reproject_desc {
     int   no_fallback;        /* 1 disables the 3x3 fallback search for thin geometry  */
     sbl_motion_convention motion;
     int   disabled_tests;     /* SBL_TEST_* bits to switch off; 0: every test on        */
+    sbl_history_filter history_filter; /* temporal history fetch; 0: bilinear         */
 } sbl_reproject_desc;
 
 typedef enum sbl_temporal_source {
@@ -1472,6 +1486,8 @@ typedef struct sbl__tap_src {
     int use_depth, use_normal, use_id;
     float depth_tolerance;
     float normal_threshold2;     /* threshold^2 (threshold >= 0 when used)      */
+    int cubic;                   /* 1: sbl__gather resamples with Catmull-Rom (temporal
+                                    history, SBL_HISTORY_CATMULL_ROM); 0: bilinear   */
 } sbl__tap_src;
 
 /* What the target pixel expects to find. */
@@ -1731,9 +1747,86 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     return acc_n > 0.0f ? acc_n : 0.0f;
 }
 
+/* Catmull-Rom weights of the four taps at offsets -1, 0, 1, 2 from the tap left of a
+   position t in [0, 1) (docs/ESTIMATORS.md section 5): the cubic through four samples
+   whose slopes at the inner two are the central differences. They sum to 1, give
+   (0, 1, 0, 0) at t = 0 and reproduce polynomials up to degree 2. */
+static void sbl__catmull_rom(double t, double *w)
+{
+    const double t2 = t * t, t3 = t2 * t;
+    w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
+    w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
+    w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
+    w[3] = 0.5 * (t3 - t2);
+}
+
+/* The history at (sx, sy) by Catmull-Rom: the bilinear gather first (its N is the one
+   returned, and its colour the answer wherever the cubic cannot be used); then, if every
+   tap the cubic needs (4 per axis, 1 on an axis whose fraction is 0) is inside the image
+   and passes every per-tap test, the 4x4 sum in double, clamped per channel to the
+   range of the inner taps (the bilinear footprint): the negative lobes cannot ring past
+   the values they interpolate, so a non-negative history stays non-negative, and the
+   result is finite. */
+SBL__INLINE float sbl__gather_cubic_ch(const sbl__tap_src *s, const sbl__tap_want *t,
+                                       double sx, double sy, int fallback, float *out, int ch)
+{
+    double wx[4], wy[4], acc[4] = {0, 0, 0, 0}, lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
+    double bx, by, fx, fy;
+    int x0, y0, ix, iy, nx, ny, i, j, k, first = 1;
+    const float n = sbl__gather_ch(s, t, sx, sy, fallback, out, ch);
+    if (!(n > 0.0f)) return n; /* nothing valid: the pixel resets */
+    bx = sx - 0.5;
+    by = sy - 0.5; /* finite and within the image's reach: the bilinear gather found taps */
+    x0 = SBL__CAST(int, floor(bx));
+    y0 = SBL__CAST(int, floor(by));
+    fx = bx - x0;
+    fy = by - y0;
+    /* an axis at an integer position needs its centre tap only (the weights are exactly
+       0, 1, 0, 0): the cubic is then exact there, as the bilinear is */
+    nx = fx > 0.0 ? 4 : 1;
+    ny = fy > 0.0 ? 4 : 1;
+    if (nx == 1 && ny == 1) return n;
+    ix = nx == 4 ? x0 - 1 : x0;
+    iy = ny == 4 ? y0 - 1 : y0;
+    if (ix < 0 || iy < 0 || ix + nx > s->width || iy + ny > s->height) return n;
+    if (nx == 4) sbl__catmull_rom(fx, wx); else wx[0] = 1.0;
+    if (ny == 4) sbl__catmull_rom(fy, wy); else wy[0] = 1.0;
+    for (j = 0; j < ny; ++j)
+        for (i = 0; i < nx; ++i) {
+            const double w = wx[i] * wy[j];
+            const int inner = (nx == 1 || i == 1 || i == 2) && (ny == 1 || j == 1 || j == 2);
+            const float *c;
+            if (!sbl__tap_ok_in(s, t, ix + i, iy + j, ch, 1)) return n; /* bilinear */
+            c = SBL__AT(s->color, ix + i, iy + j);
+            for (k = 0; k < ch; ++k) {
+                const double v = SBL__CAST(double, c[k]);
+                acc[k] += w * v;
+                if (!inner) continue;
+                if (first || v < lo[k]) lo[k] = v;
+                if (first || v > hi[k]) hi[k] = v;
+            }
+            if (inner) first = 0;
+        }
+    for (k = 0; k < ch; ++k) {
+        /* the sum of finite floats with weights |w| <= 1 in double is finite; the clamp
+           also keeps it a float */
+        const double v = acc[k] < lo[k] ? lo[k] : (acc[k] > hi[k] ? hi[k] : acc[k]);
+        out[k] = SBL__CAST(float, v);
+    }
+    return n;
+}
+
 static float sbl__gather(const sbl__tap_src *s, const sbl__tap_want *t, double sx, double sy,
                          int fallback, float *out)
 {
+    if (s->cubic) {
+        switch (s->color.ch) {
+        case 1: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 1);
+        case 2: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 2);
+        case 3: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 3);
+        default: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 4);
+        }
+    }
     switch (s->color.ch) {
     case 1: return sbl__gather_ch(s, t, sx, sy, fallback, out, 1);
     case 2: return sbl__gather_ch(s, t, sx, sy, fallback, out, 2);
@@ -1846,6 +1939,7 @@ static void sbl__tap_src_init(sbl__tap_src *s, const sbl_image *color, const sbl
                     !(rp->normal_threshold < 0.0f) && !(rp->disabled_tests & SBL_TEST_NORMAL);
     s->depth_tolerance = rp->depth_tolerance;
     s->normal_threshold2 = rp->normal_threshold * rp->normal_threshold;
+    s->cubic = 0; /* the temporal call switches it on (sbl__temporal_rp_init) */
 }
 
 /* Motion vector convention -> factors that turn a vector into the backward
@@ -1881,6 +1975,9 @@ static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
     if (SBL__CAST(int, d->motion.units) < 0 || SBL__CAST(int, d->motion.units) > SBL__CAST(int, SBL_MOTION_NDC))
         return SBL_ERROR_INVALID_PARAM;
     if (d->disabled_tests & ~SBL__CAST(int, SBL_TEST_ALL)) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, d->history_filter) < 0 ||
+        SBL__CAST(int, d->history_filter) > SBL__CAST(int, SBL_HISTORY_CATMULL_ROM))
+        return SBL_ERROR_INVALID_PARAM;
     return SBL_OK;
 }
 
@@ -1950,6 +2047,7 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
         if ((r = sbl__check_optional(&hi->length, 1, w, h)) != SBL_OK) return r;
         if ((r = sbl__check_gbuffer(&hi->gbuffer, w, h)) != SBL_OK) return r;
         sbl__tap_src_init(&s->src, &hi->color, &hi->length, &hi->gbuffer, g, &s->rp);
+        s->src.cubic = s->rp.history_filter == SBL_HISTORY_CATMULL_ROM;
     }
     if (source == SBL_TEMPORAL_MOTION && !g->motion.data) return SBL_ERROR_MISSING_INPUT;
     if (source == SBL_TEMPORAL_CAMERA) {
@@ -5481,7 +5579,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.gather = sbl__temporal_rp_pixel;
     k.gather_ctx = &s;
 #ifdef SBL__ROW_GATHER
-    if (s.history && sbl__row_gather_ok(&s.src)) k.gather_row = sbl__temporal_rp_row;
+    /* the Catmull-Rom fetch exists only in the per-pixel gather (sbl__gather_cubic) */
+    if (s.history && sbl__row_gather_ok(&s.src) && !s.src.cubic)
+        k.gather_row = sbl__temporal_rp_row;
 #endif
     k.out = out->color;
     k.out_n = out->length;
@@ -6440,6 +6540,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         SBL__TRY_RP(back_check_pixels)
         SBL__TRY_RP(motion.units)
         SBL__TRY_RP(disabled_tests)
+        SBL__TRY_RP(history_filter)
 #undef SBL__TRY_RP
         if (SBL__CAST(int, u.source) < 0 ||
             SBL__CAST(int, u.source) > SBL__CAST(int, SBL_TEMPORAL_CAMERA))
@@ -6693,6 +6794,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
         SBL__TRY_RP(normal_threshold)
         SBL__TRY_RP(back_check_pixels)
         SBL__TRY_RP(disabled_tests)
+        SBL__TRY_RP(history_filter)
 #undef SBL__TRY_RP
     }
     if (out) {
