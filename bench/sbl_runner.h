@@ -366,6 +366,9 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
     all[n] = sbr_method_oracle("oracle-cr", 1, SBR_STEREO_NONE, SBR_ORACLE_TEMPORAL);
     all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
+    all[n] = sbr_method_oracle("oracle-cr+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,
+                               SBR_ORACLE_TEMPORAL | SBR_ORACLE_STEREO);
+    all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
     for (i = 0; i < n && i < max; ++i) m[i] = all[i];
     return i < n ? i : n;
 }
