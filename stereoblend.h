@@ -85,7 +85,10 @@
                 (0 where the new sample is not finite and there is no history). A
                 history without length means N = 1 everywhere; a history without depth
                 (normals, ids) while the frame has it switches that test off silently:
-                sbl_temporal_validate warns about both.
+                sbl_temporal_validate warns about both. The history is fetched
+                bilinearly; sbl_reproject_desc.history_filter = SBL_HISTORY_CATMULL_ROM
+                fetches it with a clamped Catmull-Rom (no resampling blur under
+                sub-pixel motion; per-pixel path, about 2.5x the time).
      Defaults   a zero field means its default, so a parameter cannot be set to exactly
                 0: use a tiny positive value (e.g. 1e-6f) for that. Tests are switched
                 off by flags, never by values: sbl_reproject_desc.disabled_tests
