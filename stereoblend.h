@@ -88,7 +88,7 @@
                 sbl_temporal_validate warns about both. The history is fetched
                 bilinearly; sbl_reproject_desc.history_filter = SBL_HISTORY_CATMULL_ROM
                 fetches it with a clamped Catmull-Rom (no resampling blur under
-                sub-pixel motion; per-pixel path, about 2.5x the time).
+                sub-pixel motion; per-pixel path, about 5x the instructions).
      Defaults   a zero field means its default, so a parameter cannot be set to exactly
                 0: use a tiny positive value (e.g. 1e-6f) for that. Tests are switched
                 off by flags, never by values: sbl_reproject_desc.disabled_tests
@@ -1766,16 +1766,16 @@ static void sbl__catmull_rom(double t, double *w)
 /* The history at (sx, sy) by Catmull-Rom: the bilinear gather first (its N is the one
    returned, and its colour the answer wherever the cubic cannot be used); then, if every
    tap the cubic needs (4 per axis, 1 on an axis whose fraction is 0) is inside the image
-   and passes every per-tap test, the 4x4 sum in double, clamped per channel to the
-   range of the inner taps (the bilinear footprint): the negative lobes cannot ring past
-   the values they interpolate, so a non-negative history stays non-negative, and the
-   result is finite. */
+   and passes every per-tap test, the 4x4 sum in double (rows first: the weights are
+   separable), clamped per channel to the range of the inner taps (the bilinear
+   footprint): the negative lobes cannot ring past the values they interpolate, so a
+   non-negative history stays non-negative, and the result is finite. */
 SBL__INLINE float sbl__gather_cubic_ch(const sbl__tap_src *s, const sbl__tap_want *t,
                                        double sx, double sy, int fallback, float *out, int ch)
 {
-    double wx[4], wy[4], acc[4] = {0, 0, 0, 0}, lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
-    double bx, by, fx, fy;
-    int x0, y0, ix, iy, nx, ny, i, j, k, first = 1;
+    double wx[4], wy[4], acc[4] = {0, 0, 0, 0}, bx, by, fx, fy;
+    float lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
+    int x0, y0, ix, iy, nx, ny, i, j, k;
     const float n = sbl__gather_ch(s, t, sx, sy, fallback, out, ch);
     if (!(n > 0.0f)) return n; /* nothing valid: the pixel resets */
     bx = sx - 0.5;
@@ -1794,26 +1794,48 @@ SBL__INLINE float sbl__gather_cubic_ch(const sbl__tap_src *s, const sbl__tap_wan
     if (ix < 0 || iy < 0 || ix + nx > s->width || iy + ny > s->height) return n;
     if (nx == 4) sbl__catmull_rom(fx, wx); else wx[0] = 1.0;
     if (ny == 4) sbl__catmull_rom(fy, wy); else wy[0] = 1.0;
-    for (j = 0; j < ny; ++j)
+    for (j = 0; j < ny; ++j) {
+        double row[4] = {0, 0, 0, 0};
         for (i = 0; i < nx; ++i) {
-            const double w = wx[i] * wy[j];
-            const int inner = (nx == 1 || i == 1 || i == 2) && (ny == 1 || j == 1 || j == 2);
-            const float *c;
-            if (!sbl__tap_ok_in(s, t, ix + i, iy + j, ch, 1)) return n; /* bilinear */
-            c = SBL__AT(s->color, ix + i, iy + j);
-            for (k = 0; k < ch; ++k) {
-                const double v = SBL__CAST(double, c[k]);
-                acc[k] += w * v;
-                if (!inner) continue;
-                if (first || v < lo[k]) lo[k] = v;
-                if (first || v > hi[k]) hi[k] = v;
+            /* sbl__tap_ok_in's tests but the colour's finiteness, which is checked once
+               on the sums below (a NaN or inf tap makes them non-finite) */
+            const int x = ix + i, y = iy + j;
+            const float *c = SBL__AT(s->color, x, y);
+            if (s->use_depth && !sbl__depth_match(t->depth, *SBL__AT(s->depth, x, y),
+                                                  s->depth_tolerance, t->depth_slack))
+                return n;
+            if ((s->use_id || s->use_normal) && !sbl__tap_ok_id_normal(s, t, x, y)) return n;
+            if (s->length.p) {
+                const float l = *SBL__AT(s->length, x, y);
+                if (!(l > 0.0f) || !sbl__finite(l)) return n;
             }
-            if (inner) first = 0;
+            row[0] += wx[i] * SBL__CAST(double, c[0]);
+            if (ch > 1) row[1] += wx[i] * SBL__CAST(double, c[1]);
+            if (ch > 2) row[2] += wx[i] * SBL__CAST(double, c[2]);
+            if (ch > 3) row[3] += wx[i] * SBL__CAST(double, c[3]);
+        }
+        for (k = 0; k < ch; ++k) acc[k] += wy[j] * row[k];
+    }
+    /* finite taps cannot overflow these sums (sum |w| < 1.2 per axis, in double) */
+    for (k = 0; k < ch; ++k)
+        if (!(acc[k] - acc[k] == 0.0)) return n; /* a non-finite tap: bilinear */
+    /* the range of the inner taps (rows and columns 1, 2; the only one of an axis at an
+       integer position) */
+    x0 = nx == 4 ? ix + 1 : ix;
+    y0 = ny == 4 ? iy + 1 : iy;
+    for (k = 0; k < ch; ++k) lo[k] = hi[k] = SBL__AT(s->color, x0, y0)[k];
+    for (j = 0; j < (ny == 4 ? 2 : 1); ++j)
+        for (i = 0; i < (nx == 4 ? 2 : 1); ++i) {
+            const float *c = SBL__AT(s->color, x0 + i, y0 + j);
+            for (k = 0; k < ch; ++k) {
+                if (c[k] < lo[k]) lo[k] = c[k];
+                if (c[k] > hi[k]) hi[k] = c[k];
+            }
         }
     for (k = 0; k < ch; ++k) {
-        /* the sum of finite floats with weights |w| <= 1 in double is finite; the clamp
-           also keeps it a float */
-        const double v = acc[k] < lo[k] ? lo[k] : (acc[k] > hi[k] ? hi[k] : acc[k]);
+        const double v = acc[k] < SBL__CAST(double, lo[k])   ? SBL__CAST(double, lo[k])
+                         : acc[k] > SBL__CAST(double, hi[k]) ? SBL__CAST(double, hi[k])
+                                                             : acc[k];
         out[k] = SBL__CAST(float, v);
     }
     return n;

@@ -559,6 +559,25 @@ static void test_history_catmull_rom(void)
         }
     CHECK(differs > (W - 3) * (H - 3) - 16 - 20);
     depth[6 * W + 8] = 1.0f;
+    /* the same with a NaN colour there (found on the sums): bilinear, finite */
+    {
+        float keep = hist[(6 * W + 8) * 3 + 1];
+        int nonfinite = 0;
+        hist[(6 * W + 8) * 3 + 1] = (float)(HUGE_VAL - HUGE_VAL);
+        rp_run(W, H, 3, hist, depth, 0.3, 0.45, SBL_HISTORY_CATMULL_ROM, a, na);
+        rp_run(W, H, 3, hist, depth, 0.3, 0.45, SBL_HISTORY_BILINEAR, b, nb);
+        for (y = 0; y < H; ++y)
+            for (x = 0; x < W; ++x) {
+                int same = 1;
+                for (k = 0; k < 3; ++k) {
+                    same &= a[(y * W + x) * 3 + k] == b[(y * W + x) * 3 + k];
+                    nonfinite += !(fabs(a[(y * W + x) * 3 + k]) <= 1.0);
+                }
+                if (x >= 6 && x <= 9 && y >= 4 && y <= 7) CHECK_EQ(same, 1);
+            }
+        CHECK_EQ(nonfinite, 0);
+        hist[(6 * W + 8) * 3 + 1] = keep;
+    }
 
     /* hard edges, non-negative HDR input: never negative, never above the input's
        maximum, always finite (the clamp to the inner taps' range); the cubic without it
