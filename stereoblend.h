@@ -85,7 +85,10 @@
                 (0 where the new sample is not finite and there is no history). A
                 history without length means N = 1 everywhere; a history without depth
                 (normals, ids) while the frame has it switches that test off silently:
-                sbl_temporal_validate warns about both.
+                sbl_temporal_validate warns about both. The history is fetched
+                bilinearly; sbl_reproject_desc.history_filter = SBL_HISTORY_CATMULL_ROM
+                fetches it with a clamped Catmull-Rom (no resampling blur under
+                sub-pixel motion; per-pixel path, about 5x the instructions).
      Defaults   a zero field means its default, so a parameter cannot be set to exactly
                 0: use a tiny positive value (e.g. 1e-6f) for that. Tests are switched
                 off by flags, never by values: sbl_reproject_desc.disabled_tests
@@ -291,6 +294,19 @@ typedef enum sbl_test_flags {
     SBL_TEST_ALL = 31
 } sbl_test_flags;
 
+/* How the temporal history is resampled at a sub-pixel position (sbl_reproject_desc.
+   history_filter). Bilinear averages its taps, so a history carried by sub-pixel motion
+   is low-passed again every frame; Catmull-Rom interpolates without that blur
+   (docs/ESTIMATORS.md section 5). Temporal calls only: the stereo warp reads one frame
+   once and stays bilinear whatever the field says. */
+typedef enum sbl_history_filter {
+    SBL_HISTORY_BILINEAR = 0, /* 2x2 taps, renormalised over those that pass the tests  */
+    SBL_HISTORY_CATMULL_ROM   /* 4x4 Catmull-Rom taps, clamped to the range of the inner
+                                 2x2; the bilinear result wherever a tap it needs fails a
+                                 test or lies outside the image. N as bilinear. Runs on the
+                                 per-pixel path (slower than the default's row gather). */
+} sbl_history_filter;
+
 /* Per-tap consistency tests. Zeros mean defaults; a test runs when both views have its
    buffer and its bit is not in disabled_tests. */
 typedef struct sbl_reproject_desc {
@@ -301,6 +317,7 @@ typedef struct sbl_reproject_desc {
     int   no_fallback;        /* 1 disables the 3x3 fallback search for thin geometry  */
     sbl_motion_convention motion;
     int   disabled_tests;     /* SBL_TEST_* bits to switch off; 0: every test on        */
+    sbl_history_filter history_filter; /* temporal history fetch; 0: bilinear         */
 } sbl_reproject_desc;
 
 typedef enum sbl_temporal_source {
@@ -1472,6 +1489,8 @@ typedef struct sbl__tap_src {
     int use_depth, use_normal, use_id;
     float depth_tolerance;
     float normal_threshold2;     /* threshold^2 (threshold >= 0 when used)      */
+    int cubic;                   /* 1: sbl__gather resamples with Catmull-Rom (temporal
+                                    history, SBL_HISTORY_CATMULL_ROM); 0: bilinear   */
 } sbl__tap_src;
 
 /* What the target pixel expects to find. */
@@ -1731,9 +1750,108 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     return acc_n > 0.0f ? acc_n : 0.0f;
 }
 
+/* Catmull-Rom weights of the four taps at offsets -1, 0, 1, 2 from the tap left of a
+   position t in [0, 1) (docs/ESTIMATORS.md section 5): the cubic through four samples
+   whose slopes at the inner two are the central differences. They sum to 1, give
+   (0, 1, 0, 0) at t = 0 and reproduce polynomials up to degree 2. */
+static void sbl__catmull_rom(double t, double *w)
+{
+    const double t2 = t * t, t3 = t2 * t;
+    w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
+    w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
+    w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
+    w[3] = 0.5 * (t3 - t2);
+}
+
+/* The history at (sx, sy) by Catmull-Rom: the bilinear gather first (its N is the one
+   returned, and its colour the answer wherever the cubic cannot be used); then, if every
+   tap the cubic needs (4 per axis, 1 on an axis whose fraction is 0) is inside the image
+   and passes every per-tap test, the 4x4 sum in double (rows first: the weights are
+   separable), clamped per channel to the range of the inner taps (the bilinear
+   footprint): the negative lobes cannot ring past the values they interpolate, so a
+   non-negative history stays non-negative, and the result is finite. */
+SBL__INLINE float sbl__gather_cubic_ch(const sbl__tap_src *s, const sbl__tap_want *t,
+                                       double sx, double sy, int fallback, float *out, int ch)
+{
+    double wx[4], wy[4], acc[4] = {0, 0, 0, 0}, bx, by, fx, fy;
+    float lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
+    int x0, y0, ix, iy, nx, ny, i, j, k;
+    const float n = sbl__gather_ch(s, t, sx, sy, fallback, out, ch);
+    if (!(n > 0.0f)) return n; /* nothing valid: the pixel resets */
+    bx = sx - 0.5;
+    by = sy - 0.5; /* finite and within the image's reach: the bilinear gather found taps */
+    x0 = SBL__CAST(int, floor(bx));
+    y0 = SBL__CAST(int, floor(by));
+    fx = bx - x0;
+    fy = by - y0;
+    /* an axis at an integer position needs its centre tap only (the weights are exactly
+       0, 1, 0, 0): the cubic is then exact there, as the bilinear is */
+    nx = fx > 0.0 ? 4 : 1;
+    ny = fy > 0.0 ? 4 : 1;
+    if (nx == 1 && ny == 1) return n;
+    ix = nx == 4 ? x0 - 1 : x0;
+    iy = ny == 4 ? y0 - 1 : y0;
+    if (ix < 0 || iy < 0 || ix + nx > s->width || iy + ny > s->height) return n;
+    if (nx == 4) sbl__catmull_rom(fx, wx); else wx[0] = 1.0;
+    if (ny == 4) sbl__catmull_rom(fy, wy); else wy[0] = 1.0;
+    for (j = 0; j < ny; ++j) {
+        double row[4] = {0, 0, 0, 0};
+        for (i = 0; i < nx; ++i) {
+            /* sbl__tap_ok_in's tests but the colour's finiteness, which is checked once
+               on the sums below (a NaN or inf tap makes them non-finite) */
+            const int x = ix + i, y = iy + j;
+            const float *c = SBL__AT(s->color, x, y);
+            if (s->use_depth && !sbl__depth_match(t->depth, *SBL__AT(s->depth, x, y),
+                                                  s->depth_tolerance, t->depth_slack))
+                return n;
+            if ((s->use_id || s->use_normal) && !sbl__tap_ok_id_normal(s, t, x, y)) return n;
+            if (s->length.p) {
+                const float l = *SBL__AT(s->length, x, y);
+                if (!(l > 0.0f) || !sbl__finite(l)) return n;
+            }
+            row[0] += wx[i] * SBL__CAST(double, c[0]);
+            if (ch > 1) row[1] += wx[i] * SBL__CAST(double, c[1]);
+            if (ch > 2) row[2] += wx[i] * SBL__CAST(double, c[2]);
+            if (ch > 3) row[3] += wx[i] * SBL__CAST(double, c[3]);
+        }
+        for (k = 0; k < ch; ++k) acc[k] += wy[j] * row[k];
+    }
+    /* finite taps cannot overflow these sums (sum |w| < 1.2 per axis, in double) */
+    for (k = 0; k < ch; ++k)
+        if (!(acc[k] - acc[k] == 0.0)) return n; /* a non-finite tap: bilinear */
+    /* the range of the inner taps (rows and columns 1, 2; the only one of an axis at an
+       integer position) */
+    x0 = nx == 4 ? ix + 1 : ix;
+    y0 = ny == 4 ? iy + 1 : iy;
+    for (k = 0; k < ch; ++k) lo[k] = hi[k] = SBL__AT(s->color, x0, y0)[k];
+    for (j = 0; j < (ny == 4 ? 2 : 1); ++j)
+        for (i = 0; i < (nx == 4 ? 2 : 1); ++i) {
+            const float *c = SBL__AT(s->color, x0 + i, y0 + j);
+            for (k = 0; k < ch; ++k) {
+                if (c[k] < lo[k]) lo[k] = c[k];
+                if (c[k] > hi[k]) hi[k] = c[k];
+            }
+        }
+    for (k = 0; k < ch; ++k) {
+        const double v = acc[k] < SBL__CAST(double, lo[k])   ? SBL__CAST(double, lo[k])
+                         : acc[k] > SBL__CAST(double, hi[k]) ? SBL__CAST(double, hi[k])
+                                                             : acc[k];
+        out[k] = SBL__CAST(float, v);
+    }
+    return n;
+}
+
 static float sbl__gather(const sbl__tap_src *s, const sbl__tap_want *t, double sx, double sy,
                          int fallback, float *out)
 {
+    if (s->cubic) {
+        switch (s->color.ch) {
+        case 1: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 1);
+        case 2: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 2);
+        case 3: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 3);
+        default: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 4);
+        }
+    }
     switch (s->color.ch) {
     case 1: return sbl__gather_ch(s, t, sx, sy, fallback, out, 1);
     case 2: return sbl__gather_ch(s, t, sx, sy, fallback, out, 2);
@@ -1846,6 +1964,7 @@ static void sbl__tap_src_init(sbl__tap_src *s, const sbl_image *color, const sbl
                     !(rp->normal_threshold < 0.0f) && !(rp->disabled_tests & SBL_TEST_NORMAL);
     s->depth_tolerance = rp->depth_tolerance;
     s->normal_threshold2 = rp->normal_threshold * rp->normal_threshold;
+    s->cubic = 0; /* the temporal call switches it on (sbl__temporal_rp_init) */
 }
 
 /* Motion vector convention -> factors that turn a vector into the backward
@@ -1881,6 +2000,9 @@ static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
     if (SBL__CAST(int, d->motion.units) < 0 || SBL__CAST(int, d->motion.units) > SBL__CAST(int, SBL_MOTION_NDC))
         return SBL_ERROR_INVALID_PARAM;
     if (d->disabled_tests & ~SBL__CAST(int, SBL_TEST_ALL)) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, d->history_filter) < 0 ||
+        SBL__CAST(int, d->history_filter) > SBL__CAST(int, SBL_HISTORY_CATMULL_ROM))
+        return SBL_ERROR_INVALID_PARAM;
     return SBL_OK;
 }
 
@@ -1950,6 +2072,7 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
         if ((r = sbl__check_optional(&hi->length, 1, w, h)) != SBL_OK) return r;
         if ((r = sbl__check_gbuffer(&hi->gbuffer, w, h)) != SBL_OK) return r;
         sbl__tap_src_init(&s->src, &hi->color, &hi->length, &hi->gbuffer, g, &s->rp);
+        s->src.cubic = s->rp.history_filter == SBL_HISTORY_CATMULL_ROM;
     }
     if (source == SBL_TEMPORAL_MOTION && !g->motion.data) return SBL_ERROR_MISSING_INPUT;
     if (source == SBL_TEMPORAL_CAMERA) {
@@ -5648,7 +5771,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.gather = sbl__temporal_rp_pixel;
     k.gather_ctx = &s;
 #ifdef SBL__ROW_GATHER
-    if (s.history && sbl__row_gather_ok(&s.src)) k.gather_row = sbl__temporal_rp_row;
+    /* the Catmull-Rom fetch exists only in the per-pixel gather (sbl__gather_cubic) */
+    if (s.history && sbl__row_gather_ok(&s.src) && !s.src.cubic)
+        k.gather_row = sbl__temporal_rp_row;
 #endif
     k.out = out->color;
     k.out_n = out->length;
@@ -6607,6 +6732,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         SBL__TRY_RP(back_check_pixels)
         SBL__TRY_RP(motion.units)
         SBL__TRY_RP(disabled_tests)
+        SBL__TRY_RP(history_filter)
 #undef SBL__TRY_RP
         if (SBL__CAST(int, u.source) < 0 ||
             SBL__CAST(int, u.source) > SBL__CAST(int, SBL_TEMPORAL_CAMERA))
@@ -6860,6 +6986,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
         SBL__TRY_RP(normal_threshold)
         SBL__TRY_RP(back_check_pixels)
         SBL__TRY_RP(disabled_tests)
+        SBL__TRY_RP(history_filter)
 #undef SBL__TRY_RP
     }
     if (out) {
