@@ -85,7 +85,10 @@
                 (0 where the new sample is not finite and there is no history). A
                 history without length means N = 1 everywhere; a history without depth
                 (normals, ids) while the frame has it switches that test off silently:
-                sbl_temporal_validate warns about both.
+                sbl_temporal_validate warns about both. The history is fetched
+                bilinearly; sbl_reproject_desc.history_filter = SBL_HISTORY_CATMULL_ROM
+                fetches it with a clamped Catmull-Rom (no resampling blur under
+                sub-pixel motion; per-pixel path, about 5x the instructions).
      Defaults   a zero field means its default, so a parameter cannot be set to exactly
                 0: use a tiny positive value (e.g. 1e-6f) for that. Tests are switched
                 off by flags, never by values: sbl_reproject_desc.disabled_tests
@@ -291,6 +294,19 @@ typedef enum sbl_test_flags {
     SBL_TEST_ALL = 31
 } sbl_test_flags;
 
+/* How the temporal history is resampled at a sub-pixel position (sbl_reproject_desc.
+   history_filter). Bilinear averages its taps, so a history carried by sub-pixel motion
+   is low-passed again every frame; Catmull-Rom interpolates without that blur
+   (docs/ESTIMATORS.md section 5). Temporal calls only: the stereo warp reads one frame
+   once and stays bilinear whatever the field says. */
+typedef enum sbl_history_filter {
+    SBL_HISTORY_BILINEAR = 0, /* 2x2 taps, renormalised over those that pass the tests  */
+    SBL_HISTORY_CATMULL_ROM   /* 4x4 Catmull-Rom taps, clamped to the range of the inner
+                                 2x2; the bilinear result wherever a tap it needs fails a
+                                 test or lies outside the image. N as bilinear. Runs on the
+                                 per-pixel path (slower than the default's row gather). */
+} sbl_history_filter;
+
 /* Per-tap consistency tests. Zeros mean defaults; a test runs when both views have its
    buffer and its bit is not in disabled_tests. */
 typedef struct sbl_reproject_desc {
@@ -301,6 +317,7 @@ typedef struct sbl_reproject_desc {
     int   no_fallback;        /* 1 disables the 3x3 fallback search for thin geometry  */
     sbl_motion_convention motion;
     int   disabled_tests;     /* SBL_TEST_* bits to switch off; 0: every test on        */
+    sbl_history_filter history_filter; /* temporal history fetch; 0: bilinear         */
 } sbl_reproject_desc;
 
 typedef enum sbl_temporal_source {
@@ -1472,6 +1489,8 @@ typedef struct sbl__tap_src {
     int use_depth, use_normal, use_id;
     float depth_tolerance;
     float normal_threshold2;     /* threshold^2 (threshold >= 0 when used)      */
+    int cubic;                   /* 1: sbl__gather resamples with Catmull-Rom (temporal
+                                    history, SBL_HISTORY_CATMULL_ROM); 0: bilinear   */
 } sbl__tap_src;
 
 /* What the target pixel expects to find. */
@@ -1731,9 +1750,108 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     return acc_n > 0.0f ? acc_n : 0.0f;
 }
 
+/* Catmull-Rom weights of the four taps at offsets -1, 0, 1, 2 from the tap left of a
+   position t in [0, 1) (docs/ESTIMATORS.md section 5): the cubic through four samples
+   whose slopes at the inner two are the central differences. They sum to 1, give
+   (0, 1, 0, 0) at t = 0 and reproduce polynomials up to degree 2. */
+static void sbl__catmull_rom(double t, double *w)
+{
+    const double t2 = t * t, t3 = t2 * t;
+    w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
+    w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
+    w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
+    w[3] = 0.5 * (t3 - t2);
+}
+
+/* The history at (sx, sy) by Catmull-Rom: the bilinear gather first (its N is the one
+   returned, and its colour the answer wherever the cubic cannot be used); then, if every
+   tap the cubic needs (4 per axis, 1 on an axis whose fraction is 0) is inside the image
+   and passes every per-tap test, the 4x4 sum in double (rows first: the weights are
+   separable), clamped per channel to the range of the inner taps (the bilinear
+   footprint): the negative lobes cannot ring past the values they interpolate, so a
+   non-negative history stays non-negative, and the result is finite. */
+SBL__INLINE float sbl__gather_cubic_ch(const sbl__tap_src *s, const sbl__tap_want *t,
+                                       double sx, double sy, int fallback, float *out, int ch)
+{
+    double wx[4], wy[4], acc[4] = {0, 0, 0, 0}, bx, by, fx, fy;
+    float lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
+    int x0, y0, ix, iy, nx, ny, i, j, k;
+    const float n = sbl__gather_ch(s, t, sx, sy, fallback, out, ch);
+    if (!(n > 0.0f)) return n; /* nothing valid: the pixel resets */
+    bx = sx - 0.5;
+    by = sy - 0.5; /* finite and within the image's reach: the bilinear gather found taps */
+    x0 = SBL__CAST(int, floor(bx));
+    y0 = SBL__CAST(int, floor(by));
+    fx = bx - x0;
+    fy = by - y0;
+    /* an axis at an integer position needs its centre tap only (the weights are exactly
+       0, 1, 0, 0): the cubic is then exact there, as the bilinear is */
+    nx = fx > 0.0 ? 4 : 1;
+    ny = fy > 0.0 ? 4 : 1;
+    if (nx == 1 && ny == 1) return n;
+    ix = nx == 4 ? x0 - 1 : x0;
+    iy = ny == 4 ? y0 - 1 : y0;
+    if (ix < 0 || iy < 0 || ix + nx > s->width || iy + ny > s->height) return n;
+    if (nx == 4) sbl__catmull_rom(fx, wx); else wx[0] = 1.0;
+    if (ny == 4) sbl__catmull_rom(fy, wy); else wy[0] = 1.0;
+    for (j = 0; j < ny; ++j) {
+        double row[4] = {0, 0, 0, 0};
+        for (i = 0; i < nx; ++i) {
+            /* sbl__tap_ok_in's tests but the colour's finiteness, which is checked once
+               on the sums below (a NaN or inf tap makes them non-finite) */
+            const int x = ix + i, y = iy + j;
+            const float *c = SBL__AT(s->color, x, y);
+            if (s->use_depth && !sbl__depth_match(t->depth, *SBL__AT(s->depth, x, y),
+                                                  s->depth_tolerance, t->depth_slack))
+                return n;
+            if ((s->use_id || s->use_normal) && !sbl__tap_ok_id_normal(s, t, x, y)) return n;
+            if (s->length.p) {
+                const float l = *SBL__AT(s->length, x, y);
+                if (!(l > 0.0f) || !sbl__finite(l)) return n;
+            }
+            row[0] += wx[i] * SBL__CAST(double, c[0]);
+            if (ch > 1) row[1] += wx[i] * SBL__CAST(double, c[1]);
+            if (ch > 2) row[2] += wx[i] * SBL__CAST(double, c[2]);
+            if (ch > 3) row[3] += wx[i] * SBL__CAST(double, c[3]);
+        }
+        for (k = 0; k < ch; ++k) acc[k] += wy[j] * row[k];
+    }
+    /* finite taps cannot overflow these sums (sum |w| < 1.2 per axis, in double) */
+    for (k = 0; k < ch; ++k)
+        if (!(acc[k] - acc[k] == 0.0)) return n; /* a non-finite tap: bilinear */
+    /* the range of the inner taps (rows and columns 1, 2; the only one of an axis at an
+       integer position) */
+    x0 = nx == 4 ? ix + 1 : ix;
+    y0 = ny == 4 ? iy + 1 : iy;
+    for (k = 0; k < ch; ++k) lo[k] = hi[k] = SBL__AT(s->color, x0, y0)[k];
+    for (j = 0; j < (ny == 4 ? 2 : 1); ++j)
+        for (i = 0; i < (nx == 4 ? 2 : 1); ++i) {
+            const float *c = SBL__AT(s->color, x0 + i, y0 + j);
+            for (k = 0; k < ch; ++k) {
+                if (c[k] < lo[k]) lo[k] = c[k];
+                if (c[k] > hi[k]) hi[k] = c[k];
+            }
+        }
+    for (k = 0; k < ch; ++k) {
+        const double v = acc[k] < SBL__CAST(double, lo[k])   ? SBL__CAST(double, lo[k])
+                         : acc[k] > SBL__CAST(double, hi[k]) ? SBL__CAST(double, hi[k])
+                                                             : acc[k];
+        out[k] = SBL__CAST(float, v);
+    }
+    return n;
+}
+
 static float sbl__gather(const sbl__tap_src *s, const sbl__tap_want *t, double sx, double sy,
                          int fallback, float *out)
 {
+    if (s->cubic) {
+        switch (s->color.ch) {
+        case 1: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 1);
+        case 2: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 2);
+        case 3: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 3);
+        default: return sbl__gather_cubic_ch(s, t, sx, sy, fallback, out, 4);
+        }
+    }
     switch (s->color.ch) {
     case 1: return sbl__gather_ch(s, t, sx, sy, fallback, out, 1);
     case 2: return sbl__gather_ch(s, t, sx, sy, fallback, out, 2);
@@ -1846,6 +1964,7 @@ static void sbl__tap_src_init(sbl__tap_src *s, const sbl_image *color, const sbl
                     !(rp->normal_threshold < 0.0f) && !(rp->disabled_tests & SBL_TEST_NORMAL);
     s->depth_tolerance = rp->depth_tolerance;
     s->normal_threshold2 = rp->normal_threshold * rp->normal_threshold;
+    s->cubic = 0; /* the temporal call switches it on (sbl__temporal_rp_init) */
 }
 
 /* Motion vector convention -> factors that turn a vector into the backward
@@ -1881,6 +2000,9 @@ static sbl_result sbl__check_reproject_desc(const sbl_reproject_desc *d)
     if (SBL__CAST(int, d->motion.units) < 0 || SBL__CAST(int, d->motion.units) > SBL__CAST(int, SBL_MOTION_NDC))
         return SBL_ERROR_INVALID_PARAM;
     if (d->disabled_tests & ~SBL__CAST(int, SBL_TEST_ALL)) return SBL_ERROR_INVALID_PARAM;
+    if (SBL__CAST(int, d->history_filter) < 0 ||
+        SBL__CAST(int, d->history_filter) > SBL__CAST(int, SBL_HISTORY_CATMULL_ROM))
+        return SBL_ERROR_INVALID_PARAM;
     return SBL_OK;
 }
 
@@ -1950,6 +2072,7 @@ static sbl_result sbl__temporal_rp_init(sbl__temporal_rp *s, const sbl_reproject
         if ((r = sbl__check_optional(&hi->length, 1, w, h)) != SBL_OK) return r;
         if ((r = sbl__check_gbuffer(&hi->gbuffer, w, h)) != SBL_OK) return r;
         sbl__tap_src_init(&s->src, &hi->color, &hi->length, &hi->gbuffer, g, &s->rp);
+        s->src.cubic = s->rp.history_filter == SBL_HISTORY_CATMULL_ROM;
     }
     if (source == SBL_TEMPORAL_MOTION && !g->motion.data) return SBL_ERROR_MISSING_INPUT;
     if (source == SBL_TEMPORAL_CAMERA) {
@@ -2863,7 +2986,7 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
    SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 3)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 5)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -3405,15 +3528,16 @@ static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
            (!s->geo.depth.p || s->geo.depth.step == 1);
 }
 
-/* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 of an interior
-   row (all with both neighbours), when the target has depth and no normals or ids:
+/* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 (in [0, w)) of
+   an interior row (rows y - 1 and y + 1 exist), when the target has depth and no normals
+   or ids:
    valid geometry is z > 0 (NaN and -inf fail, +inf is sky); the slack is
    sbl__depth_slack's (sbl__slack_axis per axis, 0 for a non-finite z).
    No NaN may reach a min: -ffast-math (finite-math-only, no signed zeros) makes gcc's
    min intrinsics commutative, so a NaN operand's result depends on register allocation.
    Where every difference is finite (then so is z: the common case) the slack is the sum
    of the mins; else every lane takes sbl__slack_axis's rule written out on the bits. */
-SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int x, int y, sbl__v *z,
+SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int w, int x, int y, sbl__v *z,
                                    sbl__v *slack)
 {
     const sbl__v zero = sbl__set1(0.0f);
@@ -3423,6 +3547,15 @@ SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int x, int y, sbl__v 
     *z = sbl__load(dp);
     dax = sbl__abs(sbl__sub(*z, sbl__load(dp - 1)));
     dbx = sbl__abs(sbl__sub(sbl__load(dp + 1), *z));
+    if (x == 0 || x + SBL__VW == w) {
+        /* an edge column (its missing neighbour read from the previous or next row in
+           memory, a valid address on an interior row, then replaced before any test): the
+           one-sided difference is the other side's, as sbl__depth_slack takes it */
+        static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+        const sbl__v xl = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane));
+        dax = sbl__sel(sbl__le(xl, zero), dbx, dax);
+        dbx = sbl__sel(sbl__le(sbl__set1(SBL__CAST(float, w - 1)), xl), dax, dbx);
+    }
     day = sbl__abs(sbl__sub(*z, sbl__load(dp - ds)));
     dby = sbl__abs(sbl__sub(sbl__load(dp + ds), *z));
     /* >= 0 each: the sum is finite iff all four are (or it overflows: the exact path) */
@@ -3573,7 +3706,7 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
     sbl__v z = zero, slack = zero, mx, my;
     /* a sky tile: z = +inf, which is valid geometry with slack 0 (sbl__lanes_want) */
     sbl__m keep = sky ? sbl__gt(one, zero)
-                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                         : sbl__gt(one, zero));
     if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
     mx = sbl__gatheri(mvp, pair);
@@ -3846,7 +3979,7 @@ SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan
     double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
     sbl__v z, slack;
     int keep, l;
-    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack));
     sbl__store(zf, z);
     sbl__store(sf, slack);
     for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
@@ -3884,7 +4017,7 @@ static int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     const int x = b->x0 + i;
-    if (!b->mode || x < 1 || x + SBL__VW >= s->src.width) return -1;
+    if (!b->mode || x < 0 || x + SBL__VW > s->src.width) return -1;
     if (b->mode == 2) {
         sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
         return 0;
@@ -4405,12 +4538,13 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
 
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
    column - base; the last vector overlaps the one before (same values). The channels are
-   written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). */
-SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
-                                    int base)
+   written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). fast (a
+   constant, sbl__kernel_lanes_pooled's default configuration): no clamp box. */
+SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
+                                        int base, const int fast)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const int ch = k->ch, clamp = k->wp.rectify == SBL_RECTIFY_CLAMP;
+    const int ch = k->ch, clamp = !fast && k->wp.rectify == SBL_RECTIFY_CLAMP;
     int x = ca;
     for (;;) {
         const int i = x - base;
@@ -4428,6 +4562,12 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
     }
 }
 
+SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
+                                    int base)
+{
+    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0);
+}
+
 /* One side column moved from its own shift to the window's: D = its shift minus the
    window's, n its count; sum (e + D) = a + n D, sum (e + D)^2 = b + D (a + (a + n D)) */
 #define SBL__SIDE(A, B, D, N, OA, OB) \
@@ -4436,11 +4576,11 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
-/* Channel c of the moments of pixels [x, x + VW) (index i in the chunk), for
-   sbl__lanes_moments: nl / nr are the side columns' pair counts. */
-SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
-                                            int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
-                                            sbl__lane_stats *st)
+/* Channel c of Y's moments of pixels [x, x + VW) (index i in the chunk): mean and
+   population variance of the window, of the window without its centre, the centre. */
+SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x, int i,
+                                      int c, sbl__v *mean, sbl__v *var, sbl__v *m8, sbl__v *v8,
+                                      sbl__v *yc_out)
 {
     const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
     const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
@@ -4450,10 +4590,8 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
     const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
     const float *cp = k->col[c] + i;
-    const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
-    const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
-    sbl__v al, bl, ar, br, a8, b8, a9, b9, q, pl, ql, pr, qr, d, dd;
-    /* Y: side columns about s (their top sample is s + D, counted by n = 3) */
+    sbl__v al, bl, ar, br, a8, b8, a9, b9, q;
+    /* side columns about s (their top sample is s + D, counted by n = 3) */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
               three, al, bl);
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
@@ -4463,11 +4601,28 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     a9 = sbl__add(a8, a1);
     b9 = sbl__add(b8, sbl__mul(a1, a1));
     q = sbl__mul(a9, ninth);
-    st->mean[c] = sbl__add(s, q);
-    st->var[c] = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
+    *mean = sbl__add(s, q);
+    *var = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
     q = sbl__mul(a8, eighth);
-    st->m8[c] = sbl__add(s, q);
-    st->v8[c] = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    *m8 = sbl__add(s, q);
+    *v8 = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    *yc_out = yc;
+}
+
+/* Channel c of the moments of pixels [x, x + VW) (index i in the chunk), for
+   sbl__lanes_moments: nl / nr are the side columns' pair counts. */
+SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
+                                            int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
+                                            sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const float *cp = k->col[c] + i;
+    const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
+    const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
+    sbl__v pl, ql, pr, qr, d, dd;
+    sbl__lanes_y_channel(k, W, x, i, c, &st->mean[c], &st->var[c], &st->m8[c], &st->v8[c],
+                         &st->yc[c]);
+    st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
     /* pairs: side columns about the centre column's shift tc */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
               sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_T) - 1), tc), nl, pl, ql);
@@ -4486,8 +4641,6 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     } else {
         st->lo[c] = st->hi[c] = st->mean[c];
     }
-    st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
-    st->yc[c] = yc;
 }
 
 /* Moments of pixels [x, x + VW) from the column sums of the chunk starting at column
@@ -4538,13 +4691,16 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 
 /* the planes of k->pool_col: per channel c the column sums A (sum v (d - t)), B (sum of
    its square) and T (t); then N (pairs per column), and per block centre M2 and SE2
-   (sum_c mean_c^2, sum_c var_c / n; 0 for no block) */
+   (sum_c mean_c^2, sum_c var_c / n; 0 for no block), and PD2 / PV (sum_c mean_c^2 and
+   sum_c var_c whatever the count: the lane kernel's pair terms, sbl__kernel_lanes_pooled) */
 #define SBL__POOL_A(c) (3 * (c))
 #define SBL__POOL_B(c) (3 * (c) + 1)
 #define SBL__POOL_T(c) (3 * (c) + 2)
 #define SBL__POOL_N(ch) (3 * (ch))
 #define SBL__POOL_M2(ch) (3 * (ch) + 1)
 #define SBL__POOL_SE2(ch) (3 * (ch) + 2)
+#define SBL__POOL_PD2(ch) (3 * (ch) + 3)
+#define SBL__POOL_PV(ch) (3 * (ch) + 4)
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -4664,7 +4820,7 @@ static void sbl__pool_column_zero(const sbl__pool_planes *Q, int ch, int i)
 SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const float *pt,
                                          sbl__m has_c, sbl__m has_l, sbl__v nl, sbl__v nr,
                                          sbl__v inv_n, sbl__v inv_n1, int c, sbl__v *m2,
-                                         sbl__v *se2)
+                                         sbl__v *se2, sbl__v *pv)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
@@ -4682,17 +4838,20 @@ SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const
     if (c == 0) {
         *m2 = sbl__mul(mean, mean);
         *se2 = sbl__mul(var, inv_n);
+        *pv = var;
     } else {
         *m2 = sbl__add(*m2, sbl__mul(mean, mean));
         *se2 = sbl__add(*se2, sbl__mul(var, inv_n));
+        *pv = sbl__add(*pv, var);
     }
 }
 
 /* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
    sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs.
-   The channels written out (ch is a constant in each instance), in channel order. */
+   The channels written out (ch is a constant in each instance), in channel order.
+   pairs = 1 (the lane kernel's column sums): also PD2 and PV, whatever the count. */
 SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
-                                        int ba, int bb, int base)
+                                        int ba, int bb, int base, const int pairs)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
     const float *pn = Q->n;
@@ -4701,6 +4860,7 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     const float *const a0 = Q->a[0], *const b0 = Q->b[0], *const t0 = Q->t[0];
     const ptrdiff_t cstep = Q->cstep;
     float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
+    float *const ppd = SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)), *const ppv = SBL__POOL_PLANE(k, SBL__POOL_PV(ch));
     int x = ba;
     for (;;) {
         const int i = x - base;
@@ -4709,10 +4869,10 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
         const sbl__m has_c = sbl__gt(nc, zero), has_l = sbl__gt(nl, zero), valid = sbl__gt(n, min_pairs);
         const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
-        sbl__v m2 = zero, se2 = zero;
+        sbl__v m2 = zero, se2 = zero, pv = zero;
 #define SBL__POOL_BLOCK_CH(c) \
         sbl__pool_block_channel(a0 + (c) * cstep + i, b0 + (c) * cstep + i, t0 + (c) * cstep + i, \
-                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2)
+                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv)
         SBL__POOL_BLOCK_CH(0);
         if (ch > 1) SBL__POOL_BLOCK_CH(1);
         if (ch > 2) SBL__POOL_BLOCK_CH(2);
@@ -4720,6 +4880,10 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
 #undef SBL__POOL_BLOCK_CH
         sbl__store(pm + i, sbl__sel(valid, m2, zero));
         sbl__store(ps + i, sbl__sel(valid, se2, zero));
+        if (pairs) {
+            sbl__store(ppd + i, m2);
+            sbl__store(ppv + i, pv);
+        }
         if (x + SBL__VW >= bb) break;
         x += SBL__VW;
         if (x + SBL__VW > bb) x = bb - SBL__VW;
@@ -4819,7 +4983,7 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 0);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -4964,22 +5128,24 @@ SBL__INLINE sbl__v sbl__lanes_lean(const sbl__lane_stats *st, sbl__v a0, sbl__v 
    the group (the weight before the lean). */
 SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stats *st,
                                      sbl__v dev2, sbl__v s2, sbl__v pd2, sbl__v pvs,
-                                     sbl__v n_xc, sbl__v n_y, int c0, int c1)
+                                     sbl__v n_xc, sbl__v n_y, int c0, int c1, const int fast)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
+    const int est = fast ? SBL_ESTIMATOR_POOLED : SBL__CAST(int, p->estimator);
+    const int temporal = fast ? fast == 1 : p->temporal; /* fast: 1 temporal, 2 stereo */
     sbl__v w, w2;
     int c;
-    if (p->estimator == SBL_ESTIMATOR_PAPER) {
+    if (est == SBL_ESTIMATOR_PAPER) {
         sbl__v den = sbl__add(dev2, s2);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(dev2, sbl__max(den, tiny)), prog);
-    } else if (p->estimator == SBL_ESTIMATOR_PROGRESSIVE) {
+    } else if (est == SBL_ESTIMATOR_PROGRESSIVE) {
         w = prog;
-    } else if (p->estimator == SBL_ESTIMATOR_CONSTANT) {
+    } else if (est == SBL_ESTIMATOR_CONSTANT) {
         w = sbl__set1(p->constant);
-    } else if (p->estimator == SBL_ESTIMATOR_ROBUST || p->estimator == SBL_ESTIMATOR_POOLED) {
+    } else if (est == SBL_ESTIMATOR_ROBUST || est == SBL_ESTIMATOR_POOLED) {
         /* as sbl__weight: the bias enters with its posterior (sbl__change_posterior) */
-        const float kb = p->estimator == SBL_ESTIMATOR_POOLED
+        const float kb = est == SBL_ESTIMATOR_POOLED
                              ? SBL__CAST(float, SBL__CAST(double, p->bias_threshold) * SBL_POOLED_LOCAL_SCALE)
                              : p->bias_threshold;
         const sbl__v k2e = sbl__set1(SBL__CAST(float, 1.0 + SBL__CAST(double, kb) * SBL__CAST(double, kb) * 0.125));
@@ -4994,11 +5160,11 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         sbl__v t2 = sbl__div(pd2, sbl__max(se2, tiny));
         sbl__v rho = sbl__div(k2e, sbl__add(one, sbl__mul(t2, sbl__set1(0.125f))));
         sbl__v r2 = sbl__mul(rho, rho);
-        sbl__v odds = p->temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
+        sbl__v odds = temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
         sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
         sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
         sbl__v num, den;
-        if (p->estimator == SBL_ESTIMATOR_POOLED) {
+        if (est == SBL_ESTIMATOR_POOLED) {
             /* empirical Bayes, as sbl__weight: sh^2 pd2 + sh se2, sh = r / (1 + r) */
             sbl__v sh = sbl__div(st->pool_r, sbl__add(one, st->pool_r));
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
@@ -5007,7 +5173,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
-        if (p->estimator == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !p->temporal)) {
+        if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
             for (c = c0; c < c1; ++c) st->a2[c] = w2;
             w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
@@ -5042,6 +5208,7 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap);
+    const int fill = k->fill;
     sbl__v a_mean = zero, a2_mean = zero, n_out, one_m, den;
     int c;
     for (c = 0; c < k->ch; ++c) {
@@ -5050,22 +5217,22 @@ SBL__INLINE void sbl__lanes_blend(sbl__kernel *k, int x, const sbl__lane_stats *
                             sbl__add(st->yb[c], sbl__mul(sbl__sub(one, a[c]),
                                                          sbl__sub(st->xs[c], st->yb[c]))),
                             sbl__add(st->xs[c], sbl__mul(a[c], sbl__sub(st->yb[c], st->xs[c]))));
-        if (k->fill) o = st->xr[c]; /* fill takes x* unrectified, as the reference path */
+        if (fill) o = st->xr[c]; /* fill takes x* unrectified, as the reference path */
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, st->yc[c]));
         a_mean = sbl__add(a_mean, a[c]);
     }
     a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, k->ch)));
-    if (k->fill) a_mean = zero;
+    if (fill) a_mean = zero;
     /* Eq. 5: N = N_X N_Y / ((1-a)^2 N_Y + a^2 N_X), with the weight of the two-estimate
        blend (before the pooled estimator's lean, as sbl__blend_pixel) */
     for (c = 0; c < k->ch; ++c) a2_mean = c ? sbl__add(a2_mean, st->a2[c]) : st->a2[c];
     a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, k->ch)));
-    if (k->fill) a2_mean = zero;
+    if (fill) a2_mean = zero;
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
     n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
                      sbl__add(n_xc, n_y));
-    if (k->fill) n_out = n_xc;
+    if (fill) n_out = n_xc;
     n_out = sbl__min(n_out, cap);
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
@@ -5108,7 +5275,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
         for (c = 0; c < ch; ++c) {
             sbl__v sums[4] = {zero, zero, zero, zero};
             sbl__lanes_group_add(&st, c, sums);
-            a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, c, c + 1);
+            a[c] = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, c, c + 1, 0);
         }
     } else {
         /* one weight from the squares summed over the channels (written out) */
@@ -5117,11 +5284,106 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
         if (ch > 1) sbl__lanes_group_add(&st, 1, sums);
         if (ch > 2) sbl__lanes_group_add(&st, 2, sums);
         if (ch > 3) sbl__lanes_group_add(&st, 3, sums);
-        w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, 0, ch);
+        w = sbl__lanes_weight(&k->wp, &st, sums[0], sums[1], sums[2], sums[3], n_xc, n_y, 0, ch, 0);
         for (c = 0; c < ch; ++c) a[c] = w;
     }
     sbl__lanes_blend(k, x, &st, a, valid, n_xc, n_y);
 }
+
+/* sbl__lanes_vector in the default configuration (fast: 1 temporal, 2 stereo) with the
+   channels written out, so that the per-channel values stay in registers (loops over
+   the channels keep the lane statistics in memory): the same operations in the same
+   order as sbl__lanes_moments, sbl__lanes_firefly, sbl__lanes_weight and
+   sbl__lanes_blend (bit for bit). The pair terms: the pooled prepass's blocks. */
+#define SBL__LANES_CH(M) do { M(0); if (ch > 1) M(1); if (ch > 2) M(2); if (ch > 3) M(3); } while (0)
+SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                        const float *nyrow, int x, int base, int y, const int ch,
+                                        const int fast)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
+    const int i = x - base;
+    sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
+    sbl__v yc[4], xs[4], yb[4], m8[4], v8[4], var[4], mean;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
+    sbl__m valid, hi_w, low_t;
+    n_x = sbl__load(n_row + x);
+    valid = sbl__gt(n_x, zero);
+    n_y = nyrow ? sbl__load(nyrow + x) : one;
+    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+    /* pair counts (sbl__lanes_moments) */
+    nl = sbl__load(k->col_n + i - 1);
+    nr = sbl__load(k->col_n + i + 1);
+    cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    st.has_pairs = sbl__gt(cnt, zero);
+    st.two_pairs = sbl__gt(cnt, one);
+    st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
+    /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
+#define SBL__FAST_Y(c) \
+    do { \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c]); \
+        xs[c] = sbl__load(W->x[1][c] + x); \
+        sum_y = sbl__add(sum_y, yc[c]); \
+        sum_m8 = sbl__add(sum_m8, m8[c]); \
+        sum_x = sbl__add(sum_x, xs[c]); \
+        sum_v8 = sbl__add(sum_v8, v8[c]); \
+    } while (0)
+    SBL__LANES_CH(SBL__FAST_Y);
+#undef SBL__FAST_Y
+    bound = sbl__add(sbl__max(sum_m8, sum_x),
+                     sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
+    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
+    bound = sbl__max(bound, zero);
+    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    low_t = sbl__gt(one, t);
+#define SBL__FAST_YB(c) \
+    do { \
+        yb[c] = sbl__sel(low_t, sbl__mul(yc[c], t), yc[c]); \
+        if (fast == 2) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
+    } while (0)
+    SBL__LANES_CH(SBL__FAST_YB);
+#undef SBL__FAST_YB
+    /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
+       pooled ratio of this row (sbl__kernel_lanes_pooled computed it: sbl__lanes_pool) */
+    st.pool_r = sbl__load(k->pool_r + x);
+    (void)y;
+    s2 = var[0];
+    if (ch > 1) s2 = sbl__add(s2, var[1]);
+    if (ch > 2) s2 = sbl__add(s2, var[2]);
+    if (ch > 3) s2 = sbl__add(s2, var[3]);
+    w = sbl__lanes_weight(&k->wp, &st, zero, s2, sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)) + i),
+                          sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PV(ch)) + i), n_xc, n_y, 0, ch, fast);
+    w2 = st.a2[0]; /* every channel's */
+    /* the blend (sbl__lanes_blend with one weight, no fill) */
+    hi_w = sbl__gt(w, half);
+    one_w = sbl__sub(one, w);
+    a_mean = zero;
+#define SBL__FAST_BLEND(c) \
+    do { \
+        const sbl__v o = sbl__sel(hi_w, sbl__add(yb[c], sbl__mul(one_w, sbl__sub(xs[c], yb[c]))), \
+                                  sbl__add(xs[c], sbl__mul(w, sbl__sub(yb[c], xs[c])))); \
+        sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c])); \
+        a_mean = sbl__add(a_mean, w); \
+    } while (0)
+    SBL__LANES_CH(SBL__FAST_BLEND);
+#undef SBL__FAST_BLEND
+    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    a2_mean = w2;
+    if (ch > 1) a2_mean = sbl__add(a2_mean, w2);
+    if (ch > 2) a2_mean = sbl__add(a2_mean, w2);
+    if (ch > 3) a2_mean = sbl__add(a2_mean, w2);
+    a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    one_m = sbl__sub(one, a2_mean);
+    den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
+    n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
+                     sbl__add(n_xc, n_y));
+    n_out = sbl__min(n_out, cap);
+    sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
+    sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
+}
+#undef SBL__LANES_CH
 
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
@@ -5234,10 +5496,15 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
    the reference path. */
 SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                              int pa, int pb, int xa, int xb,
-                                             const unsigned char *win, const int ch)
+                                             const unsigned char *win, const int ch, const int fast)
 {
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
+#define SBL__POOLED_VECTOR(px) \
+    do { \
+        if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast); \
+        else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
+    } while (0)
     const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
@@ -5254,10 +5521,12 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
         base = x - reach;
-        sbl__lanes_columns(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w, base);
+        sbl__lanes_columns_cfg(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w,
+                               base, fast);
         if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
         if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base);
+        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base,
+                               fast);
         for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
         for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
         sbl__pool_lanes_ratio(k, ch, x, e, base);
@@ -5279,29 +5548,50 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             }
             if (b - lo >= SBL__VW) {
                 for (p = lo; p + SBL__VW <= b; p += SBL__VW)
-                    sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
-                if (p < b) sbl__lanes_vector(k, &W, n_row, nyrow, b - SBL__VW, base, y, ch);
+                    SBL__POOLED_VECTOR(p);
+                if (p < b) SBL__POOLED_VECTOR(b - SBL__VW);
             } else {
                 p = b - SBL__VW;
                 if (p < x - span) p = x - span;
                 if (p < 1) p = 1;
-                sbl__lanes_vector(k, &W, n_row, nyrow, p, base, y, ch);
+                SBL__POOLED_VECTOR(p);
             }
             lo = b;
         }
         x = e;
     }
+#undef SBL__POOLED_VECTOR
 }
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
                                      int pb, int xa, int xb, const unsigned char *win)
 {
+    /* the default configuration in its own instances (sbl__lanes_vector_fast) */
+    const int fast = k->wp.rectify == SBL_RECTIFY_NONE && k->wp.mode == SBL_WEIGHT_SCALAR && !k->fill;
     k->pool_row = R[1]->row;
+    if (fast && k->wp.temporal) {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 1); break;
+        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 1); break;
+        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 1); break;
+        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 1); break;
+        }
+        return;
+    }
+    if (fast) {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 2); break;
+        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 2); break;
+        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 2); break;
+        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 2); break;
+        }
+        return;
+    }
     switch (k->ch) {
-    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1); break;
-    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2); break;
-    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3); break;
-    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4); break;
+    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 0); break;
+    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 0); break;
+    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 0); break;
+    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 0); break;
     }
 }
 
@@ -5481,7 +5771,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.gather = sbl__temporal_rp_pixel;
     k.gather_ctx = &s;
 #ifdef SBL__ROW_GATHER
-    if (s.history && sbl__row_gather_ok(&s.src)) k.gather_row = sbl__temporal_rp_row;
+    /* the Catmull-Rom fetch exists only in the per-pixel gather (sbl__gather_cubic) */
+    if (s.history && sbl__row_gather_ok(&s.src) && !s.src.cubic)
+        k.gather_row = sbl__temporal_rp_row;
 #endif
     k.out = out->color;
     k.out_n = out->length;
@@ -5769,7 +6061,7 @@ SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p,
     sbl__v z, slack;
     int keep, l;
     /* sbl__tap_want_init and sbl__valid_depth agree: z > 0, or +inf */
-    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, x, y, &z, &slack));
+    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack));
     sbl__store(zf, z);
     sbl__store(sf, slack);
     for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
@@ -5866,7 +6158,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
     const int x = b->x0 + i, y = b->y;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     int l, bits;
-    if (!b->mode || x < 1 || x + SBL__VW >= s->source->color.width) return -1;
+    if (!b->mode || x < 0 || x + SBL__VW > s->source->color.width) return -1;
     if (b->mode == 2) {
         sbl__stereo_cam_plan(s, &b->p, i, x, y, b->psx + i, b->psy + i);
         for (l = 0; l < SBL__VW; ++l) b->snapped[i + l] = 0;
@@ -5879,7 +6171,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         float dxs[SBL__VW], dys[SBL__VW];
         int idx[SBL__VW];
         sbl__v z = zero, slack = zero, mx, my;
-        sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, x, y, &z, &slack)
+        sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                      : sbl__gt(one, zero);
         for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, dm->step);
         mx = sbl__gatheri(dp, idx);
@@ -5900,7 +6192,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
         float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
         sbl__v z, slack, m;
-        sbl__m keep = sbl__lanes_want(&s->geo.depth, x, y, &z, &slack);
+        sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
         int far;
         m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
         keep = sbl__mandnot(keep, sbl__nonfinite(m));
@@ -6440,6 +6732,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         SBL__TRY_RP(back_check_pixels)
         SBL__TRY_RP(motion.units)
         SBL__TRY_RP(disabled_tests)
+        SBL__TRY_RP(history_filter)
 #undef SBL__TRY_RP
         if (SBL__CAST(int, u.source) < 0 ||
             SBL__CAST(int, u.source) > SBL__CAST(int, SBL_TEMPORAL_CAMERA))
@@ -6693,6 +6986,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
         SBL__TRY_RP(normal_threshold)
         SBL__TRY_RP(back_check_pixels)
         SBL__TRY_RP(disabled_tests)
+        SBL__TRY_RP(history_filter)
 #undef SBL__TRY_RP
     }
     if (out) {

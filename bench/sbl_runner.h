@@ -357,6 +357,18 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n++] = sbr_method_default("default-stereo", SBR_STEREO_ADAPTIVE);
     all[n++] = sbr_method_oracle("oracle+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,
                                  SBR_ORACLE_TEMPORAL | SBR_ORACLE_STEREO);
+    /* the same with the Catmull-Rom history fetch (sbl_reproject_desc.history_filter),
+       measured against the bilinear oracles above; oracle-cr: the temporal oracle's own
+       blend on the Catmull-Rom x* (how much the sharper fetch raises the ceiling) */
+    all[n] = sbr_method_default("default-cr", SBR_STEREO_NONE);
+    all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
+    all[n] = sbr_method_default("default-stereo-cr", SBR_STEREO_ADAPTIVE);
+    all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
+    all[n] = sbr_method_oracle("oracle-cr", 1, SBR_STEREO_NONE, SBR_ORACLE_TEMPORAL);
+    all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
+    all[n] = sbr_method_oracle("oracle-cr+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,
+                               SBR_ORACLE_TEMPORAL | SBR_ORACLE_STEREO);
+    all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
     for (i = 0; i < n && i < max; ++i) m[i] = all[i];
     return i < n ? i : n;
 }

@@ -11,7 +11,9 @@
    Colours are clamped to [0, 1] and sRGB-encoded.
    No --method: the library's default temporal filter (every descriptor field zero);
    --method default-stereo: the default combined pipeline (temporal per eye, then the
-   default stereo blend for display). These two names stay stable.
+   default stereo blend for display). These two names stay stable. default-cr and
+   default-stereo-cr: the same with the Catmull-Rom history fetch
+   (sbl_reproject_desc.history_filter).
 */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
