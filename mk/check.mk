@@ -244,7 +244,9 @@ CHECK_FIRST = $(BUILD)/O3native/stereoblend.o $(BUILD)/fastmath/stereoblend.o \
               $(foreach c,$(STRICT_FIRST),$(if $(filter $(firstword $(subst -, ,$(c))),$(STRICT_COMPILERS_CHECK)),$(BUILD)/strict/$(c).log)) \
               $(if $(HAVE_CLANG),$(BUILD)/clang-fastmath/stereoblend.o) $(if $(HAVE_OBJCOPY),,$(BUILD)/simd_scalar_tu.o)
 STRICT_COMPILERS_CHECK = $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang) $(if $(HAVE_GXX),gxx)
-check-results: $(CHECK_FIRST) $(CHECK_RESULTS)
+# then the longest runs (under the sanitizers and valgrind), so that the last jobs are short
+CHECK_LONG_RUNS = $(filter $(BUILD)/res/valgrind/%,$(CHECK_RESULTS)) $(filter $(BUILD)/res/asan/%,$(CHECK_RESULTS))
+check-results: $(CHECK_FIRST) $(CHECK_LONG_RUNS) $(CHECK_RESULTS)
 
 # the robustness subset alone (the configurations that exist for it)
 ROBUST_RESULTS = $(filter $(BUILD)/res/O0/% $(BUILD)/res/O3native/% $(BUILD)/res/fastmath/% \
