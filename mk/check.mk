@@ -16,9 +16,10 @@
 #   clang           the same with clang
 #   cxx             the same as C++ (g++, else clang++), but test_paths and test_tiles
 #   scalar          -DSBL_NO_SIMD (the reference path; no test_tiles: no row gather)
-#   avx2, avx512    each SIMD path the CPU can run; + test_simd (against the scalar path);
-#                   test_robust on the widest path is O3native's (-march=native)
-#   O0, O3native    test_robust at -O0 and at -O3 -march=native
+#   avx2, avx512    each SIMD path the CPU can run; + test_simd (against the scalar path)
+#   O0              test_robust at -O0 (-O3 is clang-fastmath's; a gcc -O3 -march=native
+#                   configuration cost 25 CPU-s of check for IEEE code that -O2 runs on
+#                   the same paths: `make check-robust CHECK_O3=1` adds it back)
 #   fastmath        test_robust, test_paths with gcc -ffast-math (FTZ/DAZ set by crtfastmath.o)
 #   clang-fastmath  test_robust with clang -O3 -march=native -ffast-math
 #   asan            every test under -fsanitize=address,undefined at -O0 (clang, else gcc;
@@ -68,7 +69,7 @@ SAN_CC = $(eval SAN_CC := $(shell $(SAN_PROBE)))$(SAN_CC)
 
 # ---- the configurations ------------------------------------------------------------
 CHECK_CONFIGS := gcc $(if $(HAVE_CLANG),clang) $(if $(CXX_TEST),cxx) scalar \
-                 $(filter-out scalar,$(SIMD_VARIANTS)) O0 O3native fastmath \
+                 $(filter-out scalar,$(SIMD_VARIANTS)) O0 $(if $(CHECK_O3),O3native) fastmath \
                  $(if $(HAVE_CLANG),clang-fastmath) asan
 
 CFG_CC_gcc = $(CC_GCC)
@@ -93,7 +94,7 @@ CFG_TESTS_avx2 = $(HEADER_TESTS) test_simd
 
 CFG_CC_avx512 = $(CC_GCC)
 CFG_FLAGS_avx512 = $(CFLAGS_STRICT) $(OPT) $(FLAGS_avx512)
-CFG_TESTS_avx512 = $(filter-out test_robust,$(HEADER_TESTS)) test_simd  # robust: O3native
+CFG_TESTS_avx512 = $(HEADER_TESTS) test_simd
 
 CFG_CC_O0 = $(CC_GCC)
 CFG_FLAGS_O0 = $(CFLAGS_STRICT) -O0 -g
@@ -239,8 +240,8 @@ check:
 # the longest compiles first, in the order of their measured CPU time (gcc 12, clang 14):
 # with -j2 make starts prerequisites in order, and a long compile started last would
 # leave the other core idle at the end
-STRICT_FIRST = gcc-avx512 gxx-default gcc-avx2 gcc-default gcc-scalar clang-avx512 clang-default
-CHECK_FIRST = $(BUILD)/O3native/stereoblend.o $(BUILD)/fastmath/stereoblend.o \
+STRICT_FIRST = gcc-avx512 gxx-default gcc-avx2 gcc-default gcc-scalar clang-default
+CHECK_FIRST = $(if $(CHECK_O3),$(BUILD)/O3native/stereoblend.o) $(BUILD)/fastmath/stereoblend.o \
               $(foreach c,$(STRICT_FIRST),$(if $(filter $(firstword $(subst -, ,$(c))),$(STRICT_COMPILERS_CHECK)),$(BUILD)/strict/$(c).log)) \
               $(if $(HAVE_CLANG),$(BUILD)/clang-fastmath/stereoblend.o) $(if $(HAVE_OBJCOPY),,$(BUILD)/simd_scalar_tu.o)
 STRICT_COMPILERS_CHECK = $(if $(HAVE_GCC),gcc) $(if $(HAVE_CLANG),clang) $(if $(HAVE_GXX),gxx)
@@ -251,6 +252,7 @@ check-results: $(CHECK_FIRST) $(CHECK_LONG_RUNS) $(CHECK_RESULTS)
 # the robustness subset alone (the configurations that exist for it)
 ROBUST_RESULTS = $(filter $(BUILD)/res/O0/% $(BUILD)/res/O3native/% $(BUILD)/res/fastmath/% \
                    $(BUILD)/res/clang-fastmath/% $(BUILD)/res/scalar/test_robust.res \
+                   $(BUILD)/res/avx2/test_robust.res $(BUILD)/res/avx512/test_robust.res \
                    $(BUILD)/res/asan/% $(BUILD)/res/valgrind/%,$(CHECK_RESULTS))
 check-robust:
 	@rm -rf $(BUILD)/res
