@@ -193,6 +193,17 @@ static float param(rd *r)
 
 static int enum_val(rd *r, int count) { return (int)(u8(r) % (unsigned)(count + 2)) - 1; }
 
+/* The history fetch, from the input's last byte without consuming it (so that every
+   other byte keeps its meaning for the corpus): mostly bilinear, sometimes Catmull-Rom,
+   sometimes a value out of range (-1 or 2). */
+static sbl_history_filter history_filter_of(const rd *r)
+{
+    unsigned v = r->n ? (unsigned)r->p[r->n - 1] : 0u;
+    if (v % 8u < 5u) return SBL_HISTORY_BILINEAR;
+    if (v % 8u < 7u) return SBL_HISTORY_CATMULL_ROM;
+    return (sbl_history_filter)((v & 8u) ? 2 : -1);
+}
+
 /* Estimator, rectification, weight mode: out of range sometimes, mostly valid (same
    byte order as before, so the corpus keeps its meaning). */
 static void weight_enums(rd *r, sbl_estimator *e, sbl_rectify *rc, sbl_weight_mode *m)
@@ -388,6 +399,7 @@ static sbl_result fuzz_temporal(rd *r, ctx *cx, int w, int h, int c, int op)
     d.reproject.motion.forward = (int)(u8(r) & 1u);
     d.reproject.motion.y_up = (int)(u8(r) & 1u);
     d.reproject.disabled_tests = (int)(u8(r) % 40u); /* 32..39: an unknown bit */
+    d.reproject.history_filter = history_filter_of(r);
     f.color = make_image(r, cx, R_COLOR, w, h, c, 0, 0);
     f.gbuffer = make_gbuffer(r, cx, w, h, 1);
     f.camera = make_camera(r, &cc, w, h);
