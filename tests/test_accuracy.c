@@ -444,6 +444,21 @@ static void test_stereo_edge_and_flat(void)
 
 /* ---- history resampling: Catmull-Rom against bilinear --------------------------- */
 
+/* The frame (colour, depth, motion) and the history (colour, N, depth) of a motion-vector
+   reprojection, every buffer tight, w x h. */
+static void motion_inputs(sbl_frame *f, sbl_history *hi, int w, int h, int ch, const float *cur,
+                          const float *depth, const float *mv, const float *hist,
+                          const float *len, const float *hdepth)
+{
+    memset(f, 0, sizeof *f); memset(hi, 0, sizeof *hi);
+    f->color = sbl_image_make(cur, w, h, ch);
+    f->gbuffer.depth = sbl_image_make(depth, w, h, 1);
+    f->gbuffer.motion = sbl_image_make(mv, w, h, 2);
+    hi->color = sbl_image_make(hist, w, h, ch);
+    hi->length = sbl_image_make(len, w, h, 1);
+    hi->gbuffer.depth = sbl_image_make(hdepth, w, h, 1);
+}
+
 /* x* and its N from sbl_reproject_temporal: history `hist` (ch channels, depth hdepth,
    N = 5 everywhere) seen through a constant backward motion (mvx, mvy) in pixels, the
    frame's depth 1 everywhere. */
@@ -460,14 +475,9 @@ static void rp_run(int w, int h, int ch, const float *hist, const float *hdepth,
         len[i] = 5.0f; depth[i] = 1.0f;
         mv[2 * i] = (float)mvx; mv[2 * i + 1] = (float)mvy;
     }
-    memset(&d, 0, sizeof d); memset(&f, 0, sizeof f); memset(&hi, 0, sizeof hi);
+    memset(&d, 0, sizeof d);
     d.history_filter = filter;
-    f.color = sbl_image_make(cur, w, h, ch);
-    f.gbuffer.depth = sbl_image_make(depth, w, h, 1);
-    f.gbuffer.motion = sbl_image_make(mv, w, h, 2);
-    hi.color = sbl_image_make(hist, w, h, ch);
-    hi.length = sbl_image_make(len, w, h, 1);
-    hi.gbuffer.depth = sbl_image_make(hdepth, w, h, 1);
+    motion_inputs(&f, &hi, w, h, ch, cur, depth, mv, hist, len, hdepth);
     CHECK_EQ(sbl_reproject_temporal(&d, SBL_TEMPORAL_MOTION, &f, &hi, sbl_image_make(out, w, h, ch),
                                     sbl_image_make(out_n, w, h, 1), 0, h), SBL_OK);
     free(len); free(mv); free(depth); free(cur);
@@ -686,14 +696,9 @@ static void test_history_filter_bands(void)
         mv[2 * i] = -0.37f - 0.01f * (float)(y % 3);
         mv[2 * i + 1] = 0.23f;
     }
-    memset(&d, 0, sizeof d); memset(&f, 0, sizeof f); memset(&hi, 0, sizeof hi);
+    memset(&d, 0, sizeof d);
     d.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
-    f.color = sbl_image_make(cur, W, H, C);
-    f.gbuffer.depth = sbl_image_make(depth, W, H, 1);
-    f.gbuffer.motion = sbl_image_make(mv, W, H, 2);
-    hi.color = sbl_image_make(hist, W, H, C);
-    hi.length = sbl_image_make(len, W, H, 1);
-    hi.gbuffer.depth = sbl_image_make(hdepth, W, H, 1);
+    motion_inputs(&f, &hi, W, H, C, cur, depth, mv, hist, len, hdepth);
     memset(&o, 0, sizeof o);
     o.color = sbl_image_make(whole, W, H, C);
     o.length = sbl_image_make(whole_n, W, H, 1);
