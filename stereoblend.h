@@ -2986,7 +2986,7 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
    SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 5)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 7)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -4701,6 +4701,8 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_SE2(ch) (3 * (ch) + 2)
 #define SBL__POOL_PD2(ch) (3 * (ch) + 3)
 #define SBL__POOL_PV(ch) (3 * (ch) + 4)
+#define SBL__POOL_FT(ch) (3 * (ch) + 5) /* staged lanes: the firefly factor t (sbl__lanes_stage_y) */
+#define SBL__POOL_S2(ch) (3 * (ch) + 6) /* staged lanes: Y's variance summed over the channels */
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -5383,6 +5385,98 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
 }
+/* The temporal default configuration (sbl__lanes_vector_fast with fast = 1) in two
+   stages over the vectors of a run, so that each stage's values fit the registers (one
+   pass holding Y's moments, the firefly sums, the weight and the blend spills them):
+   sbl__lanes_stage_y, Y's moments and the firefly limit's factor t, the summed variance
+   s2 into two planes of the chunk (index column - base); then sbl__lanes_stage_blend, the
+   weight and the blend. The same operations in the same order as
+   sbl__lanes_vector_fast (bit for bit). */
+SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int x, int base,
+                                    const int ch)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const int i = x - base;
+    sbl__v mean, var, m8, v8, yc, s2 = zero, bound, t;
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
+#define SBL__STAGE_Y(c) \
+    do { \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc); \
+        sum_y = sbl__add(sum_y, yc); \
+        sum_m8 = sbl__add(sum_m8, m8); \
+        sum_x = sbl__add(sum_x, sbl__load(W->x[1][c] + x)); \
+        sum_v8 = sbl__add(sum_v8, v8); \
+        s2 = (c) ? sbl__add(s2, var) : var; \
+    } while (0)
+    SBL__LANES_CH(SBL__STAGE_Y);
+#undef SBL__STAGE_Y
+    (void)mean;
+    bound = sbl__add(sbl__max(sum_m8, sum_x),
+                     sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
+    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
+    bound = sbl__max(bound, zero);
+    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    sbl__store(SBL__POOL_PLANE(k, SBL__POOL_FT(ch)) + i, t);
+    sbl__store(SBL__POOL_PLANE(k, SBL__POOL_S2(ch)) + i, s2);
+}
+
+SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
+                                        const float *n_row, const float *nyrow, int x, int base,
+                                        const int ch)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
+    const int i = x - base;
+    sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, t, a_mean, a2_mean, one_m, den, n_out;
+    sbl__m valid, hi_w, low_t;
+    n_x = sbl__load(n_row + x);
+    valid = sbl__gt(n_x, zero);
+    n_y = nyrow ? sbl__load(nyrow + x) : one;
+    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+    nl = sbl__load(k->col_n + i - 1);
+    nr = sbl__load(k->col_n + i + 1);
+    cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    st.has_pairs = sbl__gt(cnt, zero);
+    st.two_pairs = sbl__gt(cnt, one);
+    st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
+    st.pool_r = sbl__load(k->pool_r + x);
+    w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(SBL__POOL_PLANE(k, SBL__POOL_S2(ch)) + i),
+                          sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)) + i),
+                          sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PV(ch)) + i), n_xc, n_y, 0, ch, 1);
+    w2 = st.a2[0]; /* every channel's */
+    /* Eq. 5 first (its values then leave the registers), then the blend */
+    a2_mean = w2;
+    if (ch > 1) a2_mean = sbl__add(a2_mean, w2);
+    if (ch > 2) a2_mean = sbl__add(a2_mean, w2);
+    if (ch > 3) a2_mean = sbl__add(a2_mean, w2);
+    a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    one_m = sbl__sub(one, a2_mean);
+    den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
+    n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
+                     sbl__add(n_xc, n_y));
+    n_out = sbl__min(n_out, cap);
+    sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
+    t = sbl__load(SBL__POOL_PLANE(k, SBL__POOL_FT(ch)) + i);
+    low_t = sbl__gt(one, t);
+    hi_w = sbl__gt(w, half);
+    one_w = sbl__sub(one, w);
+    a_mean = zero;
+#define SBL__STAGE_BLEND(c) \
+    do { \
+        const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
+        const sbl__v yb = sbl__sel(low_t, sbl__mul(yc, t), yc); \
+        const sbl__v o = sbl__sel(hi_w, sbl__add(yb, sbl__mul(one_w, sbl__sub(xs, yb))), \
+                                  sbl__add(xs, sbl__mul(w, sbl__sub(yb, xs)))); \
+        sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc)); \
+        a_mean = sbl__add(a_mean, w); \
+    } while (0)
+    SBL__LANES_CH(SBL__STAGE_BLEND);
+#undef SBL__STAGE_BLEND
+    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
+}
 #undef SBL__LANES_CH
 
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
@@ -5505,6 +5599,20 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast); \
         else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
     } while (0)
+    /* the vectors of the run [lo, b): whole vectors, the last one ending at b; a run
+       narrower than a vector: one vector ending at b, inside the chunk's columns */
+#define SBL__RUN_VECTORS(stage) \
+    do { \
+        if (b - lo >= SBL__VW) { \
+            for (p = lo; p + SBL__VW <= b; p += SBL__VW) stage; \
+            if (p < b) { p = b - SBL__VW; stage; } \
+        } else { \
+            p = b - SBL__VW; \
+            if (p < x - span) p = x - span; \
+            if (p < 1) p = 1; \
+            stage; \
+        } \
+    } while (0)
     const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
@@ -5546,21 +5654,19 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
                 if (lo >= hi) break;
                 b = sbl__find_set(win, lo + 1, hi);
             }
-            if (b - lo >= SBL__VW) {
-                for (p = lo; p + SBL__VW <= b; p += SBL__VW)
-                    SBL__POOLED_VECTOR(p);
-                if (p < b) SBL__POOLED_VECTOR(b - SBL__VW);
+            if (fast == 1) {
+                /* two stages over the run's vectors (sbl__lanes_stage_y) */
+                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch));
+                SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch));
             } else {
-                p = b - SBL__VW;
-                if (p < x - span) p = x - span;
-                if (p < 1) p = 1;
-                SBL__POOLED_VECTOR(p);
+                SBL__RUN_VECTORS(SBL__POOLED_VECTOR(p));
             }
             lo = b;
         }
         x = e;
     }
 #undef SBL__POOLED_VECTOR
+#undef SBL__RUN_VECTORS
 }
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
