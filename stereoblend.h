@@ -3035,7 +3035,8 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->pool_se2 = SBL__PCAST(double *, p); p += 2 * pf;
     k->pool_r = p; p += pf;
     k->pool_row = -1;
-    /* consecutive blocks, one per channel (sbl__pool_planes_of counts on it) */
+    /* one block: the channels' column sums (consecutive), col_n, pool_col: the lanes read
+       them at constant distances from col[0] (sbl__pool_planes_of, sbl__pool_lanes_blocks) */
     for (c = 0; c < k->ch; ++c) { k->col[c] = p; p += SBL__COL_PLANES * SBL__CHUNK_COLS; }
     k->col_n = p; p += SBL__CHUNK_COLS;
     k->pool_col = p; p += SBL__POOL_PLANES(k->ch) * SBL__POOL_COLS;
@@ -4851,40 +4852,50 @@ SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const
 /* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
    sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs.
    The channels written out (ch is a constant in each instance), in channel order.
-   pairs = 1 (the lane kernel's column sums): also PD2 and PV, whatever the count. */
+   own (a constant): the column sums are the prepass's planes (1) or the lane kernel's
+   (0, sbl__pool_planes_of). pairs = 1 (the lane kernel's column sums): also PD2 and PV,
+   whatever the count. Every plane is read at a constant distance from one pointer
+   (sbl__kernel_bind lays the chunk's planes out in one block: k->col[0..ch), col_n,
+   pool_col), which moves with the column: one register for all, so the loop does not
+   reload a dozen plane pointers from the stack on each vector. */
 SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
-                                        int ba, int bb, int base, const int pairs)
+                                        int ba, int bb, int base, const int own, const int pairs)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
-    const float *pn = Q->n;
-    /* channel c's planes at a constant distance from channel 0's (every caller's layout,
-       sbl__pool_planes_of): fixed offsets from one pointer, not three loads per channel */
-    const float *const a0 = Q->a[0], *const b0 = Q->b[0], *const t0 = Q->t[0];
-    const ptrdiff_t cstep = Q->cstep;
-    float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
-    float *const ppd = SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)), *const ppv = SBL__POOL_PLANE(k, SBL__POOL_PV(ch));
+    /* offsets from k->col[0] (floats): the column sums, then the prepass's planes */
+    const ptrdiff_t coln = SBL__CAST(ptrdiff_t, ch) * SBL__COL_PLANES * SBL__CHUNK_COLS;
+    const ptrdiff_t pool = coln + SBL__CHUNK_COLS;
+    const ptrdiff_t o_n = own ? pool + SBL__POOL_N(ch) * SBL__POOL_COLS : coln;
+    const ptrdiff_t o_a = own ? pool + SBL__POOL_A(0) * SBL__POOL_COLS : SBL__COL_DA * SBL__CHUNK_COLS;
+    const ptrdiff_t o_b = own ? pool + SBL__POOL_B(0) * SBL__POOL_COLS : SBL__COL_DB * SBL__CHUNK_COLS;
+    const ptrdiff_t o_t = own ? pool + SBL__POOL_T(0) * SBL__POOL_COLS : SBL__COL_T * SBL__CHUNK_COLS;
+    const ptrdiff_t cstep = own ? 3 * SBL__POOL_COLS : SBL__COL_PLANES * SBL__CHUNK_COLS;
+    const ptrdiff_t o_m2 = pool + SBL__POOL_M2(ch) * SBL__POOL_COLS, o_se2 = pool + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
+    const ptrdiff_t o_pd2 = pool + SBL__POOL_PD2(ch) * SBL__POOL_COLS, o_pv = pool + SBL__POOL_PV(ch) * SBL__POOL_COLS;
+    float *const col0 = k->col[0];
     int x = ba;
+    (void)Q;
     for (;;) {
-        const int i = x - base;
-        const sbl__v nl = sbl__load(pn + i - 1), nc = sbl__load(pn + i), nr = sbl__load(pn + i + 1);
+        float *const q = col0 + (x - base); /* the column's index in every plane */
+        const sbl__v nl = sbl__load(q + o_n - 1), nc = sbl__load(q + o_n), nr = sbl__load(q + o_n + 1);
         const sbl__v n = sbl__add(sbl__add(nl, nc), nr);
         const sbl__m has_c = sbl__gt(nc, zero), has_l = sbl__gt(nl, zero), valid = sbl__gt(n, min_pairs);
         const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero, pv = zero;
 #define SBL__POOL_BLOCK_CH(c) \
-        sbl__pool_block_channel(a0 + (c) * cstep + i, b0 + (c) * cstep + i, t0 + (c) * cstep + i, \
+        sbl__pool_block_channel(q + o_a + (c) * cstep, q + o_b + (c) * cstep, q + o_t + (c) * cstep, \
                                 has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv)
         SBL__POOL_BLOCK_CH(0);
         if (ch > 1) SBL__POOL_BLOCK_CH(1);
         if (ch > 2) SBL__POOL_BLOCK_CH(2);
         if (ch > 3) SBL__POOL_BLOCK_CH(3);
 #undef SBL__POOL_BLOCK_CH
-        sbl__store(pm + i, sbl__sel(valid, m2, zero));
-        sbl__store(ps + i, sbl__sel(valid, se2, zero));
+        sbl__store(q + o_m2, sbl__sel(valid, m2, zero));
+        sbl__store(q + o_se2, sbl__sel(valid, se2, zero));
         if (pairs) {
-            sbl__store(ppd + i, m2);
-            sbl__store(ppv + i, pv);
+            sbl__store(q + o_pd2, m2);
+            sbl__store(q + o_pv, pv);
         }
         if (x + SBL__VW >= bb) break;
         x += SBL__VW;
@@ -4985,7 +4996,7 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 0);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 1, 0);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -5634,7 +5645,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
         if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
         sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base,
-                               fast);
+                               0, fast);
         for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
         for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
         sbl__pool_lanes_ratio(k, ch, x, e, base);
