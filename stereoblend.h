@@ -2976,6 +2976,13 @@ typedef struct sbl__kernel {
 enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO, SBL__COL_HI,
        SBL__COL_PLANES };
 #define SBL__COLP(block, plane) ((block) + (plane) * SBL__CHUNK_COLS)
+/* the chunk's planes as offsets from k->col[0] (floats; sbl__kernel_bind lays them out
+   in one block): channel c's column sums, col_n, pool_col. The lanes address every plane
+   from one pointer that moves with the column (constant displacements), not a plane
+   pointer each, which the loops would reload from the stack on every vector. */
+#define SBL__CHUNK_COL(c) ((c) * SBL__COL_PLANES * SBL__CHUNK_COLS)
+#define SBL__CHUNK_COLN(ch) SBL__CHUNK_COL(ch)
+#define SBL__CHUNK_POOL(ch) (SBL__CHUNK_COLN(ch) + SBL__CHUNK_COLS)
 
 /* lane kernel chunk: columns per chunk, and floats per column plane (the chunk, its two
    neighbour columns, padding) */
@@ -4525,7 +4532,7 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
        0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
     const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
     const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
-    float *cp = k->col[c] + i;
+    float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
     sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
     sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
     sbl__store(SBL__COLP(cp, SBL__COL_T), t);
@@ -4552,7 +4559,7 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
         const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
                      v2 = sbl__load(W->v[2] + x);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
-        sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
+        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), sbl__add(sbl__add(v0, v1), v2));
         sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp);
         if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp);
         if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp);
@@ -4590,7 +4597,7 @@ SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows
     const sbl__v yc = sbl__load(W->y[1][c] + x);
     const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
     const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
-    const float *cp = k->col[c] + i;
+    const float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
     sbl__v al, bl, ar, br, a8, b8, a9, b9, q;
     /* side columns about s (their top sample is s + D, counted by n = 3) */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
@@ -4617,7 +4624,7 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
                                             sbl__lane_stats *st)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const float *cp = k->col[c] + i;
+    const float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
     const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
     const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
     sbl__v pl, ql, pr, qr, d, dd;
@@ -4651,8 +4658,9 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const int i = x - ca, ch = k->ch;
-    const sbl__v nl = sbl__load(k->col_n + i - 1), nr = sbl__load(k->col_n + i + 1);
-    const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch); /* k->col_n + i */
+    const sbl__v nl = sbl__load(qn - 1), nr = sbl__load(qn + 1);
+    const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
     sbl__v inv_cnt1;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
@@ -5327,9 +5335,9 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     /* pair counts (sbl__lanes_moments) */
-    nl = sbl__load(k->col_n + i - 1);
-    nr = sbl__load(k->col_n + i + 1);
-    cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    nl = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
+    nr = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
+    cnt = sbl__add(sbl__add(nl, sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch))), nr);
     st.has_pairs = sbl__gt(cnt, zero);
     st.two_pairs = sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
@@ -5366,8 +5374,10 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     if (ch > 1) s2 = sbl__add(s2, var[1]);
     if (ch > 2) s2 = sbl__add(s2, var[2]);
     if (ch > 3) s2 = sbl__add(s2, var[3]);
-    w = sbl__lanes_weight(&k->wp, &st, zero, s2, sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)) + i),
-                          sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PV(ch)) + i), n_xc, n_y, 0, ch, fast);
+    w = sbl__lanes_weight(&k->wp, &st, zero, s2,
+                          sbl__load(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
+                          sbl__load(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_PV(ch) * SBL__POOL_COLS),
+                          n_xc, n_y, 0, ch, fast);
     w2 = st.a2[0]; /* every channel's */
     /* the blend (sbl__lanes_blend with one weight, no fill) */
     hi_w = sbl__gt(w, half);
@@ -5427,8 +5437,8 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
     bound = sbl__max(bound, zero);
     t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
-    sbl__store(SBL__POOL_PLANE(k, SBL__POOL_FT(ch)) + i, t);
-    sbl__store(SBL__POOL_PLANE(k, SBL__POOL_S2(ch)) + i, s2);
+    sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_FT(ch) * SBL__POOL_COLS, t);
+    sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_S2(ch) * SBL__POOL_COLS, s2);
 }
 
 SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
@@ -5437,7 +5447,8 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
-    const int i = x - base;
+    const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
+    const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, t, a_mean, a2_mean, one_m, den, n_out;
     sbl__m valid, hi_w, low_t;
@@ -5446,16 +5457,16 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-    nl = sbl__load(k->col_n + i - 1);
-    nr = sbl__load(k->col_n + i + 1);
-    cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    nl = sbl__load(qn - 1);
+    nr = sbl__load(qn + 1);
+    cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
     st.has_pairs = sbl__gt(cnt, zero);
     st.two_pairs = sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     st.pool_r = sbl__load(k->pool_r + x);
-    w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(SBL__POOL_PLANE(k, SBL__POOL_S2(ch)) + i),
-                          sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)) + i),
-                          sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PV(ch)) + i), n_xc, n_y, 0, ch, 1);
+    w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
+                          sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
+                          sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
     w2 = st.a2[0]; /* every channel's */
     /* Eq. 5 first (its values then leave the registers), then the blend */
     a2_mean = w2;
@@ -5469,7 +5480,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                      sbl__add(n_xc, n_y));
     n_out = sbl__min(n_out, cap);
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
-    t = sbl__load(SBL__POOL_PLANE(k, SBL__POOL_FT(ch)) + i);
+    t = sbl__load(q + SBL__POOL_FT(ch) * SBL__POOL_COLS);
     low_t = sbl__gt(one, t);
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
