@@ -4507,6 +4507,11 @@ typedef struct sbl__lane_stats {
    load per plane in the channel loops instead of two). */
 typedef struct sbl__lane_rows {
     const float *y[3][4], *x[3][4], *v[3];
+    /* the same planes as row[j] + off (sbl__kernel_bind lays each ring row's planes out
+       at the same distances from its y[0]): three pointers and the offsets for the
+       column sums, whose loop would otherwise hold 7 ch + 3 plane pointers */
+    const float *row[3];
+    ptrdiff_t off_y[4], off_x[4], off_v;
 } sbl__lane_rows;
 
 static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, int ch)
@@ -4515,19 +4520,26 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
     for (j = 0; j < 3; ++j) {
         for (c = 0; c < ch; ++c) { W->y[j][c] = R[j]->y[c]; W->x[j][c] = R[j]->x[c]; }
         W->v[j] = R[j]->v;
+        W->row[j] = R[j]->y[0];
     }
+    for (c = 0; c < ch; ++c) {
+        W->off_y[c] = R[0]->y[c] - R[0]->y[0];
+        W->off_x[c] = R[0]->x[c] - R[0]->y[0];
+    }
+    W->off_v = R[0]->v - R[0]->y[0];
 }
 
 /* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
 SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
                                    sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1, int clamp)
 {
-    const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
-                 y2 = sbl__load(W->y[2][c] + x);
+    const ptrdiff_t iy = x + W->off_y[c], ix = x + W->off_x[c];
+    const sbl__v y0 = sbl__load(W->row[0] + iy), y1 = sbl__load(W->row[1] + iy),
+                 y2 = sbl__load(W->row[2] + iy);
     const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
-    const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
-                 d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
-                 d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
+    const sbl__v d0 = sbl__sub(sbl__load(W->row[0] + ix), y0),
+                 d1 = sbl__sub(sbl__load(W->row[1] + ix), y1),
+                 d2 = sbl__sub(sbl__load(W->row[2] + ix), y2);
     /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t) is then
        0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
     const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
@@ -4556,8 +4568,9 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
     int x = ca;
     for (;;) {
         const int i = x - base;
-        const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
-                     v2 = sbl__load(W->v[2] + x);
+        const ptrdiff_t iv = x + W->off_v;
+        const sbl__v v0 = sbl__load(W->row[0] + iv), v1 = sbl__load(W->row[1] + iv),
+                     v2 = sbl__load(W->row[2] + iv);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), sbl__add(sbl__add(v0, v1), v2));
         sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp);
