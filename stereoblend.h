@@ -3439,6 +3439,7 @@ typedef struct sbl__block {
     int x0, n, y;                            /* columns [x0, x0 + n) of row y            */
     int sky;                                 /* every planned entry expects sky          */
     int mode;                                /* the rig's lane plan for this row (hooks) */
+    int row_state;                           /* the hooks' per-row facts (-1: not yet)   */
 } sbl__block;
 
 /* The one driver of the row gathers (temporal and stereo): columns [xa, xb) of row y in
@@ -3461,6 +3462,7 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
     sbl__block b;
     int i;
     b.y = y;
+    b.row_state = -1;
     for (i = 0; i < SBL__VW; ++i) { /* |step| < INT_MAX / VW: sbl__row_gather_ok */
         b.p.lane_step[0][i] = i * SBL__CAST(int, src->color.step);
         b.p.lane_step[1][i] = i * SBL__CAST(int, src->depth.step);
@@ -3730,7 +3732,8 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
    The row gather decides per tile (a block of up to SBL__BLOCK pixels of one row), from
    the data it reads anyway, whether the tile needs the general plan:
    - SBL__TILE_VOID: no target pixel has geometry (depth 0, negative or NaN): every
-     pixel resets, without reading motion or history;
+     pixel resets, without reading history (nor, camera at rest, anything but the
+     motion: a tile at rest resets those pixels itself);
    - SBL__TILE_REST: every source position is the pixel itself (zero motion vectors, or
      a camera at rest over static surfaces): the history is read at the same pixel, with
      no position maths, no footprint and one tap test (sbl__rest_tile);
@@ -3756,13 +3759,56 @@ static int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
            (s->source == SBL_TEMPORAL_MOTION || s->at_rest);
 }
 
+/* the bits of two vectors OR-ed (AVX-512's masks are not vectors) */
+#if SBL__VW == 16
+#define sbl__vor(a, b) _mm512_castsi512_ps(_mm512_or_si512(_mm512_castps_si512(a), _mm512_castps_si512(b)))
+#else
+#define sbl__vor(a, b) sbl__mor(a, b)
+#endif
+
+/* Are the motion vectors of tile pixels [x0, x0 + n) of row y all +-0 (kx * +-0 = +-0)?
+   The tile's bits OR-ed together are 0 but for the sign bit exactly when every component
+   is +-0 (any other value, a NaN included, leaves a bit): one load and one OR per vector. */
+static int sbl__tile_motion_zero(const sbl__temporal_rp *s, int y, int x0, int n)
+{
+    const float *mp = SBL__AT(s->motion, x0, y);
+    int i;
+    if (s->motion.step == 2) {
+        const int m = 2 * n; /* >= 2 VW */
+        const sbl__v zero = sbl__set1(0.0f);
+        sbl__v a = sbl__load(mp), b = sbl__load(mp + SBL__VW);
+        /* a moving tile usually shows it in its first pixels */
+        if (~sbl__mbits(sbl__le(sbl__abs(sbl__vor(a, b)), zero)) & ((1 << SBL__VW) - 1)) return 0;
+        for (i = 2 * SBL__VW; i + 2 * SBL__VW <= m; i += 2 * SBL__VW) {
+            a = sbl__vor(a, sbl__load(mp + i));
+            b = sbl__vor(b, sbl__load(mp + i + SBL__VW));
+        }
+        if (i < m) { /* the rest: the last two vectors (overlapping the ones before) */
+            a = sbl__vor(a, sbl__load(mp + m - 2 * SBL__VW));
+            b = sbl__vor(b, sbl__load(mp + m - SBL__VW));
+        }
+        return !(~sbl__mbits(sbl__le(sbl__abs(sbl__vor(a, b)), zero)) &
+                 ((1 << SBL__VW) - 1));
+    }
+    for (i = 0; i < n; ++i) {
+        const float *m = mp + SBL__CAST(ptrdiff_t, i) * s->motion.step;
+        if (!(fabsf(m[0]) <= 0.0f && fabsf(m[1]) <= 0.0f)) return 0;
+    }
+    return 1;
+}
+
 /* The class of tile [x0, x0 + n) of row y (n >= VW; the call passed
-   sbl__temporal_tiles_ok). */
+   sbl__temporal_tiles_ok). At rest is decided first: a rest tile settles pixels without
+   geometry as a void tile does (they reset), so its depth need not be scanned. */
 static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, int n)
 {
     const sbl__v zero = sbl__set1(0.0f);
     int i;
     int sky = 0;
+    /* camera at rest: a tile without a moving object's id (the call has no ids here
+       unless no object moves, see sbl__temporal_tiles_ok) */
+    if (s->source == SBL_TEMPORAL_MOTION ? sbl__tile_motion_zero(s, y, x0, n) : !s->moving_count)
+        return SBL__TILE_REST;
     if (s->geo.depth.p) { /* no geometry anywhere: NaN, -inf, 0 and negatives fail z > 0 */
         const float *zp = SBL__AT(s->geo.depth, x0, y);
         const int full = (1 << SBL__VW) - 1;
@@ -3778,28 +3824,7 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
         if (!any) return SBL__TILE_VOID;
         sky = all_sky == full;
     }
-    if (s->source == SBL_TEMPORAL_MOTION) { /* every vector +-0 (kx * +-0 = +-0) */
-        const float *mp = SBL__AT(s->motion, x0, y);
-        if (s->motion.step == 2) {
-            for (i = 0;; i += SBL__VW) {
-                if (i + SBL__VW > 2 * n) i = 2 * n - SBL__VW;
-                if (~sbl__mbits(sbl__le(sbl__abs(sbl__load(mp + i)), zero)) &
-                    ((1 << SBL__VW) - 1))
-                    return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
-                if (i + SBL__VW >= 2 * n) break;
-            }
-        } else {
-            for (i = 0; i < n; ++i) {
-                const float *m = mp + SBL__CAST(ptrdiff_t, i) * s->motion.step;
-                if (!(fabsf(m[0]) <= 0.0f && fabsf(m[1]) <= 0.0f))
-                    return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
-            }
-        }
-        return SBL__TILE_REST;
-    }
-    /* camera at rest: a tile without a moving object's id (the call has no ids here
-       unless no object moves, see sbl__temporal_tiles_ok) */
-    return s->moving_count ? (sky ? SBL__TILE_SKY : SBL__TILE_GENERAL) : SBL__TILE_REST;
+    return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
 }
 
 /* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
@@ -4011,13 +4036,16 @@ SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan
 static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    if (sbl__temporal_tiles_ok(s)) {
+    if (b->row_state < 0) /* once per row: the tiles allowed (bit 0), the lane mode */
+        b->row_state = sbl__temporal_tiles_ok(s) |
+                       (sbl__temporal_plan_lanes_ok(s, b->y) ? 2 : (sbl__camera_plan_lanes_ok(s, b->y) ? 4 : 0));
+    if (b->row_state & 1) {
         const int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
         if (kind == SBL__TILE_VOID) { sbl__void_tile(&s->src, r, b->x0, b->n); return 1; }
         if (kind == SBL__TILE_REST) { sbl__rest_tile(s, r, b->y, b->x0, b->n); return 1; }
         b->sky = kind == SBL__TILE_SKY;
     }
-    b->mode = sbl__temporal_plan_lanes_ok(s, b->y) ? 1 : (sbl__camera_plan_lanes_ok(s, b->y) ? 2 : 0);
+    b->mode = b->row_state >> 1;
     return 0;
 }
 
@@ -4086,6 +4114,23 @@ static void sbl__deinterleave(const float *src, ptrdiff_t step, int ch, float *c
             }
         } else if (ch == 3) {
             float *p2 = planes[2];
+#if SBL__VW >= 8
+            /* eight pixels per step: each 128-bit half does the four-pixel shuffles below
+               on its own pixels (0-3 low, 4-7 high) */
+            for (; x + 8 <= xb; x += 8, s += 24) {
+                const __m256 a = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(s)), _mm_loadu_ps(s + 12), 1);
+                const __m256 b = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(s + 4)), _mm_loadu_ps(s + 16), 1);
+                const __m256 d = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(s + 8)), _mm_loadu_ps(s + 20), 1);
+                _mm256_storeu_ps(p0 + x, _mm256_shuffle_ps(a, _mm256_shuffle_ps(b, d, _MM_SHUFFLE(1, 1, 2, 2)),
+                                                           _MM_SHUFFLE(2, 0, 3, 0)));
+                _mm256_storeu_ps(p1 + x, _mm256_shuffle_ps(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(0, 0, 1, 1)),
+                                                           _mm256_shuffle_ps(b, d, _MM_SHUFFLE(2, 2, 3, 3)),
+                                                           _MM_SHUFFLE(2, 0, 2, 0)));
+                _mm256_storeu_ps(p2 + x, _mm256_shuffle_ps(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(1, 1, 2, 2)),
+                                                           _mm256_shuffle_ps(d, d, _MM_SHUFFLE(3, 3, 0, 0)),
+                                                           _MM_SHUFFLE(2, 0, 2, 0)));
+            }
+#endif
             for (; x + 4 <= xb; x += 4, s += 12) {
                 /* a = r0 g0 b0 r1, b = g1 b1 r2 g2, c = b2 r3 g3 b3 */
                 const __m128 a = _mm_loadu_ps(s), b = _mm_loadu_ps(s + 4), d = _mm_loadu_ps(s + 8);
@@ -4139,6 +4184,28 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
             }
         } else if (ch == 3) {
             const float *p2 = planes[2];
+#if SBL__VW >= 8
+            /* eight pixels per step: the four-pixel shuffles below in each 128-bit half */
+            for (; x + 8 <= xb; x += 8, d += 24) {
+                const __m256 r = _mm256_loadu_ps(p0 + x), g = _mm256_loadu_ps(p1 + x),
+                             b = _mm256_loadu_ps(p2 + x);
+                const __m256 o0 = _mm256_shuffle_ps(_mm256_shuffle_ps(r, g, _MM_SHUFFLE(0, 0, 0, 0)),
+                                                    _mm256_shuffle_ps(b, r, _MM_SHUFFLE(1, 1, 0, 0)),
+                                                    _MM_SHUFFLE(2, 0, 2, 0));
+                const __m256 o1 = _mm256_shuffle_ps(_mm256_shuffle_ps(g, b, _MM_SHUFFLE(1, 1, 1, 1)),
+                                                    _mm256_shuffle_ps(r, g, _MM_SHUFFLE(2, 2, 2, 2)),
+                                                    _MM_SHUFFLE(2, 0, 2, 0));
+                const __m256 o2 = _mm256_shuffle_ps(_mm256_shuffle_ps(b, r, _MM_SHUFFLE(3, 3, 2, 2)),
+                                                    _mm256_shuffle_ps(g, b, _MM_SHUFFLE(3, 3, 3, 3)),
+                                                    _MM_SHUFFLE(2, 0, 2, 0));
+                _mm_storeu_ps(d, _mm256_castps256_ps128(o0));
+                _mm_storeu_ps(d + 4, _mm256_castps256_ps128(o1));
+                _mm_storeu_ps(d + 8, _mm256_castps256_ps128(o2));
+                _mm_storeu_ps(d + 12, _mm256_extractf128_ps(o0, 1));
+                _mm_storeu_ps(d + 16, _mm256_extractf128_ps(o1, 1));
+                _mm_storeu_ps(d + 20, _mm256_extractf128_ps(o2, 1));
+            }
+#endif
             for (; x + 4 <= xb; x += 4, d += 12) {
                 const __m128 r = _mm_loadu_ps(p0 + x), g = _mm_loadu_ps(p1 + x),
                              b = _mm_loadu_ps(p2 + x);
@@ -6278,6 +6345,10 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
                     s->geo.height == sh && y >= 1 && y + 1 < sh;
     const int depth = s->geo.depth.p && s->geo.depth.step == 1;
     (void)r;
+    if (b->row_state >= 0) { /* decided for this row */
+        b->mode = b->row_state;
+        return 0;
+    }
     if (s->d.rig == SBL_RIG_PARALLEL)
         /* without a disparity offset the float lane plan is exact for m = +-f b / z */
         b->mode = geo && depth && s->offset == 0.0 && sw <= 32768 && sh <= 32768 ? 1 : 0;
@@ -6290,6 +6361,7 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
                       : 0;
     else
         b->mode = geo && depth ? 2 : 0;
+    b->row_state = b->mode;
     return 0;
 }
 
