@@ -2405,30 +2405,29 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
 #endif
 
 /* Whose bias the stereo difference is (pooled stereo beta on temporally filtered eyes;
-   docs/ESTIMATORS.md section 4.6). The mean paired difference pd = E[X] - E[Y] of two
-   filtered eyes holds the match's bias R (X's: the warp, view-dependent shading) and
-   the difference of the two histories' lags, d (u - v), u = N_X - 1 and v = N_Y - 1
-   the frames each history looks back and d the change per frame. With R and d
-   independent, zero-mean, variance ratio rho = var(d) / var(R), the regression of X's
-   error on pd gives the bias term of a* = (f B^2 + var_X) / (B^2 + var_X + var_Y):
-   f = (1 + rho u (u - v)) / (1 + rho (u - v)^2). f = 1 when v = 0 (a raw own eye, and
-   every temporal blend: all of the bias is X's, as before) and when u = v (equal ages
-   lag alike: what differs is the match); f -> 0 when X is fresh and Y old (the old eye
-   is the one that lags); f < 0 pulls towards the fresher X beyond its noise share. The
-   ages are bounded (SBL__LAG_AGE_MAX) so that no product overflows. */
-#ifndef SBL_STEREO_LAG_RHO
-#define SBL_STEREO_LAG_RHO 0.1
+   docs/ESTIMATORS.md section 4.6). The bias term of a* = (B^2 + var_X) / (B^2 + var_X +
+   var_Y) takes all of the mean paired difference pd = E[X] - E[Y] as X's, which holds
+   when Y is new (a raw eye, every temporal blend). Two filtered eyes both lag a change
+   by an amount that grows with their history's length, and each eye restarts on its
+   own noise, so the lags are independent: b_X, b_Y zero-mean with variances in the
+   ratio u^2 : v^2, u = N_X - 1 and v = N_Y - 1 the frames each history looks back.
+   Then the regression of X's bias on pd = b_X - b_Y gives E[b_X (b_X - b_Y)] / E[pd^2]
+   = u^2 / (u^2 + v^2) of B^2 as X's: all of it when Y is raw (v = 0, as before), half
+   between equal ages, none when X has just restarted and Y is old (the old eye is the
+   one that lags). The ages are bounded (SBL__LAG_AGE_MAX) so that no square overflows
+   a float. */
+#ifndef SBL_STEREO_LAG_SHARE
+#define SBL_STEREO_LAG_SHARE 1 /* 0: all of the bias is X's, the rule before */
 #endif
 #define SBL__LAG_AGE_MAX 65536.0
 static double sbl__lag_share(double n_x, double n_y)
 {
-    double u = n_x - 1.0, v = n_y - 1.0, g;
+    double u = n_x - 1.0, v = n_y - 1.0;
     if (!(v > 0.0)) return 1.0; /* also NaN */
     if (!(u > 0.0)) u = 0.0;
     if (u > SBL__LAG_AGE_MAX) u = SBL__LAG_AGE_MAX;
     if (v > SBL__LAG_AGE_MAX) v = SBL__LAG_AGE_MAX;
-    g = u - v;
-    return (1.0 + SBL_STEREO_LAG_RHO * u * g) / (1.0 + SBL_STEREO_LAG_RHO * g * g);
+    return u * u / (u * u + v * v);
 }
 
 /* The spatial lean of the pooled stereo beta (docs/ESTIMATORS.md section 4.2): a0 the
@@ -2515,7 +2514,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         }
         {
             /* pooled stereo: the part of the bias that is X's (sbl__lag_share) */
-            double fx = p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal
+            double fx = SBL_STEREO_LAG_SHARE && p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal
                             ? sbl__lag_share(SBL__CAST(double, n_x), SBL__CAST(double, n_y)) : 1.0;
             a = (bias2 + var_x + var_y > 0.0) ? (fx * bias2 + var_x) / (bias2 + var_x + var_y)
                                               : progressive;
@@ -5303,15 +5302,13 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
             b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
         }
-        if (est == SBL_ESTIMATOR_POOLED && !temporal) {
+        if (SBL_STEREO_LAG_SHARE && est == SBL_ESTIMATOR_POOLED && !temporal) {
             /* the part of the bias that is X's, as sbl__lag_share */
             const sbl__v amax = sbl__set1(SBL__CAST(float, SBL__LAG_AGE_MAX));
-            const sbl__v rho = sbl__set1(SBL__CAST(float, SBL_STEREO_LAG_RHO));
             sbl__v u = sbl__min(sbl__max(sbl__sub(n_xc, one), zero), amax);
             sbl__v v = sbl__min(sbl__max(sbl__sub(n_y, one), zero), amax);
-            sbl__v g = sbl__sub(u, v);
-            sbl__v fx = sbl__div(sbl__add(one, sbl__mul(rho, sbl__mul(u, g))),
-                                 sbl__add(one, sbl__mul(rho, sbl__mul(g, g))));
+            sbl__v u2 = sbl__mul(u, u);
+            sbl__v fx = sbl__div(u2, sbl__max(sbl__add(u2, sbl__mul(v, v)), tiny));
             fx = sbl__sel(sbl__gt(v, zero), fx, one);
             num = sbl__add(sbl__mul(fx, b2), vx);
             den = sbl__add(sbl__add(b2, vx), vy);

@@ -447,7 +447,7 @@ static void test_stereo_edge_and_flat(void)
    just restarted (N 1) on the new value 0.6; flat, equal depth, integer disparity. The
    difference of the two eyes is the old eye's lag, not the match's: the pooled beta
    takes the left eye towards the fresh right one, and keeps the right eye on its own
-   (docs/ESTIMATORS.md section 4.6; with SBL_STEREO_LAG_RHO 0, the rule before it, the
+   (docs/ESTIMATORS.md section 4.6; with SBL_STEREO_LAG_SHARE 0, the rule before it, the
    left eye keeps its lag: RMSE 0.09). Returns the RMSE of each eye's output. */
 static void stereo_lag_measure(int n_left, int n_right, double *rmse_left, double *rmse_right)
 {
