@@ -1522,6 +1522,15 @@ static int sbl__depth_match(float expected, float tap, float tol, float slack)
 #else
 #define SBL__INLINE static
 #endif
+/* a function kept on its own: each instance of a large kernel compiled by itself (in one
+   function with its siblings, the register allocation of one depends on the others) */
+#if defined(__GNUC__) || defined(__clang__)
+#define SBL__NOINLINE static __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define SBL__NOINLINE static __declspec(noinline)
+#else
+#define SBL__NOINLINE static
+#endif
 
 /* Every per-tap test on source pixel (x, y), which must be inside the image. With
    check_values 0 the colour and N finiteness is left to the caller (the optimistic
@@ -5435,7 +5444,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
 #define SBL__LANES_CH(M) do { M(0); if (ch > 1) M(1); if (ch > 2) M(2); if (ch > 3) M(3); } while (0)
 SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                         const float *nyrow, int x, int base, int y, const int ch,
-                                        const int fast)
+                                        const int fast, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
@@ -5454,8 +5463,9 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     nl = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
     nr = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
     cnt = sbl__add(sbl__add(nl, sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch))), nr);
-    st.has_pairs = sbl__gt(cnt, zero);
-    st.two_pairs = sbl__gt(cnt, one);
+    /* full (sbl__lanes_full): nine pairs */
+    st.has_pairs = full ? sbl__true : sbl__gt(cnt, zero);
+    st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
 #define SBL__FAST_Y(c) \
@@ -5735,7 +5745,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
 #define SBL__POOLED_VECTOR(px) \
     do { \
-        if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast); \
+        if (fast && full) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 1); \
+        else if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 0); \
         else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
     } while (0)
     /* the vectors of the run [lo, b): whole vectors, the last one ending at b; a run
@@ -5817,6 +5828,20 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
 #undef SBL__RUN_VECTORS
 }
 
+/* one function per channel count and configuration (fast: 1 temporal default, 2 stereo
+   default, 0 any other), each compiled by itself */
+#define SBL__POOLED_INSTANCE(chn, f) \
+    SBL__NOINLINE void sbl__kernel_lanes_pooled_##chn##_##f( \
+        sbl__kernel *k, const sbl__ring_row *const *R, int pa, int pb, int xa, int xb, \
+        const unsigned char *win) \
+    { \
+        sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, chn, f); \
+    }
+SBL__POOLED_INSTANCE(1, 0) SBL__POOLED_INSTANCE(2, 0) SBL__POOLED_INSTANCE(3, 0) SBL__POOLED_INSTANCE(4, 0)
+SBL__POOLED_INSTANCE(1, 1) SBL__POOLED_INSTANCE(2, 1) SBL__POOLED_INSTANCE(3, 1) SBL__POOLED_INSTANCE(4, 1)
+SBL__POOLED_INSTANCE(1, 2) SBL__POOLED_INSTANCE(2, 2) SBL__POOLED_INSTANCE(3, 2) SBL__POOLED_INSTANCE(4, 2)
+#undef SBL__POOLED_INSTANCE
+
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
                                      int pb, int xa, int xb, const unsigned char *win)
 {
@@ -5825,27 +5850,25 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
     k->pool_row = R[1]->row;
     if (fast && k->wp.temporal) {
         switch (k->ch) {
-        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 1); break;
-        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 1); break;
-        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 1); break;
-        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 1); break;
+        case 1: sbl__kernel_lanes_pooled_1_1(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_1(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_1(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_1(k, R, pa, pb, xa, xb, win); break;
         }
-        return;
-    }
-    if (fast) {
+    } else if (fast) {
         switch (k->ch) {
-        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 2); break;
-        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 2); break;
-        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 2); break;
-        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 2); break;
+        case 1: sbl__kernel_lanes_pooled_1_2(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_2(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_2(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_2(k, R, pa, pb, xa, xb, win); break;
         }
-        return;
-    }
-    switch (k->ch) {
-    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 0); break;
-    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 0); break;
-    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 0); break;
-    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 0); break;
+    } else {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_1_0(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_0(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_0(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_0(k, R, pa, pb, xa, xb, win); break;
+        }
     }
 }
 
