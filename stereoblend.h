@@ -5779,19 +5779,25 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p, full;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
         base = x - reach;
-        /* every pair of the chunk's columns valid, none outside the image: the instances
-           without the selects on the pair validity (the same values) */
-        full = x - reach >= 0 && e + reach <= w && sbl__lanes_full(&W, x - reach, e + reach);
-        if (full) {
-            sbl__lanes_columns_cfg(k, &W, x - reach, e + reach, base, fast, 1);
-            sbl__pool_lanes_blocks(k, &Q, ch, x - span, e + span, base, 0, fast, 1);
-        } else {
-            sbl__lanes_columns_cfg(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w,
-                                   base, fast, 0);
+        {
+            const int ca = x - reach > 0 ? x - reach : 0, cb = e + reach < w ? e + reach : w;
+            const int ba = x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
+            /* every pair of the chunk's columns valid: the instances without the selects
+               on the pair validity (the same values); the blocks centred on the image's
+               first and last columns (whose outer column is empty) excepted */
+            full = sbl__lanes_full(&W, ca, cb);
+            if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1);
+            else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-            sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w,
-                                   base, 0, fast, 0);
+            if (full) {
+                int fa = ba, fb = bb;
+                if (ba == 0) { sbl__pool_lanes_blocks(k, &Q, ch, 0, SBL__VW, base, 0, fast, 0); fa = 1; }
+                if (bb == w) { sbl__pool_lanes_blocks(k, &Q, ch, w - SBL__VW, w, base, 0, fast, 0); fb = w - 1; }
+                sbl__pool_lanes_blocks(k, &Q, ch, fa, fb, base, 0, fast, 1);
+            } else {
+                sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 0, fast, 0);
+            }
         }
         for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
         for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
