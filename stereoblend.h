@@ -5007,8 +5007,11 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     (void)Q;
     for (;;) {
         float *const q = col0 + (x - base); /* the column's index in every plane */
-        const sbl__v nl = sbl__load(q + o_n - 1), nc = sbl__load(q + o_n), nr = sbl__load(q + o_n + 1);
-        const sbl__v n = sbl__add(sbl__add(nl, nc), nr);
+        /* full: three pairs in each column, nine in the block (the same values) */
+        const sbl__v nl = full ? sbl__set1(3.0f) : sbl__load(q + o_n - 1);
+        const sbl__v nc = full ? sbl__set1(3.0f) : sbl__load(q + o_n);
+        const sbl__v nr = full ? sbl__set1(3.0f) : sbl__load(q + o_n + 1);
+        const sbl__v n = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, nc), nr);
         /* full (sbl__lanes_full): every column holds three pairs */
         const sbl__m has_c = full ? sbl__true : sbl__gt(nc, zero);
         const sbl__m has_l = full ? sbl__true : sbl__gt(nl, zero);
@@ -5460,9 +5463,9 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     /* pair counts (sbl__lanes_moments) */
-    nl = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
-    nr = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
-    cnt = sbl__add(sbl__add(nl, sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch))), nr);
+    nl = full ? sbl__set1(3.0f) : sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
+    nr = full ? sbl__set1(3.0f) : sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
+    cnt = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch))), nr);
     /* full (sbl__lanes_full): nine pairs */
     st.has_pairs = full ? sbl__true : sbl__gt(cnt, zero);
     st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
@@ -5583,9 +5586,9 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-    nl = sbl__load(qn - 1);
-    nr = sbl__load(qn + 1);
-    cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
+    nl = full ? sbl__set1(3.0f) : sbl__load(qn - 1);
+    nr = full ? sbl__set1(3.0f) : sbl__load(qn + 1);
+    cnt = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, sbl__load(qn)), nr);
     /* full (sbl__lanes_full): nine pairs */
     st.has_pairs = full ? sbl__true : sbl__gt(cnt, zero);
     st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
