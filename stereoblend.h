@@ -3200,20 +3200,21 @@ SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
 #endif
 
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
-   (x0, y0 + 1), (x0 + 1, y0 + 1). Its tests narrow *ok, then its weighted N, colour and
-   weight join the sums (each sum takes the taps in the order 0 .. 3, as the pixel
-   gather adds them). Written once and inlined per tap with t constant, so the offsets
-   fold and every vector stays in a register. plain: no lane expects sky and every
-   depth limit is finite, so sbl__depth_match reduces to d > 0 and |d - z| <= limit (a
-   non-finite d fails the second). cidx: the colour's lane indices from the first tap. */
-SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
-                                sbl__v w, sbl__m ok, sbl__v ze, sbl__v lim, sbl__m inf_e,
-                                int plain, const int *cidx, const float *cbase, sbl__v *acc,
-                                sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int sky,
-                                int full)
+   (x0, y0 + 1), (x0 + 1, y0 + 1). sbl__lanes_tap_test: its tests narrow ok (from w > 0),
+   returned, with its N in *nt; sbl__lanes_tap_sum: its weighted N, colour and weight
+   join the sums where ok (each sum takes the taps in the order 0 .. 3, as the pixel
+   gather adds them; masked 0: every lane passed, so no mask is needed). Written once and
+   inlined per tap with t constant, so the offsets fold and every vector stays in a
+   register. plain: no lane expects sky and every depth limit is finite, so
+   sbl__depth_match reduces to d > 0 and |d - z| <= limit (a non-finite d fails the
+   second). cidx: the colour's lane indices from the first tap. */
+SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
+                                       int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
+                                       int plain, sbl__v *nt, int contiguous, int sky, int full)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
+    sbl__m ok = sbl__gt(w, zero);
     if (full || s->use_depth) {
         const ptrdiff_t o = ty * s->depth.stride + tx * s->depth.step;
         const sbl__v d = contiguous ? sbl__load(s->depth.p + o + p->di[i])
@@ -3233,37 +3234,46 @@ SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, i
             ok = sbl__mand(ok, match);
         }
     }
+    *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
-        const sbl__v nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
-                                     : sbl__gatheri(s->length.p + o, p->li + i);
-        ok = sbl__mand(ok, sbl__gt(nt, zero));
-        *accn = sbl__add(*accn, sbl__sel(ok, sbl__mul(w, nt), zero));
-    } else {
-        *accn = sbl__add(*accn, sbl__sel(ok, w, zero));
+        *nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
+                         : sbl__gatheri(s->length.p + o, p->li + i);
+        ok = sbl__mand(ok, sbl__gt(*nt, zero));
     }
-    {   /* the channels written out (gcc -O2 keeps a loop over them, and the sums in
-           memory) */
-        const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
-        sbl__v v0;
+    return ok;
+}
+
+SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl__m ok, sbl__v nt,
+                                    const int *cidx, const float *cbase, sbl__v *acc,
+                                    sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int full,
+                                    int masked)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
+    sbl__v v[4];
+#define SBL__TAP_ADD(sum, term) (sum = sbl__add(sum, masked ? sbl__sel(ok, term, zero) : (term)))
+    if (full || s->length.p) SBL__TAP_ADD(*accn, sbl__mul(w, nt));
+    else SBL__TAP_ADD(*accn, w);
+    /* the channels written out (gcc -O2 keeps a loop over them, and the sums in memory) */
 #if SBL__VW == 4
-        if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB (sbl__rgb4) */
-            __m128 cr, cg, cb;
-            sbl__rgb4(cp, &cr, &cg, &cb);
-            acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, cr), zero));
-            acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, cg), zero));
-            acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, cb), zero));
-            *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
-            return;
-        }
+    if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB (sbl__rgb4) */
+        sbl__rgb4(cp, &v[0], &v[1], &v[2]);
+    } else
 #endif
-        v0 = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
-        acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, v0), zero));
-        if (ch > 1) acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 1, cidx)), zero));
-        if (ch > 2) acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 2, cidx)), zero));
-        if (ch > 3) acc[3] = sbl__add(acc[3], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 3, cidx)), zero));
+    {
+        v[0] = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
+        if (ch > 1) v[1] = sbl__gatheri(cp + 1, cidx);
+        if (ch > 2) v[2] = sbl__gatheri(cp + 2, cidx);
+        if (ch > 3) v[3] = sbl__gatheri(cp + 3, cidx);
     }
-    *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
+    SBL__TAP_ADD(acc[0], sbl__mul(w, v[0]));
+    if (ch > 1) SBL__TAP_ADD(acc[1], sbl__mul(w, v[1]));
+    if (ch > 2) SBL__TAP_ADD(acc[2], sbl__mul(w, v[2]));
+    if (ch > 3) SBL__TAP_ADD(acc[3], sbl__mul(w, v[3]));
+    SBL__TAP_ADD(*wsum, w);
+#undef SBL__TAP_ADD
 }
 
 /* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
@@ -3306,17 +3316,33 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         }
     }
     acc[0] = acc[1] = acc[2] = acc[3] = zero;
-    sbl__lanes_tap(s, p, i, 0, w0, sbl__gt(w0, zero), ze, lim, inf_e, plain, cidx, cbase, acc,
-                   &accn, &wsum, ch, contiguous, sky, full);
-    if (!skip_x)
-        sbl__lanes_tap(s, p, i, 1, w1, sbl__gt(w1, zero), ze, lim, inf_e, plain, cidx, cbase,
-                       acc, &accn, &wsum, ch, contiguous, sky, full);
-    if (!skip_y) {
-        sbl__lanes_tap(s, p, i, 2, w2, sbl__gt(w2, zero), ze, lim, inf_e, plain, cidx, cbase,
-                       acc, &accn, &wsum, ch, contiguous, sky, full);
-        if (!skip_x)
-            sbl__lanes_tap(s, p, i, 3, w3, sbl__gt(w3, zero), ze, lim, inf_e, plain, cidx,
-                           cbase, acc, &accn, &wsum, ch, contiguous, sky, full);
+    {   /* the tests of the taps, then the sums: without masks where every lane of every
+           tap passed (the common case), each sum's terms and order unchanged */
+        sbl__v n0, n1 = zero, n2 = zero, n3 = zero;
+        const sbl__m ok0 = sbl__lanes_tap_test(s, p, i, 0, w0, ze, lim, inf_e, plain, &n0, contiguous, sky, full);
+        sbl__m ok1 = ok0, ok2 = ok0, ok3 = ok0, all;
+        if (!skip_x) ok1 = sbl__lanes_tap_test(s, p, i, 1, w1, ze, lim, inf_e, plain, &n1, contiguous, sky, full);
+        if (!skip_y) {
+            ok2 = sbl__lanes_tap_test(s, p, i, 2, w2, ze, lim, inf_e, plain, &n2, contiguous, sky, full);
+            if (!skip_x) ok3 = sbl__lanes_tap_test(s, p, i, 3, w3, ze, lim, inf_e, plain, &n3, contiguous, sky, full);
+            else ok3 = ok2;
+        }
+        all = sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3));
+        if (sbl__mbits(all) == (1 << SBL__VW) - 1) {
+            sbl__lanes_tap_sum(s, 0, w0, ok0, n0, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+            if (!skip_x) sbl__lanes_tap_sum(s, 1, w1, ok1, n1, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+            if (!skip_y) {
+                sbl__lanes_tap_sum(s, 2, w2, ok2, n2, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+                if (!skip_x) sbl__lanes_tap_sum(s, 3, w3, ok3, n3, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+            }
+        } else {
+            sbl__lanes_tap_sum(s, 0, w0, ok0, n0, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            if (!skip_x) sbl__lanes_tap_sum(s, 1, w1, ok1, n1, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            if (!skip_y) {
+                sbl__lanes_tap_sum(s, 2, w2, ok2, n2, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+                if (!skip_x) sbl__lanes_tap_sum(s, 3, w3, ok3, n3, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            }
+        }
     }
     redo = sbl__nonfinite(accn);
     /* (the channels written out, as in sbl__lanes_tap) */
@@ -3614,6 +3640,29 @@ SBL__INLINE void sbl__plan_index_run(int *out, int x0, int y0, const sbl__flat *
                                        _mm_loadu_si128(SBL__PCAST(const __m128i *, lane_step + j))));
 }
 
+/* |m| = 0 or in [2^-8, 2^15) (sbl__plan_lanes' exact motion), on the bits b of |m|: b ==
+   0, or b - bits(2^-8) below bits(2^15) - bits(2^-8) unsigned, compared signed with the
+   top bit flipped. NaN and inf fail, and no float compare is involved (-ffast-math). */
+SBL__INLINE sbl__m sbl__motion_exact(sbl__v m)
+{
+#if SBL__VW == 16
+    const __m512i b = _mm512_and_si512(_mm512_castps_si512(m), _mm512_set1_epi32(0x7fffffff));
+    return SBL__CAST(sbl__m, _mm512_cmpeq_epi32_mask(b, _mm512_setzero_si512()) |
+                                 _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(-0x74800000),
+                                                         _mm512_add_epi32(b, _mm512_set1_epi32(0x44800000))));
+#elif SBL__VW == 8
+    const __m256i b = _mm256_and_si256(_mm256_castps_si256(m), _mm256_set1_epi32(0x7fffffff));
+    return _mm256_castsi256_ps(_mm256_or_si256(
+        _mm256_cmpeq_epi32(b, _mm256_setzero_si256()),
+        _mm256_cmpgt_epi32(_mm256_set1_epi32(-0x74800000), _mm256_add_epi32(b, _mm256_set1_epi32(0x44800000)))));
+#else
+    const __m128i b = _mm_and_si128(_mm_castps_si128(m), _mm_set1_epi32(0x7fffffff));
+    return _mm_castsi128_ps(_mm_or_si128(
+        _mm_cmpeq_epi32(b, _mm_setzero_si128()),
+        _mm_cmpgt_epi32(_mm_set1_epi32(-0x74800000), _mm_add_epi32(b, _mm_set1_epi32(0x44800000)))));
+#endif
+}
+
 /* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
    (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
    results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
@@ -3625,18 +3674,14 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
 {
     static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
-    const sbl__v lo = sbl__set1(1.0f / 256.0f), hi = sbl__set1(32768.0f);
     const sbl__v wf = sbl__set1(SBL__CAST(float, src->width)), hf = sbl__set1(SBL__CAST(float, src->height));
     const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane)), yf = sbl__set1(SBL__CAST(float, y));
-    sbl__v ax, ay, fmx, fmy, x0f, y0f;
+    sbl__v fmx, fmy, x0f, y0f;
     sbl__m exact, fast;
     int l, bits_scalar, bits_fast, bits_redo;
     float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     int uniform;
-    ax = sbl__abs(mx);
-    ay = sbl__abs(my);
-    exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
-                      sbl__mor(sbl__le(ay, zero), sbl__mand(sbl__le(lo, ay), sbl__gt(hi, ay))));
+    exact = sbl__mand(sbl__motion_exact(mx), sbl__motion_exact(my));
     bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
     keep = sbl__mand(keep, exact);
     fmx = sbl__floor(mx);
@@ -3644,8 +3689,8 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     x0f = sbl__add(xf, fmx);
     y0f = sbl__add(yf, fmy);
     /* the four taps inside the image, else the pixel gather decides */
-    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__gt(wf, sbl__add(x0f, one))),
-                     sbl__mand(sbl__le(zero, y0f), sbl__gt(hf, sbl__add(y0f, one))));
+    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__le(x0f, sbl__set1(SBL__CAST(float, src->width - 2)))),
+                     sbl__mand(sbl__le(zero, y0f), sbl__le(y0f, sbl__set1(SBL__CAST(float, src->height - 2)))));
     fast = sbl__mand(fast, keep);
     /* the others kept: the pixel gather where the position is inside the image, else a
        reset (four taps inside imply the position inside: only those need the test);
@@ -3702,7 +3747,9 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
 SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
                                          int x, int y, int sky)
 {
+#if SBL__VW == 16
     static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+#endif
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const float *mvp = SBL__AT(s->motion, x, y);
     sbl__v z = zero, slack = zero, mx, my;
@@ -3711,9 +3758,26 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
                       : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                         : sbl__gt(one, zero));
     if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
-    mx = sbl__gatheri(mvp, pair);
-    my = sbl__gatheri(mvp + 1, pair);
-    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+    {   /* the 2 VW floats (mx, my) of the pixels into one vector each: loads and
+           shuffles (SSE2 would emulate a gather with a load per lane) */
+#if SBL__VW == 4
+        const __m128 a = _mm_loadu_ps(mvp), b = _mm_loadu_ps(mvp + 4);
+        mx = _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0));
+        my = _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1));
+#elif SBL__VW == 8
+        const __m256 a = _mm256_loadu_ps(mvp), b = _mm256_loadu_ps(mvp + 8);
+        /* per 128-bit half: (x0 x1 x4 x5 | x2 x3 x6 x7), then the 64-bit pairs in order */
+        mx = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))),
+                                                    _MM_SHUFFLE(3, 1, 2, 0)));
+        my = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))),
+                                                    _MM_SHUFFLE(3, 1, 2, 0)));
+#else
+        mx = sbl__gatheri(mvp, pair);
+        my = sbl__gatheri(mvp + 1, pair);
+#endif
+    }
+    /* a non-finite m is no exact one: sbl__plan_lanes hands it to the scalar plan, which
+       resets it */
     if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
     if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
     /* motion carries no depth change: the expected depth is z (sz = z) */
