@@ -2976,6 +2976,13 @@ typedef struct sbl__kernel {
 enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO, SBL__COL_HI,
        SBL__COL_PLANES };
 #define SBL__COLP(block, plane) ((block) + (plane) * SBL__CHUNK_COLS)
+/* the chunk's planes as offsets from k->col[0] (floats; sbl__kernel_bind lays them out
+   in one block): channel c's column sums, col_n, pool_col. The lanes address every plane
+   from one pointer that moves with the column (constant displacements), not a plane
+   pointer each, which the loops would reload from the stack on every vector. */
+#define SBL__CHUNK_COL(c) ((c) * SBL__COL_PLANES * SBL__CHUNK_COLS)
+#define SBL__CHUNK_COLN(ch) SBL__CHUNK_COL(ch)
+#define SBL__CHUNK_POOL(ch) (SBL__CHUNK_COLN(ch) + SBL__CHUNK_COLS)
 
 /* lane kernel chunk: columns per chunk, and floats per column plane (the chunk, its two
    neighbour columns, padding) */
@@ -2986,7 +2993,7 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
    SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 5)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 7)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -3035,7 +3042,8 @@ static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
     k->pool_se2 = SBL__PCAST(double *, p); p += 2 * pf;
     k->pool_r = p; p += pf;
     k->pool_row = -1;
-    /* consecutive blocks, one per channel (sbl__pool_planes_of counts on it) */
+    /* one block: the channels' column sums (consecutive), col_n, pool_col: the lanes read
+       them at constant distances from col[0] (sbl__pool_planes_of, sbl__pool_lanes_blocks) */
     for (c = 0; c < k->ch; ++c) { k->col[c] = p; p += SBL__COL_PLANES * SBL__CHUNK_COLS; }
     k->col_n = p; p += SBL__CHUNK_COLS;
     k->pool_col = p; p += SBL__POOL_PLANES(k->ch) * SBL__POOL_COLS;
@@ -4630,6 +4638,11 @@ typedef struct sbl__lane_stats {
    load per plane in the channel loops instead of two). */
 typedef struct sbl__lane_rows {
     const float *y[3][4], *x[3][4], *v[3];
+    /* the same planes as row[j] + off (sbl__kernel_bind lays each ring row's planes out
+       at the same distances from its y[0]): three pointers and the offsets for the
+       column sums, whose loop would otherwise hold 7 ch + 3 plane pointers */
+    const float *row[3];
+    ptrdiff_t off_y[4], off_x[4], off_v;
 } sbl__lane_rows;
 
 static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, int ch)
@@ -4638,24 +4651,31 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
     for (j = 0; j < 3; ++j) {
         for (c = 0; c < ch; ++c) { W->y[j][c] = R[j]->y[c]; W->x[j][c] = R[j]->x[c]; }
         W->v[j] = R[j]->v;
+        W->row[j] = R[j]->y[0];
     }
+    for (c = 0; c < ch; ++c) {
+        W->off_y[c] = R[0]->y[c] - R[0]->y[0];
+        W->off_x[c] = R[0]->x[c] - R[0]->y[0];
+    }
+    W->off_v = R[0]->v - R[0]->y[0];
 }
 
 /* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
 SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
                                    sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1, int clamp)
 {
-    const sbl__v y0 = sbl__load(W->y[0][c] + x), y1 = sbl__load(W->y[1][c] + x),
-                 y2 = sbl__load(W->y[2][c] + x);
+    const ptrdiff_t iy = x + W->off_y[c], ix = x + W->off_x[c];
+    const sbl__v y0 = sbl__load(W->row[0] + iy), y1 = sbl__load(W->row[1] + iy),
+                 y2 = sbl__load(W->row[2] + iy);
     const sbl__v a1 = sbl__sub(y1, y0), a2 = sbl__sub(y2, y0);
-    const sbl__v d0 = sbl__sub(sbl__load(W->x[0][c] + x), y0),
-                 d1 = sbl__sub(sbl__load(W->x[1][c] + x), y1),
-                 d2 = sbl__sub(sbl__load(W->x[2][c] + x), y2);
+    const sbl__v d0 = sbl__sub(sbl__load(W->row[0] + ix), y0),
+                 d1 = sbl__sub(sbl__load(W->row[1] + ix), y1),
+                 d2 = sbl__sub(sbl__load(W->row[2] + ix), y2);
     /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t) is then
        0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
     const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
     const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
-    float *cp = k->col[c] + i;
+    float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
     sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
     sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
     sbl__store(SBL__COLP(cp, SBL__COL_T), t);
@@ -4679,10 +4699,11 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
     int x = ca;
     for (;;) {
         const int i = x - base;
-        const sbl__v v0 = sbl__load(W->v[0] + x), v1 = sbl__load(W->v[1] + x),
-                     v2 = sbl__load(W->v[2] + x);
+        const ptrdiff_t iv = x + W->off_v;
+        const sbl__v v0 = sbl__load(W->row[0] + iv), v1 = sbl__load(W->row[1] + iv),
+                     v2 = sbl__load(W->row[2] + iv);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
-        sbl__store(k->col_n + i, sbl__add(sbl__add(v0, v1), v2));
+        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), sbl__add(sbl__add(v0, v1), v2));
         sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp);
         if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp);
         if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp);
@@ -4720,7 +4741,7 @@ SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows
     const sbl__v yc = sbl__load(W->y[1][c] + x);
     const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
     const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
-    const float *cp = k->col[c] + i;
+    const float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
     sbl__v al, bl, ar, br, a8, b8, a9, b9, q;
     /* side columns about s (their top sample is s + D, counted by n = 3) */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
@@ -4747,7 +4768,7 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
                                             sbl__lane_stats *st)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const float *cp = k->col[c] + i;
+    const float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
     const sbl__v tc = sbl__load(SBL__COLP(cp, SBL__COL_T));
     const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
     sbl__v pl, ql, pr, qr, d, dd;
@@ -4781,8 +4802,9 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const int i = x - ca, ch = k->ch;
-    const sbl__v nl = sbl__load(k->col_n + i - 1), nr = sbl__load(k->col_n + i + 1);
-    const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch); /* k->col_n + i */
+    const sbl__v nl = sbl__load(qn - 1), nr = sbl__load(qn + 1);
+    const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
     sbl__v inv_cnt1;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
@@ -4832,6 +4854,8 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_SE2(ch) (3 * (ch) + 2)
 #define SBL__POOL_PD2(ch) (3 * (ch) + 3)
 #define SBL__POOL_PV(ch) (3 * (ch) + 4)
+#define SBL__POOL_FT(ch) (3 * (ch) + 5) /* staged lanes: the firefly factor t (sbl__lanes_stage_y) */
+#define SBL__POOL_S2(ch) (3 * (ch) + 6) /* staged lanes: Y's variance summed over the channels */
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -4980,40 +5004,50 @@ SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const
 /* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
    sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs.
    The channels written out (ch is a constant in each instance), in channel order.
-   pairs = 1 (the lane kernel's column sums): also PD2 and PV, whatever the count. */
+   own (a constant): the column sums are the prepass's planes (1) or the lane kernel's
+   (0, sbl__pool_planes_of). pairs = 1 (the lane kernel's column sums): also PD2 and PV,
+   whatever the count. Every plane is read at a constant distance from one pointer
+   (sbl__kernel_bind lays the chunk's planes out in one block: k->col[0..ch), col_n,
+   pool_col), which moves with the column: one register for all, so the loop does not
+   reload a dozen plane pointers from the stack on each vector. */
 SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
-                                        int ba, int bb, int base, const int pairs)
+                                        int ba, int bb, int base, const int own, const int pairs)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
-    const float *pn = Q->n;
-    /* channel c's planes at a constant distance from channel 0's (every caller's layout,
-       sbl__pool_planes_of): fixed offsets from one pointer, not three loads per channel */
-    const float *const a0 = Q->a[0], *const b0 = Q->b[0], *const t0 = Q->t[0];
-    const ptrdiff_t cstep = Q->cstep;
-    float *pm = k->pool_col + SBL__POOL_M2(ch) * SBL__POOL_COLS, *ps = k->pool_col + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
-    float *const ppd = SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)), *const ppv = SBL__POOL_PLANE(k, SBL__POOL_PV(ch));
+    /* offsets from k->col[0] (floats): the column sums, then the prepass's planes */
+    const ptrdiff_t coln = SBL__CAST(ptrdiff_t, ch) * SBL__COL_PLANES * SBL__CHUNK_COLS;
+    const ptrdiff_t pool = coln + SBL__CHUNK_COLS;
+    const ptrdiff_t o_n = own ? pool + SBL__POOL_N(ch) * SBL__POOL_COLS : coln;
+    const ptrdiff_t o_a = own ? pool + SBL__POOL_A(0) * SBL__POOL_COLS : SBL__COL_DA * SBL__CHUNK_COLS;
+    const ptrdiff_t o_b = own ? pool + SBL__POOL_B(0) * SBL__POOL_COLS : SBL__COL_DB * SBL__CHUNK_COLS;
+    const ptrdiff_t o_t = own ? pool + SBL__POOL_T(0) * SBL__POOL_COLS : SBL__COL_T * SBL__CHUNK_COLS;
+    const ptrdiff_t cstep = own ? 3 * SBL__POOL_COLS : SBL__COL_PLANES * SBL__CHUNK_COLS;
+    const ptrdiff_t o_m2 = pool + SBL__POOL_M2(ch) * SBL__POOL_COLS, o_se2 = pool + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
+    const ptrdiff_t o_pd2 = pool + SBL__POOL_PD2(ch) * SBL__POOL_COLS, o_pv = pool + SBL__POOL_PV(ch) * SBL__POOL_COLS;
+    float *const col0 = k->col[0];
     int x = ba;
+    (void)Q;
     for (;;) {
-        const int i = x - base;
-        const sbl__v nl = sbl__load(pn + i - 1), nc = sbl__load(pn + i), nr = sbl__load(pn + i + 1);
+        float *const q = col0 + (x - base); /* the column's index in every plane */
+        const sbl__v nl = sbl__load(q + o_n - 1), nc = sbl__load(q + o_n), nr = sbl__load(q + o_n + 1);
         const sbl__v n = sbl__add(sbl__add(nl, nc), nr);
         const sbl__m has_c = sbl__gt(nc, zero), has_l = sbl__gt(nl, zero), valid = sbl__gt(n, min_pairs);
         const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero, pv = zero;
 #define SBL__POOL_BLOCK_CH(c) \
-        sbl__pool_block_channel(a0 + (c) * cstep + i, b0 + (c) * cstep + i, t0 + (c) * cstep + i, \
+        sbl__pool_block_channel(q + o_a + (c) * cstep, q + o_b + (c) * cstep, q + o_t + (c) * cstep, \
                                 has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv)
         SBL__POOL_BLOCK_CH(0);
         if (ch > 1) SBL__POOL_BLOCK_CH(1);
         if (ch > 2) SBL__POOL_BLOCK_CH(2);
         if (ch > 3) SBL__POOL_BLOCK_CH(3);
 #undef SBL__POOL_BLOCK_CH
-        sbl__store(pm + i, sbl__sel(valid, m2, zero));
-        sbl__store(ps + i, sbl__sel(valid, se2, zero));
+        sbl__store(q + o_m2, sbl__sel(valid, m2, zero));
+        sbl__store(q + o_se2, sbl__sel(valid, se2, zero));
         if (pairs) {
-            sbl__store(ppd + i, m2);
-            sbl__store(ppv + i, pv);
+            sbl__store(q + o_pd2, m2);
+            sbl__store(q + o_pv, pv);
         }
         if (x + SBL__VW >= bb) break;
         x += SBL__VW;
@@ -5114,7 +5148,7 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 0);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 1, 0);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -5445,9 +5479,9 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     /* pair counts (sbl__lanes_moments) */
-    nl = sbl__load(k->col_n + i - 1);
-    nr = sbl__load(k->col_n + i + 1);
-    cnt = sbl__add(sbl__add(nl, sbl__load(k->col_n + i)), nr);
+    nl = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
+    nr = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
+    cnt = sbl__add(sbl__add(nl, sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch))), nr);
     st.has_pairs = sbl__gt(cnt, zero);
     st.two_pairs = sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
@@ -5484,8 +5518,10 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     if (ch > 1) s2 = sbl__add(s2, var[1]);
     if (ch > 2) s2 = sbl__add(s2, var[2]);
     if (ch > 3) s2 = sbl__add(s2, var[3]);
-    w = sbl__lanes_weight(&k->wp, &st, zero, s2, sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PD2(ch)) + i),
-                          sbl__load(SBL__POOL_PLANE(k, SBL__POOL_PV(ch)) + i), n_xc, n_y, 0, ch, fast);
+    w = sbl__lanes_weight(&k->wp, &st, zero, s2,
+                          sbl__load(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
+                          sbl__load(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_PV(ch) * SBL__POOL_COLS),
+                          n_xc, n_y, 0, ch, fast);
     w2 = st.a2[0]; /* every channel's */
     /* the blend (sbl__lanes_blend with one weight, no fill) */
     hi_w = sbl__gt(w, half);
@@ -5512,6 +5548,99 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
                      sbl__add(n_xc, n_y));
     n_out = sbl__min(n_out, cap);
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
+    sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
+}
+/* The temporal default configuration (sbl__lanes_vector_fast with fast = 1) in two
+   stages over the vectors of a run, so that each stage's values fit the registers (one
+   pass holding Y's moments, the firefly sums, the weight and the blend spills them):
+   sbl__lanes_stage_y, Y's moments and the firefly limit's factor t, the summed variance
+   s2 into two planes of the chunk (index column - base); then sbl__lanes_stage_blend, the
+   weight and the blend. The same operations in the same order as
+   sbl__lanes_vector_fast (bit for bit). */
+SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int x, int base,
+                                    const int ch)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const int i = x - base;
+    sbl__v mean, var, m8, v8, yc, s2 = zero, bound, t;
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
+#define SBL__STAGE_Y(c) \
+    do { \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc); \
+        sum_y = sbl__add(sum_y, yc); \
+        sum_m8 = sbl__add(sum_m8, m8); \
+        sum_x = sbl__add(sum_x, sbl__load(W->x[1][c] + x)); \
+        sum_v8 = sbl__add(sum_v8, v8); \
+        s2 = (c) ? sbl__add(s2, var) : var; \
+    } while (0)
+    SBL__LANES_CH(SBL__STAGE_Y);
+#undef SBL__STAGE_Y
+    (void)mean;
+    bound = sbl__add(sbl__max(sum_m8, sum_x),
+                     sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
+    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
+    bound = sbl__max(bound, zero);
+    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_FT(ch) * SBL__POOL_COLS, t);
+    sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_S2(ch) * SBL__POOL_COLS, s2);
+}
+
+SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
+                                        const float *n_row, const float *nyrow, int x, int base,
+                                        const int ch)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
+    const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
+    const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
+    sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, t, a_mean, a2_mean, one_m, den, n_out;
+    sbl__m valid, hi_w, low_t;
+    n_x = sbl__load(n_row + x);
+    valid = sbl__gt(n_x, zero);
+    n_y = nyrow ? sbl__load(nyrow + x) : one;
+    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+    nl = sbl__load(qn - 1);
+    nr = sbl__load(qn + 1);
+    cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
+    st.has_pairs = sbl__gt(cnt, zero);
+    st.two_pairs = sbl__gt(cnt, one);
+    st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
+    st.pool_r = sbl__load(k->pool_r + x);
+    w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
+                          sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
+                          sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
+    w2 = st.a2[0]; /* every channel's */
+    /* Eq. 5 first (its values then leave the registers), then the blend */
+    a2_mean = w2;
+    if (ch > 1) a2_mean = sbl__add(a2_mean, w2);
+    if (ch > 2) a2_mean = sbl__add(a2_mean, w2);
+    if (ch > 3) a2_mean = sbl__add(a2_mean, w2);
+    a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    one_m = sbl__sub(one, a2_mean);
+    den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
+    n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
+                     sbl__add(n_xc, n_y));
+    n_out = sbl__min(n_out, cap);
+    sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
+    t = sbl__load(q + SBL__POOL_FT(ch) * SBL__POOL_COLS);
+    low_t = sbl__gt(one, t);
+    hi_w = sbl__gt(w, half);
+    one_w = sbl__sub(one, w);
+    a_mean = zero;
+#define SBL__STAGE_BLEND(c) \
+    do { \
+        const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
+        const sbl__v yb = sbl__sel(low_t, sbl__mul(yc, t), yc); \
+        const sbl__v o = sbl__sel(hi_w, sbl__add(yb, sbl__mul(one_w, sbl__sub(xs, yb))), \
+                                  sbl__add(xs, sbl__mul(w, sbl__sub(yb, xs)))); \
+        sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc)); \
+        a_mean = sbl__add(a_mean, w); \
+    } while (0)
+    SBL__LANES_CH(SBL__STAGE_BLEND);
+#undef SBL__STAGE_BLEND
+    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
 }
 #undef SBL__LANES_CH
@@ -5636,6 +5765,20 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast); \
         else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
     } while (0)
+    /* the vectors of the run [lo, b): whole vectors, the last one ending at b; a run
+       narrower than a vector: one vector ending at b, inside the chunk's columns */
+#define SBL__RUN_VECTORS(stage) \
+    do { \
+        if (b - lo >= SBL__VW) { \
+            for (p = lo; p + SBL__VW <= b; p += SBL__VW) stage; \
+            if (p < b) { p = b - SBL__VW; stage; } \
+        } else { \
+            p = b - SBL__VW; \
+            if (p < x - span) p = x - span; \
+            if (p < 1) p = 1; \
+            stage; \
+        } \
+    } while (0)
     const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
     const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
@@ -5657,7 +5800,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
         if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
         sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base,
-                               fast);
+                               0, fast);
         for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
         for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
         sbl__pool_lanes_ratio(k, ch, x, e, base);
@@ -5677,21 +5820,19 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
                 if (lo >= hi) break;
                 b = sbl__find_set(win, lo + 1, hi);
             }
-            if (b - lo >= SBL__VW) {
-                for (p = lo; p + SBL__VW <= b; p += SBL__VW)
-                    SBL__POOLED_VECTOR(p);
-                if (p < b) SBL__POOLED_VECTOR(b - SBL__VW);
+            if (fast == 1) {
+                /* two stages over the run's vectors (sbl__lanes_stage_y) */
+                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch));
+                SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch));
             } else {
-                p = b - SBL__VW;
-                if (p < x - span) p = x - span;
-                if (p < 1) p = 1;
-                SBL__POOLED_VECTOR(p);
+                SBL__RUN_VECTORS(SBL__POOLED_VECTOR(p));
             }
             lo = b;
         }
         x = e;
     }
 #undef SBL__POOLED_VECTOR
+#undef SBL__RUN_VECTORS
 }
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
