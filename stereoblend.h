@@ -1649,6 +1649,67 @@ SBL__INLINE float sbl__gather_fast(const sbl__tap_src *s, const sbl__tap_want *t
     return wsum;
 }
 
+/* The 3x3 fallback of sbl__gather_ch (every footprint tap rejected, or weights summing
+   below 1e-3): the consistent pixels of the 3x3 window around the nearest pixel of
+   (sx, sy), averaged; returns their mean N (0: none). The row gather calls it directly
+   for lanes whose taps it has already summed. */
+SBL__INLINE float sbl__gather_fallback_ch(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
+                                          double sy, float *out, int ch)
+{
+    /* thin geometry: the surface may survive only in a neighbour of the nearest pixel;
+       average the consistent ones, summed in double: up to nine finite values near
+       FLT_MAX (colour or N) must not overflow before the division */
+    int i, j, k;
+    int cx = SBL__CAST(int, floor(sx)), cy = SBL__CAST(int, floor(sy)), cnt = 0;
+    double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
+    if (cx >= 1 && cy >= 1 && cx + 1 < s->width && cy + 1 < s->height && !s->use_id &&
+        !s->use_normal) {
+        /* the window inside the image, no id or normal test (the common case of a
+           disocclusion): sbl__tap_ok's tests written out, the depth test's limit
+           formed once (the same float expression) */
+        const int inf_e = sbl__is_pos_inf(t->depth);
+        const float lim = s->depth_tolerance * t->depth + t->depth_slack;
+        for (j = -1; j <= 1; ++j)
+            for (i = -1; i <= 1; ++i) {
+                const float *c = SBL__AT(s->color, cx + i, cy + j);
+                float n = 1.0f;
+                if (s->use_depth) { /* sbl__depth_match */
+                    const float d = *SBL__AT(s->depth, cx + i, cy + j);
+                    const int inf_t = sbl__is_pos_inf(d);
+                    if (inf_e || inf_t) {
+                        if (!(inf_e && inf_t)) continue;
+                    } else if (!sbl__finite(d) || !(d > 0.0f) || !(fabsf(d - t->depth) <= lim)) {
+                        continue;
+                    }
+                }
+                if (sbl__any_nonfinite(c, ch)) continue;
+                if (s->length.p) {
+                    n = *SBL__AT(s->length, cx + i, cy + j);
+                    if (!(n > 0.0f) || !sbl__finite(n)) continue;
+                }
+                dacc[0] += SBL__CAST(double, c[0]);
+                if (ch > 1) dacc[1] += SBL__CAST(double, c[1]);
+                if (ch > 2) dacc[2] += SBL__CAST(double, c[2]);
+                if (ch > 3) dacc[3] += SBL__CAST(double, c[3]);
+                dn += SBL__CAST(double, n); /* 1.0 without N */
+                ++cnt;
+            }
+    } else {
+        for (j = -1; j <= 1; ++j)
+            for (i = -1; i <= 1; ++i)
+                if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
+                    const float *c = SBL__AT(s->color, cx + i, cy + j);
+                    for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
+                    dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
+                    ++cnt;
+                }
+    }
+    if (!cnt) return 0.0f;
+    for (k = 0; k < ch; ++k) out[k] = SBL__CAST(float, dacc[k] / cnt);
+    dn /= cnt;
+    return dn > 0.0 ? SBL__CAST(float, dn) : 0.0f;
+}
+
 /* Bilinear 2x2 gather at continuous position (sx, sy) with per-tap tests, valid taps
    renormalised; then the 3x3 fallback; returns N of the result (0: nothing valid).
    `ch` is a constant at each call site below, so the accumulators stay in registers. */
@@ -1687,60 +1748,7 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
                 wsum += w;
             }
     }
-    if (wsum < 1e-3f && fallback) {
-        /* thin geometry: the surface may survive only in a neighbour of the nearest
-           pixel; average the consistent ones */
-        /* summed in double: up to nine finite values near FLT_MAX (colour or N) must
-           not overflow before the division */
-        int cx = SBL__CAST(int, floor(sx)), cy = SBL__CAST(int, floor(sy)), cnt = 0;
-        double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
-        if (cx >= 1 && cy >= 1 && cx + 1 < s->width && cy + 1 < s->height && !s->use_id &&
-            !s->use_normal) {
-            /* the window inside the image, no id or normal test (the common case of a
-               disocclusion): sbl__tap_ok's tests written out, the depth test's limit
-               formed once (the same float expression) */
-            const int inf_e = sbl__is_pos_inf(t->depth);
-            const float lim = s->depth_tolerance * t->depth + t->depth_slack;
-            for (j = -1; j <= 1; ++j)
-                for (i = -1; i <= 1; ++i) {
-                    const float *c = SBL__AT(s->color, cx + i, cy + j);
-                    float n = 1.0f;
-                    if (s->use_depth) { /* sbl__depth_match */
-                        const float d = *SBL__AT(s->depth, cx + i, cy + j);
-                        const int inf_t = sbl__is_pos_inf(d);
-                        if (inf_e || inf_t) {
-                            if (!(inf_e && inf_t)) continue;
-                        } else if (!sbl__finite(d) || !(d > 0.0f) || !(fabsf(d - t->depth) <= lim)) {
-                            continue;
-                        }
-                    }
-                    if (sbl__any_nonfinite(c, ch)) continue;
-                    if (s->length.p) {
-                        n = *SBL__AT(s->length, cx + i, cy + j);
-                        if (!(n > 0.0f) || !sbl__finite(n)) continue;
-                    }
-                    dacc[0] += SBL__CAST(double, c[0]);
-                    if (ch > 1) dacc[1] += SBL__CAST(double, c[1]);
-                    if (ch > 2) dacc[2] += SBL__CAST(double, c[2]);
-                    if (ch > 3) dacc[3] += SBL__CAST(double, c[3]);
-                    dn += SBL__CAST(double, n); /* 1.0 without N */
-                    ++cnt;
-                }
-        } else {
-            for (j = -1; j <= 1; ++j)
-                for (i = -1; i <= 1; ++i)
-                    if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
-                        const float *c = SBL__AT(s->color, cx + i, cy + j);
-                        for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
-                        dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
-                        ++cnt;
-                    }
-        }
-        if (!cnt) return 0.0f;
-        for (k = 0; k < ch; ++k) out[k] = SBL__CAST(float, dacc[k] / cnt);
-        dn /= cnt;
-        return dn > 0.0 ? SBL__CAST(float, dn) : 0.0f;
-    }
+    if (wsum < 1e-3f && fallback) return sbl__gather_fallback_ch(s, t, sx, sy, out, ch);
     if (wsum < 1e-3f) return 0.0f;
     inv = 1.0f / wsum;
     /* the weights sum to 1 within rounding, so a mean of values at +-FLT_MAX can round
@@ -1748,6 +1756,18 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     for (k = 0; k < ch; ++k) out[k] = sbl__sat(acc[k] * inv);
     acc_n = sbl__sat(acc_n * inv);
     return acc_n > 0.0f ? acc_n : 0.0f;
+}
+
+/* sbl__gather_fallback_ch for the source's channel count. */
+static float sbl__gather_fallback(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
+                                  double sy, float *out)
+{
+    switch (s->color.ch) {
+    case 1: return sbl__gather_fallback_ch(s, t, sx, sy, out, 1);
+    case 2: return sbl__gather_fallback_ch(s, t, sx, sy, out, 2);
+    case 3: return sbl__gather_fallback_ch(s, t, sx, sy, out, 3);
+    default: return sbl__gather_fallback_ch(s, t, sx, sy, out, 4);
+    }
 }
 
 /* Catmull-Rom weights of the four taps at offsets -1, 0, 1, 2 from the tap left of a
@@ -3145,9 +3165,12 @@ typedef struct sbl__tap_plan {
     float fx[SBL__BLOCK], fy[SBL__BLOCK];               /* bilinear fractions              */
     float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
     float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
-    unsigned char redo[SBL__BLOCK]; /* 1: the pixel gather decides                          */
+    /* 1: the pixel gather decides; 2: the taps (summed, finite) weigh below 1e-3, only
+       the 3x3 fallback is left (the rig's `fallback_one`, else the pixel gather) */
+    unsigned char redo[SBL__BLOCK];
     /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
-       pixels in every view (planned so together: uniform integer motion) */
+       pixels in every view (planned so together: uniform integer motion); 2: planned
+       together and not so (0: unknown) */
     unsigned char uniform[SBL__BLOCK];
     int lane_step[3][SBL__VW];      /* l * pixel step of colour, depth, N (set per call) */
 } sbl__tap_plan;
@@ -3306,7 +3329,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     const int *cidx = contiguous ? cstep : p->ci + i;
     const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
     sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = zero, lim = zero;
-    sbl__m redo, lo, valid, inf_e = sbl__gt(zero, zero);
+    sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero);
     int c, bits, plain = 0;
     /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
        in every lane (a camera at rest; the rows of a parallel stereo rig) */
@@ -3352,14 +3375,14 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
             }
         }
     }
-    redo = sbl__nonfinite(accn);
-    /* (the channels written out, as in sbl__lanes_tap) */
-    redo = sbl__mor(redo, sbl__nonfinite(acc[0]));
-    if (ch > 1) redo = sbl__mor(redo, sbl__nonfinite(acc[1]));
-    if (ch > 2) redo = sbl__mor(redo, sbl__nonfinite(acc[2]));
-    if (ch > 3) redo = sbl__mor(redo, sbl__nonfinite(acc[3]));
+    nonfinite = sbl__nonfinite(accn);
+    /* (the channels written out, as in sbl__lanes_tap_sum) */
+    nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[0]));
+    if (ch > 1) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[1]));
+    if (ch > 2) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[2]));
+    if (ch > 3) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[3]));
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
-    if (fallback) redo = sbl__mor(redo, lo);
+    redo = fallback ? sbl__mor(nonfinite, lo) : nonfinite;
     redo = sbl__mand(redo, fast);
     inv = sbl__div_exact(one, wsum);
     n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
@@ -3374,8 +3397,12 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     if (ch > 3) SBL__TAPS_OUT(3);
 #undef SBL__TAPS_OUT
     bits = sbl__mbits(redo);
-    for (c = 0; bits; ++c, bits >>= 1)
-        if (bits & 1) p->redo[i + c] = 1;
+    if (bits) {
+        /* 2: only the fallback is left (sums finite, weight below 1e-3) */
+        const int only = fallback ? sbl__mbits(sbl__mandnot(sbl__mand(lo, fast), nonfinite)) : 0;
+        for (c = 0; bits; ++c, bits >>= 1)
+            if (bits & 1) p->redo[i + c] = SBL__CAST(unsigned char, ((only >> c) & 1) + 1);
+    }
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -3413,10 +3440,10 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
         /* every lane's first tap one pixel after the previous lane's, in every view
            (each lane's index is a valid one, so the vector load reads exactly the
            addresses the gather would) */
-        contiguous = packed && (p->uniform[i] ||
-                                (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
-                                 (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
-                                 (!s->length.p || sbl__ints_step(p->li + i, 1))));
+        contiguous = packed && p->uniform[i] != 2 &&
+                     (p->uniform[i] || (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
+                                        (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
+                                        (!s->length.p || sbl__ints_step(p->li + i, 1))));
         if (both) {
             const sbl__v ze = sbl__load(p->depth + i);
             full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
@@ -3482,7 +3509,9 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                                         int (*start)(const void *, sbl__ring_row *, sbl__block *),
                                         int (*plan_vec)(const void *, sbl__block *, int),
                                         void (*plan_one)(const void *, sbl__block *, int),
-                                        void (*after)(const void *, sbl__ring_row *, sbl__block *))
+                                        void (*after)(const void *, sbl__ring_row *, sbl__block *),
+                                        float (*fallback_one)(const void *, const sbl__block *, int,
+                                                              float *))
 {
     const int ch = src->color.ch;
     sbl__block b;
@@ -3526,7 +3555,10 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             }
             if (b.p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+                sbl__ring_put(r, b.x0 + i,
+                              b.p.redo[i] == 2 && fallback_one ? fallback_one(ctx, &b, i, tmp)
+                                                               : pixel(ctx, b.x0 + i, y, tmp),
+                              tmp, ch);
             }
         }
     }
@@ -3625,6 +3657,22 @@ SBL__INLINE void sbl__plan_index(int *out, const float *x0s, const float *y0s, c
         for (j = 0; j < SBL__VW; ++j) out[j] = 0;
         return;
     }
+#if SBL__VW == 8
+    /* in int lanes: the products and the sum are the index's exact terms (each a valid
+       index's, below INT_MAX / 2: sbl__row_gather_ok) */
+    _mm256_storeu_si256(SBL__PCAST(__m256i *, out),
+                        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_cvttps_epi32(_mm256_loadu_ps(y0s)),
+                                                            _mm256_set1_epi32(SBL__CAST(int, f->stride))),
+                                         _mm256_mullo_epi32(_mm256_cvttps_epi32(_mm256_loadu_ps(x0s)),
+                                                            _mm256_set1_epi32(SBL__CAST(int, f->step)))));
+    return;
+#elif SBL__VW == 16
+    _mm512_storeu_si512(out, _mm512_add_epi32(_mm512_mullo_epi32(_mm512_cvttps_epi32(_mm512_loadu_ps(y0s)),
+                                                                 _mm512_set1_epi32(SBL__CAST(int, f->stride))),
+                                              _mm512_mullo_epi32(_mm512_cvttps_epi32(_mm512_loadu_ps(x0s)),
+                                                                 _mm512_set1_epi32(SBL__CAST(int, f->step)))));
+    return;
+#endif
     for (j = 0; j < SBL__VW; j += SBL__DW)
         sbl__dstorei(out + j, sbl__dadd(sbl__dmul(sbl__dfromf(y0s + j), sbl__dset1(SBL__CAST(double, f->stride))),
                                         sbl__dmul(sbl__dfromf(x0s + j), sbl__dset1(SBL__CAST(double, f->step)))));
@@ -3745,6 +3793,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
         sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL, p->lane_step[2]);
         return bits_scalar;
     }
+    p->uniform[i] = 2; /* lanes apart: not contiguous, no need to test (sbl__row_taps_ch) */
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
     sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
     sbl__plan_index(p->li + i, x0s, y0s, src->length.p ? &src->length : NULL);
@@ -4136,6 +4185,33 @@ static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
         sbl__tap_plan_set(&s->src, &b->p, i, &t, sx, sy);
 }
 
+/* Entry i whose taps weigh below 1e-3 (redo 2): the pixel gather's last step, its 3x3
+   fallback, at the position sbl__temporal_rp_pos gives (its expression, for motion
+   vectors; the camera source takes the pixel gather) and the planned expected depth and
+   slack (the plan's lanes need neither target normals nor ids). */
+#if defined(__GNUC__)
+#define SBL__RARE __attribute__((noinline)) /* a rare path kept out of the hot loop's code */
+#else
+#define SBL__RARE
+#endif
+static SBL__RARE float sbl__temporal_fallback_one(const void *ctx, const sbl__block *b, int i,
+                                                  float *out)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    const int x = b->x0 + i, y = b->y;
+    const float *mv;
+    sbl__tap_want t;
+    if (s->source != SBL_TEMPORAL_MOTION) return sbl__temporal_rp_pixel(ctx, x, y, out);
+    mv = SBL__AT(s->motion, x, y);
+    t.depth = b->p.depth[i];
+    t.depth_slack = b->p.slack[i];
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    return sbl__gather_fallback(&s->src, &t, x + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]),
+                                y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]), out);
+}
+
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
@@ -4143,7 +4219,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_one);
 }
 #endif
 
@@ -6515,6 +6591,21 @@ static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
     sbl__tap_plan_set(&s->src, &b->p, i, &want, sx, sy);
 }
 
+/* Entry i of a block whose taps weigh below 1e-3 (redo 2, not a far lane): the 3x3
+   fallback of sbl__stereo_rp_pixel's gather at the match (b->psx, b->psy: the map's
+   position) with the planned expected depth and slack. */
+static SBL__RARE float sbl__stereo_fallback_one(const sbl__stereo_rp *s, const sbl__block *b,
+                                                int i, float *out)
+{
+    sbl__tap_want t;
+    t.depth = b->p.depth[i];
+    t.depth_slack = b->p.slack[i];
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    return sbl__gather_fallback(&s->src, &t, b->psx[i], b->psy[i], out);
+}
+
 /* After the taps: the entries handed back, and far lanes whose one tap failed, go to
    the pixel gather (the footprint's other tap may carry them); the back-check of the
    others, as
@@ -6526,7 +6617,12 @@ SBL__INLINE void sbl__stereo_after_one(const sbl__stereo_rp *s, sbl__ring_row *r
 {
     const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
     const int x = b->x0 + i;
-    if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+    if (b->p.redo[i] == 2 && !b->snapped[i]) {
+        /* the taps (at the match's exact position) weigh below 1e-3: the pixel gather's
+           3x3 fallback there, then the back-check below */
+        float tmp[4] = {0, 0, 0, 0};
+        sbl__ring_put(r, x, sbl__stereo_fallback_one(s, b, i, tmp), tmp, s->src.color.ch);
+    } else if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
         float tmp[4] = {0, 0, 0, 0};
         sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
         return;
@@ -6636,7 +6732,7 @@ static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, 
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
                            sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
-                           sbl__stereo_plan_one, sbl__stereo_block_after);
+                           sbl__stereo_plan_one, sbl__stereo_block_after, NULL);
 }
 #endif
 
