@@ -1658,6 +1658,67 @@ SBL__INLINE float sbl__gather_fast(const sbl__tap_src *s, const sbl__tap_want *t
     return wsum;
 }
 
+/* The 3x3 fallback of sbl__gather_ch (every footprint tap rejected, or weights summing
+   below 1e-3): the consistent pixels of the 3x3 window around the nearest pixel of
+   (sx, sy), averaged; returns their mean N (0: none). The row gather calls it directly
+   for lanes whose taps it has already summed. */
+SBL__INLINE float sbl__gather_fallback_ch(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
+                                          double sy, float *out, int ch)
+{
+    /* thin geometry: the surface may survive only in a neighbour of the nearest pixel;
+       average the consistent ones, summed in double: up to nine finite values near
+       FLT_MAX (colour or N) must not overflow before the division */
+    int i, j, k;
+    int cx = SBL__CAST(int, floor(sx)), cy = SBL__CAST(int, floor(sy)), cnt = 0;
+    double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
+    if (cx >= 1 && cy >= 1 && cx + 1 < s->width && cy + 1 < s->height && !s->use_id &&
+        !s->use_normal) {
+        /* the window inside the image, no id or normal test (the common case of a
+           disocclusion): sbl__tap_ok's tests written out, the depth test's limit
+           formed once (the same float expression) */
+        const int inf_e = sbl__is_pos_inf(t->depth);
+        const float lim = s->depth_tolerance * t->depth + t->depth_slack;
+        for (j = -1; j <= 1; ++j)
+            for (i = -1; i <= 1; ++i) {
+                const float *c = SBL__AT(s->color, cx + i, cy + j);
+                float n = 1.0f;
+                if (s->use_depth) { /* sbl__depth_match */
+                    const float d = *SBL__AT(s->depth, cx + i, cy + j);
+                    const int inf_t = sbl__is_pos_inf(d);
+                    if (inf_e || inf_t) {
+                        if (!(inf_e && inf_t)) continue;
+                    } else if (!sbl__finite(d) || !(d > 0.0f) || !(fabsf(d - t->depth) <= lim)) {
+                        continue;
+                    }
+                }
+                if (sbl__any_nonfinite(c, ch)) continue;
+                if (s->length.p) {
+                    n = *SBL__AT(s->length, cx + i, cy + j);
+                    if (!(n > 0.0f) || !sbl__finite(n)) continue;
+                }
+                dacc[0] += SBL__CAST(double, c[0]);
+                if (ch > 1) dacc[1] += SBL__CAST(double, c[1]);
+                if (ch > 2) dacc[2] += SBL__CAST(double, c[2]);
+                if (ch > 3) dacc[3] += SBL__CAST(double, c[3]);
+                dn += SBL__CAST(double, n); /* 1.0 without N */
+                ++cnt;
+            }
+    } else {
+        for (j = -1; j <= 1; ++j)
+            for (i = -1; i <= 1; ++i)
+                if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
+                    const float *c = SBL__AT(s->color, cx + i, cy + j);
+                    for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
+                    dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
+                    ++cnt;
+                }
+    }
+    if (!cnt) return 0.0f;
+    for (k = 0; k < ch; ++k) out[k] = SBL__CAST(float, dacc[k] / cnt);
+    dn /= cnt;
+    return dn > 0.0 ? SBL__CAST(float, dn) : 0.0f;
+}
+
 /* Bilinear 2x2 gather at continuous position (sx, sy) with per-tap tests, valid taps
    renormalised; then the 3x3 fallback; returns N of the result (0: nothing valid).
    `ch` is a constant at each call site below, so the accumulators stay in registers. */
@@ -1696,60 +1757,7 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
                 wsum += w;
             }
     }
-    if (wsum < 1e-3f && fallback) {
-        /* thin geometry: the surface may survive only in a neighbour of the nearest
-           pixel; average the consistent ones */
-        /* summed in double: up to nine finite values near FLT_MAX (colour or N) must
-           not overflow before the division */
-        int cx = SBL__CAST(int, floor(sx)), cy = SBL__CAST(int, floor(sy)), cnt = 0;
-        double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
-        if (cx >= 1 && cy >= 1 && cx + 1 < s->width && cy + 1 < s->height && !s->use_id &&
-            !s->use_normal) {
-            /* the window inside the image, no id or normal test (the common case of a
-               disocclusion): sbl__tap_ok's tests written out, the depth test's limit
-               formed once (the same float expression) */
-            const int inf_e = sbl__is_pos_inf(t->depth);
-            const float lim = s->depth_tolerance * t->depth + t->depth_slack;
-            for (j = -1; j <= 1; ++j)
-                for (i = -1; i <= 1; ++i) {
-                    const float *c = SBL__AT(s->color, cx + i, cy + j);
-                    float n = 1.0f;
-                    if (s->use_depth) { /* sbl__depth_match */
-                        const float d = *SBL__AT(s->depth, cx + i, cy + j);
-                        const int inf_t = sbl__is_pos_inf(d);
-                        if (inf_e || inf_t) {
-                            if (!(inf_e && inf_t)) continue;
-                        } else if (!sbl__finite(d) || !(d > 0.0f) || !(fabsf(d - t->depth) <= lim)) {
-                            continue;
-                        }
-                    }
-                    if (sbl__any_nonfinite(c, ch)) continue;
-                    if (s->length.p) {
-                        n = *SBL__AT(s->length, cx + i, cy + j);
-                        if (!(n > 0.0f) || !sbl__finite(n)) continue;
-                    }
-                    dacc[0] += SBL__CAST(double, c[0]);
-                    if (ch > 1) dacc[1] += SBL__CAST(double, c[1]);
-                    if (ch > 2) dacc[2] += SBL__CAST(double, c[2]);
-                    if (ch > 3) dacc[3] += SBL__CAST(double, c[3]);
-                    dn += SBL__CAST(double, n); /* 1.0 without N */
-                    ++cnt;
-                }
-        } else {
-            for (j = -1; j <= 1; ++j)
-                for (i = -1; i <= 1; ++i)
-                    if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
-                        const float *c = SBL__AT(s->color, cx + i, cy + j);
-                        for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
-                        dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
-                        ++cnt;
-                    }
-        }
-        if (!cnt) return 0.0f;
-        for (k = 0; k < ch; ++k) out[k] = SBL__CAST(float, dacc[k] / cnt);
-        dn /= cnt;
-        return dn > 0.0 ? SBL__CAST(float, dn) : 0.0f;
-    }
+    if (wsum < 1e-3f && fallback) return sbl__gather_fallback_ch(s, t, sx, sy, out, ch);
     if (wsum < 1e-3f) return 0.0f;
     inv = 1.0f / wsum;
     /* the weights sum to 1 within rounding, so a mean of values at +-FLT_MAX can round
@@ -1757,6 +1765,18 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     for (k = 0; k < ch; ++k) out[k] = sbl__sat(acc[k] * inv);
     acc_n = sbl__sat(acc_n * inv);
     return acc_n > 0.0f ? acc_n : 0.0f;
+}
+
+/* sbl__gather_fallback_ch for the source's channel count. */
+static float sbl__gather_fallback(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
+                                  double sy, float *out)
+{
+    switch (s->color.ch) {
+    case 1: return sbl__gather_fallback_ch(s, t, sx, sy, out, 1);
+    case 2: return sbl__gather_fallback_ch(s, t, sx, sy, out, 2);
+    case 3: return sbl__gather_fallback_ch(s, t, sx, sy, out, 3);
+    default: return sbl__gather_fallback_ch(s, t, sx, sy, out, 4);
+    }
 }
 
 /* Catmull-Rom weights of the four taps at offsets -1, 0, 1, 2 from the tap left of a
@@ -3164,9 +3184,12 @@ typedef struct sbl__tap_plan {
     float fx[SBL__BLOCK], fy[SBL__BLOCK];               /* bilinear fractions              */
     float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
     float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
-    unsigned char redo[SBL__BLOCK]; /* 1: the pixel gather decides                          */
+    /* 1: the pixel gather decides; 2: the taps (summed, finite) weigh below 1e-3, only
+       the 3x3 fallback is left (the rig's `fallback_one`, else the pixel gather) */
+    unsigned char redo[SBL__BLOCK];
     /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
-       pixels in every view (planned so together: uniform integer motion) */
+       pixels in every view (planned so together: uniform integer motion); 2: planned
+       together and not so (0: unknown) */
     unsigned char uniform[SBL__BLOCK];
     int lane_step[3][SBL__VW];      /* l * pixel step of colour, depth, N (set per call) */
 } sbl__tap_plan;
@@ -3227,20 +3250,21 @@ SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
 #endif
 
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
-   (x0, y0 + 1), (x0 + 1, y0 + 1). Its tests narrow *ok, then its weighted N, colour and
-   weight join the sums (each sum takes the taps in the order 0 .. 3, as the pixel
-   gather adds them). Written once and inlined per tap with t constant, so the offsets
-   fold and every vector stays in a register. plain: no lane expects sky and every
-   depth limit is finite, so sbl__depth_match reduces to d > 0 and |d - z| <= limit (a
-   non-finite d fails the second). cidx: the colour's lane indices from the first tap. */
-SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
-                                sbl__v w, sbl__m ok, sbl__v ze, sbl__v lim, sbl__m inf_e,
-                                int plain, const int *cidx, const float *cbase, sbl__v *acc,
-                                sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int sky,
-                                int full)
+   (x0, y0 + 1), (x0 + 1, y0 + 1). sbl__lanes_tap_test: its tests narrow ok (from w > 0),
+   returned, with its N in *nt; sbl__lanes_tap_sum: its weighted N, colour and weight
+   join the sums where ok (each sum takes the taps in the order 0 .. 3, as the pixel
+   gather adds them; masked 0: every lane passed, so no mask is needed). Written once and
+   inlined per tap with t constant, so the offsets fold and every vector stays in a
+   register. plain: no lane expects sky and every depth limit is finite, so
+   sbl__depth_match reduces to d > 0 and |d - z| <= limit (a non-finite d fails the
+   second). cidx: the colour's lane indices from the first tap. */
+SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
+                                       int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
+                                       int plain, sbl__v *nt, int contiguous, int sky, int full)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
+    sbl__m ok = sbl__gt(w, zero);
     if (full || s->use_depth) {
         const ptrdiff_t o = ty * s->depth.stride + tx * s->depth.step;
         const sbl__v d = contiguous ? sbl__load(s->depth.p + o + p->di[i])
@@ -3260,37 +3284,46 @@ SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, i
             ok = sbl__mand(ok, match);
         }
     }
+    *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
-        const sbl__v nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
-                                     : sbl__gatheri(s->length.p + o, p->li + i);
-        ok = sbl__mand(ok, sbl__gt(nt, zero));
-        *accn = sbl__add(*accn, sbl__sel(ok, sbl__mul(w, nt), zero));
-    } else {
-        *accn = sbl__add(*accn, sbl__sel(ok, w, zero));
+        *nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
+                         : sbl__gatheri(s->length.p + o, p->li + i);
+        ok = sbl__mand(ok, sbl__gt(*nt, zero));
     }
-    {   /* the channels written out (gcc -O2 keeps a loop over them, and the sums in
-           memory) */
-        const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
-        sbl__v v0;
+    return ok;
+}
+
+SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl__m ok, sbl__v nt,
+                                    const int *cidx, const float *cbase, sbl__v *acc,
+                                    sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int full,
+                                    int masked)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
+    sbl__v v[4];
+#define SBL__TAP_ADD(sum, term) (sum = sbl__add(sum, masked ? sbl__sel(ok, term, zero) : (term)))
+    if (full || s->length.p) SBL__TAP_ADD(*accn, sbl__mul(w, nt));
+    else SBL__TAP_ADD(*accn, w);
+    /* the channels written out (gcc -O2 keeps a loop over them, and the sums in memory) */
 #if SBL__VW == 4
-        if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB (sbl__rgb4) */
-            __m128 cr, cg, cb;
-            sbl__rgb4(cp, &cr, &cg, &cb);
-            acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, cr), zero));
-            acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, cg), zero));
-            acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, cb), zero));
-            *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
-            return;
-        }
+    if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB (sbl__rgb4) */
+        sbl__rgb4(cp, &v[0], &v[1], &v[2]);
+    } else
 #endif
-        v0 = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
-        acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, v0), zero));
-        if (ch > 1) acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 1, cidx)), zero));
-        if (ch > 2) acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 2, cidx)), zero));
-        if (ch > 3) acc[3] = sbl__add(acc[3], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 3, cidx)), zero));
+    {
+        v[0] = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
+        if (ch > 1) v[1] = sbl__gatheri(cp + 1, cidx);
+        if (ch > 2) v[2] = sbl__gatheri(cp + 2, cidx);
+        if (ch > 3) v[3] = sbl__gatheri(cp + 3, cidx);
     }
-    *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
+    SBL__TAP_ADD(acc[0], sbl__mul(w, v[0]));
+    if (ch > 1) SBL__TAP_ADD(acc[1], sbl__mul(w, v[1]));
+    if (ch > 2) SBL__TAP_ADD(acc[2], sbl__mul(w, v[2]));
+    if (ch > 3) SBL__TAP_ADD(acc[3], sbl__mul(w, v[3]));
+    SBL__TAP_ADD(*wsum, w);
+#undef SBL__TAP_ADD
 }
 
 /* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
@@ -3315,7 +3348,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     const int *cidx = contiguous ? cstep : p->ci + i;
     const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
     sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = zero, lim = zero;
-    sbl__m redo, lo, valid, inf_e = sbl__gt(zero, zero);
+    sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero);
     int c, bits, plain = 0;
     /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
        in every lane (a camera at rest; the rows of a parallel stereo rig) */
@@ -3333,26 +3366,42 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         }
     }
     acc[0] = acc[1] = acc[2] = acc[3] = zero;
-    sbl__lanes_tap(s, p, i, 0, w0, sbl__gt(w0, zero), ze, lim, inf_e, plain, cidx, cbase, acc,
-                   &accn, &wsum, ch, contiguous, sky, full);
-    if (!skip_x)
-        sbl__lanes_tap(s, p, i, 1, w1, sbl__gt(w1, zero), ze, lim, inf_e, plain, cidx, cbase,
-                       acc, &accn, &wsum, ch, contiguous, sky, full);
-    if (!skip_y) {
-        sbl__lanes_tap(s, p, i, 2, w2, sbl__gt(w2, zero), ze, lim, inf_e, plain, cidx, cbase,
-                       acc, &accn, &wsum, ch, contiguous, sky, full);
-        if (!skip_x)
-            sbl__lanes_tap(s, p, i, 3, w3, sbl__gt(w3, zero), ze, lim, inf_e, plain, cidx,
-                           cbase, acc, &accn, &wsum, ch, contiguous, sky, full);
+    {   /* the tests of the taps, then the sums: without masks where every lane of every
+           tap passed (the common case), each sum's terms and order unchanged */
+        sbl__v n0, n1 = zero, n2 = zero, n3 = zero;
+        const sbl__m ok0 = sbl__lanes_tap_test(s, p, i, 0, w0, ze, lim, inf_e, plain, &n0, contiguous, sky, full);
+        sbl__m ok1 = ok0, ok2 = ok0, ok3 = ok0, all;
+        if (!skip_x) ok1 = sbl__lanes_tap_test(s, p, i, 1, w1, ze, lim, inf_e, plain, &n1, contiguous, sky, full);
+        if (!skip_y) {
+            ok2 = sbl__lanes_tap_test(s, p, i, 2, w2, ze, lim, inf_e, plain, &n2, contiguous, sky, full);
+            if (!skip_x) ok3 = sbl__lanes_tap_test(s, p, i, 3, w3, ze, lim, inf_e, plain, &n3, contiguous, sky, full);
+            else ok3 = ok2;
+        }
+        all = sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3));
+        if (sbl__mbits(all) == (1 << SBL__VW) - 1) {
+            sbl__lanes_tap_sum(s, 0, w0, ok0, n0, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+            if (!skip_x) sbl__lanes_tap_sum(s, 1, w1, ok1, n1, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+            if (!skip_y) {
+                sbl__lanes_tap_sum(s, 2, w2, ok2, n2, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+                if (!skip_x) sbl__lanes_tap_sum(s, 3, w3, ok3, n3, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+            }
+        } else {
+            sbl__lanes_tap_sum(s, 0, w0, ok0, n0, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            if (!skip_x) sbl__lanes_tap_sum(s, 1, w1, ok1, n1, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            if (!skip_y) {
+                sbl__lanes_tap_sum(s, 2, w2, ok2, n2, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+                if (!skip_x) sbl__lanes_tap_sum(s, 3, w3, ok3, n3, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            }
+        }
     }
-    redo = sbl__nonfinite(accn);
-    /* (the channels written out, as in sbl__lanes_tap) */
-    redo = sbl__mor(redo, sbl__nonfinite(acc[0]));
-    if (ch > 1) redo = sbl__mor(redo, sbl__nonfinite(acc[1]));
-    if (ch > 2) redo = sbl__mor(redo, sbl__nonfinite(acc[2]));
-    if (ch > 3) redo = sbl__mor(redo, sbl__nonfinite(acc[3]));
+    nonfinite = sbl__nonfinite(accn);
+    /* (the channels written out, as in sbl__lanes_tap_sum) */
+    nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[0]));
+    if (ch > 1) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[1]));
+    if (ch > 2) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[2]));
+    if (ch > 3) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[3]));
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
-    if (fallback) redo = sbl__mor(redo, lo);
+    redo = fallback ? sbl__mor(nonfinite, lo) : nonfinite;
     redo = sbl__mand(redo, fast);
     inv = sbl__div_exact(one, wsum);
     n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
@@ -3367,8 +3416,12 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     if (ch > 3) SBL__TAPS_OUT(3);
 #undef SBL__TAPS_OUT
     bits = sbl__mbits(redo);
-    for (c = 0; bits; ++c, bits >>= 1)
-        if (bits & 1) p->redo[i + c] = 1;
+    if (bits) {
+        /* 2: only the fallback is left (sums finite, weight below 1e-3) */
+        const int only = fallback ? sbl__mbits(sbl__mandnot(sbl__mand(lo, fast), nonfinite)) : 0;
+        for (c = 0; bits; ++c, bits >>= 1)
+            if (bits & 1) p->redo[i + c] = SBL__CAST(unsigned char, ((only >> c) & 1) + 1);
+    }
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -3406,10 +3459,10 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
         /* every lane's first tap one pixel after the previous lane's, in every view
            (each lane's index is a valid one, so the vector load reads exactly the
            addresses the gather would) */
-        contiguous = packed && (p->uniform[i] ||
-                                (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
-                                 (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
-                                 (!s->length.p || sbl__ints_step(p->li + i, 1))));
+        contiguous = packed && p->uniform[i] != 2 &&
+                     (p->uniform[i] || (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
+                                        (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
+                                        (!s->length.p || sbl__ints_step(p->li + i, 1))));
         if (both) {
             const sbl__v ze = sbl__load(p->depth + i);
             full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
@@ -3475,7 +3528,9 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                                         int (*start)(const void *, sbl__ring_row *, sbl__block *),
                                         int (*plan_vec)(const void *, sbl__block *, int),
                                         void (*plan_one)(const void *, sbl__block *, int),
-                                        void (*after)(const void *, sbl__ring_row *, sbl__block *))
+                                        void (*after)(const void *, sbl__ring_row *, sbl__block *),
+                                        float (*fallback_one)(const void *, const sbl__block *, int,
+                                                              float *))
 {
     const int ch = src->color.ch;
     sbl__block b;
@@ -3519,7 +3574,10 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             }
             if (b.p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+                sbl__ring_put(r, b.x0 + i,
+                              b.p.redo[i] == 2 && fallback_one ? fallback_one(ctx, &b, i, tmp)
+                                                               : pixel(ctx, b.x0 + i, y, tmp),
+                              tmp, ch);
             }
         }
     }
@@ -3618,6 +3676,22 @@ SBL__INLINE void sbl__plan_index(int *out, const float *x0s, const float *y0s, c
         for (j = 0; j < SBL__VW; ++j) out[j] = 0;
         return;
     }
+#if SBL__VW == 8
+    /* in int lanes: the products and the sum are the index's exact terms (each a valid
+       index's, below INT_MAX / 2: sbl__row_gather_ok) */
+    _mm256_storeu_si256(SBL__PCAST(__m256i *, out),
+                        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_cvttps_epi32(_mm256_loadu_ps(y0s)),
+                                                            _mm256_set1_epi32(SBL__CAST(int, f->stride))),
+                                         _mm256_mullo_epi32(_mm256_cvttps_epi32(_mm256_loadu_ps(x0s)),
+                                                            _mm256_set1_epi32(SBL__CAST(int, f->step)))));
+    return;
+#elif SBL__VW == 16
+    _mm512_storeu_si512(out, _mm512_add_epi32(_mm512_mullo_epi32(_mm512_cvttps_epi32(_mm512_loadu_ps(y0s)),
+                                                                 _mm512_set1_epi32(SBL__CAST(int, f->stride))),
+                                              _mm512_mullo_epi32(_mm512_cvttps_epi32(_mm512_loadu_ps(x0s)),
+                                                                 _mm512_set1_epi32(SBL__CAST(int, f->step)))));
+    return;
+#endif
     for (j = 0; j < SBL__VW; j += SBL__DW)
         sbl__dstorei(out + j, sbl__dadd(sbl__dmul(sbl__dfromf(y0s + j), sbl__dset1(SBL__CAST(double, f->stride))),
                                         sbl__dmul(sbl__dfromf(x0s + j), sbl__dset1(SBL__CAST(double, f->step)))));
@@ -3641,6 +3715,29 @@ SBL__INLINE void sbl__plan_index_run(int *out, int x0, int y0, const sbl__flat *
                                        _mm_loadu_si128(SBL__PCAST(const __m128i *, lane_step + j))));
 }
 
+/* |m| = 0 or in [2^-8, 2^15) (sbl__plan_lanes' exact motion), on the bits b of |m|: b ==
+   0, or b - bits(2^-8) below bits(2^15) - bits(2^-8) unsigned, compared signed with the
+   top bit flipped. NaN and inf fail, and no float compare is involved (-ffast-math). */
+SBL__INLINE sbl__m sbl__motion_exact(sbl__v m)
+{
+#if SBL__VW == 16
+    const __m512i b = _mm512_and_si512(_mm512_castps_si512(m), _mm512_set1_epi32(0x7fffffff));
+    return SBL__CAST(sbl__m, _mm512_cmpeq_epi32_mask(b, _mm512_setzero_si512()) |
+                                 _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(-0x74800000),
+                                                         _mm512_add_epi32(b, _mm512_set1_epi32(0x44800000))));
+#elif SBL__VW == 8
+    const __m256i b = _mm256_and_si256(_mm256_castps_si256(m), _mm256_set1_epi32(0x7fffffff));
+    return _mm256_castsi256_ps(_mm256_or_si256(
+        _mm256_cmpeq_epi32(b, _mm256_setzero_si256()),
+        _mm256_cmpgt_epi32(_mm256_set1_epi32(-0x74800000), _mm256_add_epi32(b, _mm256_set1_epi32(0x44800000)))));
+#else
+    const __m128i b = _mm_and_si128(_mm_castps_si128(m), _mm_set1_epi32(0x7fffffff));
+    return _mm_castsi128_ps(_mm_or_si128(
+        _mm_cmpeq_epi32(b, _mm_setzero_si128()),
+        _mm_cmpgt_epi32(_mm_set1_epi32(-0x74800000), _mm_add_epi32(b, _mm_set1_epi32(0x44800000)))));
+#endif
+}
+
 /* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
    (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
    results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
@@ -3652,18 +3749,14 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
 {
     static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
-    const sbl__v lo = sbl__set1(1.0f / 256.0f), hi = sbl__set1(32768.0f);
     const sbl__v wf = sbl__set1(SBL__CAST(float, src->width)), hf = sbl__set1(SBL__CAST(float, src->height));
     const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane)), yf = sbl__set1(SBL__CAST(float, y));
-    sbl__v ax, ay, fmx, fmy, x0f, y0f;
+    sbl__v fmx, fmy, x0f, y0f;
     sbl__m exact, fast;
     int l, bits_scalar, bits_fast, bits_redo;
     float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     int uniform;
-    ax = sbl__abs(mx);
-    ay = sbl__abs(my);
-    exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
-                      sbl__mor(sbl__le(ay, zero), sbl__mand(sbl__le(lo, ay), sbl__gt(hi, ay))));
+    exact = sbl__mand(sbl__motion_exact(mx), sbl__motion_exact(my));
     bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
     keep = sbl__mand(keep, exact);
     fmx = sbl__floor(mx);
@@ -3671,8 +3764,8 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     x0f = sbl__add(xf, fmx);
     y0f = sbl__add(yf, fmy);
     /* the four taps inside the image, else the pixel gather decides */
-    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__gt(wf, sbl__add(x0f, one))),
-                     sbl__mand(sbl__le(zero, y0f), sbl__gt(hf, sbl__add(y0f, one))));
+    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__le(x0f, sbl__set1(SBL__CAST(float, src->width - 2)))),
+                     sbl__mand(sbl__le(zero, y0f), sbl__le(y0f, sbl__set1(SBL__CAST(float, src->height - 2)))));
     fast = sbl__mand(fast, keep);
     /* the others kept: the pixel gather where the position is inside the image, else a
        reset (four taps inside imply the position inside: only those need the test);
@@ -3719,6 +3812,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
         sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL, p->lane_step[2]);
         return bits_scalar;
     }
+    p->uniform[i] = 2; /* lanes apart: not contiguous, no need to test (sbl__row_taps_ch) */
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
     sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
     sbl__plan_index(p->li + i, x0s, y0s, src->length.p ? &src->length : NULL);
@@ -3729,7 +3823,9 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
 SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
                                          int x, int y, int sky)
 {
+#if SBL__VW == 16
     static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+#endif
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const float *mvp = SBL__AT(s->motion, x, y);
     sbl__v z = zero, slack = zero, mx, my;
@@ -3738,9 +3834,26 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
                       : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                         : sbl__gt(one, zero));
     if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
-    mx = sbl__gatheri(mvp, pair);
-    my = sbl__gatheri(mvp + 1, pair);
-    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+    {   /* the 2 VW floats (mx, my) of the pixels into one vector each: loads and
+           shuffles (SSE2 would emulate a gather with a load per lane) */
+#if SBL__VW == 4
+        const __m128 a = _mm_loadu_ps(mvp), b = _mm_loadu_ps(mvp + 4);
+        mx = _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0));
+        my = _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1));
+#elif SBL__VW == 8
+        const __m256 a = _mm256_loadu_ps(mvp), b = _mm256_loadu_ps(mvp + 8);
+        /* per 128-bit half: (x0 x1 x4 x5 | x2 x3 x6 x7), then the 64-bit pairs in order */
+        mx = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))),
+                                                    _MM_SHUFFLE(3, 1, 2, 0)));
+        my = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))),
+                                                    _MM_SHUFFLE(3, 1, 2, 0)));
+#else
+        mx = sbl__gatheri(mvp, pair);
+        my = sbl__gatheri(mvp + 1, pair);
+#endif
+    }
+    /* a non-finite m is no exact one: sbl__plan_lanes hands it to the scalar plan, which
+       resets it */
     if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
     if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
     /* motion carries no depth change: the expected depth is z (sz = z) */
@@ -4091,6 +4204,33 @@ static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
         sbl__tap_plan_set(&s->src, &b->p, i, &t, sx, sy);
 }
 
+/* Entry i whose taps weigh below 1e-3 (redo 2): the pixel gather's last step, its 3x3
+   fallback, at the position sbl__temporal_rp_pos gives (its expression, for motion
+   vectors; the camera source takes the pixel gather) and the planned expected depth and
+   slack (the plan's lanes need neither target normals nor ids). */
+#if defined(__GNUC__)
+#define SBL__RARE __attribute__((noinline)) /* a rare path kept out of the hot loop's code */
+#else
+#define SBL__RARE
+#endif
+static SBL__RARE float sbl__temporal_fallback_one(const void *ctx, const sbl__block *b, int i,
+                                                  float *out)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    const int x = b->x0 + i, y = b->y;
+    const float *mv;
+    sbl__tap_want t;
+    if (s->source != SBL_TEMPORAL_MOTION) return sbl__temporal_rp_pixel(ctx, x, y, out);
+    mv = SBL__AT(s->motion, x, y);
+    t.depth = b->p.depth[i];
+    t.depth_slack = b->p.slack[i];
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    return sbl__gather_fallback(&s->src, &t, x + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]),
+                                y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]), out);
+}
+
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
@@ -4098,7 +4238,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_one);
 }
 #endif
 
@@ -6529,6 +6669,21 @@ static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
     sbl__tap_plan_set(&s->src, &b->p, i, &want, sx, sy);
 }
 
+/* Entry i of a block whose taps weigh below 1e-3 (redo 2, not a far lane): the 3x3
+   fallback of sbl__stereo_rp_pixel's gather at the match (b->psx, b->psy: the map's
+   position) with the planned expected depth and slack. */
+static SBL__RARE float sbl__stereo_fallback_one(const sbl__stereo_rp *s, const sbl__block *b,
+                                                int i, float *out)
+{
+    sbl__tap_want t;
+    t.depth = b->p.depth[i];
+    t.depth_slack = b->p.slack[i];
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    return sbl__gather_fallback(&s->src, &t, b->psx[i], b->psy[i], out);
+}
+
 /* After the taps: the entries handed back, and far lanes whose one tap failed, go to
    the pixel gather (the footprint's other tap may carry them); the back-check of the
    others, as
@@ -6540,7 +6695,12 @@ SBL__INLINE void sbl__stereo_after_one(const sbl__stereo_rp *s, sbl__ring_row *r
 {
     const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
     const int x = b->x0 + i;
-    if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+    if (b->p.redo[i] == 2 && !b->snapped[i]) {
+        /* the taps (at the match's exact position) weigh below 1e-3: the pixel gather's
+           3x3 fallback there, then the back-check below */
+        float tmp[4] = {0, 0, 0, 0};
+        sbl__ring_put(r, x, sbl__stereo_fallback_one(s, b, i, tmp), tmp, s->src.color.ch);
+    } else if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
         float tmp[4] = {0, 0, 0, 0};
         sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
         return;
@@ -6650,7 +6810,7 @@ static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, 
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
                            sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
-                           sbl__stereo_plan_one, sbl__stereo_block_after);
+                           sbl__stereo_plan_one, sbl__stereo_block_after, NULL);
 }
 #endif
 
