@@ -3249,6 +3249,45 @@ SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
 }
 #endif
 
+#if SBL__VW >= 8
+/* Eight consecutive packed RGB pixels (24 floats) to one 8-float vector per channel:
+   sbl__rgb4's shuffles in each 128-bit half (pixels 0-3 low, 4-7 high). Loads and
+   shuffles instead of three gathers (slow on current x86). */
+SBL__INLINE void sbl__rgb8(const float *p, __m256 *r, __m256 *g, __m256 *b)
+{
+    const __m256 a = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p)), _mm_loadu_ps(p + 12), 1);
+    const __m256 c = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4)), _mm_loadu_ps(p + 16), 1);
+    const __m256 e = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 8)), _mm_loadu_ps(p + 20), 1);
+    const __m256 rr = _mm256_shuffle_ps(c, e, _MM_SHUFFLE(0, 1, 0, 2));
+    const __m256 g01 = _mm256_shuffle_ps(a, c, _MM_SHUFFLE(0, 0, 1, 1));
+    const __m256 g23 = _mm256_shuffle_ps(c, e, _MM_SHUFFLE(2, 2, 3, 3));
+    const __m256 b01 = _mm256_shuffle_ps(a, c, _MM_SHUFFLE(1, 1, 2, 2));
+    *r = _mm256_shuffle_ps(a, rr, _MM_SHUFFLE(2, 0, 3, 0));
+    *g = _mm256_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0));
+    *b = _mm256_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0));
+}
+#endif
+
+/* VW consecutive packed RGB pixels (3 VW floats) to one vector per channel. */
+SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
+{
+#if SBL__VW == 4
+    sbl__rgb4(p, r, g, b);
+#elif SBL__VW == 8
+    sbl__rgb8(p, r, g, b);
+#else
+    __m256 r0, g0, b0, r1, g1, b1;
+    sbl__rgb8(p, &r0, &g0, &b0);
+    sbl__rgb8(p + 24, &r1, &g1, &b1);
+#define SBL__JOIN8(lo, hi) \
+    _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1))
+    *r = SBL__JOIN8(r0, r1);
+    *g = SBL__JOIN8(g0, g1);
+    *b = SBL__JOIN8(b0, b1);
+#undef SBL__JOIN8
+#endif
+}
+
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
    (x0, y0 + 1), (x0 + 1, y0 + 1). sbl__lanes_tap_test: its tests narrow ok (from w > 0),
    returned, with its N in *nt; sbl__lanes_tap_sum: its weighted N, colour and weight
@@ -3307,12 +3346,9 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
     if (full || s->length.p) SBL__TAP_ADD(*accn, sbl__mul(w, nt));
     else SBL__TAP_ADD(*accn, w);
     /* the channels written out (gcc -O2 keeps a loop over them, and the sums in memory) */
-#if SBL__VW == 4
-    if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB (sbl__rgb4) */
-        sbl__rgb4(cp, &v[0], &v[1], &v[2]);
-    } else
-#endif
-    {
+    if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB */
+        sbl__rgb_lanes(cp, &v[0], &v[1], &v[2]);
+    } else {
         v[0] = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
         if (ch > 1) v[1] = sbl__gatheri(cp + 1, cidx);
         if (ch > 2) v[2] = sbl__gatheri(cp + 2, cidx);
@@ -3743,9 +3779,10 @@ SBL__INLINE sbl__m sbl__motion_exact(sbl__v m)
    results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
    exact in double, so the reference's floor and fraction are floor(m) and the
    correctly rounded m - floor(m), and its bounds tests are exact float comparisons of
-   m. Lanes with any other m are left to the scalar plan (returned as bits). */
+   m. Lanes with any other m are left to the scalar plan (returned as bits). flat (a
+   constant where inlined): my is +0 in every lane, as on a parallel rig's rows. */
 SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i, int x, int y,
-                                sbl__m keep, sbl__v z, sbl__v slack, sbl__v mx, sbl__v my)
+                                sbl__m keep, sbl__v z, sbl__v slack, sbl__v mx, sbl__v my, int flat)
 {
     static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
@@ -3756,16 +3793,20 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     int l, bits_scalar, bits_fast, bits_redo;
     float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     int uniform;
-    exact = sbl__mand(sbl__motion_exact(mx), sbl__motion_exact(my));
+    /* flat: my is +0 in every lane (the parallel rig): exact, floor 0, y0 = y, fy = 0 */
+    exact = flat ? sbl__motion_exact(mx) : sbl__mand(sbl__motion_exact(mx), sbl__motion_exact(my));
     bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
     keep = sbl__mand(keep, exact);
     fmx = sbl__floor(mx);
-    fmy = sbl__floor(my);
+    fmy = flat ? zero : sbl__floor(my);
     x0f = sbl__add(xf, fmx);
-    y0f = sbl__add(yf, fmy);
+    y0f = flat ? yf : sbl__add(yf, fmy);
     /* the four taps inside the image, else the pixel gather decides */
-    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__le(x0f, sbl__set1(SBL__CAST(float, src->width - 2)))),
-                     sbl__mand(sbl__le(zero, y0f), sbl__le(y0f, sbl__set1(SBL__CAST(float, src->height - 2)))));
+    fast = sbl__mand(sbl__le(zero, x0f), sbl__le(x0f, sbl__set1(SBL__CAST(float, src->width - 2))));
+    if (!flat)
+        fast = sbl__mand(fast, sbl__mand(sbl__le(zero, y0f), sbl__le(y0f, sbl__set1(SBL__CAST(float, src->height - 2)))));
+    else if (!(y >= 0 && y + 2 <= src->height))
+        fast = sbl__gt(zero, zero);
     fast = sbl__mand(fast, keep);
     /* the others kept: the pixel gather where the position is inside the image, else a
        reset (four taps inside imply the position inside: only those need the test);
@@ -3781,7 +3822,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     }
     /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
     sbl__store(p->fx + i, sbl__sel(fast, sbl__add(sbl__sub(mx, fmx), zero), zero));
-    sbl__store(p->fy + i, sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
+    sbl__store(p->fy + i, flat ? zero : sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
     sbl__store(p->depth + i, sbl__sel(fast, z, one));
     sbl__store(p->slack + i, sbl__sel(fast, slack, zero));
     sbl__store(p->fast + i, sbl__sel(fast, one, zero));
@@ -3802,7 +3843,8 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     uniform = bits_fast == (1 << SBL__VW) - 1 &&
               sbl__mbits(sbl__mand(sbl__le(fmx, sbl__set1(x0s[0] - SBL__CAST(float, x))),
                                    sbl__le(sbl__set1(x0s[0] - SBL__CAST(float, x)), fmx))) == (1 << SBL__VW) - 1 &&
-              sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) == (1 << SBL__VW) - 1;
+              (flat || sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) ==
+                           (1 << SBL__VW) - 1);
     memset(p->uniform + i, 0, SBL__VW);
     if (uniform) {
         const int cx = SBL__CAST(int, x0s[0]), cy = SBL__CAST(int, y0s[0]);
@@ -3857,7 +3899,7 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
     if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
     if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
     /* motion carries no depth change: the expected depth is z (sz = z) */
-    return sbl__plan_lanes(&s->src, p, i, x, y, keep, z, slack, mx, my);
+    return sbl__plan_lanes(&s->src, p, i, x, y, keep, z, slack, mx, my, 0);
 }
 
 /* ---- tile classification -----------------------------------------------------
@@ -3989,12 +4031,9 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         x = x0 + i;
         /* the history colour, one channel per vector (the channels written out: gcc -O2
            keeps a loop over them, with the vectors in memory) */
-#if SBL__VW == 4
         if (ch == 3 && cs == 3) {
-            sbl__rgb4(cp + SBL__CAST(ptrdiff_t, i) * 3, &v[0], &v[1], &v[2]);
-        } else
-#endif
-        if (cs == 1) { /* (one channel) */
+            sbl__rgb_lanes(cp + SBL__CAST(ptrdiff_t, i) * 3, &v[0], &v[1], &v[2]);
+        } else if (cs == 1) { /* (one channel) */
             v[0] = v[1] = v[2] = v[3] = sbl__load(cp + i);
         } else {
             const float *hp_i = cp + SBL__CAST(ptrdiff_t, i) * cs;
@@ -6611,7 +6650,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__store(dxs, mx);
         sbl__store(dys, my);
         if (s->dir[0] < 0.0) { mx = sbl__sub(zero, mx); my = sbl__sub(zero, my); }
-        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, mx, my);
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, mx, my, 0);
         for (l = 0; l < SBL__VW; ++l) {
             b->psx[i + l] = x + l + 0.5 + s->dir[0] * SBL__CAST(double, dxs[l]);
             b->psy[i + l] = y + 0.5 + s->dir[0] * SBL__CAST(double, dys[l]);
@@ -6637,7 +6676,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         far = s->tiles &&
               !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
               sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
-        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero);
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero, 1);
         for (l = 0; l < SBL__VW; l += SBL__DW) { /* x + l + 0.5 + dir (f b / z - offset), as the map */
             sbl__dstore(b->psx + i + l,
                         sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + l + 0.5)),
