@@ -1522,6 +1522,15 @@ static int sbl__depth_match(float expected, float tap, float tol, float slack)
 #else
 #define SBL__INLINE static
 #endif
+/* a function kept on its own: each instance of a large kernel compiled by itself (in one
+   function with its siblings, the register allocation of one depends on the others) */
+#if defined(__GNUC__) || defined(__clang__)
+#define SBL__NOINLINE static __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define SBL__NOINLINE static __declspec(noinline)
+#else
+#define SBL__NOINLINE static
+#endif
 
 /* Every per-tap test on source pixel (x, y), which must be inside the image. With
    check_values 0 the colour and N finiteness is left to the caller (the optimistic
@@ -1649,6 +1658,67 @@ SBL__INLINE float sbl__gather_fast(const sbl__tap_src *s, const sbl__tap_want *t
     return wsum;
 }
 
+/* The 3x3 fallback of sbl__gather_ch (every footprint tap rejected, or weights summing
+   below 1e-3): the consistent pixels of the 3x3 window around the nearest pixel of
+   (sx, sy), averaged; returns their mean N (0: none). The row gather calls it directly
+   for lanes whose taps it has already summed. */
+SBL__INLINE float sbl__gather_fallback_ch(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
+                                          double sy, float *out, int ch)
+{
+    /* thin geometry: the surface may survive only in a neighbour of the nearest pixel;
+       average the consistent ones, summed in double: up to nine finite values near
+       FLT_MAX (colour or N) must not overflow before the division */
+    int i, j, k;
+    int cx = SBL__CAST(int, floor(sx)), cy = SBL__CAST(int, floor(sy)), cnt = 0;
+    double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
+    if (cx >= 1 && cy >= 1 && cx + 1 < s->width && cy + 1 < s->height && !s->use_id &&
+        !s->use_normal) {
+        /* the window inside the image, no id or normal test (the common case of a
+           disocclusion): sbl__tap_ok's tests written out, the depth test's limit
+           formed once (the same float expression) */
+        const int inf_e = sbl__is_pos_inf(t->depth);
+        const float lim = s->depth_tolerance * t->depth + t->depth_slack;
+        for (j = -1; j <= 1; ++j)
+            for (i = -1; i <= 1; ++i) {
+                const float *c = SBL__AT(s->color, cx + i, cy + j);
+                float n = 1.0f;
+                if (s->use_depth) { /* sbl__depth_match */
+                    const float d = *SBL__AT(s->depth, cx + i, cy + j);
+                    const int inf_t = sbl__is_pos_inf(d);
+                    if (inf_e || inf_t) {
+                        if (!(inf_e && inf_t)) continue;
+                    } else if (!sbl__finite(d) || !(d > 0.0f) || !(fabsf(d - t->depth) <= lim)) {
+                        continue;
+                    }
+                }
+                if (sbl__any_nonfinite(c, ch)) continue;
+                if (s->length.p) {
+                    n = *SBL__AT(s->length, cx + i, cy + j);
+                    if (!(n > 0.0f) || !sbl__finite(n)) continue;
+                }
+                dacc[0] += SBL__CAST(double, c[0]);
+                if (ch > 1) dacc[1] += SBL__CAST(double, c[1]);
+                if (ch > 2) dacc[2] += SBL__CAST(double, c[2]);
+                if (ch > 3) dacc[3] += SBL__CAST(double, c[3]);
+                dn += SBL__CAST(double, n); /* 1.0 without N */
+                ++cnt;
+            }
+    } else {
+        for (j = -1; j <= 1; ++j)
+            for (i = -1; i <= 1; ++i)
+                if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
+                    const float *c = SBL__AT(s->color, cx + i, cy + j);
+                    for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
+                    dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
+                    ++cnt;
+                }
+    }
+    if (!cnt) return 0.0f;
+    for (k = 0; k < ch; ++k) out[k] = SBL__CAST(float, dacc[k] / cnt);
+    dn /= cnt;
+    return dn > 0.0 ? SBL__CAST(float, dn) : 0.0f;
+}
+
 /* Bilinear 2x2 gather at continuous position (sx, sy) with per-tap tests, valid taps
    renormalised; then the 3x3 fallback; returns N of the result (0: nothing valid).
    `ch` is a constant at each call site below, so the accumulators stay in registers. */
@@ -1687,60 +1757,7 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
                 wsum += w;
             }
     }
-    if (wsum < 1e-3f && fallback) {
-        /* thin geometry: the surface may survive only in a neighbour of the nearest
-           pixel; average the consistent ones */
-        /* summed in double: up to nine finite values near FLT_MAX (colour or N) must
-           not overflow before the division */
-        int cx = SBL__CAST(int, floor(sx)), cy = SBL__CAST(int, floor(sy)), cnt = 0;
-        double dacc[4] = {0, 0, 0, 0}, dn = 0.0;
-        if (cx >= 1 && cy >= 1 && cx + 1 < s->width && cy + 1 < s->height && !s->use_id &&
-            !s->use_normal) {
-            /* the window inside the image, no id or normal test (the common case of a
-               disocclusion): sbl__tap_ok's tests written out, the depth test's limit
-               formed once (the same float expression) */
-            const int inf_e = sbl__is_pos_inf(t->depth);
-            const float lim = s->depth_tolerance * t->depth + t->depth_slack;
-            for (j = -1; j <= 1; ++j)
-                for (i = -1; i <= 1; ++i) {
-                    const float *c = SBL__AT(s->color, cx + i, cy + j);
-                    float n = 1.0f;
-                    if (s->use_depth) { /* sbl__depth_match */
-                        const float d = *SBL__AT(s->depth, cx + i, cy + j);
-                        const int inf_t = sbl__is_pos_inf(d);
-                        if (inf_e || inf_t) {
-                            if (!(inf_e && inf_t)) continue;
-                        } else if (!sbl__finite(d) || !(d > 0.0f) || !(fabsf(d - t->depth) <= lim)) {
-                            continue;
-                        }
-                    }
-                    if (sbl__any_nonfinite(c, ch)) continue;
-                    if (s->length.p) {
-                        n = *SBL__AT(s->length, cx + i, cy + j);
-                        if (!(n > 0.0f) || !sbl__finite(n)) continue;
-                    }
-                    dacc[0] += SBL__CAST(double, c[0]);
-                    if (ch > 1) dacc[1] += SBL__CAST(double, c[1]);
-                    if (ch > 2) dacc[2] += SBL__CAST(double, c[2]);
-                    if (ch > 3) dacc[3] += SBL__CAST(double, c[3]);
-                    dn += SBL__CAST(double, n); /* 1.0 without N */
-                    ++cnt;
-                }
-        } else {
-            for (j = -1; j <= 1; ++j)
-                for (i = -1; i <= 1; ++i)
-                    if (sbl__tap_ok(s, t, cx + i, cy + j, ch)) {
-                        const float *c = SBL__AT(s->color, cx + i, cy + j);
-                        for (k = 0; k < ch; ++k) dacc[k] += SBL__CAST(double, c[k]);
-                        dn += s->length.p ? SBL__CAST(double, *SBL__AT(s->length, cx + i, cy + j)) : 1.0;
-                        ++cnt;
-                    }
-        }
-        if (!cnt) return 0.0f;
-        for (k = 0; k < ch; ++k) out[k] = SBL__CAST(float, dacc[k] / cnt);
-        dn /= cnt;
-        return dn > 0.0 ? SBL__CAST(float, dn) : 0.0f;
-    }
+    if (wsum < 1e-3f && fallback) return sbl__gather_fallback_ch(s, t, sx, sy, out, ch);
     if (wsum < 1e-3f) return 0.0f;
     inv = 1.0f / wsum;
     /* the weights sum to 1 within rounding, so a mean of values at +-FLT_MAX can round
@@ -1748,6 +1765,18 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     for (k = 0; k < ch; ++k) out[k] = sbl__sat(acc[k] * inv);
     acc_n = sbl__sat(acc_n * inv);
     return acc_n > 0.0f ? acc_n : 0.0f;
+}
+
+/* sbl__gather_fallback_ch for the source's channel count. */
+static float sbl__gather_fallback(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
+                                  double sy, float *out)
+{
+    switch (s->color.ch) {
+    case 1: return sbl__gather_fallback_ch(s, t, sx, sy, out, 1);
+    case 2: return sbl__gather_fallback_ch(s, t, sx, sy, out, 2);
+    case 3: return sbl__gather_fallback_ch(s, t, sx, sy, out, 3);
+    default: return sbl__gather_fallback_ch(s, t, sx, sy, out, 4);
+    }
 }
 
 /* Catmull-Rom weights of the four taps at offsets -1, 0, 1, 2 from the tap left of a
@@ -2751,6 +2780,8 @@ typedef __mmask16 sbl__m;
 #define sbl__abs(a) _mm512_abs_ps(a)
 #define sbl__gt(a, b) _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
+#define sbl__all(m) ((m) == 0xffff) /* every lane's mask set */
+#define sbl__true SBL__CAST(__mmask16, 0xffff) /* every lane set */
 /* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
@@ -2806,6 +2837,8 @@ typedef __m256 sbl__m;
 #define sbl__abs(a) _mm256_and_ps(a, _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
+#define sbl__all(m) (_mm256_movemask_ps(m) == 0xff)
+#define sbl__true _mm256_castsi256_ps(_mm256_set1_epi32(-1))
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
@@ -2860,6 +2893,8 @@ typedef __m128 sbl__m;
 #define sbl__abs(a) _mm_and_ps(a, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
+#define sbl__all(m) (_mm_movemask_ps(m) == 0xf)
+#define sbl__true _mm_castsi128_ps(_mm_set1_epi32(-1))
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
@@ -2920,6 +2955,8 @@ typedef uint32x4_t sbl__m;
 #define sbl__abs(a) vabsq_f32(a)
 #define sbl__gt(a, b) vcgtq_f32(a, b)
 #define sbl__sel(m, a, b) vbslq_f32(m, a, b)
+#define sbl__all(m) (vminvq_u32(m) != 0u)
+#define sbl__true vdupq_n_u32(0xffffffffu)
 #else
 #define SBL_SIMD_NAME "scalar"
 #define SBL__VW 1
@@ -2938,6 +2975,8 @@ typedef int sbl__m;
 #define sbl__abs(a) fabsf(a)
 #define sbl__gt(a, b) ((a) > (b))
 #define sbl__sel(m, a, b) ((m) ? (a) : (b))
+#define sbl__all(m) ((m) != 0)
+#define sbl__true 1
 #endif
 
 /* ---- the fused row kernel --------------------------------------------------
@@ -3176,9 +3215,12 @@ typedef struct sbl__tap_plan {
     float fx[SBL__BLOCK], fy[SBL__BLOCK];               /* bilinear fractions              */
     float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
     float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
-    unsigned char redo[SBL__BLOCK]; /* 1: the pixel gather decides                          */
+    /* 1: the pixel gather decides; 2: the taps (summed, finite) weigh below 1e-3, only
+       the 3x3 fallback is left (the rig's `fallback_one`, else the pixel gather) */
+    unsigned char redo[SBL__BLOCK];
     /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
-       pixels in every view (planned so together: uniform integer motion) */
+       pixels in every view (planned so together: uniform integer motion); 2: planned
+       together and not so (0: unknown) */
     unsigned char uniform[SBL__BLOCK];
     int lane_step[3][SBL__VW];      /* l * pixel step of colour, depth, N (set per call) */
 } sbl__tap_plan;
@@ -3238,21 +3280,61 @@ SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
 }
 #endif
 
+#if SBL__VW >= 8
+/* Eight consecutive packed RGB pixels (24 floats) to one 8-float vector per channel:
+   sbl__rgb4's shuffles in each 128-bit half (pixels 0-3 low, 4-7 high). Loads and
+   shuffles instead of three gathers (slow on current x86). */
+SBL__INLINE void sbl__rgb8(const float *p, __m256 *r, __m256 *g, __m256 *b)
+{
+    const __m256 a = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p)), _mm_loadu_ps(p + 12), 1);
+    const __m256 c = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4)), _mm_loadu_ps(p + 16), 1);
+    const __m256 e = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 8)), _mm_loadu_ps(p + 20), 1);
+    const __m256 rr = _mm256_shuffle_ps(c, e, _MM_SHUFFLE(0, 1, 0, 2));
+    const __m256 g01 = _mm256_shuffle_ps(a, c, _MM_SHUFFLE(0, 0, 1, 1));
+    const __m256 g23 = _mm256_shuffle_ps(c, e, _MM_SHUFFLE(2, 2, 3, 3));
+    const __m256 b01 = _mm256_shuffle_ps(a, c, _MM_SHUFFLE(1, 1, 2, 2));
+    *r = _mm256_shuffle_ps(a, rr, _MM_SHUFFLE(2, 0, 3, 0));
+    *g = _mm256_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0));
+    *b = _mm256_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0));
+}
+#endif
+
+/* VW consecutive packed RGB pixels (3 VW floats) to one vector per channel. */
+SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
+{
+#if SBL__VW == 4
+    sbl__rgb4(p, r, g, b);
+#elif SBL__VW == 8
+    sbl__rgb8(p, r, g, b);
+#else
+    __m256 r0, g0, b0, r1, g1, b1;
+    sbl__rgb8(p, &r0, &g0, &b0);
+    sbl__rgb8(p + 24, &r1, &g1, &b1);
+#define SBL__JOIN8(lo, hi) \
+    _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1))
+    *r = SBL__JOIN8(r0, r1);
+    *g = SBL__JOIN8(g0, g1);
+    *b = SBL__JOIN8(b0, b1);
+#undef SBL__JOIN8
+#endif
+}
+
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
-   (x0, y0 + 1), (x0 + 1, y0 + 1). Its tests narrow *ok, then its weighted N, colour and
-   weight join the sums (each sum takes the taps in the order 0 .. 3, as the pixel
-   gather adds them). Written once and inlined per tap with t constant, so the offsets
-   fold and every vector stays in a register. plain: no lane expects sky and every
-   depth limit is finite, so sbl__depth_match reduces to d > 0 and |d - z| <= limit (a
-   non-finite d fails the second). cidx: the colour's lane indices from the first tap. */
-SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
-                                sbl__v w, sbl__m ok, sbl__v ze, sbl__v lim, sbl__m inf_e,
-                                int plain, const int *cidx, const float *cbase, sbl__v *acc,
-                                sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int sky,
-                                int full)
+   (x0, y0 + 1), (x0 + 1, y0 + 1). sbl__lanes_tap_test: its tests narrow ok (from w > 0),
+   returned, with its N in *nt; sbl__lanes_tap_sum: its weighted N, colour and weight
+   join the sums where ok (each sum takes the taps in the order 0 .. 3, as the pixel
+   gather adds them; masked 0: every lane passed, so no mask is needed). Written once and
+   inlined per tap with t constant, so the offsets fold and every vector stays in a
+   register. plain: no lane expects sky and every depth limit is finite, so
+   sbl__depth_match reduces to d > 0 and |d - z| <= limit (a non-finite d fails the
+   second). cidx: the colour's lane indices from the first tap. */
+SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
+                                       int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
+                                       int plain, sbl__v *nt, int contiguous, int sky, int full)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
+    sbl__m ok = sbl__gt(w, zero);
     if (full || s->use_depth) {
         const ptrdiff_t o = ty * s->depth.stride + tx * s->depth.step;
         const sbl__v d = contiguous ? sbl__load(s->depth.p + o + p->di[i])
@@ -3272,37 +3354,43 @@ SBL__INLINE void sbl__lanes_tap(const sbl__tap_src *s, const sbl__tap_plan *p, i
             ok = sbl__mand(ok, match);
         }
     }
+    *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
-        const sbl__v nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
-                                     : sbl__gatheri(s->length.p + o, p->li + i);
-        ok = sbl__mand(ok, sbl__gt(nt, zero));
-        *accn = sbl__add(*accn, sbl__sel(ok, sbl__mul(w, nt), zero));
+        *nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
+                         : sbl__gatheri(s->length.p + o, p->li + i);
+        ok = sbl__mand(ok, sbl__gt(*nt, zero));
+    }
+    return ok;
+}
+
+SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl__m ok, sbl__v nt,
+                                    const int *cidx, const float *cbase, sbl__v *acc,
+                                    sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int full,
+                                    int masked)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
+    sbl__v v[4];
+#define SBL__TAP_ADD(sum, term) (sum = sbl__add(sum, masked ? sbl__sel(ok, term, zero) : (term)))
+    if (full || s->length.p) SBL__TAP_ADD(*accn, sbl__mul(w, nt));
+    else SBL__TAP_ADD(*accn, w);
+    /* the channels written out (gcc -O2 keeps a loop over them, and the sums in memory) */
+    if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB */
+        sbl__rgb_lanes(cp, &v[0], &v[1], &v[2]);
     } else {
-        *accn = sbl__add(*accn, sbl__sel(ok, w, zero));
+        v[0] = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
+        if (ch > 1) v[1] = sbl__gatheri(cp + 1, cidx);
+        if (ch > 2) v[2] = sbl__gatheri(cp + 2, cidx);
+        if (ch > 3) v[3] = sbl__gatheri(cp + 3, cidx);
     }
-    {   /* the channels written out (gcc -O2 keeps a loop over them, and the sums in
-           memory) */
-        const float *cp = cbase + ty * s->color.stride + tx * s->color.step;
-        sbl__v v0;
-#if SBL__VW == 4
-        if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB (sbl__rgb4) */
-            __m128 cr, cg, cb;
-            sbl__rgb4(cp, &cr, &cg, &cb);
-            acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, cr), zero));
-            acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, cg), zero));
-            acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, cb), zero));
-            *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
-            return;
-        }
-#endif
-        v0 = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
-        acc[0] = sbl__add(acc[0], sbl__sel(ok, sbl__mul(w, v0), zero));
-        if (ch > 1) acc[1] = sbl__add(acc[1], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 1, cidx)), zero));
-        if (ch > 2) acc[2] = sbl__add(acc[2], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 2, cidx)), zero));
-        if (ch > 3) acc[3] = sbl__add(acc[3], sbl__sel(ok, sbl__mul(w, sbl__gatheri(cp + 3, cidx)), zero));
-    }
-    *wsum = sbl__add(*wsum, sbl__sel(ok, w, zero));
+    SBL__TAP_ADD(acc[0], sbl__mul(w, v[0]));
+    if (ch > 1) SBL__TAP_ADD(acc[1], sbl__mul(w, v[1]));
+    if (ch > 2) SBL__TAP_ADD(acc[2], sbl__mul(w, v[2]));
+    if (ch > 3) SBL__TAP_ADD(acc[3], sbl__mul(w, v[3]));
+    SBL__TAP_ADD(*wsum, w);
+#undef SBL__TAP_ADD
 }
 
 /* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
@@ -3327,7 +3415,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     const int *cidx = contiguous ? cstep : p->ci + i;
     const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
     sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = zero, lim = zero;
-    sbl__m redo, lo, valid, inf_e = sbl__gt(zero, zero);
+    sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero);
     int c, bits, plain = 0;
     /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
        in every lane (a camera at rest; the rows of a parallel stereo rig) */
@@ -3345,26 +3433,42 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         }
     }
     acc[0] = acc[1] = acc[2] = acc[3] = zero;
-    sbl__lanes_tap(s, p, i, 0, w0, sbl__gt(w0, zero), ze, lim, inf_e, plain, cidx, cbase, acc,
-                   &accn, &wsum, ch, contiguous, sky, full);
-    if (!skip_x)
-        sbl__lanes_tap(s, p, i, 1, w1, sbl__gt(w1, zero), ze, lim, inf_e, plain, cidx, cbase,
-                       acc, &accn, &wsum, ch, contiguous, sky, full);
-    if (!skip_y) {
-        sbl__lanes_tap(s, p, i, 2, w2, sbl__gt(w2, zero), ze, lim, inf_e, plain, cidx, cbase,
-                       acc, &accn, &wsum, ch, contiguous, sky, full);
-        if (!skip_x)
-            sbl__lanes_tap(s, p, i, 3, w3, sbl__gt(w3, zero), ze, lim, inf_e, plain, cidx,
-                           cbase, acc, &accn, &wsum, ch, contiguous, sky, full);
+    {   /* the tests of the taps, then the sums: without masks where every lane of every
+           tap passed (the common case), each sum's terms and order unchanged */
+        sbl__v n0, n1 = zero, n2 = zero, n3 = zero;
+        const sbl__m ok0 = sbl__lanes_tap_test(s, p, i, 0, w0, ze, lim, inf_e, plain, &n0, contiguous, sky, full);
+        sbl__m ok1 = ok0, ok2 = ok0, ok3 = ok0, all;
+        if (!skip_x) ok1 = sbl__lanes_tap_test(s, p, i, 1, w1, ze, lim, inf_e, plain, &n1, contiguous, sky, full);
+        if (!skip_y) {
+            ok2 = sbl__lanes_tap_test(s, p, i, 2, w2, ze, lim, inf_e, plain, &n2, contiguous, sky, full);
+            if (!skip_x) ok3 = sbl__lanes_tap_test(s, p, i, 3, w3, ze, lim, inf_e, plain, &n3, contiguous, sky, full);
+            else ok3 = ok2;
+        }
+        all = sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3));
+        if (sbl__mbits(all) == (1 << SBL__VW) - 1) {
+            sbl__lanes_tap_sum(s, 0, w0, ok0, n0, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+            if (!skip_x) sbl__lanes_tap_sum(s, 1, w1, ok1, n1, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+            if (!skip_y) {
+                sbl__lanes_tap_sum(s, 2, w2, ok2, n2, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+                if (!skip_x) sbl__lanes_tap_sum(s, 3, w3, ok3, n3, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+            }
+        } else {
+            sbl__lanes_tap_sum(s, 0, w0, ok0, n0, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            if (!skip_x) sbl__lanes_tap_sum(s, 1, w1, ok1, n1, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            if (!skip_y) {
+                sbl__lanes_tap_sum(s, 2, w2, ok2, n2, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+                if (!skip_x) sbl__lanes_tap_sum(s, 3, w3, ok3, n3, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            }
+        }
     }
-    redo = sbl__nonfinite(accn);
-    /* (the channels written out, as in sbl__lanes_tap) */
-    redo = sbl__mor(redo, sbl__nonfinite(acc[0]));
-    if (ch > 1) redo = sbl__mor(redo, sbl__nonfinite(acc[1]));
-    if (ch > 2) redo = sbl__mor(redo, sbl__nonfinite(acc[2]));
-    if (ch > 3) redo = sbl__mor(redo, sbl__nonfinite(acc[3]));
+    nonfinite = sbl__nonfinite(accn);
+    /* (the channels written out, as in sbl__lanes_tap_sum) */
+    nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[0]));
+    if (ch > 1) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[1]));
+    if (ch > 2) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[2]));
+    if (ch > 3) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[3]));
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
-    if (fallback) redo = sbl__mor(redo, lo);
+    redo = fallback ? sbl__mor(nonfinite, lo) : nonfinite;
     redo = sbl__mand(redo, fast);
     inv = sbl__div_exact(one, wsum);
     n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
@@ -3379,8 +3483,12 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     if (ch > 3) SBL__TAPS_OUT(3);
 #undef SBL__TAPS_OUT
     bits = sbl__mbits(redo);
-    for (c = 0; bits; ++c, bits >>= 1)
-        if (bits & 1) p->redo[i + c] = 1;
+    if (bits) {
+        /* 2: only the fallback is left (sums finite, weight below 1e-3) */
+        const int only = fallback ? sbl__mbits(sbl__mandnot(sbl__mand(lo, fast), nonfinite)) : 0;
+        for (c = 0; bits; ++c, bits >>= 1)
+            if (bits & 1) p->redo[i + c] = SBL__CAST(unsigned char, ((only >> c) & 1) + 1);
+    }
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -3418,10 +3526,10 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
         /* every lane's first tap one pixel after the previous lane's, in every view
            (each lane's index is a valid one, so the vector load reads exactly the
            addresses the gather would) */
-        contiguous = packed && (p->uniform[i] ||
-                                (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
-                                 (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
-                                 (!s->length.p || sbl__ints_step(p->li + i, 1))));
+        contiguous = packed && p->uniform[i] != 2 &&
+                     (p->uniform[i] || (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
+                                        (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
+                                        (!s->length.p || sbl__ints_step(p->li + i, 1))));
         if (both) {
             const sbl__v ze = sbl__load(p->depth + i);
             full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
@@ -3487,7 +3595,9 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                                         int (*start)(const void *, sbl__ring_row *, sbl__block *),
                                         int (*plan_vec)(const void *, sbl__block *, int),
                                         void (*plan_one)(const void *, sbl__block *, int),
-                                        void (*after)(const void *, sbl__ring_row *, sbl__block *))
+                                        void (*after)(const void *, sbl__ring_row *, sbl__block *),
+                                        float (*fallback_one)(const void *, const sbl__block *, int,
+                                                              float *))
 {
     const int ch = src->color.ch;
     sbl__block b;
@@ -3531,7 +3641,10 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             }
             if (b.p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+                sbl__ring_put(r, b.x0 + i,
+                              b.p.redo[i] == 2 && fallback_one ? fallback_one(ctx, &b, i, tmp)
+                                                               : pixel(ctx, b.x0 + i, y, tmp),
+                              tmp, ch);
             }
         }
     }
@@ -3630,6 +3743,22 @@ SBL__INLINE void sbl__plan_index(int *out, const float *x0s, const float *y0s, c
         for (j = 0; j < SBL__VW; ++j) out[j] = 0;
         return;
     }
+#if SBL__VW == 8
+    /* in int lanes: the products and the sum are the index's exact terms (each a valid
+       index's, below INT_MAX / 2: sbl__row_gather_ok) */
+    _mm256_storeu_si256(SBL__PCAST(__m256i *, out),
+                        _mm256_add_epi32(_mm256_mullo_epi32(_mm256_cvttps_epi32(_mm256_loadu_ps(y0s)),
+                                                            _mm256_set1_epi32(SBL__CAST(int, f->stride))),
+                                         _mm256_mullo_epi32(_mm256_cvttps_epi32(_mm256_loadu_ps(x0s)),
+                                                            _mm256_set1_epi32(SBL__CAST(int, f->step)))));
+    return;
+#elif SBL__VW == 16
+    _mm512_storeu_si512(out, _mm512_add_epi32(_mm512_mullo_epi32(_mm512_cvttps_epi32(_mm512_loadu_ps(y0s)),
+                                                                 _mm512_set1_epi32(SBL__CAST(int, f->stride))),
+                                              _mm512_mullo_epi32(_mm512_cvttps_epi32(_mm512_loadu_ps(x0s)),
+                                                                 _mm512_set1_epi32(SBL__CAST(int, f->step)))));
+    return;
+#endif
     for (j = 0; j < SBL__VW; j += SBL__DW)
         sbl__dstorei(out + j, sbl__dadd(sbl__dmul(sbl__dfromf(y0s + j), sbl__dset1(SBL__CAST(double, f->stride))),
                                         sbl__dmul(sbl__dfromf(x0s + j), sbl__dset1(SBL__CAST(double, f->step)))));
@@ -3653,38 +3782,62 @@ SBL__INLINE void sbl__plan_index_run(int *out, int x0, int y0, const sbl__flat *
                                        _mm_loadu_si128(SBL__PCAST(const __m128i *, lane_step + j))));
 }
 
+/* |m| = 0 or in [2^-8, 2^15) (sbl__plan_lanes' exact motion), on the bits b of |m|: b ==
+   0, or b - bits(2^-8) below bits(2^15) - bits(2^-8) unsigned, compared signed with the
+   top bit flipped. NaN and inf fail, and no float compare is involved (-ffast-math). */
+SBL__INLINE sbl__m sbl__motion_exact(sbl__v m)
+{
+#if SBL__VW == 16
+    const __m512i b = _mm512_and_si512(_mm512_castps_si512(m), _mm512_set1_epi32(0x7fffffff));
+    return SBL__CAST(sbl__m, _mm512_cmpeq_epi32_mask(b, _mm512_setzero_si512()) |
+                                 _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(-0x74800000),
+                                                         _mm512_add_epi32(b, _mm512_set1_epi32(0x44800000))));
+#elif SBL__VW == 8
+    const __m256i b = _mm256_and_si256(_mm256_castps_si256(m), _mm256_set1_epi32(0x7fffffff));
+    return _mm256_castsi256_ps(_mm256_or_si256(
+        _mm256_cmpeq_epi32(b, _mm256_setzero_si256()),
+        _mm256_cmpgt_epi32(_mm256_set1_epi32(-0x74800000), _mm256_add_epi32(b, _mm256_set1_epi32(0x44800000)))));
+#else
+    const __m128i b = _mm_and_si128(_mm_castps_si128(m), _mm_set1_epi32(0x7fffffff));
+    return _mm_castsi128_ps(_mm_or_si128(
+        _mm_cmpeq_epi32(b, _mm_setzero_si128()),
+        _mm_cmpgt_epi32(_mm_set1_epi32(-0x74800000), _mm_add_epi32(b, _mm_set1_epi32(0x44800000)))));
+#endif
+}
+
 /* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
    (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
    results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
    exact in double, so the reference's floor and fraction are floor(m) and the
    correctly rounded m - floor(m), and its bounds tests are exact float comparisons of
-   m. Lanes with any other m are left to the scalar plan (returned as bits). */
+   m. Lanes with any other m are left to the scalar plan (returned as bits). flat (a
+   constant where inlined): my is +0 in every lane, as on a parallel rig's rows. */
 SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i, int x, int y,
-                                sbl__m keep, sbl__v z, sbl__v slack, sbl__v mx, sbl__v my)
+                                sbl__m keep, sbl__v z, sbl__v slack, sbl__v mx, sbl__v my, int flat)
 {
     static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
-    const sbl__v lo = sbl__set1(1.0f / 256.0f), hi = sbl__set1(32768.0f);
     const sbl__v wf = sbl__set1(SBL__CAST(float, src->width)), hf = sbl__set1(SBL__CAST(float, src->height));
     const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane)), yf = sbl__set1(SBL__CAST(float, y));
-    sbl__v ax, ay, fmx, fmy, x0f, y0f;
+    sbl__v fmx, fmy, x0f, y0f;
     sbl__m exact, fast;
     int l, bits_scalar, bits_fast, bits_redo;
     float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     int uniform;
-    ax = sbl__abs(mx);
-    ay = sbl__abs(my);
-    exact = sbl__mand(sbl__mor(sbl__le(ax, zero), sbl__mand(sbl__le(lo, ax), sbl__gt(hi, ax))),
-                      sbl__mor(sbl__le(ay, zero), sbl__mand(sbl__le(lo, ay), sbl__gt(hi, ay))));
+    /* flat: my is +0 in every lane (the parallel rig): exact, floor 0, y0 = y, fy = 0 */
+    exact = flat ? sbl__motion_exact(mx) : sbl__mand(sbl__motion_exact(mx), sbl__motion_exact(my));
     bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
     keep = sbl__mand(keep, exact);
     fmx = sbl__floor(mx);
-    fmy = sbl__floor(my);
+    fmy = flat ? zero : sbl__floor(my);
     x0f = sbl__add(xf, fmx);
-    y0f = sbl__add(yf, fmy);
+    y0f = flat ? yf : sbl__add(yf, fmy);
     /* the four taps inside the image, else the pixel gather decides */
-    fast = sbl__mand(sbl__mand(sbl__le(zero, x0f), sbl__gt(wf, sbl__add(x0f, one))),
-                     sbl__mand(sbl__le(zero, y0f), sbl__gt(hf, sbl__add(y0f, one))));
+    fast = sbl__mand(sbl__le(zero, x0f), sbl__le(x0f, sbl__set1(SBL__CAST(float, src->width - 2))));
+    if (!flat)
+        fast = sbl__mand(fast, sbl__mand(sbl__le(zero, y0f), sbl__le(y0f, sbl__set1(SBL__CAST(float, src->height - 2)))));
+    else if (!(y >= 0 && y + 2 <= src->height))
+        fast = sbl__gt(zero, zero);
     fast = sbl__mand(fast, keep);
     /* the others kept: the pixel gather where the position is inside the image, else a
        reset (four taps inside imply the position inside: only those need the test);
@@ -3700,7 +3853,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     }
     /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
     sbl__store(p->fx + i, sbl__sel(fast, sbl__add(sbl__sub(mx, fmx), zero), zero));
-    sbl__store(p->fy + i, sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
+    sbl__store(p->fy + i, flat ? zero : sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
     sbl__store(p->depth + i, sbl__sel(fast, z, one));
     sbl__store(p->slack + i, sbl__sel(fast, slack, zero));
     sbl__store(p->fast + i, sbl__sel(fast, one, zero));
@@ -3721,7 +3874,8 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     uniform = bits_fast == (1 << SBL__VW) - 1 &&
               sbl__mbits(sbl__mand(sbl__le(fmx, sbl__set1(x0s[0] - SBL__CAST(float, x))),
                                    sbl__le(sbl__set1(x0s[0] - SBL__CAST(float, x)), fmx))) == (1 << SBL__VW) - 1 &&
-              sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) == (1 << SBL__VW) - 1;
+              (flat || sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) ==
+                           (1 << SBL__VW) - 1);
     memset(p->uniform + i, 0, SBL__VW);
     if (uniform) {
         const int cx = SBL__CAST(int, x0s[0]), cy = SBL__CAST(int, y0s[0]);
@@ -3731,6 +3885,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
         sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL, p->lane_step[2]);
         return bits_scalar;
     }
+    p->uniform[i] = 2; /* lanes apart: not contiguous, no need to test (sbl__row_taps_ch) */
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
     sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
     sbl__plan_index(p->li + i, x0s, y0s, src->length.p ? &src->length : NULL);
@@ -3741,7 +3896,9 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
 SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
                                          int x, int y, int sky)
 {
+#if SBL__VW == 16
     static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+#endif
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const float *mvp = SBL__AT(s->motion, x, y);
     sbl__v z = zero, slack = zero, mx, my;
@@ -3750,13 +3907,30 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
                       : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                         : sbl__gt(one, zero));
     if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
-    mx = sbl__gatheri(mvp, pair);
-    my = sbl__gatheri(mvp + 1, pair);
-    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my));
+    {   /* the 2 VW floats (mx, my) of the pixels into one vector each: loads and
+           shuffles (SSE2 would emulate a gather with a load per lane) */
+#if SBL__VW == 4
+        const __m128 a = _mm_loadu_ps(mvp), b = _mm_loadu_ps(mvp + 4);
+        mx = _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0));
+        my = _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1));
+#elif SBL__VW == 8
+        const __m256 a = _mm256_loadu_ps(mvp), b = _mm256_loadu_ps(mvp + 8);
+        /* per 128-bit half: (x0 x1 x4 x5 | x2 x3 x6 x7), then the 64-bit pairs in order */
+        mx = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))),
+                                                    _MM_SHUFFLE(3, 1, 2, 0)));
+        my = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))),
+                                                    _MM_SHUFFLE(3, 1, 2, 0)));
+#else
+        mx = sbl__gatheri(mvp, pair);
+        my = sbl__gatheri(mvp + 1, pair);
+#endif
+    }
+    /* a non-finite m is no exact one: sbl__plan_lanes hands it to the scalar plan, which
+       resets it */
     if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
     if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
     /* motion carries no depth change: the expected depth is z (sz = z) */
-    return sbl__plan_lanes(&s->src, p, i, x, y, keep, z, slack, mx, my);
+    return sbl__plan_lanes(&s->src, p, i, x, y, keep, z, slack, mx, my, 0);
 }
 
 /* ---- tile classification -----------------------------------------------------
@@ -3888,12 +4062,9 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         x = x0 + i;
         /* the history colour, one channel per vector (the channels written out: gcc -O2
            keeps a loop over them, with the vectors in memory) */
-#if SBL__VW == 4
         if (ch == 3 && cs == 3) {
-            sbl__rgb4(cp + SBL__CAST(ptrdiff_t, i) * 3, &v[0], &v[1], &v[2]);
-        } else
-#endif
-        if (cs == 1) { /* (one channel) */
+            sbl__rgb_lanes(cp + SBL__CAST(ptrdiff_t, i) * 3, &v[0], &v[1], &v[2]);
+        } else if (cs == 1) { /* (one channel) */
             v[0] = v[1] = v[2] = v[3] = sbl__load(cp + i);
         } else {
             const float *hp_i = cp + SBL__CAST(ptrdiff_t, i) * cs;
@@ -4103,6 +4274,33 @@ static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
         sbl__tap_plan_set(&s->src, &b->p, i, &t, sx, sy);
 }
 
+/* Entry i whose taps weigh below 1e-3 (redo 2): the pixel gather's last step, its 3x3
+   fallback, at the position sbl__temporal_rp_pos gives (its expression, for motion
+   vectors; the camera source takes the pixel gather) and the planned expected depth and
+   slack (the plan's lanes need neither target normals nor ids). */
+#if defined(__GNUC__)
+#define SBL__RARE __attribute__((noinline)) /* a rare path kept out of the hot loop's code */
+#else
+#define SBL__RARE
+#endif
+static SBL__RARE float sbl__temporal_fallback_one(const void *ctx, const sbl__block *b, int i,
+                                                  float *out)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    const int x = b->x0 + i, y = b->y;
+    const float *mv;
+    sbl__tap_want t;
+    if (s->source != SBL_TEMPORAL_MOTION) return sbl__temporal_rp_pixel(ctx, x, y, out);
+    mv = SBL__AT(s->motion, x, y);
+    t.depth = b->p.depth[i];
+    t.depth_slack = b->p.slack[i];
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    return sbl__gather_fallback(&s->src, &t, x + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]),
+                                y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]), out);
+}
+
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa,
                                  int xb)
@@ -4110,7 +4308,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_one);
 }
 #endif
 
@@ -4629,7 +4827,8 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
 
 /* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
 SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
-                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1, int clamp)
+                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1, int clamp,
+                                   const int full)
 {
     const ptrdiff_t iy = x + W->off_y[c], ix = x + W->off_x[c];
     const sbl__v y0 = sbl__load(W->row[0] + iy), y1 = sbl__load(W->row[1] + iy),
@@ -4640,8 +4839,10 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
                  d2 = sbl__sub(sbl__load(W->row[2] + ix), y2);
     /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t) is then
        0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
-    const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
-    const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
+    /* full: every pair of the three rows valid (v = 1 exactly): the same values */
+    const sbl__v t = full ? d0 : sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
+    const sbl__v e1 = full ? sbl__sub(d1, t) : sbl__mul(v1, sbl__sub(d1, t));
+    const sbl__v e2 = full ? sbl__sub(d2, t) : sbl__mul(v2, sbl__sub(d2, t));
     float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
     sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
     sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
@@ -4659,7 +4860,7 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
    written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). fast (a
    constant, sbl__kernel_lanes_pooled's default configuration): no clamp box. */
 SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
-                                        int base, const int fast)
+                                        int base, const int fast, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const int ch = k->ch, clamp = !fast && k->wp.rectify == SBL_RECTIFY_CLAMP;
@@ -4671,20 +4872,39 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
                      v2 = sbl__load(W->row[2] + iv);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), sbl__add(sbl__add(v0, v1), v2));
-        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp);
-        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp);
-        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp);
-        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1, clamp);
+        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp, full);
+        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp, full);
+        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp, full);
+        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1, clamp, full);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
     }
 }
 
+/* 1 if every pair of columns [ca, cb) (cb - ca >= VW) of the window rows is valid (v is
+   0 or 1: its minimum over the three rows is 1 on every lane). Such a chunk (the usual
+   case) takes instances in which the selects on the pair validity and the products by
+   v fall away: the same values. */
+SBL__INLINE int sbl__lanes_full(const sbl__lane_rows *W, int ca, int cb)
+{
+    sbl__v m = sbl__set1(1.0f);
+    int x = ca;
+    for (;;) {
+        const ptrdiff_t iv = x + W->off_v;
+        m = sbl__min(m, sbl__min(sbl__min(sbl__load(W->row[0] + iv), sbl__load(W->row[1] + iv)),
+                                 sbl__load(W->row[2] + iv)));
+        if (x + SBL__VW >= cb) break;
+        x += SBL__VW;
+        if (x + SBL__VW > cb) x = cb - SBL__VW;
+    }
+    return sbl__all(sbl__gt(m, sbl__set1(0.5f)));
+}
+
 SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
                                     int base)
 {
-    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0);
+    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0, 0);
 }
 
 /* One side column moved from its own shift to the window's: D = its shift minus the
@@ -4942,11 +5162,11 @@ static void sbl__pool_column_zero(const sbl__pool_planes *Q, int ch, int i)
 SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const float *pt,
                                          sbl__m has_c, sbl__m has_l, sbl__v nl, sbl__v nr,
                                          sbl__v inv_n, sbl__v inv_n1, int c, sbl__v *m2,
-                                         sbl__v *se2, sbl__v *pv)
+                                         sbl__v *se2, sbl__v *pv, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
-    const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
+    const sbl__v s = full ? tc : sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
     sbl__v al, bl, ar, br, a, b, q, mean, var;
     /* the centre column needs no move: s is its t, or it has no pair (sums 0) */
     SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
@@ -4978,7 +5198,8 @@ SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const
    pool_col), which moves with the column: one register for all, so the loop does not
    reload a dozen plane pointers from the stack on each vector. */
 SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
-                                        int ba, int bb, int base, const int own, const int pairs)
+                                        int ba, int bb, int base, const int own, const int pairs,
+                                        const int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
     /* offsets from k->col[0] (floats): the column sums, then the prepass's planes */
@@ -4996,22 +5217,28 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     (void)Q;
     for (;;) {
         float *const q = col0 + (x - base); /* the column's index in every plane */
-        const sbl__v nl = sbl__load(q + o_n - 1), nc = sbl__load(q + o_n), nr = sbl__load(q + o_n + 1);
-        const sbl__v n = sbl__add(sbl__add(nl, nc), nr);
-        const sbl__m has_c = sbl__gt(nc, zero), has_l = sbl__gt(nl, zero), valid = sbl__gt(n, min_pairs);
+        /* full: three pairs in each column, nine in the block (the same values) */
+        const sbl__v nl = full ? sbl__set1(3.0f) : sbl__load(q + o_n - 1);
+        const sbl__v nc = full ? sbl__set1(3.0f) : sbl__load(q + o_n);
+        const sbl__v nr = full ? sbl__set1(3.0f) : sbl__load(q + o_n + 1);
+        const sbl__v n = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, nc), nr);
+        /* full (sbl__lanes_full): every column holds three pairs */
+        const sbl__m has_c = full ? sbl__true : sbl__gt(nc, zero);
+        const sbl__m has_l = full ? sbl__true : sbl__gt(nl, zero);
+        const sbl__m valid = full ? sbl__true : sbl__gt(n, min_pairs);
         const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero, pv = zero;
 #define SBL__POOL_BLOCK_CH(c) \
         sbl__pool_block_channel(q + o_a + (c) * cstep, q + o_b + (c) * cstep, q + o_t + (c) * cstep, \
-                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv)
+                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv, full)
         SBL__POOL_BLOCK_CH(0);
         if (ch > 1) SBL__POOL_BLOCK_CH(1);
         if (ch > 2) SBL__POOL_BLOCK_CH(2);
         if (ch > 3) SBL__POOL_BLOCK_CH(3);
 #undef SBL__POOL_BLOCK_CH
-        sbl__store(q + o_m2, sbl__sel(valid, m2, zero));
-        sbl__store(q + o_se2, sbl__sel(valid, se2, zero));
+        sbl__store(q + o_m2, full ? m2 : sbl__sel(valid, m2, zero));
+        sbl__store(q + o_se2, full ? se2 : sbl__sel(valid, se2, zero));
         if (pairs) {
             sbl__store(q + o_pd2, m2);
             sbl__store(q + o_pv, pv);
@@ -5115,7 +5342,7 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 1, 0);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 1, 0, 0);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -5442,7 +5669,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
 #define SBL__LANES_CH(M) do { M(0); if (ch > 1) M(1); if (ch > 2) M(2); if (ch > 3) M(3); } while (0)
 SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                         const float *nyrow, int x, int base, int y, const int ch,
-                                        const int fast)
+                                        const int fast, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
@@ -5458,11 +5685,12 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     /* pair counts (sbl__lanes_moments) */
-    nl = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
-    nr = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
-    cnt = sbl__add(sbl__add(nl, sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch))), nr);
-    st.has_pairs = sbl__gt(cnt, zero);
-    st.two_pairs = sbl__gt(cnt, one);
+    nl = full ? sbl__set1(3.0f) : sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
+    nr = full ? sbl__set1(3.0f) : sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
+    cnt = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch))), nr);
+    /* full (sbl__lanes_full): nine pairs */
+    st.has_pairs = full ? sbl__true : sbl__gt(cnt, zero);
+    st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
 #define SBL__FAST_Y(c) \
@@ -5566,7 +5794,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
 
 SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                                         const float *n_row, const float *nyrow, int x, int base,
-                                        const int ch)
+                                        const int ch, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
@@ -5580,11 +5808,12 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-    nl = sbl__load(qn - 1);
-    nr = sbl__load(qn + 1);
-    cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
-    st.has_pairs = sbl__gt(cnt, zero);
-    st.two_pairs = sbl__gt(cnt, one);
+    nl = full ? sbl__set1(3.0f) : sbl__load(qn - 1);
+    nr = full ? sbl__set1(3.0f) : sbl__load(qn + 1);
+    cnt = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, sbl__load(qn)), nr);
+    /* full (sbl__lanes_full): nine pairs */
+    st.has_pairs = full ? sbl__true : sbl__gt(cnt, zero);
+    st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     st.pool_r = sbl__load(k->pool_r + x);
     w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
@@ -5741,7 +5970,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
 #define SBL__POOLED_VECTOR(px) \
     do { \
-        if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast); \
+        if (fast && full) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 1); \
+        else if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 0); \
         else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
     } while (0)
     /* the vectors of the run [lo, b): whole vectors, the last one ending at b; a run
@@ -5771,15 +6001,29 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     sbl__pool_planes_of(k, ch, 0, &Q);
     unsafe = sbl__pool_rows_of(&P, R, ch);
     while (x < pb) {
-        int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
+        int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p, full;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
         base = x - reach;
-        sbl__lanes_columns_cfg(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w,
-                               base, fast);
-        if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
-        if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base,
-                               0, fast);
+        {
+            const int ca = x - reach > 0 ? x - reach : 0, cb = e + reach < w ? e + reach : w;
+            const int ba = x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
+            /* every pair of the chunk's columns valid: the instances without the selects
+               on the pair validity (the same values); the blocks centred on the image's
+               first and last columns (whose outer column is empty) excepted */
+            full = sbl__lanes_full(&W, ca, cb);
+            if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1);
+            else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0);
+            if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
+            if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
+            if (full) {
+                int fa = ba, fb = bb;
+                if (ba == 0) { sbl__pool_lanes_blocks(k, &Q, ch, 0, SBL__VW, base, 0, fast, 0); fa = 1; }
+                if (bb == w) { sbl__pool_lanes_blocks(k, &Q, ch, w - SBL__VW, w, base, 0, fast, 0); fb = w - 1; }
+                sbl__pool_lanes_blocks(k, &Q, ch, fa, fb, base, 0, fast, 1);
+            } else {
+                sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 0, fast, 0);
+            }
+        }
         for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
         for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
         sbl__pool_lanes_ratio(k, ch, x, e, base);
@@ -5802,7 +6046,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
                 SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch));
-                SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch));
+                if (full) SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
+                else SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
             } else {
                 SBL__RUN_VECTORS(SBL__POOLED_VECTOR(p));
             }
@@ -5814,6 +6059,20 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
 #undef SBL__RUN_VECTORS
 }
 
+/* one function per channel count and configuration (fast: 1 temporal default, 2 stereo
+   default, 0 any other), each compiled by itself */
+#define SBL__POOLED_INSTANCE(chn, f) \
+    SBL__NOINLINE void sbl__kernel_lanes_pooled_##chn##_##f( \
+        sbl__kernel *k, const sbl__ring_row *const *R, int pa, int pb, int xa, int xb, \
+        const unsigned char *win) \
+    { \
+        sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, chn, f); \
+    }
+SBL__POOLED_INSTANCE(1, 0) SBL__POOLED_INSTANCE(2, 0) SBL__POOLED_INSTANCE(3, 0) SBL__POOLED_INSTANCE(4, 0)
+SBL__POOLED_INSTANCE(1, 1) SBL__POOLED_INSTANCE(2, 1) SBL__POOLED_INSTANCE(3, 1) SBL__POOLED_INSTANCE(4, 1)
+SBL__POOLED_INSTANCE(1, 2) SBL__POOLED_INSTANCE(2, 2) SBL__POOLED_INSTANCE(3, 2) SBL__POOLED_INSTANCE(4, 2)
+#undef SBL__POOLED_INSTANCE
+
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
                                      int pb, int xa, int xb, const unsigned char *win)
 {
@@ -5822,27 +6081,25 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
     k->pool_row = R[1]->row;
     if (fast && k->wp.temporal) {
         switch (k->ch) {
-        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 1); break;
-        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 1); break;
-        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 1); break;
-        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 1); break;
+        case 1: sbl__kernel_lanes_pooled_1_1(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_1(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_1(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_1(k, R, pa, pb, xa, xb, win); break;
         }
-        return;
-    }
-    if (fast) {
+    } else if (fast) {
         switch (k->ch) {
-        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 2); break;
-        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 2); break;
-        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 2); break;
-        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 2); break;
+        case 1: sbl__kernel_lanes_pooled_1_2(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_2(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_2(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_2(k, R, pa, pb, xa, xb, win); break;
         }
-        return;
-    }
-    switch (k->ch) {
-    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 0); break;
-    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 0); break;
-    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 0); break;
-    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 0); break;
+    } else {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_1_0(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_0(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_0(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_0(k, R, pa, pb, xa, xb, win); break;
+        }
     }
 }
 
@@ -6436,7 +6693,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__store(dxs, mx);
         sbl__store(dys, my);
         if (s->dir[0] < 0.0) { mx = sbl__sub(zero, mx); my = sbl__sub(zero, my); }
-        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, mx, my);
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, mx, my, 0);
         for (l = 0; l < SBL__VW; ++l) {
             b->psx[i + l] = x + l + 0.5 + s->dir[0] * SBL__CAST(double, dxs[l]);
             b->psy[i + l] = y + 0.5 + s->dir[0] * SBL__CAST(double, dys[l]);
@@ -6462,7 +6719,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         far = s->tiles &&
               !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
               sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
-        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero);
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero, 1);
         for (l = 0; l < SBL__VW; l += SBL__DW) { /* x + l + 0.5 + dir (f b / z - offset), as the map */
             sbl__dstore(b->psx + i + l,
                         sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + l + 0.5)),
@@ -6494,6 +6751,21 @@ static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
     sbl__tap_plan_set(&s->src, &b->p, i, &want, sx, sy);
 }
 
+/* Entry i of a block whose taps weigh below 1e-3 (redo 2, not a far lane): the 3x3
+   fallback of sbl__stereo_rp_pixel's gather at the match (b->psx, b->psy: the map's
+   position) with the planned expected depth and slack. */
+static SBL__RARE float sbl__stereo_fallback_one(const sbl__stereo_rp *s, const sbl__block *b,
+                                                int i, float *out)
+{
+    sbl__tap_want t;
+    t.depth = b->p.depth[i];
+    t.depth_slack = b->p.slack[i];
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    return sbl__gather_fallback(&s->src, &t, b->psx[i], b->psy[i], out);
+}
+
 /* After the taps: the entries handed back, and far lanes whose one tap failed, go to
    the pixel gather (the footprint's other tap may carry them); the back-check of the
    others, as
@@ -6505,7 +6777,12 @@ SBL__INLINE void sbl__stereo_after_one(const sbl__stereo_rp *s, sbl__ring_row *r
 {
     const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
     const int x = b->x0 + i;
-    if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+    if (b->p.redo[i] == 2 && !b->snapped[i]) {
+        /* the taps (at the match's exact position) weigh below 1e-3: the pixel gather's
+           3x3 fallback there, then the back-check below */
+        float tmp[4] = {0, 0, 0, 0};
+        sbl__ring_put(r, x, sbl__stereo_fallback_one(s, b, i, tmp), tmp, s->src.color.ch);
+    } else if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
         float tmp[4] = {0, 0, 0, 0};
         sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
         return;
@@ -6615,7 +6892,7 @@ static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, 
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
                            sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
-                           sbl__stereo_plan_one, sbl__stereo_block_after);
+                           sbl__stereo_plan_one, sbl__stereo_block_after, NULL);
 }
 #endif
 
