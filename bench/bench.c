@@ -7,7 +7,7 @@
    here; plus bench.png through gnuplot when present).
 
    usage: bench [--quick] [--reps N] [--data DIR] [--out DIR] [--methods A,B,..]
-                [--scenes S,T,..]   (the oracle rows always run)
+                [--scenes S,T,..]   (with the oracles the chosen methods are measured against)
           bench --plot CSV SVG     (redraw the plot from an earlier run's CSV) */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
