@@ -1522,6 +1522,15 @@ static int sbl__depth_match(float expected, float tap, float tol, float slack)
 #else
 #define SBL__INLINE static
 #endif
+/* a function kept on its own: each instance of a large kernel compiled by itself (in one
+   function with its siblings, the register allocation of one depends on the others) */
+#if defined(__GNUC__) || defined(__clang__)
+#define SBL__NOINLINE static __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define SBL__NOINLINE static __declspec(noinline)
+#else
+#define SBL__NOINLINE static
+#endif
 
 /* Every per-tap test on source pixel (x, y), which must be inside the image. With
    check_values 0 the colour and N finiteness is left to the caller (the optimistic
@@ -2728,6 +2737,8 @@ typedef __mmask16 sbl__m;
 #define sbl__abs(a) _mm512_abs_ps(a)
 #define sbl__gt(a, b) _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
+#define sbl__all(m) ((m) == 0xffff) /* every lane's mask set */
+#define sbl__true SBL__CAST(__mmask16, 0xffff) /* every lane set */
 /* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
@@ -2783,6 +2794,8 @@ typedef __m256 sbl__m;
 #define sbl__abs(a) _mm256_and_ps(a, _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
 #define sbl__sel(m, a, b) _mm256_blendv_ps(b, a, m)
+#define sbl__all(m) (_mm256_movemask_ps(m) == 0xff)
+#define sbl__true _mm256_castsi256_ps(_mm256_set1_epi32(-1))
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
@@ -2837,6 +2850,8 @@ typedef __m128 sbl__m;
 #define sbl__abs(a) _mm_and_ps(a, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
+#define sbl__all(m) (_mm_movemask_ps(m) == 0xf)
+#define sbl__true _mm_castsi128_ps(_mm_set1_epi32(-1))
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 #define sbl__gatheri(base, idx) \
@@ -2897,6 +2912,8 @@ typedef uint32x4_t sbl__m;
 #define sbl__abs(a) vabsq_f32(a)
 #define sbl__gt(a, b) vcgtq_f32(a, b)
 #define sbl__sel(m, a, b) vbslq_f32(m, a, b)
+#define sbl__all(m) (vminvq_u32(m) != 0u)
+#define sbl__true vdupq_n_u32(0xffffffffu)
 #else
 #define SBL_SIMD_NAME "scalar"
 #define SBL__VW 1
@@ -2915,6 +2932,8 @@ typedef int sbl__m;
 #define sbl__abs(a) fabsf(a)
 #define sbl__gt(a, b) ((a) > (b))
 #define sbl__sel(m, a, b) ((m) ? (a) : (b))
+#define sbl__all(m) ((m) != 0)
+#define sbl__true 1
 #endif
 
 /* ---- the fused row kernel --------------------------------------------------
@@ -4778,7 +4797,8 @@ static void sbl__lane_rows_of(sbl__lane_rows *W, const sbl__ring_row *const *R, 
 
 /* Channel c of columns [x, x + VW) (index i in the chunk), for sbl__lanes_columns. */
 SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int x, int i, int c,
-                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1, int clamp)
+                                   sbl__v v1, sbl__v v2, sbl__m ok0, sbl__m ok1, int clamp,
+                                   const int full)
 {
     const ptrdiff_t iy = x + W->off_y[c], ix = x + W->off_x[c];
     const sbl__v y0 = sbl__load(W->row[0] + iy), y1 = sbl__load(W->row[1] + iy),
@@ -4789,8 +4809,10 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
                  d2 = sbl__sub(sbl__load(W->row[2] + ix), y2);
     /* t: the first valid pair's difference; the top pair's own term v0 (d0 - t) is then
        0 (d0 = t where valid, v0 = 0 elsewhere) and left out */
-    const sbl__v t = sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
-    const sbl__v e1 = sbl__mul(v1, sbl__sub(d1, t)), e2 = sbl__mul(v2, sbl__sub(d2, t));
+    /* full: every pair of the three rows valid (v = 1 exactly): the same values */
+    const sbl__v t = full ? d0 : sbl__sel(ok0, d0, sbl__sel(ok1, d1, d2));
+    const sbl__v e1 = full ? sbl__sub(d1, t) : sbl__mul(v1, sbl__sub(d1, t));
+    const sbl__v e2 = full ? sbl__sub(d2, t) : sbl__mul(v2, sbl__sub(d2, t));
     float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
     sbl__store(SBL__COLP(cp, SBL__COL_A), sbl__add(a1, a2));
     sbl__store(SBL__COLP(cp, SBL__COL_B), sbl__add(sbl__mul(a1, a1), sbl__mul(a2, a2)));
@@ -4808,7 +4830,7 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
    written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). fast (a
    constant, sbl__kernel_lanes_pooled's default configuration): no clamp box. */
 SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
-                                        int base, const int fast)
+                                        int base, const int fast, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const int ch = k->ch, clamp = !fast && k->wp.rectify == SBL_RECTIFY_CLAMP;
@@ -4820,20 +4842,39 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
                      v2 = sbl__load(W->row[2] + iv);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
         sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), sbl__add(sbl__add(v0, v1), v2));
-        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp);
-        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp);
-        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp);
-        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1, clamp);
+        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp, full);
+        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp, full);
+        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp, full);
+        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1, clamp, full);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
     }
 }
 
+/* 1 if every pair of columns [ca, cb) (cb - ca >= VW) of the window rows is valid (v is
+   0 or 1: its minimum over the three rows is 1 on every lane). Such a chunk (the usual
+   case) takes instances in which the selects on the pair validity and the products by
+   v fall away: the same values. */
+SBL__INLINE int sbl__lanes_full(const sbl__lane_rows *W, int ca, int cb)
+{
+    sbl__v m = sbl__set1(1.0f);
+    int x = ca;
+    for (;;) {
+        const ptrdiff_t iv = x + W->off_v;
+        m = sbl__min(m, sbl__min(sbl__min(sbl__load(W->row[0] + iv), sbl__load(W->row[1] + iv)),
+                                 sbl__load(W->row[2] + iv)));
+        if (x + SBL__VW >= cb) break;
+        x += SBL__VW;
+        if (x + SBL__VW > cb) x = cb - SBL__VW;
+    }
+    return sbl__all(sbl__gt(m, sbl__set1(0.5f)));
+}
+
 SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
                                     int base)
 {
-    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0);
+    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0, 0);
 }
 
 /* One side column moved from its own shift to the window's: D = its shift minus the
@@ -5091,11 +5132,11 @@ static void sbl__pool_column_zero(const sbl__pool_planes *Q, int ch, int i)
 SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const float *pt,
                                          sbl__m has_c, sbl__m has_l, sbl__v nl, sbl__v nr,
                                          sbl__v inv_n, sbl__v inv_n1, int c, sbl__v *m2,
-                                         sbl__v *se2, sbl__v *pv)
+                                         sbl__v *se2, sbl__v *pv, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const sbl__v tl = sbl__load(pt - 1), tc = sbl__load(pt), tr = sbl__load(pt + 1);
-    const sbl__v s = sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
+    const sbl__v s = full ? tc : sbl__sel(has_c, tc, sbl__sel(has_l, tl, tr));
     sbl__v al, bl, ar, br, a, b, q, mean, var;
     /* the centre column needs no move: s is its t, or it has no pair (sums 0) */
     SBL__POOL_SHIFT(sbl__load(pa - 1), sbl__load(pb - 1), sbl__sub(tl, s), nl, al, bl);
@@ -5127,7 +5168,8 @@ SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const
    pool_col), which moves with the column: one register for all, so the loop does not
    reload a dozen plane pointers from the stack on each vector. */
 SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
-                                        int ba, int bb, int base, const int own, const int pairs)
+                                        int ba, int bb, int base, const int own, const int pairs,
+                                        const int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
     /* offsets from k->col[0] (floats): the column sums, then the prepass's planes */
@@ -5145,22 +5187,28 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     (void)Q;
     for (;;) {
         float *const q = col0 + (x - base); /* the column's index in every plane */
-        const sbl__v nl = sbl__load(q + o_n - 1), nc = sbl__load(q + o_n), nr = sbl__load(q + o_n + 1);
-        const sbl__v n = sbl__add(sbl__add(nl, nc), nr);
-        const sbl__m has_c = sbl__gt(nc, zero), has_l = sbl__gt(nl, zero), valid = sbl__gt(n, min_pairs);
+        /* full: three pairs in each column, nine in the block (the same values) */
+        const sbl__v nl = full ? sbl__set1(3.0f) : sbl__load(q + o_n - 1);
+        const sbl__v nc = full ? sbl__set1(3.0f) : sbl__load(q + o_n);
+        const sbl__v nr = full ? sbl__set1(3.0f) : sbl__load(q + o_n + 1);
+        const sbl__v n = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, nc), nr);
+        /* full (sbl__lanes_full): every column holds three pairs */
+        const sbl__m has_c = full ? sbl__true : sbl__gt(nc, zero);
+        const sbl__m has_l = full ? sbl__true : sbl__gt(nl, zero);
+        const sbl__m valid = full ? sbl__true : sbl__gt(n, min_pairs);
         const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
         const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
         sbl__v m2 = zero, se2 = zero, pv = zero;
 #define SBL__POOL_BLOCK_CH(c) \
         sbl__pool_block_channel(q + o_a + (c) * cstep, q + o_b + (c) * cstep, q + o_t + (c) * cstep, \
-                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv)
+                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv, full)
         SBL__POOL_BLOCK_CH(0);
         if (ch > 1) SBL__POOL_BLOCK_CH(1);
         if (ch > 2) SBL__POOL_BLOCK_CH(2);
         if (ch > 3) SBL__POOL_BLOCK_CH(3);
 #undef SBL__POOL_BLOCK_CH
-        sbl__store(q + o_m2, sbl__sel(valid, m2, zero));
-        sbl__store(q + o_se2, sbl__sel(valid, se2, zero));
+        sbl__store(q + o_m2, full ? m2 : sbl__sel(valid, m2, zero));
+        sbl__store(q + o_se2, full ? se2 : sbl__sel(valid, se2, zero));
         if (pairs) {
             sbl__store(q + o_pd2, m2);
             sbl__store(q + o_pv, pv);
@@ -5264,7 +5312,7 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 1, 0);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 1, 0, 0);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -5579,7 +5627,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
 #define SBL__LANES_CH(M) do { M(0); if (ch > 1) M(1); if (ch > 2) M(2); if (ch > 3) M(3); } while (0)
 SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                         const float *nyrow, int x, int base, int y, const int ch,
-                                        const int fast)
+                                        const int fast, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
@@ -5595,11 +5643,12 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     /* pair counts (sbl__lanes_moments) */
-    nl = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
-    nr = sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
-    cnt = sbl__add(sbl__add(nl, sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch))), nr);
-    st.has_pairs = sbl__gt(cnt, zero);
-    st.two_pairs = sbl__gt(cnt, one);
+    nl = full ? sbl__set1(3.0f) : sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
+    nr = full ? sbl__set1(3.0f) : sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
+    cnt = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch))), nr);
+    /* full (sbl__lanes_full): nine pairs */
+    st.has_pairs = full ? sbl__true : sbl__gt(cnt, zero);
+    st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
 #define SBL__FAST_Y(c) \
@@ -5703,7 +5752,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
 
 SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                                         const float *n_row, const float *nyrow, int x, int base,
-                                        const int ch)
+                                        const int ch, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
@@ -5717,11 +5766,12 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
-    nl = sbl__load(qn - 1);
-    nr = sbl__load(qn + 1);
-    cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
-    st.has_pairs = sbl__gt(cnt, zero);
-    st.two_pairs = sbl__gt(cnt, one);
+    nl = full ? sbl__set1(3.0f) : sbl__load(qn - 1);
+    nr = full ? sbl__set1(3.0f) : sbl__load(qn + 1);
+    cnt = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, sbl__load(qn)), nr);
+    /* full (sbl__lanes_full): nine pairs */
+    st.has_pairs = full ? sbl__true : sbl__gt(cnt, zero);
+    st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     st.pool_r = sbl__load(k->pool_r + x);
     w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
@@ -5878,7 +5928,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
 #define SBL__POOLED_VECTOR(px) \
     do { \
-        if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast); \
+        if (fast && full) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 1); \
+        else if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 0); \
         else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
     } while (0)
     /* the vectors of the run [lo, b): whole vectors, the last one ending at b; a run
@@ -5908,15 +5959,29 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     sbl__pool_planes_of(k, ch, 0, &Q);
     unsafe = sbl__pool_rows_of(&P, R, ch);
     while (x < pb) {
-        int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p;
+        int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p, full;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
         base = x - reach;
-        sbl__lanes_columns_cfg(k, &W, x - reach > 0 ? x - reach : 0, e + reach < w ? e + reach : w,
-                               base, fast);
-        if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
-        if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-        sbl__pool_lanes_blocks(k, &Q, ch, x - span > 0 ? x - span : 0, e + span < w ? e + span : w, base,
-                               0, fast);
+        {
+            const int ca = x - reach > 0 ? x - reach : 0, cb = e + reach < w ? e + reach : w;
+            const int ba = x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
+            /* every pair of the chunk's columns valid: the instances without the selects
+               on the pair validity (the same values); the blocks centred on the image's
+               first and last columns (whose outer column is empty) excepted */
+            full = sbl__lanes_full(&W, ca, cb);
+            if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1);
+            else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0);
+            if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
+            if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
+            if (full) {
+                int fa = ba, fb = bb;
+                if (ba == 0) { sbl__pool_lanes_blocks(k, &Q, ch, 0, SBL__VW, base, 0, fast, 0); fa = 1; }
+                if (bb == w) { sbl__pool_lanes_blocks(k, &Q, ch, w - SBL__VW, w, base, 0, fast, 0); fb = w - 1; }
+                sbl__pool_lanes_blocks(k, &Q, ch, fa, fb, base, 0, fast, 1);
+            } else {
+                sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 0, fast, 0);
+            }
+        }
         for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
         for (p = w; p < e + span; ++p) pm[p - base] = ps[p - base] = 0.0f;
         sbl__pool_lanes_ratio(k, ch, x, e, base);
@@ -5939,7 +6004,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
                 SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch));
-                SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch));
+                if (full) SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
+                else SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
             } else {
                 SBL__RUN_VECTORS(SBL__POOLED_VECTOR(p));
             }
@@ -5951,6 +6017,20 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
 #undef SBL__RUN_VECTORS
 }
 
+/* one function per channel count and configuration (fast: 1 temporal default, 2 stereo
+   default, 0 any other), each compiled by itself */
+#define SBL__POOLED_INSTANCE(chn, f) \
+    SBL__NOINLINE void sbl__kernel_lanes_pooled_##chn##_##f( \
+        sbl__kernel *k, const sbl__ring_row *const *R, int pa, int pb, int xa, int xb, \
+        const unsigned char *win) \
+    { \
+        sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, chn, f); \
+    }
+SBL__POOLED_INSTANCE(1, 0) SBL__POOLED_INSTANCE(2, 0) SBL__POOLED_INSTANCE(3, 0) SBL__POOLED_INSTANCE(4, 0)
+SBL__POOLED_INSTANCE(1, 1) SBL__POOLED_INSTANCE(2, 1) SBL__POOLED_INSTANCE(3, 1) SBL__POOLED_INSTANCE(4, 1)
+SBL__POOLED_INSTANCE(1, 2) SBL__POOLED_INSTANCE(2, 2) SBL__POOLED_INSTANCE(3, 2) SBL__POOLED_INSTANCE(4, 2)
+#undef SBL__POOLED_INSTANCE
+
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
                                      int pb, int xa, int xb, const unsigned char *win)
 {
@@ -5959,27 +6039,25 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
     k->pool_row = R[1]->row;
     if (fast && k->wp.temporal) {
         switch (k->ch) {
-        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 1); break;
-        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 1); break;
-        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 1); break;
-        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 1); break;
+        case 1: sbl__kernel_lanes_pooled_1_1(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_1(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_1(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_1(k, R, pa, pb, xa, xb, win); break;
         }
-        return;
-    }
-    if (fast) {
+    } else if (fast) {
         switch (k->ch) {
-        case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 2); break;
-        case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 2); break;
-        case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 2); break;
-        default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 2); break;
+        case 1: sbl__kernel_lanes_pooled_1_2(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_2(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_2(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_2(k, R, pa, pb, xa, xb, win); break;
         }
-        return;
-    }
-    switch (k->ch) {
-    case 1: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 1, 0); break;
-    case 2: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 2, 0); break;
-    case 3: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 3, 0); break;
-    default: sbl__kernel_lanes_pooled_ch(k, R, pa, pb, xa, xb, win, 4, 0); break;
+    } else {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_1_0(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_0(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_0(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_0(k, R, pa, pb, xa, xb, win); break;
+        }
     }
 }
 
