@@ -1767,18 +1767,6 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     return acc_n > 0.0f ? acc_n : 0.0f;
 }
 
-/* sbl__gather_fallback_ch for the source's channel count. */
-static float sbl__gather_fallback(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
-                                  double sy, float *out)
-{
-    switch (s->color.ch) {
-    case 1: return sbl__gather_fallback_ch(s, t, sx, sy, out, 1);
-    case 2: return sbl__gather_fallback_ch(s, t, sx, sy, out, 2);
-    case 3: return sbl__gather_fallback_ch(s, t, sx, sy, out, 3);
-    default: return sbl__gather_fallback_ch(s, t, sx, sy, out, 4);
-    }
-}
-
 /* Catmull-Rom weights of the four taps at offsets -1, 0, 1, 2 from the tap left of a
    position t in [0, 1) (docs/ESTIMATORS.md section 5): the cubic through four samples
    whose slopes at the inner two are the central differences. They sum to 1, give
@@ -3209,6 +3197,19 @@ typedef __m128d sbl__dv;
 #define sbl__dmax(a, b) _mm_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm_movemask_pd(_mm_cmple_pd(a, b))
 #endif
+
+/* sbl__gather_fallback_ch for the source's channel count (the row gather's fallback-only
+   lanes). */
+static float sbl__gather_fallback(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
+                                  double sy, float *out)
+{
+    switch (s->color.ch) {
+    case 1: return sbl__gather_fallback_ch(s, t, sx, sy, out, 1);
+    case 2: return sbl__gather_fallback_ch(s, t, sx, sy, out, 2);
+    case 3: return sbl__gather_fallback_ch(s, t, sx, sy, out, 3);
+    default: return sbl__gather_fallback_ch(s, t, sx, sy, out, 4);
+    }
+}
 
 typedef struct sbl__tap_plan {
     int ci[SBL__BLOCK], di[SBL__BLOCK], li[SBL__BLOCK]; /* tap (x0, y0) in colour, depth, N */
