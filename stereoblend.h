@@ -2997,6 +2997,9 @@ typedef struct sbl__ring_row {
     unsigned char *unsafe; /* 1 where a value of the pixel is outside the lane range */
     int row;       /* image row held (-1: none)                                 */
     int unsafe_count; /* pixels flagged unsafe among the columns loaded          */
+    int gather_flags; /* 1: the row gather flagged its own unsafe values (in registers,
+                         as it wrote them), so sbl__ring_gather need not re-read them */
+    int gather_unsafe; /* pixels that row gather newly flagged                  */
 } sbl__ring_row;
 
 typedef struct sbl__kernel {
@@ -3133,6 +3136,29 @@ SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v,
     r->v[x] = valid ? 1.0f : 0.0f;
     for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f; /* v may be NULL if n <= 0 */
 }
+
+#ifdef SBL__ROW_GATHER
+/* Ring columns x + l (bit l of bits) hold a valid x* with an unsafe value: flag the ones
+   the own colour did not (rare; the row gathers that flag as they write). */
+static void sbl__ring_flag_bits(sbl__ring_row *r, int x, int bits)
+{
+    int l;
+    for (l = 0; bits; ++l, bits >>= 1)
+        if ((bits & 1) && !r->unsafe[x + l]) { r->unsafe[x + l] = 1; ++r->gather_unsafe; }
+}
+
+/* sbl__ring_put, flagging the pixel if its valid x* holds an unsafe value (the check of
+   sbl__ring_gather, done while the values are at hand) */
+static void sbl__ring_put_flag(sbl__ring_row *r, int x, float n, const float *v, int ch)
+{
+    int c, safe = 1;
+    sbl__ring_put(r, x, n, v, ch);
+    if (!(r->v[x] > 0.0f)) return;
+    for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(r->x[c][x]);
+    safe &= sbl__lane_value_ok(r->n[x]);
+    if (!safe) sbl__ring_flag_bits(r, x, 1);
+}
+#endif
 
 #ifdef SBL__ROW_GATHER
 /* ---- the row gather ---------------------------------------------------------
@@ -3407,7 +3433,7 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
    (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                  sbl__ring_row *r, int x, const int *cstep, int ch,
-                                 int contiguous, int sky, int full)
+                                 int contiguous, int sky, int full, int flag)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -3476,12 +3502,26 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
     sbl__store(r->n + x, sbl__sel(valid, n, zero));
     sbl__store(r->v + x, sbl__sel(valid, one, zero));
+    /* flag (a constant): the unsafe-value check of sbl__ring_gather on the values
+       stored, in registers (redo lanes are not valid here: their pixel gather flags
+       them) */
 #define SBL__TAPS_OUT(c) \
-    sbl__store(r->x[c] + x, sbl__sel(valid, sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax), zero))
-    SBL__TAPS_OUT(0);
-    if (ch > 1) SBL__TAPS_OUT(1);
-    if (ch > 2) SBL__TAPS_OUT(2);
-    if (ch > 3) SBL__TAPS_OUT(3);
+    { \
+        const sbl__v out = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax); \
+        sbl__store(r->x[c] + x, sbl__sel(valid, out, zero)); \
+        if (flag) ok = sbl__mand(ok, sbl__lane_ok(out)); \
+    }
+    {
+        sbl__m ok = flag ? sbl__lane_ok(n) : valid;
+        SBL__TAPS_OUT(0);
+        if (ch > 1) SBL__TAPS_OUT(1);
+        if (ch > 2) SBL__TAPS_OUT(2);
+        if (ch > 3) SBL__TAPS_OUT(3);
+        if (flag) {
+            bits = sbl__mbits(sbl__mandnot(valid, ok));
+            if (bits) sbl__ring_flag_bits(r, x, bits);
+        }
+    }
 #undef SBL__TAPS_OUT
     bits = sbl__mbits(redo);
     if (bits) {
@@ -3509,7 +3549,7 @@ SBL__INLINE int sbl__ints_step(const int *a, int step)
 
 /* sbl__row_taps for one channel count and sky flag (constants where inlined). */
 SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
-                                  sbl__ring_row *r, int x, int ch, int sky)
+                                  sbl__ring_row *r, int x, int ch, int sky, int flag)
 {
     /* contiguous vectors need depth and N packed (plain loads); the colour's fixed lane
        offsets are the plan's lane steps */
@@ -3537,11 +3577,11 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                                         sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
         }
         if (contiguous) {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0);
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag);
         } else {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0);
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag);
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
@@ -3556,17 +3596,38 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
 {
     if (sky) {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1); break;
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 0); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 0); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 0); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 0); break;
         }
     } else {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0); break;
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 0); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 0); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 0); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 0); break;
+        }
+    }
+}
+
+/* sbl__row_taps, flagging the unsafe values it writes (the temporal row gather) */
+static void sbl__row_taps_flag(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+                               sbl__ring_row *r, int x, int sky)
+{
+    if (sky) {
+        switch (s->color.ch) {
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 1); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 1); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 1); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 1); break;
+        }
+    } else {
+        switch (s->color.ch) {
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 1); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 1); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 1); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 1); break;
         }
     }
 }
@@ -3598,7 +3659,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                                         void (*plan_one)(const void *, sbl__block *, int),
                                         void (*after)(const void *, sbl__ring_row *, sbl__block *),
                                         float (*fallback_one)(const void *, const sbl__block *, int,
-                                                              float *))
+                                                              float *),
+                                        int flag)
 {
     const int ch = src->color.ch;
     sbl__block b;
@@ -3615,7 +3677,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
         if (b.n < SBL__VW) {
             for (i = 0; i < b.n; ++i) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+                if (flag) sbl__ring_put_flag(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+                else sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
             }
             continue;
         }
@@ -3629,7 +3692,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                 if (bits & 1) plan_one(ctx, &b, i);
             i += l;
         }
-        sbl__row_taps(src, &b.p, b.n, fallback, r, b.x0, b.sky);
+        if (flag) sbl__row_taps_flag(src, &b.p, b.n, fallback, r, b.x0, b.sky);
+        else sbl__row_taps(src, &b.p, b.n, fallback, r, b.x0, b.sky);
         if (after) {
             after(ctx, r, &b);
             continue;
@@ -3642,10 +3706,10 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             }
             if (b.p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, b.x0 + i,
-                              b.p.redo[i] == 2 && fallback_one ? fallback_one(ctx, &b, i, tmp)
-                                                               : pixel(ctx, b.x0 + i, y, tmp),
-                              tmp, ch);
+                const float nx = b.p.redo[i] == 2 && fallback_one ? fallback_one(ctx, &b, i, tmp)
+                                                                  : pixel(ctx, b.x0 + i, y, tmp);
+                if (flag) sbl__ring_put_flag(r, b.x0 + i, nx, tmp, ch);
+                else sbl__ring_put(r, b.x0 + i, nx, tmp, ch);
             }
         }
     }
@@ -4098,11 +4162,20 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         if (ch > 3) sbl__store(r->x[3] + x, sbl__sel(valid, sbl__add(zero, v[3]), zero));
         sbl__store(r->n + x, sbl__sel(valid, nv, zero));
         sbl__store(r->v + x, sbl__sel(valid, one, zero));
+        {   /* the unsafe-value check of sbl__ring_gather on the valid lanes' values, in
+               registers (x* + 0 has the bits of x* but for a zero's sign: same test) */
+            sbl__m ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0]));
+            if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1]));
+            if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2]));
+            if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]));
+            bits = sbl__mbits(sbl__mandnot(valid, ok));
+            if (bits) sbl__ring_flag_bits(r, x, bits);
+        }
         bits = sbl__mbits(sbl__mandnot(keep, valid));
         for (l = 0; bits; ++l, bits >>= 1)
             if (bits & 1) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
+                sbl__ring_put_flag(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
             }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
@@ -4307,9 +4380,12 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
                                  int xb)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    /* flags its unsafe values as it writes them (no `after` step overwrites a lane) */
+    r->gather_flags = 1;
+    r->gather_unsafe = 0;
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_one);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_one, 1);
 }
 #endif
 
@@ -4547,8 +4623,10 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
 static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
 {
     int x, c, ch = k->ch, count = 0;
+    r->gather_flags = 0;
     if (k->gather_row) {
         k->gather_row(k->gather_ctx, r, row, xa, xb);
+        if (r->gather_flags) return r->gather_unsafe;
     } else {
         for (x = xa; x < xb; ++x) {
             float tmp[4] = {0, 0, 0, 0};
@@ -6893,7 +6971,7 @@ static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, 
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
                            sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
-                           sbl__stereo_plan_one, sbl__stereo_block_after, NULL);
+                           sbl__stereo_plan_one, sbl__stereo_block_after, NULL, 0);
 }
 #endif
 

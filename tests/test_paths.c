@@ -177,7 +177,7 @@ static void test_row_gather(void)
     const int contracts = compiler_contracts();
     static const float specials[8] = {0.0f, -1.0f, 1e30f, FLT_MAX, 1e-39f, -FLT_MAX, 0.0f, FLT_MAX};
     sbt_rng rng = {99};
-    int it, pixels = 0, mismatches = 0, redone = 0;
+    int it, pixels = 0, mismatches = 0, redone = 0, flagged = 0, flag_mismatches = 0;
     for (it = 0; it < 600; ++it) {
         int w = 2 + (int)(sbt_uniform(&rng) * 80), h = 2 + (int)(sbt_uniform(&rng) * 10);
         int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i;
@@ -273,7 +273,22 @@ static void test_row_gather(void)
         }
         for (y = 0; y < h; ++y) {
             int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w), xb = it % 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
+            memset(unsafe, 0, sizeof unsafe);
             sbl__temporal_rp_row(&rp, &ra, y, xa, xb);
+            /* its unsafe flags, set as it writes: those of sbl__ring_gather's check */
+            CHECK_EQ(ra.gather_flags, 1);
+            {
+                int want = 0;
+                for (x = xa; x < xb; ++x) {
+                    int safe = sbl__lane_value_ok(ra.n[x]);
+                    for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(ra.x[c][x]);
+                    safe |= !(ra.v[x] > 0.0f);
+                    if (unsafe[x] != !safe) ++flag_mismatches;
+                    want += !safe;
+                }
+                if (ra.gather_unsafe != want) ++flag_mismatches;
+                flagged += want;
+            }
             for (x = xa; x < xb; ++x) {
                 float tmp[4] = {0, 0, 0, 0};
                 sbl__ring_put(&rb, x, sbl__temporal_rp_pixel(&rp, x, y, tmp), tmp, ch);
@@ -296,6 +311,10 @@ static void test_row_gather(void)
            pixels, redone, mismatches, contracts ? "contracted or fast-math: 1e-6 relative" : "bit for bit");
     CHECK(mismatches == 0);
     CHECK(redone > pixels / 20 && redone < pixels / 2);
+    printf("  %s row gather's own unsafe flags: %d pixels flagged, %d differ from the re-check\n",
+           SBL_SIMD_NAME, flagged, flag_mismatches);
+    CHECK(flag_mismatches == 0);
+    CHECK(flagged > 0);
 #else
     printf("  %s: no row gather on this path (the pixel gather runs)\n", SBL_SIMD_NAME);
 #endif
