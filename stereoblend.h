@@ -4162,23 +4162,30 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         if (ch > 3) sbl__store(r->x[3] + x, sbl__sel(valid, sbl__add(zero, v[3]), zero));
         sbl__store(r->n + x, sbl__sel(valid, nv, zero));
         sbl__store(r->v + x, sbl__sel(valid, one, zero));
-        {   /* the unsafe-value check of sbl__ring_gather on the valid lanes' values, in
-               registers (x* + 0 has the bits of x* but for a zero's sign: same test) */
-            sbl__m ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0]));
-            if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1]));
-            if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2]));
-            if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]));
-            bits = sbl__mbits(sbl__mandnot(valid, ok));
-            if (bits) sbl__ring_flag_bits(r, x, bits);
-        }
         bits = sbl__mbits(sbl__mandnot(keep, valid));
         for (l = 0; bits; ++l, bits >>= 1)
             if (bits & 1) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put_flag(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
+                sbl__ring_put(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
             }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
+    }
+    /* the unsafe-value check of sbl__ring_gather on the tile just written (in L1, the
+       channel count a constant here) */
+    for (i = 0;; i += SBL__VW) {
+        int x, bits;
+        sbl__m ok;
+        if (i + SBL__VW > n) i = n - SBL__VW;
+        x = x0 + i;
+        ok = sbl__lane_ok(sbl__load(r->n + x));
+        ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[0] + x)));
+        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[1] + x)));
+        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[2] + x)));
+        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[3] + x)));
+        bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), zero), ok));
+        if (bits) sbl__ring_flag_bits(r, x, bits);
+        if (i + SBL__VW >= n) break;
     }
 }
 
