@@ -1767,18 +1767,6 @@ SBL__INLINE float sbl__gather_ch(const sbl__tap_src *s, const sbl__tap_want *t, 
     return acc_n > 0.0f ? acc_n : 0.0f;
 }
 
-/* sbl__gather_fallback_ch for the source's channel count. */
-static float sbl__gather_fallback(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
-                                  double sy, float *out)
-{
-    switch (s->color.ch) {
-    case 1: return sbl__gather_fallback_ch(s, t, sx, sy, out, 1);
-    case 2: return sbl__gather_fallback_ch(s, t, sx, sy, out, 2);
-    case 3: return sbl__gather_fallback_ch(s, t, sx, sy, out, 3);
-    default: return sbl__gather_fallback_ch(s, t, sx, sy, out, 4);
-    }
-}
-
 /* Catmull-Rom weights of the four taps at offsets -1, 0, 1, 2 from the tap left of a
    position t in [0, 1) (docs/ESTIMATORS.md section 5): the cubic through four samples
    whose slopes at the inner two are the central differences. They sum to 1, give
@@ -2433,6 +2421,32 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
 #define SBL_HISTORY_PRIOR 1
 #endif
 
+/* Whose bias the stereo difference is (pooled stereo beta on temporally filtered eyes;
+   docs/ESTIMATORS.md section 4.6). The bias term of a* = (B^2 + var_X) / (B^2 + var_X +
+   var_Y) takes all of the mean paired difference pd = E[X] - E[Y] as X's, which holds
+   when Y is new (a raw eye, every temporal blend). Two filtered eyes both lag a change
+   by an amount that grows with their history's length, and each eye restarts on its
+   own noise, so the lags are independent: b_X, b_Y zero-mean with variances in the
+   ratio u^2 : v^2, u = N_X - 1 and v = N_Y - 1 the frames each history looks back.
+   Then the regression of X's bias on pd = b_X - b_Y gives E[b_X (b_X - b_Y)] / E[pd^2]
+   = u^2 / (u^2 + v^2) of B^2 as X's: all of it when Y is raw (v = 0, as before), half
+   between equal ages, none when X has just restarted and Y is old (the old eye is the
+   one that lags). The ages are bounded (SBL__LAG_AGE_MAX) so that no square overflows
+   a float. */
+#ifndef SBL_STEREO_LAG_SHARE
+#define SBL_STEREO_LAG_SHARE 1 /* 0: all of the bias is X's, the rule before */
+#endif
+#define SBL__LAG_AGE_MAX 65536.0
+static double sbl__lag_share(double n_x, double n_y)
+{
+    double u = n_x - 1.0, v = n_y - 1.0;
+    if (!(v > 0.0)) return 1.0; /* also NaN */
+    if (!(u > 0.0)) u = 0.0;
+    if (u > SBL__LAG_AGE_MAX) u = SBL__LAG_AGE_MAX;
+    if (v > SBL__LAG_AGE_MAX) v = SBL__LAG_AGE_MAX;
+    return u * u / (u * u + v * v);
+}
+
 /* The spatial lean of the pooled stereo beta (docs/ESTIMATORS.md section 4.2): a0 the
    weight of the two-estimate blend, V_Y the noise variance of Y and v8u the sample
    variance of its neighbours (without the centre, n8 of them), E = sum (m8 - x*)(y - x*)
@@ -2515,8 +2529,13 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             double sh = pool_r / (1.0 + pool_r), b_eb = sh * sh * pd2 + sh * se2;
             if (b_eb > bias2) bias2 = b_eb;
         }
-        a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
-                                          : progressive;
+        {
+            /* pooled stereo: the part of the bias that is X's (sbl__lag_share) */
+            double fx = SBL_STEREO_LAG_SHARE && p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal
+                            ? sbl__lag_share(SBL__CAST(double, n_x), SBL__CAST(double, n_y)) : 1.0;
+            a = (bias2 + var_x + var_y > 0.0) ? (fx * bias2 + var_x) / (bias2 + var_x + var_y)
+                                              : progressive;
+        }
         /* stereo: the neighbours of Y as a third estimate, where they agree (flat).
            Only for a raw own eye (N_Y <= 1): the prior assumes the neighbours' noise
            independent of each other and of y, which a temporally filtered eye's is
@@ -3178,6 +3197,19 @@ typedef __m128d sbl__dv;
 #define sbl__dmax(a, b) _mm_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm_movemask_pd(_mm_cmple_pd(a, b))
 #endif
+
+/* sbl__gather_fallback_ch for the source's channel count (the row gather's fallback-only
+   lanes). */
+static float sbl__gather_fallback(const sbl__tap_src *s, const sbl__tap_want *t, double sx,
+                                  double sy, float *out)
+{
+    switch (s->color.ch) {
+    case 1: return sbl__gather_fallback_ch(s, t, sx, sy, out, 1);
+    case 2: return sbl__gather_fallback_ch(s, t, sx, sy, out, 2);
+    case 3: return sbl__gather_fallback_ch(s, t, sx, sy, out, 3);
+    default: return sbl__gather_fallback_ch(s, t, sx, sy, out, 4);
+    }
+}
 
 typedef struct sbl__tap_plan {
     int ci[SBL__BLOCK], di[SBL__BLOCK], li[SBL__BLOCK]; /* tap (x0, y0) in colour, depth, N */
@@ -5498,8 +5530,20 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
             b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
         }
-        num = sbl__add(b2, vx);
-        den = sbl__add(num, vy);
+        if (SBL_STEREO_LAG_SHARE && est == SBL_ESTIMATOR_POOLED && !temporal) {
+            /* the part of the bias that is X's, as sbl__lag_share */
+            const sbl__v amax = sbl__set1(SBL__CAST(float, SBL__LAG_AGE_MAX));
+            sbl__v u = sbl__min(sbl__max(sbl__sub(n_xc, one), zero), amax);
+            sbl__v v = sbl__min(sbl__max(sbl__sub(n_y, one), zero), amax);
+            sbl__v u2 = sbl__mul(u, u);
+            sbl__v fx = sbl__div(u2, sbl__max(sbl__add(u2, sbl__mul(v, v)), tiny));
+            fx = sbl__sel(sbl__gt(v, zero), fx, one);
+            num = sbl__add(sbl__mul(fx, b2), vx);
+            den = sbl__add(sbl__add(b2, vx), vy);
+        } else {
+            num = sbl__add(b2, vx);
+            den = sbl__add(num, vy);
+        }
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
         if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);

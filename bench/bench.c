@@ -7,7 +7,7 @@
    here; plus bench.png through gnuplot when present).
 
    usage: bench [--quick] [--reps N] [--data DIR] [--out DIR] [--methods A,B,..]
-                [--scenes S,T,..]   (the oracle rows always run)
+                [--scenes S,T,..]   (with the oracles the chosen methods are measured against)
           bench --plot CSV SVG     (redraw the plot from an earlier run's CSV) */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
@@ -63,8 +63,13 @@ static void bench_scene(const sbr_seq *seq, int reps)
 {
     sbr_method m[SBR_MAX_METHODS];
     int n = sbr_standard_methods(m, SBR_MAX_METHODS), i, k, first_row = row_count, kept = 0;
-    for (i = 0; i < n; ++i) /* the oracles always run: the other rows are measured against them */
-        if (in_list(only_methods, m[i].name) || m[i].oracle) m[kept++] = m[i];
+    /* the oracles the selected methods are measured against always run */
+    for (i = 0; i < n; ++i) {
+        int need = in_list(only_methods, m[i].name), j;
+        for (j = 0; j < n && !need; ++j)
+            need = in_list(only_methods, m[j].name) && strcmp(oracle_of(&m[j]), m[i].name) == 0;
+        if (need) m[kept++] = m[i];
+    }
     n = kept;
     printf("\n## %s (%dx%d, %d frames, stereo; metrics over frames %d..%d, both eyes)\n\n",
            seq->name, seq->width, seq->height, seq->frames, seq->frames / 4, seq->frames - 1);

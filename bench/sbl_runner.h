@@ -353,6 +353,13 @@ int sbr_standard_methods(sbr_method *m, int max)
                                SBR_STEREO_ADAPTIVE, HA);
     all[n++] = sbr_method_make("pooled+stereo-pooled", 1, SBL_ESTIMATOR_POOLED, RN, WS,
                                SBR_STEREO_ADAPTIVE, SBL_ESTIMATOR_POOLED);
+    /* the default temporal filter, then a fixed beta 0.5 / the stereo oracle: what the
+       stereo stage could add to the default's temporal output */
+    all[n++] = sbr_method_make("pooled+stereo-beta-0.5", 1, SBL_ESTIMATOR_POOLED, RN, WS,
+                               SBR_STEREO_FIXED, C);
+    all[n] = sbr_method_oracle("default+stereo-oracle", 1, SBR_STEREO_ADAPTIVE, SBR_ORACLE_STEREO);
+    all[n].temporal_desc.estimator = SBL_ESTIMATOR_POOLED;
+    all[n++].stereo_desc.estimator = SBL_ESTIMATOR_POOLED;
     /* the library's default combined pipeline, and the oracle of the same pipeline */
     all[n++] = sbr_method_default("default-stereo", SBR_STEREO_ADAPTIVE);
     all[n++] = sbr_method_oracle("oracle+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,

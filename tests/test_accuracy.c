@@ -442,6 +442,69 @@ static void test_stereo_edge_and_flat(void)
 }
 
 
+/* Two temporally filtered eyes under a change both see (a light that moved): the left
+   eye's history is old (N 20) and still shows the old value 0.5, the right eye's has
+   just restarted (N 1) on the new value 0.6; flat, equal depth, integer disparity. The
+   difference of the two eyes is the old eye's lag, not the match's: the pooled beta
+   takes the left eye towards the fresh right one, and keeps the right eye on its own
+   (docs/ESTIMATORS.md section 4.6; with SBL_STEREO_LAG_SHARE 0, the rule before it, the
+   left eye keeps its lag: RMSE 0.09). Returns the RMSE of each eye's output. */
+static void stereo_lag_measure(int n_left, int n_right, double *rmse_left, double *rmse_right)
+{
+    enum { W = 48, H = 32 };
+    static float col[2][W * H * 3], depth[W * H], len[2][W * H], out[2][W * H * 3];
+    sbl_stereo_desc d;
+    sbl_eye eye[2];
+    sbt_rng rng;
+    const double truth = 0.6, sigma = 0.05;
+    double se[2] = {0, 0};
+    int x, y, c, ey, n = 0;
+    rng.s = 4242;
+    for (ey = 0; ey < 2; ++ey)
+        for (y = 0; y < H; ++y)
+            for (x = 0; x < W; ++x) {
+                int nn = ey ? n_right : n_left;
+                double v = ey ? truth : 0.5; /* the left eye lags */
+                depth[y * W + x] = 4.0f;
+                len[ey][y * W + x] = (float)nn;
+                for (c = 0; c < 3; ++c)
+                    col[ey][(y * W + x) * 3 + c] = (float)(v + sigma / sqrt((double)nn) * sbt_gauss(&rng));
+            }
+    memset(&d, 0, sizeof d);
+    d.rig = SBL_RIG_PARALLEL;
+    d.focal_px = 8.0f; /* disparity 2 px */
+    d.baseline = 1.0f;
+    for (ey = 0; ey < 2; ++ey) {
+        memset(&eye[ey], 0, sizeof eye[ey]);
+        eye[ey].color = sbl_image_make(col[ey], W, H, 3);
+        eye[ey].length = sbl_image_make(len[ey], W, H, 1);
+        eye[ey].gbuffer.depth = sbl_image_make(depth, W, H, 1);
+    }
+    CHECK_EQ(sbl_stereo_blend_frame(&d, &eye[0], &eye[1], sbl_image_make(out[0], W, H, 3),
+                                    sbl_image_make(out[1], W, H, 3)), SBL_OK);
+    for (y = 1; y < H - 1; ++y)
+        for (x = 4; x < W - 4; ++x, ++n)
+            for (ey = 0; ey < 2; ++ey)
+                for (c = 0; c < 3; ++c) {
+                    double e = out[ey][(size_t)(y * W + x) * 3 + c] - truth;
+                    se[ey] += e * e / 3;
+                }
+    *rmse_left = sqrt(se[0] / n);
+    *rmse_right = sqrt(se[1] / n);
+}
+
+static void test_stereo_lag(void)
+{
+    double l, r;
+    stereo_lag_measure(20, 1, &l, &r);
+    printf("  stereo, old lagging left eye (N 20, off by 0.1) against a fresh right eye (N 1, "
+           "noise 0.05): RMSE left %.4f, right %.4f (input 0.1000, 0.0500)\n", l, r);
+    /* the lag is not kept: the old eye moves most of the way to the fresh one */
+    CHECK(l < 0.06);
+    /* and the fresh eye is not pulled towards the old one's lag */
+    CHECK(r < 0.05);
+}
+
 /* ---- history resampling: Catmull-Rom against bilinear --------------------------- */
 
 /* The frame (colour, depth, motion) and the history (colour, N, depth) of a motion-vector
@@ -786,6 +849,7 @@ int main(void)
     test_convergence_and_step();
     test_moving_light();
     test_stereo_edge_and_flat();
+    test_stereo_lag();
     test_history_catmull_rom();
     test_history_sharpness();
     test_history_filter_params();
