@@ -4606,21 +4606,25 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
         for (j = 0; j < 3; ++j) {
             const sbl__ring_row *r = R[j];
             double d0, d1 = 0.0, d2 = 0.0, d3 = 0.0;
-            int ok;
+            uint64_t nonfinite;
             if (!r || !(r->v[x] > 0.0f)) continue;
+/* both values finite iff d is: the difference in double of two finite floats is finite
+   (|d| <= 2 FLT_MAX), of an infinite or NaN one infinite or NaN; one test of the bits
+   per channel (exponent all ones: adding its lowest bit carries into the sign bit) */
 #define SBL__POOL_D(c, d) \
             do { \
-                const float yv = r->y[c][x], xv = r->x[c][x]; \
-                ok &= sbl__finite(yv) & sbl__finite(xv); \
-                d = SBL__CAST(double, xv) - SBL__CAST(double, yv); \
+                uint64_t u_; \
+                d = SBL__CAST(double, r->x[c][x]) - SBL__CAST(double, r->y[c][x]); \
+                memcpy(&u_, &d, sizeof u_); \
+                nonfinite |= (u_ & 0x7ff0000000000000u) + 0x0010000000000000u; \
             } while (0)
-            ok = 1;
+            nonfinite = 0;
             SBL__POOL_D(0, d0);
             if (ch > 1) SBL__POOL_D(1, d1);
             if (ch > 2) SBL__POOL_D(2, d2);
             if (ch > 3) SBL__POOL_D(3, d3);
 #undef SBL__POOL_D
-            if (!ok) continue;
+            if (nonfinite >> 63) continue;
             n += 1.0;
             s0 += d0; q0 += d0 * d0;
             if (ch > 1) { s1 += d1; q1 += d1 * d1; }
