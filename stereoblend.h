@@ -4680,33 +4680,36 @@ static float sbl__own_n(const sbl__kernel *k, int x, int y)
 /* One column of the blocks: over rows R[0..2] at column x, the count of pairs (valid
    x*, finite values) and per channel the sums of d = x* - y and of d^2: out[0],
    out[1 + c], out[5 + c]. Zero outside the image. */
-static void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
-                             double *out)
+SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                                  double *out, const int ch)
 {
     /* the channels written out into locals (registers; stores to out could alias the
-       ring's floats), each sum in the order of the rows */
-    const int ch = k->ch;
+       ring's floats), each sum in the order of the rows; ch a constant of the caller */
     double n = 0.0, s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0;
     int j;
     if (x >= 0 && x < k->w)
         for (j = 0; j < 3; ++j) {
             const sbl__ring_row *r = R[j];
             double d0, d1 = 0.0, d2 = 0.0, d3 = 0.0;
-            int ok;
+            uint64_t nonfinite;
             if (!r || !(r->v[x] > 0.0f)) continue;
+/* both values finite iff d is: the difference in double of two finite floats is finite
+   (|d| <= 2 FLT_MAX), of an infinite or NaN one infinite or NaN; one test of the bits
+   per channel (exponent all ones: adding its lowest bit carries into the sign bit) */
 #define SBL__POOL_D(c, d) \
             do { \
-                const float yv = r->y[c][x], xv = r->x[c][x]; \
-                ok &= sbl__finite(yv) & sbl__finite(xv); \
-                d = SBL__CAST(double, xv) - SBL__CAST(double, yv); \
+                uint64_t u_; \
+                d = SBL__CAST(double, r->x[c][x]) - SBL__CAST(double, r->y[c][x]); \
+                memcpy(&u_, &d, sizeof u_); \
+                nonfinite |= (u_ & 0x7ff0000000000000u) + 0x0010000000000000u; \
             } while (0)
-            ok = 1;
+            nonfinite = 0;
             SBL__POOL_D(0, d0);
             if (ch > 1) SBL__POOL_D(1, d1);
             if (ch > 2) SBL__POOL_D(2, d2);
             if (ch > 3) SBL__POOL_D(3, d3);
 #undef SBL__POOL_D
-            if (!ok) continue;
+            if (nonfinite >> 63) continue;
             n += 1.0;
             s0 += d0; q0 += d0 * d0;
             if (ch > 1) { s1 += d1; q1 += d1 * d1; }
@@ -4732,9 +4735,10 @@ static void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *const *R
    (sbl__row_pool), and what computes the pixels they cannot: rows narrower than a
    vector can be made to fit, and pixels whose reach holds an unsafe value (the float
    sums would overflow or underflow). */
-static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
+SBL__INLINE void sbl__row_pool_ref_ch(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
+                                     int xb, const int ch)
 {
-    const int ch = k->ch, w = k->w;
+    const int w = k->w;
     int za = xa - SBL__POOL_STEP * SBL__POOL_BLOCKS, zb = xb + SBL__POOL_STEP * SBL__POOL_BLOCKS;
     int x, c;
     double cols[3][9], *col[3]; /* columns x - 1, x, x + 1 (rotated) */
@@ -4742,12 +4746,12 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
     if (za < 0) za = 0;
     if (zb > w) zb = w;
     if (za < zb) {
-        sbl__pool_column(k, R, za - 1, col[0]);
-        sbl__pool_column(k, R, za, col[1]);
+        sbl__pool_column(k, R, za - 1, col[0], ch);
+        sbl__pool_column(k, R, za, col[1], ch);
     }
     for (x = za; x < zb; ++x) {
         double m2 = 0.0, se2 = 0.0, n, *t;
-        sbl__pool_column(k, R, x + 1, col[2]);
+        sbl__pool_column(k, R, x + 1, col[2], ch);
         /* the block: three column sums, always added in this order (the same value
            whatever column the row's span starts at) */
         n = col[0][0] + col[1][0] + col[2][0];
@@ -4780,6 +4784,18 @@ static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int
         r = sse2 > 0.0 ? sm2 / sse2 - SBL_POOLED_BLOCK_SE2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
         if (r > SBL__POOL_RATIO_CAP) r = SBL__POOL_RATIO_CAP;
         k->pool_r[x] = r > 0.0 ? SBL__CAST(float, r) : 0.0f;
+    }
+}
+
+/* sbl__row_pool_ref with the channel count a constant: the column sums of the pixels
+   with an unsafe window (tests/ipp "tiny") without a branch per channel and row. */
+static void sbl__row_pool_ref(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
+{
+    switch (k->ch) {
+    case 1: sbl__row_pool_ref_ch(k, R, xa, xb, 1); break;
+    case 2: sbl__row_pool_ref_ch(k, R, xa, xb, 2); break;
+    case 3: sbl__row_pool_ref_ch(k, R, xa, xb, 3); break;
+    default: sbl__row_pool_ref_ch(k, R, xa, xb, 4); break;
     }
 }
 
