@@ -5150,8 +5150,8 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
 typedef struct sbl__pool_rows {
     const float *y[3][4], *x[3][4], *v[3];
-    const unsigned char *unsafe[3];
-    int n;
+    const unsigned char *unsafe[3]; /* the ring rows' flags (sbl__pool_pixel_unsafe) */
+    int n, ch;
 } sbl__pool_rows;
 
 /* Column sums of columns [ca, cb) (inside the image, cb - ca >= VW) of the np rows P,
@@ -5387,12 +5387,63 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
     }
 }
 
-/* 1 if column x of any of the rows holds an unsafe value. */
+/* Pixel x of pool row j, flagged unsafe at load (a value outside the lane range): 1 if
+   the prepass's lanes cannot take it either. They read a pixel only through its pairs'
+   differences d = x* - y (in float, as the lanes form them), so what their precision
+   needs (see sbl__lane_value_ok) is that every valid pair's d be 0 or within
+   [2^-40, 2^50): then, as for two lane-range values, every d lies on the 2^-63 grid
+   below 2^51, and the sums, squares and shifts of d stay normal floats without
+   overflow. An invalid pair's d is multiplied by 0 (or a select drops it), so y need
+   only be finite and below 2^50 (the shifts stay finite). A dim value next to a bright
+   history (1e-14 against 0.5: d = -0.5) is then no reason for the double path; a
+   non-finite, huge or denormal d (both values dim) still is. A rule on the input alone,
+   the same on every build. */
+static int sbl__pool_pixel_unsafe(const sbl__pool_rows *P, int j, int x)
+{
+    const int valid = P->v[j][x] > 0.0f;
+    int c;
+    for (c = 0; c < P->ch; ++c) {
+        const float y = P->y[j][c][x];
+        unsigned int bits;
+        memcpy(&bits, &y, sizeof bits);
+        if ((bits & 0x7fffffffu) >= 0x58800000u) return 1; /* |y| >= 2^50, inf, NaN */
+        if (valid) {
+            /* volatile: the difference as the lanes round it (no contraction, no
+               excess precision) */
+            volatile float d = P->x[j][c][x] - y;
+            if (!sbl__lane_value_ok(d)) return 1;
+        }
+    }
+    return 0;
+}
+
+/* 1 if column x of any of the rows holds a value the prepass's lanes cannot take. */
 static int sbl__pool_column_unsafe(const sbl__pool_rows *P, int x)
 {
-    int j, u = 0;
-    for (j = 0; j < P->n; ++j) u |= P->unsafe[j][x];
-    return u;
+    int j;
+    for (j = 0; j < P->n; ++j)
+        if (P->unsafe[j][x] && sbl__pool_pixel_unsafe(P, j, x)) return 1;
+    return 0;
+}
+
+/* The first column of [c, ce) that sbl__pool_column_unsafe flags, else ce: eight
+   columns at a time past those no row flagged at load. */
+static int sbl__pool_next_unsafe(const sbl__pool_rows *P, int c, int ce)
+{
+    while (c < ce) {
+        uint64_t u = 0, t;
+        int j;
+        if (c + 8 <= ce) {
+            for (j = 0; j < P->n; ++j) {
+                memcpy(&t, P->unsafe[j] + c, 8);
+                u |= t;
+            }
+            if (!u) { c += 8; continue; }
+        }
+        if (sbl__pool_column_unsafe(P, c)) return c;
+        ++c;
+    }
+    return ce;
 }
 
 /* The first run [*ra, *rb) of pixels of [xa, xb) each with an unsafe value within
@@ -5402,16 +5453,7 @@ static int sbl__pool_unsafe_run(const sbl__pool_rows *P, int w, int xa, int xb, 
     int c = xa - SBL__POOL_REACH > 0 ? xa - SBL__POOL_REACH : 0;
     const int ce = xb + SBL__POOL_REACH < w ? xb + SBL__POOL_REACH : w;
     int b;
-    for (; c + 8 <= ce; c += 8) { /* eight columns at a time while they are clean */
-        uint64_t u = 0, t;
-        int j;
-        for (j = 0; j < P->n; ++j) {
-            memcpy(&t, P->unsafe[j] + c, 8);
-            u |= t;
-        }
-        if (u) break;
-    }
-    while (c < ce && !sbl__pool_column_unsafe(P, c)) ++c;
+    c = sbl__pool_next_unsafe(P, c, ce);
     if (c >= ce) return 0;
     *ra = c - SBL__POOL_REACH > xa ? c - SBL__POOL_REACH : xa;
     b = c + SBL__POOL_REACH + 1 < xb ? c + SBL__POOL_REACH + 1 : xb;
@@ -5467,20 +5509,26 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
    in lanes where it can (above). Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image); on a row of at least 18 columns,
    xb - xa >= 16 (sbl__kernel_run_span widens its span so). */
-/* The ring rows that exist, as sbl__pool_rows; returns 1 if one holds an unsafe value. */
-static int sbl__pool_rows_of(sbl__pool_rows *P, const sbl__ring_row *const *R, int ch)
+/* The ring rows that exist, as sbl__pool_rows; returns 1 if one holds a value the
+   prepass's lanes cannot take (sbl__pool_pixel_unsafe) in the columns [xa - reach,
+   xb + reach) the prepass of [xa, xb) reads. */
+static int sbl__pool_rows_of(sbl__pool_rows *P, const sbl__ring_row *const *R, int ch, int w,
+                             int xa, int xb)
 {
-    int j, c, unsafe = 0;
+    int j, c, flagged = 0;
+    const int za = xa - SBL__POOL_REACH > 0 ? xa - SBL__POOL_REACH : 0;
+    const int zb = xb + SBL__POOL_REACH < w ? xb + SBL__POOL_REACH : w;
     P->n = 0;
+    P->ch = ch;
     for (j = 0; j < 3; ++j) {
         if (!R[j]) continue;
         for (c = 0; c < ch; ++c) { P->y[P->n][c] = R[j]->y[c]; P->x[P->n][c] = R[j]->x[c]; }
         P->v[P->n] = R[j]->v;
         P->unsafe[P->n] = R[j]->unsafe;
-        unsafe |= R[j]->unsafe_count > 0;
+        flagged |= R[j]->unsafe_count > 0;
         ++P->n;
     }
-    return unsafe;
+    return flagged && za < zb && sbl__pool_next_unsafe(P, za, zb) < zb;
 }
 
 static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
@@ -5493,7 +5541,7 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
         sbl__row_pool_ref(k, R, xa, xb);
         return;
     }
-    unsafe = sbl__pool_rows_of(&P, R, k->ch);
+    unsafe = sbl__pool_rows_of(&P, R, k->ch, k->w, xa, xb);
 #define SBL__POOL_CASE(np) \
     switch (k->ch) { \
     case 1: sbl__row_pool_lanes(k, R, &P, np, 1, xa, xb, unsafe); break; \
@@ -6101,7 +6149,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     k_ch.ch = ch;
     sbl__lane_rows_of(&W, R, ch);
     sbl__pool_planes_of(k, ch, 0, &Q);
-    unsafe = sbl__pool_rows_of(&P, R, ch);
+    unsafe = sbl__pool_rows_of(&P, R, ch, w, pa, pb);
     while (x < pb) {
         int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p, full;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
