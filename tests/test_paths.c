@@ -520,6 +520,104 @@ static void test_moments_precision(void)
     CHECK(worst_mean <= 1e-6);
 }
 
+
+/* The pooled prepass (sbl__row_pool) against its double reference (sbl__row_pool_ref)
+   on rows with dim values: a dim y next to a bright valid x* (d = x* - y stays in the
+   lane range) keeps the lanes, within float rounding of the reference; a dim pair
+   (both values dim: d below 2^-40), a denormal or a NaN sends every pixel within reach
+   to the reference, bit for bit. */
+static void test_pool_dim(void)
+{
+    static float own[PH * PW * 4];
+    static paths_gather G;
+    sbt_rng rng = {515};
+    double worst = 0;
+    int it, lanes_dim = 0, exact = 0;
+    for (it = 0; it < 400; ++it) {
+        sbl__kernel k;
+        sbl_image im;
+        void *scratch;
+        const sbl__ring_row *R[3];
+        float lanes[PW];
+        int unsafe_col[PW];
+        const int ch = 1 + it % 4;
+        int x, y, c, i, t;
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x) {
+                for (c = 0; c < 4; ++c) {
+                    own[(y * PW + x) * 4 + c] = (float)(0.3 + 0.4 * sbt_uniform(&rng));
+                    G.x[y][x][c] = (float)(0.3 + 0.4 * sbt_uniform(&rng) + (x > PW / 2 ? 0.2 : 0.0));
+                }
+                G.n[y][x] = sbt_uniform(&rng) < 0.1 ? 0.0f : 8.0f;
+            }
+        memset(unsafe_col, 0, sizeof unsafe_col);
+        for (t = 0; t < 1 + it % 4; ++t) {
+            const int tx = (int)(sbt_uniform(&rng) * PW), ty = (int)(sbt_uniform(&rng) * PH);
+            const int kind = (int)(sbt_uniform(&rng) * 5), tc = (int)(sbt_uniform(&rng) * ch);
+            float *yv = &own[(ty * PW + tx) * ch + tc];
+            if (kind <= 1) {
+                *yv = kind ? 1e-14f : -3e-20f; /* dim y, bright x*: the lanes */
+                if (G.n[ty][tx] > 0.0f) ++lanes_dim;
+            } else if (kind == 2) {
+                *yv = 1e-14f; /* a dim pair: the reference */
+                G.x[ty][tx][tc] = 1.3e-14f;
+                G.n[ty][tx] = 8.0f;
+            } else if (kind == 3) {
+                *yv = 1e-39f; /* denormal y, x* invalid: the lanes (only its finiteness counts) */
+                G.n[ty][tx] = 0.0f;
+            } else {
+                *yv = (float)HUGE_VAL - (float)HUGE_VAL;
+            }
+        }
+        /* the columns holding a pixel the prepass's lanes cannot take: y not finite,
+           or a valid pair whose float difference is dim (nonzero, below 2^-40) */
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x)
+                for (c = 0; c < ch; ++c) {
+                    const float yy = own[(y * PW + x) * ch + c];
+                    volatile float dd = G.x[y][x][c] - yy;
+                    if (!sbl__finite(yy) ||
+                        (G.n[y][x] > 0.0f && dd != 0.0f && !(fabsf(dd) >= 0x1p-40f)))
+                        unsafe_col[x] = 1;
+                }
+        memset(&k, 0, sizeof k);
+        im = sbl_image_make(own, PW, PH, ch);
+        k.w = PW; k.h = PH; k.ch = ch;
+        k.wp.estimator = SBL_ESTIMATOR_POOLED;
+        k.n_cap = 64.0f;
+        k.temporal = 1;
+        k.own = &im;
+        k.gather = paths_gather_fn;
+        k.gather_ctx = &G;
+        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
+        sbl__kernel_bind(&k, scratch);
+        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
+        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        sbl__row_pool(&k, R, 0, PW);
+        memcpy(lanes, k.pool_r, sizeof lanes);
+        sbl__row_pool_ref(&k, R, 0, PW);
+        for (x = 0; x < PW; ++x) {
+            int near = 0, d;
+            for (d = -SBL__POOL_REACH; d <= SBL__POOL_REACH; ++d)
+                if (x + d >= 0 && x + d < PW && unsafe_col[x + d]) near = 1;
+            if (near) {
+                CHECK(memcmp(&lanes[x], &k.pool_r[x], sizeof(float)) == 0);
+                ++exact;
+            } else {
+                const double e = fabs((double)lanes[x] - k.pool_r[x]) / (1.0 + SBL_POOLED_BLOCK_SE2 + k.pool_r[x]);
+                CHECK(e <= 1e-4);
+                if (e > worst) worst = e;
+            }
+        }
+        free(scratch);
+    }
+    printf("  %s pooled prepass with dim values vs double: %d dim y kept in the lanes, worst %.3g; "
+           "%d pixels near a dim pair / NaN equal to the reference\n",
+           SBL_SIMD_NAME, lanes_dim, worst, exact);
+    CHECK(lanes_dim > 0);
+    CHECK(exact > 0);
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -609,6 +707,7 @@ int main(void)
     CHECK(refused > 0);
     test_spans();
     test_moments_precision();
+    test_pool_dim();
     test_row_gather();
     test_stereo_row_gather();
     return sbt_finish("test_paths");
