@@ -4805,10 +4805,12 @@ static float sbl__pool_ratio(const sbl__kernel *k, int x, int y)
     return (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y) ? k->pool_r[x] : 0.0f;
 }
 
-/* Reference path for one pixel: borders, non-finite and extreme values. */
-static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R, int x)
+/* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
+   of the caller (sbl__kernel_pixel_ref). */
+SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                                          const int ch)
 {
-    const int ch = k->ch, y = R[1]->row;
+    const int y = R[1]->row;
     float yc[4], xs[4], out[4], a = 1.0f, n_out;
     float n_x = R[1]->n[x], n_y = sbl__own_n(k, x, y);
     int c, finite = 1;
@@ -4833,18 +4835,21 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
         float vals[9][4], xvals[9][4];
         int xvalid[9], n = 0, i, j, centre = -1;
         sbl__moments m;
+        /* the window's columns inside the image, row by row (the same order as the
+           lanes: rows, then columns) */
+        const int i0 = x > 0 ? x - 1 : x, i1 = x + 1 < k->w ? x + 1 : x;
         for (j = 0; j < 3; ++j) {
-            if (!R[j]) continue;
-            for (i = x - 1; i <= x + 1; ++i) {
+            const sbl__ring_row *r = R[j];
+            if (!r) continue;
+            for (i = i0; i <= i1; ++i) {
                 int ok = 1;
-                if (i < 0 || i >= k->w) continue;
                 for (c = 0; c < ch; ++c) {
-                    vals[n][c] = R[j]->y[c][i];
-                    xvals[n][c] = R[j]->x[c][i];
+                    vals[n][c] = r->y[c][i];
+                    xvals[n][c] = r->x[c][i];
                     ok &= sbl__finite(vals[n][c]);
                 }
                 if (!ok) continue;
-                xvalid[n] = R[j]->v[i] > 0.0f;
+                xvalid[n] = r->v[i] > 0.0f;
                 if (j == 1 && i == x) centre = n;
                 ++n;
             }
@@ -4859,6 +4864,16 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
     for (c = 0; c < ch; ++c) k->stage[c][x] = out[c];
     k->stage_n[x] = n_out;
     k->stage_a[x] = a;
+}
+
+static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R, int x)
+{
+    switch (k->ch) {
+    case 1: sbl__kernel_pixel_ref_ch(k, R, x, 1); break;
+    case 2: sbl__kernel_pixel_ref_ch(k, R, x, 2); break;
+    case 3: sbl__kernel_pixel_ref_ch(k, R, x, 3); break;
+    default: sbl__kernel_pixel_ref_ch(k, R, x, 4); break;
+    }
 }
 
 /* The lane kernel, as stages named like their reference-path counterparts:
