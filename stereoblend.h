@@ -6224,6 +6224,103 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
 #undef SBL__RUN_VECTORS
 }
 
+/* ---- dim values in the default configurations' lanes ----------------------------
+   A pixel is flagged unsafe at load for any value outside [2^-40, 2^50) (sbl__lane_value_ok),
+   and its 3x3 window then takes the reference path. The 2^-40 serves one purpose: every
+   nonzero difference of two such values is a multiple of 2^-63, so its square is a
+   normal float. But the default configurations' lanes (the pooled estimator, no
+   rectification, one weight: sbl__lanes_vector_fast and the staged temporal lanes) read
+   the window's values only through these differences: each column's y - y_top (its
+   three rows), the top row's y - y_top_centre (the window's shift), and each pair's
+   x* - y; the rest are plain sums of values (means, the firefly sums) and products of
+   those differences. So a window whose flagged pixels hold only dim values (normal
+   floats below 2^-40) keeps the lanes when every one of those differences that involves
+   a flagged pixel is itself 0 or within [2^-40, 2^50): the lanes then see exactly the
+   kind of numbers the lane range guarantees (tests/test_paths.c: a dim value by bright
+   neighbours, within 1e-4 of the reference). Non-finite, huge or denormal values, an
+   unsafe N, and any other configuration keep the reference path. A rule on the input
+   alone, the same on every build. */
+
+/* 1 if v is 0 or a normal float below 2^50 in magnitude (a value the differences may
+   make lane-safe); inf, NaN, huge and denormal values are not */
+static int sbl__lane_value_dim_ok(float v)
+{
+    unsigned int bits, e;
+    memcpy(&bits, &v, sizeof bits);
+    e = (bits >> 23) & 0xffu;
+    return (bits & 0x7fffffffu) == 0u || e - 1u < 176u;
+}
+
+/* 1 if a - b, rounded as the lanes round it, is in the lane range */
+static int sbl__lane_diff_ok(float a, float b)
+{
+    volatile float d = a - b; /* no contraction, no excess precision */
+    return sbl__lane_value_ok(d);
+}
+
+/* Pixel x of ring row r, flagged at load: 1 if its values are 0 or normal below 2^50,
+   its own N as sbl__ring_load_own asks, and (x* valid) its N lane-safe and every pair's
+   difference x* - y in the lane range. */
+static int sbl__lane_pixel_dim_ok(const sbl__kernel *k, const sbl__ring_row *r, int x)
+{
+    int c;
+    if (k->own_n && k->own_n->data) {
+        const float n = *sbl__px(k->own_n, x, r->row);
+        if (sbl__step_of(k->own_n) != 1 || !sbl__lane_value_ok(n) || !(n <= 1048576.0f)) return 0;
+    }
+    for (c = 0; c < k->ch; ++c)
+        if (!sbl__lane_value_dim_ok(r->y[c][x])) return 0;
+    if (r->v[x] > 0.0f) {
+        if (!sbl__lane_value_ok(r->n[x])) return 0;
+        for (c = 0; c < k->ch; ++c)
+            if (!sbl__lane_value_dim_ok(r->x[c][x]) || !sbl__lane_diff_ok(r->x[c][x], r->y[c][x]))
+                return 0;
+    }
+    return 1;
+}
+
+/* 1 if the window of pixel x (interior; R[0..2] exist) may take the default
+   configurations' lanes (above); its flagged pixels are the ones to check. */
+static int sbl__lane_window_dim_ok(const sbl__kernel *k, const sbl__ring_row *const *R, int x)
+{
+    const unsigned char *top = R[0]->unsafe;
+    int i, j, c;
+    for (i = x - 1; i <= x + 1; ++i) {
+        const int f0 = top[i], f1 = R[1]->unsafe[i], f2 = R[2]->unsafe[i];
+        if (!(f0 | f1 | f2)) continue;
+        for (j = 0; j < 3; ++j)
+            if (R[j]->unsafe[i] && !sbl__lane_pixel_dim_ok(k, R[j], i)) return 0;
+        /* the column about its top sample */
+        for (c = 0; c < k->ch; ++c) {
+            const float y0 = R[0]->y[c][i];
+            if ((f0 | f1) && !sbl__lane_diff_ok(R[1]->y[c][i], y0)) return 0;
+            if ((f0 | f2) && !sbl__lane_diff_ok(R[2]->y[c][i], y0)) return 0;
+        }
+    }
+    /* the top row about the window's shift, its top-centre sample */
+    for (i = x - 1; i <= x + 1; i += 2)
+        if (top[i] | top[x])
+            for (c = 0; c < k->ch; ++c)
+                if (!sbl__lane_diff_ok(R[0]->y[c][i], R[0]->y[c][x])) return 0;
+    return 1;
+}
+
+/* The default configurations' lanes (sbl__kernel_lanes_pooled's fast instances). */
+static int sbl__kernel_fast(const sbl__kernel *k)
+{
+    return k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->fill &&
+           k->wp.rectify == SBL_RECTIFY_NONE && k->wp.mode == SBL_WEIGHT_SCALAR;
+}
+
+/* Clears the window flags of pixels [xa, xb) whose window sbl__lane_window_dim_ok admits. */
+static void sbl__lane_windows_dim(const sbl__kernel *k, const sbl__ring_row *const *R,
+                                  unsigned char *win, int xa, int xb)
+{
+    int x;
+    for (x = sbl__find_set(win, xa, xb); x < xb; x = sbl__find_set(win, x + 1, xb))
+        if (sbl__lane_window_dim_ok(k, R, x)) win[x] = 0;
+}
+
 /* one function per channel count and configuration (fast: 1 temporal default, 2 stereo
    default, 0 any other), each compiled by itself */
 #define SBL__POOLED_INSTANCE(chn, f) \
@@ -6242,7 +6339,7 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
                                      int pb, int xa, int xb, const unsigned char *win)
 {
     /* the default configuration in its own instances (sbl__lanes_vector_fast) */
-    const int fast = k->wp.rectify == SBL_RECTIFY_NONE && k->wp.mode == SBL_WEIGHT_SCALAR && !k->fill;
+    const int fast = sbl__kernel_fast(k);
     k->pool_row = R[1]->row;
     if (fast && k->wp.temporal) {
         switch (k->ch) {
@@ -6316,6 +6413,8 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                                R[2]->unsafe + xa - 1, xb - xa + 2);
                 sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
                 win = k->window_unsafe;
+                /* dim values the default configurations' lanes can take */
+                if (pool && sbl__kernel_fast(k)) sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
             }
             if (pool && lanes_ok) {
                 /* an interior row: prepass and lanes share their column sums */

@@ -618,6 +618,106 @@ static void test_pool_dim(void)
     CHECK(exact > 0);
 }
 
+
+/* The default configurations' lanes (pooled estimator, no rectification, one weight;
+   temporal and stereo) on windows holding dim values (normal floats below the lane
+   range's 2^-40): where sbl__lane_window_dim_ok admits the window, the lanes must agree
+   with the double reference as on any window (1e-4, as above); dim pairs, two dim
+   values in one column, NaN are refused (the reference path). */
+static void test_lanes_dim(void)
+{
+    static float own[PH * PW * 4], own_n[PH * PW];
+    static paths_gather G;
+    sbt_rng rng = {616};
+    double worst = 0;
+    int it, admitted = 0, refused = 0;
+    for (it = 0; it < 600; ++it) {
+        sbl__kernel k;
+        sbl_image im, imn;
+        void *scratch;
+        const sbl__ring_row *R[3];
+        float lane_c[PW][4], lane_n[PW], lane_a[PW];
+        const int ch = 1 + it % 4, stereo = (it >> 2) & 1;
+        int x, y, c, i, t;
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x) {
+                for (c = 0; c < 4; ++c) {
+                    own[(y * PW + x) * ch + c] = (float)(0.2 + 0.6 * sbt_uniform(&rng));
+                    G.x[y][x][c] = (float)(0.2 + 0.6 * sbt_uniform(&rng) + (x > PW / 2 ? 0.3 : 0.0));
+                }
+                G.n[y][x] = sbt_uniform(&rng) < 0.1 ? 0.0f : (float)(1 + 20 * sbt_uniform(&rng));
+                own_n[y * PW + x] = (float)(1 + 10 * sbt_uniform(&rng));
+            }
+        for (t = 0; t < 1 + it % 5; ++t) {
+            const int tx = (int)(sbt_uniform(&rng) * PW), ty = (int)(sbt_uniform(&rng) * PH);
+            const int kind = (int)(sbt_uniform(&rng) * 6), tc = (int)(sbt_uniform(&rng) * ch);
+            const float dim = kind & 1 ? 1e-14f : -4e-20f;
+            own[(ty * PW + tx) * ch + tc] = dim;
+            if (kind == 2) own[(((ty + 1) % PH) * PW + tx) * ch + tc] = 2e-14f; /* two in a column */
+            if (kind == 3) { G.x[ty][tx][tc] = 1.5e-14f; G.n[ty][tx] = 4.0f; } /* a dim pair */
+            if (kind == 4) G.x[ty][tx][tc] = 3e-13f; /* dim x*, bright y? (y is dim too) */
+            if (kind == 5 && sbt_uniform(&rng) < 0.3) own[(ty * PW + tx) * ch + tc] = (float)HUGE_VAL - (float)HUGE_VAL;
+        }
+        memset(&k, 0, sizeof k);
+        im = sbl_image_make(own, PW, PH, ch);
+        imn = sbl_image_make(own_n, PW, PH, 1);
+        k.w = PW; k.h = PH; k.ch = ch;
+        k.wp.estimator = SBL_ESTIMATOR_POOLED;
+        k.wp.rectify = SBL_RECTIFY_NONE;
+        k.wp.mode = SBL_WEIGHT_SCALAR;
+        k.wp.constant = 0.1f;
+        k.wp.gamma = 1.25f;
+        k.wp.bias_threshold = 3.0f;
+        k.wp.temporal = !stereo;
+        k.n_cap = stereo ? FLT_MAX : 64.0f;
+        k.temporal = !stereo;
+        k.own = &im;
+        k.own_n = stereo ? &imn : NULL;
+        k.gather = paths_gather_fn;
+        k.gather_ctx = &G;
+        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
+        sbl__kernel_bind(&k, scratch);
+        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
+        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        CHECK(sbl__kernel_fast(&k));
+        /* every interior pixel in lanes (no window mask), then the reference where the
+           rule admits a flagged window */
+        sbl__kernel_lanes_pooled(&k, R, 0, PW, 1, PW - 1, NULL);
+        for (x = 1; x < PW - 1; ++x) {
+            for (c = 0; c < ch; ++c) lane_c[x][c] = k.stage[c][x];
+            lane_n[x] = k.stage_n[x];
+            lane_a[x] = k.stage_a[x];
+        }
+        for (x = 1; x < PW - 1; ++x) {
+            int flagged = 0, j, dx;
+            double e, en;
+            for (j = 0; j < 3; ++j)
+                for (dx = -1; dx <= 1; ++dx) flagged |= R[j]->unsafe[x + dx];
+            if (!flagged) continue;
+            if (!sbl__lane_window_dim_ok(&k, R, x)) { ++refused; continue; }
+            ++admitted;
+            sbl__kernel_pixel_ref(&k, R, x);
+            e = fabs(lane_a[x] - k.stage_a[x]);
+            en = fabs(lane_n[x] - k.stage_n[x]) / (fabs(k.stage_n[x]) + 1.0);
+            if (en > e) e = en;
+            for (c = 0; c < ch; ++c) {
+                const double ec = fabs(lane_c[x][c] - k.stage[c][x]);
+                if (!(ec <= e)) e = ec;
+            }
+            if (!(e <= 1e-4))
+                printf("  dim case %d (stereo %d ch %d) x %d: lane a %.6f n %g, ref a %.6f n %g\n", it,
+                       stereo, ch, x, lane_a[x], lane_n[x], k.stage_a[x], k.stage_n[x]);
+            CHECK(e <= 1e-4);
+            if (e > worst) worst = e;
+        }
+        free(scratch);
+    }
+    printf("  %s default lanes on windows with dim values vs double: %d admitted (worst %.3g), "
+           "%d refused\n", SBL_SIMD_NAME, admitted, worst, refused);
+    CHECK(admitted > 100);
+    CHECK(refused > 100);
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -708,6 +808,7 @@ int main(void)
     test_spans();
     test_moments_precision();
     test_pool_dim();
+    test_lanes_dim();
     test_row_gather();
     test_stereo_row_gather();
     return sbt_finish("test_paths");
