@@ -2967,6 +2967,25 @@ typedef int sbl__m;
 #define sbl__true 1
 #endif
 
+/* first = m ? a : b and second = m ? b : a per lane (the two ends of a lerp chosen
+   by a mask): two selects, or on SSE2 (a select is three operations there) one select
+   and one exclusive or: second = a ^ b ^ first */
+#if !defined(SBL_NO_SIMD) && !defined(__AVX2__) && !defined(__AVX512F__) && \
+    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#define SBL__SEL2(m, a, b, first, second) \
+    do { \
+        const __m128 ab_ = _mm_xor_ps(a, b); \
+        (first) = _mm_xor_ps(b, _mm_and_ps(m, ab_)); \
+        (second) = _mm_xor_ps(ab_, first); \
+    } while (0)
+#else
+#define SBL__SEL2(m, a, b, first, second) \
+    do { \
+        (first) = sbl__sel(m, a, b); \
+        (second) = sbl__sel(m, b, a); \
+    } while (0)
+#endif
+
 /* ---- the fused row kernel --------------------------------------------------
    Shared by the temporal filter and the stereo blend. Rows of the own estimate Y are
    deinterleaved into planes, and the other estimate x* (reprojected history or other
@@ -4985,10 +5004,12 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
     for (;;) {
         const int i = x - base;
         const ptrdiff_t iv = x + W->off_v;
-        const sbl__v v0 = sbl__load(W->row[0] + iv), v1 = sbl__load(W->row[1] + iv),
-                     v2 = sbl__load(W->row[2] + iv);
+        /* full: every v is 1, so the pairs per column are 3 (the same value) */
+        const sbl__v v0 = full ? sbl__set1(1.0f) : sbl__load(W->row[0] + iv);
+        const sbl__v v1 = full ? sbl__set1(1.0f) : sbl__load(W->row[1] + iv);
+        const sbl__v v2 = full ? sbl__set1(1.0f) : sbl__load(W->row[2] + iv);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
-        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), sbl__add(sbl__add(v0, v1), v2));
+        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), full ? sbl__set1(3.0f) : sbl__add(sbl__add(v0, v1), v2));
         sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp, full);
         if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp, full);
         if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp, full);
@@ -5841,7 +5862,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     const int i = x - base;
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
     sbl__v yc[4], xs[4], yb[4], m8[4], v8[4], var[4], mean;
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
@@ -5898,11 +5919,13 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* the blend (sbl__lanes_blend with one weight, no fill) */
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
+    f_w = sbl__sel(hi_w, one_w, w); /* the two-sided lerp's factor (as the staged lanes) */
     a_mean = zero;
 #define SBL__FAST_BLEND(c) \
     do { \
-        const sbl__v o = sbl__sel(hi_w, sbl__add(yb[c], sbl__mul(one_w, sbl__sub(xs[c], yb[c]))), \
-                                  sbl__add(xs[c], sbl__mul(w, sbl__sub(yb[c], xs[c])))); \
+        sbl__v from, to, o; \
+        SBL__SEL2(hi_w, yb[c], xs[c], from, to); \
+        o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c])); \
         a_mean = sbl__add(a_mean, w); \
     } while (0)
@@ -5966,7 +5989,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, t, a_mean, a2_mean, one_m, den, n_out;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
     valid = sbl__gt(n_x, zero);
@@ -6001,13 +6024,17 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     low_t = sbl__gt(one, t);
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
+    /* the two-sided lerp: from the end the weight is nearer, by its factor (the same
+       expression per lane as both lerps and a select) */
+    f_w = sbl__sel(hi_w, one_w, w);
     a_mean = zero;
 #define SBL__STAGE_BLEND(c) \
     do { \
         const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
         const sbl__v yb = sbl__sel(low_t, sbl__mul(yc, t), yc); \
-        const sbl__v o = sbl__sel(hi_w, sbl__add(yb, sbl__mul(one_w, sbl__sub(xs, yb))), \
-                                  sbl__add(xs, sbl__mul(w, sbl__sub(yb, xs)))); \
+        sbl__v from, to, o; \
+        SBL__SEL2(hi_w, yb, xs, from, to); \
+        o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc)); \
         a_mean = sbl__add(a_mean, w); \
     } while (0)
