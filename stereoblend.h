@@ -4195,6 +4195,50 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
     return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
 }
 
+#if SBL__VW >= 8
+/* Are n and the ch colour values of every lane safe (sbl__lane_value_ok) and nonzero:
+   the largest |bits| below those of 2^50, the smallest at least those of 2^-40 (both
+   as unsigned ints; a NaN's bits are above every finite value's). 0: some lane needs
+   the per-lane test (a zero, which is safe, included). */
+SBL__INLINE int sbl__rest_safe(sbl__v n, const sbl__v *v, int ch)
+{
+#if SBL__VW == 8
+    const __m256i m = _mm256_set1_epi32(0x7fffffff);
+    const __m256i bn = _mm256_and_si256(_mm256_castps_si256(n), m);
+    __m256i hi = _mm256_and_si256(_mm256_castps_si256(v[0]), m), lo = hi, b;
+    hi = _mm256_max_epu32(hi, bn);
+    lo = _mm256_min_epu32(lo, bn);
+#define SBL__REST_MINMAX(c) \
+    b = _mm256_and_si256(_mm256_castps_si256(v[c]), m); \
+    hi = _mm256_max_epu32(hi, b); \
+    lo = _mm256_min_epu32(lo, b)
+    if (ch > 1) { SBL__REST_MINMAX(1); }
+    if (ch > 2) { SBL__REST_MINMAX(2); }
+    if (ch > 3) { SBL__REST_MINMAX(3); }
+#undef SBL__REST_MINMAX
+    /* bad: hi >= bits(2^50) (0x58800000) or lo < bits(2^-40) (0x2b800000), signed
+       compares of values below 2^31 */
+    b = _mm256_or_si256(_mm256_cmpgt_epi32(hi, _mm256_set1_epi32(0x587fffff)),
+                        _mm256_cmpgt_epi32(_mm256_set1_epi32(0x2b800000), lo));
+    return _mm256_testz_si256(b, b);
+#else
+    const __m512i m = _mm512_set1_epi32(0x7fffffff);
+    const __m512i bn = _mm512_and_si512(_mm512_castps_si512(n), m);
+    __m512i hi = _mm512_and_si512(_mm512_castps_si512(v[0]), m), lo = hi, b;
+    int c;
+    hi = _mm512_max_epu32(hi, bn);
+    lo = _mm512_min_epu32(lo, bn);
+    for (c = 1; c < ch; ++c) {
+        b = _mm512_and_si512(_mm512_castps_si512(v[c]), m);
+        hi = _mm512_max_epu32(hi, b);
+        lo = _mm512_min_epu32(lo, b);
+    }
+    return !(_mm512_cmpgt_epi32_mask(hi, _mm512_set1_epi32(0x587fffff)) |
+             _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(0x2b800000), lo));
+#endif
+}
+#endif
+
 /* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
    pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
    sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
@@ -4218,8 +4262,8 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     int i = 0, l, idx[SBL__VW];
     for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
     for (;;) {
-        int x, bits;
-        sbl__m keep, valid;
+        int x, bits, flag;
+        sbl__m keep, valid, ok;
         sbl__v nv = one, v[4];
         if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
         x = x0 + i;
@@ -4246,45 +4290,60 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
             valid = sbl__mand(valid, sbl__mor(sbl__mand(inf_e, inf_t),
                                               sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
         }
-        if (np) {
-            nv = sbl__load(np + i);
-            valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+        if (np) nv = sbl__load(np + i);
+        /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
+           0 is unsafe exactly when v is); a safe value is finite, so where every value is
+           safe (the common case) the finiteness tests drop out and nothing is flagged */
+#if SBL__VW == 4
+#define SBL__REST_OK() \
+    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
+    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
+    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
+    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
+        SBL__REST_OK();
+        if (sbl__mbits(ok) == (1 << SBL__VW) - 1) {
+#else
+#define SBL__REST_OK() \
+    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
+    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
+    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
+    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
+        /* (AVX2 / AVX-512: the same in one test of the vector, on the largest and
+           smallest |v| bits as unsigned ints: a 0 there takes the exact test below) */
+        if (sbl__rest_safe(nv, v, ch)) {
+#endif
+            if (np) valid = sbl__mand(valid, sbl__gt(nv, zero));
+            flag = 0;
+        } else {
+            if (np) valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+            valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
+            if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
+            if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
+            if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
+#if SBL__VW != 4
+            SBL__REST_OK();
+#endif
+            flag = sbl__mbits(sbl__mandnot(valid, ok));
         }
-        valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
-        if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
-        if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
-        if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
         sbl__store(r->x[0] + x, sbl__sel(valid, sbl__add(zero, v[0]), zero));
         if (ch > 1) sbl__store(r->x[1] + x, sbl__sel(valid, sbl__add(zero, v[1]), zero));
         if (ch > 2) sbl__store(r->x[2] + x, sbl__sel(valid, sbl__add(zero, v[2]), zero));
         if (ch > 3) sbl__store(r->x[3] + x, sbl__sel(valid, sbl__add(zero, v[3]), zero));
         sbl__store(r->n + x, sbl__sel(valid, nv, zero));
         sbl__store(r->v + x, sbl__sel(valid, one, zero));
+        /* (a column the overlapping last vector writes again gets the same values and
+           the same flag: sbl__ring_flag_bits counts a column once) */
+        if (flag) sbl__ring_flag_bits(r, x, flag);
         bits = sbl__mbits(sbl__mandnot(keep, valid));
         for (l = 0; bits; ++l, bits >>= 1)
             if (bits & 1) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
+                sbl__ring_put_flag(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
             }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
     }
-    /* the unsafe-value check of sbl__ring_gather on the tile just written (in L1, the
-       channel count a constant here) */
-    for (i = 0;; i += SBL__VW) {
-        int x, bits;
-        sbl__m ok;
-        if (i + SBL__VW > n) i = n - SBL__VW;
-        x = x0 + i;
-        ok = sbl__lane_ok(sbl__load(r->n + x));
-        ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[0] + x)));
-        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[1] + x)));
-        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[2] + x)));
-        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[3] + x)));
-        bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), zero), ok));
-        if (bits) sbl__ring_flag_bits(r, x, bits);
-        if (i + SBL__VW >= n) break;
-    }
+#undef SBL__REST_OK
 }
 
 static void sbl__rest_tile(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
