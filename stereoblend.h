@@ -3262,7 +3262,7 @@ typedef struct sbl__tap_plan {
     float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
     float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
     /* 1: the pixel gather decides; 2: the taps (summed, finite) weigh below 1e-3, only
-       the 3x3 fallback is left (the rig's `fallback_one`, else the pixel gather) */
+       the 3x3 fallback is left (sbl__fallback_lanes, else the pixel gather) */
     unsigned char redo[SBL__BLOCK];
     /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
        pixels in every view (planned so together: uniform integer motion); 2: planned
@@ -3662,6 +3662,98 @@ typedef struct sbl__block {
     int row_state;                           /* the hooks' per-row facts (-1: not yet)   */
 } sbl__block;
 
+#if defined(__GNUC__)
+#define SBL__RARE __attribute__((noinline)) /* a rare path kept out of the hot loop's code */
+#else
+#define SBL__RARE
+#endif
+
+/* ---- the 3x3 fallback in lanes ----------------------------------------------
+   Entries whose taps weigh below 1e-3 (redo 2) take the pixel gather's 3x3 fallback.
+   Most of them are disocclusions, where no pixel of the window passes the depth test:
+   the fallback then finds nothing and returns 0. That is decided VW entries at a time
+   here, before any colour is read: the fallback's depth test (sbl__depth_match, its
+   limit formed once as it forms it) on the nine depths in lanes. */
+
+/* Bits of the lanes none of whose nine window pixels passes the depth test; di: the
+   depth index of each lane's window corner (cx - 1, cy - 1), the window inside the
+   image; ze, sl: the expected depth and its slack. */
+SBL__INLINE int sbl__window_fails(const sbl__tap_src *s, const int *di, const float *ze_p,
+                                  const float *sl_p)
+{
+    const sbl__v zero = sbl__set1(0.0f), ze = sbl__load(ze_p);
+    const sbl__v lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sbl__load(sl_p));
+    const sbl__m inf_e = sbl__posinf(ze);
+    sbl__m any = sbl__gt(zero, zero);
+    int i, j;
+    for (j = 0; j < 3; ++j)
+        for (i = 0; i < 3; ++i) {
+            /* (rows 0 .. 2 and columns 0 .. 2 of the view exist: w, h >= 3 here) */
+            const sbl__v d = sbl__gatheri(s->depth.p + j * s->depth.stride + i * s->depth.step, di);
+            const sbl__m inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            any = sbl__mor(any, sbl__mor(sbl__mand(inf_e, inf_t),
+                                         sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
+        }
+    return ~sbl__mbits(any) & ((1 << SBL__VW) - 1);
+}
+
+/* sbl__gather_fallback at (sx, sy) with expected depth ze and slack sl into ring column x */
+static SBL__RARE void sbl__fallback_put(const sbl__tap_src *s, sbl__ring_row *r, int x, double sx,
+                                        double sy, float ze, float sl, int flag)
+{
+    float tmp[4] = {0, 0, 0, 0};
+    sbl__tap_want t;
+    float n;
+    t.depth = ze;
+    t.depth_slack = sl;
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    n = sbl__gather_fallback(s, &t, sx, sy, tmp);
+    if (flag) sbl__ring_put_flag(r, x, n, tmp, s->color.ch);
+    else sbl__ring_put(r, x, n, tmp, s->color.ch);
+}
+
+/* The 3x3 fallback for ring columns x0 + e[k] (k < n) at source positions (sx[k], sy[k])
+   with expected depths ze[e[k]] and slacks sl[e[k]] (the plan's): a reset where sbl__window_fails says the
+   window holds nothing (the fallback's own result there), else sbl__gather_fallback.
+   flag: the puts flag unsafe values (sbl__ring_put_flag). */
+static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0, const int *e,
+                                const double *sx, const double *sy, const float *ze,
+                                const float *sl, int n, int flag)
+{
+    const int ch = s->color.ch;
+    const double wl = SBL__CAST(double, s->width) - 1.0, hl = SBL__CAST(double, s->height) - 1.0;
+    int k = 0;
+    while (k < n) {
+        int di[SBL__VW], lane[SBL__VW], m = 0, none = 0, l;
+        float zl[SBL__VW], ll[SBL__VW];
+        for (; k < n && m < SBL__VW; ++k) {
+            /* floor(sx) in [1, w - 2] (sx >= 1: its truncation), likewise y */
+            if (s->use_depth && sx[k] >= 1.0 && sx[k] < wl && sy[k] >= 1.0 && sy[k] < hl) {
+                const int cx = SBL__CAST(int, sx[k]), cy = SBL__CAST(int, sy[k]);
+                di[m] = SBL__CAST(int, SBL__CAST(ptrdiff_t, cy - 1) * s->depth.stride +
+                                           SBL__CAST(ptrdiff_t, cx - 1) * s->depth.step);
+                zl[m] = ze[e[k]];
+                ll[m] = sl[e[k]];
+                lane[m++] = k;
+            } else {
+                sbl__fallback_put(s, r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]], flag);
+            }
+        }
+        if (!m) break;
+        for (l = m; l < SBL__VW; ++l) { di[l] = di[0]; zl[l] = zl[0]; ll[l] = ll[0]; }
+        none = sbl__window_fails(s, di, zl, ll);
+        for (l = 0; l < m; ++l) {
+            const int j = lane[l];
+            if ((none >> l) & 1) sbl__ring_put(r, x0 + e[j], 0.0f, NULL, ch);
+            else sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag);
+        }
+    }
+}
+
 /* The one driver of the row gathers (temporal and stereo): columns [xa, xb) of row y in
    blocks of SBL__BLOCK. Per block: `start` (the tile shortcuts: returns 1 when it wrote
    the block; sets the block's sky and lane mode), the plan (`plan_vec` plans VW entries
@@ -3677,8 +3769,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                                         int (*plan_vec)(const void *, sbl__block *, int),
                                         void (*plan_one)(const void *, sbl__block *, int),
                                         void (*after)(const void *, sbl__ring_row *, sbl__block *),
-                                        float (*fallback_one)(const void *, const sbl__block *, int,
-                                                              float *),
+                                        void (*fallback_block)(const void *, sbl__ring_row *,
+                                                               sbl__block *),
                                         int flag)
 {
     const int ch = src->color.ch;
@@ -3717,6 +3809,13 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             after(ctx, r, &b);
             continue;
         }
+        {   /* redo is rare: one look at the whole block first */
+            uint64_t any = 0, u;
+            for (i = 0; i + 8 <= b.n; i += 8) { memcpy(&u, b.p.redo + i, 8); any |= u; }
+            for (; i < b.n; ++i) any |= b.p.redo[i];
+            if (!any) continue;
+        }
+        if (fallback_block) fallback_block(ctx, r, &b); /* (clears the redo it settles) */
         for (i = 0; i < b.n; ++i) {
             if (i + 8 <= b.n) { /* eight entries at a time: redo is rare */
                 uint64_t any;
@@ -3725,8 +3824,7 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             }
             if (b.p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
-                const float nx = b.p.redo[i] == 2 && fallback_one ? fallback_one(ctx, &b, i, tmp)
-                                                                  : pixel(ctx, b.x0 + i, y, tmp);
+                const float nx = pixel(ctx, b.x0 + i, y, tmp);
                 if (flag) sbl__ring_put_flag(r, b.x0 + i, nx, tmp, ch);
                 else sbl__ring_put(r, b.x0 + i, nx, tmp, ch);
             }
@@ -4116,6 +4214,50 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
     return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
 }
 
+#if SBL__VW >= 8
+/* Are n and the ch colour values of every lane safe (sbl__lane_value_ok) and nonzero:
+   the largest |bits| below those of 2^50, the smallest at least those of 2^-40 (both
+   as unsigned ints; a NaN's bits are above every finite value's). 0: some lane needs
+   the per-lane test (a zero, which is safe, included). */
+SBL__INLINE int sbl__rest_safe(sbl__v n, const sbl__v *v, int ch)
+{
+#if SBL__VW == 8
+    const __m256i m = _mm256_set1_epi32(0x7fffffff);
+    const __m256i bn = _mm256_and_si256(_mm256_castps_si256(n), m);
+    __m256i hi = _mm256_and_si256(_mm256_castps_si256(v[0]), m), lo = hi, b;
+    hi = _mm256_max_epu32(hi, bn);
+    lo = _mm256_min_epu32(lo, bn);
+#define SBL__REST_MINMAX(c) \
+    b = _mm256_and_si256(_mm256_castps_si256(v[c]), m); \
+    hi = _mm256_max_epu32(hi, b); \
+    lo = _mm256_min_epu32(lo, b)
+    if (ch > 1) { SBL__REST_MINMAX(1); }
+    if (ch > 2) { SBL__REST_MINMAX(2); }
+    if (ch > 3) { SBL__REST_MINMAX(3); }
+#undef SBL__REST_MINMAX
+    /* bad: hi >= bits(2^50) (0x58800000) or lo < bits(2^-40) (0x2b800000), signed
+       compares of values below 2^31 */
+    b = _mm256_or_si256(_mm256_cmpgt_epi32(hi, _mm256_set1_epi32(0x587fffff)),
+                        _mm256_cmpgt_epi32(_mm256_set1_epi32(0x2b800000), lo));
+    return _mm256_testz_si256(b, b);
+#else
+    const __m512i m = _mm512_set1_epi32(0x7fffffff);
+    const __m512i bn = _mm512_and_si512(_mm512_castps_si512(n), m);
+    __m512i hi = _mm512_and_si512(_mm512_castps_si512(v[0]), m), lo = hi, b;
+    int c;
+    hi = _mm512_max_epu32(hi, bn);
+    lo = _mm512_min_epu32(lo, bn);
+    for (c = 1; c < ch; ++c) {
+        b = _mm512_and_si512(_mm512_castps_si512(v[c]), m);
+        hi = _mm512_max_epu32(hi, b);
+        lo = _mm512_min_epu32(lo, b);
+    }
+    return !(_mm512_cmpgt_epi32_mask(hi, _mm512_set1_epi32(0x587fffff)) |
+             _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(0x2b800000), lo));
+#endif
+}
+#endif
+
 /* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
    pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
    sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
@@ -4139,8 +4281,8 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     int i = 0, l, idx[SBL__VW];
     for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
     for (;;) {
-        int x, bits;
-        sbl__m keep, valid;
+        int x, bits, flag;
+        sbl__m keep, valid, ok;
         sbl__v nv = one, v[4];
         if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
         x = x0 + i;
@@ -4167,45 +4309,60 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
             valid = sbl__mand(valid, sbl__mor(sbl__mand(inf_e, inf_t),
                                               sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
         }
-        if (np) {
-            nv = sbl__load(np + i);
-            valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+        if (np) nv = sbl__load(np + i);
+        /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
+           0 is unsafe exactly when v is); a safe value is finite, so where every value is
+           safe (the common case) the finiteness tests drop out and nothing is flagged */
+#if SBL__VW == 4
+#define SBL__REST_OK() \
+    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
+    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
+    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
+    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
+        SBL__REST_OK();
+        if (sbl__mbits(ok) == (1 << SBL__VW) - 1) {
+#else
+#define SBL__REST_OK() \
+    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
+    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
+    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
+    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
+        /* (AVX2 / AVX-512: the same in one test of the vector, on the largest and
+           smallest |v| bits as unsigned ints: a 0 there takes the exact test below) */
+        if (sbl__rest_safe(nv, v, ch)) {
+#endif
+            if (np) valid = sbl__mand(valid, sbl__gt(nv, zero));
+            flag = 0;
+        } else {
+            if (np) valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+            valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
+            if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
+            if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
+            if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
+#if SBL__VW != 4
+            SBL__REST_OK();
+#endif
+            flag = sbl__mbits(sbl__mandnot(valid, ok));
         }
-        valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
-        if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
-        if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
-        if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
         sbl__store(r->x[0] + x, sbl__sel(valid, sbl__add(zero, v[0]), zero));
         if (ch > 1) sbl__store(r->x[1] + x, sbl__sel(valid, sbl__add(zero, v[1]), zero));
         if (ch > 2) sbl__store(r->x[2] + x, sbl__sel(valid, sbl__add(zero, v[2]), zero));
         if (ch > 3) sbl__store(r->x[3] + x, sbl__sel(valid, sbl__add(zero, v[3]), zero));
         sbl__store(r->n + x, sbl__sel(valid, nv, zero));
         sbl__store(r->v + x, sbl__sel(valid, one, zero));
+        /* (a column the overlapping last vector writes again gets the same values and
+           the same flag: sbl__ring_flag_bits counts a column once) */
+        if (flag) sbl__ring_flag_bits(r, x, flag);
         bits = sbl__mbits(sbl__mandnot(keep, valid));
         for (l = 0; bits; ++l, bits >>= 1)
             if (bits & 1) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
+                sbl__ring_put_flag(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
             }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
     }
-    /* the unsafe-value check of sbl__ring_gather on the tile just written (in L1, the
-       channel count a constant here) */
-    for (i = 0;; i += SBL__VW) {
-        int x, bits;
-        sbl__m ok;
-        if (i + SBL__VW > n) i = n - SBL__VW;
-        x = x0 + i;
-        ok = sbl__lane_ok(sbl__load(r->n + x));
-        ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[0] + x)));
-        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[1] + x)));
-        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[2] + x)));
-        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[3] + x)));
-        bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), zero), ok));
-        if (bits) sbl__ring_flag_bits(r, x, bits);
-        if (i + SBL__VW >= n) break;
-    }
+#undef SBL__REST_OK
 }
 
 static void sbl__rest_tile(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
@@ -4374,31 +4531,32 @@ static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
         sbl__tap_plan_set(&s->src, &b->p, i, &t, sx, sy);
 }
 
-/* Entry i whose taps weigh below 1e-3 (redo 2): the pixel gather's last step, its 3x3
-   fallback, at the position sbl__temporal_rp_pos gives (its expression, for motion
-   vectors; the camera source takes the pixel gather) and the planned expected depth and
-   slack (the plan's lanes need neither target normals nor ids). */
-#if defined(__GNUC__)
-#define SBL__RARE __attribute__((noinline)) /* a rare path kept out of the hot loop's code */
-#else
-#define SBL__RARE
-#endif
-static SBL__RARE float sbl__temporal_fallback_one(const void *ctx, const sbl__block *b, int i,
-                                                  float *out)
+/* The block's entries whose taps weigh below 1e-3 (redo 2): the pixel gather's last
+   step, its 3x3 fallback (sbl__fallback_lanes), at the position sbl__temporal_rp_pos
+   gives (its expression, for motion vectors; the camera source leaves them to the pixel
+   gather) with the planned expected depth and slack (the plan's lanes need neither
+   target normals nor ids). */
+static void sbl__temporal_fallback_block(const void *ctx, sbl__ring_row *r, sbl__block *b)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    const int x = b->x0 + i, y = b->y;
-    const float *mv;
-    sbl__tap_want t;
-    if (s->source != SBL_TEMPORAL_MOTION) return sbl__temporal_rp_pixel(ctx, x, y, out);
-    mv = SBL__AT(s->motion, x, y);
-    t.depth = b->p.depth[i];
-    t.depth_slack = b->p.slack[i];
-    t.normal = NULL;
-    t.normal_len2 = 0.0f;
-    t.id = 0.0f;
-    return sbl__gather_fallback(&s->src, &t, x + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]),
-                                y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]), out);
+    double sx[SBL__BLOCK], sy[SBL__BLOCK];
+    int e[SBL__BLOCK], i, n = 0;
+    if (s->source != SBL_TEMPORAL_MOTION) return;
+    for (i = 0; i < b->n; ++i) {
+        const float *mv;
+        if (i + 8 <= b->n) { /* eight entries at a time: redo is rare */
+            uint64_t any;
+            memcpy(&any, b->p.redo + i, 8);
+            if (!any) { i += 7; continue; }
+        }
+        if (b->p.redo[i] != 2) continue;
+        b->p.redo[i] = 0;
+        mv = SBL__AT(s->motion, b->x0 + i, b->y);
+        sx[n] = b->x0 + i + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]);
+        sy[n] = b->y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
+        e[n++] = i;
+    }
+    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1);
 }
 
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
@@ -4411,7 +4569,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     r->gather_unsafe = 0;
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_one, 1);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block, 1);
 }
 #endif
 
