@@ -223,6 +223,14 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                             if (r_t < 0) r_t = 0;
                             /* 8: a gate, then the unbiased estimate R - 1 */
                             if ((c->carry_mode & 8) && r_t > 0) r_t = zc - 1.0;
+                            /* 16: soft gate, (R - 1) P, P = 1 / (1 + ((c - 1) / (R - 1))^4.5) */
+                            if (c->carry_mode & 16) {
+                                r_t = 0;
+                                if (zc > 1.0) {
+                                    double rho = (c->kt - 1.0) / (zc - 1.0);
+                                    r_t = (zc - 1.0) / (1.0 + pow(rho, 4.5));
+                                }
+                            }
                             zsum_stats[0] += zc; zsum_stats[1] += zc * zc; zsum_stats[2] += 1;
                             if (r_t > 0) zsum_stats[3] += 1;
                         }
@@ -283,6 +291,11 @@ static cand cands[] = {
     {"R l1/3 c1.75", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 1.75, 4, 4},
     {"R l1/3 gate2", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2, 12, 4},
     {"R l1/3 gate2.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.5, 12, 4},
+    /* c_R = 1 + (c - 1) sqrt(lambda / (2 - lambda)) = 2.118: the one-frame threshold's
+       excess over the H0 mean, in units of the carried ratio's spread */
+    {"R l1/3 c2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4},
+    {"R l1/3 gate2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 12, 4},
+    {"R l1/3 soft2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 20, 4},
 };
 
 int main(int argc, char **argv)

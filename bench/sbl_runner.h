@@ -62,6 +62,8 @@ enum { SBR_ORACLE_TEMPORAL = 1, SBR_ORACLE_STEREO = 2 };
 typedef struct sbr_method {
     char name[48];
     int temporal;                  /* 0: no temporal filter */
+    int evidence;                  /* 1: the temporal filter carries its evidence plane
+                                      (sbl_history.evidence / sbl_temporal_output.evidence) */
     int oracle;                    /* SBR_ORACLE_* bits: that stage uses oracle weights */
     sbl_temporal_desc temporal_desc;
     sbr_stereo_mode stereo;
@@ -304,6 +306,7 @@ static sbr_method sbr_method_default(const char *name, sbr_stereo_mode st)
     memset(&m, 0, sizeof m);
     snprintf(m.name, sizeof m.name, "%s", name);
     m.temporal = 1;
+    m.evidence = 1; /* the default as a user gets it: with the evidence plane passed on */
     m.stereo = st;
     return m;
 }
@@ -549,7 +552,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     tmp_a = sbr_alloc(n * 3); /* also the luminance planes of SBR_STEREO_MASKED */
     tmp_b = sbr_alloc(n * 3);
     ox = sbr_alloc(n * 3);
-    if (m->temporal_blend_carry) {
+    if (m->temporal_blend_carry || m->evidence) {
         for (e = 0; e < 2; ++e)
             for (i = 0; i < 2; ++i) carry[e][i] = sbr_alloc(n);
         carry3 = sbr_alloc(n * 3);
@@ -608,6 +611,10 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 }
                 out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
                 out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
+                if (m->evidence) {
+                    if (pv) hi.evidence = sbl_image_make(carry[e][ping[e]], w, h, 1);
+                    out.evidence = sbl_image_make(carry[e][!ping[e]], w, h, 1);
+                }
                 if (alpha[e]) out.alpha = sbl_image_make(alpha[e], w, h, 1);
                 if (m->temporal_blend_carry) {
                     /* the carried plane rides on the history's reprojection: the same call
