@@ -41,6 +41,13 @@
 
      First frame: pass prev = NULL (or prev->color.data == NULL): every pixel resets.
 
+     Optional, and recommended: the evidence plane (1 float per pixel), ping-ponged like
+     length. The default (pooled) estimator then weighs the evidence of change it has
+     seen over the last frames as well as this frame's, and follows lights that move
+     every frame more closely (docs/ESTIMATORS.md 3.7). Without it: one frame's evidence.
+         prev.evidence = sbl_image_make(hist_ev, w, h, 1);   // last frame's out.evidence
+         out.evidence  = sbl_image_make(out_ev, w, h, 1);
+
    CONVENTIONS (see also README.md)
      Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
                 (i + 0.5, j + 0.5). sbl_image_make() gives tight rows; otherwise
@@ -4745,15 +4752,17 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
    sqrt(lambda / (2 - lambda)) of one frame's. The threshold asks R for the same
    significance as the one-frame test asks q (SBL_POOLED_BLOCK_SE2, 2.5 of a frame's
    spread above the mean 1) in units of R's spread: c_R = 1 + 2.5 sqrt(1/5) = 2.118 at
-   lambda = 1/3. Beyond it, r is at least SBL__EVIDENCE_R(R). lambda = 1/3: a shadow edge
+   lambda = 1/3, and r is at least R - c_R (SBL_EVIDENCE_GATE). lambda = 1/3: a shadow edge
    moving a pixel per frame crosses a 3x3 block in three frames, and older evidence is
    about other pixels. */
 #ifndef SBL_EVIDENCE_LAMBDA
 #define SBL_EVIDENCE_LAMBDA (1.0 / 3.0)
 #endif
 #ifndef SBL_EVIDENCE_GATE
-#define SBL_EVIDENCE_GATE 1 /* 1: beyond c_R, r >= R - 1 (the unbiased tau^2 / se^2);
-                               0: r >= R - c_R */
+#define SBL_EVIDENCE_GATE 0 /* 0: r >= R - c_R, shrunk by the threshold as the one-frame
+                               r = q - SBL_POOLED_BLOCK_SE2 is; 1: beyond c_R, r >= R - 1
+                               (measured: more under moving lights, a loss on static
+                               content and gallery; docs/ESTIMATORS.md 3.7) */
 #endif
 #define SBL__EVIDENCE_THR \
     (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
