@@ -3052,6 +3052,8 @@ typedef struct sbl__kernel {
     float *evid_in, *evid_out;
     int evid_use;
     sbl_image out_e;         /* the output plane (data NULL: not written)           */
+    int evid_row;            /* 1: gather the plane with the row gather (evid_ring)  */
+    sbl__ring_row evid_ring; /* its x[0] / n / v / unsafe planes                      */
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -4773,6 +4775,21 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
 static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
 {
     int x;
+#ifdef SBL__ROW_GATHER
+    if (k->evid_use && k->evid_row) {
+        /* the temporal row gather on the plane (its taps equal the pixel gather's, bit
+           for bit: tests/test_paths.c, tests/test_simd.c) */
+        sbl__ring_row *r = &k->evid_ring;
+        memset(r->unsafe + xa, 0, SBL__CAST(size_t, xb - xa));
+        r->row = y;
+        sbl__temporal_rp_row(k->evid_ctx, r, y, xa, xb);
+        for (x = xa; x < xb; ++x) {
+            const float v = r->x[0][x];
+            k->evid_in[x] = r->v[x] > 0.0f && v > 0.0f && v <= SBL__CAST(float, SBL__POOL_RATIO_CAP) ? v : 1.0f;
+        }
+        return;
+    }
+#endif
     for (x = xa; x < xb; ++x) {
         float v[4] = {0.0f, 0.0f, 0.0f, 0.0f}, e = 1.0f;
         if (k->evid_use && sbl__temporal_rp_pixel(k->evid_ctx, x, y, v) > 0.0f &&
@@ -6431,8 +6448,9 @@ SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
 SBLDEF size_t sbl_temporal_scratch_size(int width, int channels)
 {
     const size_t kb = sbl__kernel_scratch_size(width, channels);
-    /* + the evidence plane's two rows (sbl__kernel.evid_in / evid_out) */
-    return kb ? kb + 2 * sbl__plane_floats(width) * sizeof(float) + 64 : 0;
+    /* + the evidence plane's rows: evid_in, evid_out, and the gather's x / n / v
+       (floats) and unsafe (bytes) */
+    return kb ? kb + (5 * sizeof(float) + 1) * sbl__plane_floats(width) + 64 : 0;
 }
 
 SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
@@ -6519,10 +6537,19 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
             k.evid_use = 1;
         }
         if (k.evid_use || k.out_e.data) {
+            const size_t pf = sbl__plane_floats(w);
             float *e = SBL__PCAST(float *, sbl__align64(SBL__PCAST(char *, scratch) +
                                                          sbl__kernel_scratch_size(w, ch)));
             k.evid_in = e;
-            k.evid_out = e + sbl__plane_floats(w);
+            k.evid_out = e + pf;
+            k.evid_ring.x[0] = e + 2 * pf;
+            k.evid_ring.n = e + 3 * pf;
+            k.evid_ring.v = e + 4 * pf;
+            k.evid_ring.unsafe = SBL__PCAST(unsigned char *, e + 5 * pf);
+            k.evid_ring.row = -1;
+#ifdef SBL__ROW_GATHER
+            k.evid_row = k.evid_use && k.gather_row && sbl__row_gather_ok(&es.src);
+#endif
         }
     }
     sbl__kernel_run(&k, y0, y1);
