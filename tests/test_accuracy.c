@@ -1055,8 +1055,48 @@ static void test_evidence_firefly(void)
     seq_free(&s);
 }
 
+/* The planes are validated like the other optional views. */
+static void test_evidence_params(void)
+{
+    const int w = 20, h = 6;
+    seq1 s;
+    sbl_temporal_desc d;
+    sbl_frame f;
+    sbl_history hi;
+    sbl_temporal_output o;
+    static float ev2[20 * 6 * 2], ev_small[19 * 6];
+    memset(&d, 0, sizeof d);
+    seq_init(&s, w, h, 3);
+    memset(&f, 0, sizeof f); memset(&hi, 0, sizeof hi); memset(&o, 0, sizeof o);
+    f.color = sbl_image_make(s.cur, w, h, 3);
+    f.gbuffer.depth = sbl_image_make(s.depth, w, h, 1);
+    f.gbuffer.motion = sbl_image_make(s.mv, w, h, 2);
+    hi.color = sbl_image_make(s.hist[0], w, h, 3);
+    hi.length = sbl_image_make(s.len[0], w, h, 1);
+    hi.gbuffer.depth = f.gbuffer.depth;
+    o.color = sbl_image_make(s.hist[1], w, h, 3);
+    o.length = sbl_image_make(s.len[1], w, h, 1);
+    hi.evidence = sbl_image_make(s.ev[0], w, h, 1);
+    o.evidence = sbl_image_make(s.ev[1], w, h, 1);
+    CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o), SBL_OK);
+    o.evidence = sbl_image_make(ev2, w, h, 2);
+    CHECK(sbl_temporal_filter_frame(&d, &f, &hi, &o) != SBL_OK);
+    o.evidence = sbl_image_make(ev_small, w - 1, h, 1);
+    CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o), SBL_ERROR_SIZE_MISMATCH);
+    o.evidence = sbl_image_make(s.ev[1], w, h, 1);
+    hi.evidence = sbl_image_make(ev_small, w - 1, h, 1);
+    CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o), SBL_ERROR_SIZE_MISMATCH);
+    hi.evidence = sbl_image_make(s.ev[1], w, h, 1); /* reads what it writes */
+    CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o), SBL_ERROR_OVERLAP);
+    hi.evidence = sbl_image_make(s.ev[0], w, h, 1);
+    o.evidence = sbl_image_make(s.len[1], w, h, 1); /* the same buffer as out.length */
+    CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o), SBL_ERROR_OVERLAP);
+    seq_free(&s);
+}
+
 int main(void)
 {
+    test_evidence_params();
     test_evidence_absent();
     test_evidence_static();
     test_evidence_ramp();
