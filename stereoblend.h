@@ -4770,8 +4770,10 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
     (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
 
 /* The history's evidence plane at pixels [xa, xb) of row y, gathered with the taps,
-   weights, tests and fallback of the colour (the reference gather, bilinear): 1 where
-   no tap is valid (a reset: no evidence either way) or the value is not a ratio. */
+   weights, tests and fallback of the colour, bilinear (the row gather where the colour
+   takes it, else the pixel gather: the same bits): 1 where no tap is valid (a reset: no
+   evidence either way), where the history has no plane, or where the value is not a
+   ratio. */
 static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
 {
     int x;
