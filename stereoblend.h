@@ -41,6 +41,13 @@
 
      First frame: pass prev = NULL (or prev->color.data == NULL): every pixel resets.
 
+     Optional, and recommended: the evidence plane (1 float per pixel), ping-ponged like
+     length. The default (pooled) estimator then weighs the evidence of change it has
+     seen over the last frames as well as this frame's, and follows lights that move
+     every frame more closely (docs/ESTIMATORS.md 3.7). Without it: one frame's evidence.
+         prev.evidence = sbl_image_make(hist_ev, w, h, 1);   // last frame's out.evidence
+         out.evidence  = sbl_image_make(out_ev, w, h, 1);
+
    CONVENTIONS (see also README.md)
      Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
                 (i + 0.5, j + 0.5). sbl_image_make() gives tight rows; otherwise
@@ -355,6 +362,11 @@ typedef struct sbl_history {
                                  history-aware estimators blend 1:1 - give it.        */
     sbl_gbuffer gbuffer;      /* previous depth / normals / ids for the tap tests      */
     const sbl_camera *camera; /* previous camera (camera mode)                         */
+    sbl_image evidence;       /* optional, 1 channel: last frame's out.evidence. The
+                                 pooled estimator (the default) then weighs bias
+                                 evidence carried over frames as well as this frame's
+                                 (docs/ESTIMATORS.md 3.7): faster under moving lights.
+                                 NULL data: one frame's evidence, as before.           */
 } sbl_history;
 
 /* Reprojected history only (stage 3 on its own): out_color = x*, out_length = N of x*,
@@ -446,6 +458,10 @@ typedef struct sbl_temporal_output {
     sbl_image color;   /* required; same size and channels as the frame colour    */
     sbl_image length;  /* required; 1 channel: N per pixel for the next frame     */
     sbl_image alpha;   /* optional; 1 channel: the weight used (mean over channels) */
+    sbl_image evidence; /* optional; 1 channel: the pooled estimator's bias evidence
+                           carried over frames (a ratio, about 1 where nothing changes;
+                           1 with the other estimators). Give it to the next frame as
+                           sbl_history.evidence, ping-ponged like length.            */
 } sbl_temporal_output;
 
 /* The descriptor with every zero replaced by its default. */
@@ -3047,6 +3063,16 @@ typedef struct sbl__kernel {
     float *pool_r;
     float *pool_col;         /* the lanes' planes of one chunk (SBL__POOL_PLANES)   */
     int pool_row;            /* row pool_r holds (-1: none: the ratio reads as 0)  */
+    /* pooled estimator, evidence carried over frames (docs/ESTIMATORS.md 3.7; temporal
+       only): evid_in / evid_out per column of row pool_row, the history's carried ratio
+       gathered with the colour's taps (1 where it has none) and this frame's; NULL
+       evid_out: no plane at all. evid_use: the history has the plane, so it enters r. */
+    const void *evid_ctx;    /* the evidence plane's gather (sbl__temporal_rp); NULL: none */
+    float *evid_in, *evid_out;
+    int evid_use;
+    sbl_image out_e;         /* the output plane (data NULL: not written)           */
+    int evid_row;            /* 1: gather the plane with the row gather (evid_ring)  */
+    sbl__ring_row evid_ring; /* its x[0] / n / v / unsafe planes                      */
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -4898,6 +4924,106 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
     out[5] = q0; out[6] = q1; out[7] = q2; out[8] = q3;
 }
 
+/* Evidence carried over frames (docs/ESTIMATORS.md 3.7). The blocks' ratio
+   q = sum m2 / sum se2 estimates 1 + tau^2 / se^2 (1 where nothing changes); carried with
+   the history as R = (1 - lambda) R* + lambda q (R* the last frame's, reprojected with
+   the colour's taps; 1 where there is none), its spread where nothing changes is
+   sqrt(lambda / (2 - lambda)) of one frame's. The threshold asks R for the same
+   significance as the one-frame test asks q (SBL_POOLED_BLOCK_SE2, 2.5 of a frame's
+   spread above the mean 1) in units of R's spread: c_R = 1 + 2.5 sqrt(1/5) = 2.118 at
+   lambda = 1/3, and r is at least R - c_R (SBL_EVIDENCE_GATE). lambda = 1/3: a shadow edge
+   moving a pixel per frame crosses a 3x3 block in three frames, and older evidence is
+   about other pixels. */
+#ifndef SBL_EVIDENCE_LAMBDA
+#define SBL_EVIDENCE_LAMBDA (1.0 / 3.0)
+#endif
+#ifndef SBL_EVIDENCE_GATE
+#define SBL_EVIDENCE_GATE 0 /* 0: r >= R - c_R, shrunk by the threshold as the one-frame
+                               r = q - SBL_POOLED_BLOCK_SE2 is; 1: beyond c_R, r >= R - 1
+                               (measured: more under moving lights, a loss on static
+                               content and gallery; docs/ESTIMATORS.md 3.7) */
+#endif
+#define SBL__EVIDENCE_THR \
+    (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
+
+/* The history's evidence plane at pixels [xa, xb) of row y, gathered with the taps,
+   weights, tests and fallback of the colour, bilinear (the row gather where the colour
+   takes it, else the pixel gather: the same bits): 1 where no tap is valid (a reset: no
+   evidence either way), where the history has no plane, or where the value is not a
+   ratio. */
+static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
+{
+    int x;
+#ifdef SBL__ROW_GATHER
+    if (k->evid_use && k->evid_row) {
+        /* the temporal row gather on the plane (its taps equal the pixel gather's, bit
+           for bit: tests/test_paths.c, tests/test_simd.c) */
+        sbl__ring_row *r = &k->evid_ring;
+        memset(r->unsafe + xa, 0, SBL__CAST(size_t, xb - xa));
+        r->row = y;
+        sbl__temporal_rp_row(k->evid_ctx, r, y, xa, xb);
+        for (x = xa; x < xb; ++x) {
+            const float v = r->x[0][x];
+            k->evid_in[x] = r->v[x] > 0.0f && v > 0.0f && v <= SBL__CAST(float, SBL__POOL_RATIO_CAP) ? v : 1.0f;
+        }
+        return;
+    }
+#endif
+    for (x = xa; x < xb; ++x) {
+        float v[4] = {0.0f, 0.0f, 0.0f, 0.0f}, e = 1.0f;
+        if (k->evid_use && sbl__temporal_rp_pixel(k->evid_ctx, x, y, v) > 0.0f &&
+            v[0] > 0.0f && v[0] <= SBL__CAST(float, SBL__POOL_RATIO_CAP))
+            e = v[0];
+        k->evid_in[x] = e;
+    }
+}
+
+/* Row y's pixels [xa, xb) of the output evidence plane: this frame's R (pooled), else 1
+   (no evidence: the other estimators compute none). */
+static void sbl__evidence_store(const sbl__kernel *k, int y, int xa, int xb, int pooled)
+{
+    int x;
+    for (x = xa; x < xb; ++x) *sbl__px(&k->out_e, x, y) = pooled ? k->evid_out[x] : 1.0f;
+}
+
+/* sbl__row_pool_ref's ratio r of pixel x with the carried evidence (in double): writes
+   the pixel's R, returns r raised to the evidence's where the history has the plane. */
+static double sbl__evidence_ratio_ref(sbl__kernel *k, int x, double sm2, double sse2, double r)
+{
+    const double lam = SBL_EVIDENCE_LAMBDA, e0 = SBL__CAST(double, k->evid_in[x]);
+    double q = sse2 > 0.0 ? sm2 / sse2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0), e;
+    if (q > SBL__POOL_RATIO_CAP) q = SBL__POOL_RATIO_CAP;
+    e = sse2 + sm2 > 0.0 ? e0 + lam * (q - e0) : e0; /* no block: nothing new */
+    k->evid_out[x] = SBL__CAST(float, e);
+    if (k->evid_use) {
+        const double thr = SBL__EVIDENCE_THR;
+        double rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
+        if (rt > r) r = rt;
+    }
+    return r;
+}
+
+/* The same in lanes (float), for pixels [x, x + VW). */
+SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, sbl__v sse2, sbl__v r)
+{
+    const sbl__v zero = sbl__set1(0.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP));
+    const sbl__v lam = sbl__set1(SBL__CAST(float, SBL_EVIDENCE_LAMBDA));
+    const sbl__v e0 = sbl__load(k->evid_in + x);
+    sbl__v q = sbl__sel(sbl__gt(sse2, zero), sbl__div(sm2, sbl__max(sse2, tiny)),
+                        sbl__sel(sbl__gt(sm2, zero), cap, zero)), e;
+    q = sbl__min(q, cap);
+    e = sbl__sel(sbl__gt(sbl__add(sse2, sm2), zero), sbl__add(e0, sbl__mul(lam, sbl__sub(q, e0))), e0);
+    sbl__store(k->evid_out + x, e);
+    if (k->evid_use) {
+        const sbl__v thr = sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR));
+        const sbl__v rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), sbl__sub(e, sbl__set1(1.0f)), zero)
+                                            : sbl__sub(e, thr);
+        r = sbl__max(r, rt);
+    }
+    return r;
+}
+
 /* Pooled estimator, the double reference of sbl__row_pool: the prior bias-to-noise ratio
    r = tau^2 / se^2 at each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md
    section 3). Each 3x3 block of paired differences d = x* - y (pixels with a valid x*
@@ -4959,6 +5085,7 @@ SBL__INLINE void sbl__row_pool_ref_ch(sbl__kernel *k, const sbl__ring_row *const
         /* pooled squared mean over pooled squared standard error, less the threshold;
            no noise at all and a mean: certain change (capped) */
         r = sse2 > 0.0 ? sm2 / sse2 - SBL_POOLED_BLOCK_SE2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
+        if (k->evid_out) r = sbl__evidence_ratio_ref(k, x, sm2, sse2, r);
         if (r > SBL__POOL_RATIO_CAP) r = SBL__POOL_RATIO_CAP;
         k->pool_r[x] = r > 0.0 ? SBL__CAST(float, r) : 0.0f;
     }
@@ -5574,6 +5701,7 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
 #endif
         r = sbl__sub(sbl__div(sm2, sbl__max(sse2, tiny)), thr);
         r = sbl__sel(sbl__gt(sse2, zero), r, sbl__sel(sbl__gt(sm2, zero), cap, zero));
+        if (k->evid_out) r = sbl__evidence_ratio_lanes(k, x, sm2, sse2, r);
         sbl__store(k->pool_r + x, sbl__max(sbl__min(r, cap), zero));
         if (x + SBL__VW >= xb) break;
         x += SBL__VW;
@@ -6601,6 +6729,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 /* dim values the default configurations' lanes can take */
                 if (pool && sbl__kernel_fast(k)) sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
             }
+            if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
             if (pool && lanes_ok) {
                 /* an interior row: prepass and lanes share their column sums */
                 sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
@@ -6628,6 +6757,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 if (k->out_a.data)
                     sbl__interleave(sbl__px(&k->out_a, 0, y), sbl__step_of(&k->out_a), 1,
                                     SBL__PCAST(const float *const *, &k->stage_a), x0, x1);
+                if (k->out_e.data) sbl__evidence_store(k, y, x0, x1, pool);
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
                 sbl__ring_row t = k->ring[0];
@@ -6666,7 +6796,10 @@ SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
 
 SBLDEF size_t sbl_temporal_scratch_size(int width, int channels)
 {
-    return sbl__kernel_scratch_size(width, channels);
+    const size_t kb = sbl__kernel_scratch_size(width, channels);
+    /* + the evidence plane's rows: evid_in, evid_out, and the gather's x / n / v
+       (floats) and unsafe (bytes) */
+    return kb ? kb + (5 * sizeof(float) + 1) * sbl__plane_floats(width) + 64 : 0;
 }
 
 SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
@@ -6675,7 +6808,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                       void *scratch, size_t scratch_bytes)
 {
     sbl_temporal_desc d;
-    sbl__temporal_rp s;
+    sbl__temporal_rp s, es;
     sbl__kernel k;
     sbl_result r;
     int w, h, ch;
@@ -6688,6 +6821,10 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     if ((r = sbl__check_image(&out->color, 0)) != SBL_OK) return r;
     if ((r = sbl__check_image(&out->length, 1)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&out->alpha, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&out->evidence, 1, w, h)) != SBL_OK) return r;
+    if (history && history->color.data &&
+        (r = sbl__check_optional(&history->evidence, 1, w, h)) != SBL_OK)
+        return r;
     if (out->color.width != w || out->color.height != h || out->length.width != w ||
         out->length.height != h)
         return SBL_ERROR_SIZE_MISMATCH;
@@ -6701,14 +6838,16 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
         return r;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     {   /* outputs: disjoint from each other and from every input */
-        const sbl_image *outs[3];
-        int o;
+        const sbl_image *outs[4];
+        int o, p;
         outs[0] = &out->color; outs[1] = &out->length; outs[2] = &out->alpha;
-        if (sbl__overlap(outs[0], outs[1]) || sbl__overlap(outs[0], outs[2]) ||
-            sbl__overlap(outs[1], outs[2]))
-            return SBL_ERROR_OVERLAP;
-        for (o = 0; o < 3; ++o)
-            if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1))
+        outs[3] = &out->evidence;
+        for (o = 0; o < 4; ++o)
+            for (p = o + 1; p < 4; ++p)
+                if (sbl__overlap(outs[o], outs[p])) return SBL_ERROR_OVERLAP;
+        for (o = 0; o < 4; ++o)
+            if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1) ||
+                (s.history && sbl__overlap(outs[o], &s.history->evidence)))
                 return SBL_ERROR_OVERLAP;
     }
     if (!scratch) return SBL_ERROR_NULL_POINTER;
@@ -6736,6 +6875,32 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.out_n = out->length;
     k.out_a = out->alpha;
     sbl__kernel_bind(&k, scratch);
+    {   /* evidence carried over frames (pooled): the history's plane gathered like the
+           colour, with its taps and tests, bilinear (as N); the output plane */
+        k.out_e = out->evidence;
+        if (s.history && s.history->evidence.data) {
+            es = s;
+            es.src.color = sbl__flatten(&s.history->evidence);
+            es.src.cubic = 0;
+            k.evid_ctx = &es;
+            k.evid_use = 1;
+        }
+        if (k.evid_use || k.out_e.data) {
+            const size_t pf = sbl__plane_floats(w);
+            float *e = SBL__PCAST(float *, sbl__align64(SBL__PCAST(char *, scratch) +
+                                                         sbl__kernel_scratch_size(w, ch)));
+            k.evid_in = e;
+            k.evid_out = e + pf;
+            k.evid_ring.x[0] = e + 2 * pf;
+            k.evid_ring.n = e + 3 * pf;
+            k.evid_ring.v = e + 4 * pf;
+            k.evid_ring.unsafe = SBL__PCAST(unsigned char *, e + 5 * pf);
+            k.evid_ring.row = -1;
+#ifdef SBL__ROW_GATHER
+            k.evid_row = k.evid_use && k.gather_row && sbl__row_gather_ok(&es.src);
+#endif
+        }
+    }
     sbl__kernel_run(&k, y0, y1);
     return SBL_OK;
 }
