@@ -41,6 +41,13 @@
 
      First frame: pass prev = NULL (or prev->color.data == NULL): every pixel resets.
 
+     Optional, and recommended: the evidence plane (1 float per pixel), ping-ponged like
+     length. The default (pooled) estimator then weighs the evidence of change it has
+     seen over the last frames as well as this frame's, and follows lights that move
+     every frame more closely (docs/ESTIMATORS.md 3.7). Without it: one frame's evidence.
+         prev.evidence = sbl_image_make(hist_ev, w, h, 1);   // last frame's out.evidence
+         out.evidence  = sbl_image_make(out_ev, w, h, 1);
+
    CONVENTIONS (see also README.md)
      Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
                 (i + 0.5, j + 0.5). sbl_image_make() gives tight rows; otherwise
@@ -355,6 +362,11 @@ typedef struct sbl_history {
                                  history-aware estimators blend 1:1 - give it.        */
     sbl_gbuffer gbuffer;      /* previous depth / normals / ids for the tap tests      */
     const sbl_camera *camera; /* previous camera (camera mode)                         */
+    sbl_image evidence;       /* optional, 1 channel: last frame's out.evidence. The
+                                 pooled estimator (the default) then weighs bias
+                                 evidence carried over frames as well as this frame's
+                                 (docs/ESTIMATORS.md 3.7): faster under moving lights.
+                                 NULL data: one frame's evidence, as before.           */
 } sbl_history;
 
 /* Reprojected history only (stage 3 on its own): out_color = x*, out_length = N of x*,
@@ -446,6 +458,10 @@ typedef struct sbl_temporal_output {
     sbl_image color;   /* required; same size and channels as the frame colour    */
     sbl_image length;  /* required; 1 channel: N per pixel for the next frame     */
     sbl_image alpha;   /* optional; 1 channel: the weight used (mean over channels) */
+    sbl_image evidence; /* optional; 1 channel: the pooled estimator's bias evidence
+                           carried over frames (a ratio, about 1 where nothing changes;
+                           1 with the other estimators). Give it to the next frame as
+                           sbl_history.evidence, ping-ponged like length.            */
 } sbl_temporal_output;
 
 /* The descriptor with every zero replaced by its default. */
@@ -3049,6 +3065,16 @@ typedef struct sbl__kernel {
     float *pool_r;
     float *pool_col;         /* the lanes' planes of one chunk (SBL__POOL_PLANES)   */
     int pool_row;            /* row pool_r holds (-1: none: the ratio reads as 0)  */
+    /* pooled estimator, evidence carried over frames (docs/ESTIMATORS.md 3.7; temporal
+       only): evid_in / evid_out per column of row pool_row, the history's carried ratio
+       gathered with the colour's taps (1 where it has none) and this frame's; NULL
+       evid_out: no plane at all. evid_use: the history has the plane, so it enters r. */
+    const void *evid_ctx;    /* the evidence plane's gather (sbl__temporal_rp); NULL: none */
+    float *evid_in, *evid_out;
+    int evid_use;
+    sbl_image out_e;         /* the output plane (data NULL: not written)           */
+    int evid_row;            /* 1: gather the plane with the row gather (evid_ring)  */
+    sbl__ring_row evid_ring; /* its x[0] / n / v / unsafe planes                      */
     int rows_valid;          /* sbl__kernel_run_span: 1 if the three window rows are
                                 all_valid (every chunk full); 0: the lanes look */
 } sbl__kernel;
@@ -3266,7 +3292,7 @@ typedef struct sbl__tap_plan {
     float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
     float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
     /* 1: the pixel gather decides; 2: the taps (summed, finite) weigh below 1e-3, only
-       the 3x3 fallback is left (the rig's `fallback_one`, else the pixel gather) */
+       the 3x3 fallback is left (sbl__fallback_lanes, else the pixel gather) */
     unsigned char redo[SBL__BLOCK];
     /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
        pixels in every view (planned so together: uniform integer motion); 2: planned
@@ -3666,6 +3692,98 @@ typedef struct sbl__block {
     int row_state;                           /* the hooks' per-row facts (-1: not yet)   */
 } sbl__block;
 
+#if defined(__GNUC__)
+#define SBL__RARE __attribute__((noinline)) /* a rare path kept out of the hot loop's code */
+#else
+#define SBL__RARE
+#endif
+
+/* ---- the 3x3 fallback in lanes ----------------------------------------------
+   Entries whose taps weigh below 1e-3 (redo 2) take the pixel gather's 3x3 fallback.
+   Most of them are disocclusions, where no pixel of the window passes the depth test:
+   the fallback then finds nothing and returns 0. That is decided VW entries at a time
+   here, before any colour is read: the fallback's depth test (sbl__depth_match, its
+   limit formed once as it forms it) on the nine depths in lanes. */
+
+/* Bits of the lanes none of whose nine window pixels passes the depth test; di: the
+   depth index of each lane's window corner (cx - 1, cy - 1), the window inside the
+   image; ze, sl: the expected depth and its slack. */
+SBL__INLINE int sbl__window_fails(const sbl__tap_src *s, const int *di, const float *ze_p,
+                                  const float *sl_p)
+{
+    const sbl__v zero = sbl__set1(0.0f), ze = sbl__load(ze_p);
+    const sbl__v lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sbl__load(sl_p));
+    const sbl__m inf_e = sbl__posinf(ze);
+    sbl__m any = sbl__gt(zero, zero);
+    int i, j;
+    for (j = 0; j < 3; ++j)
+        for (i = 0; i < 3; ++i) {
+            /* (rows 0 .. 2 and columns 0 .. 2 of the view exist: w, h >= 3 here) */
+            const sbl__v d = sbl__gatheri(s->depth.p + j * s->depth.stride + i * s->depth.step, di);
+            const sbl__m inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            any = sbl__mor(any, sbl__mor(sbl__mand(inf_e, inf_t),
+                                         sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
+        }
+    return ~sbl__mbits(any) & ((1 << SBL__VW) - 1);
+}
+
+/* sbl__gather_fallback at (sx, sy) with expected depth ze and slack sl into ring column x */
+static SBL__RARE void sbl__fallback_put(const sbl__tap_src *s, sbl__ring_row *r, int x, double sx,
+                                        double sy, float ze, float sl, int flag)
+{
+    float tmp[4] = {0, 0, 0, 0};
+    sbl__tap_want t;
+    float n;
+    t.depth = ze;
+    t.depth_slack = sl;
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    n = sbl__gather_fallback(s, &t, sx, sy, tmp);
+    if (flag) sbl__ring_put_flag(r, x, n, tmp, s->color.ch);
+    else sbl__ring_put(r, x, n, tmp, s->color.ch);
+}
+
+/* The 3x3 fallback for ring columns x0 + e[k] (k < n) at source positions (sx[k], sy[k])
+   with expected depths ze[e[k]] and slacks sl[e[k]] (the plan's): a reset where sbl__window_fails says the
+   window holds nothing (the fallback's own result there), else sbl__gather_fallback.
+   flag: the puts flag unsafe values (sbl__ring_put_flag). */
+static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0, const int *e,
+                                const double *sx, const double *sy, const float *ze,
+                                const float *sl, int n, int flag)
+{
+    const int ch = s->color.ch;
+    const double wl = SBL__CAST(double, s->width) - 1.0, hl = SBL__CAST(double, s->height) - 1.0;
+    int k = 0;
+    while (k < n) {
+        int di[SBL__VW], lane[SBL__VW], m = 0, none = 0, l;
+        float zl[SBL__VW], ll[SBL__VW];
+        for (; k < n && m < SBL__VW; ++k) {
+            /* floor(sx) in [1, w - 2] (sx >= 1: its truncation), likewise y */
+            if (s->use_depth && sx[k] >= 1.0 && sx[k] < wl && sy[k] >= 1.0 && sy[k] < hl) {
+                const int cx = SBL__CAST(int, sx[k]), cy = SBL__CAST(int, sy[k]);
+                di[m] = SBL__CAST(int, SBL__CAST(ptrdiff_t, cy - 1) * s->depth.stride +
+                                           SBL__CAST(ptrdiff_t, cx - 1) * s->depth.step);
+                zl[m] = ze[e[k]];
+                ll[m] = sl[e[k]];
+                lane[m++] = k;
+            } else {
+                sbl__fallback_put(s, r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]], flag);
+            }
+        }
+        if (!m) break;
+        for (l = m; l < SBL__VW; ++l) { di[l] = di[0]; zl[l] = zl[0]; ll[l] = ll[0]; }
+        none = sbl__window_fails(s, di, zl, ll);
+        for (l = 0; l < m; ++l) {
+            const int j = lane[l];
+            if ((none >> l) & 1) sbl__ring_put(r, x0 + e[j], 0.0f, NULL, ch);
+            else sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag);
+        }
+    }
+}
+
 /* The one driver of the row gathers (temporal and stereo): columns [xa, xb) of row y in
    blocks of SBL__BLOCK. Per block: `start` (the tile shortcuts: returns 1 when it wrote
    the block; sets the block's sky and lane mode), the plan (`plan_vec` plans VW entries
@@ -3681,8 +3799,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                                         int (*plan_vec)(const void *, sbl__block *, int),
                                         void (*plan_one)(const void *, sbl__block *, int),
                                         void (*after)(const void *, sbl__ring_row *, sbl__block *),
-                                        float (*fallback_one)(const void *, const sbl__block *, int,
-                                                              float *),
+                                        void (*fallback_block)(const void *, sbl__ring_row *,
+                                                               sbl__block *),
                                         int flag)
 {
     const int ch = src->color.ch;
@@ -3721,6 +3839,13 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             after(ctx, r, &b);
             continue;
         }
+        {   /* redo is rare: one look at the whole block first */
+            uint64_t any = 0, u;
+            for (i = 0; i + 8 <= b.n; i += 8) { memcpy(&u, b.p.redo + i, 8); any |= u; }
+            for (; i < b.n; ++i) any |= b.p.redo[i];
+            if (!any) continue;
+        }
+        if (fallback_block) fallback_block(ctx, r, &b); /* (clears the redo it settles) */
         for (i = 0; i < b.n; ++i) {
             if (i + 8 <= b.n) { /* eight entries at a time: redo is rare */
                 uint64_t any;
@@ -3729,8 +3854,7 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             }
             if (b.p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
-                const float nx = b.p.redo[i] == 2 && fallback_one ? fallback_one(ctx, &b, i, tmp)
-                                                                  : pixel(ctx, b.x0 + i, y, tmp);
+                const float nx = pixel(ctx, b.x0 + i, y, tmp);
                 if (flag) sbl__ring_put_flag(r, b.x0 + i, nx, tmp, ch);
                 else sbl__ring_put(r, b.x0 + i, nx, tmp, ch);
             }
@@ -4120,6 +4244,50 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
     return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
 }
 
+#if SBL__VW >= 8
+/* Are n and the ch colour values of every lane safe (sbl__lane_value_ok) and nonzero:
+   the largest |bits| below those of 2^50, the smallest at least those of 2^-40 (both
+   as unsigned ints; a NaN's bits are above every finite value's). 0: some lane needs
+   the per-lane test (a zero, which is safe, included). */
+SBL__INLINE int sbl__rest_safe(sbl__v n, const sbl__v *v, int ch)
+{
+#if SBL__VW == 8
+    const __m256i m = _mm256_set1_epi32(0x7fffffff);
+    const __m256i bn = _mm256_and_si256(_mm256_castps_si256(n), m);
+    __m256i hi = _mm256_and_si256(_mm256_castps_si256(v[0]), m), lo = hi, b;
+    hi = _mm256_max_epu32(hi, bn);
+    lo = _mm256_min_epu32(lo, bn);
+#define SBL__REST_MINMAX(c) \
+    b = _mm256_and_si256(_mm256_castps_si256(v[c]), m); \
+    hi = _mm256_max_epu32(hi, b); \
+    lo = _mm256_min_epu32(lo, b)
+    if (ch > 1) { SBL__REST_MINMAX(1); }
+    if (ch > 2) { SBL__REST_MINMAX(2); }
+    if (ch > 3) { SBL__REST_MINMAX(3); }
+#undef SBL__REST_MINMAX
+    /* bad: hi >= bits(2^50) (0x58800000) or lo < bits(2^-40) (0x2b800000), signed
+       compares of values below 2^31 */
+    b = _mm256_or_si256(_mm256_cmpgt_epi32(hi, _mm256_set1_epi32(0x587fffff)),
+                        _mm256_cmpgt_epi32(_mm256_set1_epi32(0x2b800000), lo));
+    return _mm256_testz_si256(b, b);
+#else
+    const __m512i m = _mm512_set1_epi32(0x7fffffff);
+    const __m512i bn = _mm512_and_si512(_mm512_castps_si512(n), m);
+    __m512i hi = _mm512_and_si512(_mm512_castps_si512(v[0]), m), lo = hi, b;
+    int c;
+    hi = _mm512_max_epu32(hi, bn);
+    lo = _mm512_min_epu32(lo, bn);
+    for (c = 1; c < ch; ++c) {
+        b = _mm512_and_si512(_mm512_castps_si512(v[c]), m);
+        hi = _mm512_max_epu32(hi, b);
+        lo = _mm512_min_epu32(lo, b);
+    }
+    return !(_mm512_cmpgt_epi32_mask(hi, _mm512_set1_epi32(0x587fffff)) |
+             _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(0x2b800000), lo));
+#endif
+}
+#endif
+
 /* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
    pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
    sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
@@ -4143,8 +4311,8 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     int i = 0, l, idx[SBL__VW];
     for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
     for (;;) {
-        int x, bits;
-        sbl__m keep, valid;
+        int x, bits, flag;
+        sbl__m keep, valid, ok;
         sbl__v nv = one, v[4];
         if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
         x = x0 + i;
@@ -4171,45 +4339,60 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
             valid = sbl__mand(valid, sbl__mor(sbl__mand(inf_e, inf_t),
                                               sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
         }
-        if (np) {
-            nv = sbl__load(np + i);
-            valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+        if (np) nv = sbl__load(np + i);
+        /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
+           0 is unsafe exactly when v is); a safe value is finite, so where every value is
+           safe (the common case) the finiteness tests drop out and nothing is flagged */
+#if SBL__VW == 4
+#define SBL__REST_OK() \
+    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
+    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
+    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
+    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
+        SBL__REST_OK();
+        if (sbl__mbits(ok) == (1 << SBL__VW) - 1) {
+#else
+#define SBL__REST_OK() \
+    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
+    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
+    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
+    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
+        /* (AVX2 / AVX-512: the same in one test of the vector, on the largest and
+           smallest |v| bits as unsigned ints: a 0 there takes the exact test below) */
+        if (sbl__rest_safe(nv, v, ch)) {
+#endif
+            if (np) valid = sbl__mand(valid, sbl__gt(nv, zero));
+            flag = 0;
+        } else {
+            if (np) valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+            valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
+            if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
+            if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
+            if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
+#if SBL__VW != 4
+            SBL__REST_OK();
+#endif
+            flag = sbl__mbits(sbl__mandnot(valid, ok));
         }
-        valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
-        if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
-        if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
-        if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
         sbl__store(r->x[0] + x, sbl__sel(valid, sbl__add(zero, v[0]), zero));
         if (ch > 1) sbl__store(r->x[1] + x, sbl__sel(valid, sbl__add(zero, v[1]), zero));
         if (ch > 2) sbl__store(r->x[2] + x, sbl__sel(valid, sbl__add(zero, v[2]), zero));
         if (ch > 3) sbl__store(r->x[3] + x, sbl__sel(valid, sbl__add(zero, v[3]), zero));
         sbl__store(r->n + x, sbl__sel(valid, nv, zero));
         sbl__store(r->v + x, sbl__sel(valid, one, zero));
+        /* (a column the overlapping last vector writes again gets the same values and
+           the same flag: sbl__ring_flag_bits counts a column once) */
+        if (flag) sbl__ring_flag_bits(r, x, flag);
         bits = sbl__mbits(sbl__mandnot(keep, valid));
         for (l = 0; bits; ++l, bits >>= 1)
             if (bits & 1) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
+                sbl__ring_put_flag(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
             }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
     }
-    /* the unsafe-value check of sbl__ring_gather on the tile just written (in L1, the
-       channel count a constant here) */
-    for (i = 0;; i += SBL__VW) {
-        int x, bits;
-        sbl__m ok;
-        if (i + SBL__VW > n) i = n - SBL__VW;
-        x = x0 + i;
-        ok = sbl__lane_ok(sbl__load(r->n + x));
-        ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[0] + x)));
-        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[1] + x)));
-        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[2] + x)));
-        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[3] + x)));
-        bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), zero), ok));
-        if (bits) sbl__ring_flag_bits(r, x, bits);
-        if (i + SBL__VW >= n) break;
-    }
+#undef SBL__REST_OK
 }
 
 static void sbl__rest_tile(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
@@ -4378,31 +4561,32 @@ static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
         sbl__tap_plan_set(&s->src, &b->p, i, &t, sx, sy);
 }
 
-/* Entry i whose taps weigh below 1e-3 (redo 2): the pixel gather's last step, its 3x3
-   fallback, at the position sbl__temporal_rp_pos gives (its expression, for motion
-   vectors; the camera source takes the pixel gather) and the planned expected depth and
-   slack (the plan's lanes need neither target normals nor ids). */
-#if defined(__GNUC__)
-#define SBL__RARE __attribute__((noinline)) /* a rare path kept out of the hot loop's code */
-#else
-#define SBL__RARE
-#endif
-static SBL__RARE float sbl__temporal_fallback_one(const void *ctx, const sbl__block *b, int i,
-                                                  float *out)
+/* The block's entries whose taps weigh below 1e-3 (redo 2): the pixel gather's last
+   step, its 3x3 fallback (sbl__fallback_lanes), at the position sbl__temporal_rp_pos
+   gives (its expression, for motion vectors; the camera source leaves them to the pixel
+   gather) with the planned expected depth and slack (the plan's lanes need neither
+   target normals nor ids). */
+static void sbl__temporal_fallback_block(const void *ctx, sbl__ring_row *r, sbl__block *b)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    const int x = b->x0 + i, y = b->y;
-    const float *mv;
-    sbl__tap_want t;
-    if (s->source != SBL_TEMPORAL_MOTION) return sbl__temporal_rp_pixel(ctx, x, y, out);
-    mv = SBL__AT(s->motion, x, y);
-    t.depth = b->p.depth[i];
-    t.depth_slack = b->p.slack[i];
-    t.normal = NULL;
-    t.normal_len2 = 0.0f;
-    t.id = 0.0f;
-    return sbl__gather_fallback(&s->src, &t, x + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]),
-                                y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]), out);
+    double sx[SBL__BLOCK], sy[SBL__BLOCK];
+    int e[SBL__BLOCK], i, n = 0;
+    if (s->source != SBL_TEMPORAL_MOTION) return;
+    for (i = 0; i < b->n; ++i) {
+        const float *mv;
+        if (i + 8 <= b->n) { /* eight entries at a time: redo is rare */
+            uint64_t any;
+            memcpy(&any, b->p.redo + i, 8);
+            if (!any) { i += 7; continue; }
+        }
+        if (b->p.redo[i] != 2) continue;
+        b->p.redo[i] = 0;
+        mv = SBL__AT(s->motion, b->x0 + i, b->y);
+        sx[n] = b->x0 + i + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]);
+        sy[n] = b->y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
+        e[n++] = i;
+    }
+    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1);
 }
 
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
@@ -4415,7 +4599,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     r->gather_unsafe = 0;
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_one, 1);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block, 1);
 }
 #endif
 
@@ -4744,6 +4928,106 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
     out[5] = q0; out[6] = q1; out[7] = q2; out[8] = q3;
 }
 
+/* Evidence carried over frames (docs/ESTIMATORS.md 3.7). The blocks' ratio
+   q = sum m2 / sum se2 estimates 1 + tau^2 / se^2 (1 where nothing changes); carried with
+   the history as R = (1 - lambda) R* + lambda q (R* the last frame's, reprojected with
+   the colour's taps; 1 where there is none), its spread where nothing changes is
+   sqrt(lambda / (2 - lambda)) of one frame's. The threshold asks R for the same
+   significance as the one-frame test asks q (SBL_POOLED_BLOCK_SE2, 2.5 of a frame's
+   spread above the mean 1) in units of R's spread: c_R = 1 + 2.5 sqrt(1/5) = 2.118 at
+   lambda = 1/3, and r is at least R - c_R (SBL_EVIDENCE_GATE). lambda = 1/3: a shadow edge
+   moving a pixel per frame crosses a 3x3 block in three frames, and older evidence is
+   about other pixels. */
+#ifndef SBL_EVIDENCE_LAMBDA
+#define SBL_EVIDENCE_LAMBDA (1.0 / 3.0)
+#endif
+#ifndef SBL_EVIDENCE_GATE
+#define SBL_EVIDENCE_GATE 0 /* 0: r >= R - c_R, shrunk by the threshold as the one-frame
+                               r = q - SBL_POOLED_BLOCK_SE2 is; 1: beyond c_R, r >= R - 1
+                               (measured: more under moving lights, a loss on static
+                               content and gallery; docs/ESTIMATORS.md 3.7) */
+#endif
+#define SBL__EVIDENCE_THR \
+    (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
+
+/* The history's evidence plane at pixels [xa, xb) of row y, gathered with the taps,
+   weights, tests and fallback of the colour, bilinear (the row gather where the colour
+   takes it, else the pixel gather: the same bits): 1 where no tap is valid (a reset: no
+   evidence either way), where the history has no plane, or where the value is not a
+   ratio. */
+static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
+{
+    int x;
+#ifdef SBL__ROW_GATHER
+    if (k->evid_use && k->evid_row) {
+        /* the temporal row gather on the plane (its taps equal the pixel gather's, bit
+           for bit: tests/test_paths.c, tests/test_simd.c) */
+        sbl__ring_row *r = &k->evid_ring;
+        memset(r->unsafe + xa, 0, SBL__CAST(size_t, xb - xa));
+        r->row = y;
+        sbl__temporal_rp_row(k->evid_ctx, r, y, xa, xb);
+        for (x = xa; x < xb; ++x) {
+            const float v = r->x[0][x];
+            k->evid_in[x] = r->v[x] > 0.0f && v > 0.0f && v <= SBL__CAST(float, SBL__POOL_RATIO_CAP) ? v : 1.0f;
+        }
+        return;
+    }
+#endif
+    for (x = xa; x < xb; ++x) {
+        float v[4] = {0.0f, 0.0f, 0.0f, 0.0f}, e = 1.0f;
+        if (k->evid_use && sbl__temporal_rp_pixel(k->evid_ctx, x, y, v) > 0.0f &&
+            v[0] > 0.0f && v[0] <= SBL__CAST(float, SBL__POOL_RATIO_CAP))
+            e = v[0];
+        k->evid_in[x] = e;
+    }
+}
+
+/* Row y's pixels [xa, xb) of the output evidence plane: this frame's R (pooled), else 1
+   (no evidence: the other estimators compute none). */
+static void sbl__evidence_store(const sbl__kernel *k, int y, int xa, int xb, int pooled)
+{
+    int x;
+    for (x = xa; x < xb; ++x) *sbl__px(&k->out_e, x, y) = pooled ? k->evid_out[x] : 1.0f;
+}
+
+/* sbl__row_pool_ref's ratio r of pixel x with the carried evidence (in double): writes
+   the pixel's R, returns r raised to the evidence's where the history has the plane. */
+static double sbl__evidence_ratio_ref(sbl__kernel *k, int x, double sm2, double sse2, double r)
+{
+    const double lam = SBL_EVIDENCE_LAMBDA, e0 = SBL__CAST(double, k->evid_in[x]);
+    double q = sse2 > 0.0 ? sm2 / sse2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0), e;
+    if (q > SBL__POOL_RATIO_CAP) q = SBL__POOL_RATIO_CAP;
+    e = sse2 + sm2 > 0.0 ? e0 + lam * (q - e0) : e0; /* no block: nothing new */
+    k->evid_out[x] = SBL__CAST(float, e);
+    if (k->evid_use) {
+        const double thr = SBL__EVIDENCE_THR;
+        double rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
+        if (rt > r) r = rt;
+    }
+    return r;
+}
+
+/* The same in lanes (float), for pixels [x, x + VW). */
+SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, sbl__v sse2, sbl__v r)
+{
+    const sbl__v zero = sbl__set1(0.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP));
+    const sbl__v lam = sbl__set1(SBL__CAST(float, SBL_EVIDENCE_LAMBDA));
+    const sbl__v e0 = sbl__load(k->evid_in + x);
+    sbl__v q = sbl__sel(sbl__gt(sse2, zero), sbl__div(sm2, sbl__max(sse2, tiny)),
+                        sbl__sel(sbl__gt(sm2, zero), cap, zero)), e;
+    q = sbl__min(q, cap);
+    e = sbl__sel(sbl__gt(sbl__add(sse2, sm2), zero), sbl__add(e0, sbl__mul(lam, sbl__sub(q, e0))), e0);
+    sbl__store(k->evid_out + x, e);
+    if (k->evid_use) {
+        const sbl__v thr = sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR));
+        const sbl__v rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), sbl__sub(e, sbl__set1(1.0f)), zero)
+                                            : sbl__sub(e, thr);
+        r = sbl__max(r, rt);
+    }
+    return r;
+}
+
 /* Pooled estimator, the double reference of sbl__row_pool: the prior bias-to-noise ratio
    r = tau^2 / se^2 at each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md
    section 3). Each 3x3 block of paired differences d = x* - y (pixels with a valid x*
@@ -4805,6 +5089,7 @@ SBL__INLINE void sbl__row_pool_ref_ch(sbl__kernel *k, const sbl__ring_row *const
         /* pooled squared mean over pooled squared standard error, less the threshold;
            no noise at all and a mean: certain change (capped) */
         r = sse2 > 0.0 ? sm2 / sse2 - SBL_POOLED_BLOCK_SE2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
+        if (k->evid_out) r = sbl__evidence_ratio_ref(k, x, sm2, sse2, r);
         if (r > SBL__POOL_RATIO_CAP) r = SBL__POOL_RATIO_CAP;
         k->pool_r[x] = r > 0.0 ? SBL__CAST(float, r) : 0.0f;
     }
@@ -5420,6 +5705,7 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
 #endif
         r = sbl__sub(sbl__div(sm2, sbl__max(sse2, tiny)), thr);
         r = sbl__sel(sbl__gt(sse2, zero), r, sbl__sel(sbl__gt(sm2, zero), cap, zero));
+        if (k->evid_out) r = sbl__evidence_ratio_lanes(k, x, sm2, sse2, r);
         sbl__store(k->pool_r + x, sbl__max(sbl__min(r, cap), zero));
         if (x + SBL__VW >= xb) break;
         x += SBL__VW;
@@ -6465,6 +6751,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 /* dim values the default configurations' lanes can take */
                 if (pool && sbl__kernel_fast(k)) sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
             }
+            if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
             if (pool && lanes_ok) {
                 /* an interior row: prepass and lanes share their column sums */
                 k->rows_valid = R[0]->all_valid & R[1]->all_valid & R[2]->all_valid;
@@ -6494,6 +6781,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 if (k->out_a.data)
                     sbl__interleave(sbl__px(&k->out_a, 0, y), sbl__step_of(&k->out_a), 1,
                                     SBL__PCAST(const float *const *, &k->stage_a), x0, x1);
+                if (k->out_e.data) sbl__evidence_store(k, y, x0, x1, pool);
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
                 sbl__ring_row t = k->ring[0];
@@ -6535,7 +6823,10 @@ SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
 
 SBLDEF size_t sbl_temporal_scratch_size(int width, int channels)
 {
-    return sbl__kernel_scratch_size(width, channels);
+    const size_t kb = sbl__kernel_scratch_size(width, channels);
+    /* + the evidence plane's rows: evid_in, evid_out, and the gather's x / n / v
+       (floats) and unsafe (bytes) */
+    return kb ? kb + (5 * sizeof(float) + 1) * sbl__plane_floats(width) + 64 : 0;
 }
 
 SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
@@ -6544,7 +6835,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                       void *scratch, size_t scratch_bytes)
 {
     sbl_temporal_desc d;
-    sbl__temporal_rp s;
+    sbl__temporal_rp s, es;
     sbl__kernel k;
     sbl_result r;
     int w, h, ch;
@@ -6557,6 +6848,10 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     if ((r = sbl__check_image(&out->color, 0)) != SBL_OK) return r;
     if ((r = sbl__check_image(&out->length, 1)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&out->alpha, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&out->evidence, 1, w, h)) != SBL_OK) return r;
+    if (history && history->color.data &&
+        (r = sbl__check_optional(&history->evidence, 1, w, h)) != SBL_OK)
+        return r;
     if (out->color.width != w || out->color.height != h || out->length.width != w ||
         out->length.height != h)
         return SBL_ERROR_SIZE_MISMATCH;
@@ -6570,14 +6865,16 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
         return r;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     {   /* outputs: disjoint from each other and from every input */
-        const sbl_image *outs[3];
-        int o;
+        const sbl_image *outs[4];
+        int o, p;
         outs[0] = &out->color; outs[1] = &out->length; outs[2] = &out->alpha;
-        if (sbl__overlap(outs[0], outs[1]) || sbl__overlap(outs[0], outs[2]) ||
-            sbl__overlap(outs[1], outs[2]))
-            return SBL_ERROR_OVERLAP;
-        for (o = 0; o < 3; ++o)
-            if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1))
+        outs[3] = &out->evidence;
+        for (o = 0; o < 4; ++o)
+            for (p = o + 1; p < 4; ++p)
+                if (sbl__overlap(outs[o], outs[p])) return SBL_ERROR_OVERLAP;
+        for (o = 0; o < 4; ++o)
+            if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1) ||
+                (s.history && sbl__overlap(outs[o], &s.history->evidence)))
                 return SBL_ERROR_OVERLAP;
     }
     if (!scratch) return SBL_ERROR_NULL_POINTER;
@@ -6605,6 +6902,32 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.out_n = out->length;
     k.out_a = out->alpha;
     sbl__kernel_bind(&k, scratch);
+    {   /* evidence carried over frames (pooled): the history's plane gathered like the
+           colour, with its taps and tests, bilinear (as N); the output plane */
+        k.out_e = out->evidence;
+        if (s.history && s.history->evidence.data) {
+            es = s;
+            es.src.color = sbl__flatten(&s.history->evidence);
+            es.src.cubic = 0;
+            k.evid_ctx = &es;
+            k.evid_use = 1;
+        }
+        if (k.evid_use || k.out_e.data) {
+            const size_t pf = sbl__plane_floats(w);
+            float *e = SBL__PCAST(float *, sbl__align64(SBL__PCAST(char *, scratch) +
+                                                         sbl__kernel_scratch_size(w, ch)));
+            k.evid_in = e;
+            k.evid_out = e + pf;
+            k.evid_ring.x[0] = e + 2 * pf;
+            k.evid_ring.n = e + 3 * pf;
+            k.evid_ring.v = e + 4 * pf;
+            k.evid_ring.unsafe = SBL__PCAST(unsigned char *, e + 5 * pf);
+            k.evid_ring.row = -1;
+#ifdef SBL__ROW_GATHER
+            k.evid_row = k.evid_use && k.gather_row && sbl__row_gather_ok(&es.src);
+#endif
+        }
+    }
     sbl__kernel_run(&k, y0, y1);
     return SBL_OK;
 }

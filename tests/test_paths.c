@@ -10,7 +10,6 @@
 #include "../stereoblend.h"
 #include "sbl_test.h"
 
-#ifdef SBL__ROW_GATHER
 static sbl_image view(const sbt_img *im)
 {
     sbl_image v;
@@ -18,7 +17,6 @@ static sbl_image view(const sbt_img *im)
     v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
     return v;
 }
-#endif
 
 #define PW 40
 #define PH 3
@@ -718,6 +716,212 @@ static void test_lanes_dim(void)
     CHECK(refused > 100);
 }
 
+/* The row gather against the pixel gather on disocclusions (session 8: the 3x3
+   fallback's depth test in lanes, sbl__fallback_lanes): a nearer rectangle moved
+   between the frames, so whole 3x3 windows fail the depth test (and those at its edges
+   pass in part), under random sub-pixel motion; sky, NaN and inf depths, NaN colour
+   and N <= 0 in the history; fallback on and off; windows at the image border. */
+static void test_row_gather_disocclusion(void)
+{
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+    sbt_rng rng = {4242};
+    int it, pixels = 0, mismatches = 0, empty = 0;
+    for (it = 0; it < 300; ++it) {
+        int w = 8 + (int)(sbt_uniform(&rng) * 90), h = 3 + (int)(sbt_uniform(&rng) * 10);
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i;
+        int ax = (int)(sbt_uniform(&rng) * w * 0.6), ay = (int)(sbt_uniform(&rng) * h * 0.5);
+        int aw = 3 + (int)(sbt_uniform(&rng) * w * 0.5), ah = 2 + (int)(sbt_uniform(&rng) * h);
+        int shift = 1 + (int)(sbt_uniform(&rng) * 12);
+        int with_len = it % 6 != 0;
+        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
+        sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
+        sbt_img pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 1);
+        sbl_reproject_desc rd;
+        sbl_frame f;
+        sbl_history hi;
+        sbl__temporal_rp rp;
+        float planes[2][7][100];
+        unsigned char unsafe[100];
+        sbl__ring_row ra, rb;
+        memset(&rd, 0, sizeof rd);
+        rd.no_fallback = it % 5 == 1;
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                const int now = x >= ax && x < ax + aw && y >= ay && y < ay + ah;
+                const int was = x >= ax + shift && x < ax + shift + aw && y >= ay && y < ay + ah;
+                for (c = 0; c < ch; ++c) {
+                    sbt_at(&cur, x, y)[c] = (float)sbt_uniform(&rng);
+                    sbt_at(&hist, x, y)[c] = (float)(sbt_uniform(&rng) * 2);
+                }
+                *sbt_at(&len, x, y) = (float)(1 + sbt_uniform(&rng) * 30);
+                *sbt_at(&depth, x, y) = now ? 1.5f : (float)(4.0 + 0.01 * x);
+                *sbt_at(&pdepth, x, y) = was ? 1.5f : (float)(4.0 + 0.01 * x);
+                sbt_at(&mv, x, y)[0] = (float)((sbt_uniform(&rng) - 0.5) * 1.8);
+                sbt_at(&mv, x, y)[1] = (float)((sbt_uniform(&rng) - 0.5) * 1.8);
+                if (it % 4 == 3 && y == 0) { /* a sky row, in both frames */
+                    *sbt_at(&depth, x, y) = (float)HUGE_VAL;
+                    *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
+                }
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = -1.0f;
+                if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.03) *sbt_at(&len, x, y) = 0.0f;
+            }
+        memset(&f, 0, sizeof f);
+        memset(&hi, 0, sizeof hi);
+        f.color = view(&cur);
+        f.gbuffer.depth = view(&depth);
+        f.gbuffer.motion = view(&mv);
+        hi.color = view(&hist);
+        if (with_len) hi.length = view(&len);
+        hi.gbuffer.depth = view(&pdepth);
+        if (it % 3 == 0) { /* bottom-up history depth: the last row first */
+            hi.gbuffer.depth.data = sbt_at(&pdepth, 0, h - 1);
+            hi.gbuffer.depth.stride = -pdepth.stride;
+        }
+        CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
+        if (!sbl__row_gather_ok(&rp.src)) { CHECK(0); continue; }
+        for (i = 0; i < 2; ++i) {
+            sbl__ring_row *r = i ? &rb : &ra;
+            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
+            r->n = planes[i][4];
+            r->v = planes[i][5];
+            r->y[0] = planes[i][6];
+            r->unsafe = unsafe;
+            memset(planes[i], 0xff, sizeof planes[i]);
+        }
+        for (y = 0; y < h; ++y) {
+            int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w), xb = it % 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
+            memset(unsafe, 0, sizeof unsafe);
+            sbl__temporal_rp_row(&rp, &ra, y, xa, xb);
+            for (x = xa; x < xb; ++x) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(&rb, x, sbl__temporal_rp_pixel(&rp, x, y, tmp), tmp, ch);
+            }
+            for (x = xa; x < xb; ++x) {
+                int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
+                for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
+                if (bad && mismatches < 5)
+                    printf("  disocclusion case %d (%dx%dx%d) pixel (%d,%d): n %.9g vs %.9g, x0 %.9g vs %.9g\n",
+                           it, w, h, ch, x, y, ra.n[x], rb.n[x], ra.x[0][x], rb.x[0][x]);
+                mismatches += bad;
+                empty += !(rb.n[x] > 0.0f);
+                ++pixels;
+            }
+        }
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
+    }
+    printf("  %s row gather vs pixel gather, disocclusions: %d pixels (%d without x*), %d differ\n",
+           SBL_SIMD_NAME, pixels, empty, mismatches);
+    CHECK(mismatches == 0);
+    CHECK(empty > pixels / 20 && empty < pixels / 2);
+#endif
+}
+
+/* The carried evidence (pooled estimator, docs/ESTIMATORS.md 3.7): the lanes' ratio
+   (float) against the double reference on random block sums and carried values, and
+   bands of rows of the public call against one whole-image call, the output plane
+   included, bit for bit. */
+static void test_evidence_paths(void)
+{
+    sbt_rng rng = {4242};
+    float ein[SBL__VW], eout_l[SBL__VW], eout_r[SBL__VW];
+    double worst = 0;
+    int it, i;
+    for (it = 0; it < 2000; ++it) {
+        sbl__kernel k;
+        float sm2[SBL__VW], sse2[SBL__VW], rl[SBL__VW];
+        memset(&k, 0, sizeof k);
+        k.evid_in = ein;
+        k.evid_use = it % 4 != 0;
+        for (i = 0; i < SBL__VW; ++i) {
+            double u = sbt_uniform(&rng);
+            ein[i] = (float)(0.3 + 6.0 * sbt_uniform(&rng));
+            sse2[i] = u < 0.1 ? 0.0f : (float)(1e-3 + sbt_uniform(&rng));
+            sm2[i] = u < 0.05 ? 0.0f : (float)(sse2[i] * 4.0 * sbt_uniform(&rng) + (u < 0.1 ? 0.5 : 0.0));
+        }
+        {
+            sbl__v r0 = sbl__set1(0.0f), r;
+            k.evid_out = eout_l;
+            r = sbl__evidence_ratio_lanes(&k, 0, sbl__load(sm2), sbl__load(sse2), r0);
+            sbl__store(rl, r);
+        }
+        k.evid_out = eout_r;
+        for (i = 0; i < SBL__VW; ++i) {
+            double rr = sbl__evidence_ratio_ref(&k, i, sm2[i], sse2[i], 0.0);
+            double e = fabs(rr - rl[i]) / (1.0 + fabs(rr));
+            double ee = fabs(SBL__CAST(double, eout_l[i]) - eout_r[i]) / (1.0 + fabs(eout_r[i]));
+            if (ee > e) e = ee;
+            /* the gate: the same side of c_R unless R is within rounding of it */
+            if (fabs(eout_r[i] - SBL__EVIDENCE_THR) < 1e-5) continue;
+            CHECK(e <= 1e-5);
+            if (e > worst) worst = e;
+        }
+    }
+    printf("  evidence ratio, lanes vs double reference: worst difference %.3g\n", worst);
+    {   /* bands against the whole image, with the plane in and out */
+        const int w = 37, h = 23, c = 3;
+        sbt_img cur = sbt_img_new(w, h, c, 1), hist = sbt_img_new(w, h, c, 0), len = sbt_img_new(w, h, 1, 0);
+        sbt_img depth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 0), ev = sbt_img_new(w, h, 1, 0);
+        sbt_img oc[2], on[2], oe[2];
+        sbl_temporal_desc d;
+        sbl_frame f;
+        sbl_history hi;
+        sbl_temporal_output o[2];
+        size_t bytes = sbl_temporal_scratch_size(w, c);
+        void *scratch = malloc(bytes);
+        int x, y, k2, y0;
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                for (k2 = 0; k2 < c; ++k2) {
+                    sbt_at(&cur, x, y)[k2] = (float)(0.5 + 0.2 * sbt_uniform(&rng));
+                    sbt_at(&hist, x, y)[k2] = (float)(0.5 + 0.2 * sbt_uniform(&rng) + (x < w / 2 ? 0.1 : 0.0));
+                }
+                *sbt_at(&len, x, y) = (float)(1 + 30 * sbt_uniform(&rng));
+                *sbt_at(&depth, x, y) = (float)(4.0 + 0.1 * sbt_uniform(&rng));
+                sbt_at(&mv, x, y)[0] = (float)(sbt_uniform(&rng) - 0.5);
+                sbt_at(&mv, x, y)[1] = (float)(sbt_uniform(&rng) - 0.5);
+                *sbt_at(&ev, x, y) = (float)(0.5 + 3.0 * sbt_uniform(&rng));
+            }
+        sbt_at(&cur, 9, 11)[1] = (float)HUGE_VAL - (float)HUGE_VAL; /* a reference-path run */
+        memset(&d, 0, sizeof d);
+        memset(&f, 0, sizeof f);
+        memset(&hi, 0, sizeof hi);
+        f.color = view(&cur); f.gbuffer.depth = view(&depth); f.gbuffer.motion = view(&mv);
+        hi.color = view(&hist); hi.length = view(&len); hi.gbuffer.depth = view(&depth);
+        hi.evidence = view(&ev);
+        for (i = 0; i < 2; ++i) {
+            oc[i] = sbt_img_new(w, h, c, 0); on[i] = sbt_img_new(w, h, 1, 0); oe[i] = sbt_img_new(w, h, 1, 0);
+            memset(&o[i], 0, sizeof o[i]);
+            o[i].color = view(&oc[i]); o[i].length = view(&on[i]); o[i].evidence = view(&oe[i]);
+        }
+        CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o[0]), SBL_OK);
+        for (y0 = 0; y0 < h;) {
+            int y1 = y0 + 1 + (int)(sbt_uniform(&rng) * 5);
+            if (y1 > h) y1 = h;
+            CHECK_EQ(sbl_temporal_filter(&d, &f, &hi, &o[1], y0, y1, scratch, bytes), SBL_OK);
+            y0 = y1;
+        }
+        CHECK(memcmp(oc[0].mem, oc[1].mem, sizeof(float) * (size_t)oc[0].stride * (size_t)h) == 0);
+        CHECK(memcmp(oe[0].mem, oe[1].mem, sizeof(float) * (size_t)w * (size_t)h) == 0);
+        {   /* the plane moved where the history is shifted, and stays a ratio */
+            int moved = 0;
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    float e = *sbt_at(&oe[0], x, y);
+                    CHECK(e > 0.0f && e < 1e6f);
+                    moved += e != *sbt_at(&ev, x, y);
+                }
+            CHECK(moved > w * h / 2);
+        }
+        for (i = 0; i < 2; ++i) { free(oc[i].mem); free(on[i].mem); free(oe[i].mem); }
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(mv.mem); free(ev.mem);
+        free(scratch);
+    }
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -811,5 +1015,7 @@ int main(void)
     test_lanes_dim();
     test_row_gather();
     test_stereo_row_gather();
+    test_row_gather_disocclusion();
+    test_evidence_paths();
     return sbt_finish("test_paths");
 }
