@@ -2983,6 +2983,25 @@ typedef int sbl__m;
 #define sbl__true 1
 #endif
 
+/* first = m ? a : b and second = m ? b : a per lane (the two ends of a lerp chosen
+   by a mask): two selects, or on SSE2 (a select is three operations there) one select
+   and one exclusive or: second = a ^ b ^ first */
+#if !defined(SBL_NO_SIMD) && !defined(__AVX2__) && !defined(__AVX512F__) && \
+    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#define SBL__SEL2(m, a, b, first, second) \
+    do { \
+        const __m128 ab_ = _mm_xor_ps(a, b); \
+        (first) = _mm_xor_ps(b, _mm_and_ps(m, ab_)); \
+        (second) = _mm_xor_ps(ab_, first); \
+    } while (0)
+#else
+#define SBL__SEL2(m, a, b, first, second) \
+    do { \
+        (first) = sbl__sel(m, a, b); \
+        (second) = sbl__sel(m, b, a); \
+    } while (0)
+#endif
+
 /* ---- the fused row kernel --------------------------------------------------
    Shared by the temporal filter and the stereo blend. Rows of the own estimate Y are
    deinterleaved into planes, and the other estimate x* (reprojected history or other
@@ -3269,7 +3288,7 @@ typedef struct sbl__tap_plan {
     float depth[SBL__BLOCK], slack[SBL__BLOCK];         /* expected depth and its slack    */
     float fast[SBL__BLOCK];         /* 1: four taps inside the image (lanes); 0: reset / redo */
     /* 1: the pixel gather decides; 2: the taps (summed, finite) weigh below 1e-3, only
-       the 3x3 fallback is left (the rig's `fallback_one`, else the pixel gather) */
+       the 3x3 fallback is left (sbl__fallback_lanes, else the pixel gather) */
     unsigned char redo[SBL__BLOCK];
     /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
        pixels in every view (planned so together: uniform integer motion); 2: planned
@@ -3669,6 +3688,98 @@ typedef struct sbl__block {
     int row_state;                           /* the hooks' per-row facts (-1: not yet)   */
 } sbl__block;
 
+#if defined(__GNUC__)
+#define SBL__RARE __attribute__((noinline)) /* a rare path kept out of the hot loop's code */
+#else
+#define SBL__RARE
+#endif
+
+/* ---- the 3x3 fallback in lanes ----------------------------------------------
+   Entries whose taps weigh below 1e-3 (redo 2) take the pixel gather's 3x3 fallback.
+   Most of them are disocclusions, where no pixel of the window passes the depth test:
+   the fallback then finds nothing and returns 0. That is decided VW entries at a time
+   here, before any colour is read: the fallback's depth test (sbl__depth_match, its
+   limit formed once as it forms it) on the nine depths in lanes. */
+
+/* Bits of the lanes none of whose nine window pixels passes the depth test; di: the
+   depth index of each lane's window corner (cx - 1, cy - 1), the window inside the
+   image; ze, sl: the expected depth and its slack. */
+SBL__INLINE int sbl__window_fails(const sbl__tap_src *s, const int *di, const float *ze_p,
+                                  const float *sl_p)
+{
+    const sbl__v zero = sbl__set1(0.0f), ze = sbl__load(ze_p);
+    const sbl__v lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sbl__load(sl_p));
+    const sbl__m inf_e = sbl__posinf(ze);
+    sbl__m any = sbl__gt(zero, zero);
+    int i, j;
+    for (j = 0; j < 3; ++j)
+        for (i = 0; i < 3; ++i) {
+            /* (rows 0 .. 2 and columns 0 .. 2 of the view exist: w, h >= 3 here) */
+            const sbl__v d = sbl__gatheri(s->depth.p + j * s->depth.stride + i * s->depth.step, di);
+            const sbl__m inf_t = sbl__posinf(d);
+            const sbl__m near = sbl__mand(sbl__mandnot(sbl__gt(d, zero), sbl__nonfinite(d)),
+                                          sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            any = sbl__mor(any, sbl__mor(sbl__mand(inf_e, inf_t),
+                                         sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
+        }
+    return ~sbl__mbits(any) & ((1 << SBL__VW) - 1);
+}
+
+/* sbl__gather_fallback at (sx, sy) with expected depth ze and slack sl into ring column x */
+static SBL__RARE void sbl__fallback_put(const sbl__tap_src *s, sbl__ring_row *r, int x, double sx,
+                                        double sy, float ze, float sl, int flag)
+{
+    float tmp[4] = {0, 0, 0, 0};
+    sbl__tap_want t;
+    float n;
+    t.depth = ze;
+    t.depth_slack = sl;
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    n = sbl__gather_fallback(s, &t, sx, sy, tmp);
+    if (flag) sbl__ring_put_flag(r, x, n, tmp, s->color.ch);
+    else sbl__ring_put(r, x, n, tmp, s->color.ch);
+}
+
+/* The 3x3 fallback for ring columns x0 + e[k] (k < n) at source positions (sx[k], sy[k])
+   with expected depths ze[e[k]] and slacks sl[e[k]] (the plan's): a reset where sbl__window_fails says the
+   window holds nothing (the fallback's own result there), else sbl__gather_fallback.
+   flag: the puts flag unsafe values (sbl__ring_put_flag). */
+static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0, const int *e,
+                                const double *sx, const double *sy, const float *ze,
+                                const float *sl, int n, int flag)
+{
+    const int ch = s->color.ch;
+    const double wl = SBL__CAST(double, s->width) - 1.0, hl = SBL__CAST(double, s->height) - 1.0;
+    int k = 0;
+    while (k < n) {
+        int di[SBL__VW], lane[SBL__VW], m = 0, none = 0, l;
+        float zl[SBL__VW], ll[SBL__VW];
+        for (; k < n && m < SBL__VW; ++k) {
+            /* floor(sx) in [1, w - 2] (sx >= 1: its truncation), likewise y */
+            if (s->use_depth && sx[k] >= 1.0 && sx[k] < wl && sy[k] >= 1.0 && sy[k] < hl) {
+                const int cx = SBL__CAST(int, sx[k]), cy = SBL__CAST(int, sy[k]);
+                di[m] = SBL__CAST(int, SBL__CAST(ptrdiff_t, cy - 1) * s->depth.stride +
+                                           SBL__CAST(ptrdiff_t, cx - 1) * s->depth.step);
+                zl[m] = ze[e[k]];
+                ll[m] = sl[e[k]];
+                lane[m++] = k;
+            } else {
+                sbl__fallback_put(s, r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]], flag);
+            }
+        }
+        if (!m) break;
+        for (l = m; l < SBL__VW; ++l) { di[l] = di[0]; zl[l] = zl[0]; ll[l] = ll[0]; }
+        none = sbl__window_fails(s, di, zl, ll);
+        for (l = 0; l < m; ++l) {
+            const int j = lane[l];
+            if ((none >> l) & 1) sbl__ring_put(r, x0 + e[j], 0.0f, NULL, ch);
+            else sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag);
+        }
+    }
+}
+
 /* The one driver of the row gathers (temporal and stereo): columns [xa, xb) of row y in
    blocks of SBL__BLOCK. Per block: `start` (the tile shortcuts: returns 1 when it wrote
    the block; sets the block's sky and lane mode), the plan (`plan_vec` plans VW entries
@@ -3684,8 +3795,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                                         int (*plan_vec)(const void *, sbl__block *, int),
                                         void (*plan_one)(const void *, sbl__block *, int),
                                         void (*after)(const void *, sbl__ring_row *, sbl__block *),
-                                        float (*fallback_one)(const void *, const sbl__block *, int,
-                                                              float *),
+                                        void (*fallback_block)(const void *, sbl__ring_row *,
+                                                               sbl__block *),
                                         int flag)
 {
     const int ch = src->color.ch;
@@ -3724,6 +3835,13 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             after(ctx, r, &b);
             continue;
         }
+        {   /* redo is rare: one look at the whole block first */
+            uint64_t any = 0, u;
+            for (i = 0; i + 8 <= b.n; i += 8) { memcpy(&u, b.p.redo + i, 8); any |= u; }
+            for (; i < b.n; ++i) any |= b.p.redo[i];
+            if (!any) continue;
+        }
+        if (fallback_block) fallback_block(ctx, r, &b); /* (clears the redo it settles) */
         for (i = 0; i < b.n; ++i) {
             if (i + 8 <= b.n) { /* eight entries at a time: redo is rare */
                 uint64_t any;
@@ -3732,8 +3850,7 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
             }
             if (b.p.redo[i]) {
                 float tmp[4] = {0, 0, 0, 0};
-                const float nx = b.p.redo[i] == 2 && fallback_one ? fallback_one(ctx, &b, i, tmp)
-                                                                  : pixel(ctx, b.x0 + i, y, tmp);
+                const float nx = pixel(ctx, b.x0 + i, y, tmp);
                 if (flag) sbl__ring_put_flag(r, b.x0 + i, nx, tmp, ch);
                 else sbl__ring_put(r, b.x0 + i, nx, tmp, ch);
             }
@@ -4123,6 +4240,50 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
     return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
 }
 
+#if SBL__VW >= 8
+/* Are n and the ch colour values of every lane safe (sbl__lane_value_ok) and nonzero:
+   the largest |bits| below those of 2^50, the smallest at least those of 2^-40 (both
+   as unsigned ints; a NaN's bits are above every finite value's). 0: some lane needs
+   the per-lane test (a zero, which is safe, included). */
+SBL__INLINE int sbl__rest_safe(sbl__v n, const sbl__v *v, int ch)
+{
+#if SBL__VW == 8
+    const __m256i m = _mm256_set1_epi32(0x7fffffff);
+    const __m256i bn = _mm256_and_si256(_mm256_castps_si256(n), m);
+    __m256i hi = _mm256_and_si256(_mm256_castps_si256(v[0]), m), lo = hi, b;
+    hi = _mm256_max_epu32(hi, bn);
+    lo = _mm256_min_epu32(lo, bn);
+#define SBL__REST_MINMAX(c) \
+    b = _mm256_and_si256(_mm256_castps_si256(v[c]), m); \
+    hi = _mm256_max_epu32(hi, b); \
+    lo = _mm256_min_epu32(lo, b)
+    if (ch > 1) { SBL__REST_MINMAX(1); }
+    if (ch > 2) { SBL__REST_MINMAX(2); }
+    if (ch > 3) { SBL__REST_MINMAX(3); }
+#undef SBL__REST_MINMAX
+    /* bad: hi >= bits(2^50) (0x58800000) or lo < bits(2^-40) (0x2b800000), signed
+       compares of values below 2^31 */
+    b = _mm256_or_si256(_mm256_cmpgt_epi32(hi, _mm256_set1_epi32(0x587fffff)),
+                        _mm256_cmpgt_epi32(_mm256_set1_epi32(0x2b800000), lo));
+    return _mm256_testz_si256(b, b);
+#else
+    const __m512i m = _mm512_set1_epi32(0x7fffffff);
+    const __m512i bn = _mm512_and_si512(_mm512_castps_si512(n), m);
+    __m512i hi = _mm512_and_si512(_mm512_castps_si512(v[0]), m), lo = hi, b;
+    int c;
+    hi = _mm512_max_epu32(hi, bn);
+    lo = _mm512_min_epu32(lo, bn);
+    for (c = 1; c < ch; ++c) {
+        b = _mm512_and_si512(_mm512_castps_si512(v[c]), m);
+        hi = _mm512_max_epu32(hi, b);
+        lo = _mm512_min_epu32(lo, b);
+    }
+    return !(_mm512_cmpgt_epi32_mask(hi, _mm512_set1_epi32(0x587fffff)) |
+             _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(0x2b800000), lo));
+#endif
+}
+#endif
+
 /* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
    pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
    sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
@@ -4146,8 +4307,8 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     int i = 0, l, idx[SBL__VW];
     for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
     for (;;) {
-        int x, bits;
-        sbl__m keep, valid;
+        int x, bits, flag;
+        sbl__m keep, valid, ok;
         sbl__v nv = one, v[4];
         if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
         x = x0 + i;
@@ -4174,45 +4335,60 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
             valid = sbl__mand(valid, sbl__mor(sbl__mand(inf_e, inf_t),
                                               sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
         }
-        if (np) {
-            nv = sbl__load(np + i);
-            valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+        if (np) nv = sbl__load(np + i);
+        /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
+           0 is unsafe exactly when v is); a safe value is finite, so where every value is
+           safe (the common case) the finiteness tests drop out and nothing is flagged */
+#if SBL__VW == 4
+#define SBL__REST_OK() \
+    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
+    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
+    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
+    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
+        SBL__REST_OK();
+        if (sbl__mbits(ok) == (1 << SBL__VW) - 1) {
+#else
+#define SBL__REST_OK() \
+    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
+    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
+    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
+    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
+        /* (AVX2 / AVX-512: the same in one test of the vector, on the largest and
+           smallest |v| bits as unsigned ints: a 0 there takes the exact test below) */
+        if (sbl__rest_safe(nv, v, ch)) {
+#endif
+            if (np) valid = sbl__mand(valid, sbl__gt(nv, zero));
+            flag = 0;
+        } else {
+            if (np) valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+            valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
+            if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
+            if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
+            if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
+#if SBL__VW != 4
+            SBL__REST_OK();
+#endif
+            flag = sbl__mbits(sbl__mandnot(valid, ok));
         }
-        valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
-        if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
-        if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
-        if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
         sbl__store(r->x[0] + x, sbl__sel(valid, sbl__add(zero, v[0]), zero));
         if (ch > 1) sbl__store(r->x[1] + x, sbl__sel(valid, sbl__add(zero, v[1]), zero));
         if (ch > 2) sbl__store(r->x[2] + x, sbl__sel(valid, sbl__add(zero, v[2]), zero));
         if (ch > 3) sbl__store(r->x[3] + x, sbl__sel(valid, sbl__add(zero, v[3]), zero));
         sbl__store(r->n + x, sbl__sel(valid, nv, zero));
         sbl__store(r->v + x, sbl__sel(valid, one, zero));
+        /* (a column the overlapping last vector writes again gets the same values and
+           the same flag: sbl__ring_flag_bits counts a column once) */
+        if (flag) sbl__ring_flag_bits(r, x, flag);
         bits = sbl__mbits(sbl__mandnot(keep, valid));
         for (l = 0; bits; ++l, bits >>= 1)
             if (bits & 1) {
                 float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
+                sbl__ring_put_flag(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
             }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
     }
-    /* the unsafe-value check of sbl__ring_gather on the tile just written (in L1, the
-       channel count a constant here) */
-    for (i = 0;; i += SBL__VW) {
-        int x, bits;
-        sbl__m ok;
-        if (i + SBL__VW > n) i = n - SBL__VW;
-        x = x0 + i;
-        ok = sbl__lane_ok(sbl__load(r->n + x));
-        ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[0] + x)));
-        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[1] + x)));
-        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[2] + x)));
-        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[3] + x)));
-        bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), zero), ok));
-        if (bits) sbl__ring_flag_bits(r, x, bits);
-        if (i + SBL__VW >= n) break;
-    }
+#undef SBL__REST_OK
 }
 
 static void sbl__rest_tile(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
@@ -4381,31 +4557,32 @@ static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
         sbl__tap_plan_set(&s->src, &b->p, i, &t, sx, sy);
 }
 
-/* Entry i whose taps weigh below 1e-3 (redo 2): the pixel gather's last step, its 3x3
-   fallback, at the position sbl__temporal_rp_pos gives (its expression, for motion
-   vectors; the camera source takes the pixel gather) and the planned expected depth and
-   slack (the plan's lanes need neither target normals nor ids). */
-#if defined(__GNUC__)
-#define SBL__RARE __attribute__((noinline)) /* a rare path kept out of the hot loop's code */
-#else
-#define SBL__RARE
-#endif
-static SBL__RARE float sbl__temporal_fallback_one(const void *ctx, const sbl__block *b, int i,
-                                                  float *out)
+/* The block's entries whose taps weigh below 1e-3 (redo 2): the pixel gather's last
+   step, its 3x3 fallback (sbl__fallback_lanes), at the position sbl__temporal_rp_pos
+   gives (its expression, for motion vectors; the camera source leaves them to the pixel
+   gather) with the planned expected depth and slack (the plan's lanes need neither
+   target normals nor ids). */
+static void sbl__temporal_fallback_block(const void *ctx, sbl__ring_row *r, sbl__block *b)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    const int x = b->x0 + i, y = b->y;
-    const float *mv;
-    sbl__tap_want t;
-    if (s->source != SBL_TEMPORAL_MOTION) return sbl__temporal_rp_pixel(ctx, x, y, out);
-    mv = SBL__AT(s->motion, x, y);
-    t.depth = b->p.depth[i];
-    t.depth_slack = b->p.slack[i];
-    t.normal = NULL;
-    t.normal_len2 = 0.0f;
-    t.id = 0.0f;
-    return sbl__gather_fallback(&s->src, &t, x + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]),
-                                y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]), out);
+    double sx[SBL__BLOCK], sy[SBL__BLOCK];
+    int e[SBL__BLOCK], i, n = 0;
+    if (s->source != SBL_TEMPORAL_MOTION) return;
+    for (i = 0; i < b->n; ++i) {
+        const float *mv;
+        if (i + 8 <= b->n) { /* eight entries at a time: redo is rare */
+            uint64_t any;
+            memcpy(&any, b->p.redo + i, 8);
+            if (!any) { i += 7; continue; }
+        }
+        if (b->p.redo[i] != 2) continue;
+        b->p.redo[i] = 0;
+        mv = SBL__AT(s->motion, b->x0 + i, b->y);
+        sx[n] = b->x0 + i + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]);
+        sy[n] = b->y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
+        e[n++] = i;
+    }
+    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1);
 }
 
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
@@ -4418,7 +4595,7 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     r->gather_unsafe = 0;
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_one, 1);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block, 1);
 }
 #endif
 
@@ -4932,10 +5109,12 @@ static float sbl__pool_ratio(const sbl__kernel *k, int x, int y)
     return (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y) ? k->pool_r[x] : 0.0f;
 }
 
-/* Reference path for one pixel: borders, non-finite and extreme values. */
-static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R, int x)
+/* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
+   of the caller (sbl__kernel_pixel_ref). */
+SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                                          const int ch)
 {
-    const int ch = k->ch, y = R[1]->row;
+    const int y = R[1]->row;
     float yc[4], xs[4], out[4], a = 1.0f, n_out;
     float n_x = R[1]->n[x], n_y = sbl__own_n(k, x, y);
     int c, finite = 1;
@@ -4960,18 +5139,21 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
         float vals[9][4], xvals[9][4];
         int xvalid[9], n = 0, i, j, centre = -1;
         sbl__moments m;
+        /* the window's columns inside the image, row by row (the same order as the
+           lanes: rows, then columns) */
+        const int i0 = x > 0 ? x - 1 : x, i1 = x + 1 < k->w ? x + 1 : x;
         for (j = 0; j < 3; ++j) {
-            if (!R[j]) continue;
-            for (i = x - 1; i <= x + 1; ++i) {
+            const sbl__ring_row *r = R[j];
+            if (!r) continue;
+            for (i = i0; i <= i1; ++i) {
                 int ok = 1;
-                if (i < 0 || i >= k->w) continue;
                 for (c = 0; c < ch; ++c) {
-                    vals[n][c] = R[j]->y[c][i];
-                    xvals[n][c] = R[j]->x[c][i];
+                    vals[n][c] = r->y[c][i];
+                    xvals[n][c] = r->x[c][i];
                     ok &= sbl__finite(vals[n][c]);
                 }
                 if (!ok) continue;
-                xvalid[n] = R[j]->v[i] > 0.0f;
+                xvalid[n] = r->v[i] > 0.0f;
                 if (j == 1 && i == x) centre = n;
                 ++n;
             }
@@ -4986,6 +5168,16 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
     for (c = 0; c < ch; ++c) k->stage[c][x] = out[c];
     k->stage_n[x] = n_out;
     k->stage_a[x] = a;
+}
+
+static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R, int x)
+{
+    switch (k->ch) {
+    case 1: sbl__kernel_pixel_ref_ch(k, R, x, 1); break;
+    case 2: sbl__kernel_pixel_ref_ch(k, R, x, 2); break;
+    case 3: sbl__kernel_pixel_ref_ch(k, R, x, 3); break;
+    default: sbl__kernel_pixel_ref_ch(k, R, x, 4); break;
+    }
 }
 
 /* The lane kernel, as stages named like their reference-path counterparts:
@@ -5097,10 +5289,12 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
     for (;;) {
         const int i = x - base;
         const ptrdiff_t iv = x + W->off_v;
-        const sbl__v v0 = sbl__load(W->row[0] + iv), v1 = sbl__load(W->row[1] + iv),
-                     v2 = sbl__load(W->row[2] + iv);
+        /* full: every v is 1, so the pairs per column are 3 (the same value) */
+        const sbl__v v0 = full ? sbl__set1(1.0f) : sbl__load(W->row[0] + iv);
+        const sbl__v v1 = full ? sbl__set1(1.0f) : sbl__load(W->row[1] + iv);
+        const sbl__v v2 = full ? sbl__set1(1.0f) : sbl__load(W->row[2] + iv);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
-        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), sbl__add(sbl__add(v0, v1), v2));
+        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), full ? sbl__set1(3.0f) : sbl__add(sbl__add(v0, v1), v2));
         sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp, full);
         if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp, full);
         if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp, full);
@@ -5277,8 +5471,8 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
 typedef struct sbl__pool_rows {
     const float *y[3][4], *x[3][4], *v[3];
-    const unsigned char *unsafe[3];
-    int n;
+    const unsigned char *unsafe[3]; /* the ring rows' flags (sbl__pool_pixel_unsafe) */
+    int n, ch;
 } sbl__pool_rows;
 
 /* Column sums of columns [ca, cb) (inside the image, cb - ca >= VW) of the np rows P,
@@ -5515,12 +5709,63 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
     }
 }
 
-/* 1 if column x of any of the rows holds an unsafe value. */
+/* Pixel x of pool row j, flagged unsafe at load (a value outside the lane range): 1 if
+   the prepass's lanes cannot take it either. They read a pixel only through its pairs'
+   differences d = x* - y (in float, as the lanes form them), so what their precision
+   needs (see sbl__lane_value_ok) is that every valid pair's d be 0 or within
+   [2^-40, 2^50): then, as for two lane-range values, every d lies on the 2^-63 grid
+   below 2^51, and the sums, squares and shifts of d stay normal floats without
+   overflow. An invalid pair's d is multiplied by 0 (or a select drops it), so y need
+   only be finite and below 2^50 (the shifts stay finite). A dim value next to a bright
+   history (1e-14 against 0.5: d = -0.5) is then no reason for the double path; a
+   non-finite, huge or denormal d (both values dim) still is. A rule on the input alone,
+   the same on every build. */
+static int sbl__pool_pixel_unsafe(const sbl__pool_rows *P, int j, int x)
+{
+    const int valid = P->v[j][x] > 0.0f;
+    int c;
+    for (c = 0; c < P->ch; ++c) {
+        const float y = P->y[j][c][x];
+        unsigned int bits;
+        memcpy(&bits, &y, sizeof bits);
+        if ((bits & 0x7fffffffu) >= 0x58800000u) return 1; /* |y| >= 2^50, inf, NaN */
+        if (valid) {
+            /* volatile: the difference as the lanes round it (no contraction, no
+               excess precision) */
+            volatile float d = P->x[j][c][x] - y;
+            if (!sbl__lane_value_ok(d)) return 1;
+        }
+    }
+    return 0;
+}
+
+/* 1 if column x of any of the rows holds a value the prepass's lanes cannot take. */
 static int sbl__pool_column_unsafe(const sbl__pool_rows *P, int x)
 {
-    int j, u = 0;
-    for (j = 0; j < P->n; ++j) u |= P->unsafe[j][x];
-    return u;
+    int j;
+    for (j = 0; j < P->n; ++j)
+        if (P->unsafe[j][x] && sbl__pool_pixel_unsafe(P, j, x)) return 1;
+    return 0;
+}
+
+/* The first column of [c, ce) that sbl__pool_column_unsafe flags, else ce: eight
+   columns at a time past those no row flagged at load. */
+static int sbl__pool_next_unsafe(const sbl__pool_rows *P, int c, int ce)
+{
+    while (c < ce) {
+        uint64_t u = 0, t;
+        int j;
+        if (c + 8 <= ce) {
+            for (j = 0; j < P->n; ++j) {
+                memcpy(&t, P->unsafe[j] + c, 8);
+                u |= t;
+            }
+            if (!u) { c += 8; continue; }
+        }
+        if (sbl__pool_column_unsafe(P, c)) return c;
+        ++c;
+    }
+    return ce;
 }
 
 /* The first run [*ra, *rb) of pixels of [xa, xb) each with an unsafe value within
@@ -5530,16 +5775,7 @@ static int sbl__pool_unsafe_run(const sbl__pool_rows *P, int w, int xa, int xb, 
     int c = xa - SBL__POOL_REACH > 0 ? xa - SBL__POOL_REACH : 0;
     const int ce = xb + SBL__POOL_REACH < w ? xb + SBL__POOL_REACH : w;
     int b;
-    for (; c + 8 <= ce; c += 8) { /* eight columns at a time while they are clean */
-        uint64_t u = 0, t;
-        int j;
-        for (j = 0; j < P->n; ++j) {
-            memcpy(&t, P->unsafe[j] + c, 8);
-            u |= t;
-        }
-        if (u) break;
-    }
-    while (c < ce && !sbl__pool_column_unsafe(P, c)) ++c;
+    c = sbl__pool_next_unsafe(P, c, ce);
     if (c >= ce) return 0;
     *ra = c - SBL__POOL_REACH > xa ? c - SBL__POOL_REACH : xa;
     b = c + SBL__POOL_REACH + 1 < xb ? c + SBL__POOL_REACH + 1 : xb;
@@ -5595,20 +5831,26 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
    in lanes where it can (above). Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image); on a row of at least 18 columns,
    xb - xa >= 16 (sbl__kernel_run_span widens its span so). */
-/* The ring rows that exist, as sbl__pool_rows; returns 1 if one holds an unsafe value. */
-static int sbl__pool_rows_of(sbl__pool_rows *P, const sbl__ring_row *const *R, int ch)
+/* The ring rows that exist, as sbl__pool_rows; returns 1 if one holds a value the
+   prepass's lanes cannot take (sbl__pool_pixel_unsafe) in the columns [xa - reach,
+   xb + reach) the prepass of [xa, xb) reads. */
+static int sbl__pool_rows_of(sbl__pool_rows *P, const sbl__ring_row *const *R, int ch, int w,
+                             int xa, int xb)
 {
-    int j, c, unsafe = 0;
+    int j, c, flagged = 0;
+    const int za = xa - SBL__POOL_REACH > 0 ? xa - SBL__POOL_REACH : 0;
+    const int zb = xb + SBL__POOL_REACH < w ? xb + SBL__POOL_REACH : w;
     P->n = 0;
+    P->ch = ch;
     for (j = 0; j < 3; ++j) {
         if (!R[j]) continue;
         for (c = 0; c < ch; ++c) { P->y[P->n][c] = R[j]->y[c]; P->x[P->n][c] = R[j]->x[c]; }
         P->v[P->n] = R[j]->v;
         P->unsafe[P->n] = R[j]->unsafe;
-        unsafe |= R[j]->unsafe_count > 0;
+        flagged |= R[j]->unsafe_count > 0;
         ++P->n;
     }
-    return unsafe;
+    return flagged && za < zb && sbl__pool_next_unsafe(P, za, zb) < zb;
 }
 
 static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
@@ -5621,7 +5863,7 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
         sbl__row_pool_ref(k, R, xa, xb);
         return;
     }
-    unsafe = sbl__pool_rows_of(&P, R, k->ch);
+    unsafe = sbl__pool_rows_of(&P, R, k->ch, k->w, xa, xb);
 #define SBL__POOL_CASE(np) \
     switch (k->ch) { \
     case 1: sbl__row_pool_lanes(k, R, &P, np, 1, xa, xb, unsafe); break; \
@@ -5906,7 +6148,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     const int i = x - base;
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
     sbl__v yc[4], xs[4], yb[4], m8[4], v8[4], var[4], mean;
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
@@ -5963,11 +6205,13 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* the blend (sbl__lanes_blend with one weight, no fill) */
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
+    f_w = sbl__sel(hi_w, one_w, w); /* the two-sided lerp's factor (as the staged lanes) */
     a_mean = zero;
 #define SBL__FAST_BLEND(c) \
     do { \
-        const sbl__v o = sbl__sel(hi_w, sbl__add(yb[c], sbl__mul(one_w, sbl__sub(xs[c], yb[c]))), \
-                                  sbl__add(xs[c], sbl__mul(w, sbl__sub(yb[c], xs[c])))); \
+        sbl__v from, to, o; \
+        SBL__SEL2(hi_w, yb[c], xs[c], from, to); \
+        o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c])); \
         a_mean = sbl__add(a_mean, w); \
     } while (0)
@@ -6031,7 +6275,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, t, a_mean, a2_mean, one_m, den, n_out;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
     valid = sbl__gt(n_x, zero);
@@ -6066,13 +6310,17 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     low_t = sbl__gt(one, t);
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
+    /* the two-sided lerp: from the end the weight is nearer, by its factor (the same
+       expression per lane as both lerps and a select) */
+    f_w = sbl__sel(hi_w, one_w, w);
     a_mean = zero;
 #define SBL__STAGE_BLEND(c) \
     do { \
         const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
         const sbl__v yb = sbl__sel(low_t, sbl__mul(yc, t), yc); \
-        const sbl__v o = sbl__sel(hi_w, sbl__add(yb, sbl__mul(one_w, sbl__sub(xs, yb))), \
-                                  sbl__add(xs, sbl__mul(w, sbl__sub(yb, xs)))); \
+        sbl__v from, to, o; \
+        SBL__SEL2(hi_w, yb, xs, from, to); \
+        o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc)); \
         a_mean = sbl__add(a_mean, w); \
     } while (0)
@@ -6229,7 +6477,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     k_ch.ch = ch;
     sbl__lane_rows_of(&W, R, ch);
     sbl__pool_planes_of(k, ch, 0, &Q);
-    unsafe = sbl__pool_rows_of(&P, R, ch);
+    unsafe = sbl__pool_rows_of(&P, R, ch, w, pa, pb);
     while (x < pb) {
         int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p, full;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
@@ -6289,6 +6537,103 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
 #undef SBL__RUN_VECTORS
 }
 
+/* ---- dim values in the default configurations' lanes ----------------------------
+   A pixel is flagged unsafe at load for any value outside [2^-40, 2^50) (sbl__lane_value_ok),
+   and its 3x3 window then takes the reference path. The 2^-40 serves one purpose: every
+   nonzero difference of two such values is a multiple of 2^-63, so its square is a
+   normal float. But the default configurations' lanes (the pooled estimator, no
+   rectification, one weight: sbl__lanes_vector_fast and the staged temporal lanes) read
+   the window's values only through these differences: each column's y - y_top (its
+   three rows), the top row's y - y_top_centre (the window's shift), and each pair's
+   x* - y; the rest are plain sums of values (means, the firefly sums) and products of
+   those differences. So a window whose flagged pixels hold only dim values (normal
+   floats below 2^-40) keeps the lanes when every one of those differences that involves
+   a flagged pixel is itself 0 or within [2^-40, 2^50): the lanes then see exactly the
+   kind of numbers the lane range guarantees (tests/test_paths.c: a dim value by bright
+   neighbours, within 1e-4 of the reference). Non-finite, huge or denormal values, an
+   unsafe N, and any other configuration keep the reference path. A rule on the input
+   alone, the same on every build. */
+
+/* 1 if v is 0 or a normal float below 2^50 in magnitude (a value the differences may
+   make lane-safe); inf, NaN, huge and denormal values are not */
+static int sbl__lane_value_dim_ok(float v)
+{
+    unsigned int bits, e;
+    memcpy(&bits, &v, sizeof bits);
+    e = (bits >> 23) & 0xffu;
+    return (bits & 0x7fffffffu) == 0u || e - 1u < 176u;
+}
+
+/* 1 if a - b, rounded as the lanes round it, is in the lane range */
+static int sbl__lane_diff_ok(float a, float b)
+{
+    volatile float d = a - b; /* no contraction, no excess precision */
+    return sbl__lane_value_ok(d);
+}
+
+/* Pixel x of ring row r, flagged at load: 1 if its values are 0 or normal below 2^50,
+   its own N as sbl__ring_load_own asks, and (x* valid) its N lane-safe and every pair's
+   difference x* - y in the lane range. */
+static int sbl__lane_pixel_dim_ok(const sbl__kernel *k, const sbl__ring_row *r, int x)
+{
+    int c;
+    if (k->own_n && k->own_n->data) {
+        const float n = *sbl__px(k->own_n, x, r->row);
+        if (sbl__step_of(k->own_n) != 1 || !sbl__lane_value_ok(n) || !(n <= 1048576.0f)) return 0;
+    }
+    for (c = 0; c < k->ch; ++c)
+        if (!sbl__lane_value_dim_ok(r->y[c][x])) return 0;
+    if (r->v[x] > 0.0f) {
+        if (!sbl__lane_value_ok(r->n[x])) return 0;
+        for (c = 0; c < k->ch; ++c)
+            if (!sbl__lane_value_dim_ok(r->x[c][x]) || !sbl__lane_diff_ok(r->x[c][x], r->y[c][x]))
+                return 0;
+    }
+    return 1;
+}
+
+/* 1 if the window of pixel x (interior; R[0..2] exist) may take the default
+   configurations' lanes (above); its flagged pixels are the ones to check. */
+static int sbl__lane_window_dim_ok(const sbl__kernel *k, const sbl__ring_row *const *R, int x)
+{
+    const unsigned char *top = R[0]->unsafe;
+    int i, j, c;
+    for (i = x - 1; i <= x + 1; ++i) {
+        const int f0 = top[i], f1 = R[1]->unsafe[i], f2 = R[2]->unsafe[i];
+        if (!(f0 | f1 | f2)) continue;
+        for (j = 0; j < 3; ++j)
+            if (R[j]->unsafe[i] && !sbl__lane_pixel_dim_ok(k, R[j], i)) return 0;
+        /* the column about its top sample */
+        for (c = 0; c < k->ch; ++c) {
+            const float y0 = R[0]->y[c][i];
+            if ((f0 | f1) && !sbl__lane_diff_ok(R[1]->y[c][i], y0)) return 0;
+            if ((f0 | f2) && !sbl__lane_diff_ok(R[2]->y[c][i], y0)) return 0;
+        }
+    }
+    /* the top row about the window's shift, its top-centre sample */
+    for (i = x - 1; i <= x + 1; i += 2)
+        if (top[i] | top[x])
+            for (c = 0; c < k->ch; ++c)
+                if (!sbl__lane_diff_ok(R[0]->y[c][i], R[0]->y[c][x])) return 0;
+    return 1;
+}
+
+/* The default configurations' lanes (sbl__kernel_lanes_pooled's fast instances). */
+static int sbl__kernel_fast(const sbl__kernel *k)
+{
+    return k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->fill &&
+           k->wp.rectify == SBL_RECTIFY_NONE && k->wp.mode == SBL_WEIGHT_SCALAR;
+}
+
+/* Clears the window flags of pixels [xa, xb) whose window sbl__lane_window_dim_ok admits. */
+static void sbl__lane_windows_dim(const sbl__kernel *k, const sbl__ring_row *const *R,
+                                  unsigned char *win, int xa, int xb)
+{
+    int x;
+    for (x = sbl__find_set(win, xa, xb); x < xb; x = sbl__find_set(win, x + 1, xb))
+        if (sbl__lane_window_dim_ok(k, R, x)) win[x] = 0;
+}
+
 /* one function per channel count and configuration (fast: 1 temporal default, 2 stereo
    default, 0 any other), each compiled by itself */
 #define SBL__POOLED_INSTANCE(chn, f) \
@@ -6307,7 +6652,7 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
                                      int pb, int xa, int xb, const unsigned char *win)
 {
     /* the default configuration in its own instances (sbl__lanes_vector_fast) */
-    const int fast = k->wp.rectify == SBL_RECTIFY_NONE && k->wp.mode == SBL_WEIGHT_SCALAR && !k->fill;
+    const int fast = sbl__kernel_fast(k);
     k->pool_row = R[1]->row;
     if (fast && k->wp.temporal) {
         switch (k->ch) {
@@ -6381,6 +6726,8 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                                R[2]->unsafe + xa - 1, xb - xa + 2);
                 sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
                 win = k->window_unsafe;
+                /* dim values the default configurations' lanes can take */
+                if (pool && sbl__kernel_fast(k)) sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
             }
             if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
             if (pool && lanes_ok) {

@@ -518,6 +518,308 @@ static void test_moments_precision(void)
     CHECK(worst_mean <= 1e-6);
 }
 
+
+/* The pooled prepass (sbl__row_pool) against its double reference (sbl__row_pool_ref)
+   on rows with dim values: a dim y next to a bright valid x* (d = x* - y stays in the
+   lane range) keeps the lanes, within float rounding of the reference; a dim pair
+   (both values dim: d below 2^-40), a denormal or a NaN sends every pixel within reach
+   to the reference, bit for bit. */
+static void test_pool_dim(void)
+{
+    static float own[PH * PW * 4];
+    static paths_gather G;
+    sbt_rng rng = {515};
+    double worst = 0;
+    int it, lanes_dim = 0, exact = 0;
+    for (it = 0; it < 400; ++it) {
+        sbl__kernel k;
+        sbl_image im;
+        void *scratch;
+        const sbl__ring_row *R[3];
+        float lanes[PW];
+        int unsafe_col[PW];
+        const int ch = 1 + it % 4;
+        int x, y, c, i, t;
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x) {
+                for (c = 0; c < 4; ++c) {
+                    own[(y * PW + x) * 4 + c] = (float)(0.3 + 0.4 * sbt_uniform(&rng));
+                    G.x[y][x][c] = (float)(0.3 + 0.4 * sbt_uniform(&rng) + (x > PW / 2 ? 0.2 : 0.0));
+                }
+                G.n[y][x] = sbt_uniform(&rng) < 0.1 ? 0.0f : 8.0f;
+            }
+        memset(unsafe_col, 0, sizeof unsafe_col);
+        for (t = 0; t < 1 + it % 4; ++t) {
+            const int tx = (int)(sbt_uniform(&rng) * PW), ty = (int)(sbt_uniform(&rng) * PH);
+            const int kind = (int)(sbt_uniform(&rng) * 5), tc = (int)(sbt_uniform(&rng) * ch);
+            float *yv = &own[(ty * PW + tx) * ch + tc];
+            if (kind <= 1) {
+                *yv = kind ? 1e-14f : -3e-20f; /* dim y, bright x*: the lanes */
+                if (G.n[ty][tx] > 0.0f) ++lanes_dim;
+            } else if (kind == 2) {
+                *yv = 1e-14f; /* a dim pair: the reference */
+                G.x[ty][tx][tc] = 1.3e-14f;
+                G.n[ty][tx] = 8.0f;
+            } else if (kind == 3) {
+                *yv = 1e-39f; /* denormal y, x* invalid: the lanes (only its finiteness counts) */
+                G.n[ty][tx] = 0.0f;
+            } else {
+                *yv = (float)HUGE_VAL - (float)HUGE_VAL;
+            }
+        }
+        /* the columns holding a pixel the prepass's lanes cannot take: y not finite,
+           or a valid pair whose float difference is dim (nonzero, below 2^-40) */
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x)
+                for (c = 0; c < ch; ++c) {
+                    const float yy = own[(y * PW + x) * ch + c];
+                    volatile float dd = G.x[y][x][c] - yy;
+                    if (!sbl__finite(yy) ||
+                        (G.n[y][x] > 0.0f && dd != 0.0f && !(fabsf(dd) >= 0x1p-40f)))
+                        unsafe_col[x] = 1;
+                }
+        memset(&k, 0, sizeof k);
+        im = sbl_image_make(own, PW, PH, ch);
+        k.w = PW; k.h = PH; k.ch = ch;
+        k.wp.estimator = SBL_ESTIMATOR_POOLED;
+        k.n_cap = 64.0f;
+        k.temporal = 1;
+        k.own = &im;
+        k.gather = paths_gather_fn;
+        k.gather_ctx = &G;
+        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
+        sbl__kernel_bind(&k, scratch);
+        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
+        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        sbl__row_pool(&k, R, 0, PW);
+        memcpy(lanes, k.pool_r, sizeof lanes);
+        sbl__row_pool_ref(&k, R, 0, PW);
+        for (x = 0; x < PW; ++x) {
+            int near = 0, d;
+            for (d = -SBL__POOL_REACH; d <= SBL__POOL_REACH; ++d)
+                if (x + d >= 0 && x + d < PW && unsafe_col[x + d]) near = 1;
+            if (near) {
+                CHECK(memcmp(&lanes[x], &k.pool_r[x], sizeof(float)) == 0);
+                ++exact;
+            } else {
+                const double e = fabs((double)lanes[x] - k.pool_r[x]) / (1.0 + SBL_POOLED_BLOCK_SE2 + k.pool_r[x]);
+                CHECK(e <= 1e-4);
+                if (e > worst) worst = e;
+            }
+        }
+        free(scratch);
+    }
+    printf("  %s pooled prepass with dim values vs double: %d dim y kept in the lanes, worst %.3g; "
+           "%d pixels near a dim pair / NaN equal to the reference\n",
+           SBL_SIMD_NAME, lanes_dim, worst, exact);
+    CHECK(lanes_dim > 0);
+    CHECK(exact > 0);
+}
+
+
+/* The default configurations' lanes (pooled estimator, no rectification, one weight;
+   temporal and stereo) on windows holding dim values (normal floats below the lane
+   range's 2^-40): where sbl__lane_window_dim_ok admits the window, the lanes must agree
+   with the double reference as on any window (1e-4, as above); dim pairs, two dim
+   values in one column, NaN are refused (the reference path). */
+static void test_lanes_dim(void)
+{
+    static float own[PH * PW * 4], own_n[PH * PW];
+    static paths_gather G;
+    sbt_rng rng = {616};
+    double worst = 0;
+    int it, admitted = 0, refused = 0;
+    for (it = 0; it < 600; ++it) {
+        sbl__kernel k;
+        sbl_image im, imn;
+        void *scratch;
+        const sbl__ring_row *R[3];
+        float lane_c[PW][4], lane_n[PW], lane_a[PW];
+        const int ch = 1 + it % 4, stereo = (it >> 2) & 1;
+        int x, y, c, i, t;
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x) {
+                for (c = 0; c < 4; ++c) {
+                    own[(y * PW + x) * ch + c] = (float)(0.2 + 0.6 * sbt_uniform(&rng));
+                    G.x[y][x][c] = (float)(0.2 + 0.6 * sbt_uniform(&rng) + (x > PW / 2 ? 0.3 : 0.0));
+                }
+                G.n[y][x] = sbt_uniform(&rng) < 0.1 ? 0.0f : (float)(1 + 20 * sbt_uniform(&rng));
+                own_n[y * PW + x] = (float)(1 + 10 * sbt_uniform(&rng));
+            }
+        for (t = 0; t < 1 + it % 5; ++t) {
+            const int tx = (int)(sbt_uniform(&rng) * PW), ty = (int)(sbt_uniform(&rng) * PH);
+            const int kind = (int)(sbt_uniform(&rng) * 6), tc = (int)(sbt_uniform(&rng) * ch);
+            const float dim = kind & 1 ? 1e-14f : -4e-20f;
+            own[(ty * PW + tx) * ch + tc] = dim;
+            if (kind == 2) own[(((ty + 1) % PH) * PW + tx) * ch + tc] = 2e-14f; /* two in a column */
+            if (kind == 3) { G.x[ty][tx][tc] = 1.5e-14f; G.n[ty][tx] = 4.0f; } /* a dim pair */
+            if (kind == 4) G.x[ty][tx][tc] = 3e-13f; /* dim x*, bright y? (y is dim too) */
+            if (kind == 5 && sbt_uniform(&rng) < 0.3) own[(ty * PW + tx) * ch + tc] = (float)HUGE_VAL - (float)HUGE_VAL;
+        }
+        memset(&k, 0, sizeof k);
+        im = sbl_image_make(own, PW, PH, ch);
+        imn = sbl_image_make(own_n, PW, PH, 1);
+        k.w = PW; k.h = PH; k.ch = ch;
+        k.wp.estimator = SBL_ESTIMATOR_POOLED;
+        k.wp.rectify = SBL_RECTIFY_NONE;
+        k.wp.mode = SBL_WEIGHT_SCALAR;
+        k.wp.constant = 0.1f;
+        k.wp.gamma = 1.25f;
+        k.wp.bias_threshold = 3.0f;
+        k.wp.temporal = !stereo;
+        k.n_cap = stereo ? FLT_MAX : 64.0f;
+        k.temporal = !stereo;
+        k.own = &im;
+        k.own_n = stereo ? &imn : NULL;
+        k.gather = paths_gather_fn;
+        k.gather_ctx = &G;
+        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
+        sbl__kernel_bind(&k, scratch);
+        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
+        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        CHECK(sbl__kernel_fast(&k));
+        /* every interior pixel in lanes (no window mask), then the reference where the
+           rule admits a flagged window */
+        sbl__kernel_lanes_pooled(&k, R, 0, PW, 1, PW - 1, NULL);
+        for (x = 1; x < PW - 1; ++x) {
+            for (c = 0; c < ch; ++c) lane_c[x][c] = k.stage[c][x];
+            lane_n[x] = k.stage_n[x];
+            lane_a[x] = k.stage_a[x];
+        }
+        for (x = 1; x < PW - 1; ++x) {
+            int flagged = 0, j, dx;
+            double e, en;
+            for (j = 0; j < 3; ++j)
+                for (dx = -1; dx <= 1; ++dx) flagged |= R[j]->unsafe[x + dx];
+            if (!flagged) continue;
+            if (!sbl__lane_window_dim_ok(&k, R, x)) { ++refused; continue; }
+            ++admitted;
+            sbl__kernel_pixel_ref(&k, R, x);
+            e = fabs(lane_a[x] - k.stage_a[x]);
+            en = fabs(lane_n[x] - k.stage_n[x]) / (fabs(k.stage_n[x]) + 1.0);
+            if (en > e) e = en;
+            for (c = 0; c < ch; ++c) {
+                const double ec = fabs(lane_c[x][c] - k.stage[c][x]);
+                if (!(ec <= e)) e = ec;
+            }
+            if (!(e <= 1e-4))
+                printf("  dim case %d (stereo %d ch %d) x %d: lane a %.6f n %g, ref a %.6f n %g\n", it,
+                       stereo, ch, x, lane_a[x], lane_n[x], k.stage_a[x], k.stage_n[x]);
+            CHECK(e <= 1e-4);
+            if (e > worst) worst = e;
+        }
+        free(scratch);
+    }
+    printf("  %s default lanes on windows with dim values vs double: %d admitted (worst %.3g), "
+           "%d refused\n", SBL_SIMD_NAME, admitted, worst, refused);
+    CHECK(admitted > 100);
+    CHECK(refused > 100);
+}
+
+/* The row gather against the pixel gather on disocclusions (session 8: the 3x3
+   fallback's depth test in lanes, sbl__fallback_lanes): a nearer rectangle moved
+   between the frames, so whole 3x3 windows fail the depth test (and those at its edges
+   pass in part), under random sub-pixel motion; sky, NaN and inf depths, NaN colour
+   and N <= 0 in the history; fallback on and off; windows at the image border. */
+static void test_row_gather_disocclusion(void)
+{
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+    sbt_rng rng = {4242};
+    int it, pixels = 0, mismatches = 0, empty = 0;
+    for (it = 0; it < 300; ++it) {
+        int w = 8 + (int)(sbt_uniform(&rng) * 90), h = 3 + (int)(sbt_uniform(&rng) * 10);
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i;
+        int ax = (int)(sbt_uniform(&rng) * w * 0.6), ay = (int)(sbt_uniform(&rng) * h * 0.5);
+        int aw = 3 + (int)(sbt_uniform(&rng) * w * 0.5), ah = 2 + (int)(sbt_uniform(&rng) * h);
+        int shift = 1 + (int)(sbt_uniform(&rng) * 12);
+        int with_len = it % 6 != 0;
+        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
+        sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
+        sbt_img pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 1);
+        sbl_reproject_desc rd;
+        sbl_frame f;
+        sbl_history hi;
+        sbl__temporal_rp rp;
+        float planes[2][7][100];
+        unsigned char unsafe[100];
+        sbl__ring_row ra, rb;
+        memset(&rd, 0, sizeof rd);
+        rd.no_fallback = it % 5 == 1;
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                const int now = x >= ax && x < ax + aw && y >= ay && y < ay + ah;
+                const int was = x >= ax + shift && x < ax + shift + aw && y >= ay && y < ay + ah;
+                for (c = 0; c < ch; ++c) {
+                    sbt_at(&cur, x, y)[c] = (float)sbt_uniform(&rng);
+                    sbt_at(&hist, x, y)[c] = (float)(sbt_uniform(&rng) * 2);
+                }
+                *sbt_at(&len, x, y) = (float)(1 + sbt_uniform(&rng) * 30);
+                *sbt_at(&depth, x, y) = now ? 1.5f : (float)(4.0 + 0.01 * x);
+                *sbt_at(&pdepth, x, y) = was ? 1.5f : (float)(4.0 + 0.01 * x);
+                sbt_at(&mv, x, y)[0] = (float)((sbt_uniform(&rng) - 0.5) * 1.8);
+                sbt_at(&mv, x, y)[1] = (float)((sbt_uniform(&rng) - 0.5) * 1.8);
+                if (it % 4 == 3 && y == 0) { /* a sky row, in both frames */
+                    *sbt_at(&depth, x, y) = (float)HUGE_VAL;
+                    *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
+                }
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = -1.0f;
+                if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.03) *sbt_at(&len, x, y) = 0.0f;
+            }
+        memset(&f, 0, sizeof f);
+        memset(&hi, 0, sizeof hi);
+        f.color = view(&cur);
+        f.gbuffer.depth = view(&depth);
+        f.gbuffer.motion = view(&mv);
+        hi.color = view(&hist);
+        if (with_len) hi.length = view(&len);
+        hi.gbuffer.depth = view(&pdepth);
+        if (it % 3 == 0) { /* bottom-up history depth: the last row first */
+            hi.gbuffer.depth.data = sbt_at(&pdepth, 0, h - 1);
+            hi.gbuffer.depth.stride = -pdepth.stride;
+        }
+        CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
+        if (!sbl__row_gather_ok(&rp.src)) { CHECK(0); continue; }
+        for (i = 0; i < 2; ++i) {
+            sbl__ring_row *r = i ? &rb : &ra;
+            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
+            r->n = planes[i][4];
+            r->v = planes[i][5];
+            r->y[0] = planes[i][6];
+            r->unsafe = unsafe;
+            memset(planes[i], 0xff, sizeof planes[i]);
+        }
+        for (y = 0; y < h; ++y) {
+            int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w), xb = it % 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
+            memset(unsafe, 0, sizeof unsafe);
+            sbl__temporal_rp_row(&rp, &ra, y, xa, xb);
+            for (x = xa; x < xb; ++x) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(&rb, x, sbl__temporal_rp_pixel(&rp, x, y, tmp), tmp, ch);
+            }
+            for (x = xa; x < xb; ++x) {
+                int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
+                for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
+                if (bad && mismatches < 5)
+                    printf("  disocclusion case %d (%dx%dx%d) pixel (%d,%d): n %.9g vs %.9g, x0 %.9g vs %.9g\n",
+                           it, w, h, ch, x, y, ra.n[x], rb.n[x], ra.x[0][x], rb.x[0][x]);
+                mismatches += bad;
+                empty += !(rb.n[x] > 0.0f);
+                ++pixels;
+            }
+        }
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
+    }
+    printf("  %s row gather vs pixel gather, disocclusions: %d pixels (%d without x*), %d differ\n",
+           SBL_SIMD_NAME, pixels, empty, mismatches);
+    CHECK(mismatches == 0);
+    CHECK(empty > pixels / 20 && empty < pixels / 2);
+#endif
+}
+
 /* The carried evidence (pooled estimator, docs/ESTIMATORS.md 3.7): the lanes' ratio
    (float) against the double reference on random block sums and carried values, and
    bands of rows of the public call against one whole-image call, the output plane
@@ -709,8 +1011,11 @@ int main(void)
     CHECK(refused > 0);
     test_spans();
     test_moments_precision();
+    test_pool_dim();
+    test_lanes_dim();
     test_row_gather();
     test_stereo_row_gather();
+    test_row_gather_disocclusion();
     test_evidence_paths();
     return sbt_finish("test_paths");
 }

@@ -197,6 +197,7 @@ static void test_scenes(void)
     int kind, it;
     for (kind = 0; kind < SCENE_COUNT; ++kind) {
         long pixels = 0, differ_off = 0, differ_pixel = 0, classes[4] = {0, 0, 0, 0}, reset = 0;
+        long flag_differ = 0, flagged = 0;
         for (it = 0; it < 160; ++it) {
             scene sc;
             sbl_reproject_desc rd;
@@ -224,7 +225,22 @@ static void test_scenes(void)
                         const int n = xb - x < SBL__BLOCK ? xb - x : SBL__BLOCK;
                         if (n >= SBL__VW) ++classes[sbl__temporal_tile_class(&rp, y, x, n)];
                     }
+                memset(g.unsafe, 0, sizeof g.unsafe);
+                g.r[0].gather_unsafe = 0;
                 sbl__temporal_rp_row(&rp, &g.r[0], y, xa, xb);
+                {   /* its unsafe flags, set as it writes (tiles included): exactly the
+                       pixels sbl__ring_gather's re-check would flag */
+                    int want = 0, c;
+                    for (x = xa; x < xb; ++x) {
+                        int safe = sbl__lane_value_ok(g.r[0].n[x]);
+                        for (c = 0; c < sc.ch; ++c) safe &= sbl__lane_value_ok(g.r[0].x[c][x]);
+                        safe |= !(g.r[0].v[x] > 0.0f);
+                        flag_differ += g.unsafe[x] != !safe;
+                        want += !safe;
+                    }
+                    flag_differ += g.r[0].gather_flags != 1 || g.r[0].gather_unsafe != want;
+                    flagged += want;
+                }
                 rp.tiles = 0;
                 sbl__temporal_rp_row(&rp, &g.r[1], y, xa, xb);
                 for (x = xa; x < xb; ++x) {
@@ -246,6 +262,9 @@ static void test_scenes(void)
         CHECK(differ_off == 0);
         CHECK(differ_pixel == 0);
         CHECK(reset < pixels);
+        printf("  %s %-5s: unsafe flags set as written: %ld pixels flagged, %ld differ from the re-check\n",
+               SBL_SIMD_NAME, scene_names[kind], flagged, flag_differ);
+        CHECK(flag_differ == 0);
         /* the scene triggers its shortcut */
         if (kind == SCENE_REST) CHECK(classes[SBL__TILE_REST] > 100 && reset > pixels / 50);
         if (kind == SCENE_VOID) CHECK(classes[SBL__TILE_VOID] > 50 && classes[SBL__TILE_GENERAL] > 50);
