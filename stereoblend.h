@@ -1051,6 +1051,17 @@ static int sbl__overlap_gbuffer(const sbl_image *a, const sbl_gbuffer *g)
            sbl__overlap(a, &g->ids) || sbl__overlap(a, &g->motion);
 }
 
+static int sbl__overlap_frame(const sbl_image *a, const sbl_frame *f)
+{
+    return sbl__overlap(a, &f->color) || sbl__overlap_gbuffer(a, &f->gbuffer);
+}
+
+static int sbl__overlap_history(const sbl_image *a, const sbl_history *h) /* h may be NULL */
+{
+    return h && (sbl__overlap(a, &h->color) || sbl__overlap(a, &h->length) ||
+                 sbl__overlap(a, &h->evidence) || sbl__overlap_gbuffer(a, &h->gbuffer));
+}
+
 static int sbl__param_ok(float v) /* finite and >= 0 */
 {
     return sbl__finite(v) && v >= 0.0f;
@@ -4949,6 +4960,14 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
 #endif
 #define SBL__EVIDENCE_THR \
     (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
+/* The most one frame's q may exceed the carried R by: an innovation clipped like a Huber
+   step, at the one-frame threshold's distance from the no-change mean. A change the
+   one-frame test sees (q >= SBL_POOLED_BLOCK_SE2) is handled in that frame by r = q - c;
+   what R is for is evidence that one frame cannot give. Unclipped, one noise-free jump
+   (q at the cap, 1e6) held R near 3e5, and it took ~30 frames of noise to decay
+   (found in review, session 8); clipped, R grows by at most lambda (c - 1) per frame
+   and decays as (1 - lambda)^k from wherever a lasting change left it. */
+#define SBL__EVIDENCE_STEP (SBL_POOLED_BLOCK_SE2 - 1.0)
 
 /* The history's evidence plane at pixels [xa, xb) of row y, gathered with the taps,
    weights, tests and fallback of the colour, bilinear (the row gather where the colour
@@ -4997,7 +5016,9 @@ static double sbl__evidence_ratio_ref(sbl__kernel *k, int x, double sm2, double 
     const double lam = SBL_EVIDENCE_LAMBDA, e0 = SBL__CAST(double, k->evid_in[x]);
     double q = sse2 > 0.0 ? sm2 / sse2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0), e;
     if (q > SBL__POOL_RATIO_CAP) q = SBL__POOL_RATIO_CAP;
-    e = sse2 + sm2 > 0.0 ? e0 + lam * (q - e0) : e0; /* no block: nothing new */
+    if (!(sse2 + sm2 > 0.0)) q = 1.0; /* no block: no evidence either way */
+    if (q > e0 + SBL__EVIDENCE_STEP) q = e0 + SBL__EVIDENCE_STEP; /* bounded influence */
+    e = e0 + lam * (q - e0);
     k->evid_out[x] = SBL__CAST(float, e);
     if (k->evid_use) {
         const double thr = SBL__EVIDENCE_THR;
@@ -5017,7 +5038,9 @@ SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, 
     sbl__v q = sbl__sel(sbl__gt(sse2, zero), sbl__div(sm2, sbl__max(sse2, tiny)),
                         sbl__sel(sbl__gt(sm2, zero), cap, zero)), e;
     q = sbl__min(q, cap);
-    e = sbl__sel(sbl__gt(sbl__add(sse2, sm2), zero), sbl__add(e0, sbl__mul(lam, sbl__sub(q, e0))), e0);
+    q = sbl__sel(sbl__gt(sbl__add(sse2, sm2), zero), q, sbl__set1(1.0f));
+    q = sbl__min(q, sbl__add(e0, sbl__set1(SBL__CAST(float, SBL__EVIDENCE_STEP))));
+    e = sbl__add(e0, sbl__mul(lam, sbl__sub(q, e0)));
     sbl__store(k->evid_out + x, e);
     if (k->evid_use) {
         const sbl__v thr = sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR));
@@ -8286,19 +8309,22 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
                                      &none, SBL__CAST(size_t, -1))) != SBL_OK)
             return r;
     }
-    if (sbl__overlap(&io->temporal[0].color, &io->temporal[1].color) ||
-        sbl__overlap(&io->temporal[0].length, &io->temporal[1].length) ||
-        sbl__overlap(&io->temporal[0].color, &io->temporal[1].length) ||
-        sbl__overlap(&io->temporal[1].color, &io->temporal[0].length))
-        return SBL_ERROR_OVERLAP;
     for (e = 0; e < 2; ++e) {
-        /* the temporal outputs of one eye may not overlap the other eye's inputs */
-        const sbl_frame *o = &io->frame[!e];
-        if (sbl__overlap(&io->temporal[e].color, &o->color) ||
-            sbl__overlap(&io->temporal[e].length, &o->color) ||
-            sbl__overlap_gbuffer(&io->temporal[e].color, &o->gbuffer) ||
-            sbl__overlap_gbuffer(&io->temporal[e].length, &o->gbuffer))
-            return SBL_ERROR_OVERLAP;
+        /* one eye's temporal outputs may not overlap the other eye's outputs nor its
+           inputs (eye 0 runs first: it would change what eye 1 reads) */
+        const sbl_image *oe[4];
+        int i, j;
+        oe[0] = &io->temporal[e].color; oe[1] = &io->temporal[e].length;
+        oe[2] = &io->temporal[e].alpha; oe[3] = &io->temporal[e].evidence;
+        for (i = 0; i < 4; ++i) {
+            if (sbl__overlap_frame(oe[i], &io->frame[!e]) || sbl__overlap_history(oe[i], io->history[!e]))
+                return SBL_ERROR_OVERLAP;
+            if (e == 0)
+                for (j = 0; j < 4; ++j)
+                    if (sbl__overlap(oe[i], j == 0 ? &io->temporal[1].color : j == 1 ? &io->temporal[1].length
+                                                   : j == 2 ? &io->temporal[1].alpha : &io->temporal[1].evidence))
+                        return SBL_ERROR_OVERLAP;
+        }
         eye[e] = sbl__eye_from_temporal(io, e);
     }
     for (e = 0; e < 2; ++e)
@@ -8307,10 +8333,9 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
             return r;
     if (sbl__overlap(&io->display[0], &io->display[1])) return SBL_ERROR_OVERLAP;
     for (e = 0; e < 2; ++e)
-        if (sbl__overlap(&io->display[e], &io->frame[0].color) ||
-            sbl__overlap(&io->display[e], &io->frame[1].color) ||
-            (io->history[0] && sbl__overlap(&io->display[e], &io->history[0]->color)) ||
-            (io->history[1] && sbl__overlap(&io->display[e], &io->history[1]->color)))
+        if (sbl__overlap_frame(&io->display[e], &io->frame[0]) || sbl__overlap_frame(&io->display[e], &io->frame[1]) ||
+            sbl__overlap_history(&io->display[e], io->history[0]) ||
+            sbl__overlap_history(&io->display[e], io->history[1]))
             return SBL_ERROR_OVERLAP;
     bytes = sbl_temporal_scratch_size(io->frame[0].color.width, io->frame[0].color.channels);
     b1 = sbl_temporal_scratch_size(io->frame[1].color.width, io->frame[1].color.channels);

@@ -961,6 +961,50 @@ static void test_evidence_static(void)
     seq_free(&s);
 }
 
+/* A noise-free jump (0.2 -> 0.8: the blocks see a change with zero noise, q at its cap)
+   on content that then stays exactly still, and noise only from frame 20: the carried
+   ratio must not hold the jump (found in review: it stayed near 3e5 and reset the
+   history for ~30 frames after the noise began, RMSE 3.5x that without the plane). */
+static double noise_free_jump_rmse(int evidence, double *r_peak)
+{
+    const int w = 48, h = 16, frames = 36;
+    seq1 s;
+    sbl_temporal_desc d;
+    sbt_rng rng = {17};
+    double se = 0;
+    int i, k, x, y, n = 0;
+    const int np = w * h * 3;
+    memset(&d, 0, sizeof d);
+    g_evidence = evidence;
+    seq_init(&s, w, h, 3);
+    *r_peak = 0;
+    for (i = 0; i < frames; ++i) {
+        fill_flat(&s, &rng, i < 5 ? 0.2 : 0.8, i < 20 ? 0.0 : 0.05);
+        CHECK_EQ(seq_step(&s, &d, i == 0), SBL_OK);
+        if (evidence && i >= 5)
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x)
+                    if (seq_ev(&s, x, y) > *r_peak) *r_peak = seq_ev(&s, x, y);
+        if (i >= 24) {
+            for (k = 0; k < np; ++k) se += (s.hist[s.ping][k] - 0.8) * (s.hist[s.ping][k] - 0.8);
+            ++n;
+        }
+    }
+    g_evidence = 0;
+    seq_free(&s);
+    return sqrt(se / ((double)n * np));
+}
+
+static void test_evidence_noise_free_jump(void)
+{
+    double peak, unused;
+    const double with = noise_free_jump_rmse(1, &peak), without = noise_free_jump_rmse(0, &unused);
+    printf("  evidence after a noise-free jump, then still, then noise from frame 20: RMSE over "
+           "frames 24..35 %.4f with the plane, %.4f without; largest R %.3f\n", with, without, peak);
+    CHECK(with <= 1.2 * without);
+    CHECK(peak < EV_THR + 1.0);
+}
+
 /* A flat region whose brightness rises by `step` every frame (a light that changes
    every frame by much less than the noise): the mean lag of the filter's output behind
    the true value, in frames, over frames 40..79. */
@@ -1101,6 +1145,7 @@ int main(void)
     test_evidence_static();
     test_evidence_ramp();
     test_evidence_firefly();
+    test_evidence_noise_free_jump();
     test_firefly();
     test_convergence_and_step();
     test_moving_light();

@@ -858,6 +858,21 @@ static void test_stereo_temporal_frame(void)
     CHECK_EQ(sbt_at(&oc[0][0], 3, 3)[0], -42);
     CHECK_EQ(*sbt_at(&on[0][0], 3, 3), *sbt_at(&on[0][1], 3, 3)); /* untouched since */
     io.display[1] = view(&disp[1][0]);
+    {   /* an eye's temporal outputs over the other eye's history (eye 0 runs first, so it
+           would change what eye 1 reads): rejected, nothing written */
+        const float n1 = *sbt_at(&hn[1], 3, 3);
+        io.temporal[0].evidence = view(&hn[1]);
+        CHECK_EQ(sbl_stereo_temporal_frame(&td, &sd, &io), SBL_ERROR_OVERLAP);
+        io.temporal[0].evidence = view(&on[1][1]);
+        io.temporal[1].evidence = view(&on[1][1]); /* both eyes' planes on one buffer */
+        CHECK_EQ(sbl_stereo_temporal_frame(&td, &sd, &io), SBL_ERROR_OVERLAP);
+        memset(&io.temporal[0].evidence, 0, sizeof io.temporal[0].evidence);
+        memset(&io.temporal[1].evidence, 0, sizeof io.temporal[1].evidence);
+        io.temporal[0].color = view(&hc[1]);
+        CHECK_EQ(sbl_stereo_temporal_frame(&td, &sd, &io), SBL_ERROR_OVERLAP);
+        io.temporal[0].color = view(&oc[0][0]);
+        CHECK_EQ(*sbt_at(&hn[1], 3, 3), n1);
+    }
     sd.focal_px = -1.0f;
     CHECK_EQ(sbl_stereo_temporal_frame(&td, &sd, &io), SBL_ERROR_INVALID_PARAM);
     CHECK_EQ(sbt_at(&oc[0][0], 3, 3)[0], -42);
