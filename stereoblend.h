@@ -41,6 +41,13 @@
 
      First frame: pass prev = NULL (or prev->color.data == NULL): every pixel resets.
 
+     Optional, and recommended: the evidence plane (1 float per pixel), ping-ponged like
+     length. The default (pooled) estimator then weighs the evidence of change it has
+     seen over the last frames as well as this frame's, and follows lights that move
+     every frame more closely (docs/ESTIMATORS.md 3.7). Without it: one frame's evidence.
+         prev.evidence = sbl_image_make(hist_ev, w, h, 1);   // last frame's out.evidence
+         out.evidence  = sbl_image_make(out_ev, w, h, 1);
+
    CONVENTIONS (see also README.md)
      Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
                 (i + 0.5, j + 0.5). sbl_image_make() gives tight rows; otherwise
@@ -355,6 +362,11 @@ typedef struct sbl_history {
                                  history-aware estimators blend 1:1 - give it.        */
     sbl_gbuffer gbuffer;      /* previous depth / normals / ids for the tap tests      */
     const sbl_camera *camera; /* previous camera (camera mode)                         */
+    sbl_image evidence;       /* optional, 1 channel: last frame's out.evidence. The
+                                 pooled estimator (the default) then weighs bias
+                                 evidence carried over frames as well as this frame's
+                                 (docs/ESTIMATORS.md 3.7): faster under moving lights.
+                                 NULL data: one frame's evidence, as before.           */
 } sbl_history;
 
 /* Reprojected history only (stage 3 on its own): out_color = x*, out_length = N of x*,
@@ -446,6 +458,10 @@ typedef struct sbl_temporal_output {
     sbl_image color;   /* required; same size and channels as the frame colour    */
     sbl_image length;  /* required; 1 channel: N per pixel for the next frame     */
     sbl_image alpha;   /* optional; 1 channel: the weight used (mean over channels) */
+    sbl_image evidence; /* optional; 1 channel: the pooled estimator's bias evidence
+                           carried over frames (a ratio, about 1 where nothing changes;
+                           1 with the other estimators). Give it to the next frame as
+                           sbl_history.evidence, ping-ponged like length.            */
 } sbl_temporal_output;
 
 /* The descriptor with every zero replaced by its default. */
@@ -2967,6 +2983,25 @@ typedef int sbl__m;
 #define sbl__true 1
 #endif
 
+/* first = m ? a : b and second = m ? b : a per lane (the two ends of a lerp chosen
+   by a mask): two selects, or on SSE2 (a select is three operations there) one select
+   and one exclusive or: second = a ^ b ^ first */
+#if !defined(SBL_NO_SIMD) && !defined(__AVX2__) && !defined(__AVX512F__) && \
+    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#define SBL__SEL2(m, a, b, first, second) \
+    do { \
+        const __m128 ab_ = _mm_xor_ps(a, b); \
+        (first) = _mm_xor_ps(b, _mm_and_ps(m, ab_)); \
+        (second) = _mm_xor_ps(ab_, first); \
+    } while (0)
+#else
+#define SBL__SEL2(m, a, b, first, second) \
+    do { \
+        (first) = sbl__sel(m, a, b); \
+        (second) = sbl__sel(m, b, a); \
+    } while (0)
+#endif
+
 /* ---- the fused row kernel --------------------------------------------------
    Shared by the temporal filter and the stereo blend. Rows of the own estimate Y are
    deinterleaved into planes, and the other estimate x* (reprojected history or other
@@ -3028,6 +3063,16 @@ typedef struct sbl__kernel {
     float *pool_r;
     float *pool_col;         /* the lanes' planes of one chunk (SBL__POOL_PLANES)   */
     int pool_row;            /* row pool_r holds (-1: none: the ratio reads as 0)  */
+    /* pooled estimator, evidence carried over frames (docs/ESTIMATORS.md 3.7; temporal
+       only): evid_in / evid_out per column of row pool_row, the history's carried ratio
+       gathered with the colour's taps (1 where it has none) and this frame's; NULL
+       evid_out: no plane at all. evid_use: the history has the plane, so it enters r. */
+    const void *evid_ctx;    /* the evidence plane's gather (sbl__temporal_rp); NULL: none */
+    float *evid_in, *evid_out;
+    int evid_use;
+    sbl_image out_e;         /* the output plane (data NULL: not written)           */
+    int evid_row;            /* 1: gather the plane with the row gather (evid_ring)  */
+    sbl__ring_row evid_ring; /* its x[0] / n / v / unsafe planes                      */
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -4918,6 +4963,106 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
     out[5] = q0; out[6] = q1; out[7] = q2; out[8] = q3;
 }
 
+/* Evidence carried over frames (docs/ESTIMATORS.md 3.7). The blocks' ratio
+   q = sum m2 / sum se2 estimates 1 + tau^2 / se^2 (1 where nothing changes); carried with
+   the history as R = (1 - lambda) R* + lambda q (R* the last frame's, reprojected with
+   the colour's taps; 1 where there is none), its spread where nothing changes is
+   sqrt(lambda / (2 - lambda)) of one frame's. The threshold asks R for the same
+   significance as the one-frame test asks q (SBL_POOLED_BLOCK_SE2, 2.5 of a frame's
+   spread above the mean 1) in units of R's spread: c_R = 1 + 2.5 sqrt(1/5) = 2.118 at
+   lambda = 1/3, and r is at least R - c_R (SBL_EVIDENCE_GATE). lambda = 1/3: a shadow edge
+   moving a pixel per frame crosses a 3x3 block in three frames, and older evidence is
+   about other pixels. */
+#ifndef SBL_EVIDENCE_LAMBDA
+#define SBL_EVIDENCE_LAMBDA (1.0 / 3.0)
+#endif
+#ifndef SBL_EVIDENCE_GATE
+#define SBL_EVIDENCE_GATE 0 /* 0: r >= R - c_R, shrunk by the threshold as the one-frame
+                               r = q - SBL_POOLED_BLOCK_SE2 is; 1: beyond c_R, r >= R - 1
+                               (measured: more under moving lights, a loss on static
+                               content and gallery; docs/ESTIMATORS.md 3.7) */
+#endif
+#define SBL__EVIDENCE_THR \
+    (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
+
+/* The history's evidence plane at pixels [xa, xb) of row y, gathered with the taps,
+   weights, tests and fallback of the colour, bilinear (the row gather where the colour
+   takes it, else the pixel gather: the same bits): 1 where no tap is valid (a reset: no
+   evidence either way), where the history has no plane, or where the value is not a
+   ratio. */
+static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
+{
+    int x;
+#ifdef SBL__ROW_GATHER
+    if (k->evid_use && k->evid_row) {
+        /* the temporal row gather on the plane (its taps equal the pixel gather's, bit
+           for bit: tests/test_paths.c, tests/test_simd.c) */
+        sbl__ring_row *r = &k->evid_ring;
+        memset(r->unsafe + xa, 0, SBL__CAST(size_t, xb - xa));
+        r->row = y;
+        sbl__temporal_rp_row(k->evid_ctx, r, y, xa, xb);
+        for (x = xa; x < xb; ++x) {
+            const float v = r->x[0][x];
+            k->evid_in[x] = r->v[x] > 0.0f && v > 0.0f && v <= SBL__CAST(float, SBL__POOL_RATIO_CAP) ? v : 1.0f;
+        }
+        return;
+    }
+#endif
+    for (x = xa; x < xb; ++x) {
+        float v[4] = {0.0f, 0.0f, 0.0f, 0.0f}, e = 1.0f;
+        if (k->evid_use && sbl__temporal_rp_pixel(k->evid_ctx, x, y, v) > 0.0f &&
+            v[0] > 0.0f && v[0] <= SBL__CAST(float, SBL__POOL_RATIO_CAP))
+            e = v[0];
+        k->evid_in[x] = e;
+    }
+}
+
+/* Row y's pixels [xa, xb) of the output evidence plane: this frame's R (pooled), else 1
+   (no evidence: the other estimators compute none). */
+static void sbl__evidence_store(const sbl__kernel *k, int y, int xa, int xb, int pooled)
+{
+    int x;
+    for (x = xa; x < xb; ++x) *sbl__px(&k->out_e, x, y) = pooled ? k->evid_out[x] : 1.0f;
+}
+
+/* sbl__row_pool_ref's ratio r of pixel x with the carried evidence (in double): writes
+   the pixel's R, returns r raised to the evidence's where the history has the plane. */
+static double sbl__evidence_ratio_ref(sbl__kernel *k, int x, double sm2, double sse2, double r)
+{
+    const double lam = SBL_EVIDENCE_LAMBDA, e0 = SBL__CAST(double, k->evid_in[x]);
+    double q = sse2 > 0.0 ? sm2 / sse2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0), e;
+    if (q > SBL__POOL_RATIO_CAP) q = SBL__POOL_RATIO_CAP;
+    e = sse2 + sm2 > 0.0 ? e0 + lam * (q - e0) : e0; /* no block: nothing new */
+    k->evid_out[x] = SBL__CAST(float, e);
+    if (k->evid_use) {
+        const double thr = SBL__EVIDENCE_THR;
+        double rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
+        if (rt > r) r = rt;
+    }
+    return r;
+}
+
+/* The same in lanes (float), for pixels [x, x + VW). */
+SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, sbl__v sse2, sbl__v r)
+{
+    const sbl__v zero = sbl__set1(0.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP));
+    const sbl__v lam = sbl__set1(SBL__CAST(float, SBL_EVIDENCE_LAMBDA));
+    const sbl__v e0 = sbl__load(k->evid_in + x);
+    sbl__v q = sbl__sel(sbl__gt(sse2, zero), sbl__div(sm2, sbl__max(sse2, tiny)),
+                        sbl__sel(sbl__gt(sm2, zero), cap, zero)), e;
+    q = sbl__min(q, cap);
+    e = sbl__sel(sbl__gt(sbl__add(sse2, sm2), zero), sbl__add(e0, sbl__mul(lam, sbl__sub(q, e0))), e0);
+    sbl__store(k->evid_out + x, e);
+    if (k->evid_use) {
+        const sbl__v thr = sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR));
+        const sbl__v rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), sbl__sub(e, sbl__set1(1.0f)), zero)
+                                            : sbl__sub(e, thr);
+        r = sbl__max(r, rt);
+    }
+    return r;
+}
+
 /* Pooled estimator, the double reference of sbl__row_pool: the prior bias-to-noise ratio
    r = tau^2 / se^2 at each pixel of [xa, xb) of row R[1]->row (docs/ESTIMATORS.md
    section 3). Each 3x3 block of paired differences d = x* - y (pixels with a valid x*
@@ -4979,6 +5124,7 @@ SBL__INLINE void sbl__row_pool_ref_ch(sbl__kernel *k, const sbl__ring_row *const
         /* pooled squared mean over pooled squared standard error, less the threshold;
            no noise at all and a mean: certain change (capped) */
         r = sse2 > 0.0 ? sm2 / sse2 - SBL_POOLED_BLOCK_SE2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
+        if (k->evid_out) r = sbl__evidence_ratio_ref(k, x, sm2, sse2, r);
         if (r > SBL__POOL_RATIO_CAP) r = SBL__POOL_RATIO_CAP;
         k->pool_r[x] = r > 0.0 ? SBL__CAST(float, r) : 0.0f;
     }
@@ -5002,10 +5148,12 @@ static float sbl__pool_ratio(const sbl__kernel *k, int x, int y)
     return (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y) ? k->pool_r[x] : 0.0f;
 }
 
-/* Reference path for one pixel: borders, non-finite and extreme values. */
-static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R, int x)
+/* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
+   of the caller (sbl__kernel_pixel_ref). */
+SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                                          const int ch)
 {
-    const int ch = k->ch, y = R[1]->row;
+    const int y = R[1]->row;
     float yc[4], xs[4], out[4], a = 1.0f, n_out;
     float n_x = R[1]->n[x], n_y = sbl__own_n(k, x, y);
     int c, finite = 1;
@@ -5030,18 +5178,21 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
         float vals[9][4], xvals[9][4];
         int xvalid[9], n = 0, i, j, centre = -1;
         sbl__moments m;
+        /* the window's columns inside the image, row by row (the same order as the
+           lanes: rows, then columns) */
+        const int i0 = x > 0 ? x - 1 : x, i1 = x + 1 < k->w ? x + 1 : x;
         for (j = 0; j < 3; ++j) {
-            if (!R[j]) continue;
-            for (i = x - 1; i <= x + 1; ++i) {
+            const sbl__ring_row *r = R[j];
+            if (!r) continue;
+            for (i = i0; i <= i1; ++i) {
                 int ok = 1;
-                if (i < 0 || i >= k->w) continue;
                 for (c = 0; c < ch; ++c) {
-                    vals[n][c] = R[j]->y[c][i];
-                    xvals[n][c] = R[j]->x[c][i];
+                    vals[n][c] = r->y[c][i];
+                    xvals[n][c] = r->x[c][i];
                     ok &= sbl__finite(vals[n][c]);
                 }
                 if (!ok) continue;
-                xvalid[n] = R[j]->v[i] > 0.0f;
+                xvalid[n] = r->v[i] > 0.0f;
                 if (j == 1 && i == x) centre = n;
                 ++n;
             }
@@ -5056,6 +5207,16 @@ static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R,
     for (c = 0; c < ch; ++c) k->stage[c][x] = out[c];
     k->stage_n[x] = n_out;
     k->stage_a[x] = a;
+}
+
+static void sbl__kernel_pixel_ref(sbl__kernel *k, const sbl__ring_row *const *R, int x)
+{
+    switch (k->ch) {
+    case 1: sbl__kernel_pixel_ref_ch(k, R, x, 1); break;
+    case 2: sbl__kernel_pixel_ref_ch(k, R, x, 2); break;
+    case 3: sbl__kernel_pixel_ref_ch(k, R, x, 3); break;
+    default: sbl__kernel_pixel_ref_ch(k, R, x, 4); break;
+    }
 }
 
 /* The lane kernel, as stages named like their reference-path counterparts:
@@ -5167,10 +5328,12 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
     for (;;) {
         const int i = x - base;
         const ptrdiff_t iv = x + W->off_v;
-        const sbl__v v0 = sbl__load(W->row[0] + iv), v1 = sbl__load(W->row[1] + iv),
-                     v2 = sbl__load(W->row[2] + iv);
+        /* full: every v is 1, so the pairs per column are 3 (the same value) */
+        const sbl__v v0 = full ? sbl__set1(1.0f) : sbl__load(W->row[0] + iv);
+        const sbl__v v1 = full ? sbl__set1(1.0f) : sbl__load(W->row[1] + iv);
+        const sbl__v v2 = full ? sbl__set1(1.0f) : sbl__load(W->row[2] + iv);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
-        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), sbl__add(sbl__add(v0, v1), v2));
+        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), full ? sbl__set1(3.0f) : sbl__add(sbl__add(v0, v1), v2));
         sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp, full);
         if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp, full);
         if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp, full);
@@ -5347,8 +5510,8 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
 typedef struct sbl__pool_rows {
     const float *y[3][4], *x[3][4], *v[3];
-    const unsigned char *unsafe[3];
-    int n;
+    const unsigned char *unsafe[3]; /* the ring rows' flags (sbl__pool_pixel_unsafe) */
+    int n, ch;
 } sbl__pool_rows;
 
 /* Column sums of columns [ca, cb) (inside the image, cb - ca >= VW) of the np rows P,
@@ -5577,6 +5740,7 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
 #endif
         r = sbl__sub(sbl__div(sm2, sbl__max(sse2, tiny)), thr);
         r = sbl__sel(sbl__gt(sse2, zero), r, sbl__sel(sbl__gt(sm2, zero), cap, zero));
+        if (k->evid_out) r = sbl__evidence_ratio_lanes(k, x, sm2, sse2, r);
         sbl__store(k->pool_r + x, sbl__max(sbl__min(r, cap), zero));
         if (x + SBL__VW >= xb) break;
         x += SBL__VW;
@@ -5584,12 +5748,63 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
     }
 }
 
-/* 1 if column x of any of the rows holds an unsafe value. */
+/* Pixel x of pool row j, flagged unsafe at load (a value outside the lane range): 1 if
+   the prepass's lanes cannot take it either. They read a pixel only through its pairs'
+   differences d = x* - y (in float, as the lanes form them), so what their precision
+   needs (see sbl__lane_value_ok) is that every valid pair's d be 0 or within
+   [2^-40, 2^50): then, as for two lane-range values, every d lies on the 2^-63 grid
+   below 2^51, and the sums, squares and shifts of d stay normal floats without
+   overflow. An invalid pair's d is multiplied by 0 (or a select drops it), so y need
+   only be finite and below 2^50 (the shifts stay finite). A dim value next to a bright
+   history (1e-14 against 0.5: d = -0.5) is then no reason for the double path; a
+   non-finite, huge or denormal d (both values dim) still is. A rule on the input alone,
+   the same on every build. */
+static int sbl__pool_pixel_unsafe(const sbl__pool_rows *P, int j, int x)
+{
+    const int valid = P->v[j][x] > 0.0f;
+    int c;
+    for (c = 0; c < P->ch; ++c) {
+        const float y = P->y[j][c][x];
+        unsigned int bits;
+        memcpy(&bits, &y, sizeof bits);
+        if ((bits & 0x7fffffffu) >= 0x58800000u) return 1; /* |y| >= 2^50, inf, NaN */
+        if (valid) {
+            /* volatile: the difference as the lanes round it (no contraction, no
+               excess precision) */
+            volatile float d = P->x[j][c][x] - y;
+            if (!sbl__lane_value_ok(d)) return 1;
+        }
+    }
+    return 0;
+}
+
+/* 1 if column x of any of the rows holds a value the prepass's lanes cannot take. */
 static int sbl__pool_column_unsafe(const sbl__pool_rows *P, int x)
 {
-    int j, u = 0;
-    for (j = 0; j < P->n; ++j) u |= P->unsafe[j][x];
-    return u;
+    int j;
+    for (j = 0; j < P->n; ++j)
+        if (P->unsafe[j][x] && sbl__pool_pixel_unsafe(P, j, x)) return 1;
+    return 0;
+}
+
+/* The first column of [c, ce) that sbl__pool_column_unsafe flags, else ce: eight
+   columns at a time past those no row flagged at load. */
+static int sbl__pool_next_unsafe(const sbl__pool_rows *P, int c, int ce)
+{
+    while (c < ce) {
+        uint64_t u = 0, t;
+        int j;
+        if (c + 8 <= ce) {
+            for (j = 0; j < P->n; ++j) {
+                memcpy(&t, P->unsafe[j] + c, 8);
+                u |= t;
+            }
+            if (!u) { c += 8; continue; }
+        }
+        if (sbl__pool_column_unsafe(P, c)) return c;
+        ++c;
+    }
+    return ce;
 }
 
 /* The first run [*ra, *rb) of pixels of [xa, xb) each with an unsafe value within
@@ -5599,16 +5814,7 @@ static int sbl__pool_unsafe_run(const sbl__pool_rows *P, int w, int xa, int xb, 
     int c = xa - SBL__POOL_REACH > 0 ? xa - SBL__POOL_REACH : 0;
     const int ce = xb + SBL__POOL_REACH < w ? xb + SBL__POOL_REACH : w;
     int b;
-    for (; c + 8 <= ce; c += 8) { /* eight columns at a time while they are clean */
-        uint64_t u = 0, t;
-        int j;
-        for (j = 0; j < P->n; ++j) {
-            memcpy(&t, P->unsafe[j] + c, 8);
-            u |= t;
-        }
-        if (u) break;
-    }
-    while (c < ce && !sbl__pool_column_unsafe(P, c)) ++c;
+    c = sbl__pool_next_unsafe(P, c, ce);
     if (c >= ce) return 0;
     *ra = c - SBL__POOL_REACH > xa ? c - SBL__POOL_REACH : xa;
     b = c + SBL__POOL_REACH + 1 < xb ? c + SBL__POOL_REACH + 1 : xb;
@@ -5664,20 +5870,26 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
    in lanes where it can (above). Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image); on a row of at least 18 columns,
    xb - xa >= 16 (sbl__kernel_run_span widens its span so). */
-/* The ring rows that exist, as sbl__pool_rows; returns 1 if one holds an unsafe value. */
-static int sbl__pool_rows_of(sbl__pool_rows *P, const sbl__ring_row *const *R, int ch)
+/* The ring rows that exist, as sbl__pool_rows; returns 1 if one holds a value the
+   prepass's lanes cannot take (sbl__pool_pixel_unsafe) in the columns [xa - reach,
+   xb + reach) the prepass of [xa, xb) reads. */
+static int sbl__pool_rows_of(sbl__pool_rows *P, const sbl__ring_row *const *R, int ch, int w,
+                             int xa, int xb)
 {
-    int j, c, unsafe = 0;
+    int j, c, flagged = 0;
+    const int za = xa - SBL__POOL_REACH > 0 ? xa - SBL__POOL_REACH : 0;
+    const int zb = xb + SBL__POOL_REACH < w ? xb + SBL__POOL_REACH : w;
     P->n = 0;
+    P->ch = ch;
     for (j = 0; j < 3; ++j) {
         if (!R[j]) continue;
         for (c = 0; c < ch; ++c) { P->y[P->n][c] = R[j]->y[c]; P->x[P->n][c] = R[j]->x[c]; }
         P->v[P->n] = R[j]->v;
         P->unsafe[P->n] = R[j]->unsafe;
-        unsafe |= R[j]->unsafe_count > 0;
+        flagged |= R[j]->unsafe_count > 0;
         ++P->n;
     }
-    return unsafe;
+    return flagged && za < zb && sbl__pool_next_unsafe(P, za, zb) < zb;
 }
 
 static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa, int xb)
@@ -5690,7 +5902,7 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
         sbl__row_pool_ref(k, R, xa, xb);
         return;
     }
-    unsafe = sbl__pool_rows_of(&P, R, k->ch);
+    unsafe = sbl__pool_rows_of(&P, R, k->ch, k->w, xa, xb);
 #define SBL__POOL_CASE(np) \
     switch (k->ch) { \
     case 1: sbl__row_pool_lanes(k, R, &P, np, 1, xa, xb, unsafe); break; \
@@ -5975,7 +6187,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     const int i = x - base;
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
     sbl__v yc[4], xs[4], yb[4], m8[4], v8[4], var[4], mean;
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
@@ -6032,11 +6244,13 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* the blend (sbl__lanes_blend with one weight, no fill) */
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
+    f_w = sbl__sel(hi_w, one_w, w); /* the two-sided lerp's factor (as the staged lanes) */
     a_mean = zero;
 #define SBL__FAST_BLEND(c) \
     do { \
-        const sbl__v o = sbl__sel(hi_w, sbl__add(yb[c], sbl__mul(one_w, sbl__sub(xs[c], yb[c]))), \
-                                  sbl__add(xs[c], sbl__mul(w, sbl__sub(yb[c], xs[c])))); \
+        sbl__v from, to, o; \
+        SBL__SEL2(hi_w, yb[c], xs[c], from, to); \
+        o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c])); \
         a_mean = sbl__add(a_mean, w); \
     } while (0)
@@ -6100,7 +6314,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, t, a_mean, a2_mean, one_m, den, n_out;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
     valid = sbl__gt(n_x, zero);
@@ -6135,13 +6349,17 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     low_t = sbl__gt(one, t);
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
+    /* the two-sided lerp: from the end the weight is nearer, by its factor (the same
+       expression per lane as both lerps and a select) */
+    f_w = sbl__sel(hi_w, one_w, w);
     a_mean = zero;
 #define SBL__STAGE_BLEND(c) \
     do { \
         const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
         const sbl__v yb = sbl__sel(low_t, sbl__mul(yc, t), yc); \
-        const sbl__v o = sbl__sel(hi_w, sbl__add(yb, sbl__mul(one_w, sbl__sub(xs, yb))), \
-                                  sbl__add(xs, sbl__mul(w, sbl__sub(yb, xs)))); \
+        sbl__v from, to, o; \
+        SBL__SEL2(hi_w, yb, xs, from, to); \
+        o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc)); \
         a_mean = sbl__add(a_mean, w); \
     } while (0)
@@ -6298,7 +6516,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     k_ch.ch = ch;
     sbl__lane_rows_of(&W, R, ch);
     sbl__pool_planes_of(k, ch, 0, &Q);
-    unsafe = sbl__pool_rows_of(&P, R, ch);
+    unsafe = sbl__pool_rows_of(&P, R, ch, w, pa, pb);
     while (x < pb) {
         int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p, full;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
@@ -6358,6 +6576,103 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
 #undef SBL__RUN_VECTORS
 }
 
+/* ---- dim values in the default configurations' lanes ----------------------------
+   A pixel is flagged unsafe at load for any value outside [2^-40, 2^50) (sbl__lane_value_ok),
+   and its 3x3 window then takes the reference path. The 2^-40 serves one purpose: every
+   nonzero difference of two such values is a multiple of 2^-63, so its square is a
+   normal float. But the default configurations' lanes (the pooled estimator, no
+   rectification, one weight: sbl__lanes_vector_fast and the staged temporal lanes) read
+   the window's values only through these differences: each column's y - y_top (its
+   three rows), the top row's y - y_top_centre (the window's shift), and each pair's
+   x* - y; the rest are plain sums of values (means, the firefly sums) and products of
+   those differences. So a window whose flagged pixels hold only dim values (normal
+   floats below 2^-40) keeps the lanes when every one of those differences that involves
+   a flagged pixel is itself 0 or within [2^-40, 2^50): the lanes then see exactly the
+   kind of numbers the lane range guarantees (tests/test_paths.c: a dim value by bright
+   neighbours, within 1e-4 of the reference). Non-finite, huge or denormal values, an
+   unsafe N, and any other configuration keep the reference path. A rule on the input
+   alone, the same on every build. */
+
+/* 1 if v is 0 or a normal float below 2^50 in magnitude (a value the differences may
+   make lane-safe); inf, NaN, huge and denormal values are not */
+static int sbl__lane_value_dim_ok(float v)
+{
+    unsigned int bits, e;
+    memcpy(&bits, &v, sizeof bits);
+    e = (bits >> 23) & 0xffu;
+    return (bits & 0x7fffffffu) == 0u || e - 1u < 176u;
+}
+
+/* 1 if a - b, rounded as the lanes round it, is in the lane range */
+static int sbl__lane_diff_ok(float a, float b)
+{
+    volatile float d = a - b; /* no contraction, no excess precision */
+    return sbl__lane_value_ok(d);
+}
+
+/* Pixel x of ring row r, flagged at load: 1 if its values are 0 or normal below 2^50,
+   its own N as sbl__ring_load_own asks, and (x* valid) its N lane-safe and every pair's
+   difference x* - y in the lane range. */
+static int sbl__lane_pixel_dim_ok(const sbl__kernel *k, const sbl__ring_row *r, int x)
+{
+    int c;
+    if (k->own_n && k->own_n->data) {
+        const float n = *sbl__px(k->own_n, x, r->row);
+        if (sbl__step_of(k->own_n) != 1 || !sbl__lane_value_ok(n) || !(n <= 1048576.0f)) return 0;
+    }
+    for (c = 0; c < k->ch; ++c)
+        if (!sbl__lane_value_dim_ok(r->y[c][x])) return 0;
+    if (r->v[x] > 0.0f) {
+        if (!sbl__lane_value_ok(r->n[x])) return 0;
+        for (c = 0; c < k->ch; ++c)
+            if (!sbl__lane_value_dim_ok(r->x[c][x]) || !sbl__lane_diff_ok(r->x[c][x], r->y[c][x]))
+                return 0;
+    }
+    return 1;
+}
+
+/* 1 if the window of pixel x (interior; R[0..2] exist) may take the default
+   configurations' lanes (above); its flagged pixels are the ones to check. */
+static int sbl__lane_window_dim_ok(const sbl__kernel *k, const sbl__ring_row *const *R, int x)
+{
+    const unsigned char *top = R[0]->unsafe;
+    int i, j, c;
+    for (i = x - 1; i <= x + 1; ++i) {
+        const int f0 = top[i], f1 = R[1]->unsafe[i], f2 = R[2]->unsafe[i];
+        if (!(f0 | f1 | f2)) continue;
+        for (j = 0; j < 3; ++j)
+            if (R[j]->unsafe[i] && !sbl__lane_pixel_dim_ok(k, R[j], i)) return 0;
+        /* the column about its top sample */
+        for (c = 0; c < k->ch; ++c) {
+            const float y0 = R[0]->y[c][i];
+            if ((f0 | f1) && !sbl__lane_diff_ok(R[1]->y[c][i], y0)) return 0;
+            if ((f0 | f2) && !sbl__lane_diff_ok(R[2]->y[c][i], y0)) return 0;
+        }
+    }
+    /* the top row about the window's shift, its top-centre sample */
+    for (i = x - 1; i <= x + 1; i += 2)
+        if (top[i] | top[x])
+            for (c = 0; c < k->ch; ++c)
+                if (!sbl__lane_diff_ok(R[0]->y[c][i], R[0]->y[c][x])) return 0;
+    return 1;
+}
+
+/* The default configurations' lanes (sbl__kernel_lanes_pooled's fast instances). */
+static int sbl__kernel_fast(const sbl__kernel *k)
+{
+    return k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->fill &&
+           k->wp.rectify == SBL_RECTIFY_NONE && k->wp.mode == SBL_WEIGHT_SCALAR;
+}
+
+/* Clears the window flags of pixels [xa, xb) whose window sbl__lane_window_dim_ok admits. */
+static void sbl__lane_windows_dim(const sbl__kernel *k, const sbl__ring_row *const *R,
+                                  unsigned char *win, int xa, int xb)
+{
+    int x;
+    for (x = sbl__find_set(win, xa, xb); x < xb; x = sbl__find_set(win, x + 1, xb))
+        if (sbl__lane_window_dim_ok(k, R, x)) win[x] = 0;
+}
+
 /* one function per channel count and configuration (fast: 1 temporal default, 2 stereo
    default, 0 any other), each compiled by itself */
 #define SBL__POOLED_INSTANCE(chn, f) \
@@ -6376,7 +6691,7 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
                                      int pb, int xa, int xb, const unsigned char *win)
 {
     /* the default configuration in its own instances (sbl__lanes_vector_fast) */
-    const int fast = k->wp.rectify == SBL_RECTIFY_NONE && k->wp.mode == SBL_WEIGHT_SCALAR && !k->fill;
+    const int fast = sbl__kernel_fast(k);
     k->pool_row = R[1]->row;
     if (fast && k->wp.temporal) {
         switch (k->ch) {
@@ -6450,7 +6765,10 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                                R[2]->unsafe + xa - 1, xb - xa + 2);
                 sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
                 win = k->window_unsafe;
+                /* dim values the default configurations' lanes can take */
+                if (pool && sbl__kernel_fast(k)) sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
             }
+            if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
             if (pool && lanes_ok) {
                 /* an interior row: prepass and lanes share their column sums */
                 sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
@@ -6478,6 +6796,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 if (k->out_a.data)
                     sbl__interleave(sbl__px(&k->out_a, 0, y), sbl__step_of(&k->out_a), 1,
                                     SBL__PCAST(const float *const *, &k->stage_a), x0, x1);
+                if (k->out_e.data) sbl__evidence_store(k, y, x0, x1, pool);
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
                 sbl__ring_row t = k->ring[0];
@@ -6516,7 +6835,10 @@ SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
 
 SBLDEF size_t sbl_temporal_scratch_size(int width, int channels)
 {
-    return sbl__kernel_scratch_size(width, channels);
+    const size_t kb = sbl__kernel_scratch_size(width, channels);
+    /* + the evidence plane's rows: evid_in, evid_out, and the gather's x / n / v
+       (floats) and unsafe (bytes) */
+    return kb ? kb + (5 * sizeof(float) + 1) * sbl__plane_floats(width) + 64 : 0;
 }
 
 SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
@@ -6525,7 +6847,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                       void *scratch, size_t scratch_bytes)
 {
     sbl_temporal_desc d;
-    sbl__temporal_rp s;
+    sbl__temporal_rp s, es;
     sbl__kernel k;
     sbl_result r;
     int w, h, ch;
@@ -6538,6 +6860,10 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     if ((r = sbl__check_image(&out->color, 0)) != SBL_OK) return r;
     if ((r = sbl__check_image(&out->length, 1)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&out->alpha, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&out->evidence, 1, w, h)) != SBL_OK) return r;
+    if (history && history->color.data &&
+        (r = sbl__check_optional(&history->evidence, 1, w, h)) != SBL_OK)
+        return r;
     if (out->color.width != w || out->color.height != h || out->length.width != w ||
         out->length.height != h)
         return SBL_ERROR_SIZE_MISMATCH;
@@ -6551,14 +6877,16 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
         return r;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     {   /* outputs: disjoint from each other and from every input */
-        const sbl_image *outs[3];
-        int o;
+        const sbl_image *outs[4];
+        int o, p;
         outs[0] = &out->color; outs[1] = &out->length; outs[2] = &out->alpha;
-        if (sbl__overlap(outs[0], outs[1]) || sbl__overlap(outs[0], outs[2]) ||
-            sbl__overlap(outs[1], outs[2]))
-            return SBL_ERROR_OVERLAP;
-        for (o = 0; o < 3; ++o)
-            if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1))
+        outs[3] = &out->evidence;
+        for (o = 0; o < 4; ++o)
+            for (p = o + 1; p < 4; ++p)
+                if (sbl__overlap(outs[o], outs[p])) return SBL_ERROR_OVERLAP;
+        for (o = 0; o < 4; ++o)
+            if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1) ||
+                (s.history && sbl__overlap(outs[o], &s.history->evidence)))
                 return SBL_ERROR_OVERLAP;
     }
     if (!scratch) return SBL_ERROR_NULL_POINTER;
@@ -6586,6 +6914,32 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.out_n = out->length;
     k.out_a = out->alpha;
     sbl__kernel_bind(&k, scratch);
+    {   /* evidence carried over frames (pooled): the history's plane gathered like the
+           colour, with its taps and tests, bilinear (as N); the output plane */
+        k.out_e = out->evidence;
+        if (s.history && s.history->evidence.data) {
+            es = s;
+            es.src.color = sbl__flatten(&s.history->evidence);
+            es.src.cubic = 0;
+            k.evid_ctx = &es;
+            k.evid_use = 1;
+        }
+        if (k.evid_use || k.out_e.data) {
+            const size_t pf = sbl__plane_floats(w);
+            float *e = SBL__PCAST(float *, sbl__align64(SBL__PCAST(char *, scratch) +
+                                                         sbl__kernel_scratch_size(w, ch)));
+            k.evid_in = e;
+            k.evid_out = e + pf;
+            k.evid_ring.x[0] = e + 2 * pf;
+            k.evid_ring.n = e + 3 * pf;
+            k.evid_ring.v = e + 4 * pf;
+            k.evid_ring.unsafe = SBL__PCAST(unsigned char *, e + 5 * pf);
+            k.evid_ring.row = -1;
+#ifdef SBL__ROW_GATHER
+            k.evid_row = k.evid_use && k.gather_row && sbl__row_gather_ok(&es.src);
+#endif
+        }
+    }
     sbl__kernel_run(&k, y0, y1);
     return SBL_OK;
 }

@@ -25,6 +25,13 @@ typedef struct cand {
     int soft_w;      /* wide test: 0 hard (pd^2 - kw^2 se^2), 1 soft */
     double c_eb;     /* >0: also the empirical-Bayes bias from 5 blocks, c = c_eb */
     int normalized;  /* blocks' bias-to-noise ratio pooled instead of their energy */
+    /* evidence over frames (ESTIMATORS 3.7): Z = EWMA of the signed, standardised mean
+       paired difference of the pixel's 3x3 window, carried with the history */
+    double lambda;   /* > 0: carry Z with this weight of the new z */
+    double kt;       /* threshold of Z in its own H0 standard deviations */
+    int carry_mode;  /* 1: r = max(r_blocks, Z^2 - kt^2 kappa) into the EB posterior;
+                        2: bias^2 >= (Z^2 - kt^2 kappa) se^2 directly; 3: both */
+    double zmax;     /* |z| of one frame clamped to this */
 } cand;
 
 static double post_t(double pd2, double se2, double k, double nu, double odds)
@@ -34,8 +41,10 @@ static double post_t(double pd2, double se2, double k, double nu, double odds)
     return 1.0 / (1.0 + odds * pow(rho, 0.5 * (nu + 1)));
 }
 
-static void blend(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
-                  float cap, float *out, float *nout)
+static double zsum_stats[4]; /* diagnostics: sum Z, sum Z^2, count, count over threshold */
+
+static void blend_core(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                       const float *zs, float cap, float *out, float *nout, float *zout)
 {
     const cand *c = (const cand *)ctx;
     int px, py, i, j, ch;
@@ -49,6 +58,7 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
             if (!(n_x > 0)) {
                 for (ch = 0; ch < 3; ++ch) out[p * 3 + ch] = y[p * 3 + ch];
                 nout[p] = 1.0f;
+                if (zout) zout[p] = 0.0f;
                 continue;
             }
             if (n_x > cap) n_x = cap;
@@ -146,11 +156,34 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
                     if (c->soft_w) bw = post_t(pdw2, sew2, c->kw, nw - 1, c->wide_prior ? odds : 1.0) * pdw2;
                     else bw = pdw2 - c->kw * c->kw * sew2 > 0 ? pdw2 - c->kw * c->kw * sew2 : 0;
                 }
+                double r_t = 0, zc = 0, kap = 0;
+                if (zout && (c->carry_mode & 4)) {
+                    zc = zs[p]; /* the blocks' ratio, carried: updated below */
+                } else if (zout) {
+                    /* this frame's z: the channel-summed mean paired difference over
+                       sqrt(3 se^2) (3 se^2 >= var of the sum, Cauchy-Schwarz) */
+                    double pds = pd[0] + pd[1] + pd[2], den = 3.0 * pvs / (np > 0 ? np : 1), z = 0;
+                    if (np > 1) {
+                        z = den > 0 ? pds / sqrt(den) : (pds > 0 ? c->zmax : (pds < 0 ? -c->zmax : 0));
+                        if (z > c->zmax) z = c->zmax;
+                        if (z < -c->zmax) z = -c->zmax;
+                        zc = (1 - c->lambda) * zs[p] + c->lambda * z;
+                    } else {
+                        zc = zs[p];
+                    }
+                    zout[p] = (float)zc;
+                    kap = c->lambda / (2 - c->lambda);
+                    r_t = zc * zc - c->kt * c->kt * kap;
+                    if (r_t < 0) r_t = 0;
+                    zsum_stats[0] += zc; zsum_stats[1] += zc * zc; zsum_stats[2] += 1;
+                    if (r_t > 0) zsum_stats[3] += 1;
+                }
+                if (zout && (c->carry_mode & 4) && !(np > 1)) zout[p] = (float)zc;
                 if (c->combine == 2 || c->c_eb > 0) {
                     double cc = c->c_eb > 0 ? c->c_eb : c->kw; double bmean = c->combine == 2 ? 0 : bw;
                     /* empirical Bayes: prior variance of the bias from 5 3x3 blocks at
                        columns px + 3b, b = -2..2 */
-                    double zs = 0, sse = 0; int nb = 0, b;
+                    double zsb = 0, sse = 0; int nb = 0, b;
                     for (b = -2; b <= 2; ++b) {
                         double s1[3] = {0}, s2c[3] = {0}; int cnt = 0, cx = px + 3 * b;
                         for (j = py - 1; j <= py + 1; ++j)
@@ -174,13 +207,34 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
                             }
                             if (c->normalized == 1) z = se > 0 ? m2 / se - cc : (m2 > 0 ? 1e6 : -cc);
                             if (c->normalized == 2) { z = m2; sse += se; }
-                            zs += z; ++nb;
+                            zsb += z; ++nb;
                         }
                     }
                     if (nb > 0 && np > 1) {
-                        double tau2 = zs / nb, sh;
-                        if (c->normalized == 2) tau2 = sse > 0 ? zs / sse - cc : (zs > 0 ? 1e6 : 0);
+                        double tau2 = zsb / nb, sh;
+                        if (c->normalized == 2) tau2 = sse > 0 ? zsb / sse - cc : (zsb > 0 ? 1e6 : 0);
                         if (tau2 < 0) tau2 = 0;
+                        if (zout && (c->carry_mode & 4)) {
+                            double q = sse > 0 ? zsb / sse : (zsb > 0 ? 1e6 : 0);
+                            if (q > 1e6) q = 1e6;
+                            zc = (1 - c->lambda) * (zs[p] > 0 ? zs[p] : 1.0) + c->lambda * q;
+                            zout[p] = (float)zc;
+                            r_t = zc - c->kt;
+                            if (r_t < 0) r_t = 0;
+                            /* 8: a gate, then the unbiased estimate R - 1 */
+                            if ((c->carry_mode & 8) && r_t > 0) r_t = zc - 1.0;
+                            /* 16: soft gate, (R - 1) P, P = 1 / (1 + ((c - 1) / (R - 1))^4.5) */
+                            if (c->carry_mode & 16) {
+                                r_t = 0;
+                                if (zc > 1.0) {
+                                    double rho = (c->kt - 1.0) / (zc - 1.0);
+                                    r_t = (zc - 1.0) / (1.0 + pow(rho, 4.5));
+                                }
+                            }
+                            zsum_stats[0] += zc; zsum_stats[1] += zc * zc; zsum_stats[2] += 1;
+                            if (r_t > 0) zsum_stats[3] += 1;
+                        }
+                        if ((c->carry_mode & 5) && r_t > tau2) tau2 = r_t;
                         if (c->normalized) tau2 *= se2;
                         sh = tau2 / (tau2 + se2);
                         bw = sh * sh * pd2 + sh * se2;
@@ -188,6 +242,7 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
                     if (bmean > bw) bw = bmean;
                 }
                 b2 = c->combine == 1 && nw > 2 ? bw : (b3 > bw ? b3 : bw);
+                if ((c->carry_mode & 2) && np > 1 && r_t * se2 > b2) b2 = r_t * se2;
             }
             a = (b2 + var_x + var_y > 0) ? (b2 + var_x) / (b2 + var_x + var_y) : n_y / (n_x + n_y);
             if (a < 0) a = 0;
@@ -199,11 +254,48 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
         }
 }
 
+static void blend(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                  float cap, float *out, float *nout)
+{
+    blend_core(ctx, w, h, y, xs, nx, NULL, cap, out, nout, NULL);
+}
+
+static void blend_carry(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                        const float *zs, float cap, float *out, float *nout, float *zout)
+{
+    blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
+}
+
 static cand cands[] = {
     {"ha (check)", 0, 0, 3, 3, 0, 0, 0, 0, 0, 0},
     {"s4 + EBs c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0, 2},
     {"s4 + EBs c2.5", 7, 1, 4, 2.5, 1, 0, 2, 0, 0, 2},
     {"s4 + EBn c3.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 1},
+    {"pooled (check)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 0, 0, 0, 0},
+    {"Z l1/3 k3 EB", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 3, 1, 4},
+    {"Z l1/3 k3 direct", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 3, 2, 4},
+    {"Z l1/5 k3 EB", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 5, 3, 1, 4},
+    {"Z l1/5 k3 direct", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 5, 3, 2, 4},
+    {"Z l1/3 k4 EB", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 4, 1, 4},
+    {"Z l1/5 k4 EB", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 5, 4, 1, 4},
+    {"Z l1/9 k3 EB", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 9, 3, 1, 4},
+    {"Z l1/9 k2 EB", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 9, 2, 1, 4},
+    {"R l1/3 c2", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2, 4, 4},
+    {"R l1/3 c2.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.5, 4, 4},
+    {"R l1/5 c2", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 5, 2, 4, 4},
+    {"R l1/3 c1.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 1.5, 4, 4},
+    {"R l1/5 c1.75", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 5, 1.75, 4, 4},
+    {"R l1/5 c1.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 5, 1.5, 4, 4},
+    {"R l1/9 c1.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 9, 1.5, 4, 4},
+    {"R l1/9 c1.3", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 9, 1.3, 4, 4},
+    {"R l1/3 c1.75", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 1.75, 4, 4},
+    {"R l1/3 gate2", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2, 12, 4},
+    {"R l1/3 gate2.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.5, 12, 4},
+    /* c_R = 1 + (c - 1) sqrt(lambda / (2 - lambda)) = 2.118: the one-frame threshold's
+       excess over the H0 mean, in units of the carried ratio's spread */
+    {"R l1/3 c2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4},
+    {"R l1/3 gate2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 12, 4},
+    {"R l1/3 soft2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 20, 4},
 };
 
 int main(int argc, char **argv)
@@ -242,10 +334,17 @@ int main(int argc, char **argv)
             memset(&m, 0, sizeof m);
             snprintf(m.name, sizeof m.name, "%s", cands[i].name);
             m.temporal = 1;
-            m.temporal_blend = blend;
             m.temporal_blend_ctx = &cands[i];
+            if (cands[i].lambda > 0) m.temporal_blend_carry = blend_carry;
+            else m.temporal_blend = blend;
+            memset(zsum_stats, 0, sizeof zsum_stats);
             if (sbr_run(&seq, &m, &r, NULL, NULL) != 0) return 1;
-            printf("%-18s %-22s eff %6.2f  rmse %.5f\n", nm, cands[i].name, r.eff_spp, r.rmse);
+            printf("%-18s %-22s eff %6.2f  rmse %.5f", nm, cands[i].name, r.eff_spp, r.rmse);
+            if (zsum_stats[2] > 0)
+                printf("  Z mean %+.3f sd %.3f over-threshold %.2f %%", zsum_stats[0] / zsum_stats[2],
+                       sqrt(zsum_stats[1] / zsum_stats[2] - (zsum_stats[0] / zsum_stats[2]) * (zsum_stats[0] / zsum_stats[2])),
+                       100.0 * zsum_stats[3] / zsum_stats[2]);
+            printf("\n");
             fflush(stdout);
         }
         sbr_seq_free(&seq);

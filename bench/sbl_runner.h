@@ -62,6 +62,8 @@ enum { SBR_ORACLE_TEMPORAL = 1, SBR_ORACLE_STEREO = 2 };
 typedef struct sbr_method {
     char name[48];
     int temporal;                  /* 0: no temporal filter */
+    int evidence;                  /* 1: the temporal filter carries its evidence plane
+                                      (sbl_history.evidence / sbl_temporal_output.evidence) */
     int oracle;                    /* SBR_ORACLE_* bits: that stage uses oracle weights */
     sbl_temporal_desc temporal_desc;
     sbr_stereo_mode stereo;
@@ -72,6 +74,12 @@ typedef struct sbr_method {
     void (*temporal_blend)(void *ctx, int w, int h, const float *y, const float *xs,
                            const float *nx, float cap, float *out, float *nout);
     void *temporal_blend_ctx;
+    /* prototypes with one carried plane (evidence over frames): as temporal_blend, plus
+       zs = the previous frame's plane reprojected with the history's taps (0 where no tap
+       is valid) and zout = this frame's plane. Used instead of temporal_blend if set. */
+    void (*temporal_blend_carry)(void *ctx, int w, int h, const float *y, const float *xs,
+                                 const float *nx, const float *zs, float cap, float *out,
+                                 float *nout, float *zout);
 } sbr_method;
 
 typedef struct sbr_result {
@@ -298,6 +306,7 @@ static sbr_method sbr_method_default(const char *name, sbr_stereo_mode st)
     memset(&m, 0, sizeof m);
     snprintf(m.name, sizeof m.name, "%s", name);
     m.temporal = 1;
+    m.evidence = 1; /* the default as a user gets it: with the evidence plane passed on */
     m.stereo = st;
     return m;
 }
@@ -524,6 +533,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     float *hist[2][2], *len[2][2], *input[2], *tout[2], *disp[2], *tmp_a, *tmp_b;
     float *ox, *onx, *onx2; /* oracle: x*, its N (or validity), the blend's N */
     float *alpha[2];        /* the temporal weights, for alpha_fn */
+    float *carry[2][2] = {{NULL, NULL}, {NULL, NULL}}, *carry3 = NULL, *ocarry3 = NULL, *ocarry = NULL;
     unsigned char *mask;
     double *times, mse_sum = 0, mse1_sum = 0, ssim_sum = 0, eff_sum = 0;
     long traced = 0, traced_total = 0;
@@ -542,6 +552,13 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     tmp_a = sbr_alloc(n * 3); /* also the luminance planes of SBR_STEREO_MASKED */
     tmp_b = sbr_alloc(n * 3);
     ox = sbr_alloc(n * 3);
+    if (m->temporal_blend_carry || m->evidence) {
+        for (e = 0; e < 2; ++e)
+            for (i = 0; i < 2; ++i) carry[e][i] = sbr_alloc(n);
+        carry3 = sbr_alloc(n * 3);
+        ocarry3 = sbr_alloc(n * 3);
+        ocarry = sbr_alloc(n);
+    }
     alpha[0] = alpha_fn ? sbr_alloc(n) : NULL;
     alpha[1] = alpha_fn ? sbr_alloc(n) : NULL;
     onx = sbr_alloc(n);
@@ -594,8 +611,36 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 }
                 out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
                 out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
+                if (m->evidence) {
+                    if (pv) hi.evidence = sbl_image_make(carry[e][ping[e]], w, h, 1);
+                    out.evidence = sbl_image_make(carry[e][!ping[e]], w, h, 1);
+                }
                 if (alpha[e]) out.alpha = sbl_image_make(alpha[e], w, h, 1);
-                if (m->temporal_blend) {
+                if (m->temporal_blend_carry) {
+                    /* the carried plane rides on the history's reprojection: the same call
+                       with the plane (copied to three channels) as the history's colour */
+                    sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
+                    size_t q;
+                    rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
+                                                sbl_image_make(ox, w, h, 3),
+                                                sbl_image_make(onx, w, h, 1), 0, h);
+                    if (rc == 0 && pv) {
+                        sbl_history hz = hi;
+                        for (q = 0; q < n; ++q)
+                            carry3[q * 3] = carry3[q * 3 + 1] = carry3[q * 3 + 2] = carry[e][ping[e]][q];
+                        hz.color = sbl_image_make(carry3, w, h, 3);
+                        rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, &hz,
+                                                    sbl_image_make(ocarry3, w, h, 3),
+                                                    sbl_image_make(onx2, w, h, 1), 0, h);
+                        for (q = 0; q < n; ++q) ocarry[q] = onx2[q] > 0 ? ocarry3[q * 3] : 0.0f;
+                    } else {
+                        memset(ocarry, 0, n * sizeof(float));
+                    }
+                    if (rc == 0)
+                        m->temporal_blend_carry(m->temporal_blend_ctx, w, h, input[e], ox, onx, ocarry,
+                                                td.max_history, hist[e][!ping[e]], len[e][!ping[e]],
+                                                carry[e][!ping[e]]);
+                } else if (m->temporal_blend) {
                     sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
                     rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
                                                 sbl_image_make(ox, w, h, 3),
@@ -704,6 +749,8 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
         for (i = 0; i < 2; ++i) { free(hist[e][i]); free(len[e][i]); }
         free(input[e]); free(disp[e]);
     }
+    for (e = 0; e < 2; ++e) { free(carry[e][0]); free(carry[e][1]); }
+    free(carry3); free(ocarry3); free(ocarry);
     free(mask); free(tmp_a); free(tmp_b); free(times); free(ox); free(onx); free(onx2); free(alpha[0]); free(alpha[1]);
     return rc;
 }

@@ -10,7 +10,6 @@
 #include "../stereoblend.h"
 #include "sbl_test.h"
 
-#ifdef SBL__ROW_GATHER
 static sbl_image view(const sbt_img *im)
 {
     sbl_image v;
@@ -18,7 +17,6 @@ static sbl_image view(const sbt_img *im)
     v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
     return v;
 }
-#endif
 
 #define PW 40
 #define PH 3
@@ -520,6 +518,204 @@ static void test_moments_precision(void)
     CHECK(worst_mean <= 1e-6);
 }
 
+
+/* The pooled prepass (sbl__row_pool) against its double reference (sbl__row_pool_ref)
+   on rows with dim values: a dim y next to a bright valid x* (d = x* - y stays in the
+   lane range) keeps the lanes, within float rounding of the reference; a dim pair
+   (both values dim: d below 2^-40), a denormal or a NaN sends every pixel within reach
+   to the reference, bit for bit. */
+static void test_pool_dim(void)
+{
+    static float own[PH * PW * 4];
+    static paths_gather G;
+    sbt_rng rng = {515};
+    double worst = 0;
+    int it, lanes_dim = 0, exact = 0;
+    for (it = 0; it < 400; ++it) {
+        sbl__kernel k;
+        sbl_image im;
+        void *scratch;
+        const sbl__ring_row *R[3];
+        float lanes[PW];
+        int unsafe_col[PW];
+        const int ch = 1 + it % 4;
+        int x, y, c, i, t;
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x) {
+                for (c = 0; c < 4; ++c) {
+                    own[(y * PW + x) * 4 + c] = (float)(0.3 + 0.4 * sbt_uniform(&rng));
+                    G.x[y][x][c] = (float)(0.3 + 0.4 * sbt_uniform(&rng) + (x > PW / 2 ? 0.2 : 0.0));
+                }
+                G.n[y][x] = sbt_uniform(&rng) < 0.1 ? 0.0f : 8.0f;
+            }
+        memset(unsafe_col, 0, sizeof unsafe_col);
+        for (t = 0; t < 1 + it % 4; ++t) {
+            const int tx = (int)(sbt_uniform(&rng) * PW), ty = (int)(sbt_uniform(&rng) * PH);
+            const int kind = (int)(sbt_uniform(&rng) * 5), tc = (int)(sbt_uniform(&rng) * ch);
+            float *yv = &own[(ty * PW + tx) * ch + tc];
+            if (kind <= 1) {
+                *yv = kind ? 1e-14f : -3e-20f; /* dim y, bright x*: the lanes */
+                if (G.n[ty][tx] > 0.0f) ++lanes_dim;
+            } else if (kind == 2) {
+                *yv = 1e-14f; /* a dim pair: the reference */
+                G.x[ty][tx][tc] = 1.3e-14f;
+                G.n[ty][tx] = 8.0f;
+            } else if (kind == 3) {
+                *yv = 1e-39f; /* denormal y, x* invalid: the lanes (only its finiteness counts) */
+                G.n[ty][tx] = 0.0f;
+            } else {
+                *yv = (float)HUGE_VAL - (float)HUGE_VAL;
+            }
+        }
+        /* the columns holding a pixel the prepass's lanes cannot take: y not finite,
+           or a valid pair whose float difference is dim (nonzero, below 2^-40) */
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x)
+                for (c = 0; c < ch; ++c) {
+                    const float yy = own[(y * PW + x) * ch + c];
+                    volatile float dd = G.x[y][x][c] - yy;
+                    if (!sbl__finite(yy) ||
+                        (G.n[y][x] > 0.0f && dd != 0.0f && !(fabsf(dd) >= 0x1p-40f)))
+                        unsafe_col[x] = 1;
+                }
+        memset(&k, 0, sizeof k);
+        im = sbl_image_make(own, PW, PH, ch);
+        k.w = PW; k.h = PH; k.ch = ch;
+        k.wp.estimator = SBL_ESTIMATOR_POOLED;
+        k.n_cap = 64.0f;
+        k.temporal = 1;
+        k.own = &im;
+        k.gather = paths_gather_fn;
+        k.gather_ctx = &G;
+        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
+        sbl__kernel_bind(&k, scratch);
+        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
+        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        sbl__row_pool(&k, R, 0, PW);
+        memcpy(lanes, k.pool_r, sizeof lanes);
+        sbl__row_pool_ref(&k, R, 0, PW);
+        for (x = 0; x < PW; ++x) {
+            int near = 0, d;
+            for (d = -SBL__POOL_REACH; d <= SBL__POOL_REACH; ++d)
+                if (x + d >= 0 && x + d < PW && unsafe_col[x + d]) near = 1;
+            if (near) {
+                CHECK(memcmp(&lanes[x], &k.pool_r[x], sizeof(float)) == 0);
+                ++exact;
+            } else {
+                const double e = fabs((double)lanes[x] - k.pool_r[x]) / (1.0 + SBL_POOLED_BLOCK_SE2 + k.pool_r[x]);
+                CHECK(e <= 1e-4);
+                if (e > worst) worst = e;
+            }
+        }
+        free(scratch);
+    }
+    printf("  %s pooled prepass with dim values vs double: %d dim y kept in the lanes, worst %.3g; "
+           "%d pixels near a dim pair / NaN equal to the reference\n",
+           SBL_SIMD_NAME, lanes_dim, worst, exact);
+    CHECK(lanes_dim > 0);
+    CHECK(exact > 0);
+}
+
+
+/* The default configurations' lanes (pooled estimator, no rectification, one weight;
+   temporal and stereo) on windows holding dim values (normal floats below the lane
+   range's 2^-40): where sbl__lane_window_dim_ok admits the window, the lanes must agree
+   with the double reference as on any window (1e-4, as above); dim pairs, two dim
+   values in one column, NaN are refused (the reference path). */
+static void test_lanes_dim(void)
+{
+    static float own[PH * PW * 4], own_n[PH * PW];
+    static paths_gather G;
+    sbt_rng rng = {616};
+    double worst = 0;
+    int it, admitted = 0, refused = 0;
+    for (it = 0; it < 600; ++it) {
+        sbl__kernel k;
+        sbl_image im, imn;
+        void *scratch;
+        const sbl__ring_row *R[3];
+        float lane_c[PW][4], lane_n[PW], lane_a[PW];
+        const int ch = 1 + it % 4, stereo = (it >> 2) & 1;
+        int x, y, c, i, t;
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x) {
+                for (c = 0; c < 4; ++c) {
+                    own[(y * PW + x) * ch + c] = (float)(0.2 + 0.6 * sbt_uniform(&rng));
+                    G.x[y][x][c] = (float)(0.2 + 0.6 * sbt_uniform(&rng) + (x > PW / 2 ? 0.3 : 0.0));
+                }
+                G.n[y][x] = sbt_uniform(&rng) < 0.1 ? 0.0f : (float)(1 + 20 * sbt_uniform(&rng));
+                own_n[y * PW + x] = (float)(1 + 10 * sbt_uniform(&rng));
+            }
+        for (t = 0; t < 1 + it % 5; ++t) {
+            const int tx = (int)(sbt_uniform(&rng) * PW), ty = (int)(sbt_uniform(&rng) * PH);
+            const int kind = (int)(sbt_uniform(&rng) * 6), tc = (int)(sbt_uniform(&rng) * ch);
+            const float dim = kind & 1 ? 1e-14f : -4e-20f;
+            own[(ty * PW + tx) * ch + tc] = dim;
+            if (kind == 2) own[(((ty + 1) % PH) * PW + tx) * ch + tc] = 2e-14f; /* two in a column */
+            if (kind == 3) { G.x[ty][tx][tc] = 1.5e-14f; G.n[ty][tx] = 4.0f; } /* a dim pair */
+            if (kind == 4) G.x[ty][tx][tc] = 3e-13f; /* dim x*, bright y? (y is dim too) */
+            if (kind == 5 && sbt_uniform(&rng) < 0.3) own[(ty * PW + tx) * ch + tc] = (float)HUGE_VAL - (float)HUGE_VAL;
+        }
+        memset(&k, 0, sizeof k);
+        im = sbl_image_make(own, PW, PH, ch);
+        imn = sbl_image_make(own_n, PW, PH, 1);
+        k.w = PW; k.h = PH; k.ch = ch;
+        k.wp.estimator = SBL_ESTIMATOR_POOLED;
+        k.wp.rectify = SBL_RECTIFY_NONE;
+        k.wp.mode = SBL_WEIGHT_SCALAR;
+        k.wp.constant = 0.1f;
+        k.wp.gamma = 1.25f;
+        k.wp.bias_threshold = 3.0f;
+        k.wp.temporal = !stereo;
+        k.n_cap = stereo ? FLT_MAX : 64.0f;
+        k.temporal = !stereo;
+        k.own = &im;
+        k.own_n = stereo ? &imn : NULL;
+        k.gather = paths_gather_fn;
+        k.gather_ctx = &G;
+        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
+        sbl__kernel_bind(&k, scratch);
+        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
+        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        CHECK(sbl__kernel_fast(&k));
+        /* every interior pixel in lanes (no window mask), then the reference where the
+           rule admits a flagged window */
+        sbl__kernel_lanes_pooled(&k, R, 0, PW, 1, PW - 1, NULL);
+        for (x = 1; x < PW - 1; ++x) {
+            for (c = 0; c < ch; ++c) lane_c[x][c] = k.stage[c][x];
+            lane_n[x] = k.stage_n[x];
+            lane_a[x] = k.stage_a[x];
+        }
+        for (x = 1; x < PW - 1; ++x) {
+            int flagged = 0, j, dx;
+            double e, en;
+            for (j = 0; j < 3; ++j)
+                for (dx = -1; dx <= 1; ++dx) flagged |= R[j]->unsafe[x + dx];
+            if (!flagged) continue;
+            if (!sbl__lane_window_dim_ok(&k, R, x)) { ++refused; continue; }
+            ++admitted;
+            sbl__kernel_pixel_ref(&k, R, x);
+            e = fabs(lane_a[x] - k.stage_a[x]);
+            en = fabs(lane_n[x] - k.stage_n[x]) / (fabs(k.stage_n[x]) + 1.0);
+            if (en > e) e = en;
+            for (c = 0; c < ch; ++c) {
+                const double ec = fabs(lane_c[x][c] - k.stage[c][x]);
+                if (!(ec <= e)) e = ec;
+            }
+            if (!(e <= 1e-4))
+                printf("  dim case %d (stereo %d ch %d) x %d: lane a %.6f n %g, ref a %.6f n %g\n", it,
+                       stereo, ch, x, lane_a[x], lane_n[x], k.stage_a[x], k.stage_n[x]);
+            CHECK(e <= 1e-4);
+            if (e > worst) worst = e;
+        }
+        free(scratch);
+    }
+    printf("  %s default lanes on windows with dim values vs double: %d admitted (worst %.3g), "
+           "%d refused\n", SBL_SIMD_NAME, admitted, worst, refused);
+    CHECK(admitted > 100);
+    CHECK(refused > 100);
+}
+
 /* The row gather against the pixel gather on disocclusions (session 8: the 3x3
    fallback's depth test in lanes, sbl__fallback_lanes): a nearer rectangle moved
    between the frames, so whole 3x3 windows fail the depth test (and those at its edges
@@ -665,6 +861,108 @@ static void test_all_safe(void)
 #endif
 }
 
+/* The carried evidence (pooled estimator, docs/ESTIMATORS.md 3.7): the lanes' ratio
+   (float) against the double reference on random block sums and carried values, and
+   bands of rows of the public call against one whole-image call, the output plane
+   included, bit for bit. */
+static void test_evidence_paths(void)
+{
+    sbt_rng rng = {4242};
+    float ein[SBL__VW], eout_l[SBL__VW], eout_r[SBL__VW];
+    double worst = 0;
+    int it, i;
+    for (it = 0; it < 2000; ++it) {
+        sbl__kernel k;
+        float sm2[SBL__VW], sse2[SBL__VW], rl[SBL__VW];
+        memset(&k, 0, sizeof k);
+        k.evid_in = ein;
+        k.evid_use = it % 4 != 0;
+        for (i = 0; i < SBL__VW; ++i) {
+            double u = sbt_uniform(&rng);
+            ein[i] = (float)(0.3 + 6.0 * sbt_uniform(&rng));
+            sse2[i] = u < 0.1 ? 0.0f : (float)(1e-3 + sbt_uniform(&rng));
+            sm2[i] = u < 0.05 ? 0.0f : (float)(sse2[i] * 4.0 * sbt_uniform(&rng) + (u < 0.1 ? 0.5 : 0.0));
+        }
+        {
+            sbl__v r0 = sbl__set1(0.0f), r;
+            k.evid_out = eout_l;
+            r = sbl__evidence_ratio_lanes(&k, 0, sbl__load(sm2), sbl__load(sse2), r0);
+            sbl__store(rl, r);
+        }
+        k.evid_out = eout_r;
+        for (i = 0; i < SBL__VW; ++i) {
+            double rr = sbl__evidence_ratio_ref(&k, i, sm2[i], sse2[i], 0.0);
+            double e = fabs(rr - rl[i]) / (1.0 + fabs(rr));
+            double ee = fabs(SBL__CAST(double, eout_l[i]) - eout_r[i]) / (1.0 + fabs(eout_r[i]));
+            if (ee > e) e = ee;
+            /* the gate: the same side of c_R unless R is within rounding of it */
+            if (fabs(eout_r[i] - SBL__EVIDENCE_THR) < 1e-5) continue;
+            CHECK(e <= 1e-5);
+            if (e > worst) worst = e;
+        }
+    }
+    printf("  evidence ratio, lanes vs double reference: worst difference %.3g\n", worst);
+    {   /* bands against the whole image, with the plane in and out */
+        const int w = 37, h = 23, c = 3;
+        sbt_img cur = sbt_img_new(w, h, c, 1), hist = sbt_img_new(w, h, c, 0), len = sbt_img_new(w, h, 1, 0);
+        sbt_img depth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 0), ev = sbt_img_new(w, h, 1, 0);
+        sbt_img oc[2], on[2], oe[2];
+        sbl_temporal_desc d;
+        sbl_frame f;
+        sbl_history hi;
+        sbl_temporal_output o[2];
+        size_t bytes = sbl_temporal_scratch_size(w, c);
+        void *scratch = malloc(bytes);
+        int x, y, k2, y0;
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                for (k2 = 0; k2 < c; ++k2) {
+                    sbt_at(&cur, x, y)[k2] = (float)(0.5 + 0.2 * sbt_uniform(&rng));
+                    sbt_at(&hist, x, y)[k2] = (float)(0.5 + 0.2 * sbt_uniform(&rng) + (x < w / 2 ? 0.1 : 0.0));
+                }
+                *sbt_at(&len, x, y) = (float)(1 + 30 * sbt_uniform(&rng));
+                *sbt_at(&depth, x, y) = (float)(4.0 + 0.1 * sbt_uniform(&rng));
+                sbt_at(&mv, x, y)[0] = (float)(sbt_uniform(&rng) - 0.5);
+                sbt_at(&mv, x, y)[1] = (float)(sbt_uniform(&rng) - 0.5);
+                *sbt_at(&ev, x, y) = (float)(0.5 + 3.0 * sbt_uniform(&rng));
+            }
+        sbt_at(&cur, 9, 11)[1] = (float)HUGE_VAL - (float)HUGE_VAL; /* a reference-path run */
+        memset(&d, 0, sizeof d);
+        memset(&f, 0, sizeof f);
+        memset(&hi, 0, sizeof hi);
+        f.color = view(&cur); f.gbuffer.depth = view(&depth); f.gbuffer.motion = view(&mv);
+        hi.color = view(&hist); hi.length = view(&len); hi.gbuffer.depth = view(&depth);
+        hi.evidence = view(&ev);
+        for (i = 0; i < 2; ++i) {
+            oc[i] = sbt_img_new(w, h, c, 0); on[i] = sbt_img_new(w, h, 1, 0); oe[i] = sbt_img_new(w, h, 1, 0);
+            memset(&o[i], 0, sizeof o[i]);
+            o[i].color = view(&oc[i]); o[i].length = view(&on[i]); o[i].evidence = view(&oe[i]);
+        }
+        CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o[0]), SBL_OK);
+        for (y0 = 0; y0 < h;) {
+            int y1 = y0 + 1 + (int)(sbt_uniform(&rng) * 5);
+            if (y1 > h) y1 = h;
+            CHECK_EQ(sbl_temporal_filter(&d, &f, &hi, &o[1], y0, y1, scratch, bytes), SBL_OK);
+            y0 = y1;
+        }
+        CHECK(memcmp(oc[0].mem, oc[1].mem, sizeof(float) * (size_t)oc[0].stride * (size_t)h) == 0);
+        CHECK(memcmp(oe[0].mem, oe[1].mem, sizeof(float) * (size_t)w * (size_t)h) == 0);
+        {   /* the plane moved where the history is shifted, and stays a ratio */
+            int moved = 0;
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    float e = *sbt_at(&oe[0], x, y);
+                    CHECK(e > 0.0f && e < 1e6f);
+                    moved += e != *sbt_at(&ev, x, y);
+                }
+            CHECK(moved > w * h / 2);
+        }
+        for (i = 0; i < 2; ++i) { free(oc[i].mem); free(on[i].mem); free(oe[i].mem); }
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(mv.mem); free(ev.mem);
+        free(scratch);
+    }
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -754,9 +1052,12 @@ int main(void)
     CHECK(refused > 0);
     test_spans();
     test_moments_precision();
+    test_pool_dim();
+    test_lanes_dim();
     test_row_gather();
     test_stereo_row_gather();
     test_row_gather_disocclusion();
     test_all_safe();
+    test_evidence_paths();
     return sbt_finish("test_paths");
 }
