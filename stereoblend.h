@@ -4375,8 +4375,8 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
            0 is unsafe exactly when v is); a safe value is finite, so where every value is
            safe (the common case) the finiteness tests drop out and nothing is flagged */
-        vals[0] = nv;
-        for (l = 0; l < ch; ++l) vals[l + 1] = v[l];
+        for (l = 0; l < ch; ++l) vals[l] = v[l];
+        vals[ch] = nv;
         if (sbl__all_safe(vals, ch + 1)) {
             if (np) valid = sbl__mand(valid, sbl__gt(nv, zero));
             flag = 0;
