@@ -7362,22 +7362,23 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         int far;
         m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
         keep = sbl__mandnot(keep, sbl__nonfinite(m));
-        /* the positions finite in every lane (0 where m is not: such a lane has no
-           match): sbl__stereo_back_parallel clamps them with a min and a max, whose NaN
-           result -ffast-math leaves to the operand order gcc picks */
-        sbl__store(fbz, sbl__sel(keep, m, zero));
         if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
+        /* dir f b / z: the positions finite in every lane (0 where m is not: such a lane
+           has no match): sbl__stereo_back_parallel clamps them with a min and a max, whose
+           NaN result -ffast-math leaves to the operand order gcc picks */
+        sbl__store(fbz, sbl__sel(keep, m, zero));
         /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the other
            eye is read at the same pixel (see SBL__FAR_PX) */
         far = s->tiles &&
               !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
               sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
         bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero, 1);
-        for (l = 0; l < SBL__VW; l += SBL__DW) { /* x + l + 0.5 + dir (f b / z - offset), as the map */
-            sbl__dstore(b->psx + i + l,
-                        sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + l + 0.5)),
-                                  sbl__dmul(sbl__dset1(s->dir[0]),
-                                            sbl__dsub(sbl__dfromf(fbz + l), sbl__dset1(s->offset)))));
+        for (l = 0; l < SBL__VW; l += SBL__DW) {
+            /* x + l + 0.5 + dir (f b / z - offset), as the map: offset is 0 in this lane
+               mode and dir = +-1, so dir (f b / z - 0) is the float dir f b / z exactly
+               (a zero's sign is moot: x + l + 0.5 > 0) */
+            sbl__dstore(b->psx + i + l, sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + l + 0.5)),
+                                                  sbl__dfromf(fbz + l)));
             sbl__dstore(b->psy + i + l, sbl__dset1(y + 0.5));
         }
         memset(b->snapped + i, far, SBL__VW);
