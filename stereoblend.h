@@ -7405,19 +7405,23 @@ static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
     sbl__tap_plan_set(&s->src, &b->p, i, &want, sx, sy);
 }
 
-/* Entry i of a block whose taps weigh below 1e-3 (redo 2, not a far lane): the 3x3
-   fallback of sbl__stereo_rp_pixel's gather at the match (b->psx, b->psy: the map's
-   position) with the planned expected depth and slack. */
-static SBL__RARE float sbl__stereo_fallback_one(const sbl__stereo_rp *s, const sbl__block *b,
-                                                int i, float *out)
+/* The block's entries whose taps (at the match's exact position) weigh below 1e-3, not
+   far lanes: the pixel gather's 3x3 fallback there (sbl__fallback_lanes: the map's
+   position, the planned expected depth and slack); their back-check follows as for any
+   valid match (redo 0 now). */
+static SBL__RARE void sbl__stereo_fallback_block(const sbl__stereo_rp *s, sbl__ring_row *r,
+                                                 sbl__block *b)
 {
-    sbl__tap_want t;
-    t.depth = b->p.depth[i];
-    t.depth_slack = b->p.slack[i];
-    t.normal = NULL;
-    t.normal_len2 = 0.0f;
-    t.id = 0.0f;
-    return sbl__gather_fallback(&s->src, &t, b->psx[i], b->psy[i], out);
+    double fx[SBL__BLOCK], fy[SBL__BLOCK];
+    int e[SBL__BLOCK], n = 0, i;
+    for (i = 0; i < b->n; ++i)
+        if (b->p.redo[i] == 2 && !b->snapped[i]) {
+            b->p.redo[i] = 0;
+            fx[n] = b->psx[i];
+            fy[n] = b->psy[i];
+            e[n++] = i;
+        }
+    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, fx, fy, b->p.depth, b->p.slack, n, 0);
 }
 
 /* After the taps: the entries handed back, and far lanes whose one tap failed, go to
@@ -7431,12 +7435,9 @@ SBL__INLINE void sbl__stereo_after_one(const sbl__stereo_rp *s, sbl__ring_row *r
 {
     const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
     const int x = b->x0 + i;
-    if (b->p.redo[i] == 2 && !b->snapped[i]) {
-        /* the taps (at the match's exact position) weigh below 1e-3: the pixel gather's
-           3x3 fallback there, then the back-check below */
-        float tmp[4] = {0, 0, 0, 0};
-        sbl__ring_put(r, x, sbl__stereo_fallback_one(s, b, i, tmp), tmp, s->src.color.ch);
-    } else if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+    /* (entries whose taps weigh below 1e-3 took the 3x3 fallback already: redo 0 now,
+       see sbl__stereo_after_rig) */
+    if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
         float tmp[4] = {0, 0, 0, 0};
         sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
         return;
@@ -7507,6 +7508,13 @@ SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r
     const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
     const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
     int i = 0, l, back[SBL__BLOCK], nback = 0;
+    {   /* (redo is rare: one look at the block first) */
+        uint64_t any = 0, u;
+        for (i = 0; i + 8 <= b->n; i += 8) { memcpy(&u, b->p.redo + i, 8); any |= u; }
+        for (; i < b->n; ++i) any |= b->p.redo[i];
+        if (any) sbl__stereo_fallback_block(s, r, b);
+        i = 0;
+    }
     if (rig == SBL_RIG_PARALLEL && b->mode == 1 && back_check) {
         for (; i + SBL__VW <= b->n; i += SBL__VW) {
             uint32_t any = 0, u, v;
