@@ -3035,6 +3035,8 @@ typedef struct sbl__ring_row {
     int gather_flags; /* 1: the row gather flagged its own unsafe values (in registers,
                          as it wrote them), so sbl__ring_gather need not re-read them */
     int gather_unsafe; /* pixels that row gather newly flagged                  */
+    int all_valid; /* sbl__kernel_run_span, after the load: 1 if x* is valid on every
+                      loaded column (0: not known) */
 } sbl__ring_row;
 
 typedef struct sbl__kernel {
@@ -3073,6 +3075,8 @@ typedef struct sbl__kernel {
     sbl_image out_e;         /* the output plane (data NULL: not written)           */
     int evid_row;            /* 1: gather the plane with the row gather (evid_ring)  */
     sbl__ring_row evid_ring; /* its x[0] / n / v / unsafe planes                      */
+    int rows_valid;          /* sbl__kernel_run_span: 1 if the three window rows are
+                                all_valid (every chunk full); 0: the lanes look */
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -6527,7 +6531,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             /* every pair of the chunk's columns valid: the instances without the selects
                on the pair validity (the same values); the blocks centred on the image's
                first and last columns (whose outer column is empty) excepted */
-            full = sbl__lanes_full(&W, ca, cb);
+            full = k->rows_valid || sbl__lanes_full(&W, ca, cb);
             if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1);
             else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
@@ -6717,6 +6721,21 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
     }
 }
 
+/* Ring row r just loaded over [xa, xb): notes whether its x* is valid on every column
+   (v is 0 or 1), so that the lanes need not look chunk by chunk (sbl__lanes_full). */
+static void sbl__ring_note_valid(sbl__ring_row *r, int xa, int xb)
+{
+    const sbl__v half = sbl__set1(0.5f);
+    sbl__v m = sbl__set1(1.0f);
+    int x = xa;
+    r->all_valid = 0;
+    for (; x + SBL__VW <= xb; x += SBL__VW) m = sbl__min(m, sbl__load(r->v + x));
+    if (!sbl__all(sbl__gt(m, half))) return;
+    for (; x < xb; ++x)
+        if (!(r->v[x] > 0.5f)) return;
+    r->all_valid = 1;
+}
+
 /* Filter columns [x0, x1) of rows [y0, y1) into k->out (and out_n / out_a); nothing
    else of the outputs is written. Every written pixel equals the one a whole-image run
    gives, bit for bit: the ring holds the columns [x0 - 1, x1 + 1) (clamped), widened
@@ -6750,7 +6769,10 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
         for (j = 0; j < 3; ++j) {
             int ry = y0 - 1 + j;
             k->ring[j].row = -1;
-            if (ry >= 0 && ry < k->h) sbl__ring_load(k, &k->ring[j], ry, ra, rb);
+            if (ry >= 0 && ry < k->h) {
+                sbl__ring_load(k, &k->ring[j], ry, ra, rb);
+                sbl__ring_note_valid(&k->ring[j], ra, rb);
+            }
         }
         for (y = y0; y < y1; ++y) {
             const sbl__ring_row *R[3];
@@ -6771,7 +6793,9 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
             if (pool && lanes_ok) {
                 /* an interior row: prepass and lanes share their column sums */
+                k->rows_valid = R[0]->all_valid & R[1]->all_valid & R[2]->all_valid;
                 sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
+                k->rows_valid = 0;
             } else {
                 if (pool) sbl__row_pool(k, R, pa, pb);
                 if (lanes_ok) sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
@@ -6804,7 +6828,10 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 k->ring[1] = k->ring[2];
                 k->ring[2] = t;
                 k->ring[2].row = -1;
-                if (y + 1 < y1 && y + 2 < k->h) sbl__ring_load(k, &k->ring[2], y + 2, ra, rb);
+                if (y + 1 < y1 && y + 2 < k->h) {
+                    sbl__ring_load(k, &k->ring[2], y + 2, ra, rb);
+                    sbl__ring_note_valid(&k->ring[2], ra, rb);
+                }
             }
         }
     }

@@ -58,7 +58,7 @@ int main(void)
 {
     const size_t n = (size_t)W * H;
     /* everything the renderer owns, allocated once */
-    float *rgb[2], *ref[2], *depth[2][2], *mv[2], *hist[2][2], *len[2][2], *display[2];
+    float *rgb[2], *ref[2], *depth[2][2], *mv[2], *hist[2][2], *len[2][2], *evid[2][2], *display[2];
     void *scratch = malloc(sbl_temporal_scratch_size(W, 3));
     size_t scratch_bytes = sbl_temporal_scratch_size(W, 3);
     int e, f, b, ping = 0;
@@ -76,6 +76,7 @@ int main(void)
             depth[e][b] = (float *)malloc(n * sizeof(float));
             hist[e][b] = (float *)malloc(n * 3 * sizeof(float));
             len[e][b] = (float *)malloc(n * sizeof(float));
+            evid[e][b] = (float *)malloc(n * sizeof(float));
         }
     }
     printf("frame  RMSE 1 spp   temporal   temporal + stereo\n");
@@ -92,9 +93,11 @@ int main(void)
             cur.gbuffer.motion = sbl_image_make(mv[e], W, H, 2);
             prev.color = sbl_image_make(hist[e][ping], W, H, 3);
             prev.length = sbl_image_make(len[e][ping], W, H, 1);
+            prev.evidence = sbl_image_make(evid[e][ping], W, H, 1); /* optional: change */
             prev.gbuffer.depth = sbl_image_make(depth[e][!ping], W, H, 1);
             out.color = sbl_image_make(hist[e][!ping], W, H, 3);
             out.length = sbl_image_make(len[e][!ping], W, H, 1);
+            out.evidence = sbl_image_make(evid[e][!ping], W, H, 1); /* evidence over frames */
             /* a job system would run these bands on its workers, each with its own
                scratch; here they run one after the other with one scratch */
             for (b = 0; b < BANDS; ++b) {
@@ -127,7 +130,7 @@ int main(void)
     }
     for (e = 0; e < 2; ++e) {
         free(rgb[e]); free(ref[e]); free(mv[e]); free(display[e]);
-        for (b = 0; b < 2; ++b) { free(depth[e][b]); free(hist[e][b]); free(len[e][b]); }
+        for (b = 0; b < 2; ++b) { free(depth[e][b]); free(hist[e][b]); free(len[e][b]); free(evid[e][b]); }
     }
     free(scratch);
     return 0;

@@ -9,7 +9,9 @@
    output, reference, |output - reference| (x4, black-red-yellow-white), alpha (the
    temporal weight, black 0 .. white 1; blue when the method has no temporal filter).
    Colours are clamped to [0, 1] and sRGB-encoded.
-   No --method: the library's default temporal filter (every descriptor field zero);
+   No --method: the library's default temporal filter (every descriptor field zero, with
+   the optional evidence plane carried from frame to frame, as a user gets the default's
+   full accuracy; `pooled`: the same without the plane);
    --method default-stereo: the default combined pipeline (temporal per eye, then the
    default stereo blend for display). These two names stay stable. default-cr and
    default-stereo-cr: the same with the Catmull-Rom history fetch
@@ -132,8 +134,8 @@ static int write_sheet(const char *path, const sbr_seq *seq, const writer *wr, i
 static void usage(void)
 {
     fprintf(stderr, "usage: sblexr SCENE_DIR OUT_DIR [--method NAME] [--frames N] [--sheet FRAME]\n"
-                    "       (no --method: the default temporal filter; default-stereo: the\n"
-                    "       default temporal filter then the default stereo blend)\n"
+                    "       (no --method: the default temporal filter, its evidence plane carried;\n"
+                    "       default-stereo: the default temporal filter then the default stereo blend)\n"
                     "       sblexr --list        (the method names)\n");
 }
 

@@ -236,6 +236,19 @@ int main(void)
         hi.length = view(&len);
         hi.gbuffer.depth = view(&depth);
         if (iter % 5 != 4) hi.evidence = view(&ev); /* and without it: the plane still written */
+        if (iter % 3 == 2) {
+            /* the camera source with a camera at rest: the row gather's rest tiles */
+            static sbl_camera cam;
+            sbl_intrinsics kin;
+            float pose[16];
+            int q;
+            for (q = 0; q < 16; ++q) pose[q] = q % 5 == 0 ? 1.0f : 0.0f;
+            kin.fx = kin.fy = (float)(0.8 * w + 3); kin.cx = 0.5f * w; kin.cy = 0.5f * h;
+            CHECK_EQ(sbl_camera_from_pinhole(&cam, &kin, pose, SBL_AXES_OPENCV, 0, w, h), SBL_OK);
+            d.source = SBL_TEMPORAL_CAMERA;
+            f.camera = &cam;
+            hi.camera = &cam;
+        }
         for (i = 0; i < 2; ++i) {
             memset(&o[i], 0, sizeof o[i]);
             o[i].color = view(&oc[i]);
