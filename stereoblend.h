@@ -3198,6 +3198,61 @@ SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v,
 }
 
 #ifdef SBL__ROW_GATHER
+/* 1 if every lane of the vectors v[0 .. cnt) holds a safe value (sbl__lane_value_ok)
+   other than 0, in one test for them all: the largest |bits| below those of 2^50 and the
+   smallest at least those of 2^-40 (a NaN's or an inf's bits lie above every finite
+   value's). 0: some lane needs sbl__lane_ok (a 0, which is safe, lands there). */
+SBL__INLINE int sbl__all_safe(const sbl__v *v, int cnt)
+{
+#if SBL__VW == 4
+    /* (SSE2 has no unsigned 32-bit min / max: the high 16 bits of |bits|, which hold the
+       exponent, as signed 16-bit lanes, two vectors per pack; the limits' low 16 bits
+       are 0, so the test on them is the same) */
+    const __m128i m = _mm_set1_epi32(0x7fffffff);
+    __m128i hi, lo, a, b;
+    int k;
+    a = _mm_srli_epi32(_mm_and_si128(_mm_castps_si128(v[0]), m), 16);
+    b = cnt > 1 ? _mm_srli_epi32(_mm_and_si128(_mm_castps_si128(v[1]), m), 16) : a;
+    hi = lo = _mm_packs_epi32(a, b); /* (no saturation: below 0x8000) */
+    for (k = 2; k < cnt; k += 2) {
+        a = _mm_srli_epi32(_mm_and_si128(_mm_castps_si128(v[k]), m), 16);
+        b = k + 1 < cnt ? _mm_srli_epi32(_mm_and_si128(_mm_castps_si128(v[k + 1]), m), 16) : a;
+        a = _mm_packs_epi32(a, b);
+        hi = _mm_max_epi16(hi, a);
+        lo = _mm_min_epi16(lo, a);
+    }
+    a = _mm_or_si128(_mm_cmpgt_epi16(hi, _mm_set1_epi16(0x587f)), _mm_cmpgt_epi16(_mm_set1_epi16(0x2b80), lo));
+    return !_mm_movemask_epi8(a);
+#elif SBL__VW == 8
+    const __m256i m = _mm256_set1_epi32(0x7fffffff);
+    __m256i hi = _mm256_and_si256(_mm256_castps_si256(v[0]), m), lo = hi, b;
+    int k;
+    for (k = 1; k < cnt; ++k) {
+        b = _mm256_and_si256(_mm256_castps_si256(v[k]), m);
+        hi = _mm256_max_epu32(hi, b);
+        lo = _mm256_min_epu32(lo, b);
+    }
+    /* hi >= bits(2^50) = 0x58800000 or lo < bits(2^-40) = 0x2b800000 (signed compares
+       of values below 2^31) */
+    b = _mm256_or_si256(_mm256_cmpgt_epi32(hi, _mm256_set1_epi32(0x587fffff)),
+                        _mm256_cmpgt_epi32(_mm256_set1_epi32(0x2b800000), lo));
+    return _mm256_testz_si256(b, b);
+#else
+    const __m512i m = _mm512_set1_epi32(0x7fffffff);
+    __m512i hi = _mm512_and_si512(_mm512_castps_si512(v[0]), m), lo = hi, b;
+    int k;
+    for (k = 1; k < cnt; ++k) {
+        b = _mm512_and_si512(_mm512_castps_si512(v[k]), m);
+        hi = _mm512_max_epu32(hi, b);
+        lo = _mm512_min_epu32(lo, b);
+    }
+    return !(_mm512_cmpgt_epi32_mask(hi, _mm512_set1_epi32(0x587fffff)) |
+             _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(0x2b800000), lo));
+#endif
+}
+#endif
+
+#ifdef SBL__ROW_GATHER
 /* Ring columns x + l (bit l of bits) hold a valid x* with an unsafe value: flag the ones
    the own colour did not (rare; the row gathers that flag as they write). */
 static void sbl__ring_flag_bits(sbl__ring_row *r, int x, int bits)
@@ -3565,6 +3620,30 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     /* flag (a constant): the unsafe-value check of sbl__ring_gather on the values
        stored, in registers (redo lanes are not valid here: their pixel gather flags
        them) */
+#if SBL__VW == 4
+    /* SSE2: one test for the vector first, the lanes' only where it fails (per-lane
+       tests cost more there than with AVX2's three-operand integer ops, where the vector
+       test gains nothing: measured) */
+#define SBL__TAPS_OUT(c) \
+    { \
+        out[c + 1] = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax); \
+        sbl__store(r->x[c] + x, sbl__sel(valid, out[c + 1], zero)); \
+    }
+    {
+        sbl__v out[5];
+        out[0] = n;
+        SBL__TAPS_OUT(0);
+        if (ch > 1) SBL__TAPS_OUT(1);
+        if (ch > 2) SBL__TAPS_OUT(2);
+        if (ch > 3) SBL__TAPS_OUT(3);
+        if (flag && !sbl__all_safe(out, ch + 1)) {
+            sbl__m ok = sbl__lane_ok(out[0]);
+            for (c = 1; c <= ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(out[c]));
+            bits = sbl__mbits(sbl__mandnot(valid, ok));
+            if (bits) sbl__ring_flag_bits(r, x, bits);
+        }
+    }
+#else
 #define SBL__TAPS_OUT(c) \
     { \
         const sbl__v out = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax); \
@@ -3582,6 +3661,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
             if (bits) sbl__ring_flag_bits(r, x, bits);
         }
     }
+#endif
 #undef SBL__TAPS_OUT
     bits = sbl__mbits(redo);
     if (bits) {
@@ -4255,50 +4335,6 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
     return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
 }
 
-#if SBL__VW >= 8
-/* Are n and the ch colour values of every lane safe (sbl__lane_value_ok) and nonzero:
-   the largest |bits| below those of 2^50, the smallest at least those of 2^-40 (both
-   as unsigned ints; a NaN's bits are above every finite value's). 0: some lane needs
-   the per-lane test (a zero, which is safe, included). */
-SBL__INLINE int sbl__rest_safe(sbl__v n, const sbl__v *v, int ch)
-{
-#if SBL__VW == 8
-    const __m256i m = _mm256_set1_epi32(0x7fffffff);
-    const __m256i bn = _mm256_and_si256(_mm256_castps_si256(n), m);
-    __m256i hi = _mm256_and_si256(_mm256_castps_si256(v[0]), m), lo = hi, b;
-    hi = _mm256_max_epu32(hi, bn);
-    lo = _mm256_min_epu32(lo, bn);
-#define SBL__REST_MINMAX(c) \
-    b = _mm256_and_si256(_mm256_castps_si256(v[c]), m); \
-    hi = _mm256_max_epu32(hi, b); \
-    lo = _mm256_min_epu32(lo, b)
-    if (ch > 1) { SBL__REST_MINMAX(1); }
-    if (ch > 2) { SBL__REST_MINMAX(2); }
-    if (ch > 3) { SBL__REST_MINMAX(3); }
-#undef SBL__REST_MINMAX
-    /* bad: hi >= bits(2^50) (0x58800000) or lo < bits(2^-40) (0x2b800000), signed
-       compares of values below 2^31 */
-    b = _mm256_or_si256(_mm256_cmpgt_epi32(hi, _mm256_set1_epi32(0x587fffff)),
-                        _mm256_cmpgt_epi32(_mm256_set1_epi32(0x2b800000), lo));
-    return _mm256_testz_si256(b, b);
-#else
-    const __m512i m = _mm512_set1_epi32(0x7fffffff);
-    const __m512i bn = _mm512_and_si512(_mm512_castps_si512(n), m);
-    __m512i hi = _mm512_and_si512(_mm512_castps_si512(v[0]), m), lo = hi, b;
-    int c;
-    hi = _mm512_max_epu32(hi, bn);
-    lo = _mm512_min_epu32(lo, bn);
-    for (c = 1; c < ch; ++c) {
-        b = _mm512_and_si512(_mm512_castps_si512(v[c]), m);
-        hi = _mm512_max_epu32(hi, b);
-        lo = _mm512_min_epu32(lo, b);
-    }
-    return !(_mm512_cmpgt_epi32_mask(hi, _mm512_set1_epi32(0x587fffff)) |
-             _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(0x2b800000), lo));
-#endif
-}
-#endif
-
 /* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
    pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
    sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
@@ -4324,7 +4360,7 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     for (;;) {
         int x, bits, flag;
         sbl__m keep, valid, ok;
-        sbl__v nv = one, v[4];
+        sbl__v nv = one, v[4], vals[5];
         if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
         x = x0 + i;
         /* the history colour, one channel per vector (the channels written out: gcc -O2
@@ -4354,24 +4390,9 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
            0 is unsafe exactly when v is); a safe value is finite, so where every value is
            safe (the common case) the finiteness tests drop out and nothing is flagged */
-#if SBL__VW == 4
-#define SBL__REST_OK() \
-    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
-    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
-    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
-    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
-        SBL__REST_OK();
-        if (sbl__mbits(ok) == (1 << SBL__VW) - 1) {
-#else
-#define SBL__REST_OK() \
-    ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0])); \
-    if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1])); \
-    if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2])); \
-    if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]))
-        /* (AVX2 / AVX-512: the same in one test of the vector, on the largest and
-           smallest |v| bits as unsigned ints: a 0 there takes the exact test below) */
-        if (sbl__rest_safe(nv, v, ch)) {
-#endif
+        for (l = 0; l < ch; ++l) vals[l] = v[l];
+        vals[ch] = nv;
+        if (sbl__all_safe(vals, ch + 1)) {
             if (np) valid = sbl__mand(valid, sbl__gt(nv, zero));
             flag = 0;
         } else {
@@ -4380,9 +4401,10 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
             if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
             if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
             if (ch > 3) valid = sbl__mandnot(valid, sbl__nonfinite(v[3]));
-#if SBL__VW != 4
-            SBL__REST_OK();
-#endif
+            ok = sbl__mand(sbl__lane_ok(nv), sbl__lane_ok(v[0]));
+            if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(v[1]));
+            if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(v[2]));
+            if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(v[3]));
             flag = sbl__mbits(sbl__mandnot(valid, ok));
         }
         sbl__store(r->x[0] + x, sbl__sel(valid, sbl__add(zero, v[0]), zero));
@@ -4403,7 +4425,6 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
     }
-#undef SBL__REST_OK
 }
 
 static void sbl__rest_tile(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
@@ -4785,8 +4806,25 @@ SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, i
                 *y3 = ch > 3 ? r->y[3] : y0;
     unsigned char *unsafe = r->unsafe;
     for (; x + SBL__VW <= xb; x += SBL__VW) {
-        sbl__m ok = sbl__lane_ok(sbl__load(y0 + x));
+        sbl__m ok;
         int bits, l;
+#if SBL__VW == 4
+        /* SSE2: every value safe in one test of the vector first (an own N also at most
+           2^20; see sbl__lanes_taps) */
+        sbl__v v[5];
+        int cnt = 1;
+        v[0] = sbl__load(y0 + x);
+        if (ch > 1) v[cnt++] = sbl__load(y1 + x);
+        if (ch > 2) v[cnt++] = sbl__load(y2 + x);
+        if (ch > 3) v[cnt++] = sbl__load(y3 + x);
+        if (ny) v[cnt++] = sbl__load(ny + x);
+        if (sbl__all_safe(v, cnt) &&
+            (!ny || sbl__mbits(sbl__le(v[cnt - 1], sbl__set1(1048576.0f))) == all)) {
+            memcpy(unsafe + x, safe_bytes, SBL__VW);
+            continue;
+        }
+#endif
+        ok = sbl__lane_ok(sbl__load(y0 + x));
         if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y1 + x)));
         if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y2 + x)));
         if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y3 + x)));
@@ -4861,8 +4899,9 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
     x = xa;
 #ifdef SBL__ROW_GATHER
     for (; x + SBL__VW <= xb; x += SBL__VW) {
-        sbl__m ok = sbl__lane_ok(sbl__load(r->n + x));
+        sbl__m ok;
         int bits, l;
+        ok = sbl__lane_ok(sbl__load(r->n + x));
         for (c = 0; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[c] + x)));
         bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), sbl__set1(0.0f)), ok));
         for (l = 0; bits; ++l, bits >>= 1)
@@ -7373,22 +7412,23 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         int far;
         m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
         keep = sbl__mandnot(keep, sbl__nonfinite(m));
-        /* the positions finite in every lane (0 where m is not: such a lane has no
-           match): sbl__stereo_back_parallel clamps them with a min and a max, whose NaN
-           result -ffast-math leaves to the operand order gcc picks */
-        sbl__store(fbz, sbl__sel(keep, m, zero));
         if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
+        /* dir f b / z: the positions finite in every lane (0 where m is not: such a lane
+           has no match): sbl__stereo_back_parallel clamps them with a min and a max, whose
+           NaN result -ffast-math leaves to the operand order gcc picks */
+        sbl__store(fbz, sbl__sel(keep, m, zero));
         /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the other
            eye is read at the same pixel (see SBL__FAR_PX) */
         far = s->tiles &&
               !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
               sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
         bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero, 1);
-        for (l = 0; l < SBL__VW; l += SBL__DW) { /* x + l + 0.5 + dir (f b / z - offset), as the map */
-            sbl__dstore(b->psx + i + l,
-                        sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + l + 0.5)),
-                                  sbl__dmul(sbl__dset1(s->dir[0]),
-                                            sbl__dsub(sbl__dfromf(fbz + l), sbl__dset1(s->offset)))));
+        for (l = 0; l < SBL__VW; l += SBL__DW) {
+            /* x + l + 0.5 + dir (f b / z - offset), as the map: offset is 0 in this lane
+               mode and dir = +-1, so dir (f b / z - 0) is the float dir f b / z exactly
+               (a zero's sign is moot: x + l + 0.5 > 0) */
+            sbl__dstore(b->psx + i + l, sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + l + 0.5)),
+                                                  sbl__dfromf(fbz + l)));
             sbl__dstore(b->psy + i + l, sbl__dset1(y + 0.5));
         }
         memset(b->snapped + i, far, SBL__VW);
@@ -7415,19 +7455,23 @@ static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
     sbl__tap_plan_set(&s->src, &b->p, i, &want, sx, sy);
 }
 
-/* Entry i of a block whose taps weigh below 1e-3 (redo 2, not a far lane): the 3x3
-   fallback of sbl__stereo_rp_pixel's gather at the match (b->psx, b->psy: the map's
-   position) with the planned expected depth and slack. */
-static SBL__RARE float sbl__stereo_fallback_one(const sbl__stereo_rp *s, const sbl__block *b,
-                                                int i, float *out)
+/* The block's entries whose taps (at the match's exact position) weigh below 1e-3, not
+   far lanes: the pixel gather's 3x3 fallback there (sbl__fallback_lanes: the map's
+   position, the planned expected depth and slack); their back-check follows as for any
+   valid match (redo 0 now). */
+static SBL__RARE void sbl__stereo_fallback_block(const sbl__stereo_rp *s, sbl__ring_row *r,
+                                                 sbl__block *b)
 {
-    sbl__tap_want t;
-    t.depth = b->p.depth[i];
-    t.depth_slack = b->p.slack[i];
-    t.normal = NULL;
-    t.normal_len2 = 0.0f;
-    t.id = 0.0f;
-    return sbl__gather_fallback(&s->src, &t, b->psx[i], b->psy[i], out);
+    double fx[SBL__BLOCK], fy[SBL__BLOCK];
+    int e[SBL__BLOCK], n = 0, i;
+    for (i = 0; i < b->n; ++i)
+        if (b->p.redo[i] == 2 && !b->snapped[i]) {
+            b->p.redo[i] = 0;
+            fx[n] = b->psx[i];
+            fy[n] = b->psy[i];
+            e[n++] = i;
+        }
+    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, fx, fy, b->p.depth, b->p.slack, n, 0);
 }
 
 /* After the taps: the entries handed back, and far lanes whose one tap failed, go to
@@ -7441,12 +7485,9 @@ SBL__INLINE void sbl__stereo_after_one(const sbl__stereo_rp *s, sbl__ring_row *r
 {
     const int cams = rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY;
     const int x = b->x0 + i;
-    if (b->p.redo[i] == 2 && !b->snapped[i]) {
-        /* the taps (at the match's exact position) weigh below 1e-3: the pixel gather's
-           3x3 fallback there, then the back-check below */
-        float tmp[4] = {0, 0, 0, 0};
-        sbl__ring_put(r, x, sbl__stereo_fallback_one(s, b, i, tmp), tmp, s->src.color.ch);
-    } else if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
+    /* (entries whose taps weigh below 1e-3 took the 3x3 fallback already: redo 0 now,
+       see sbl__stereo_after_rig) */
+    if ((b->snapped[i] && b->p.fast[i] > 0.0f && !(r->v[x] > 0.0f)) || b->p.redo[i]) {
         float tmp[4] = {0, 0, 0, 0};
         sbl__ring_put(r, x, sbl__stereo_rp_pixel(s, x, b->y, tmp), tmp, s->src.color.ch);
         return;
@@ -7517,6 +7558,13 @@ SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r
     const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
     const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
     int i = 0, l, back[SBL__BLOCK], nback = 0;
+    {   /* (redo is rare: one look at the block first) */
+        uint64_t any = 0, u;
+        for (i = 0; i + 8 <= b->n; i += 8) { memcpy(&u, b->p.redo + i, 8); any |= u; }
+        for (; i < b->n; ++i) any |= b->p.redo[i];
+        if (any) sbl__stereo_fallback_block(s, r, b);
+        i = 0;
+    }
     if (rig == SBL_RIG_PARALLEL && b->mode == 1 && back_check) {
         for (; i + SBL__VW <= b->n; i += SBL__VW) {
             uint32_t any = 0, u, v;

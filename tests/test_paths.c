@@ -820,6 +820,47 @@ static void test_row_gather_disocclusion(void)
 #endif
 }
 
+/* sbl__all_safe (the one-vector unsafe-value test of the row gather) against
+   sbl__lane_value_ok per lane, on values at and around the limits (2^-40, 2^50), zeros
+   of either sign, denormals, inf, NaN and random floats: 1 exactly when every lane of
+   every vector is safe and nonzero. */
+static void test_all_safe(void)
+{
+#ifdef SBL__ROW_GATHER
+    static const unsigned int edges[12] = {0x2b7fffffu, 0x2b800000u, 0x2b800001u, 0x587fffffu,
+                                           0x58800000u, 0x587f0000u, 0x00000000u, 0x00000001u,
+                                           0x7f800000u, 0x7fc00000u, 0x3f800000u, 0x2b810000u};
+    sbt_rng rng = {31337};
+    int it, ones = 0, wrong = 0;
+    for (it = 0; it < 40000; ++it) {
+        float vals[5][SBL__VW];
+        sbl__v v[5];
+        int cnt = 1 + (int)(sbt_uniform(&rng) * 5), k, l, want = 1, got;
+        for (k = 0; k < 5; ++k) v[k] = sbl__set1(0.0f); /* (gcc -Wmaybe-uninitialized) */
+        for (k = 0; k < cnt; ++k) {
+            for (l = 0; l < SBL__VW; ++l) {
+                unsigned int bits;
+                double u = sbt_uniform(&rng);
+                if (it % 2 && u < 0.9) bits = 0x3e000000u + (unsigned int)(sbt_uniform(&rng) * 0x2000000); /* 0.125 .. 2 */
+                else if (u < 0.95) bits = edges[(int)(sbt_uniform(&rng) * 12)];
+                else bits = (unsigned int)(sbt_uniform(&rng) * 4294967295.0);
+                if (sbt_uniform(&rng) < 0.3) bits |= 0x80000000u;
+                memcpy(&vals[k][l], &bits, sizeof bits);
+                want &= sbl__lane_value_ok(vals[k][l]) && (bits & 0x7fffffffu) != 0;
+            }
+            v[k] = sbl__load(vals[k]);
+        }
+        got = sbl__all_safe(v, cnt);
+        wrong += got != want;
+        ones += got;
+    }
+    printf("  %s one-vector unsafe-value test: 40000 cases (%d all safe), %d differ from the lanes'\n",
+           SBL_SIMD_NAME, ones, wrong);
+    CHECK(wrong == 0);
+    CHECK(ones > 1000);
+#endif
+}
+
 /* The carried evidence (pooled estimator, docs/ESTIMATORS.md 3.7): the lanes' ratio
    (float) against the double reference on random block sums and carried values, and
    bands of rows of the public call against one whole-image call, the output plane
@@ -1016,6 +1057,7 @@ int main(void)
     test_row_gather();
     test_stereo_row_gather();
     test_row_gather_disocclusion();
+    test_all_safe();
     test_evidence_paths();
     return sbt_finish("test_paths");
 }
