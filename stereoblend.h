@@ -4999,13 +4999,14 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
 #endif
 #define SBL__EVIDENCE_THR \
     (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
-/* The most one frame's q may exceed the carried R by: an innovation clipped like a Huber
-   step, at the one-frame threshold's distance from the no-change mean. A change the
-   one-frame test sees (q >= SBL_POOLED_BLOCK_SE2) is handled in that frame by r = q - c;
-   what R is for is evidence that one frame cannot give. Unclipped, one noise-free jump
-   (q at the cap, 1e6) held R near 3e5, and it took ~30 frames of noise to decay
-   (found in review, session 8); clipped, R grows by at most lambda (c - 1) per frame
-   and decays as (1 - lambda)^k from wherever a lasting change left it. */
+/* The most one frame may raise the carried R by: c - 1, the one-frame threshold's distance
+   from the no-change mean (q's innovation clipped at (c - 1) / lambda, a Huber step). A
+   change the one-frame test sees (q >= SBL_POOLED_BLOCK_SE2) is handled in that frame by
+   r = q - c; R is for evidence that one frame cannot give. Unclipped, one noise-free
+   jump (q at the cap, 1e6) held R near 3e5, and a large q on low-noise content held it
+   for tens of frames (found in review, session 8); clipped, a single strong frame leaves
+   R at most c = 3.5, beyond c_R for two frames, and R still grows under a lasting
+   change. */
 #define SBL__EVIDENCE_STEP (SBL_POOLED_BLOCK_SE2 - 1.0)
 
 /* The history's evidence plane at pixels [xa, xb) of row y, gathered with the taps,
@@ -5056,7 +5057,7 @@ static double sbl__evidence_ratio_ref(sbl__kernel *k, int x, double sm2, double 
     double q = sse2 > 0.0 ? sm2 / sse2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0), e;
     if (q > SBL__POOL_RATIO_CAP) q = SBL__POOL_RATIO_CAP;
     if (!(sse2 + sm2 > 0.0)) q = 1.0; /* no block: no evidence either way */
-    if (q > e0 + SBL__EVIDENCE_STEP) q = e0 + SBL__EVIDENCE_STEP; /* bounded influence */
+    if (q > e0 + SBL__EVIDENCE_STEP / lam) q = e0 + SBL__EVIDENCE_STEP / lam; /* bounded step */
     e = e0 + lam * (q - e0);
     k->evid_out[x] = SBL__CAST(float, e);
     if (k->evid_use) {
@@ -5078,7 +5079,7 @@ SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, 
                         sbl__sel(sbl__gt(sm2, zero), cap, zero)), e;
     q = sbl__min(q, cap);
     q = sbl__sel(sbl__gt(sbl__add(sse2, sm2), zero), q, sbl__set1(1.0f));
-    q = sbl__min(q, sbl__add(e0, sbl__set1(SBL__CAST(float, SBL__EVIDENCE_STEP))));
+    q = sbl__min(q, sbl__add(e0, sbl__set1(SBL__CAST(float, SBL__EVIDENCE_STEP / SBL_EVIDENCE_LAMBDA))));
     e = sbl__add(e0, sbl__mul(lam, sbl__sub(q, e0)));
     sbl__store(k->evid_out + x, e);
     if (k->evid_use) {
