@@ -12,6 +12,8 @@
                       so that ~10 % of the pixels are disoccluded (the slow path's cost)
      temporal-tiny    the easy frame with one 1e-14 value in every row (no slow-path cliff)
      temporal-static  a camera at rest: zero motion, unchanged depth
+     temporal-evidence the easy frame with the optional evidence plane passed (read and
+                      written: the setup whose accuracy docs/RESULTS.md reports)
    (compare their ms with the `temporal` row of the same size: the issue asks for
    hard <= 1.5x, tiny <= 1.2x, static <= 1.2x the floor).
 
@@ -53,10 +55,12 @@ static float *falloc(size_t n)
 /* One eye's buffers: frame colour, depth, motion; history (ping-pong); outputs. */
 typedef struct eye_bufs {
     float *color, *depth, *prev_depth, *motion, *hist, *hlen, *out, *olen, *stereo_out;
+    float *hev, *oev; /* evidence plane in / out */
 } eye_bufs;
 
 typedef struct job {
     int kind;            /* 0 temporal, 1 stereo, 2 floor */
+    int evidence;        /* temporal: pass the evidence planes */
     int eye, y0, y1, w, h;
     eye_bufs *e[2];
     sbl_temporal_desc td;
@@ -87,6 +91,10 @@ static void run_temporal(job *j)
     hi.gbuffer.depth = sbl_image_make(b->prev_depth, j->w, j->h, 1);
     o.color = sbl_image_make(b->out, j->w, j->h, 3);
     o.length = sbl_image_make(b->olen, j->w, j->h, 1);
+    if (j->evidence) {
+        hi.evidence = sbl_image_make(b->hev, j->w, j->h, 1);
+        o.evidence = sbl_image_make(b->oev, j->w, j->h, 1);
+    }
     j->result = sbl_temporal_filter(&j->td, &f, &hi, &o, j->y0, j->y1, j->scratch, j->scratch_bytes);
 }
 
@@ -173,6 +181,7 @@ static void fill_eye(eye_bufs *b, int w, int h, int eye)
     b->motion = falloc(n * 2);
     b->hist = falloc(n * 3); b->hlen = falloc(n); b->out = falloc(n * 3); b->olen = falloc(n);
     b->stereo_out = falloc(n * 3);
+    b->hev = falloc(n); b->oev = falloc(n);
     for (i = 0; i < n; ++i) {
         int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), c;
         for (c = 0; c < 3; ++c) {
@@ -185,6 +194,7 @@ static void fill_eye(eye_bufs *b, int w, int h, int eye)
         b->motion[i * 2] = 0.37f + 0.1f * sinf(y * 0.01f);
         b->motion[i * 2 + 1] = -0.21f;
         b->hlen[i] = 8.0f;
+        b->hev[i] = 1.0f; /* the no-change mean of the carried ratio */
     }
 }
 
@@ -220,14 +230,14 @@ static void make_case(eye_bufs *b, int w, int h, int kase)
 static void free_eye(eye_bufs *b)
 {
     free(b->color); free(b->depth); free(b->prev_depth); free(b->motion); free(b->hist); free(b->hlen);
-    free(b->out); free(b->olen); free(b->stereo_out);
+    free(b->out); free(b->olen); free(b->stereo_out); free(b->hev); free(b->oev);
 }
 
 int main(int argc, char **argv)
 {
     static const int sizes[3][2] = {{1280, 720}, {1920, 1080}, {3840, 2160}};
     const char *out = "bench/out";
-    int reps = 9, quick = 0, si, eyes, pipe, threads, i, r, only_size = 0, only_count = 0;
+    int reps = 9, quick = 0, si, eyes, pipe, pk, threads, i, r, only_size = 0, only_count = 0;
     const char *only[8];
     char path[1024];
     FILE *csv;
@@ -270,10 +280,13 @@ int main(int argc, char **argv)
         fill_eye(&e[1], w, h, 1);
         for (i = 0; i < 8; ++i) scratch[i] = malloc(bytes);
         for (eyes = 1; eyes <= 2; ++eyes)
-            for (pipe = 0; pipe < 6; ++pipe) {
-                static const char *names[6] = {"temporal", "stereo", "combined", "temporal-tiny",
-                                               "temporal-hard", "temporal-static"};
-                const int kind = pipe >= 3 ? 0 : pipe; /* the extra contents run temporal */
+            for (pk = 0; pk < 7; ++pk) {
+                /* the evidence case right after the easy one: it reads the easy content,
+                   which the cases 3..5 rewrite */
+                static const int order[7] = {0, 6, 1, 2, 3, 4, 5};
+                static const char *names[7] = {"temporal", "stereo", "combined", "temporal-tiny",
+                                               "temporal-hard", "temporal-static", "temporal-evidence"};
+                const int kind = (pipe = order[pk]) >= 3 ? 0 : pipe; /* the extra contents run temporal */
                 if (eyes == 1 && pipe != 0 && pipe < 3) continue; /* stereo needs two eyes */
                 if (eyes == 2 && pipe >= 3) continue;
                 if (only_count) {
@@ -281,7 +294,7 @@ int main(int argc, char **argv)
                     for (k = 0; k < only_count; ++k) hit |= strcmp(only[k], names[pipe]) == 0;
                     if (!hit) continue;
                 }
-                if (pipe >= 3) make_case(&e[0], w, h, pipe == 3 ? 4 : (pipe == 4 ? 3 : 5));
+                if (pipe >= 3 && pipe <= 5) make_case(&e[0], w, h, pipe == 3 ? 4 : (pipe == 4 ? 3 : 5));
                 for (threads = 1; threads <= (pipe >= 3 ? 1 : 2); ++threads) {
                     double t_lib[64], t_floor[64], t_cv[64], ms, fms, cvms = -1.0;
                     /* byte plan for the floor, matching the pipeline's reads / writes */
@@ -299,6 +312,10 @@ int main(int argc, char **argv)
                             inp[ni] = e[ev].prev_depth; in_ch[ni++] = 1; /* previous depth */
                             outp[no] = e[ev].out; out_ch[no++] = 3;
                             outp[no] = e[ev].olen; out_ch[no++] = 1;
+                            if (pipe == 6) {
+                                inp[ni] = e[ev].hev; in_ch[ni++] = 1;
+                                outp[no] = e[ev].oev; out_ch[no++] = 1;
+                            }
                         }
                         if (kind == 1 || kind == 2) {
                             inp[ni] = e[ev].out; in_ch[ni++] = 3;     /* own colour    */
@@ -312,6 +329,7 @@ int main(int argc, char **argv)
                     }
                     memset(&pj, 0, sizeof pj);
                     pj.w = w; pj.h = h; pj.e[0] = &e[0]; pj.e[1] = &e[1];
+                    pj.evidence = pipe == 6;
                     pj.scratch_bytes = bytes;
                     pj.sd.focal_px = 800.0f;
                     pj.sd.baseline = 0.065f;
