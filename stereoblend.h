@@ -5025,7 +5025,17 @@ static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
         memset(r->unsafe + xa, 0, SBL__CAST(size_t, xb - xa));
         r->row = y;
         sbl__temporal_rp_row(k->evid_ctx, r, y, xa, xb);
-        for (x = xa; x < xb; ++x) {
+        {   /* the test below, in lanes (selects only: the same bits) */
+            const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f),
+                         cap = sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP));
+            for (x = xa; x + SBL__VW <= xb; x += SBL__VW) {
+                const sbl__v v = sbl__load(r->x[0] + x);
+                const sbl__m ok = sbl__mandnot(sbl__mand(sbl__gt(sbl__load(r->v + x), zero), sbl__gt(v, zero)),
+                                               sbl__gt(v, cap));
+                sbl__store(k->evid_in + x, sbl__sel(ok, v, one));
+            }
+        }
+        for (; x < xb; ++x) {
             const float v = r->x[0][x];
             k->evid_in[x] = r->v[x] > 0.0f && v > 0.0f && v <= SBL__CAST(float, SBL__POOL_RATIO_CAP) ? v : 1.0f;
         }
@@ -5046,6 +5056,10 @@ static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
 static void sbl__evidence_store(const sbl__kernel *k, int y, int xa, int xb, int pooled)
 {
     int x;
+    if (pooled && sbl__step_of(&k->out_e) == 1 && xa < xb) { /* packed: the row as it is */
+        memcpy(sbl__px(&k->out_e, xa, y), k->evid_out + xa, SBL__CAST(size_t, xb - xa) * sizeof(float));
+        return;
+    }
     for (x = xa; x < xb; ++x) *sbl__px(&k->out_e, x, y) = pooled ? k->evid_out[x] : 1.0f;
 }
 
