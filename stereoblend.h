@@ -7956,6 +7956,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
     sbl__walk_image(&wk, "out->color", &out->color, 0, w, h, 0);
     sbl__walk_image(&wk, "out->length", &out->length, 1, w, h, 0);
     sbl__walk_image(&wk, "out->alpha", &out->alpha, 1, w, h, 1);
+    sbl__walk_image(&wk, "out->evidence", &out->evidence, 1, w, h, 1);
     if (r == SBL_ERROR_NULL_POINTER && !wk.found) r = wk.want = SBL_OK; /* the scratch */
     if (out->color.data && out->color.channels != frame->color.channels)
         sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "out->color", ".channels",
@@ -8005,6 +8006,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
                 sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "history->color", ".channels",
                            "differs from frame->color.channels");
             sbl__walk_image(&wk, "history->length", &history->length, 1, w, h, 1);
+            sbl__walk_image(&wk, "history->evidence", &history->evidence, 1, w, h, 1);
             sbl__walk_gbuffer(&wk, "history->gbuffer", &history->gbuffer, w, h);
         }
         if (u.source == SBL_TEMPORAL_MOTION && !frame->gbuffer.motion.data)
@@ -8037,28 +8039,29 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         }
     }
     {   /* outputs: disjoint from each other and from every input */
-        const sbl_image *o[3], *in[11];
-        const char *on[3] = {"out->color", "out->length", "out->alpha"};
-        const char *names[11] = {
+        const sbl_image *o[4], *in[12];
+        const char *on[4] = {"out->color", "out->length", "out->alpha", "out->evidence"};
+        const char *names[12] = {
             "overlaps frame->color", "overlaps frame->gbuffer.depth",
             "overlaps frame->gbuffer.normals", "overlaps frame->gbuffer.ids",
             "overlaps frame->gbuffer.motion", "overlaps history->color",
             "overlaps history->length", "overlaps history->gbuffer.depth",
             "overlaps history->gbuffer.normals", "overlaps history->gbuffer.ids",
-            "overlaps history->gbuffer.motion"};
+            "overlaps history->gbuffer.motion", "overlaps history->evidence"};
         int i, j;
         const sbl_history *hi = history && history->color.data ? history : NULL;
-        o[0] = &out->color; o[1] = &out->length; o[2] = &out->alpha;
+        o[0] = &out->color; o[1] = &out->length; o[2] = &out->alpha; o[3] = &out->evidence;
         in[0] = &frame->color; in[1] = &frame->gbuffer.depth; in[2] = &frame->gbuffer.normals;
         in[3] = &frame->gbuffer.ids; in[4] = &frame->gbuffer.motion;
         in[5] = hi ? &hi->color : NULL; in[6] = hi ? &hi->length : NULL;
         in[7] = hi ? &hi->gbuffer.depth : NULL; in[8] = hi ? &hi->gbuffer.normals : NULL;
         in[9] = hi ? &hi->gbuffer.ids : NULL; in[10] = hi ? &hi->gbuffer.motion : NULL;
-        for (i = 0; i < 3; ++i)
-            for (j = i + 1; j < 3; ++j)
+        in[11] = hi ? &hi->evidence : NULL;
+        for (i = 0; i < 4; ++i)
+            for (j = i + 1; j < 4; ++j)
                 if (sbl__overlap_checked(o[i], o[j]))
                     sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
-        for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 11);
+        for (i = 0; i < 4; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 12);
     }
     if (r != SBL_OK && !wk.found) {
         sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);

@@ -1110,7 +1110,16 @@ static void test_diagnostics(void)
     VALIDATE_T(SBL_ERROR_NULL_POINTER, "out->length.data", NULL);
     RESET(); fr.gbuffer.normals = sbl_image_make(col, w, h, 4);
     VALIDATE_T(SBL_ERROR_INVALID_CHANNELS, "frame->gbuffer.normals.channels", "needs 3");
-    fr = fr0;
+    /* the evidence planes are named like the others */
+    RESET(); out.evidence = sbl_image_make(mv, w, h, 2);
+    VALIDATE_T(SBL_ERROR_INVALID_CHANNELS, "out->evidence.channels", "needs 1");
+    RESET(); out.evidence = sbl_image_make(pdep, w, h, 1);
+    VALIDATE_T(SBL_ERROR_OVERLAP, "out->evidence", "history->gbuffer.depth");
+    RESET(); hi.evidence = sbl_image_make(on, w, h, 1);
+    VALIDATE_T(SBL_ERROR_OVERLAP, "out->length", "history->evidence");
+    RESET(); hi.evidence = sbl_image_make(pdep, w - 1, h, 1);
+    VALIDATE_T(SBL_ERROR_SIZE_MISMATCH, "history->evidence.width", "23 x 16");
+    RESET();
     CHECK_EQ(sbl_temporal_validate(NULL, &fr, &hi, &out, &dg), SBL_ERROR_NULL_POINTER);
     EXPECT_DIAG(dg, SBL_ERROR_NULL_POINTER, "desc", NULL);
     CHECK_EQ(sbl_temporal_validate(&d, &fr, &hi, &out, NULL), SBL_OK);

@@ -603,7 +603,7 @@ static void test_pool_dim(void)
                 ++exact;
             } else {
                 const double e = fabs((double)lanes[x] - k.pool_r[x]) / (1.0 + SBL_POOLED_BLOCK_SE2 + k.pool_r[x]);
-                CHECK(e <= 1e-4);
+                CHECK(e <= 4e-6); /* measured 4.1e-7 */
                 if (e > worst) worst = e;
             }
         }
@@ -620,7 +620,7 @@ static void test_pool_dim(void)
 /* The default configurations' lanes (pooled estimator, no rectification, one weight;
    temporal and stereo) on windows holding dim values (normal floats below the lane
    range's 2^-40): where sbl__lane_window_dim_ok admits the window, the lanes must agree
-   with the double reference as on any window (1e-4, as above); dim pairs, two dim
+   with the double reference (4e-6, relative for the colour); dim pairs, two dim
    values in one column, NaN are refused (the reference path). */
 static void test_lanes_dim(void)
 {
@@ -698,14 +698,14 @@ static void test_lanes_dim(void)
             e = fabs(lane_a[x] - k.stage_a[x]);
             en = fabs(lane_n[x] - k.stage_n[x]) / (fabs(k.stage_n[x]) + 1.0);
             if (en > e) e = en;
-            for (c = 0; c < ch; ++c) {
-                const double ec = fabs(lane_c[x][c] - k.stage[c][x]);
+            for (c = 0; c < ch; ++c) { /* relative: the output may itself be dim */
+                const double ec = fabs(lane_c[x][c] - k.stage[c][x]) / (fabs(k.stage[c][x]) + FLT_MIN);
                 if (!(ec <= e)) e = ec;
             }
-            if (!(e <= 1e-4))
+            if (!(e <= 4e-6))
                 printf("  dim case %d (stereo %d ch %d) x %d: lane a %.6f n %g, ref a %.6f n %g\n", it,
                        stereo, ch, x, lane_a[x], lane_n[x], k.stage_a[x], k.stage_n[x]);
-            CHECK(e <= 1e-4);
+            CHECK(e <= 4e-6); /* measured 4.9e-7 (scalar, SSE2, AVX2, AVX-512) */
             if (e > worst) worst = e;
         }
         free(scratch);
