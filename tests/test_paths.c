@@ -169,6 +169,33 @@ static int same_float(float a, float b, int contracts)
 }
 #endif
 
+#ifdef SBL__ROW_GATHER
+/* Row y's pixels [xa, xb): the row gather's ring row ra against the pixel gather written
+   into rb, bit for bit (within same_float where the compiler contracts); counts pixels,
+   mismatches and pixels the pixel gather left without history (*empty). */
+static void compare_with_pixel_gather(sbl__temporal_rp *rp, const sbl__ring_row *ra, sbl__ring_row *rb,
+                                      int y, int xa, int xb, int ch, int contracts, const char *what,
+                                      int it, int w, int h, int *pixels, int *mismatches, int *empty)
+{
+    int x, c;
+    for (x = xa; x < xb; ++x) {
+        float tmp[4] = {0, 0, 0, 0};
+        sbl__ring_put(rb, x, sbl__temporal_rp_pixel(rp, x, y, tmp), tmp, ch);
+    }
+    for (x = xa; x < xb; ++x) {
+        int bad = !same_float(ra->n[x], rb->n[x], contracts) || memcmp(&ra->v[x], &rb->v[x], 4) != 0;
+        for (c = 0; c < ch; ++c) bad |= !same_float(ra->x[c][x], rb->x[c][x], contracts);
+        if (bad && *mismatches < 5)
+            printf("  %s case %d (%dx%dx%d) pixel (%d,%d): n %.9g vs %.9g, x0 %.9g vs %.9g\n", what,
+                   it, w, h, ch, x, y, ra->n[x], rb->n[x], ra->x[0][x], rb->x[0][x]);
+        *mismatches += bad;
+        *empty += !(rb->n[x] > 0.0f);
+        ++*pixels;
+    }
+}
+
+#endif
+
 static void test_row_gather(void)
 {
 #ifdef SBL__ROW_GATHER
@@ -287,20 +314,8 @@ static void test_row_gather(void)
                 if (ra.gather_unsafe != want) ++flag_mismatches;
                 flagged += want;
             }
-            for (x = xa; x < xb; ++x) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(&rb, x, sbl__temporal_rp_pixel(&rp, x, y, tmp), tmp, ch);
-            }
-            for (x = xa; x < xb; ++x) {
-                int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
-                for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
-                if (bad && mismatches < 5)
-                    printf("  row gather case %d (%dx%dx%d) pixel (%d,%d): n %.9g vs %.9g, x0 %.9g vs %.9g\n",
-                           it, w, h, ch, x, y, ra.n[x], rb.n[x], ra.x[0][x], rb.x[0][x]);
-                mismatches += bad;
-                redone += !(rb.n[x] > 0.0f);
-                ++pixels;
-            }
+            compare_with_pixel_gather(&rp, &ra, &rb, y, xa, xb, ch, contracts, "row gather", it, w, h,
+                                      &pixels, &mismatches, &redone);
         }
         free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
         free(pair.mem);
@@ -796,20 +811,8 @@ static void test_row_gather_disocclusion(void)
             int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w), xb = it % 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
             memset(unsafe, 0, sizeof unsafe);
             sbl__temporal_rp_row(&rp, &ra, y, xa, xb);
-            for (x = xa; x < xb; ++x) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(&rb, x, sbl__temporal_rp_pixel(&rp, x, y, tmp), tmp, ch);
-            }
-            for (x = xa; x < xb; ++x) {
-                int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
-                for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
-                if (bad && mismatches < 5)
-                    printf("  disocclusion case %d (%dx%dx%d) pixel (%d,%d): n %.9g vs %.9g, x0 %.9g vs %.9g\n",
-                           it, w, h, ch, x, y, ra.n[x], rb.n[x], ra.x[0][x], rb.x[0][x]);
-                mismatches += bad;
-                empty += !(rb.n[x] > 0.0f);
-                ++pixels;
-            }
+            compare_with_pixel_gather(&rp, &ra, &rb, y, xa, xb, ch, contracts, "disocclusion", it, w, h,
+                                      &pixels, &mismatches, &empty);
         }
         free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
     }
