@@ -75,6 +75,18 @@ $(BUILD)/adaptive_ipp: bench/adaptive_ipp.c $(DATASET_SRC) $(HEADERS) $(RUNNER) 
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_STRICT) -O2 -g -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
 
+# what each adaptive shortcut saves and adds (one library build per shortcut set)
+SHORTCUT_MASKS := 31 30 29 27 23 15 0
+SHORTCUT_OBJS := $(patsubst %,$(BUILD)/shortcuts/variant_%.o,$(SHORTCUT_MASKS))
+$(BUILD)/shortcuts/variant_%.o: bench/shortcuts_variant.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -DSC_MASK=$* -c $< -o $@
+$(BUILD)/shortcuts/shortcuts: bench/shortcuts.c $(SHORTCUT_OBJS) $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -g -Itools $(EXR_CFLAGS) $< $(SHORTCUT_OBJS) $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+bench-shortcuts: $(BUILD)/shortcuts/shortcuts
+	./$(BUILD)/shortcuts/shortcuts
+
 # Mono / FSA / adaptive stereo blend: ms, RMSE, eff spp, stereo inconsistency ratio
 bench-adaptive: $(BUILD)/bench-adaptive
 	./$(BUILD)/bench-adaptive --out bench/out
