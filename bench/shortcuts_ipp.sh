@@ -3,9 +3,11 @@
 # built with -DSC_CALLGRIND), per scene and G-buffer, from one callgrind run each: the
 # inclusive count of each build's two entry points (sc_temporal_MASK, sc_stereo_MASK)
 # over the frames, divided by the pixels of both eyes. usage: shortcuts_ipp.sh BIN [SCENES]
+# (the synthetic scenes work too, but their path tracer runs under valgrind first: an
+# hour and more per scene on a loaded 2-core machine)
 set -e
 bin=$1
-scenes=${2:-synthetic-static,synthetic-shadow,synthetic-dynamic,atrium,gallery}
+scenes=${2:-atrium,gallery}
 if ! command -v valgrind >/dev/null 2>&1; then
   echo "bench-shortcuts-ipp: valgrind not found, nothing measured"; exit 0
 fi
