@@ -3188,6 +3188,18 @@ static int sbl__lane_value_ok(float v)
     return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
+/* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
+   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
+   far tiles gives the general path's bits, so switching one off costs only time.
+     1  void tiles                  2  tiles at rest               4  sky tiles
+     8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
+        pair-validity selects (the fallback bookkeeping)
+    16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
+        same bits, see SBL__FAR_PX) */
+#ifndef SBL_SHORTCUTS
+#define SBL_SHORTCUTS 31
+#endif
+
 /* One gathered x* (N > 0: valid) into ring column x. */
 SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v, int ch)
 {
@@ -4254,18 +4266,6 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
    matter, or operations whose result is exactly the same), so no result depends on where
    a band, a span or a tile starts. */
 enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2, SBL__TILE_SKY = 3 };
-
-/* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
-   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
-   far tiles gives the general path's bits, so switching one off costs only time.
-     1  void tiles                  2  tiles at rest               4  sky tiles
-     8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
-        pair-validity selects (the fallback bookkeeping)
-    16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
-        same bits, see SBL__FAR_PX) */
-#ifndef SBL_SHORTCUTS
-#define SBL_SHORTCUTS 31
-#endif
 
 /* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
    vector loads packed (pixel step 1: depth, N), no target normals or ids (whose tests
