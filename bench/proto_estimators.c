@@ -218,6 +218,12 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                     if (nb > 0 && np > 1) {
                         double tau2 = zsb / nb, sh;
                         if (c->normalized == 2) tau2 = sse > 0 ? zsb / sse - cc : (zsb > 0 ? 1e6 : 0);
+                        /* 64: the one-frame ratio through the same garrote,
+                           (q - 1)(1 - ((c - 1) / (q - 1))^2)+ instead of q - c */
+                        if ((c->carry_mode & 64) && c->normalized == 2 && tau2 > 0) {
+                            double q1 = tau2 + cc - 1.0;
+                            tau2 = q1 - (cc - 1.0) * (cc - 1.0) / q1;
+                        }
                         if (tau2 < 0) tau2 = 0;
                         if (zout && (c->carry_mode & 4)) {
                             double q = sse > 0 ? zsb / sse : (zsb > 0 ? 1e6 : 0);
@@ -414,6 +420,7 @@ static cand cands[] = {
     {"R l1/3 garrote2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4},
     /* the channels of one path sample are correlated (one light path drives all three):
        |s|^2 / (kappa se^2) is nearer chi^2_1 than chi^2_3 / 3 under H0; 6.63 = its 99 % */
+    {"R garrote + 1-frame garrote", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 100, 4},
     {"trend l1/3 c6.63", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4, 1.0 / 3, 6.63, 0},
 };
 
