@@ -3365,7 +3365,102 @@ typedef struct sbl__tap_plan {
        together and not so (0: unknown) */
     unsigned char uniform[SBL__BLOCK];
     int lane_step[3][SBL__VW];      /* l * pixel step of colour, depth, N (set per call) */
+    /* the normal and id tests (sbl__lanes_nid_ok), where the call runs them: tap (x0, y0)
+       in the normals and the ids, the target's normal, its squared length and its id */
+    int ni[SBL__BLOCK], ii[SBL__BLOCK];
+    float tn[3][SBL__BLOCK], tn2[SBL__BLOCK], tid[SBL__BLOCK];
 } sbl__tap_plan;
+
+/* ---- the normal and id tests in lanes ------------------------------------------
+   sbl__tap_ok_id_normal for VW plan entries at once: the plan carries each entry's
+   target normal, its squared length and its id (as sbl__tap_want_init formed them) and
+   the taps' indices in the source's normals and ids. */
+
+/* an entry without normal / id test data: tap (0, 0) (a valid address), "no normal" */
+SBL__INLINE void sbl__tap_plan_reset_nid(sbl__tap_plan *p, int i)
+{
+    p->ni[i] = p->ii[i] = 0;
+    p->tn[0][i] = p->tn[1][i] = p->tn[2][i] = p->tn2[i] = p->tid[i] = 0.0f;
+}
+
+/* entry i's normal / id data from the target's expectations t, footprint at (x0, y0) */
+SBL__INLINE void sbl__tap_plan_set_nid(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+                                       const sbl__tap_want *t, int x0, int y0)
+{
+    if (s->use_normal) { /* (the target has normals: t->normal is set) */
+        p->ni[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->normals.stride + SBL__CAST(ptrdiff_t, x0) * s->normals.step);
+        p->tn[0][i] = t->normal[0];
+        p->tn[1][i] = t->normal[1];
+        p->tn[2][i] = t->normal[2];
+        p->tn2[i] = t->normal_len2;
+    }
+    if (s->use_id) {
+        p->ii[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->ids.stride + SBL__CAST(ptrdiff_t, x0) * s->ids.step);
+        p->tid[i] = t->id;
+    }
+}
+
+/* The target's expectations of plan entry i for the pixel gather's fallback: depth and
+   slack as given, normal (into nbuf) and id from the plan where the call tests them. */
+SBL__INLINE void sbl__tap_plan_want(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
+                                    sbl__tap_want *t, float *nbuf)
+{
+    t->normal = NULL;
+    t->normal_len2 = 0.0f;
+    t->id = 0.0f;
+    if (!p) return;
+    if (s->use_normal) {
+        nbuf[0] = p->tn[0][i];
+        nbuf[1] = p->tn[1][i];
+        nbuf[2] = p->tn[2][i];
+        t->normal = nbuf;
+        t->normal_len2 = p->tn2[i];
+    }
+    if (s->use_id) t->id = p->tid[i];
+}
+
+/* NaN lanes, on the bits (-ffast-math may fold a float self-compare) */
+SBL__INLINE sbl__m sbl__lanes_nan(sbl__v a)
+{
+    return sbl__mandnot(sbl__nonfinite(a), sbl__posinf(sbl__abs(a)));
+}
+
+/* sbl__tap_ok_id_normal on tap t (0 .. 3: (x0, y0), (x0 + 1, y0), (x0, y0 + 1),
+   (x0 + 1, y0 + 1)) of plan entries [i, i + VW): the same float operations in the same
+   order per lane (dot, nn, the threshold product), so the same decisions. ids compare
+   as floats, a NaN on either side never matching; a tap whose dot or nn is not finite
+   fails; "no normal" (squared length below 1e-12) matches only itself. The taps are
+   gathered at the plan's indices (any layout: strided or channel views). */
+SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t)
+{
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    sbl__m ok = sbl__true;
+    if (s->use_id) {
+        const sbl__v id = sbl__gatheri(s->ids.p + ty * s->ids.stride + tx * s->ids.step, p->ii + i);
+        const sbl__v want = sbl__load(p->tid + i);
+        ok = sbl__mandnot(sbl__mand(sbl__le(id, want), sbl__le(want, id)),
+                          sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
+    }
+    if (s->use_normal) {
+        const float *nb = s->normals.p + ty * s->normals.stride + tx * s->normals.step;
+        const sbl__v n0 = sbl__gatheri(nb, p->ni + i), n1 = sbl__gatheri(nb + 1, p->ni + i),
+                     n2 = sbl__gatheri(nb + 2, p->ni + i);
+        const sbl__v m0 = sbl__load(p->tn[0] + i), m1 = sbl__load(p->tn[1] + i),
+                     m2 = sbl__load(p->tn[2] + i), mm = sbl__load(p->tn2 + i);
+        const sbl__v zero = sbl__set1(0.0f), eps = sbl__set1(1e-12f);
+        const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, m0), sbl__mul(n1, m1)), sbl__mul(n2, m2));
+        const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
+        const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(s->normal_threshold2), nn), mm);
+        const sbl__m none_n = sbl__gt(eps, nn), none_m = sbl__gt(eps, mm);
+        /* both with a normal: not dot < 0 and not dot^2 < threshold^2 nn mm */
+        const sbl__m agree = sbl__mandnot(sbl__mandnot(sbl__true, sbl__gt(zero, dot)),
+                                          sbl__gt(lim, sbl__mul(dot, dot)));
+        const sbl__m none = sbl__mor(none_n, none_m);
+        const sbl__m match = sbl__mor(sbl__mand(none_n, none_m), sbl__mandnot(agree, none));
+        ok = sbl__mand(ok, sbl__mandnot(match, sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn))));
+    }
+    return ok;
+}
 
 static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
 {
@@ -3376,6 +3471,7 @@ static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
     p->fast[i] = 0.0f;
     p->redo[i] = 0;
     p->uniform[i] = 0;
+    sbl__tap_plan_reset_nid(p, i);
 }
 
 /* Plan entry i from a source position, as sbl__gather_ch decides: 0 reset, else the
@@ -3403,6 +3499,7 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
         p->di[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->depth.stride + SBL__CAST(ptrdiff_t, x0) * s->depth.step);
     if (s->length.p)
         p->li[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->length.stride + SBL__CAST(ptrdiff_t, x0) * s->length.step);
+    if (s->use_normal || s->use_id) sbl__tap_plan_set_nid(s, p, i, t, x0, y0);
     p->fast[i] = 1.0f;
 }
 
@@ -3496,6 +3593,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
             ok = sbl__mand(ok, match);
         }
     }
+    if (s->use_normal || s->use_id) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t));
     *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
@@ -3822,16 +3920,15 @@ SBL__INLINE int sbl__window_fails(const sbl__tap_src *s, const int *di, const fl
 
 /* sbl__gather_fallback at (sx, sy) with expected depth ze and slack sl into ring column x */
 static SBL__RARE void sbl__fallback_put(const sbl__tap_src *s, sbl__ring_row *r, int x, double sx,
-                                        double sy, float ze, float sl, int flag)
+                                        double sy, float ze, float sl, int flag,
+                                        const sbl__tap_plan *p, int entry)
 {
-    float tmp[4] = {0, 0, 0, 0};
+    float tmp[4] = {0, 0, 0, 0}, nbuf[3];
     sbl__tap_want t;
     float n;
     t.depth = ze;
     t.depth_slack = sl;
-    t.normal = NULL;
-    t.normal_len2 = 0.0f;
-    t.id = 0.0f;
+    sbl__tap_plan_want(s, p, entry, &t, nbuf); /* normal and id (p: the plan, if any) */
     n = sbl__gather_fallback(s, &t, sx, sy, tmp);
     if (flag) sbl__ring_put_flag(r, x, n, tmp, s->color.ch);
     else sbl__ring_put(r, x, n, tmp, s->color.ch);
@@ -3840,10 +3937,11 @@ static SBL__RARE void sbl__fallback_put(const sbl__tap_src *s, sbl__ring_row *r,
 /* The 3x3 fallback for ring columns x0 + e[k] (k < n) at source positions (sx[k], sy[k])
    with expected depths ze[e[k]] and slacks sl[e[k]] (the plan's): a reset where sbl__window_fails says the
    window holds nothing (the fallback's own result there), else sbl__gather_fallback.
-   flag: the puts flag unsafe values (sbl__ring_put_flag). */
+   flag: the puts flag unsafe values (sbl__ring_put_flag). p: the plan, for the normal and
+   id tests' expectations (a window that fails the depth test fails them all the same). */
 static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0, const int *e,
                                 const double *sx, const double *sy, const float *ze,
-                                const float *sl, int n, int flag)
+                                const float *sl, int n, int flag, const sbl__tap_plan *p)
 {
     const int ch = s->color.ch;
     const double wl = SBL__CAST(double, s->width) - 1.0, hl = SBL__CAST(double, s->height) - 1.0;
@@ -3861,7 +3959,7 @@ static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0,
                 ll[m] = sl[e[k]];
                 lane[m++] = k;
             } else {
-                sbl__fallback_put(s, r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]], flag);
+                sbl__fallback_put(s, r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]], flag, p, e[k]);
             }
         }
         if (!m) break;
@@ -3870,7 +3968,7 @@ static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0,
         for (l = 0; l < m; ++l) {
             const int j = lane[l];
             if ((none >> l) & 1) sbl__ring_put(r, x0 + e[j], 0.0f, NULL, ch);
-            else sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag);
+            else sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag, p, e[j]);
         }
     }
 }
@@ -3953,17 +4051,18 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
     }
 }
 
-/* Can the row gather address every tap of this source with int offsets, and does it
-   run the tests the lanes implement (not ids nor normals)? */
+/* Can the row gather address every tap of this source with int offsets (every view it
+   tests: normals and ids where their tests run, sbl__lanes_nid_ok)? */
 static int sbl__row_gather_ok(const sbl__tap_src *s)
 {
-    const sbl__flat *f[3];
+    const sbl__flat *f[5];
     int i;
-    if (s->use_id || s->use_normal || s->width < 2 || s->height < 2) return 0;
+    if (s->width < 2 || s->height < 2) return 0;
     f[0] = &s->color; f[1] = &s->depth; f[2] = &s->length;
-    for (i = 0; i < 3; ++i) {
+    f[3] = s->use_normal ? &s->normals : NULL; f[4] = s->use_id ? &s->ids : NULL;
+    for (i = 0; i < 5; ++i) {
         double span;
-        if (!f[i]->p) continue;
+        if (!f[i] || !f[i]->p) continue;
         span = SBL__CAST(double, s->height - 1) * fabs(SBL__CAST(double, f[i]->stride)) +
                SBL__CAST(double, s->width) * SBL__CAST(double, f[i]->step);
         if (!(span < SBL__CAST(double, INT_MAX) / 2)) return 0;
@@ -4631,7 +4730,7 @@ static void sbl__temporal_fallback_block(const void *ctx, sbl__ring_row *r, sbl_
         sy[n] = b->y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
         e[n++] = i;
     }
-    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1);
+    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1, &b->p);
 }
 
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
@@ -7499,7 +7598,7 @@ static SBL__RARE void sbl__stereo_fallback_block(const sbl__stereo_rp *s, sbl__r
             fy[n] = b->psy[i];
             e[n++] = i;
         }
-    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, fx, fy, b->p.depth, b->p.slack, n, 0);
+    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, fx, fy, b->p.depth, b->p.slack, n, 0, &b->p);
 }
 
 /* After the taps: the entries handed back, and far lanes whose one tap failed, go to
