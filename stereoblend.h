@@ -3425,6 +3425,32 @@ SBL__INLINE sbl__m sbl__lanes_nan(sbl__v a)
     return sbl__mandnot(sbl__nonfinite(a), sbl__posinf(sbl__abs(a)));
 }
 
+/* The normal test of sbl__tap_ok_id_normal per lane: tap normal n, target normal m and
+   its squared length mm, the squared threshold thr2. */
+SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
+                                        sbl__v m2, sbl__v mm, float thr2)
+{
+    const sbl__v zero = sbl__set1(0.0f), eps = sbl__set1(1e-12f);
+    const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, m0), sbl__mul(n1, m1)), sbl__mul(n2, m2));
+    const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
+    const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(thr2), nn), mm);
+    const sbl__m none_n = sbl__gt(eps, nn), none_m = sbl__gt(eps, mm);
+    /* both with a normal: not dot < 0 and not dot^2 < threshold^2 nn mm (no NaN here
+       where it matters: dot and nn finite, mm finite for a valid target) */
+    const sbl__m agree = sbl__mandnot(sbl__mandnot(sbl__true, sbl__gt(zero, dot)),
+                                      sbl__gt(lim, sbl__mul(dot, dot)));
+    const sbl__m none = sbl__mor(none_n, none_m);
+    const sbl__m match = sbl__mor(sbl__mand(none_n, none_m), sbl__mandnot(agree, none));
+    return sbl__mandnot(match, sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn)));
+}
+
+/* The id test per lane: equal as floats, a NaN on either side never matching. */
+SBL__INLINE sbl__m sbl__lanes_id_ok(sbl__v id, sbl__v want)
+{
+    return sbl__mandnot(sbl__mand(sbl__le(id, want), sbl__le(want, id)),
+                        sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
+}
+
 /* sbl__tap_ok_id_normal on tap t (0 .. 3: (x0, y0), (x0 + 1, y0), (x0, y0 + 1),
    (x0 + 1, y0 + 1)) of plan entries [i, i + VW): the same float operations in the same
    order per lane (dot, nn, the threshold product), so the same decisions. ids compare
@@ -3437,27 +3463,15 @@ SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan 
     sbl__m ok = sbl__true;
     if (s->use_id) {
         const sbl__v id = sbl__gatheri(s->ids.p + ty * s->ids.stride + tx * s->ids.step, p->ii + i);
-        const sbl__v want = sbl__load(p->tid + i);
-        ok = sbl__mandnot(sbl__mand(sbl__le(id, want), sbl__le(want, id)),
-                          sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
+        ok = sbl__lanes_id_ok(id, sbl__load(p->tid + i));
     }
     if (s->use_normal) {
         const float *nb = s->normals.p + ty * s->normals.stride + tx * s->normals.step;
         const sbl__v n0 = sbl__gatheri(nb, p->ni + i), n1 = sbl__gatheri(nb + 1, p->ni + i),
                      n2 = sbl__gatheri(nb + 2, p->ni + i);
-        const sbl__v m0 = sbl__load(p->tn[0] + i), m1 = sbl__load(p->tn[1] + i),
-                     m2 = sbl__load(p->tn[2] + i), mm = sbl__load(p->tn2 + i);
-        const sbl__v zero = sbl__set1(0.0f), eps = sbl__set1(1e-12f);
-        const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, m0), sbl__mul(n1, m1)), sbl__mul(n2, m2));
-        const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
-        const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(s->normal_threshold2), nn), mm);
-        const sbl__m none_n = sbl__gt(eps, nn), none_m = sbl__gt(eps, mm);
-        /* both with a normal: not dot < 0 and not dot^2 < threshold^2 nn mm */
-        const sbl__m agree = sbl__mandnot(sbl__mandnot(sbl__true, sbl__gt(zero, dot)),
-                                          sbl__gt(lim, sbl__mul(dot, dot)));
-        const sbl__m none = sbl__mor(none_n, none_m);
-        const sbl__m match = sbl__mor(sbl__mand(none_n, none_m), sbl__mandnot(agree, none));
-        ok = sbl__mand(ok, sbl__mandnot(match, sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn))));
+        ok = sbl__mand(ok, sbl__lanes_normal_ok(n0, n1, n2, sbl__load(p->tn[0] + i), sbl__load(p->tn[1] + i),
+                                                sbl__load(p->tn[2] + i), sbl__load(p->tn2 + i),
+                                                s->normal_threshold2));
     }
     return ok;
 }
@@ -4367,13 +4381,14 @@ enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2, SBL__TILE_
 #endif
 
 /* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
-   vector loads packed (pixel step 1: depth, N), no target normals or ids (whose tests
-   the general path keeps)? */
+   vector loads packed (pixel step 1: depth, N; normals and ids any, sbl__rest_nid_ok),
+   and, for the camera source, no moving object (whose ids decide per pixel)? */
 static int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
 {
     const sbl__tap_src *src = &s->src;
-    return s->tiles && s->history && !s->geo.normals.p && !s->geo.ids.p && !src->use_id &&
-           !src->use_normal && (!s->geo.depth.p || s->geo.depth.step == 1) &&
+    return s->tiles && s->history && (s->source == SBL_TEMPORAL_MOTION || !s->moving_count) &&
+           (!s->geo.depth.p || s->geo.depth.step == 1) && s->geo.normals.step < INT_MAX / SBL__VW &&
+           s->geo.ids.step < INT_MAX / SBL__VW &&
            (!src->use_depth || src->depth.step == 1) && (!src->length.p || src->length.step == 1) &&
            (s->source == SBL_TEMPORAL_MOTION || s->at_rest);
 }
@@ -4446,6 +4461,55 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
     return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
 }
 
+/* The VW pixels x .. x + VW - 1 of row y of a view, channel c (pixel step 1: a load;
+   else lanes at l * step). */
+SBL__INLINE sbl__v sbl__lanes_px(const sbl__flat *f, int x, int y, int c)
+{
+    const float *q = SBL__AT(*f, x, y) + c;
+    int idx[SBL__VW], l;
+    if (f->step == 1) return sbl__load(q);
+    for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, f->step); /* sbl__row_gather_ok */
+    return sbl__gatheri(q, idx);
+}
+
+/* The normal and id tests of a tile at rest for the VW pixels x .. x + VW - 1 of row y:
+   the footprint's one tap is the pixel itself, so its test is the history's normal and
+   id against the target's at the same pixel (sbl__lanes_normal_ok, sbl__lanes_id_ok).
+   A target normal whose squared length (formed as sbl__tap_want_init forms it) is not
+   finite fails too: the pixel gather then resets that pixel, as sbl__tap_want_init
+   decides. */
+SBL__INLINE sbl__m sbl__rest_nid_ok(const sbl__temporal_rp *s, int x, int y)
+{
+    const sbl__tap_src *src = &s->src;
+    sbl__m ok = sbl__true;
+    if (s->geo.normals.p) {
+        sbl__v m0, m1, m2, mm;
+        if (s->geo.normals.step == 3) {
+            sbl__rgb_lanes(SBL__AT(s->geo.normals, x, y), &m0, &m1, &m2);
+        } else {
+            m0 = sbl__lanes_px(&s->geo.normals, x, y, 0);
+            m1 = sbl__lanes_px(&s->geo.normals, x, y, 1);
+            m2 = sbl__lanes_px(&s->geo.normals, x, y, 2);
+        }
+        mm = sbl__add(sbl__add(sbl__mul(m0, m0), sbl__mul(m1, m1)), sbl__mul(m2, m2));
+        ok = sbl__mandnot(ok, sbl__nonfinite(mm));
+        if (src->use_normal) {
+            sbl__v n0, n1, n2;
+            if (src->normals.step == 3) {
+                sbl__rgb_lanes(SBL__AT(src->normals, x, y), &n0, &n1, &n2);
+            } else {
+                n0 = sbl__lanes_px(&src->normals, x, y, 0);
+                n1 = sbl__lanes_px(&src->normals, x, y, 1);
+                n2 = sbl__lanes_px(&src->normals, x, y, 2);
+            }
+            ok = sbl__mand(ok, sbl__lanes_normal_ok(n0, n1, n2, m0, m1, m2, mm, src->normal_threshold2));
+        }
+    }
+    if (src->use_id)
+        ok = sbl__mand(ok, sbl__lanes_id_ok(sbl__lanes_px(&src->ids, x, y, 0), sbl__lanes_px(&s->geo.ids, x, y, 0)));
+    return ok;
+}
+
 /* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
    pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
    sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
@@ -4497,6 +4561,7 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
             valid = sbl__mand(valid, sbl__mor(sbl__mand(inf_e, inf_t),
                                               sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
         }
+        if (s->geo.normals.p || s->geo.ids.p) valid = sbl__mand(valid, sbl__rest_nid_ok(s, x, y));
         if (np) nv = sbl__load(np + i);
         /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
            0 is unsafe exactly when v is); a safe value is finite, so where every value is
