@@ -3419,63 +3419,6 @@ SBL__INLINE void sbl__tap_plan_want(const sbl__tap_src *s, const sbl__tap_plan *
     if (s->use_id) t->id = p->tid[i];
 }
 
-/* NaN lanes, on the bits (-ffast-math may fold a float self-compare) */
-SBL__INLINE sbl__m sbl__lanes_nan(sbl__v a)
-{
-    return sbl__mandnot(sbl__nonfinite(a), sbl__posinf(sbl__abs(a)));
-}
-
-/* The normal test of sbl__tap_ok_id_normal per lane: tap normal n, target normal m and
-   its squared length mm, the squared threshold thr2. */
-SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
-                                        sbl__v m2, sbl__v mm, float thr2)
-{
-    const sbl__v zero = sbl__set1(0.0f), eps = sbl__set1(1e-12f);
-    const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, m0), sbl__mul(n1, m1)), sbl__mul(n2, m2));
-    const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
-    const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(thr2), nn), mm);
-    const sbl__m none_n = sbl__gt(eps, nn), none_m = sbl__gt(eps, mm);
-    /* both with a normal: not dot < 0 and not dot^2 < threshold^2 nn mm (no NaN here
-       where it matters: dot and nn finite, mm finite for a valid target) */
-    const sbl__m agree = sbl__mandnot(sbl__mandnot(sbl__true, sbl__gt(zero, dot)),
-                                      sbl__gt(lim, sbl__mul(dot, dot)));
-    const sbl__m none = sbl__mor(none_n, none_m);
-    const sbl__m match = sbl__mor(sbl__mand(none_n, none_m), sbl__mandnot(agree, none));
-    return sbl__mandnot(match, sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn)));
-}
-
-/* The id test per lane: equal as floats, a NaN on either side never matching. */
-SBL__INLINE sbl__m sbl__lanes_id_ok(sbl__v id, sbl__v want)
-{
-    return sbl__mandnot(sbl__mand(sbl__le(id, want), sbl__le(want, id)),
-                        sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
-}
-
-/* sbl__tap_ok_id_normal on tap t (0 .. 3: (x0, y0), (x0 + 1, y0), (x0, y0 + 1),
-   (x0 + 1, y0 + 1)) of plan entries [i, i + VW): the same float operations in the same
-   order per lane (dot, nn, the threshold product), so the same decisions. ids compare
-   as floats, a NaN on either side never matching; a tap whose dot or nn is not finite
-   fails; "no normal" (squared length below 1e-12) matches only itself. The taps are
-   gathered at the plan's indices (any layout: strided or channel views). */
-SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t)
-{
-    const ptrdiff_t tx = t & 1, ty = t >> 1;
-    sbl__m ok = sbl__true;
-    if (s->use_id) {
-        const sbl__v id = sbl__gatheri(s->ids.p + ty * s->ids.stride + tx * s->ids.step, p->ii + i);
-        ok = sbl__lanes_id_ok(id, sbl__load(p->tid + i));
-    }
-    if (s->use_normal) {
-        const float *nb = s->normals.p + ty * s->normals.stride + tx * s->normals.step;
-        const sbl__v n0 = sbl__gatheri(nb, p->ni + i), n1 = sbl__gatheri(nb + 1, p->ni + i),
-                     n2 = sbl__gatheri(nb + 2, p->ni + i);
-        ok = sbl__mand(ok, sbl__lanes_normal_ok(n0, n1, n2, sbl__load(p->tn[0] + i), sbl__load(p->tn[1] + i),
-                                                sbl__load(p->tn[2] + i), sbl__load(p->tn2 + i),
-                                                s->normal_threshold2));
-    }
-    return ok;
-}
-
 static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
 {
     p->ci[i] = p->di[i] = p->li[i] = 0; /* tap (0, 0): a valid address, result unused */
@@ -3570,6 +3513,92 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
     *b = SBL__JOIN8(b0, b1);
 #undef SBL__JOIN8
 #endif
+}
+
+/* NaN lanes, on the bits (-ffast-math may fold a float self-compare) */
+SBL__INLINE sbl__m sbl__lanes_nan(sbl__v a)
+{
+    return sbl__mandnot(sbl__nonfinite(a), sbl__posinf(sbl__abs(a)));
+}
+
+/* The normal test of sbl__tap_ok_id_normal per lane: tap normal n, target normal m and
+   its squared length mm, the squared threshold thr2. */
+SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
+                                        sbl__v m2, sbl__v mm, float thr2)
+{
+    const sbl__v zero = sbl__set1(0.0f), eps = sbl__set1(1e-12f);
+    const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, m0), sbl__mul(n1, m1)), sbl__mul(n2, m2));
+    const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
+    const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(thr2), nn), mm);
+    const sbl__m none_n = sbl__gt(eps, nn), none_m = sbl__gt(eps, mm);
+    /* both with a normal: not dot < 0 and not dot^2 < threshold^2 nn mm (no NaN here
+       where it matters: dot and nn finite, mm finite for a valid target) */
+    const sbl__m agree = sbl__mandnot(sbl__mandnot(sbl__true, sbl__gt(zero, dot)),
+                                      sbl__gt(lim, sbl__mul(dot, dot)));
+    const sbl__m none = sbl__mor(none_n, none_m);
+    const sbl__m match = sbl__mor(sbl__mand(none_n, none_m), sbl__mandnot(agree, none));
+    return sbl__mandnot(match, sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn)));
+}
+
+/* The id test per lane: equal as floats, a NaN on either side never matching. */
+SBL__INLINE sbl__m sbl__lanes_id_ok(sbl__v id, sbl__v want)
+{
+    return sbl__mandnot(sbl__mand(sbl__le(id, want), sbl__le(want, id)),
+                        sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
+}
+
+/* The VW pixels x .. x + VW - 1 of row y of a view, channel c (pixel step 1: a load;
+   else lanes at l * step). */
+SBL__INLINE sbl__v sbl__lanes_px(const sbl__flat *f, int x, int y, int c)
+{
+    const float *q = SBL__AT(*f, x, y) + c;
+    int idx[SBL__VW], l;
+    if (f->step == 1) return sbl__load(q);
+    for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, f->step); /* sbl__geo_nid_lanes_ok */
+    return sbl__gatheri(q, idx);
+}
+
+/* Can the lanes read the target's normals and ids at l * pixel step (int)? */
+static int sbl__geo_nid_lanes_ok(const sbl__target_geo *g)
+{
+    return g->normals.step < INT_MAX / SBL__VW && g->ids.step < INT_MAX / SBL__VW;
+}
+
+/* The target's normals (3 channels) of the VW pixels x .. x + VW - 1 of row y. */
+SBL__INLINE void sbl__lanes_normals(const sbl__flat *f, int x, int y, sbl__v *m0, sbl__v *m1, sbl__v *m2)
+{
+    if (f->step == 3) {
+        sbl__rgb_lanes(SBL__AT(*f, x, y), m0, m1, m2);
+    } else {
+        *m0 = sbl__lanes_px(f, x, y, 0);
+        *m1 = sbl__lanes_px(f, x, y, 1);
+        *m2 = sbl__lanes_px(f, x, y, 2);
+    }
+}
+
+/* sbl__tap_ok_id_normal on tap t (0 .. 3: (x0, y0), (x0 + 1, y0), (x0, y0 + 1),
+   (x0 + 1, y0 + 1)) of plan entries [i, i + VW): the same float operations in the same
+   order per lane (dot, nn, the threshold product), so the same decisions. ids compare
+   as floats, a NaN on either side never matching; a tap whose dot or nn is not finite
+   fails; "no normal" (squared length below 1e-12) matches only itself. The taps are
+   gathered at the plan's indices (any layout: strided or channel views). */
+SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t)
+{
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    sbl__m ok = sbl__true;
+    if (s->use_id) {
+        const sbl__v id = sbl__gatheri(s->ids.p + ty * s->ids.stride + tx * s->ids.step, p->ii + i);
+        ok = sbl__lanes_id_ok(id, sbl__load(p->tid + i));
+    }
+    if (s->use_normal) {
+        const float *nb = s->normals.p + ty * s->normals.stride + tx * s->normals.step;
+        const sbl__v n0 = sbl__gatheri(nb, p->ni + i), n1 = sbl__gatheri(nb + 1, p->ni + i),
+                     n2 = sbl__gatheri(nb + 2, p->ni + i);
+        ok = sbl__mand(ok, sbl__lanes_normal_ok(n0, n1, n2, sbl__load(p->tn[0] + i), sbl__load(p->tn[1] + i),
+                                                sbl__load(p->tn[2] + i), sbl__load(p->tn2 + i),
+                                                s->normal_threshold2));
+    }
+    return ok;
 }
 
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
@@ -4086,15 +4115,15 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
 
 /* Can sbl__temporal_plan_lanes plan row y of this call? Motion vectors in pixels
    (|k| = 1: the products are exact), images up to 2^15 pixels (positions exact in
-   float), no target normals or ids (their tests stay in sbl__tap_want_init), and an
+   float), target normals and ids read in lanes (sbl__lanes_want_nid), and an
    interior row (the depth slack reads both neighbours); motion and target depth packed
    (pixel steps 2 and 1). */
 static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     const int w = s->src.width, h = s->src.height;
     return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
-           fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && !s->geo.normals.p &&
-           !s->geo.ids.p && y >= 1 && y + 1 < h && s->motion.step == 2 &&
+           fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && sbl__geo_nid_lanes_ok(&s->geo) &&
+           y >= 1 && y + 1 < h && s->motion.step == 2 &&
            (!s->geo.depth.p || s->geo.depth.step == 1);
 }
 
@@ -4198,6 +4227,38 @@ SBL__INLINE void sbl__plan_index_run(int *out, int x0, int y0, const sbl__flat *
                                        _mm_loadu_si128(SBL__PCAST(const __m128i *, lane_step + j))));
 }
 
+/* The normal / id side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 of row y
+   into plan entries [i, i + VW): the target's normal, its squared length (the same
+   float operations) and its id; lanes whose squared length is not finite leave `keep`
+   (sbl__tap_want_init resets them). Returns keep. */
+SBL__INLINE sbl__m sbl__lanes_want_nid(const sbl__target_geo *g, const sbl__tap_src *src,
+                                       sbl__tap_plan *p, int i, int x, int y, sbl__m keep)
+{
+    if (g->normals.p) {
+        sbl__v m0, m1, m2, mm;
+        sbl__lanes_normals(&g->normals, x, y, &m0, &m1, &m2);
+        mm = sbl__add(sbl__add(sbl__mul(m0, m0), sbl__mul(m1, m1)), sbl__mul(m2, m2));
+        keep = sbl__mandnot(keep, sbl__nonfinite(mm));
+        if (src->use_normal) {
+            sbl__store(p->tn[0] + i, m0);
+            sbl__store(p->tn[1] + i, m1);
+            sbl__store(p->tn[2] + i, m2);
+            sbl__store(p->tn2 + i, mm);
+        }
+    }
+    if (src->use_id) sbl__store(p->tid + i, sbl__lanes_px(&g->ids, x, y, 0));
+    return keep;
+}
+
+/* The taps' indices in the source's normals and ids (where their tests run) for plan
+   entries [i, i + VW) from the footprints' corners (sbl__plan_index). */
+SBL__INLINE void sbl__plan_index_nid(const sbl__tap_src *src, sbl__tap_plan *p, int i,
+                                     const float *x0s, const float *y0s)
+{
+    if (src->use_normal) sbl__plan_index(p->ni + i, x0s, y0s, &src->normals);
+    if (src->use_id) sbl__plan_index(p->ii + i, x0s, y0s, &src->ids);
+}
+
 /* |m| = 0 or in [2^-8, 2^15) (sbl__plan_lanes' exact motion), on the bits b of |m|: b ==
    0, or b - bits(2^-8) below bits(2^15) - bits(2^-8) unsigned, compared signed with the
    top bit flipped. NaN and inf fail, and no float compare is involved (-ffast-math). */
@@ -4293,6 +4354,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
               (flat || sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) ==
                            (1 << SBL__VW) - 1);
     memset(p->uniform + i, 0, SBL__VW);
+    if (src->use_normal || src->use_id) sbl__plan_index_nid(src, p, i, x0s, y0s);
     if (uniform) {
         const int cx = SBL__CAST(int, x0s[0]), cy = SBL__CAST(int, y0s[0]);
         p->uniform[i] = 1;
@@ -4323,6 +4385,7 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
                       : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                         : sbl__gt(one, zero));
     if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
+    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, keep);
     {   /* the 2 VW floats (mx, my) of the pixels into one vector each: loads and
            shuffles (SSE2 would emulate a gather with a load per lane) */
 #if SBL__VW == 4
@@ -4387,8 +4450,7 @@ static int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
 {
     const sbl__tap_src *src = &s->src;
     return s->tiles && s->history && (s->source == SBL_TEMPORAL_MOTION || !s->moving_count) &&
-           (!s->geo.depth.p || s->geo.depth.step == 1) && s->geo.normals.step < INT_MAX / SBL__VW &&
-           s->geo.ids.step < INT_MAX / SBL__VW &&
+           (!s->geo.depth.p || s->geo.depth.step == 1) && sbl__geo_nid_lanes_ok(&s->geo) &&
            (!src->use_depth || src->depth.step == 1) && (!src->length.p || src->length.step == 1) &&
            (s->source == SBL_TEMPORAL_MOTION || s->at_rest);
 }
@@ -4461,17 +4523,6 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
     return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
 }
 
-/* The VW pixels x .. x + VW - 1 of row y of a view, channel c (pixel step 1: a load;
-   else lanes at l * step). */
-SBL__INLINE sbl__v sbl__lanes_px(const sbl__flat *f, int x, int y, int c)
-{
-    const float *q = SBL__AT(*f, x, y) + c;
-    int idx[SBL__VW], l;
-    if (f->step == 1) return sbl__load(q);
-    for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, f->step); /* sbl__row_gather_ok */
-    return sbl__gatheri(q, idx);
-}
-
 /* The normal and id tests of a tile at rest for the VW pixels x .. x + VW - 1 of row y:
    the footprint's one tap is the pixel itself, so its test is the history's normal and
    id against the target's at the same pixel (sbl__lanes_normal_ok, sbl__lanes_id_ok).
@@ -4484,24 +4535,12 @@ SBL__INLINE sbl__m sbl__rest_nid_ok(const sbl__temporal_rp *s, int x, int y)
     sbl__m ok = sbl__true;
     if (s->geo.normals.p) {
         sbl__v m0, m1, m2, mm;
-        if (s->geo.normals.step == 3) {
-            sbl__rgb_lanes(SBL__AT(s->geo.normals, x, y), &m0, &m1, &m2);
-        } else {
-            m0 = sbl__lanes_px(&s->geo.normals, x, y, 0);
-            m1 = sbl__lanes_px(&s->geo.normals, x, y, 1);
-            m2 = sbl__lanes_px(&s->geo.normals, x, y, 2);
-        }
+        sbl__lanes_normals(&s->geo.normals, x, y, &m0, &m1, &m2);
         mm = sbl__add(sbl__add(sbl__mul(m0, m0), sbl__mul(m1, m1)), sbl__mul(m2, m2));
         ok = sbl__mandnot(ok, sbl__nonfinite(mm));
         if (src->use_normal) {
             sbl__v n0, n1, n2;
-            if (src->normals.step == 3) {
-                sbl__rgb_lanes(SBL__AT(src->normals, x, y), &n0, &n1, &n2);
-            } else {
-                n0 = sbl__lanes_px(&src->normals, x, y, 0);
-                n1 = sbl__lanes_px(&src->normals, x, y, 1);
-                n2 = sbl__lanes_px(&src->normals, x, y, 2);
-            }
+            sbl__lanes_normals(&src->normals, x, y, &n0, &n1, &n2);
             ok = sbl__mand(ok, sbl__lanes_normal_ok(n0, n1, n2, m0, m1, m2, mm, src->normal_threshold2));
         }
     }
@@ -7534,10 +7573,12 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     const int sw = s->source->color.width, sh = s->source->color.height, y = b->y;
-    /* target depth packed and of the source's size, no target normals / ids, an
-       interior row (the depth slack reads both neighbours) */
-    const int geo = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw &&
+    /* target depth packed and of the source's size, target normals / ids in lanes
+       (sbl__lanes_want_nid; the two-camera plan has none), an interior row (the depth
+       slack reads both neighbours) */
+    const int geo = sbl__geo_nid_lanes_ok(&s->geo) && s->geo.width == sw &&
                     s->geo.height == sh && y >= 1 && y + 1 < sh;
+    const int nid = s->geo.normals.p || s->geo.ids.p;
     const int depth = s->geo.depth.p && s->geo.depth.step == 1;
     (void)r;
     if (b->row_state >= 0) { /* decided for this row */
@@ -7549,13 +7590,13 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
         b->mode = geo && depth && s->offset == 0.0 && sw <= 32768 && sh <= 32768 ? 1 : 0;
     else if (s->d.rig == SBL_RIG_DISPARITY)
         /* (a target without depth has no slack and no depth test) */
-        b->mode = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw && s->geo.height == sh &&
+        b->mode = sbl__geo_nid_lanes_ok(&s->geo) && s->geo.width == sw && s->geo.height == sh &&
                           sw <= 32768 && sh <= 32768 &&
                           (!s->geo.depth.p || (depth && y >= 1 && y + 1 < sh))
                       ? 3
                       : 0;
     else
-        b->mode = geo && depth ? 2 : 0;
+        b->mode = geo && depth && !nid ? 2 : 0;
     b->row_state = b->mode;
     return 0;
 }
@@ -7581,6 +7622,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__v z = zero, slack = zero, mx, my;
         sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                      : sbl__gt(one, zero);
+        if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
         for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, dm->step);
         mx = sbl__gatheri(dp, idx);
         my = dm->ch > 1 ? sbl__gatheri(dp + 1, idx) : zero;
@@ -7602,6 +7644,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__v z, slack, m;
         sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
         int far;
+        if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
         m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
         keep = sbl__mandnot(keep, sbl__nonfinite(m));
         if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
