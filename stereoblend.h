@@ -3636,7 +3636,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
             ok = sbl__mand(ok, match);
         }
     }
-    if (s->use_normal || s->use_id) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t));
+    if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t));
     *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
@@ -3835,10 +3835,10 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
     /* contiguous vectors need depth and N packed (plain loads); the colour's fixed lane
        offsets are the plan's lane steps */
     const int packed = (!s->use_depth || s->depth.step == 1) && (!s->length.p || s->length.step == 1);
-    /* the common views: depth and N tested; "full" vectors also have every depth limit
+    /* the common views: depth and N tested (no normal / id test); "full" vectors also have every depth limit
        finite and no lane expecting sky (the plain depth test), and take the variant of
        the taps without the tests of the views' presence */
-    const int both = !sky && s->use_depth && s->length.p;
+    const int both = !sky && s->use_depth && s->length.p && !s->use_normal && !s->use_id;
     const sbl__v tol = sbl__set1(s->depth_tolerance);
     const int *cstep = p->lane_step[0];
     int i = 0;
