@@ -15,7 +15,8 @@
    the general path).
 
    usage: shortcuts [--reps N] [--quick] [--data DIR] [--scenes S,T,..] [--gbuffer depth|full|both]
-   Instructions instead of time: sh bench/shortcuts_ipp.sh (callgrind). */
+   Instructions instead of time: sh bench/shortcuts_ipp.sh (callgrind on the build made
+   with -DSC_CALLGRIND, which instruments only the library calls). */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
@@ -30,6 +31,14 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+#ifdef SC_CALLGRIND /* bench/shortcuts_ipp.sh: instrument only the library calls */
+#include <valgrind/callgrind.h>
+#define SC_COUNT_START() CALLGRIND_START_INSTRUMENTATION
+#define SC_COUNT_STOP() CALLGRIND_STOP_INSTRUMENTATION
+#else
+#define SC_COUNT_START() ((void)0)
+#define SC_COUNT_STOP() ((void)0)
+#endif
 
 typedef sbl_result (*temporal_fn)(const sbl_temporal_desc *, const sbl_frame *, const sbl_history *,
                                   sbl_temporal_output *, void *, size_t);
@@ -178,7 +187,9 @@ static void bench_scene(const sbr_seq *s, int full, int reps)
                 out.evidence = sbl_image_make(q->evid[e][!p], w, h, 1);
                 for (r = 0; r < reps && rc == 0; ++r) { /* the same inputs: the same outputs */
                     const double t0 = cpu_ms();
+                    SC_COUNT_START();
                     rc = variants[k].temporal(&td, &fr, pv ? &hi : NULL, &out, tscratch, tbytes);
+                    SC_COUNT_STOP();
                     times[r] = cpu_ms() - t0;
                 }
                 q->t_ms += median(times, reps);
@@ -193,9 +204,11 @@ static void bench_scene(const sbr_seq *s, int full, int reps)
             for (e = 0; e < 2 && rc == 0; ++e)
                 for (r = 0; r < reps && rc == 0; ++r) {
                     const double t0 = cpu_ms();
+                    SC_COUNT_START();
                     rc = variants[k].stereo(&sd, (sbl_eye_index)e, &eye[e], &eye[!e],
                                             sbl_image_make(q->disp[e], w, h, 3),
                                             sbl_image_make(q->dlen[e], w, h, 1), sscratch, sbytes);
+                    SC_COUNT_STOP();
                     times[r] = cpu_ms() - t0;
                     if (r == reps - 1) q->s_ms += median(times, reps);
                 }
@@ -288,14 +301,7 @@ int main(int argc, char **argv)
         sbl_scene_desc d;
         sbr_seq seq;
         if (!in_list(only, synth[i].name)) continue;
-        memset(&d, 0, sizeof d);
-        d.kind = synth[i].kind;
-        d.jitter = synth[i].jitter;
-        d.width = quick ? 96 : 160; /* as make bench */
-        d.height = quick ? 54 : 90;
-        d.frames = quick ? 8 : 24;
-        d.ref_spp = quick ? 32 : 128;
-        d.seed = 7;
+        d = sbr_bench_scene_desc(synth[i].kind, synth[i].jitter, quick);
         if (sbr_seq_synthetic(&seq, &d, synth[i].name, 0) != 0) { fprintf(stderr, "render failed\n"); return 1; }
         for (g = g0; g <= g1; ++g) bench_scene(&seq, g, reps);
         sbr_seq_free(&seq);
