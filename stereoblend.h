@@ -690,7 +690,7 @@ typedef struct sbl_consistency_counts {
    SBL_ERROR_INVALID_PARAM. counts (optional) receives the counts of these rows.
    scratch (optional: NULL and 0 for none) of sbl_stereo_consistency_scratch_size()
    bytes lets the reprojection run a row at a time in vector lanes where the build and
-   the eyes allow it (SIMD, no normals or ids in the eyes, an int-addressable source):
+   the eyes allow it (SIMD, an int-addressable source; normals and ids tested in lanes):
    the same mask, bit for bit, at a fraction of the cost; a smaller scratch is
    SBL_ERROR_SCRATCH_TOO_SMALL. */
 SBLDEF size_t sbl_stereo_consistency_scratch_size(int width, int channels);
@@ -4128,8 +4128,8 @@ static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 }
 
 /* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 (in [0, w)) of
-   an interior row (rows y - 1 and y + 1 exist), when the target has depth and no normals
-   or ids:
+   an interior row (rows y - 1 and y + 1 exist), when the target has depth (its normals
+   and ids: sbl__lanes_want_nid):
    valid geometry is z > 0 (NaN and -inf fail, +inf is sky); the slack is
    sbl__depth_slack's (sbl__slack_axis per axis, 0 for a non-finite z).
    No NaN may reach a min: -ffast-math (finite-math-only, no signed zeros) makes gcc's
@@ -4812,8 +4812,8 @@ static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
 /* The block's entries whose taps weigh below 1e-3 (redo 2): the pixel gather's last
    step, its 3x3 fallback (sbl__fallback_lanes), at the position sbl__temporal_rp_pos
    gives (its expression, for motion vectors; the camera source leaves them to the pixel
-   gather) with the planned expected depth and slack (the plan's lanes need neither
-   target normals nor ids). */
+   gather) with the planned expected depth and slack, and the planned target normal and
+   id where the call tests them (sbl__tap_plan_want). */
 static void sbl__temporal_fallback_block(const void *ctx, sbl__ring_row *r, sbl__block *b)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
