@@ -975,6 +975,7 @@ static void test_evidence_paths(void)
    without the 3x3 fallback), and the views packed, as channels of wider buffers, and
    bottom-up. */
 
+#ifdef SBL__ROW_GATHER
 /* a normal near `dir` (spread: the angle noise), of length 0.5 .. 2, or a special one */
 static void nid_normal(float *n, sbt_rng *rng, const float *dir, double spread, double special)
 {
@@ -1048,6 +1049,8 @@ static sbl_image nid_ids_view(const sbt_img *src, int lay, float **mem)
     *mem = b.mem;
     return v;
 }
+
+#endif
 
 static void test_row_gather_normals(void)
 {
