@@ -3194,6 +3194,18 @@ static int sbl__lane_value_ok(float v)
     return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
+/* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
+   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
+   far tiles gives the general path's bits, so switching one off costs only time.
+     1  void tiles                  2  tiles at rest               4  sky tiles
+     8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
+        pair-validity selects (the fallback bookkeeping)
+    16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
+        same bits, see SBL__FAR_PX) */
+#ifndef SBL_SHORTCUTS
+#define SBL_SHORTCUTS 31
+#endif
+
 /* One gathered x* (N > 0: valid) into ring column x. */
 SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v, int ch)
 {
@@ -4437,18 +4449,6 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
    a band, a span or a tile starts. */
 enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2, SBL__TILE_SKY = 3 };
 
-/* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
-   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
-   far tiles gives the general path's bits, so switching one off costs only time.
-     1  void tiles                  2  tiles at rest               4  sky tiles
-     8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
-        pair-validity selects (the fallback bookkeeping)
-    16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
-        same bits, see SBL__FAR_PX) */
-#ifndef SBL_SHORTCUTS
-#define SBL_SHORTCUTS 31
-#endif
-
 /* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
    vector loads packed (pixel step 1: depth, N; normals and ids any, sbl__rest_nid_ok),
    and, for the camera source, no moving object (whose ids decide per pixel)? */
@@ -5207,20 +5207,24 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
    sqrt(lambda / (2 - lambda)) of one frame's. The threshold asks R for the same
    significance as the one-frame test asks q (SBL_POOLED_BLOCK_SE2, 2.5 of a frame's
    spread above the mean 1) in units of R's spread: c_R = 1 + 2.5 sqrt(1/5) = 2.118 at
-   lambda = 1/3, and r is at least R - c_R (SBL_EVIDENCE_GATE). lambda = 1/3: a shadow edge
-   moving a pixel per frame crosses a 3x3 block in three frames, and older evidence is
-   about other pixels. */
+   lambda = 1/3. Beyond c_R, r is at least the non-negative garrote of R - 1,
+   (R - 1) - (c_R - 1)^2 / (R - 1) (docs/ESTIMATORS.md 3.8): 0 at c_R, continuous, and
+   tending to the unbiased R - 1 where R - c_R would stay c_R - 1 short of it. lambda = 1/3:
+   a shadow edge moving a pixel per frame crosses a 3x3 block in three frames, and older
+   evidence is about other pixels. */
 #ifndef SBL_EVIDENCE_LAMBDA
 #define SBL_EVIDENCE_LAMBDA (1.0 / 3.0)
 #endif
 #ifndef SBL_EVIDENCE_GATE
-#define SBL_EVIDENCE_GATE 0 /* 0: r >= R - c_R, shrunk by the threshold as the one-frame
-                               r = q - SBL_POOLED_BLOCK_SE2 is; 1: beyond c_R, r >= R - 1
+#define SBL_EVIDENCE_GATE 2 /* 2: the garrote above (default); 0: r >= R - c_R, shrunk by
+                               the threshold as the one-frame r = q - SBL_POOLED_BLOCK_SE2
+                               is (session 8); 1: beyond c_R, r >= R - 1, a jump at c_R
                                (measured: more under moving lights, a loss on static
-                               content and gallery; docs/ESTIMATORS.md 3.7) */
+                               content and gallery; docs/ESTIMATORS.md 3.7, 3.8) */
 #endif
 #define SBL__EVIDENCE_THR \
     (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
+#define SBL__EVIDENCE_GARROTE ((SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0))
 /* The most one frame may raise the carried R by: c - 1, the one-frame threshold's distance
    from the no-change mean (q's innovation clipped at (c - 1) / lambda, a Huber step). A
    change the one-frame test sees (q >= SBL_POOLED_BLOCK_SE2) is handled in that frame by
@@ -5298,7 +5302,11 @@ static double sbl__evidence_ratio_ref(sbl__kernel *k, int x, double sm2, double 
     k->evid_out[x] = SBL__CAST(float, e);
     if (k->evid_use) {
         const double thr = SBL__EVIDENCE_THR;
-        double rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
+        double rt;
+        if (SBL_EVIDENCE_GATE == 2) /* garrote: (R - 1) - (c_R - 1)^2 / (R - 1) beyond c_R */
+            rt = e > thr ? (e - 1.0) - SBL__EVIDENCE_GARROTE / (e - 1.0) : 0.0;
+        else
+            rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
         if (rt > r) r = rt;
     }
     return r;
@@ -5320,8 +5328,16 @@ SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, 
     sbl__store(k->evid_out + x, e);
     if (k->evid_use) {
         const sbl__v thr = sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR));
-        const sbl__v rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), sbl__sub(e, sbl__set1(1.0f)), zero)
-                                            : sbl__sub(e, thr);
+        sbl__v rt;
+        if (SBL_EVIDENCE_GATE == 2) { /* the denominator kept >= c_R - 1 where not taken */
+            const sbl__v e1 = sbl__sub(e, sbl__set1(1.0f));
+            const sbl__v g = sbl__div(sbl__set1(SBL__CAST(float, SBL__EVIDENCE_GARROTE)),
+                                      sbl__max(e1, sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR - 1.0))));
+            rt = sbl__sel(sbl__gt(e, thr), sbl__sub(e1, g), zero);
+        } else {
+            rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), sbl__sub(e, sbl__set1(1.0f)), zero)
+                                   : sbl__sub(e, thr);
+        }
         r = sbl__max(r, rt);
     }
     return r;
