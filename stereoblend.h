@@ -2994,12 +2994,6 @@ typedef int sbl__m;
 #define sbl__true 1
 #endif
 
-/* the lane kernel reads SBL_SHORTCUTS too, also in builds without the row gather (where
-   its definition below is not compiled): every shortcut by default */
-#ifndef SBL_SHORTCUTS
-#define SBL_SHORTCUTS 31
-#endif
-
 /* first = m ? a : b and second = m ? b : a per lane (the two ends of a lerp chosen
    by a mask): two selects, or on SSE2 (a select is three operations there) one select
    and one exclusive or: second = a ^ b ^ first */
