@@ -690,7 +690,7 @@ typedef struct sbl_consistency_counts {
    SBL_ERROR_INVALID_PARAM. counts (optional) receives the counts of these rows.
    scratch (optional: NULL and 0 for none) of sbl_stereo_consistency_scratch_size()
    bytes lets the reprojection run a row at a time in vector lanes where the build and
-   the eyes allow it (SIMD, no normals or ids in the eyes, an int-addressable source):
+   the eyes allow it (SIMD, an int-addressable source; normals and ids tested in lanes):
    the same mask, bit for bit, at a fraction of the cost; a smaller scratch is
    SBL_ERROR_SCRATCH_TOO_SMALL. */
 SBLDEF size_t sbl_stereo_consistency_scratch_size(int width, int channels);
@@ -3415,7 +3415,59 @@ typedef struct sbl__tap_plan {
        together and not so (0: unknown) */
     unsigned char uniform[SBL__BLOCK];
     int lane_step[3][SBL__VW];      /* l * pixel step of colour, depth, N (set per call) */
+    /* the normal and id tests (sbl__lanes_nid_ok), where the call runs them: tap (x0, y0)
+       in the normals and the ids, the target's normal, its squared length and its id */
+    int ni[SBL__BLOCK], ii[SBL__BLOCK];
+    float tn[3][SBL__BLOCK], tn2[SBL__BLOCK], tid[SBL__BLOCK];
 } sbl__tap_plan;
+
+/* ---- the normal and id tests in lanes ------------------------------------------
+   sbl__tap_ok_id_normal for VW plan entries at once: the plan carries each entry's
+   target normal, its squared length and its id (as sbl__tap_want_init formed them) and
+   the taps' indices in the source's normals and ids. */
+
+/* an entry without normal / id test data: tap (0, 0) (a valid address), "no normal" */
+SBL__INLINE void sbl__tap_plan_reset_nid(sbl__tap_plan *p, int i)
+{
+    p->ni[i] = p->ii[i] = 0;
+    p->tn[0][i] = p->tn[1][i] = p->tn[2][i] = p->tn2[i] = p->tid[i] = 0.0f;
+}
+
+/* entry i's normal / id data from the target's expectations t, footprint at (x0, y0) */
+SBL__INLINE void sbl__tap_plan_set_nid(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+                                       const sbl__tap_want *t, int x0, int y0)
+{
+    if (s->use_normal) { /* (the target has normals: t->normal is set) */
+        p->ni[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->normals.stride + SBL__CAST(ptrdiff_t, x0) * s->normals.step);
+        p->tn[0][i] = t->normal[0];
+        p->tn[1][i] = t->normal[1];
+        p->tn[2][i] = t->normal[2];
+        p->tn2[i] = t->normal_len2;
+    }
+    if (s->use_id) {
+        p->ii[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->ids.stride + SBL__CAST(ptrdiff_t, x0) * s->ids.step);
+        p->tid[i] = t->id;
+    }
+}
+
+/* The target's expectations of plan entry i for the pixel gather's fallback: depth and
+   slack as given, normal (into nbuf) and id from the plan where the call tests them. */
+SBL__INLINE void sbl__tap_plan_want(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
+                                    sbl__tap_want *t, float *nbuf)
+{
+    t->normal = NULL;
+    t->normal_len2 = 0.0f;
+    t->id = 0.0f;
+    if (!p) return;
+    if (s->use_normal) {
+        nbuf[0] = p->tn[0][i];
+        nbuf[1] = p->tn[1][i];
+        nbuf[2] = p->tn[2][i];
+        t->normal = nbuf;
+        t->normal_len2 = p->tn2[i];
+    }
+    if (s->use_id) t->id = p->tid[i];
+}
 
 static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
 {
@@ -3426,6 +3478,7 @@ static void sbl__tap_plan_reset(sbl__tap_plan *p, int i)
     p->fast[i] = 0.0f;
     p->redo[i] = 0;
     p->uniform[i] = 0;
+    sbl__tap_plan_reset_nid(p, i);
 }
 
 /* Plan entry i from a source position, as sbl__gather_ch decides: 0 reset, else the
@@ -3453,6 +3506,7 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
         p->di[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->depth.stride + SBL__CAST(ptrdiff_t, x0) * s->depth.step);
     if (s->length.p)
         p->li[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->length.stride + SBL__CAST(ptrdiff_t, x0) * s->length.step);
+    if (s->use_normal || s->use_id) sbl__tap_plan_set_nid(s, p, i, t, x0, y0);
     p->fast[i] = 1.0f;
 }
 
@@ -3511,6 +3565,92 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
 #endif
 }
 
+/* NaN lanes, on the bits (-ffast-math may fold a float self-compare) */
+SBL__INLINE sbl__m sbl__lanes_nan(sbl__v a)
+{
+    return sbl__mandnot(sbl__nonfinite(a), sbl__posinf(sbl__abs(a)));
+}
+
+/* The normal test of sbl__tap_ok_id_normal per lane: tap normal n, target normal m and
+   its squared length mm, the squared threshold thr2. */
+SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
+                                        sbl__v m2, sbl__v mm, float thr2)
+{
+    const sbl__v zero = sbl__set1(0.0f), eps = sbl__set1(1e-12f);
+    const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, m0), sbl__mul(n1, m1)), sbl__mul(n2, m2));
+    const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
+    const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(thr2), nn), mm);
+    const sbl__m none_n = sbl__gt(eps, nn), none_m = sbl__gt(eps, mm);
+    /* both with a normal: not dot < 0 and not dot^2 < threshold^2 nn mm (no NaN here
+       where it matters: dot and nn finite, mm finite for a valid target) */
+    const sbl__m agree = sbl__mandnot(sbl__mandnot(sbl__true, sbl__gt(zero, dot)),
+                                      sbl__gt(lim, sbl__mul(dot, dot)));
+    const sbl__m none = sbl__mor(none_n, none_m);
+    const sbl__m match = sbl__mor(sbl__mand(none_n, none_m), sbl__mandnot(agree, none));
+    return sbl__mandnot(match, sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn)));
+}
+
+/* The id test per lane: equal as floats, a NaN on either side never matching. */
+SBL__INLINE sbl__m sbl__lanes_id_ok(sbl__v id, sbl__v want)
+{
+    return sbl__mandnot(sbl__mand(sbl__le(id, want), sbl__le(want, id)),
+                        sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
+}
+
+/* The VW pixels x .. x + VW - 1 of row y of a view, channel c (pixel step 1: a load;
+   else lanes at l * step). */
+SBL__INLINE sbl__v sbl__lanes_px(const sbl__flat *f, int x, int y, int c)
+{
+    const float *q = SBL__AT(*f, x, y) + c;
+    int idx[SBL__VW], l;
+    if (f->step == 1) return sbl__load(q);
+    for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, f->step); /* sbl__geo_nid_lanes_ok */
+    return sbl__gatheri(q, idx);
+}
+
+/* Can the lanes read the target's normals and ids at l * pixel step (int)? */
+static int sbl__geo_nid_lanes_ok(const sbl__target_geo *g)
+{
+    return g->normals.step < INT_MAX / SBL__VW && g->ids.step < INT_MAX / SBL__VW;
+}
+
+/* The target's normals (3 channels) of the VW pixels x .. x + VW - 1 of row y. */
+SBL__INLINE void sbl__lanes_normals(const sbl__flat *f, int x, int y, sbl__v *m0, sbl__v *m1, sbl__v *m2)
+{
+    if (f->step == 3) {
+        sbl__rgb_lanes(SBL__AT(*f, x, y), m0, m1, m2);
+    } else {
+        *m0 = sbl__lanes_px(f, x, y, 0);
+        *m1 = sbl__lanes_px(f, x, y, 1);
+        *m2 = sbl__lanes_px(f, x, y, 2);
+    }
+}
+
+/* sbl__tap_ok_id_normal on tap t (0 .. 3: (x0, y0), (x0 + 1, y0), (x0, y0 + 1),
+   (x0 + 1, y0 + 1)) of plan entries [i, i + VW): the same float operations in the same
+   order per lane (dot, nn, the threshold product), so the same decisions. ids compare
+   as floats, a NaN on either side never matching; a tap whose dot or nn is not finite
+   fails; "no normal" (squared length below 1e-12) matches only itself. The taps are
+   gathered at the plan's indices (any layout: strided or channel views). */
+SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t)
+{
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    sbl__m ok = sbl__true;
+    if (s->use_id) {
+        const sbl__v id = sbl__gatheri(s->ids.p + ty * s->ids.stride + tx * s->ids.step, p->ii + i);
+        ok = sbl__lanes_id_ok(id, sbl__load(p->tid + i));
+    }
+    if (s->use_normal) {
+        const float *nb = s->normals.p + ty * s->normals.stride + tx * s->normals.step;
+        const sbl__v n0 = sbl__gatheri(nb, p->ni + i), n1 = sbl__gatheri(nb + 1, p->ni + i),
+                     n2 = sbl__gatheri(nb + 2, p->ni + i);
+        ok = sbl__mand(ok, sbl__lanes_normal_ok(n0, n1, n2, sbl__load(p->tn[0] + i), sbl__load(p->tn[1] + i),
+                                                sbl__load(p->tn[2] + i), sbl__load(p->tn2 + i),
+                                                s->normal_threshold2));
+    }
+    return ok;
+}
+
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
    (x0, y0 + 1), (x0 + 1, y0 + 1). sbl__lanes_tap_test: its tests narrow ok (from w > 0),
    returned, with its N in *nt; sbl__lanes_tap_sum: its weighted N, colour and weight
@@ -3546,6 +3686,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
             ok = sbl__mand(ok, match);
         }
     }
+    if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t));
     *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
@@ -3806,10 +3947,10 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
     /* contiguous vectors need depth and N packed (plain loads); the colour's fixed lane
        offsets are the plan's lane steps */
     const int packed = (!s->use_depth || s->depth.step == 1) && (!s->length.p || s->length.step == 1);
-    /* the common views: depth and N tested; "full" vectors also have every depth limit
+    /* the common views: depth and N tested (no normal / id test); "full" vectors also have every depth limit
        finite and no lane expecting sky (the plain depth test), and take the variant of
        the taps without the tests of the views' presence */
-    const int both = !sky && s->use_depth && s->length.p;
+    const int both = !sky && s->use_depth && s->length.p && !s->use_normal && !s->use_id;
     const sbl__v tol = sbl__set1(s->depth_tolerance);
     const int *cstep = p->lane_step[0];
     int i = 0;
@@ -3956,16 +4097,15 @@ SBL__INLINE int sbl__window_fails(const sbl__tap_src *s, const int *di, const fl
 
 /* sbl__gather_fallback at (sx, sy) with expected depth ze and slack sl into ring column x */
 static SBL__RARE void sbl__fallback_put(const sbl__tap_src *s, sbl__ring_row *r, int x, double sx,
-                                        double sy, float ze, float sl, int flag)
+                                        double sy, float ze, float sl, int flag,
+                                        const sbl__tap_plan *p, int entry)
 {
-    float tmp[4] = {0, 0, 0, 0};
+    float tmp[4] = {0, 0, 0, 0}, nbuf[3];
     sbl__tap_want t;
     float n;
     t.depth = ze;
     t.depth_slack = sl;
-    t.normal = NULL;
-    t.normal_len2 = 0.0f;
-    t.id = 0.0f;
+    sbl__tap_plan_want(s, p, entry, &t, nbuf); /* normal and id (p: the plan, if any) */
     n = sbl__gather_fallback(s, &t, sx, sy, tmp);
     if (flag) sbl__ring_put_flag(r, x, n, tmp, s->color.ch);
     else sbl__ring_put(r, x, n, tmp, s->color.ch);
@@ -3977,16 +4117,15 @@ static SBL__RARE void sbl__fallback_put(const sbl__tap_src *s, sbl__ring_row *r,
    weights are the same, and a non-finite plane value only drops more taps (a sum of
    fewer non-negative weights is no larger). */
 static SBL__RARE void sbl__fallback_put_evidence(sbl__ring_row *r, int x, double sx, double sy,
-                                                 float ze, float sl)
+                                                 float ze, float sl, const sbl__tap_plan *p,
+                                                 int entry)
 {
-    float tmp[4] = {0, 0, 0, 0};
+    float tmp[4] = {0, 0, 0, 0}, nbuf[3];
     sbl__tap_want t;
     float n;
     t.depth = ze;
     t.depth_slack = sl;
-    t.normal = NULL;
-    t.normal_len2 = 0.0f;
-    t.id = 0.0f;
+    sbl__tap_plan_want(&r->e_rp->src, p, entry, &t, nbuf); /* the colour's normal and id */
     n = sbl__gather_fallback(&r->e_rp->src, &t, sx, sy, tmp);
     r->e[x] = n > 0.0f && tmp[0] > 0.0f && tmp[0] <= SBL__CAST(float, SBL__POOL_RATIO_CAP) ? tmp[0] : 1.0f;
 }
@@ -3994,11 +4133,13 @@ static SBL__RARE void sbl__fallback_put_evidence(sbl__ring_row *r, int x, double
 /* The 3x3 fallback for ring columns x0 + e[k] (k < n) at source positions (sx[k], sy[k])
    with expected depths ze[e[k]] and slacks sl[e[k]] (the plan's): a reset where sbl__window_fails says the
    window holds nothing (the fallback's own result there), else sbl__gather_fallback.
-   flag: the puts flag unsafe values (sbl__ring_put_flag). ev: the evidence plane too
-   (sbl__fallback_lanes_ev). */
+   flag: the puts flag unsafe values (sbl__ring_put_flag). p: the plan, for the normal and
+   id tests' expectations (a window that fails the depth test fails them all the same).
+   ev: the evidence plane too (sbl__fallback_lanes_ev). */
 SBL__INLINE void sbl__fallback_lanes_in(const sbl__tap_src *s, sbl__ring_row *r, int x0, const int *e,
                                         const double *sx, const double *sy, const float *ze,
-                                        const float *sl, int n, int flag, int ev)
+                                        const float *sl, int n, int flag, const sbl__tap_plan *p,
+                                        int ev)
 {
     const int ch = s->color.ch;
     const double wl = SBL__CAST(double, s->width) - 1.0, hl = SBL__CAST(double, s->height) - 1.0;
@@ -4016,8 +4157,8 @@ SBL__INLINE void sbl__fallback_lanes_in(const sbl__tap_src *s, sbl__ring_row *r,
                 ll[m] = sl[e[k]];
                 lane[m++] = k;
             } else {
-                sbl__fallback_put(s, r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]], flag);
-                if (ev) sbl__fallback_put_evidence(r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]]);
+                sbl__fallback_put(s, r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]], flag, p, e[k]);
+                if (ev) sbl__fallback_put_evidence(r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]], p, e[k]);
             }
         }
         if (!m) break;
@@ -4029,8 +4170,8 @@ SBL__INLINE void sbl__fallback_lanes_in(const sbl__tap_src *s, sbl__ring_row *r,
                 sbl__ring_put(r, x0 + e[j], 0.0f, NULL, ch);
                 if (ev) r->e[x0 + e[j]] = 1.0f; /* (the plane's window fails the same tests) */
             } else {
-                sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag);
-                if (ev) sbl__fallback_put_evidence(r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]]);
+                sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag, p, e[j]);
+                if (ev) sbl__fallback_put_evidence(r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], p, e[j]);
             }
         }
     }
@@ -4038,18 +4179,19 @@ SBL__INLINE void sbl__fallback_lanes_in(const sbl__tap_src *s, sbl__ring_row *r,
 
 static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0, const int *e,
                                 const double *sx, const double *sy, const float *ze,
-                                const float *sl, int n, int flag)
+                                const float *sl, int n, int flag, const sbl__tap_plan *p)
 {
-    sbl__fallback_lanes_in(s, r, x0, e, sx, sy, ze, sl, n, flag, 0);
+    sbl__fallback_lanes_in(s, r, x0, e, sx, sy, ze, sl, n, flag, p, 0);
 }
 
 /* sbl__fallback_lanes with the evidence plane (r->e): a reset is 1 there, else the
    plane's own fallback */
 static SBL__RARE void sbl__fallback_lanes_ev(const sbl__tap_src *s, sbl__ring_row *r, int x0,
                                              const int *e, const double *sx, const double *sy,
-                                             const float *ze, const float *sl, int n, int flag)
+                                             const float *ze, const float *sl, int n, int flag,
+                                             const sbl__tap_plan *p)
 {
-    sbl__fallback_lanes_in(s, r, x0, e, sx, sy, ze, sl, n, flag, 1);
+    sbl__fallback_lanes_in(s, r, x0, e, sx, sy, ze, sl, n, flag, p, 1);
 }
 
 /* The one driver of the row gathers (temporal and stereo): columns [xa, xb) of row y in
@@ -4136,17 +4278,18 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
     }
 }
 
-/* Can the row gather address every tap of this source with int offsets, and does it
-   run the tests the lanes implement (not ids nor normals)? */
+/* Can the row gather address every tap of this source with int offsets (every view it
+   tests: normals and ids where their tests run, sbl__lanes_nid_ok)? */
 static int sbl__row_gather_ok(const sbl__tap_src *s)
 {
-    const sbl__flat *f[3];
+    const sbl__flat *f[5];
     int i;
-    if (s->use_id || s->use_normal || s->width < 2 || s->height < 2) return 0;
+    if (s->width < 2 || s->height < 2) return 0;
     f[0] = &s->color; f[1] = &s->depth; f[2] = &s->length;
-    for (i = 0; i < 3; ++i) {
+    f[3] = s->use_normal ? &s->normals : NULL; f[4] = s->use_id ? &s->ids : NULL;
+    for (i = 0; i < 5; ++i) {
         double span;
-        if (!f[i]->p) continue;
+        if (!f[i] || !f[i]->p) continue;
         span = SBL__CAST(double, s->height - 1) * fabs(SBL__CAST(double, f[i]->stride)) +
                SBL__CAST(double, s->width) * SBL__CAST(double, f[i]->step);
         if (!(span < SBL__CAST(double, INT_MAX) / 2)) return 0;
@@ -4156,21 +4299,21 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
 
 /* Can sbl__temporal_plan_lanes plan row y of this call? Motion vectors in pixels
    (|k| = 1: the products are exact), images up to 2^15 pixels (positions exact in
-   float), no target normals or ids (their tests stay in sbl__tap_want_init), and an
+   float), target normals and ids read in lanes (sbl__lanes_want_nid), and an
    interior row (the depth slack reads both neighbours); motion and target depth packed
    (pixel steps 2 and 1). */
 SBL__INLINE int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     const int w = s->src.width, h = s->src.height;
     return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
-           fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && !s->geo.normals.p &&
-           !s->geo.ids.p && y >= 1 && y + 1 < h && s->motion.step == 2 &&
+           fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && sbl__geo_nid_lanes_ok(&s->geo) &&
+           y >= 1 && y + 1 < h && s->motion.step == 2 &&
            (!s->geo.depth.p || s->geo.depth.step == 1);
 }
 
 /* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 (in [0, w)) of
-   an interior row (rows y - 1 and y + 1 exist), when the target has depth and no normals
-   or ids:
+   an interior row (rows y - 1 and y + 1 exist), when the target has depth (its normals
+   and ids: sbl__lanes_want_nid):
    valid geometry is z > 0 (NaN and -inf fail, +inf is sky); the slack is
    sbl__depth_slack's (sbl__slack_axis per axis, 0 for a non-finite z).
    No NaN may reach a min: -ffast-math (finite-math-only, no signed zeros) makes gcc's
@@ -4268,6 +4411,38 @@ SBL__INLINE void sbl__plan_index_run(int *out, int x0, int y0, const sbl__flat *
                                        _mm_loadu_si128(SBL__PCAST(const __m128i *, lane_step + j))));
 }
 
+/* The normal / id side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 of row y
+   into plan entries [i, i + VW): the target's normal, its squared length (the same
+   float operations) and its id; lanes whose squared length is not finite leave `keep`
+   (sbl__tap_want_init resets them). Returns keep. */
+SBL__INLINE sbl__m sbl__lanes_want_nid(const sbl__target_geo *g, const sbl__tap_src *src,
+                                       sbl__tap_plan *p, int i, int x, int y, sbl__m keep)
+{
+    if (g->normals.p) {
+        sbl__v m0, m1, m2, mm;
+        sbl__lanes_normals(&g->normals, x, y, &m0, &m1, &m2);
+        mm = sbl__add(sbl__add(sbl__mul(m0, m0), sbl__mul(m1, m1)), sbl__mul(m2, m2));
+        keep = sbl__mandnot(keep, sbl__nonfinite(mm));
+        if (src->use_normal) {
+            sbl__store(p->tn[0] + i, m0);
+            sbl__store(p->tn[1] + i, m1);
+            sbl__store(p->tn[2] + i, m2);
+            sbl__store(p->tn2 + i, mm);
+        }
+    }
+    if (src->use_id) sbl__store(p->tid + i, sbl__lanes_px(&g->ids, x, y, 0));
+    return keep;
+}
+
+/* The taps' indices in the source's normals and ids (where their tests run) for plan
+   entries [i, i + VW) from the footprints' corners (sbl__plan_index). */
+SBL__INLINE void sbl__plan_index_nid(const sbl__tap_src *src, sbl__tap_plan *p, int i,
+                                     const float *x0s, const float *y0s)
+{
+    if (src->use_normal) sbl__plan_index(p->ni + i, x0s, y0s, &src->normals);
+    if (src->use_id) sbl__plan_index(p->ii + i, x0s, y0s, &src->ids);
+}
+
 /* |m| = 0 or in [2^-8, 2^15) (sbl__plan_lanes' exact motion), on the bits b of |m|: b ==
    0, or b - bits(2^-8) below bits(2^15) - bits(2^-8) unsigned, compared signed with the
    top bit flipped. NaN and inf fail, and no float compare is involved (-ffast-math). */
@@ -4363,6 +4538,7 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
               (flat || sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) ==
                            (1 << SBL__VW) - 1);
     memset(p->uniform + i, 0, SBL__VW);
+    if (src->use_normal || src->use_id) sbl__plan_index_nid(src, p, i, x0s, y0s);
     if (uniform) {
         const int cx = SBL__CAST(int, x0s[0]), cy = SBL__CAST(int, y0s[0]);
         p->uniform[i] = 1;
@@ -4393,6 +4569,7 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
                       : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                         : sbl__gt(one, zero));
     if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
+    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, keep);
     {   /* the 2 VW floats (mx, my) of the pixels into one vector each: loads and
            shuffles (SSE2 would emulate a gather with a load per lane) */
 #if SBL__VW == 4
@@ -4439,13 +4616,13 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
 enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2, SBL__TILE_SKY = 3 };
 
 /* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
-   vector loads packed (pixel step 1: depth, N), no target normals or ids (whose tests
-   the general path keeps)? */
+   vector loads packed (pixel step 1: depth, N; normals and ids any, sbl__rest_nid_ok),
+   and, for the camera source, no moving object (whose ids decide per pixel)? */
 SBL__INLINE int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
 {
     const sbl__tap_src *src = &s->src;
-    return s->tiles && s->history && !s->geo.normals.p && !s->geo.ids.p && !src->use_id &&
-           !src->use_normal && (!s->geo.depth.p || s->geo.depth.step == 1) &&
+    return s->tiles && s->history && (s->source == SBL_TEMPORAL_MOTION || !s->moving_count) &&
+           (!s->geo.depth.p || s->geo.depth.step == 1) && sbl__geo_nid_lanes_ok(&s->geo) &&
            (!src->use_depth || src->depth.step == 1) && (!src->length.p || src->length.step == 1) &&
            (s->source == SBL_TEMPORAL_MOTION || s->at_rest);
 }
@@ -4518,6 +4695,32 @@ SBL__INLINE int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x
     return sky ? SBL__TILE_SKY : SBL__TILE_GENERAL;
 }
 
+/* The normal and id tests of a tile at rest for the VW pixels x .. x + VW - 1 of row y:
+   the footprint's one tap is the pixel itself, so its test is the history's normal and
+   id against the target's at the same pixel (sbl__lanes_normal_ok, sbl__lanes_id_ok).
+   A target normal whose squared length (formed as sbl__tap_want_init forms it) is not
+   finite fails too: the pixel gather then resets that pixel, as sbl__tap_want_init
+   decides. */
+SBL__INLINE sbl__m sbl__rest_nid_ok(const sbl__temporal_rp *s, int x, int y)
+{
+    const sbl__tap_src *src = &s->src;
+    sbl__m ok = sbl__true;
+    if (s->geo.normals.p) {
+        sbl__v m0, m1, m2, mm;
+        sbl__lanes_normals(&s->geo.normals, x, y, &m0, &m1, &m2);
+        mm = sbl__add(sbl__add(sbl__mul(m0, m0), sbl__mul(m1, m1)), sbl__mul(m2, m2));
+        ok = sbl__mandnot(ok, sbl__nonfinite(mm));
+        if (src->use_normal) {
+            sbl__v n0, n1, n2;
+            sbl__lanes_normals(&src->normals, x, y, &n0, &n1, &n2);
+            ok = sbl__mand(ok, sbl__lanes_normal_ok(n0, n1, n2, m0, m1, m2, mm, src->normal_threshold2));
+        }
+    }
+    if (src->use_id)
+        ok = sbl__mand(ok, sbl__lanes_id_ok(sbl__lanes_px(&src->ids, x, y, 0), sbl__lanes_px(&s->geo.ids, x, y, 0)));
+    return ok;
+}
+
 /* A tile at rest, columns [x0, x0 + n) of row y (n >= VW). At the pixel itself the
    pixel gather's footprint has weights 1, 0, 0, 0: only the first tap is tested, its
    sums are 0 + 1 * value, the weight sum 1 and the renormalisation a product by 1 (the
@@ -4572,6 +4775,7 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
             valid = sbl__mand(valid, sbl__mor(sbl__mand(inf_e, inf_t),
                                               sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
         }
+        if (s->geo.normals.p || s->geo.ids.p) valid = sbl__mand(valid, sbl__rest_nid_ok(s, x, y));
         if (np) nv = sbl__load(np + i);
         if (ev) ve = sbl__load(ep + i);
         /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
@@ -4829,8 +5033,8 @@ SBL__INLINE void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
 /* The block's entries whose taps weigh below 1e-3 (redo 2): the pixel gather's last
    step, its 3x3 fallback (sbl__fallback_lanes), at the position sbl__temporal_rp_pos
    gives (its expression, for motion vectors; the camera source leaves them to the pixel
-   gather) with the planned expected depth and slack (the plan's lanes need neither
-   target normals nor ids). */
+   gather) with the planned expected depth and slack, and the planned target normal and
+   id where the call tests them (sbl__tap_plan_want). */
 SBL__INLINE void sbl__temporal_fallback_block_in(const void *ctx, sbl__ring_row *r, sbl__block *b,
                                                  int ev)
 {
@@ -4853,8 +5057,8 @@ SBL__INLINE void sbl__temporal_fallback_block_in(const void *ctx, sbl__ring_row 
         e[n++] = i;
     }
     if (!n) return;
-    if (ev) sbl__fallback_lanes_ev(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1);
-    else sbl__fallback_lanes(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1);
+    if (ev) sbl__fallback_lanes_ev(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1, &b->p);
+    else sbl__fallback_lanes(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1, &b->p);
 }
 
 static void sbl__temporal_fallback_block(const void *ctx, sbl__ring_row *r, sbl__block *b)
@@ -7668,10 +7872,12 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     const int sw = s->source->color.width, sh = s->source->color.height, y = b->y;
-    /* target depth packed and of the source's size, no target normals / ids, an
-       interior row (the depth slack reads both neighbours) */
-    const int geo = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw &&
+    /* target depth packed and of the source's size, target normals / ids in lanes
+       (sbl__lanes_want_nid; the two-camera plan has none), an interior row (the depth
+       slack reads both neighbours) */
+    const int geo = sbl__geo_nid_lanes_ok(&s->geo) && s->geo.width == sw &&
                     s->geo.height == sh && y >= 1 && y + 1 < sh;
+    const int nid = s->geo.normals.p || s->geo.ids.p;
     const int depth = s->geo.depth.p && s->geo.depth.step == 1;
     (void)r;
     if (b->row_state >= 0) { /* decided for this row */
@@ -7683,13 +7889,13 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
         b->mode = geo && depth && s->offset == 0.0 && sw <= 32768 && sh <= 32768 ? 1 : 0;
     else if (s->d.rig == SBL_RIG_DISPARITY)
         /* (a target without depth has no slack and no depth test) */
-        b->mode = !s->geo.normals.p && !s->geo.ids.p && s->geo.width == sw && s->geo.height == sh &&
+        b->mode = sbl__geo_nid_lanes_ok(&s->geo) && s->geo.width == sw && s->geo.height == sh &&
                           sw <= 32768 && sh <= 32768 &&
                           (!s->geo.depth.p || (depth && y >= 1 && y + 1 < sh))
                       ? 3
                       : 0;
     else
-        b->mode = geo && depth ? 2 : 0;
+        b->mode = geo && depth && !nid ? 2 : 0;
     b->row_state = b->mode;
     return 0;
 }
@@ -7715,6 +7921,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__v z = zero, slack = zero, mx, my;
         sbl__m keep = s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
                                      : sbl__gt(one, zero);
+        if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
         for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, dm->step);
         mx = sbl__gatheri(dp, idx);
         my = dm->ch > 1 ? sbl__gatheri(dp + 1, idx) : zero;
@@ -7736,6 +7943,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__v z, slack, m;
         sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
         int far;
+        if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
         m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
         keep = sbl__mandnot(keep, sbl__nonfinite(m));
         if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
@@ -7797,7 +8005,7 @@ static SBL__RARE void sbl__stereo_fallback_block(const sbl__stereo_rp *s, sbl__r
             fy[n] = b->psy[i];
             e[n++] = i;
         }
-    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, fx, fy, b->p.depth, b->p.slack, n, 0);
+    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, fx, fy, b->p.depth, b->p.slack, n, 0, &b->p);
 }
 
 /* After the taps: the entries handed back, and far lanes whose one tap failed, go to

@@ -8,6 +8,8 @@
      hard    per-pixel random sub-pixel motion and a moving object disoccluding ~10 %
      tiny    the easy case with one 1e-14 value in every row of the new frame
      static  camera at rest: zero motion, unchanged depth
+     normals the easy case with normals and ids in every G-buffer (frame, history, both
+             eyes): the normal and id tap tests, as a renderer passes them
    Each case with "-ev" appended (easy-ev, hard-ev, ...) passes the optional evidence
    plane in and out (sbl_history.evidence / sbl_temporal_output.evidence), as the
    README's recommended setup does.
@@ -27,6 +29,7 @@
 typedef struct eye_bufs {
     float *color, *depth, *prev_depth, *motion, *hist, *hlen, *out, *olen, *stereo_out;
     float *hev, *oev; /* evidence plane in / out */
+    float *normal, *prev_normal, *id, *prev_id; /* case normals */
 } eye_bufs;
 
 static float *falloc(size_t n)
@@ -36,7 +39,7 @@ static float *falloc(size_t n)
     return p;
 }
 
-/* case 0 easy, 1 hard, 2 tiny, 3 static */
+/* case 0 easy, 1 hard, 2 tiny, 3 static, 4 normals */
 static void fill_eye(eye_bufs *b, int eye, int kind)
 {
     size_t n = (size_t)W * H, i;
@@ -45,6 +48,7 @@ static void fill_eye(eye_bufs *b, int eye, int kind)
     b->motion = falloc(n * 2); b->hist = falloc(n * 3); b->hlen = falloc(n);
     b->out = falloc(n * 3); b->olen = falloc(n); b->stereo_out = falloc(n * 3);
     b->hev = falloc(n); b->oev = falloc(n);
+    b->normal = falloc(n * 3); b->prev_normal = falloc(n * 3); b->id = falloc(n); b->prev_id = falloc(n);
     for (i = 0; i < n; ++i) {
         int x = (int)(i % W), y = (int)(i / W), c;
         for (c = 0; c < 3; ++c) {
@@ -80,6 +84,11 @@ static void fill_eye(eye_bufs *b, int eye, int kind)
             b->motion[i * 2 + 1] = 0.0f;
         }
         if (kind == 2 && x == (y * 37) % W) b->color[i * 3 + (y % 3)] = 1e-14f;
+        /* a gently curved surface (every tap within the normal threshold), two objects */
+        b->normal[i * 3] = b->prev_normal[i * 3] = 0.2f * sinf(x * 0.01f);
+        b->normal[i * 3 + 1] = b->prev_normal[i * 3 + 1] = 0.1f * cosf(y * 0.02f);
+        b->normal[i * 3 + 2] = b->prev_normal[i * 3 + 2] = 1.0f;
+        b->id[i] = b->prev_id[i] = x < W / 2 ? 1.0f : 2.0f;
     }
 }
 
@@ -102,7 +111,7 @@ static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
 
 int main(int argc, char **argv)
 {
-    static const char *names[4] = {"easy", "hard", "tiny", "static"};
+    static const char *names[5] = {"easy", "hard", "tiny", "static", "normals"};
     int kind = 0, ev = 0, e, i;
     eye_bufs b[2];
     size_t bytes = sbl_temporal_scratch_size(W, 3);
@@ -110,7 +119,7 @@ int main(int argc, char **argv)
     if (argc > 1) {
         size_t len = strlen(argv[1]);
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
-        for (i = 0; i < 4; ++i)
+        for (i = 0; i < 5; ++i)
             if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
                 strlen(names[i]) == (ev ? len - 3 : len))
                 kind = i;
@@ -135,6 +144,12 @@ int main(int argc, char **argv)
             hi.evidence = sbl_image_make(b[e].hev, W, H, 1);
             o.evidence = sbl_image_make(b[e].oev, W, H, 1);
         }
+        if (kind == 4) {
+            f.gbuffer.normals = sbl_image_make(b[e].normal, W, H, 3);
+            f.gbuffer.ids = sbl_image_make(b[e].id, W, H, 1);
+            hi.gbuffer.normals = sbl_image_make(b[e].prev_normal, W, H, 3);
+            hi.gbuffer.ids = sbl_image_make(b[e].prev_id, W, H, 1);
+        }
         if (temporal_fn(&td, &f, &hi, &o, 0, H, scratch, bytes) != SBL_OK) return 1;
     }
     {   /* the left eye's stereo blend of the two temporal outputs */
@@ -149,6 +164,12 @@ int main(int argc, char **argv)
         se.color = sbl_image_make(b[1].out, W, H, 3);
         se.length = sbl_image_make(b[1].olen, W, H, 1);
         se.gbuffer.depth = sbl_image_make(b[1].depth, W, H, 1);
+        if (kind == 4) {
+            te.gbuffer.normals = sbl_image_make(b[0].normal, W, H, 3);
+            te.gbuffer.ids = sbl_image_make(b[0].id, W, H, 1);
+            se.gbuffer.normals = sbl_image_make(b[1].normal, W, H, 3);
+            se.gbuffer.ids = sbl_image_make(b[1].id, W, H, 1);
+        }
         if (stereo_fn(&sd, SBL_EYE_LEFT, &te, &se, sbl_image_make(b[0].stereo_out, W, H, 3),
                       sbl_image_make(NULL, 0, 0, 1), 0, H, scratch, bytes) != SBL_OK)
             return 1;

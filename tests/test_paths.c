@@ -1110,6 +1110,275 @@ static void test_evidence_row_gather(void)
 #endif
 }
 
+/* ---- normals and ids in the row gather --------------------------------------------
+   The temporal and stereo row gathers with normals and ids against the pixel gather,
+   bit for bit (within same_float where the compiler contracts; validity always bit for
+   bit): normals spread around the threshold's cone (taps on both sides of the test),
+   "no normal" pixels (0 and below 1e-12 squared), backfacing, NaN, inf and overflowing
+   normals on either side, NaN / inf / -0 ids, a moving object (disocclusions, with and
+   without the 3x3 fallback), and the views packed, as channels of wider buffers, and
+   bottom-up. */
+
+#ifdef SBL__ROW_GATHER
+/* a normal near `dir` (spread: the angle noise), of length 0.5 .. 2, or a special one */
+static void nid_normal(float *n, sbt_rng *rng, const float *dir, double spread, double special)
+{
+    static const float specials[10][3] = {
+        {0, 0, 0}, {1e-7f, 0, 0}, {0, 0, -1}, {0, 0, 1e30f}, {0, 1e20f, 0},
+        {-0.0f, -0.0f, -0.0f}, {2e-7f, 1e-7f, 5e-7f}, {0, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+    const double u = sbt_uniform(rng), len = 0.5 + 1.5 * sbt_uniform(rng);
+    int k;
+    if (u < special) {
+        const int which = (int)(sbt_uniform(rng) * 12);
+        for (k = 0; k < 3; ++k) n[k] = which < 10 ? specials[which][k] : dir[k];
+        if (which == 10) n[(int)(sbt_uniform(rng) * 3)] = (float)HUGE_VAL - (float)HUGE_VAL;
+        if (which == 11) n[(int)(sbt_uniform(rng) * 3)] = -(float)HUGE_VAL;
+        return;
+    }
+    for (k = 0; k < 3; ++k) n[k] = (float)(len * (dir[k] + spread * (sbt_uniform(rng) * 2 - 1)));
+}
+
+static float nid_id(sbt_rng *rng, float id, double special)
+{
+    static const float specials[5] = {0.0f, -0.0f, 7.0f, 0.0f, 0.0f};
+    const double u = sbt_uniform(rng);
+    if (u < special) {
+        const int which = (int)(sbt_uniform(rng) * 6);
+        if (which == 3) return (float)HUGE_VAL - (float)HUGE_VAL;
+        if (which == 4) return (float)HUGE_VAL;
+        if (which == 5) return id == 0.0f ? -0.0f : id; /* -0 == +0 as floats */
+        return specials[which];
+    }
+    return id;
+}
+
+/* A normals view of `src` (3 channels, w x h) in layout `lay`: 0 packed, 1 the first
+   three of four channels, 2 channels 1 .. 3 of five, bottom-up, 3 packed bottom-up.
+   *mem gets the buffer to free. */
+static sbl_image nid_normals_view(const sbt_img *src, int lay, float **mem)
+{
+    const int w = src->w, h = src->h, c = lay == 1 ? 4 : lay == 2 ? 5 : 3, off = lay == 2 ? 1 : 0;
+    sbt_img b = sbt_img_new(w, h, c, lay == 0 ? 0 : 3);
+    sbl_image v;
+    int x, y, k;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x)
+            for (k = 0; k < 3; ++k) sbt_at(&b, x, y)[off + k] = sbt_at(src, x, y)[k];
+    v = view(&b);
+    v.channels = 3;
+    v.pixel_bytes = c * (int)sizeof(float);
+    v.data = b.mem + off;
+    if (lay >= 2) {
+        v.data = sbt_at(&b, 0, h - 1) + off;
+        v.stride = -b.stride;
+    }
+    *mem = b.mem;
+    return v;
+}
+
+/* An ids view of `src` (1 channel) in layout `lay`: 0 packed, 1 channel 1 of two, 2
+   padded rows. */
+static sbl_image nid_ids_view(const sbt_img *src, int lay, float **mem)
+{
+    const int w = src->w, h = src->h, c = lay == 1 ? 2 : 1;
+    sbt_img b = sbt_img_new(w, h, c, lay == 2 ? 5 : 0);
+    sbl_image v;
+    int x, y;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) sbt_at(&b, x, y)[c - 1] = *sbt_at(src, x, y);
+    v = view(&b);
+    v.channels = 1;
+    v.pixel_bytes = c * (int)sizeof(float);
+    v.data = b.mem + (c - 1);
+    *mem = b.mem;
+    return v;
+}
+
+#endif
+
+static void test_row_gather_normals(void)
+{
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+    static const float back_dir[3] = {0.0f, 0.0f, 1.0f}, obj_dir[3] = {0.5f, 0.1f, 0.86f};
+    sbt_rng rng = {9191};
+    int it, pixels = 0, mismatches = 0, empty = 0, spixels = 0, smismatches = 0, sempty = 0;
+    int nid_rejected = 0;
+    for (it = 0; it < 400; ++it) {
+        int w = 8 + (int)(sbt_uniform(&rng) * 80), h = 3 + (int)(sbt_uniform(&rng) * 9);
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i, e;
+        int ax = (int)(sbt_uniform(&rng) * w * 0.6), ay = (int)(sbt_uniform(&rng) * h * 0.5);
+        int aw = 3 + (int)(sbt_uniform(&rng) * w * 0.5), ah = 2 + (int)(sbt_uniform(&rng) * h);
+        int shift = 1 + (int)(sbt_uniform(&rng) * 6);
+        /* which tests: 0 both, 1 normals only, 2 ids only, 3 both with the target's
+           normals only on the target (no source normals), 4 normal test disabled */
+        const int tests = it % 5, with_len = it % 6 != 0, stereo = it % 3 == 2;
+        const double spread = 0.15 + 0.3 * sbt_uniform(&rng);
+        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
+        sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
+        sbt_img pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 1);
+        sbt_img nrm = sbt_img_new(w, h, 3, 0), pnrm = sbt_img_new(w, h, 3, 0);
+        sbt_img ids = sbt_img_new(w, h, 1, 0), pids = sbt_img_new(w, h, 1, 0);
+        float *mem[4] = {NULL, NULL, NULL, NULL};
+        sbl_reproject_desc rd;
+        float planes[2][7][100];
+        unsigned char unsafe[100];
+        sbl__ring_row ra, rb;
+        memset(&rd, 0, sizeof rd);
+        rd.no_fallback = it % 7 == 1;
+        if (tests == 4) {
+            if (it & 1) rd.normal_threshold = -1.0f;
+            else rd.disabled_tests = SBL_TEST_NORMAL;
+        } else if (it % 4 == 3) {
+            rd.normal_threshold = (float)(0.5 + 0.5 * sbt_uniform(&rng));
+        }
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                const int now = x >= ax && x < ax + aw && y >= ay && y < ay + ah;
+                const int was = x >= ax + shift && x < ax + shift + aw && y >= ay && y < ay + ah;
+                for (c = 0; c < ch; ++c) {
+                    sbt_at(&cur, x, y)[c] = (float)sbt_uniform(&rng);
+                    sbt_at(&hist, x, y)[c] = (float)(sbt_uniform(&rng) * 2);
+                }
+                *sbt_at(&len, x, y) = (float)(1 + sbt_uniform(&rng) * 30);
+                /* depth: the object a little nearer only (many of its taps pass the depth
+                   test and are decided by the normal / id tests) */
+                *sbt_at(&depth, x, y) = now ? (float)(3.9 + 0.01 * x) : (float)(4.0 + 0.01 * x);
+                *sbt_at(&pdepth, x, y) = was ? (float)(3.9 + 0.01 * x) : (float)(4.0 + 0.01 * x);
+                if (it % 4 == 0 && sbt_uniform(&rng) < 0.1) *sbt_at(&pdepth, x, y) = 1.0f;
+                sbt_at(&mv, x, y)[0] = (float)((sbt_uniform(&rng) - 0.5) * 2.5);
+                sbt_at(&mv, x, y)[1] = (float)((sbt_uniform(&rng) - 0.5) * 1.8);
+                if (it % 8 == 5) { /* uniform integer motion (the contiguous taps) */
+                    sbt_at(&mv, x, y)[0] = -1.0f;
+                    sbt_at(&mv, x, y)[1] = 0.0f;
+                }
+                nid_normal(sbt_at(&nrm, x, y), &rng, now ? obj_dir : back_dir, spread, 0.04);
+                nid_normal(sbt_at(&pnrm, x, y), &rng, was ? obj_dir : back_dir, spread, 0.06);
+                *sbt_at(&ids, x, y) = nid_id(&rng, now ? 1.0f : 2.0f, 0.03);
+                *sbt_at(&pids, x, y) = nid_id(&rng, was ? 1.0f : 2.0f, 0.05);
+                if (it % 9 == 4 && y == 0) { /* a row without normals, in both frames */
+                    for (c = 0; c < 3; ++c) sbt_at(&nrm, x, y)[c] = sbt_at(&pnrm, x, y)[c] = 0.0f;
+                }
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.03) *sbt_at(&len, x, y) = 0.0f;
+            }
+        for (i = 0; i < 2; ++i) {
+            sbl__ring_row *r = i ? &rb : &ra;
+            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
+            r->n = planes[i][4];
+            r->v = planes[i][5];
+            r->y[0] = planes[i][6];
+            r->unsafe = unsafe;
+            memset(planes[i], 0xff, sizeof planes[i]);
+        }
+        if (!stereo) {
+            sbl_frame f;
+            sbl_history hi;
+            sbl__temporal_rp rp;
+            memset(&f, 0, sizeof f);
+            memset(&hi, 0, sizeof hi);
+            f.color = view(&cur);
+            f.gbuffer.depth = view(&depth);
+            f.gbuffer.motion = view(&mv);
+            hi.color = view(&hist);
+            if (with_len) hi.length = view(&len);
+            hi.gbuffer.depth = view(&pdepth);
+            if (tests != 2) f.gbuffer.normals = nid_normals_view(&nrm, it % 4, &mem[0]);
+            if (tests != 2 && tests != 3) hi.gbuffer.normals = nid_normals_view(&pnrm, (it / 4) % 4, &mem[1]);
+            if (tests != 1) {
+                f.gbuffer.ids = nid_ids_view(&ids, it % 3, &mem[2]);
+                hi.gbuffer.ids = nid_ids_view(&pids, (it / 3) % 3, &mem[3]);
+            }
+            CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
+            CHECK(sbl__row_gather_ok(&rp.src));
+            CHECK_EQ(rp.src.use_normal, tests == 0 || tests == 1);
+            CHECK_EQ(rp.src.use_id, tests != 1);
+            for (y = 0; y < h; ++y) {
+                int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w), xb = it % 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
+                memset(unsafe, 0, sizeof unsafe);
+                sbl__temporal_rp_row(&rp, &ra, y, xa, xb);
+                compare_with_pixel_gather(&rp, &ra, &rb, y, xa, xb, ch, contracts, "normals / ids", it, w, h,
+                                          &pixels, &mismatches, &empty);
+                if (tests < 2) { /* the same pixels without the normal / id tests: some
+                                    differ, or the tests decided nothing */
+                    sbl__temporal_rp q = rp;
+                    q.src.use_normal = q.src.use_id = 0;
+                    for (x = xa; x < xb; ++x) {
+                        float tmp[4] = {0, 0, 0, 0};
+                        nid_rejected += sbl__temporal_rp_pixel(&q, x, y, tmp) > 0.0f && !(rb.n[x] > 0.0f);
+                    }
+                }
+            }
+        } else {
+            /* the stereo row gather: a parallel rig (f b / z = 2.5 .. 2.6 px) or a
+               disparity map, the "history" as the other eye */
+            sbl_stereo_desc sd;
+            sbl_eye eye[2];
+            sbl__stereo_rp rp;
+            sbt_img disp = sbt_img_new(w, h, 1, 0), disp2 = sbt_img_new(w, h, 1, 0);
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    *sbt_at(&disp, x, y) = (float)(2.5 + 0.3 * sbt_uniform(&rng));
+                    *sbt_at(&disp2, x, y) = (float)(2.5 + 0.3 * sbt_uniform(&rng));
+                }
+            memset(eye, 0, sizeof eye);
+            eye[0].color = view(&cur);
+            eye[0].gbuffer.depth = view(&depth);
+            eye[0].disparity = view(&disp);
+            eye[1].color = view(&hist);
+            if (with_len) eye[1].length = view(&len);
+            eye[1].gbuffer.depth = view(&pdepth);
+            eye[1].disparity = view(&disp2);
+            if (tests != 2) eye[0].gbuffer.normals = nid_normals_view(&nrm, it % 4, &mem[0]);
+            if (tests != 2 && tests != 3) eye[1].gbuffer.normals = nid_normals_view(&pnrm, (it / 4) % 4, &mem[1]);
+            if (tests != 1) {
+                eye[0].gbuffer.ids = nid_ids_view(&ids, it % 3, &mem[2]);
+                eye[1].gbuffer.ids = nid_ids_view(&pids, (it / 3) % 3, &mem[3]);
+            }
+            memset(&sd, 0, sizeof sd);
+            sd.rig = it % 2 ? SBL_RIG_DISPARITY : SBL_RIG_PARALLEL;
+            sd.focal_px = 10.0f;
+            sd.baseline = 1.0f;
+            sd.reproject = rd;
+            if (it % 4 == 3) sd.reproject.disabled_tests |= SBL_TEST_BACK_CHECK;
+            e = (it / 2) & 1;
+            CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+            CHECK(sbl__row_gather_ok(&rp.src));
+            for (y = 0; y < h; ++y) {
+                sbl__stereo_rp_row(&rp, &ra, y, 0, w);
+                for (x = 0; x < w; ++x) {
+                    float tmp[4] = {0, 0, 0, 0};
+                    sbl__ring_put(&rb, x, sbl__stereo_rp_pixel(&rp, x, y, tmp), tmp, ch);
+                }
+                for (x = 0; x < w; ++x) {
+                    int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
+                    for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
+                    if (bad && smismatches < 5)
+                        printf("  stereo normals / ids case %d (rig %d) pixel (%d,%d): n %.9g vs %.9g\n", it,
+                               (int)sd.rig, x, y, ra.n[x], rb.n[x]);
+                    smismatches += bad;
+                    sempty += !(rb.n[x] > 0.0f);
+                    ++spixels;
+                }
+            }
+            free(disp.mem); free(disp2.mem);
+        }
+        for (i = 0; i < 4; ++i) free(mem[i]);
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
+        free(nrm.mem); free(pnrm.mem); free(ids.mem); free(pids.mem);
+    }
+    printf("  %s row gather vs pixel gather, normals / ids: %d pixels (%d without x*, %d by the normal / id "
+           "tests), %d differ; stereo %d pixels (%d without a match), %d differ\n",
+           SBL_SIMD_NAME, pixels, empty, nid_rejected, mismatches, spixels, sempty, smismatches);
+    CHECK(mismatches == 0);
+    CHECK(smismatches == 0);
+    CHECK(empty > pixels / 20 && empty < pixels / 2);
+    CHECK(sempty > spixels / 20 && sempty < spixels / 2);
+    CHECK(nid_rejected > pixels / 50);
+#endif
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -1207,5 +1476,6 @@ int main(void)
     test_all_safe();
     test_evidence_paths();
     test_evidence_row_gather();
+    test_row_gather_normals();
     return sbt_finish("test_paths");
 }

@@ -781,6 +781,161 @@ static void test_bands(void)
 }
 #endif
 
+#ifdef SBL__ROW_GATHER
+/* ---- normals and ids (the tiles with the normal / id tests) ------------------------
+   Each scene of test_scenes with target and history normals and ids added: the row
+   gather with its shortcuts against itself without them and against the pixel gather,
+   bit for bit. At rest the history's normal and id are the target's but for hostile
+   pixels: a normal turned past the threshold, "no normal" on one side or both (0, and
+   below 1e-12 squared), backfacing, NaN / inf / overflowing components on either side
+   (a non-finite target normal resets the pixel), another id, NaN / -0 ids. The views
+   packed, as channels of wider buffers, bottom-up. */
+static void nid_scene_normal(float *n, sbt_rng *rng, double u, int hist)
+{
+    const float nan = (float)HUGE_VAL - (float)HUGE_VAL;
+    if (u < 0.03) { n[0] = 0.8f; n[1] = 0.0f; n[2] = 0.6f; return; }          /* turned away */
+    if (u < 0.04) { n[0] = n[1] = n[2] = 0.0f; return; }                      /* no normal */
+    if (u < 0.05) { n[0] = 1e-7f; n[1] = n[2] = 0.0f; return; }               /* below 1e-12 */
+    if (u < 0.06) { n[0] = n[1] = 0.0f; n[2] = -1.0f; return; }               /* backfacing */
+    if (u < 0.07) { n[(int)(u * 3000) % 3] = nan; return; }
+    if (u < 0.075) { n[2] = hist ? (float)HUGE_VAL : 1e25f; return; }          /* inf / nn overflow */
+    if (u < 0.08) { n[0] *= 0.999f; n[1] += 0.3f; return; }                   /* near the cone */
+    (void)rng;
+}
+
+static sbl_image nid_view3(const sbt_img *src, int lay, float **mem)
+{
+    const int w = src->w, h = src->h, c = lay == 1 ? 4 : lay == 2 ? 5 : 3, off = lay == 2 ? 1 : 0;
+    sbt_img b = sbt_img_new(w, h, c, lay == 0 ? 0 : 2);
+    sbl_image v;
+    int x, y, k;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x)
+            for (k = 0; k < 3; ++k) sbt_at(&b, x, y)[off + k] = sbt_at(src, x, y)[k];
+    v = view(&b);
+    v.channels = 3;
+    v.pixel_bytes = c * (int)sizeof(float);
+    v.data = b.mem + off;
+    if (lay >= 2) {
+        v.data = sbt_at(&b, 0, h - 1) + off;
+        v.stride = -b.stride;
+    }
+    *mem = b.mem;
+    return v;
+}
+
+static sbl_image nid_view1(const sbt_img *src, int lay, float **mem)
+{
+    const int w = src->w, h = src->h, c = lay == 1 ? 2 : 1;
+    sbt_img b = sbt_img_new(w, h, c, 0);
+    sbl_image v;
+    int x, y;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) sbt_at(&b, x, y)[c - 1] = *sbt_at(src, x, y);
+    v = view(&b);
+    v.channels = 1;
+    v.pixel_bytes = c * (int)sizeof(float);
+    v.data = b.mem + (c - 1);
+    *mem = b.mem;
+    return v;
+}
+
+static void test_scenes_normals(void)
+{
+    const int contracts = compiler_contracts();
+    const float nan = (float)HUGE_VAL - (float)HUGE_VAL;
+    sbt_rng rng = {3131};
+    int kind, it;
+    for (kind = 0; kind < SCENE_COUNT; ++kind) {
+        long pixels = 0, differ_off = 0, differ_pixel = 0, classes[4] = {0, 0, 0, 0}, reset = 0;
+        long nid_reset = 0;
+        for (it = 0; it < 120; ++it) {
+            scene sc;
+            sbl_reproject_desc rd;
+            sbl__temporal_rp rp;
+            ring3 g;
+            sbt_img nrm, pnrm, ids, pids;
+            float *mem[4] = {NULL, NULL, NULL, NULL};
+            const int tests = it % 4; /* 0 both, 1 normals, 2 ids, 3 target normals only + ids */
+            int y, x, i;
+            scene_make(&sc, kind, it, &rng);
+            nrm = sbt_img_new(sc.w, sc.h, 3, 0);
+            pnrm = sbt_img_new(sc.w, sc.h, 3, 0);
+            ids = sbt_img_new(sc.w, sc.h, 1, 0);
+            pids = sbt_img_new(sc.w, sc.h, 1, 0);
+            for (y = 0; y < sc.h; ++y)
+                for (x = 0; x < sc.w; ++x) {
+                    float *n = sbt_at(&nrm, x, y), *pn = sbt_at(&pnrm, x, y);
+                    const double u = sbt_uniform(&rng), v = sbt_uniform(&rng);
+                    const float len = (float)(0.5 + sbt_uniform(&rng));
+                    n[0] = len * (float)(0.1 * sin(0.2 * x)); n[1] = len * 0.05f; n[2] = len;
+                    pn[0] = n[0]; pn[1] = n[1]; pn[2] = n[2];
+                    nid_scene_normal(pn, &rng, u, 1);
+                    if (v < 0.3) nid_scene_normal(n, &rng, v * 0.25, 0);
+                    *sbt_at(&ids, x, y) = *sbt_at(&pids, x, y) = (float)(1 + (x / 9) % 3);
+                    if (u > 0.95) *sbt_at(&pids, x, y) = 9.0f;
+                    else if (u > 0.94) *sbt_at(&pids, x, y) = nan;
+                    else if (u > 0.93) *sbt_at(&ids, x, y) = nan;
+                    else if (u > 0.92) { *sbt_at(&ids, x, y) = 0.0f; *sbt_at(&pids, x, y) = -0.0f; }
+                }
+            if (tests != 2) sc.f.gbuffer.normals = nid_view3(&nrm, it % 4, &mem[0]);
+            if (tests < 2) sc.hi.gbuffer.normals = nid_view3(&pnrm, (it / 4) % 4, &mem[1]);
+            if (tests != 1) {
+                sc.f.gbuffer.ids = nid_view1(&ids, it % 2, &mem[2]);
+                sc.hi.gbuffer.ids = nid_view1(&pids, (it / 2) % 2, &mem[3]);
+            }
+            memset(&rd, 0, sizeof rd);
+            rd.no_fallback = it % 4 == 1;
+            if (it % 5 == 4) rd.normal_threshold = 0.99f;
+            CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &sc.f, &sc.hi), SBL_OK);
+            CHECK(sbl__row_gather_ok(&rp.src));
+            rp.tiles = 1;
+            CHECK(sbl__temporal_tiles_ok(&rp));
+            ring3_init(&g);
+            for (y = 0; y < sc.h; ++y) {
+                int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * sc.w);
+                int xb = it % 2 ? sc.w : xa + 1 + (int)(sbt_uniform(&rng) * (sc.w - xa));
+                sbl__temporal_rp q = rp;
+                rp.tiles = 1;
+                for (x = xa; x + SBL__VW <= xb; x += SBL__BLOCK) {
+                    const int n = xb - x < SBL__BLOCK ? xb - x : SBL__BLOCK;
+                    if (n >= SBL__VW) ++classes[sbl__temporal_tile_class(&rp, y, x, n)];
+                }
+                memset(g.unsafe, 0, sizeof g.unsafe);
+                sbl__temporal_rp_row(&rp, &g.r[0], y, xa, xb);
+                rp.tiles = 0;
+                sbl__temporal_rp_row(&rp, &g.r[1], y, xa, xb);
+                q.src.use_normal = q.src.use_id = 0;
+                q.geo.normals.p = NULL;
+                for (x = xa; x < xb; ++x) {
+                    float tmp[4] = {0, 0, 0, 0};
+                    sbl__ring_put(&g.r[2], x, sbl__temporal_rp_pixel(&rp, x, y, tmp), tmp, sc.ch);
+                    reset += !(g.r[2].n[x] > 0.0f);
+                    nid_reset += !(g.r[2].n[x] > 0.0f) && sbl__temporal_rp_pixel(&q, x, y, tmp) > 0.0f;
+                }
+                differ_off += ring_diff(&g, 0, 1, xa, xb, sc.ch, 0, "normals / ids", it, y);
+                differ_pixel += ring_diff(&g, 0, 2, xa, xb, sc.ch, contracts, "normals / ids", it, y);
+                pixels += xb - xa;
+            }
+            for (i = 0; i < 4; ++i) free(mem[i]);
+            free(nrm.mem); free(pnrm.mem); free(ids.mem); free(pids.mem);
+            scene_free(&sc);
+        }
+        printf("  %s %-5s with normals / ids: %ld pixels (%ld without x*, %ld by the normal / id tests),"
+               " tiles general %ld / void %ld / rest %ld / sky %ld; differ from no shortcuts %ld, from the"
+               " pixel gather %ld\n",
+               SBL_SIMD_NAME, scene_names[kind], pixels, reset, nid_reset, classes[0], classes[1],
+               classes[2], classes[3], differ_off, differ_pixel);
+        CHECK(differ_off == 0);
+        CHECK(differ_pixel == 0);
+        if (kind == SCENE_REST) CHECK(classes[SBL__TILE_REST] > 100 && nid_reset > pixels / 20);
+        if (kind == SCENE_VOID) CHECK(classes[SBL__TILE_VOID] > 50);
+        if (kind == SCENE_MIXED) CHECK(classes[SBL__TILE_REST] > 20 && nid_reset > pixels / 40);
+        if (kind == SCENE_SKY) CHECK(classes[SBL__TILE_SKY] > 100);
+    }
+}
+#endif
+
 int main(void)
 {
 #ifdef SBL__ROW_GATHER
@@ -791,6 +946,7 @@ int main(void)
     test_stereo_disparity();
     test_stereo_far();
     test_bands();
+    test_scenes_normals();
 #else
     printf("  %s: no row gather on this path (the pixel gather runs, no tile shortcuts)\n",
            SBL_SIMD_NAME);
