@@ -7300,7 +7300,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                 k.evid_y0 = y0;
                 k.evid_y1 = y1;
                 for (j = 0; j < 3; ++j) {
-                    k.ring[j].e_plane = e + (2 + j) * pf;
+                    k.ring[j].e_plane = e + SBL__CAST(size_t, 2 + j) * pf;
                     k.ring[j].e_rp = &es;
                 }
             }
