@@ -3313,18 +3313,6 @@ static void sbl__ring_put_flag(sbl__ring_row *r, int x, float n, const float *v,
 }
 #endif
 
-/* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
-   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
-   far tiles gives the general path's bits, so switching one off costs only time.
-     1  void tiles                  2  tiles at rest               4  sky tiles
-     8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
-        pair-validity selects (the fallback bookkeeping)
-    16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
-        same bits, see SBL__FAR_PX) */
-#ifndef SBL_SHORTCUTS
-#define SBL_SHORTCUTS 31
-#endif
-
 #ifdef SBL__ROW_GATHER
 /* ---- the row gather ---------------------------------------------------------
    A scalar pass plans a block of pixels (target tests, source position, floor and
@@ -5493,11 +5481,13 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
    change. */
 #define SBL__EVIDENCE_STEP (SBL_POOLED_BLOCK_SE2 - 1.0)
 
-/* The history's evidence plane at pixels [xa, xb) of row y, gathered with the taps,
-   weights, tests and fallback of the colour, bilinear (the row gather where the colour
-   takes it, else the pixel gather: the same bits): 1 where no tap is valid (a reset: no
-   evidence either way), where the history has no plane, or where the value is not a
-   ratio. */
+/* The history's evidence plane at pixels [xa, xb) of row y into evid_in, gathered with
+   the taps, weights, tests and fallback of the colour, bilinear: 1 where no tap is valid
+   (a reset: no evidence either way), where the history has no plane, or where the value
+   is not a ratio (sbl__evidence_pixel). Where the row gather takes the colour and the
+   plane is laid out as N, the ring row already holds it, gathered in the colour's plan
+   (sbl__temporal_rp_row_ev): evid_in points there. Else a row gather of its own on the
+   plane (laid out otherwise), or the pixel gather: the same bits. */
 static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
 {
     int x;
@@ -7403,8 +7393,9 @@ SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
 SBLDEF size_t sbl_temporal_scratch_size(int width, int channels)
 {
     const size_t kb = sbl__kernel_scratch_size(width, channels);
-    /* + the evidence plane's rows: evid_in, evid_out, and the gather's x / n / v
-       (floats) and unsafe (bytes) */
+    /* + the evidence plane's rows: evid_in, evid_out, and three more (the ring rows'
+       planes where the plane is gathered in the colour's plan, else its own gather's
+       x / n / v) (floats) and unsafe (bytes) */
     return kb ? kb + (5 * sizeof(float) + 1) * sbl__plane_floats(width) + 64 : 0;
 }
 
@@ -7513,7 +7504,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                 k.evid_y0 = y0;
                 k.evid_y1 = y1;
                 for (j = 0; j < 3; ++j) {
-                    k.ring[j].e_plane = e + (2 + j) * pf;
+                    k.ring[j].e_plane = e + SBL__CAST(size_t, 2 + j) * pf;
                     k.ring[j].e_rp = &es;
                 }
             }
