@@ -2907,7 +2907,18 @@ typedef __m128 sbl__m;
 /* abs on the bits: -ffast-math (no signed zeros) may fold a -0.0f mask to +0 */
 #define sbl__abs(a) _mm_and_ps(a, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
+#if defined(__GNUC__) || defined(__clang__)
+/* the select in the compiler's own vector operators, which it folds where the mask is a
+   constant (sbl__true in the full-chunk instances: one operand; _mm_and_ps / _mm_andnot_ps
+   are builtins it keeps) */
+SBL__INLINE __m128 sbl__sel(__m128 m, __m128 a, __m128 b)
+{
+    const __m128i mi = _mm_castps_si128(m);
+    return _mm_castsi128_ps((mi & _mm_castps_si128(a)) | (~mi & _mm_castps_si128(b)));
+}
+#else
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
+#endif
 #define sbl__all(m) (_mm_movemask_ps(m) == 0xf)
 #define sbl__true _mm_castsi128_ps(_mm_set1_epi32(-1))
 #define SBL__ROW_GATHER 1
@@ -6233,7 +6244,8 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
-    valid = sbl__gt(n_x, zero);
+    /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
+    valid = full ? sbl__true : sbl__gt(n_x, zero);
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
@@ -6250,10 +6262,11 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     do { \
         sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c]); \
         xs[c] = sbl__load(W->x[1][c] + x); \
-        sum_y = sbl__add(sum_y, yc[c]); \
-        sum_m8 = sbl__add(sum_m8, m8[c]); \
-        sum_x = sbl__add(sum_x, xs[c]); \
-        sum_v8 = sbl__add(sum_v8, v8[c]); \
+        /* the sums start at channel 0's values (0 + v is v: no addition) */ \
+        sum_y = (c) ? sbl__add(sum_y, yc[c]) : yc[c]; \
+        sum_m8 = (c) ? sbl__add(sum_m8, m8[c]) : m8[c]; \
+        sum_x = (c) ? sbl__add(sum_x, xs[c]) : xs[c]; \
+        sum_v8 = (c) ? sbl__add(sum_v8, v8[c]) : v8[c]; \
     } while (0)
     SBL__LANES_CH(SBL__FAST_Y);
 #undef SBL__FAST_Y
@@ -6325,14 +6338,15 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const int i = x - base;
     sbl__v mean, var, m8, v8, yc, s2 = zero, bound, t;
-    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
 #define SBL__STAGE_Y(c) \
     do { \
         sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc); \
-        sum_y = sbl__add(sum_y, yc); \
-        sum_m8 = sbl__add(sum_m8, m8); \
-        sum_x = sbl__add(sum_x, sbl__load(W->x[1][c] + x)); \
-        sum_v8 = sbl__add(sum_v8, v8); \
+        /* the sums start at channel 0's values (0 + v is v: no addition) */ \
+        sum_y = (c) ? sbl__add(sum_y, yc) : yc; \
+        sum_m8 = (c) ? sbl__add(sum_m8, m8) : m8; \
+        sum_x = (c) ? sbl__add(sum_x, sbl__load(W->x[1][c] + x)) : sbl__load(W->x[1][c] + x); \
+        sum_v8 = (c) ? sbl__add(sum_v8, v8) : v8; \
         s2 = (c) ? sbl__add(s2, var) : var; \
     } while (0)
     SBL__LANES_CH(SBL__STAGE_Y);
@@ -6359,7 +6373,8 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
-    valid = sbl__gt(n_x, zero);
+    /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
+    valid = full ? sbl__true : sbl__gt(n_x, zero);
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
