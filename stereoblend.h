@@ -6229,7 +6229,8 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
    channels written out, so that the per-channel values stay in registers (loops over
    the channels keep the lane statistics in memory): the same operations in the same
    order as sbl__lanes_moments, sbl__lanes_firefly, sbl__lanes_weight and
-   sbl__lanes_blend (bit for bit). The pair terms: the pooled prepass's blocks. */
+   sbl__lanes_blend (bit for bit, but the mean weight, below). The pair terms: the
+   pooled prepass's blocks. */
 #define SBL__LANES_CH(M) do { M(0); if (ch > 1) M(1); if (ch > 2) M(2); if (ch > 3) M(3); } while (0)
 SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                         const float *nyrow, int x, int base, int y, const int ch,
@@ -6300,23 +6301,19 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
     f_w = sbl__sel(hi_w, one_w, w); /* the two-sided lerp's factor (as the staged lanes) */
-    a_mean = zero;
 #define SBL__FAST_BLEND(c) \
     do { \
         sbl__v from, to, o; \
         SBL__SEL2(hi_w, yb[c], xs[c], from, to); \
         o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c])); \
-        a_mean = sbl__add(a_mean, w); \
     } while (0)
     SBL__LANES_CH(SBL__FAST_BLEND);
 #undef SBL__FAST_BLEND
-    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    /* one weight for every channel: its mean is the weight itself (as the reference's
+       sbl__blend_pixel, which takes it unaveraged; sbl__lanes_blend averages the copies) */
+    a_mean = w;
     a2_mean = w2;
-    if (ch > 1) a2_mean = sbl__add(a2_mean, w2);
-    if (ch > 2) a2_mean = sbl__add(a2_mean, w2);
-    if (ch > 3) a2_mean = sbl__add(a2_mean, w2);
-    a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
     n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
@@ -6391,11 +6388,8 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                           sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
     w2 = st.a2[0]; /* every channel's */
     /* Eq. 5 first (its values then leave the registers), then the blend */
+    /* one weight for every channel: its mean is the weight itself (sbl__lanes_vector_fast) */
     a2_mean = w2;
-    if (ch > 1) a2_mean = sbl__add(a2_mean, w2);
-    if (ch > 2) a2_mean = sbl__add(a2_mean, w2);
-    if (ch > 3) a2_mean = sbl__add(a2_mean, w2);
-    a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
     n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
@@ -6409,7 +6403,6 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     /* the two-sided lerp: from the end the weight is nearer, by its factor (the same
        expression per lane as both lerps and a select) */
     f_w = sbl__sel(hi_w, one_w, w);
-    a_mean = zero;
 #define SBL__STAGE_BLEND(c) \
     do { \
         const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
@@ -6418,11 +6411,10 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
         SBL__SEL2(hi_w, yb, xs, from, to); \
         o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc)); \
-        a_mean = sbl__add(a_mean, w); \
     } while (0)
     SBL__LANES_CH(SBL__STAGE_BLEND);
 #undef SBL__STAGE_BLEND
-    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    a_mean = w;
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
 }
 #undef SBL__LANES_CH
