@@ -5434,7 +5434,7 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
    population variance of the window, of the window without its centre, the centre. */
 SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x, int i,
                                       int c, sbl__v *mean, sbl__v *var, sbl__v *m8, sbl__v *v8,
-                                      sbl__v *yc_out)
+                                      sbl__v *yc_out, const int v8_times8)
 {
     const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
     const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
@@ -5459,7 +5459,10 @@ SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows
     *var = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
     q = sbl__mul(a8, eighth);
     *m8 = sbl__add(s, q);
-    *v8 = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    *v8 = sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero);
+    /* v8_times8 (a constant): left as 8 v8, for a caller that scales a sum of them (a
+       power of two: the same bits as summing the scaled values) */
+    if (!v8_times8) *v8 = sbl__mul(*v8, eighth);
     *yc_out = yc;
 }
 
@@ -5475,7 +5478,7 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
     sbl__v pl, ql, pr, qr, d, dd;
     sbl__lanes_y_channel(k, W, x, i, c, &st->mean[c], &st->var[c], &st->m8[c], &st->v8[c],
-                         &st->yc[c]);
+                         &st->yc[c], 0);
     st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
     /* pairs: side columns about the centre column's shift tc */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
@@ -6261,7 +6264,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
 #define SBL__FAST_Y(c) \
     do { \
-        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c]); \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c], 0); \
         xs[c] = sbl__load(W->x[1][c] + x); \
         /* the sums start at channel 0's values (0 + v is v: no addition) */ \
         sum_y = (c) ? sbl__add(sum_y, yc[c]) : yc[c]; \
@@ -6338,7 +6341,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
 #define SBL__STAGE_Y(c) \
     do { \
-        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc); \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1); \
         /* the sums start at channel 0's values (0 + v is v: no addition) */ \
         sum_y = (c) ? sbl__add(sum_y, yc) : yc; \
         sum_m8 = (c) ? sbl__add(sum_m8, m8) : m8; \
@@ -6349,6 +6352,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     SBL__LANES_CH(SBL__STAGE_Y);
 #undef SBL__STAGE_Y
     (void)mean;
+    sum_v8 = sbl__mul(sum_v8, sbl__set1(0.125f)); /* the channels' v8 (sbl__lanes_y_channel) */
     bound = sbl__add(sbl__max(sum_m8, sum_x),
                      sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
