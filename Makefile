@@ -39,7 +39,7 @@ FLAGS_scalar = -DSBL_NO_SIMD
 FLAGS_avx2   = -mavx2 -mfma
 FLAGS_avx512 = -mavx512f -mavx2 -mfma
 
-.PHONY: all check demo bench bench-quick bench-perf bench-ipp ipp-watch bench-adaptive ao clean tests
+.PHONY: all check demo bench bench-quick bench-perf bench-ipp ipp-watch bench-adaptive bench-shortcuts bench-shortcuts-ipp ao clean tests
 all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
 # make check / make tests / make check-robust: the configurations and the quiet runner
@@ -74,6 +74,24 @@ $(BUILD)/bench-adaptive: bench/adaptive.c $(DATASET_SRC) $(HEADERS) $(RUNNER) to
 $(BUILD)/adaptive_ipp: bench/adaptive_ipp.c $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_STRICT) -O2 -g -Itools $(EXR_CFLAGS) $< $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+
+# what each adaptive shortcut saves and adds (one library build per shortcut set)
+SHORTCUT_MASKS := 31 30 29 27 23 15 0
+SHORTCUT_OBJS := $(patsubst %,$(BUILD)/shortcuts/variant_%.o,$(SHORTCUT_MASKS))
+$(BUILD)/shortcuts/variant_%.o: bench/shortcuts_variant.c stereoblend.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -DSC_MASK=$* -c $< -o $@
+$(BUILD)/shortcuts/shortcuts: bench/shortcuts.c $(SHORTCUT_OBJS) $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -g -Itools $(EXR_CFLAGS) $< $(SHORTCUT_OBJS) $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+$(BUILD)/shortcuts/shortcuts-cg: bench/shortcuts.c $(SHORTCUT_OBJS) $(DATASET_SRC) $(HEADERS) $(RUNNER) tools/sbl_dataset.h tools/sbl_exr.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -g -DSC_CALLGRIND -Itools $(EXR_CFLAGS) $< $(SHORTCUT_OBJS) $(DATASET_SRC) -o $@ $(EXR_LIBS) $(LDLIBS)
+bench-shortcuts: $(BUILD)/shortcuts/shortcuts
+	./$(BUILD)/shortcuts/shortcuts
+# the same in instructions per pixel (callgrind; no timing noise)
+bench-shortcuts-ipp: $(BUILD)/shortcuts/shortcuts-cg
+	sh bench/shortcuts_ipp.sh $(BUILD)/shortcuts/shortcuts-cg
 
 # Mono / FSA / adaptive stereo blend: ms, RMSE, eff spp, stereo inconsistency ratio
 bench-adaptive: $(BUILD)/bench-adaptive

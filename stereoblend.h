@@ -4266,6 +4266,18 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
    a band, a span or a tile starts. */
 enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2, SBL__TILE_SKY = 3 };
 
+/* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
+   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
+   far tiles gives the general path's bits, so switching one off costs only time.
+     1  void tiles                  2  tiles at rest               4  sky tiles
+     8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
+        pair-validity selects (the fallback bookkeeping)
+    16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
+        same bits, see SBL__FAR_PX) */
+#ifndef SBL_SHORTCUTS
+#define SBL_SHORTCUTS 31
+#endif
+
 /* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
    vector loads packed (pixel step 1: depth, N), no target normals or ids (whose tests
    the general path keeps)? */
@@ -4572,7 +4584,8 @@ static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__blo
         b->row_state = sbl__temporal_tiles_ok(s) |
                        (sbl__temporal_plan_lanes_ok(s, b->y) ? 2 : (sbl__camera_plan_lanes_ok(s, b->y) ? 4 : 0));
     if (b->row_state & 1) {
-        const int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
+        int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
+        if (kind && !(SBL_SHORTCUTS & (1 << (kind - 1)))) kind = SBL__TILE_GENERAL;
         if (kind == SBL__TILE_VOID) { sbl__void_tile(&s->src, r, b->x0, b->n); return 1; }
         if (kind == SBL__TILE_REST) { sbl__rest_tile(s, r, b->y, b->x0, b->n); return 1; }
         b->sky = kind == SBL__TILE_SKY;
@@ -6580,7 +6593,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             /* every pair of the chunk's columns valid: the instances without the selects
                on the pair validity (the same values); the blocks centred on the image's
                first and last columns (whose outer column is empty) excepted */
-            full = k->rows_valid || sbl__lanes_full(&W, ca, cb);
+            full = (SBL_SHORTCUTS & 8) && (k->rows_valid || sbl__lanes_full(&W, ca, cb));
             if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1);
             else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
@@ -7445,7 +7458,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__store(fbz, sbl__sel(keep, m, zero));
         /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the other
            eye is read at the same pixel (see SBL__FAR_PX) */
-        far = s->tiles &&
+        far = (SBL_SHORTCUTS & 16) && s->tiles &&
               !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
               sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
         bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero, 1);

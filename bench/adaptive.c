@@ -623,14 +623,9 @@ int main(int argc, char **argv)
     for (i = 0; i < (quick ? 1 : 3); ++i) {
         sbl_scene_desc d;
         sbr_seq seq;
-        memset(&d, 0, sizeof d);
-        d.kind = synth[i].kind;
-        d.jitter = synth[i].jitter;
-        d.width = quick ? 96 : 160;   /* as make bench */
-        d.height = quick ? 54 : 90;
-        d.frames = quick ? 8 : 16;
+        d = sbr_bench_scene_desc(synth[i].kind, synth[i].jitter, quick); /* as make bench, */
+        d.frames = quick ? 8 : 16;                                      /* but shorter */
         d.ref_spp = quick ? 16 : 64;
-        d.seed = 7;
         if (sbr_seq_synthetic(&seq, &d, synth[i].name, 1) != 0) { fprintf(stderr, "render failed\n"); return 1; }
         bench_scene(&seq, reps, &met, &total);
         sbr_seq_free(&seq);

@@ -415,14 +415,7 @@ int main(int argc, char **argv)
         sbl_scene_desc d;
         sbr_seq seq;
         if (!in_list(only_scenes, synth[i].name)) continue;
-        memset(&d, 0, sizeof d);
-        d.kind = synth[i].kind;
-        d.jitter = synth[i].jitter;
-        d.width = quick ? 96 : 160;
-        d.height = quick ? 54 : 90;
-        d.frames = quick ? 8 : 24;
-        d.ref_spp = quick ? 32 : 128;
-        d.seed = 7;
+        d = sbr_bench_scene_desc(synth[i].kind, synth[i].jitter, quick);
         if (sbr_seq_synthetic(&seq, &d, synth[i].name, 1) != 0) { fprintf(stderr, "render failed\n"); return 1; }
         bench_scene(&seq, reps);
         sbr_seq_free(&seq);

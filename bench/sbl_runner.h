@@ -95,6 +95,9 @@ typedef struct sbr_result {
 typedef void (*sbr_frame_fn)(void *ctx, int frame, int eye, const float *rgb, int w, int h);
 
 int  sbr_seq_synthetic(sbr_seq *s, const sbl_scene_desc *desc, const char *name, int with_ladder);
+/* The synthetic scene as `make bench` renders it: 160x90, 24 frames, 128-spp reference,
+   seed 7 (quick: 96x54, 8 frames, 32 spp). */
+sbl_scene_desc sbr_bench_scene_desc(sbl_scene_kind kind, int jitter, int quick);
 int  sbr_seq_dataset(sbr_seq *s, const char *dir, int max_frames, char *err, int err_size);
 void sbr_seq_free(sbr_seq *s);
 
@@ -143,6 +146,20 @@ static void sbr_camera_from(sbl_camera *c, const float *world_to_cam, const floa
 {
     memcpy(c->world_to_view, world_to_cam, sizeof c->world_to_view);
     memcpy(c->view_to_clip, proj, sizeof c->view_to_clip);
+}
+
+sbl_scene_desc sbr_bench_scene_desc(sbl_scene_kind kind, int jitter, int quick)
+{
+    sbl_scene_desc d;
+    memset(&d, 0, sizeof d);
+    d.kind = kind;
+    d.jitter = jitter;
+    d.width = quick ? 96 : 160;
+    d.height = quick ? 54 : 90;
+    d.frames = quick ? 8 : 24;
+    d.ref_spp = quick ? 32 : 128;
+    d.seed = 7;
+    return d;
 }
 
 int sbr_seq_synthetic(sbr_seq *s, const sbl_scene_desc *desc_in, const char *name, int with_ladder)
