@@ -3059,6 +3059,15 @@ typedef struct sbl__ring_row {
     int gather_unsafe; /* pixels that row gather newly flagged                  */
     int all_valid; /* sbl__kernel_run_span, after the load: 1 if x* is valid on every
                       loaded column (0: not known) */
+    /* the pooled estimator's evidence plane (temporal; sbl__evidence_gather): the
+       history's plane gathered in the colour's plan, as one more 1-channel plane read
+       with N's tap indices, weights, tests and fallback, stored as the ratio the pooled
+       estimator reads (1 where there is none). e: where this load writes it (NULL: not
+       wanted); e_plane: this row's plane; e_rp: the plane's reprojection (a copy of the
+       colour's whose colour is the plane, laid out as N: sbl__evidence_fused_ok), for
+       the lanes the colour's plan does not settle. */
+    float *e, *e_plane;
+    const sbl__temporal_rp *e_rp;
 } sbl__ring_row;
 
 typedef struct sbl__kernel {
@@ -3099,6 +3108,11 @@ typedef struct sbl__kernel {
     sbl__ring_row evid_ring; /* its x[0] / n / v / unsafe planes                      */
     int rows_valid;          /* sbl__kernel_run_span: 1 if the three window rows are
                                 all_valid (every chunk full); 0: the lanes look */
+    /* 1: the ring rows carry the evidence plane, gathered in the colour's plan by
+       sbl__ring_load (the rows in [evid_y0, evid_y1)); sbl__evidence_gather points
+       evid_in at the row's plane. 0: evid_in is evid_buf, filled by a pass of its own */
+    int evid_fused, evid_y0, evid_y1;
+    float *evid_buf;
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -3199,6 +3213,18 @@ static int sbl__lane_value_ok(float v)
     return (bits & 0x7fffffffu) == 0u || e - 87u < 90u;
 }
 
+/* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
+   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
+   far tiles gives the general path's bits, so switching one off costs only time.
+     1  void tiles                  2  tiles at rest               4  sky tiles
+     8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
+        pair-validity selects (the fallback bookkeeping)
+    16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
+        same bits, see SBL__FAR_PX) */
+#ifndef SBL_SHORTCUTS
+#define SBL_SHORTCUTS 31
+#endif
+
 /* One gathered x* (N > 0: valid) into ring column x. */
 SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v, int ch)
 {
@@ -3206,6 +3232,18 @@ SBL__INLINE void sbl__ring_put(sbl__ring_row *r, int x, float n, const float *v,
     r->n[x] = valid ? n : 0.0f;
     r->v[x] = valid ? 1.0f : 0.0f;
     for (c = 0; c < ch; ++c) r->x[c][x] = valid ? v[c] : 0.0f; /* v may be NULL if n <= 0 */
+}
+
+/* The evidence plane's value at target pixel (x, y) by the pixel gather (es: the
+   reprojection whose colour is the plane): the gathered ratio, or 1 where no tap is
+   valid (a reset: no evidence either way) or the value is not a ratio in (0, cap]. */
+SBL__NOINLINE float sbl__evidence_pixel(const sbl__temporal_rp *es, int x, int y)
+{
+    float v[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    return sbl__temporal_rp_pixel(es, x, y, v) > 0.0f && v[0] > 0.0f &&
+                   v[0] <= SBL__CAST(float, SBL__POOL_RATIO_CAP)
+               ? v[0]
+               : 1.0f;
 }
 
 #ifdef SBL__ROW_GATHER
@@ -3284,6 +3322,18 @@ static void sbl__ring_put_flag(sbl__ring_row *r, int x, float n, const float *v,
     safe &= sbl__lane_value_ok(r->n[x]);
     if (!safe) sbl__ring_flag_bits(r, x, 1);
 }
+#endif
+
+/* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
+   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
+   far tiles gives the general path's bits, so switching one off costs only time.
+     1  void tiles                  2  tiles at rest               4  sky tiles
+     8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
+        pair-validity selects (the fallback bookkeeping)
+    16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
+        same bits, see SBL__FAR_PX) */
+#ifndef SBL_SHORTCUTS
+#define SBL_SHORTCUTS 31
 #endif
 
 #ifdef SBL__ROW_GATHER
@@ -3546,6 +3596,65 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
 #undef SBL__TAP_ADD
 }
 
+/* The evidence plane's term of tap t (sbl__lanes_taps with the plane): N's tap index,
+   its own sum, as a 1-channel colour's in sbl__lanes_tap_sum */
+SBL__INLINE void sbl__lanes_tap_ev(const sbl__tap_src *s, int t, sbl__v w, sbl__m ok,
+                                   const float *ebase, const int *lidx, sbl__v *acce,
+                                   int contiguous, int masked)
+{
+    const ptrdiff_t o = (t >> 1) * s->length.stride + (t & 1) * s->length.step;
+    const sbl__v e = contiguous ? sbl__load(ebase + o + lidx[0]) : sbl__gatheri(ebase + o, lidx);
+    const sbl__v term = sbl__mul(w, e);
+    *acce = sbl__add(*acce, masked ? sbl__sel(ok, term, sbl__set1(0.0f)) : term);
+}
+
+/* The evidence plane of plan entries [i, i + VW) into r->e + x, in the colour's taps
+   (sbl__lanes_taps with the plane, after the colour: its weights w, tap masks ok, skipped
+   taps, reciprocal weight sum, validity, redo and fast lanes). The plane's own gather
+   has the same taps, tests, weights and validity wherever both sums are finite, so its
+   value (renormalised and saturated as the colour's) where valid, stored as the ratio
+   (sbl__evidence_pixel's test). Lanes the colour keeps whose evidence sum is not finite
+   take its pixel gather (redo 3); the colour's redo lanes take theirs with the colour. */
+SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+                                          sbl__ring_row *r, int x, sbl__v w0, sbl__v w1,
+                                          sbl__v w2, sbl__v w3, sbl__m ok0, sbl__m ok1,
+                                          sbl__m ok2, sbl__m ok3, int skip_x, int skip_y,
+                                          sbl__v inv, sbl__m valid, sbl__m redo, sbl__m fast,
+                                          int contiguous)
+{
+    const sbl__v zero = sbl__set1(0.0f), fmax = sbl__set1(FLT_MAX);
+    const float *ebase = r->e_rp->src.color.p;
+    const int *lidx = p->li + i;
+    const int masked = sbl__mbits(sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3))) != (1 << SBL__VW) - 1;
+    sbl__v acce = zero, e;
+    sbl__m use;
+    int c, bits;
+#define SBL__TAP_EV(t, m) sbl__lanes_tap_ev(s, t, w##t, ok##t, ebase, lidx, &acce, contiguous, m)
+    if (!masked) {
+        SBL__TAP_EV(0, 0);
+        if (!skip_x) SBL__TAP_EV(1, 0);
+        if (!skip_y) {
+            SBL__TAP_EV(2, 0);
+            if (!skip_x) SBL__TAP_EV(3, 0);
+        }
+    } else {
+        SBL__TAP_EV(0, 1);
+        if (!skip_x) SBL__TAP_EV(1, 1);
+        if (!skip_y) {
+            SBL__TAP_EV(2, 1);
+            if (!skip_x) SBL__TAP_EV(3, 1);
+        }
+    }
+#undef SBL__TAP_EV
+    e = sbl__min(sbl__max(sbl__mul(acce, inv), sbl__sub(zero, fmax)), fmax);
+    use = sbl__mandnot(sbl__mand(valid, sbl__gt(e, zero)),
+                       sbl__gt(e, sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP))));
+    sbl__store(r->e + x, sbl__sel(use, e, sbl__set1(1.0f)));
+    bits = sbl__mbits(sbl__mandnot(sbl__mand(fast, sbl__nonfinite(acce)), redo));
+    for (c = 0; bits; ++c, bits >>= 1)
+        if (bits & 1) p->redo[i + c] = 3;
+}
+
 /* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
    renormalisation and saturation) for plan entries [i, i + VW), into ring columns
    [x, x + VW): the same float operations in the same order per lane (a skipped tap
@@ -3559,7 +3668,7 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
    (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                  sbl__ring_row *r, int x, const int *cstep, int ch,
-                                 int contiguous, int sky, int full, int flag)
+                                 int contiguous, int sky, int full, int flag, int ev)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -3568,7 +3677,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     const int *cidx = contiguous ? cstep : p->ci + i;
     const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
     sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = zero, lim = zero;
-    sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero);
+    sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero), ok0, ok1, ok2, ok3;
     int c, bits, plain = 0;
     /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
        in every lane (a camera at rest; the rows of a parallel stereo rig) */
@@ -3589,8 +3698,9 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     {   /* the tests of the taps, then the sums: without masks where every lane of every
            tap passed (the common case), each sum's terms and order unchanged */
         sbl__v n0, n1 = zero, n2 = zero, n3 = zero;
-        const sbl__m ok0 = sbl__lanes_tap_test(s, p, i, 0, w0, ze, lim, inf_e, plain, &n0, contiguous, sky, full);
-        sbl__m ok1 = ok0, ok2 = ok0, ok3 = ok0, all;
+        sbl__m all;
+        ok0 = sbl__lanes_tap_test(s, p, i, 0, w0, ze, lim, inf_e, plain, &n0, contiguous, sky, full);
+        ok1 = ok2 = ok3 = ok0;
         if (!skip_x) ok1 = sbl__lanes_tap_test(s, p, i, 1, w1, ze, lim, inf_e, plain, &n1, contiguous, sky, full);
         if (!skip_y) {
             ok2 = sbl__lanes_tap_test(s, p, i, 2, w2, ze, lim, inf_e, plain, &n2, contiguous, sky, full);
@@ -3681,6 +3791,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         for (c = 0; bits; ++c, bits >>= 1)
             if (bits & 1) p->redo[i + c] = SBL__CAST(unsigned char, ((only >> c) & 1) + 1);
     }
+    if (ev) sbl__lanes_taps_evidence(s, p, i, r, x, w0, w1, w2, w3, ok0, ok1, ok2, ok3, skip_x, skip_y,
+                                     inv, valid, redo, fast, contiguous);
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -3700,7 +3812,7 @@ SBL__INLINE int sbl__ints_step(const int *a, int step)
 
 /* sbl__row_taps for one channel count and sky flag (constants where inlined). */
 SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
-                                  sbl__ring_row *r, int x, int ch, int sky, int flag)
+                                  sbl__ring_row *r, int x, int ch, int sky, int flag, int ev)
 {
     /* contiguous vectors need depth and N packed (plain loads); the colour's fixed lane
        offsets are the plan's lane steps */
@@ -3728,11 +3840,11 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                                         sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
         }
         if (contiguous) {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag);
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag, ev);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag, ev);
         } else {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag);
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev);
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
@@ -3747,17 +3859,17 @@ static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fa
 {
     if (sky) {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 0); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 0); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 0); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 0); break;
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 0, 0); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 0, 0); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 0, 0); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 0, 0); break;
         }
     } else {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 0); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 0); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 0); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 0); break;
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 0, 0); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 0, 0); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 0, 0); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 0, 0); break;
         }
     }
 }
@@ -3768,17 +3880,39 @@ static void sbl__row_taps_flag(const sbl__tap_src *s, sbl__tap_plan *p, int n, i
 {
     if (sky) {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 1); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 1); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 1); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 1); break;
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 1, 0); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 1, 0); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 1, 0); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 1, 0); break;
         }
     } else {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 1); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 1); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 1); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 1); break;
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 1, 0); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 1, 0); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 1, 0); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 1, 0); break;
+        }
+    }
+}
+
+/* sbl__row_taps_flag with the evidence plane gathered in the same taps (r->e: the
+   temporal row gather when the pooled estimator carries it) */
+SBL__NOINLINE void sbl__row_taps_flag_ev(const sbl__tap_src *s, sbl__tap_plan *p, int n,
+                                         int fallback, sbl__ring_row *r, int x, int sky)
+{
+    if (sky) {
+        switch (s->color.ch) {
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 1, 1); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 1, 1); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 1, 1); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 1, 1); break;
+        }
+    } else {
+        switch (s->color.ch) {
+        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 1, 1); break;
+        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 1, 1); break;
+        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 1, 1); break;
+        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 1, 1); break;
         }
     }
 }
@@ -3848,13 +3982,34 @@ static SBL__RARE void sbl__fallback_put(const sbl__tap_src *s, sbl__ring_row *r,
     else sbl__ring_put(r, x, n, tmp, s->color.ch);
 }
 
+/* The same for the evidence plane into r->e (as a ratio, sbl__evidence_pixel's test).
+   Where the colour's taps weigh below 1e-3 the plane's own gather reaches its fallback
+   too, at the same position with the same expected depth: with the same tests its
+   weights are the same, and a non-finite plane value only drops more taps (a sum of
+   fewer non-negative weights is no larger). */
+static SBL__RARE void sbl__fallback_put_evidence(sbl__ring_row *r, int x, double sx, double sy,
+                                                 float ze, float sl)
+{
+    float tmp[4] = {0, 0, 0, 0};
+    sbl__tap_want t;
+    float n;
+    t.depth = ze;
+    t.depth_slack = sl;
+    t.normal = NULL;
+    t.normal_len2 = 0.0f;
+    t.id = 0.0f;
+    n = sbl__gather_fallback(&r->e_rp->src, &t, sx, sy, tmp);
+    r->e[x] = n > 0.0f && tmp[0] > 0.0f && tmp[0] <= SBL__CAST(float, SBL__POOL_RATIO_CAP) ? tmp[0] : 1.0f;
+}
+
 /* The 3x3 fallback for ring columns x0 + e[k] (k < n) at source positions (sx[k], sy[k])
    with expected depths ze[e[k]] and slacks sl[e[k]] (the plan's): a reset where sbl__window_fails says the
    window holds nothing (the fallback's own result there), else sbl__gather_fallback.
-   flag: the puts flag unsafe values (sbl__ring_put_flag). */
-static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0, const int *e,
-                                const double *sx, const double *sy, const float *ze,
-                                const float *sl, int n, int flag)
+   flag: the puts flag unsafe values (sbl__ring_put_flag). ev: the evidence plane too
+   (sbl__fallback_lanes_ev). */
+SBL__INLINE void sbl__fallback_lanes_in(const sbl__tap_src *s, sbl__ring_row *r, int x0, const int *e,
+                                        const double *sx, const double *sy, const float *ze,
+                                        const float *sl, int n, int flag, int ev)
 {
     const int ch = s->color.ch;
     const double wl = SBL__CAST(double, s->width) - 1.0, hl = SBL__CAST(double, s->height) - 1.0;
@@ -3873,6 +4028,7 @@ static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0,
                 lane[m++] = k;
             } else {
                 sbl__fallback_put(s, r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]], flag);
+                if (ev) sbl__fallback_put_evidence(r, x0 + e[k], sx[k], sy[k], ze[e[k]], sl[e[k]]);
             }
         }
         if (!m) break;
@@ -3880,10 +4036,31 @@ static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0,
         none = sbl__window_fails(s, di, zl, ll);
         for (l = 0; l < m; ++l) {
             const int j = lane[l];
-            if ((none >> l) & 1) sbl__ring_put(r, x0 + e[j], 0.0f, NULL, ch);
-            else sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag);
+            if ((none >> l) & 1) {
+                sbl__ring_put(r, x0 + e[j], 0.0f, NULL, ch);
+                if (ev) r->e[x0 + e[j]] = 1.0f; /* (the plane's window fails the same tests) */
+            } else {
+                sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag);
+                if (ev) sbl__fallback_put_evidence(r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]]);
+            }
         }
     }
+}
+
+static void sbl__fallback_lanes(const sbl__tap_src *s, sbl__ring_row *r, int x0, const int *e,
+                                const double *sx, const double *sy, const float *ze,
+                                const float *sl, int n, int flag)
+{
+    sbl__fallback_lanes_in(s, r, x0, e, sx, sy, ze, sl, n, flag, 0);
+}
+
+/* sbl__fallback_lanes with the evidence plane (r->e): a reset is 1 there, else the
+   plane's own fallback */
+static SBL__RARE void sbl__fallback_lanes_ev(const sbl__tap_src *s, sbl__ring_row *r, int x0,
+                                             const int *e, const double *sx, const double *sy,
+                                             const float *ze, const float *sl, int n, int flag)
+{
+    sbl__fallback_lanes_in(s, r, x0, e, sx, sy, ze, sl, n, flag, 1);
 }
 
 /* The one driver of the row gathers (temporal and stereo): columns [xa, xb) of row y in
@@ -3903,7 +4080,7 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                                         void (*after)(const void *, sbl__ring_row *, sbl__block *),
                                         void (*fallback_block)(const void *, sbl__ring_row *,
                                                                sbl__block *),
-                                        int flag)
+                                        int flag, int ev)
 {
     const int ch = src->color.ch;
     sbl__block b;
@@ -3922,6 +4099,7 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                 float tmp[4] = {0, 0, 0, 0};
                 if (flag) sbl__ring_put_flag(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
                 else sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
+                if (ev) r->e[b.x0 + i] = sbl__evidence_pixel(r->e_rp, b.x0 + i, y);
             }
             continue;
         }
@@ -3935,7 +4113,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                 if (bits & 1) plan_one(ctx, &b, i);
             i += l;
         }
-        if (flag) sbl__row_taps_flag(src, &b.p, b.n, fallback, r, b.x0, b.sky);
+        if (ev) sbl__row_taps_flag_ev(src, &b.p, b.n, fallback, r, b.x0, b.sky);
+        else if (flag) sbl__row_taps_flag(src, &b.p, b.n, fallback, r, b.x0, b.sky);
         else sbl__row_taps(src, &b.p, b.n, fallback, r, b.x0, b.sky);
         if (after) {
             after(ctx, r, &b);
@@ -3955,10 +4134,14 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                 if (!any) { i += 7; continue; }
             }
             if (b.p.redo[i]) {
-                float tmp[4] = {0, 0, 0, 0};
-                const float nx = pixel(ctx, b.x0 + i, y, tmp);
-                if (flag) sbl__ring_put_flag(r, b.x0 + i, nx, tmp, ch);
-                else sbl__ring_put(r, b.x0 + i, nx, tmp, ch);
+                /* (3: only the evidence plane's pixel gather, see sbl__lanes_taps) */
+                if (!ev || b.p.redo[i] != 3) {
+                    float tmp[4] = {0, 0, 0, 0};
+                    const float nx = pixel(ctx, b.x0 + i, y, tmp);
+                    if (flag) sbl__ring_put_flag(r, b.x0 + i, nx, tmp, ch);
+                    else sbl__ring_put(r, b.x0 + i, nx, tmp, ch);
+                }
+                if (ev) r->e[b.x0 + i] = sbl__evidence_pixel(r->e_rp, b.x0 + i, y);
             }
         }
     }
@@ -3987,7 +4170,7 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
    float), no target normals or ids (their tests stay in sbl__tap_want_init), and an
    interior row (the depth slack reads both neighbours); motion and target depth packed
    (pixel steps 2 and 1). */
-static int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+SBL__INLINE int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     const int w = s->src.width, h = s->src.height;
     return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
@@ -4266,22 +4449,10 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
    a band, a span or a tile starts. */
 enum { SBL__TILE_GENERAL = 0, SBL__TILE_VOID = 1, SBL__TILE_REST = 2, SBL__TILE_SKY = 3 };
 
-/* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
-   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
-   far tiles gives the general path's bits, so switching one off costs only time.
-     1  void tiles                  2  tiles at rest               4  sky tiles
-     8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
-        pair-validity selects (the fallback bookkeeping)
-    16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
-        same bits, see SBL__FAR_PX) */
-#ifndef SBL_SHORTCUTS
-#define SBL_SHORTCUTS 31
-#endif
-
 /* Can this call use the tile shortcuts on its tiles: the views the shortcut reads with
    vector loads packed (pixel step 1: depth, N), no target normals or ids (whose tests
    the general path keeps)? */
-static int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
+SBL__INLINE int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
 {
     const sbl__tap_src *src = &s->src;
     return s->tiles && s->history && !s->geo.normals.p && !s->geo.ids.p && !src->use_id &&
@@ -4300,7 +4471,7 @@ static int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
 /* Are the motion vectors of tile pixels [x0, x0 + n) of row y all +-0 (kx * +-0 = +-0)?
    The tile's bits OR-ed together are 0 but for the sign bit exactly when every component
    is +-0 (any other value, a NaN included, leaves a bit): one load and one OR per vector. */
-static int sbl__tile_motion_zero(const sbl__temporal_rp *s, int y, int x0, int n)
+SBL__INLINE int sbl__tile_motion_zero(const sbl__temporal_rp *s, int y, int x0, int n)
 {
     const float *mp = SBL__AT(s->motion, x0, y);
     int i;
@@ -4331,7 +4502,7 @@ static int sbl__tile_motion_zero(const sbl__temporal_rp *s, int y, int x0, int n
 /* The class of tile [x0, x0 + n) of row y (n >= VW; the call passed
    sbl__temporal_tiles_ok). At rest is decided first: a rest tile settles pixels without
    geometry as a void tile does (they reset), so its depth need not be scanned. */
-static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, int n)
+SBL__INLINE int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, int n)
 {
     const sbl__v zero = sbl__set1(0.0f);
     int i;
@@ -4368,7 +4539,7 @@ static int sbl__temporal_tile_class(const sbl__temporal_rp *s, int y, int x0, in
    moved beyond that, N <= 0, a NaN or inf) are handed to the pixel gather; lanes
    without geometry reset. */
 SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0,
-                                   int n, int ch)
+                                   int n, int ch, int ev)
 {
     const sbl__tap_src *src = &s->src;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
@@ -4377,13 +4548,16 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     const float *hp = src->use_depth ? SBL__AT(src->depth, x0, y) : NULL;
     const float *np = src->length.p ? SBL__AT(src->length, x0, y) : NULL;
     const float *cp = SBL__AT(src->color, x0, y);
+    /* ev: the evidence plane (laid out as N, which is present) at the pixel itself, with
+       the colour's tests: its value where they pass and it is finite */
+    const float *ep = ev ? SBL__AT(r->e_rp->src.color, x0, y) : NULL;
     const ptrdiff_t cs = src->color.step;
     int i = 0, l, idx[SBL__VW];
     for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
     for (;;) {
         int x, bits, flag;
-        sbl__m keep, valid, ok;
-        sbl__v nv = one, v[4], vals[5];
+        sbl__m keep, valid, ok, valid_e = sbl__gt(zero, zero);
+        sbl__v nv = one, v[4], vals[6], ve = zero;
         if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
         x = x0 + i;
         /* the history colour, one channel per vector (the channels written out: gcc -O2
@@ -4410,16 +4584,20 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
                                               sbl__mandnot(near, sbl__mor(inf_e, inf_t))));
         }
         if (np) nv = sbl__load(np + i);
+        if (ev) ve = sbl__load(ep + i);
         /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
            0 is unsafe exactly when v is); a safe value is finite, so where every value is
            safe (the common case) the finiteness tests drop out and nothing is flagged */
         for (l = 0; l < ch; ++l) vals[l] = v[l];
         vals[ch] = nv;
-        if (sbl__all_safe(vals, ch + 1)) {
+        if (ev) vals[ch + 1] = ve; /* (finite too: then its tests are the colour's) */
+        if (sbl__all_safe(vals, ch + 1 + ev)) {
             if (np) valid = sbl__mand(valid, sbl__gt(nv, zero));
+            valid_e = valid;
             flag = 0;
         } else {
             if (np) valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
+            if (ev) valid_e = sbl__mandnot(valid, sbl__nonfinite(ve));
             valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
             if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
             if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
@@ -4445,6 +4623,14 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
                 float tmp[4] = {0, 0, 0, 0};
                 sbl__ring_put_flag(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
             }
+        if (ev) { /* the ratio (v > 0: v + 0 = v) or 1; the lanes not settled: its pixel gather */
+            const sbl__m use = sbl__mandnot(sbl__mand(valid_e, sbl__gt(ve, zero)),
+                                            sbl__gt(ve, sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP))));
+            sbl__store(r->e + x, sbl__sel(use, ve, one));
+            bits = sbl__mbits(sbl__mandnot(keep, valid_e));
+            for (l = 0; bits; ++l, bits >>= 1)
+                if (bits & 1) r->e[x + l] = sbl__evidence_pixel(r->e_rp, x + l, y);
+        }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
     }
@@ -4453,15 +4639,26 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
 static void sbl__rest_tile(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
 {
     switch (s->src.color.ch) {
-    case 1: sbl__rest_tile_ch(s, r, y, x0, n, 1); break;
-    case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2); break;
-    case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3); break;
-    default: sbl__rest_tile_ch(s, r, y, x0, n, 4); break;
+    case 1: sbl__rest_tile_ch(s, r, y, x0, n, 1, 0); break;
+    case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2, 0); break;
+    case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3, 0); break;
+    default: sbl__rest_tile_ch(s, r, y, x0, n, 4, 0); break;
+    }
+}
+
+/* sbl__rest_tile with the evidence plane (r->e) */
+SBL__NOINLINE void sbl__rest_tile_ev(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
+{
+    switch (s->src.color.ch) {
+    case 1: sbl__rest_tile_ch(s, r, y, x0, n, 1, 1); break;
+    case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2, 1); break;
+    case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3, 1); break;
+    default: sbl__rest_tile_ch(s, r, y, x0, n, 4, 1); break;
     }
 }
 
 /* A tile without geometry: every pixel resets. */
-static void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x0, int n)
+SBL__INLINE void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x0, int n)
 {
     int c;
     memset(r->n + x0, 0, SBL__CAST(size_t, n) * sizeof(float));
@@ -4476,7 +4673,7 @@ static void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x0, in
    camera and no listed objects, no target normals or ids (their tests stay in
    sbl__tap_want_init), an interior row (the depth slack reads both neighbours), target
    depth packed. */
-static int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+SBL__INLINE int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     return s->source == SBL_TEMPORAL_CAMERA && s->history && !s->at_rest &&
            !s->cam.object_count && !s->geo.normals.p && !s->geo.ids.p && y >= 1 &&
@@ -4577,7 +4774,8 @@ SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan
 
 /* The temporal row gather's hooks (sbl__row_gather_blocks). Lane modes: 1 motion
    vectors, 2 the camera; bit 4: the row's tiles may take the shortcuts. */
-static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+SBL__INLINE int sbl__temporal_block_start_in(const void *ctx, sbl__ring_row *r, sbl__block *b,
+                                             int ev)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     if (b->row_state < 0) /* once per row: the tiles allowed (bit 0), the lane mode */
@@ -4586,15 +4784,37 @@ static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__blo
     if (b->row_state & 1) {
         int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
         if (kind && !(SBL_SHORTCUTS & (1 << (kind - 1)))) kind = SBL__TILE_GENERAL;
-        if (kind == SBL__TILE_VOID) { sbl__void_tile(&s->src, r, b->x0, b->n); return 1; }
-        if (kind == SBL__TILE_REST) { sbl__rest_tile(s, r, b->y, b->x0, b->n); return 1; }
+        if (kind == SBL__TILE_VOID) {
+            sbl__void_tile(&s->src, r, b->x0, b->n);
+            if (ev) { /* no evidence either way */
+                int i;
+                for (i = 0; i < b->n; ++i) r->e[b->x0 + i] = 1.0f;
+            }
+            return 1;
+        }
+        if (kind == SBL__TILE_REST) {
+            if (ev) sbl__rest_tile_ev(s, r, b->y, b->x0, b->n);
+            else sbl__rest_tile(s, r, b->y, b->x0, b->n);
+            return 1;
+        }
         b->sky = kind == SBL__TILE_SKY;
     }
     b->mode = b->row_state >> 1;
     return 0;
 }
 
-static int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
+static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    return sbl__temporal_block_start_in(ctx, r, b, 0);
+}
+
+/* with the evidence plane (r->e) */
+static int sbl__temporal_block_start_ev(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    return sbl__temporal_block_start_in(ctx, r, b, 1);
+}
+
+SBL__INLINE int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     const int x = b->x0 + i;
@@ -4607,7 +4827,7 @@ static int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
                   : sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 0);
 }
 
-static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
+SBL__INLINE void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     sbl__tap_want t;
@@ -4622,7 +4842,8 @@ static void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
    gives (its expression, for motion vectors; the camera source leaves them to the pixel
    gather) with the planned expected depth and slack (the plan's lanes need neither
    target normals nor ids). */
-static void sbl__temporal_fallback_block(const void *ctx, sbl__ring_row *r, sbl__block *b)
+SBL__INLINE void sbl__temporal_fallback_block_in(const void *ctx, sbl__ring_row *r, sbl__block *b,
+                                                 int ev)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     double sx[SBL__BLOCK], sy[SBL__BLOCK];
@@ -4642,7 +4863,29 @@ static void sbl__temporal_fallback_block(const void *ctx, sbl__ring_row *r, sbl_
         sy[n] = b->y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
         e[n++] = i;
     }
-    if (n) sbl__fallback_lanes(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1);
+    if (!n) return;
+    if (ev) sbl__fallback_lanes_ev(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1);
+    else sbl__fallback_lanes(&s->src, r, b->x0, e, sx, sy, b->p.depth, b->p.slack, n, 1);
+}
+
+static void sbl__temporal_fallback_block(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    sbl__temporal_fallback_block_in(ctx, r, b, 0);
+}
+
+/* with the evidence plane (r->e) */
+static void sbl__temporal_fallback_block_ev(const void *ctx, sbl__ring_row *r, sbl__block *b)
+{
+    sbl__temporal_fallback_block_in(ctx, r, b, 1);
+}
+
+/* Can the temporal row gather take the evidence plane (source e: the colour's whose
+   colour is the plane) in the colour's plan (source s)? It reads the plane with N's tap
+   indices: N present, the plane laid out as N. */
+static int sbl__evidence_fused_ok(const sbl__tap_src *s, const sbl__tap_src *e)
+{
+    return s->length.p && e->color.ch == 1 && e->color.stride == s->length.stride &&
+           e->color.step == s->length.step;
 }
 
 /* The temporal reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
@@ -4655,7 +4898,25 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     r->gather_unsafe = 0;
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block, 1);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block, 1, 0);
+}
+
+/* The same with the evidence plane into r->e (NULL: as sbl__temporal_rp_row) in the
+   colour's plan: the row gather of a call that carries the plane (its own instance, so
+   the common one stays as it is). */
+static void sbl__temporal_rp_row_ev(const void *ctx, struct sbl__ring_row *r, int y, int xa,
+                                    int xb)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    if (!r->e) {
+        sbl__temporal_rp_row(ctx, r, y, xa, xb);
+        return;
+    }
+    r->gather_flags = 1;
+    r->gather_unsafe = 0;
+    sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
+                           sbl__temporal_block_start_ev, sbl__temporal_plan_vec,
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block_ev, 1, 1);
 }
 #endif
 
@@ -4911,6 +5172,8 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
 {
     int x, c, ch = k->ch, count = 0;
     r->gather_flags = 0;
+    /* the evidence plane in the colour's plan, on the rows the call filters */
+    r->e = k->evid_fused && row >= k->evid_y0 && row < k->evid_y1 ? r->e_plane : NULL;
     if (k->gather_row) {
         k->gather_row(k->gather_ctx, r, row, xa, xb);
         if (r->gather_flags) return r->gather_unsafe;
@@ -5009,20 +5272,24 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
    sqrt(lambda / (2 - lambda)) of one frame's. The threshold asks R for the same
    significance as the one-frame test asks q (SBL_POOLED_BLOCK_SE2, 2.5 of a frame's
    spread above the mean 1) in units of R's spread: c_R = 1 + 2.5 sqrt(1/5) = 2.118 at
-   lambda = 1/3, and r is at least R - c_R (SBL_EVIDENCE_GATE). lambda = 1/3: a shadow edge
-   moving a pixel per frame crosses a 3x3 block in three frames, and older evidence is
-   about other pixels. */
+   lambda = 1/3. Beyond c_R, r is at least the non-negative garrote of R - 1,
+   (R - 1) - (c_R - 1)^2 / (R - 1) (docs/ESTIMATORS.md 3.8): 0 at c_R, continuous, and
+   tending to the unbiased R - 1 where R - c_R would stay c_R - 1 short of it. lambda = 1/3:
+   a shadow edge moving a pixel per frame crosses a 3x3 block in three frames, and older
+   evidence is about other pixels. */
 #ifndef SBL_EVIDENCE_LAMBDA
 #define SBL_EVIDENCE_LAMBDA (1.0 / 3.0)
 #endif
 #ifndef SBL_EVIDENCE_GATE
-#define SBL_EVIDENCE_GATE 0 /* 0: r >= R - c_R, shrunk by the threshold as the one-frame
-                               r = q - SBL_POOLED_BLOCK_SE2 is; 1: beyond c_R, r >= R - 1
+#define SBL_EVIDENCE_GATE 2 /* 2: the garrote above (default); 0: r >= R - c_R, shrunk by
+                               the threshold as the one-frame r = q - SBL_POOLED_BLOCK_SE2
+                               is (session 8); 1: beyond c_R, r >= R - 1, a jump at c_R
                                (measured: more under moving lights, a loss on static
-                               content and gallery; docs/ESTIMATORS.md 3.7) */
+                               content and gallery; docs/ESTIMATORS.md 3.7, 3.8) */
 #endif
 #define SBL__EVIDENCE_THR \
     (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
+#define SBL__EVIDENCE_GARROTE ((SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0))
 /* The most one frame may raise the carried R by: c - 1, the one-frame threshold's distance
    from the no-change mean (q's innovation clipped at (c - 1) / lambda, a Huber step). A
    change the one-frame test sees (q >= SBL_POOLED_BLOCK_SE2) is handled in that frame by
@@ -5042,6 +5309,17 @@ static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
 {
     int x;
 #ifdef SBL__ROW_GATHER
+    if (k->evid_fused) {
+        /* gathered with the colour, in its plan, when the ring loaded row y (its columns
+           cover [xa, xb) and the pooled estimator's reach) */
+        int j;
+        for (j = 0; j < 3; ++j)
+            if (k->ring[j].row == y && k->ring[j].e) {
+                k->evid_in = k->ring[j].e;
+                return;
+            }
+    }
+    k->evid_in = k->evid_buf;
     if (k->evid_use && k->evid_row) {
         /* the temporal row gather on the plane (its taps equal the pixel gather's, bit
            for bit: tests/test_paths.c, tests/test_simd.c) */
@@ -5066,13 +5344,8 @@ static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
         return;
     }
 #endif
-    for (x = xa; x < xb; ++x) {
-        float v[4] = {0.0f, 0.0f, 0.0f, 0.0f}, e = 1.0f;
-        if (k->evid_use && sbl__temporal_rp_pixel(k->evid_ctx, x, y, v) > 0.0f &&
-            v[0] > 0.0f && v[0] <= SBL__CAST(float, SBL__POOL_RATIO_CAP))
-            e = v[0];
-        k->evid_in[x] = e;
-    }
+    for (x = xa; x < xb; ++x)
+        k->evid_in[x] = k->evid_use ? sbl__evidence_pixel(SBL__PCAST(const sbl__temporal_rp *, k->evid_ctx), x, y) : 1.0f;
 }
 
 /* Row y's pixels [xa, xb) of the output evidence plane: this frame's R (pooled), else 1
@@ -5100,7 +5373,11 @@ static double sbl__evidence_ratio_ref(sbl__kernel *k, int x, double sm2, double 
     k->evid_out[x] = SBL__CAST(float, e);
     if (k->evid_use) {
         const double thr = SBL__EVIDENCE_THR;
-        double rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
+        double rt;
+        if (SBL_EVIDENCE_GATE == 2) /* garrote: (R - 1) - (c_R - 1)^2 / (R - 1) beyond c_R */
+            rt = e > thr ? (e - 1.0) - SBL__EVIDENCE_GARROTE / (e - 1.0) : 0.0;
+        else
+            rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
         if (rt > r) r = rt;
     }
     return r;
@@ -5122,8 +5399,16 @@ SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, 
     sbl__store(k->evid_out + x, e);
     if (k->evid_use) {
         const sbl__v thr = sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR));
-        const sbl__v rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), sbl__sub(e, sbl__set1(1.0f)), zero)
-                                            : sbl__sub(e, thr);
+        sbl__v rt;
+        if (SBL_EVIDENCE_GATE == 2) { /* the denominator kept >= c_R - 1 where not taken */
+            const sbl__v e1 = sbl__sub(e, sbl__set1(1.0f));
+            const sbl__v g = sbl__div(sbl__set1(SBL__CAST(float, SBL__EVIDENCE_GARROTE)),
+                                      sbl__max(e1, sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR - 1.0))));
+            rt = sbl__sel(sbl__gt(e, thr), sbl__sub(e1, g), zero);
+        } else {
+            rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), sbl__sub(e, sbl__set1(1.0f)), zero)
+                                   : sbl__sub(e, thr);
+        }
         r = sbl__max(r, rt);
     }
     return r;
@@ -7017,7 +7302,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
             const size_t pf = sbl__plane_floats(w);
             float *e = SBL__PCAST(float *, sbl__align64(SBL__PCAST(char *, scratch) +
                                                          sbl__kernel_scratch_size(w, ch)));
-            k.evid_in = e;
+            k.evid_buf = k.evid_in = e;
             k.evid_out = e + pf;
             k.evid_ring.x[0] = e + 2 * pf;
             k.evid_ring.n = e + 3 * pf;
@@ -7026,6 +7311,19 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
             k.evid_ring.row = -1;
 #ifdef SBL__ROW_GATHER
             k.evid_row = k.evid_use && k.gather_row && sbl__row_gather_ok(&es.src);
+            if (k.evid_row && sbl__evidence_fused_ok(&s.src, &es.src)) {
+                /* in the colour's plan: the ring rows carry the plane (its second-pass
+                   planes x / n / v serve as their three) */
+                int j;
+                k.evid_fused = 1;
+                k.gather_row = sbl__temporal_rp_row_ev;
+                k.evid_y0 = y0;
+                k.evid_y1 = y1;
+                for (j = 0; j < 3; ++j) {
+                    k.ring[j].e_plane = e + (2 + j) * pf;
+                    k.ring[j].e_rp = &es;
+                }
+            }
 #endif
         }
     }
@@ -7643,7 +7941,7 @@ static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, 
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
                            sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
-                           sbl__stereo_plan_one, sbl__stereo_block_after, NULL, 0);
+                           sbl__stereo_plan_one, sbl__stereo_block_after, NULL, 0, 0);
 }
 #endif
 

@@ -8,8 +8,12 @@
      hard    per-pixel random sub-pixel motion and a moving object disoccluding ~10 %
      tiny    the easy case with one 1e-14 value in every row of the new frame
      static  camera at rest: zero motion, unchanged depth
+   Each case with "-ev" appended (easy-ev, hard-ev, ...) passes the optional evidence
+   plane in and out (sbl_history.evidence / sbl_temporal_output.evidence), as the
+   README's recommended setup does.
 
-   usage: ipp [easy|hard|tiny|static]   (runs each call once: meant for callgrind) */
+   usage: ipp CASE [hash]   (runs each call once: meant for callgrind; hash: also print
+   an FNV-1a hash of every output, to compare builds and code changes bit for bit) */
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
 #include <stdio.h>
@@ -22,6 +26,7 @@
 
 typedef struct eye_bufs {
     float *color, *depth, *prev_depth, *motion, *hist, *hlen, *out, *olen, *stereo_out;
+    float *hev, *oev; /* evidence plane in / out */
 } eye_bufs;
 
 static float *falloc(size_t n)
@@ -39,6 +44,7 @@ static void fill_eye(eye_bufs *b, int eye, int kind)
     b->color = falloc(n * 3); b->depth = falloc(n); b->prev_depth = falloc(n);
     b->motion = falloc(n * 2); b->hist = falloc(n * 3); b->hlen = falloc(n);
     b->out = falloc(n * 3); b->olen = falloc(n); b->stereo_out = falloc(n * 3);
+    b->hev = falloc(n); b->oev = falloc(n);
     for (i = 0; i < n; ++i) {
         int x = (int)(i % W), y = (int)(i / W), c;
         for (c = 0; c < 3; ++c) {
@@ -52,6 +58,10 @@ static void fill_eye(eye_bufs *b, int eye, int kind)
         b->motion[i * 2] = 0.37f + 0.1f * sinf(y * 0.01f);
         b->motion[i * 2 + 1] = -0.21f;
         b->hlen[i] = 8.0f;
+        /* a carried ratio near its no-change mean 1, a few pixels above the threshold */
+        s = s * 1664525u + 1013904223u;
+        b->hev[i] = 0.8f + (float)(s >> 8) * (1.0f / 16777216.0f) * 0.6f +
+                    ((s >> 4) % 61u == 0u ? 2.5f : 0.0f);
         if (kind == 1) {
             /* random sub-pixel motion; a nearer disc of radius 110 moved 50 px since
                the last frame: where it was, history depth is the object's, where it
@@ -81,16 +91,29 @@ static sbl_result (*volatile stereo_fn)(const sbl_stereo_desc *, sbl_eye_index, 
                                         const sbl_eye *, sbl_image, sbl_image, int, int, void *,
                                         size_t) = sbl_stereo_blend;
 
+/* FNV-1a over the bytes of n floats */
+static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
+{
+    const unsigned char *c = (const unsigned char *)p;
+    size_t i;
+    for (i = 0; i < n * sizeof(float); ++i) h = (h ^ c[i]) * 1099511628211ull;
+    return h;
+}
+
 int main(int argc, char **argv)
 {
     static const char *names[4] = {"easy", "hard", "tiny", "static"};
-    int kind = 0, e, i;
+    int kind = 0, ev = 0, e, i;
     eye_bufs b[2];
     size_t bytes = sbl_temporal_scratch_size(W, 3);
     void *scratch = malloc(bytes);
     if (argc > 1) {
+        size_t len = strlen(argv[1]);
+        ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
         for (i = 0; i < 4; ++i)
-            if (strcmp(argv[1], names[i]) == 0) kind = i;
+            if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
+                strlen(names[i]) == (ev ? len - 3 : len))
+                kind = i;
     }
     for (e = 0; e < 2; ++e) fill_eye(&b[e], e, kind);
     for (e = 0; e < 2; ++e) {
@@ -108,6 +131,10 @@ int main(int argc, char **argv)
         hi.gbuffer.depth = sbl_image_make(b[e].prev_depth, W, H, 1);
         o.color = sbl_image_make(b[e].out, W, H, 3);
         o.length = sbl_image_make(b[e].olen, W, H, 1);
+        if (ev) {
+            hi.evidence = sbl_image_make(b[e].hev, W, H, 1);
+            o.evidence = sbl_image_make(b[e].oev, W, H, 1);
+        }
         if (temporal_fn(&td, &f, &hi, &o, 0, H, scratch, bytes) != SBL_OK) return 1;
     }
     {   /* the left eye's stereo blend of the two temporal outputs */
@@ -126,8 +153,19 @@ int main(int argc, char **argv)
                       sbl_image_make(NULL, 0, 0, 1), 0, H, scratch, bytes) != SBL_OK)
             return 1;
     }
-    printf("ipp case %s: %dx%d RGB, %s; pixels per call %d (temporal runs 2 eyes)\n",
-           names[kind], W, H, SBL_SIMD_NAME, W * H);
+    printf("ipp case %s%s: %dx%d RGB, %s; pixels per call %d (temporal runs 2 eyes)\n",
+           names[kind], ev ? " with the evidence plane" : "", W, H, SBL_SIMD_NAME, W * H);
+    if (argc > 2 && strcmp(argv[2], "hash") == 0) {
+        unsigned long long h = 14695981039346656037ull;
+        size_t n = (size_t)W * H;
+        for (e = 0; e < 2; ++e) {
+            h = fnv(h, b[e].out, n * 3);
+            h = fnv(h, b[e].olen, n);
+            if (ev) h = fnv(h, b[e].oev, n);
+        }
+        h = fnv(h, b[0].stereo_out, n * 3);
+        printf("hash %016llx\n", h);
+    }
     free(scratch);
     return 0;
 }

@@ -32,6 +32,11 @@ typedef struct cand {
     int carry_mode;  /* 1: r = max(r_blocks, Z^2 - kt^2 kappa) into the EB posterior;
                         2: bias^2 >= (Z^2 - kt^2 kappa) se^2 directly; 3: both */
     double zmax;     /* |z| of one frame clamped to this */
+    /* trend (ESTIMATORS 3.8): a carried per-channel drift s = EWMA (weight tlam) of the
+       3x3 mean paired difference x* - y (firefly-limited y), shrunk by its ratio
+       u = |s|^2 / (kappa se^2) as s (1 - tc / u)+, subtracted from x* before the blend */
+    double tlam, tc;
+    int tmode;       /* bit 1: no R (one-frame pooled); bit 2: shrink by R's r too */
 } cand;
 
 static double post_t(double pd2, double se2, double k, double nu, double odds)
@@ -213,6 +218,12 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                     if (nb > 0 && np > 1) {
                         double tau2 = zsb / nb, sh;
                         if (c->normalized == 2) tau2 = sse > 0 ? zsb / sse - cc : (zsb > 0 ? 1e6 : 0);
+                        /* 64: the one-frame ratio through the same garrote,
+                           (q - 1)(1 - ((c - 1) / (q - 1))^2)+ instead of q - c */
+                        if ((c->carry_mode & 64) && c->normalized == 2 && tau2 > 0) {
+                            double q1 = tau2 + cc - 1.0;
+                            tau2 = q1 - (cc - 1.0) * (cc - 1.0) / q1;
+                        }
                         if (tau2 < 0) tau2 = 0;
                         if (zout && (c->carry_mode & 4)) {
                             double q = sse > 0 ? zsb / sse : (zsb > 0 ? 1e6 : 0);
@@ -223,6 +234,10 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                             if (r_t < 0) r_t = 0;
                             /* 8: a gate, then the unbiased estimate R - 1 */
                             if ((c->carry_mode & 8) && r_t > 0) r_t = zc - 1.0;
+                            /* 32: non-negative garrote, (R - 1)(1 - ((c - 1) / (R - 1))^2)+:
+                               0 up to c_R as the soft threshold, continuous, -> R - 1 */
+                            if ((c->carry_mode & 32) && r_t > 0)
+                                r_t = (zc - 1.0) - (c->kt - 1.0) * (c->kt - 1.0) / (zc - 1.0);
                             /* 16: soft gate, (R - 1) P, P = 1 / (1 + ((c - 1) / (R - 1))^4.5) */
                             if (c->carry_mode & 16) {
                                 r_t = 0;
@@ -266,6 +281,107 @@ static void blend_carry(void *ctx, int w, int h, const float *y, const float *xs
     blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
 }
 
+static float *tr_yl, *tr_xc;
+static size_t tr_n;
+static double tr_stats[3]; /* diagnostics: pixel-frames, corrected, sum |correction|^2 / se2 */
+
+static void blend_trend(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                        const float *zs, const float *ts, float cap, float *out, float *nout,
+                        float *zout, float *tsout)
+{
+    const cand *c = (const cand *)ctx;
+    const size_t n = (size_t)w * h;
+    const double lam = c->tlam, kap = lam / (2.0 - lam);
+    int px, py, i, j, ch;
+    if (tr_n < n) {
+        free(tr_yl); free(tr_xc);
+        tr_yl = (float *)malloc(n * 3 * sizeof(float));
+        tr_xc = (float *)malloc(n * 3 * sizeof(float));
+        tr_n = n;
+    }
+    /* firefly-limited samples (2.1's bound, each against its own neighbours and x*) */
+    for (py = 0; py < h; ++py)
+        for (px = 0; px < w; ++px) {
+            size_t p = (size_t)py * w + px;
+            double m8[3] = {0}, v8[3] = {0}, sy = 0, sm = 0, sx = 0, sv = 0, bound;
+            int cnt = 0;
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h || (i == px && j == py)) continue;
+                    q = (size_t)j * w + i; ++cnt;
+                    for (ch = 0; ch < 3; ++ch) m8[ch] += y[q * 3 + ch];
+                }
+            for (ch = 0; ch < 3; ++ch) m8[ch] /= cnt;
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h || (i == px && j == py)) continue;
+                    q = (size_t)j * w + i;
+                    for (ch = 0; ch < 3; ++ch) { double e = y[q * 3 + ch] - m8[ch]; v8[ch] += e * e; }
+                }
+            for (ch = 0; ch < 3; ++ch) {
+                v8[ch] /= cnt;
+                sy += y[p * 3 + ch]; sm += m8[ch]; sv += v8[ch];
+                sx += nx[p] > 0 ? xs[p * 3 + ch] : m8[ch];
+            }
+            bound = (sm > sx ? sm : sx) + 6.0 * sqrt(sv);
+            for (ch = 0; ch < 3; ++ch)
+                tr_yl[p * 3 + ch] = (float)(sy > bound && sy > 0 ? y[p * 3 + ch] * (bound > 0 ? bound : 0) / sy
+                                                                 : y[p * 3 + ch]);
+        }
+    for (py = 0; py < h; ++py)
+        for (px = 0; px < w; ++px) {
+            size_t p = (size_t)py * w + px;
+            double s1[3] = {0}, s2[3] = {0}, s[3], se2 = 0, ss = 0, sh = 0, rR = 0;
+            int np = 0;
+            for (ch = 0; ch < 3; ++ch) tr_xc[p * 3 + ch] = xs[p * 3 + ch];
+            if (!(nx[p] > 0)) {
+                for (ch = 0; ch < 3; ++ch) tsout[p * 3 + ch] = 0.0f;
+                continue;
+            }
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    q = (size_t)j * w + i;
+                    if (!(nx[q] > 0)) continue;
+                    ++np;
+                    for (ch = 0; ch < 3; ++ch) {
+                        double d = (double)xs[q * 3 + ch] - tr_yl[q * 3 + ch];
+                        s1[ch] += d; s2[ch] += d * d;
+                    }
+                }
+            for (ch = 0; ch < 3; ++ch) {
+                double pd = np >= 3 ? s1[ch] / np : 0.0;
+                if (np >= 3) {
+                    double v = (s2[ch] - np * pd * pd) / (np - 1);
+                    se2 += (v > 0 ? v : 0) / np;
+                }
+                s[ch] = (1.0 - lam) * ts[p * 3 + ch] + (np >= 3 ? lam * pd : 0.0);
+                tsout[p * 3 + ch] = (float)s[ch];
+                ss += s[ch] * s[ch];
+            }
+            if (np >= 3 && ss > 0) {
+                double u = se2 > 0 ? ss / (kap * se2) : 1e6;
+                sh = u > c->tc ? 1.0 - c->tc / u : 0.0;
+            }
+            if ((c->tmode & 2) && zs[p] > 0) { /* only where the carried R passes c_R */
+                rR = zs[p] - c->kt;
+                if (!(rR > 0)) sh = 0;
+            }
+            tr_stats[0] += 1;
+            if (sh > 0) {
+                tr_stats[1] += 1;
+                tr_stats[2] += sh * sh * ss / (se2 > 0 ? se2 : 1);
+                for (ch = 0; ch < 3; ++ch) tr_xc[p * 3 + ch] = (float)(xs[p * 3 + ch] - sh * s[ch]);
+            }
+        }
+    blend_core(ctx, w, h, y, tr_xc, nx, zs, cap, out, nout, (c->tmode & 1) ? NULL : zout);
+    if (c->tmode & 1)
+        for (i = 0; i < (int)n; ++i) zout[i] = 1.0f;
+}
+
 static cand cands[] = {
     {"ha (check)", 0, 0, 3, 3, 0, 0, 0, 0, 0, 0},
     {"s4 + EBs c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0, 2},
@@ -296,6 +412,16 @@ static cand cands[] = {
     {"R l1/3 c2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4},
     {"R l1/3 gate2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 12, 4},
     {"R l1/3 soft2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 20, 4},
+    /* 27..: trend (drift carried, subtracted from x*) on top of the default (R plane) */
+    {"trend l1/3 c3.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4, 1.0 / 3, 3.5, 0},
+    {"trend l1/3 c3.5 noR", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4, 1.0 / 3, 3.5, 1},
+    {"trend l1/3 c3.5 Rgate", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4, 1.0 / 3, 3.5, 2},
+    {"trend l1/5 c3.5", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4, 1.0 / 5, 3.5, 0},
+    {"R l1/3 garrote2.12", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4},
+    /* the channels of one path sample are correlated (one light path drives all three):
+       |s|^2 / (kappa se^2) is nearer chi^2_1 than chi^2_3 / 3 under H0; 6.63 = its 99 % */
+    {"R garrote + 1-frame garrote", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 100, 4},
+    {"trend l1/3 c6.63", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4, 1.0 / 3, 6.63, 0},
 };
 
 int main(int argc, char **argv)
@@ -335,15 +461,20 @@ int main(int argc, char **argv)
             snprintf(m.name, sizeof m.name, "%s", cands[i].name);
             m.temporal = 1;
             m.temporal_blend_ctx = &cands[i];
-            if (cands[i].lambda > 0) m.temporal_blend_carry = blend_carry;
+            if (cands[i].tlam > 0) m.temporal_blend_carry3 = blend_trend;
+            else if (cands[i].lambda > 0) m.temporal_blend_carry = blend_carry;
             else m.temporal_blend = blend;
             memset(zsum_stats, 0, sizeof zsum_stats);
+            memset(tr_stats, 0, sizeof tr_stats);
             if (sbr_run(&seq, &m, &r, NULL, NULL) != 0) return 1;
             printf("%-18s %-22s eff %6.2f  rmse %.5f", nm, cands[i].name, r.eff_spp, r.rmse);
             if (zsum_stats[2] > 0)
                 printf("  Z mean %+.3f sd %.3f over-threshold %.2f %%", zsum_stats[0] / zsum_stats[2],
                        sqrt(zsum_stats[1] / zsum_stats[2] - (zsum_stats[0] / zsum_stats[2]) * (zsum_stats[0] / zsum_stats[2])),
                        100.0 * zsum_stats[3] / zsum_stats[2]);
+            if (tr_stats[0] > 0)
+                printf("  trend on %.2f %% (mean corr^2/se2 %.3f)", 100.0 * tr_stats[1] / tr_stats[0],
+                       tr_stats[2] / tr_stats[0]);
             printf("\n");
             fflush(stdout);
         }

@@ -80,6 +80,11 @@ typedef struct sbr_method {
     void (*temporal_blend_carry)(void *ctx, int w, int h, const float *y, const float *xs,
                                  const float *nx, const float *zs, float cap, float *out,
                                  float *nout, float *zout);
+    /* prototypes with the carried plane above plus a carried 3-channel plane (ts in, tsout
+       out; reprojected the same way, 0 where no tap is valid). Used instead of the above. */
+    void (*temporal_blend_carry3)(void *ctx, int w, int h, const float *y, const float *xs,
+                                  const float *nx, const float *zs, const float *ts, float cap,
+                                  float *out, float *nout, float *zout, float *tsout);
 } sbr_method;
 
 typedef struct sbr_result {
@@ -551,6 +556,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     float *ox, *onx, *onx2; /* oracle: x*, its N (or validity), the blend's N */
     float *alpha[2];        /* the temporal weights, for alpha_fn */
     float *carry[2][2] = {{NULL, NULL}, {NULL, NULL}}, *carry3 = NULL, *ocarry3 = NULL, *ocarry = NULL;
+    float *tcarry[2][2] = {{NULL, NULL}, {NULL, NULL}}, *otcarry = NULL; /* temporal_blend_carry3 */
     unsigned char *mask;
     double *times, mse_sum = 0, mse1_sum = 0, ssim_sum = 0, eff_sum = 0;
     long traced = 0, traced_total = 0;
@@ -569,7 +575,12 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     tmp_a = sbr_alloc(n * 3); /* also the luminance planes of SBR_STEREO_MASKED */
     tmp_b = sbr_alloc(n * 3);
     ox = sbr_alloc(n * 3);
-    if (m->temporal_blend_carry || m->evidence) {
+    if (m->temporal_blend_carry3) {
+        for (e = 0; e < 2; ++e)
+            for (i = 0; i < 2; ++i) tcarry[e][i] = sbr_alloc(n * 3);
+        otcarry = sbr_alloc(n * 3);
+    }
+    if (m->temporal_blend_carry || m->temporal_blend_carry3 || m->evidence) {
         for (e = 0; e < 2; ++e)
             for (i = 0; i < 2; ++i) carry[e][i] = sbr_alloc(n);
         carry3 = sbr_alloc(n * 3);
@@ -633,7 +644,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                     out.evidence = sbl_image_make(carry[e][!ping[e]], w, h, 1);
                 }
                 if (alpha[e]) out.alpha = sbl_image_make(alpha[e], w, h, 1);
-                if (m->temporal_blend_carry) {
+                if (m->temporal_blend_carry || m->temporal_blend_carry3) {
                     /* the carried plane rides on the history's reprojection: the same call
                        with the plane (copied to three channels) as the history's colour */
                     sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
@@ -650,10 +661,24 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                                                     sbl_image_make(ocarry3, w, h, 3),
                                                     sbl_image_make(onx2, w, h, 1), 0, h);
                         for (q = 0; q < n; ++q) ocarry[q] = onx2[q] > 0 ? ocarry3[q * 3] : 0.0f;
+                        if (rc == 0 && m->temporal_blend_carry3) {
+                            hz.color = sbl_image_make(tcarry[e][ping[e]], w, h, 3);
+                            rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, &hz,
+                                                        sbl_image_make(otcarry, w, h, 3),
+                                                        sbl_image_make(onx2, w, h, 1), 0, h);
+                            for (q = 0; q < n; ++q)
+                                if (!(onx2[q] > 0)) otcarry[q * 3] = otcarry[q * 3 + 1] = otcarry[q * 3 + 2] = 0.0f;
+                        }
                     } else {
                         memset(ocarry, 0, n * sizeof(float));
+                        if (otcarry) memset(otcarry, 0, n * 3 * sizeof(float));
                     }
-                    if (rc == 0)
+                    if (rc == 0 && m->temporal_blend_carry3)
+                        m->temporal_blend_carry3(m->temporal_blend_ctx, w, h, input[e], ox, onx, ocarry,
+                                                 otcarry, td.max_history, hist[e][!ping[e]],
+                                                 len[e][!ping[e]], carry[e][!ping[e]],
+                                                 tcarry[e][!ping[e]]);
+                    else if (rc == 0)
                         m->temporal_blend_carry(m->temporal_blend_ctx, w, h, input[e], ox, onx, ocarry,
                                                 td.max_history, hist[e][!ping[e]], len[e][!ping[e]],
                                                 carry[e][!ping[e]]);
@@ -768,6 +793,8 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     }
     for (e = 0; e < 2; ++e) { free(carry[e][0]); free(carry[e][1]); }
     free(carry3); free(ocarry3); free(ocarry);
+    for (e = 0; e < 2; ++e) { free(tcarry[e][0]); free(tcarry[e][1]); }
+    free(otcarry);
     free(mask); free(tmp_a); free(tmp_b); free(times); free(ox); free(onx); free(onx2); free(alpha[0]); free(alpha[1]);
     return rc;
 }

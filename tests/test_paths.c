@@ -966,6 +966,150 @@ static void test_evidence_paths(void)
     }
 }
 
+/* The evidence plane gathered in the colour's plan (sbl__temporal_rp_row_ev, r->e:
+   one more 1-channel plane read with N's tap indices, weights, tests and fallback; rest
+   and void tiles; the lanes the plan does not settle by the plane's own pixel gather)
+   against the plane's per-pixel gather (sbl__evidence_pixel on a reprojection whose
+   colour is the plane), bit for bit, the colour row checked as well. A hard case: random
+   sub-pixel motion, a nearer rectangle that moved (windows that fail the depth test, the
+   3x3 fallback where part of one passes), zero-motion and no-geometry stretches wider
+   than a tile (rest and void tiles), a sky row, the camera source at rest; NaN, inf,
+   negative, 0, denormal and above-cap ratios in the plane, NaN colour and N <= 0 in the
+   history; fallback on and off, tiles on and off, random column ranges. */
+static void test_evidence_row_gather(void)
+{
+#ifdef SBL__ROW_GATHER
+    static const float specials[8] = {0.0f, -1.0f, 1e30f, 2e6f, 1e-39f, -0.0f, 1e-30f, 3.0f};
+    const int contracts = compiler_contracts();
+    sbt_rng rng = {8181};
+    int it, pixels = 0, mismatches = 0, empty = 0, resets = 0, fell = 0, special = 0;
+    for (it = 0; it < 400; ++it) {
+        int w = 8 + (int)(sbt_uniform(&rng) * 180), h = 3 + (int)(sbt_uniform(&rng) * 9);
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i;
+        int ax = (int)(sbt_uniform(&rng) * w * 0.6), ay = (int)(sbt_uniform(&rng) * h * 0.5);
+        int aw = 3 + (int)(sbt_uniform(&rng) * w * 0.5), ah = 2 + (int)(sbt_uniform(&rng) * h);
+        int shift = 1 + (int)(sbt_uniform(&rng) * 12);
+        /* zero motion on columns [rx, rx + rw) (rest tiles), no geometry on [vx, vx + vw) */
+        int rx = (int)(sbt_uniform(&rng) * w), rw = it % 3 == 0 ? w : (int)(sbt_uniform(&rng) * 140);
+        int vx = (int)(sbt_uniform(&rng) * w), vw = it % 4 == 1 ? (int)(sbt_uniform(&rng) * 150) : 0;
+        int camera = it % 7 == 5, flat_ev = it % 11 == 3;
+        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
+        sbt_img len = sbt_img_new(w, h, 1, 1), ev = sbt_img_new(w, h, 1, 1), depth = sbt_img_new(w, h, 1, 1);
+        sbt_img pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 1);
+        sbl_reproject_desc rd;
+        sbl_frame f;
+        sbl_history hi;
+        sbl_camera cam;
+        sbl__temporal_rp rp, es;
+        float planes[2][8][192];
+        unsigned char unsafe[192];
+        sbl__ring_row ra, rb;
+        memset(&rd, 0, sizeof rd);
+        rd.no_fallback = it % 5 == 1;
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                const int now = x >= ax && x < ax + aw && y >= ay && y < ay + ah;
+                const int was = x >= ax + shift && x < ax + shift + aw && y >= ay && y < ay + ah;
+                for (c = 0; c < ch; ++c) {
+                    sbt_at(&cur, x, y)[c] = (float)sbt_uniform(&rng);
+                    sbt_at(&hist, x, y)[c] = (float)(sbt_uniform(&rng) * 2);
+                }
+                *sbt_at(&len, x, y) = (float)(1 + sbt_uniform(&rng) * 30);
+                /* flat_ev: one value everywhere (a converged plane) */
+                *sbt_at(&ev, x, y) = flat_ev ? 1.25f : (float)(0.2 + sbt_uniform(&rng) * 4);
+                *sbt_at(&depth, x, y) = now ? 1.5f : (float)(4.0 + 0.01 * x);
+                *sbt_at(&pdepth, x, y) = was ? 1.5f : (float)(4.0 + 0.01 * x);
+                sbt_at(&mv, x, y)[0] = (float)((sbt_uniform(&rng) - 0.5) * 1.8);
+                sbt_at(&mv, x, y)[1] = (float)((sbt_uniform(&rng) - 0.5) * 1.8);
+                if (x >= rx && x < rx + rw) sbt_at(&mv, x, y)[0] = sbt_at(&mv, x, y)[1] = 0.0f;
+                if (x >= vx && x < vx + vw) *sbt_at(&depth, x, y) = it % 2 ? 0.0f : (float)HUGE_VAL - (float)HUGE_VAL;
+                if (it % 4 == 3 && y == 0) { /* a sky row, in both frames */
+                    *sbt_at(&depth, x, y) = (float)HUGE_VAL;
+                    *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
+                }
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.01) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.01) sbt_at(&hist, x, y)[ch - 1] = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.03) *sbt_at(&len, x, y) = 0.0f;
+                if (sbt_uniform(&rng) < 0.03) *sbt_at(&ev, x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&ev, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.04) *sbt_at(&ev, x, y) = specials[(it + x + y) % 8];
+            }
+        memset(&f, 0, sizeof f);
+        memset(&hi, 0, sizeof hi);
+        f.color = view(&cur);
+        f.gbuffer.depth = view(&depth);
+        f.gbuffer.motion = view(&mv);
+        hi.color = view(&hist);
+        hi.length = view(&len);
+        hi.gbuffer.depth = view(&pdepth);
+        hi.evidence = view(&ev);
+        if (camera) { /* the camera source with the camera at rest: rest tiles everywhere */
+            sbl_intrinsics kin;
+            float pose[16];
+            int q;
+            for (q = 0; q < 16; ++q) pose[q] = q % 5 == 0 ? 1.0f : 0.0f;
+            kin.fx = kin.fy = (float)(0.8 * w + 3); kin.cx = 0.5f * w; kin.cy = 0.5f * h;
+            CHECK_EQ(sbl_camera_from_pinhole(&cam, &kin, pose, SBL_AXES_OPENCV, 0, w, h), SBL_OK);
+            f.camera = &cam;
+            hi.camera = &cam;
+        }
+        CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, camera ? SBL_TEMPORAL_CAMERA : SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
+        rp.tiles = it % 6 != 2;
+        /* the plane's reprojection, as sbl_temporal_filter sets it up */
+        es = rp;
+        es.src.color = sbl__flatten(&hi.evidence);
+        if (!sbl__row_gather_ok(&rp.src) || !sbl__evidence_fused_ok(&rp.src, &es.src)) { CHECK(0); continue; }
+        memset(&ra, 0, sizeof ra);
+        memset(&rb, 0, sizeof rb);
+        for (i = 0; i < 2; ++i) {
+            sbl__ring_row *r = i ? &rb : &ra;
+            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
+            r->n = planes[i][4];
+            r->v = planes[i][5];
+            r->y[0] = planes[i][6];
+            r->unsafe = unsafe;
+            memset(planes[i], 0xff, sizeof planes[i]);
+        }
+        ra.e = ra.e_plane = planes[0][7];
+        ra.e_rp = &es;
+        for (y = 0; y < h; ++y) {
+            int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w), xb = it % 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
+            int colour_bad = 0;
+            memset(unsafe, 0, sizeof unsafe);
+            sbl__temporal_rp_row_ev(&rp, &ra, y, xa, xb);
+            compare_with_pixel_gather(&rp, &ra, &rb, y, xa, xb, ch, contracts, "evidence (colour)", it, w, h,
+                                      &pixels, &colour_bad, &empty);
+            mismatches += colour_bad;
+            for (x = xa; x < xb; ++x) {
+                const float want = sbl__evidence_pixel(&es, x, y), got = ra.e[x];
+                const float v = *sbt_at(&ev, x, y);
+                if (!same_float(got, want, contracts)) {
+                    if (mismatches < 5)
+                        printf("  evidence case %d (%dx%dx%d) pixel (%d,%d): %.9g vs %.9g\n", it, w, h, ch,
+                               x, y, got, want);
+                    ++mismatches;
+                }
+                resets += want == 1.0f;
+                /* the colour reset where the plane's own gather found something: the 3x3
+                   fallback (or a value the colour's taps did not use) */
+                fell += !(rb.n[x] > 0.0f) && want != 1.0f;
+                special += !(v > 0.0f && v <= 1e6f);
+            }
+        }
+        free(cur.mem); free(hist.mem); free(len.mem); free(ev.mem); free(depth.mem); free(pdepth.mem);
+        free(mv.mem);
+    }
+    printf("  %s evidence in the colour's plan vs its pixel gather: %d pixels (%d read as 1, %d no ratio in "
+           "the plane, %d where the colour has none), %d differ\n",
+           SBL_SIMD_NAME, pixels, resets, special, fell, mismatches);
+    CHECK(mismatches == 0);
+    CHECK(resets > pixels / 20 && resets < pixels / 2);
+    CHECK(special > pixels / 40);
+#endif
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -1062,5 +1206,6 @@ int main(void)
     test_row_gather_disocclusion();
     test_all_safe();
     test_evidence_paths();
+    test_evidence_row_gather();
     return sbt_finish("test_paths");
 }
