@@ -2907,7 +2907,18 @@ typedef __m128 sbl__m;
 /* abs on the bits: -ffast-math (no signed zeros) may fold a -0.0f mask to +0 */
 #define sbl__abs(a) _mm_and_ps(a, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)))
 #define sbl__gt(a, b) _mm_cmpgt_ps(a, b)
+#if defined(__GNUC__) || defined(__clang__)
+/* the select in the compiler's own vector operators, which it folds where the mask is a
+   constant (sbl__true in the full-chunk instances: one operand; _mm_and_ps / _mm_andnot_ps
+   are builtins it keeps) */
+SBL__INLINE __m128 sbl__sel(__m128 m, __m128 a, __m128 b)
+{
+    const __m128i mi = _mm_castps_si128(m);
+    return _mm_castsi128_ps((mi & _mm_castps_si128(a)) | (~mi & _mm_castps_si128(b)));
+}
+#else
 #define sbl__sel(m, a, b) _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b))
+#endif
 #define sbl__all(m) (_mm_movemask_ps(m) == 0xf)
 #define sbl__true _mm_castsi128_ps(_mm_set1_epi32(-1))
 #define SBL__ROW_GATHER 1
@@ -5915,7 +5926,7 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
    population variance of the window, of the window without its centre, the centre. */
 SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x, int i,
                                       int c, sbl__v *mean, sbl__v *var, sbl__v *m8, sbl__v *v8,
-                                      sbl__v *yc_out)
+                                      sbl__v *yc_out, const int v8_times8)
 {
     const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
     const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
@@ -5940,7 +5951,10 @@ SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows
     *var = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
     q = sbl__mul(a8, eighth);
     *m8 = sbl__add(s, q);
-    *v8 = sbl__mul(sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero), eighth);
+    *v8 = sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero);
+    /* v8_times8 (a constant): left as 8 v8, for a caller that scales a sum of them (a
+       power of two: the same bits as summing the scaled values) */
+    if (!v8_times8) *v8 = sbl__mul(*v8, eighth);
     *yc_out = yc;
 }
 
@@ -5956,7 +5970,7 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
     sbl__v pl, ql, pr, qr, d, dd;
     sbl__lanes_y_channel(k, W, x, i, c, &st->mean[c], &st->var[c], &st->m8[c], &st->v8[c],
-                         &st->yc[c]);
+                         &st->yc[c], 0);
     st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
     /* pairs: side columns about the centre column's shift tc */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
@@ -6710,7 +6724,8 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
    channels written out, so that the per-channel values stay in registers (loops over
    the channels keep the lane statistics in memory): the same operations in the same
    order as sbl__lanes_moments, sbl__lanes_firefly, sbl__lanes_weight and
-   sbl__lanes_blend (bit for bit). The pair terms: the pooled prepass's blocks. */
+   sbl__lanes_blend (bit for bit, but the mean weight, below). The pair terms: the
+   pooled prepass's blocks. */
 #define SBL__LANES_CH(M) do { M(0); if (ch > 1) M(1); if (ch > 2) M(2); if (ch > 3) M(3); } while (0)
 SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                         const float *nyrow, int x, int base, int y, const int ch,
@@ -6725,7 +6740,8 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
-    valid = sbl__gt(n_x, zero);
+    /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
+    valid = full ? sbl__true : sbl__gt(n_x, zero);
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
@@ -6740,12 +6756,13 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
 #define SBL__FAST_Y(c) \
     do { \
-        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c]); \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c], 0); \
         xs[c] = sbl__load(W->x[1][c] + x); \
-        sum_y = sbl__add(sum_y, yc[c]); \
-        sum_m8 = sbl__add(sum_m8, m8[c]); \
-        sum_x = sbl__add(sum_x, xs[c]); \
-        sum_v8 = sbl__add(sum_v8, v8[c]); \
+        /* the sums start at channel 0's values (0 + v is v: no addition) */ \
+        sum_y = (c) ? sbl__add(sum_y, yc[c]) : yc[c]; \
+        sum_m8 = (c) ? sbl__add(sum_m8, m8[c]) : m8[c]; \
+        sum_x = (c) ? sbl__add(sum_x, xs[c]) : xs[c]; \
+        sum_v8 = (c) ? sbl__add(sum_v8, v8[c]) : v8[c]; \
     } while (0)
     SBL__LANES_CH(SBL__FAST_Y);
 #undef SBL__FAST_Y
@@ -6779,23 +6796,19 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
     f_w = sbl__sel(hi_w, one_w, w); /* the two-sided lerp's factor (as the staged lanes) */
-    a_mean = zero;
 #define SBL__FAST_BLEND(c) \
     do { \
         sbl__v from, to, o; \
         SBL__SEL2(hi_w, yb[c], xs[c], from, to); \
         o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc[c])); \
-        a_mean = sbl__add(a_mean, w); \
     } while (0)
     SBL__LANES_CH(SBL__FAST_BLEND);
 #undef SBL__FAST_BLEND
-    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    /* one weight for every channel: its mean is the weight itself (as the reference's
+       sbl__blend_pixel, which takes it unaveraged; sbl__lanes_blend averages the copies) */
+    a_mean = w;
     a2_mean = w2;
-    if (ch > 1) a2_mean = sbl__add(a2_mean, w2);
-    if (ch > 2) a2_mean = sbl__add(a2_mean, w2);
-    if (ch > 3) a2_mean = sbl__add(a2_mean, w2);
-    a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
     n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
@@ -6817,19 +6830,21 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const int i = x - base;
     sbl__v mean, var, m8, v8, yc, s2 = zero, bound, t;
-    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
 #define SBL__STAGE_Y(c) \
     do { \
-        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc); \
-        sum_y = sbl__add(sum_y, yc); \
-        sum_m8 = sbl__add(sum_m8, m8); \
-        sum_x = sbl__add(sum_x, sbl__load(W->x[1][c] + x)); \
-        sum_v8 = sbl__add(sum_v8, v8); \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1); \
+        /* the sums start at channel 0's values (0 + v is v: no addition) */ \
+        sum_y = (c) ? sbl__add(sum_y, yc) : yc; \
+        sum_m8 = (c) ? sbl__add(sum_m8, m8) : m8; \
+        sum_x = (c) ? sbl__add(sum_x, sbl__load(W->x[1][c] + x)) : sbl__load(W->x[1][c] + x); \
+        sum_v8 = (c) ? sbl__add(sum_v8, v8) : v8; \
         s2 = (c) ? sbl__add(s2, var) : var; \
     } while (0)
     SBL__LANES_CH(SBL__STAGE_Y);
 #undef SBL__STAGE_Y
     (void)mean;
+    sum_v8 = sbl__mul(sum_v8, sbl__set1(0.125f)); /* the channels' v8 (sbl__lanes_y_channel) */
     bound = sbl__add(sbl__max(sum_m8, sum_x),
                      sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
@@ -6851,7 +6866,8 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
     sbl__m valid, hi_w, low_t;
     n_x = sbl__load(n_row + x);
-    valid = sbl__gt(n_x, zero);
+    /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
+    valid = full ? sbl__true : sbl__gt(n_x, zero);
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
@@ -6868,11 +6884,8 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                           sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
     w2 = st.a2[0]; /* every channel's */
     /* Eq. 5 first (its values then leave the registers), then the blend */
+    /* one weight for every channel: its mean is the weight itself (sbl__lanes_vector_fast) */
     a2_mean = w2;
-    if (ch > 1) a2_mean = sbl__add(a2_mean, w2);
-    if (ch > 2) a2_mean = sbl__add(a2_mean, w2);
-    if (ch > 3) a2_mean = sbl__add(a2_mean, w2);
-    a2_mean = sbl__mul(a2_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
     n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
@@ -6886,7 +6899,6 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     /* the two-sided lerp: from the end the weight is nearer, by its factor (the same
        expression per lane as both lerps and a select) */
     f_w = sbl__sel(hi_w, one_w, w);
-    a_mean = zero;
 #define SBL__STAGE_BLEND(c) \
     do { \
         const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
@@ -6895,11 +6907,10 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
         SBL__SEL2(hi_w, yb, xs, from, to); \
         o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
         sbl__store(k->stage[c] + x, sbl__sel(valid, o, yc)); \
-        a_mean = sbl__add(a_mean, w); \
     } while (0)
     SBL__LANES_CH(SBL__STAGE_BLEND);
 #undef SBL__STAGE_BLEND
-    a_mean = sbl__mul(a_mean, sbl__set1(1.0f / SBL__CAST(float, ch)));
+    a_mean = w;
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
 }
 #undef SBL__LANES_CH
