@@ -84,4 +84,39 @@ SBT_FN int sbt_canaries_ok(const sbt_img *im)
             if (im->mem[(size_t)y * im->stride + x] != SBT_CANARY) return 0;
     return 1;
 }
+
+#ifdef SBL_VERSION_MAJOR /* (after stereoblend.h) */
+/* A library view of a test image */
+SBT_FN sbl_image sbt_view(const sbt_img *im)
+{
+    sbl_image v;
+    memset(&v, 0, sizeof v);
+    v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
+    return v;
+}
+
+/* A 3-channel view of `src` (3 channels, w x h) in layout `lay`: 0 packed, 1 the first
+   three of four channels, 2 channels 1 .. 3 of five, bottom-up, 3 packed bottom-up; `pad`
+   canary floats per row (but none in layout 0). *mem gets the buffer to free. */
+SBT_FN sbl_image sbt_view3_layout(const sbt_img *src, int lay, int pad, float **mem)
+{
+    const int w = src->w, h = src->h, c = lay == 1 ? 4 : lay == 2 ? 5 : 3, off = lay == 2 ? 1 : 0;
+    sbt_img b = sbt_img_new(w, h, c, lay == 0 ? 0 : pad);
+    sbl_image v;
+    int x, y, k;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x)
+            for (k = 0; k < 3; ++k) sbt_at(&b, x, y)[off + k] = sbt_at(src, x, y)[k];
+    v = sbt_view(&b);
+    v.channels = 3;
+    v.pixel_bytes = c * (int)sizeof(float);
+    v.data = b.mem + off;
+    if (lay >= 2) {
+        v.data = sbt_at(&b, 0, h - 1) + off;
+        v.stride = -b.stride;
+    }
+    *mem = b.mem;
+    return v;
+}
+#endif
 #endif

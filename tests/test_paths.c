@@ -10,13 +10,7 @@
 #include "../stereoblend.h"
 #include "sbl_test.h"
 
-static sbl_image view(const sbt_img *im)
-{
-    sbl_image v;
-    memset(&v, 0, sizeof v);
-    v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
-    return v;
-}
+#define view sbt_view
 
 #define PW 40
 #define PH 3
@@ -1157,23 +1151,7 @@ static float nid_id(sbt_rng *rng, float id, double special)
    *mem gets the buffer to free. */
 static sbl_image nid_normals_view(const sbt_img *src, int lay, float **mem)
 {
-    const int w = src->w, h = src->h, c = lay == 1 ? 4 : lay == 2 ? 5 : 3, off = lay == 2 ? 1 : 0;
-    sbt_img b = sbt_img_new(w, h, c, lay == 0 ? 0 : 3);
-    sbl_image v;
-    int x, y, k;
-    for (y = 0; y < h; ++y)
-        for (x = 0; x < w; ++x)
-            for (k = 0; k < 3; ++k) sbt_at(&b, x, y)[off + k] = sbt_at(src, x, y)[k];
-    v = view(&b);
-    v.channels = 3;
-    v.pixel_bytes = c * (int)sizeof(float);
-    v.data = b.mem + off;
-    if (lay >= 2) {
-        v.data = sbt_at(&b, 0, h - 1) + off;
-        v.stride = -b.stride;
-    }
-    *mem = b.mem;
-    return v;
+    return sbt_view3_layout(src, lay, 3, mem);
 }
 
 /* An ids view of `src` (1 channel) in layout `lay`: 0 packed, 1 channel 1 of two, 2

@@ -24,13 +24,7 @@
 #include <float.h>
 
 #ifdef SBL__ROW_GATHER
-static sbl_image view(const sbt_img *im)
-{
-    sbl_image v;
-    memset(&v, 0, sizeof v);
-    v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
-    return v;
-}
+#define view sbt_view
 
 /* 1 if the compiler contracts a * b + c into a fused multiply-add (clang -mfma): the
    general row gather then equals the pixel gather within 1e-6 relative (test_paths);
@@ -805,23 +799,7 @@ static void nid_scene_normal(float *n, sbt_rng *rng, double u, int hist)
 
 static sbl_image nid_view3(const sbt_img *src, int lay, float **mem)
 {
-    const int w = src->w, h = src->h, c = lay == 1 ? 4 : lay == 2 ? 5 : 3, off = lay == 2 ? 1 : 0;
-    sbt_img b = sbt_img_new(w, h, c, lay == 0 ? 0 : 2);
-    sbl_image v;
-    int x, y, k;
-    for (y = 0; y < h; ++y)
-        for (x = 0; x < w; ++x)
-            for (k = 0; k < 3; ++k) sbt_at(&b, x, y)[off + k] = sbt_at(src, x, y)[k];
-    v = view(&b);
-    v.channels = 3;
-    v.pixel_bytes = c * (int)sizeof(float);
-    v.data = b.mem + off;
-    if (lay >= 2) {
-        v.data = sbt_at(&b, 0, h - 1) + off;
-        v.stride = -b.stride;
-    }
-    *mem = b.mem;
-    return v;
+    return sbt_view3_layout(src, lay, 2, mem);
 }
 
 static sbl_image nid_view1(const sbt_img *src, int lay, float **mem)
