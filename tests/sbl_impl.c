@@ -66,6 +66,7 @@ int tst_test_tiles_main(void);
 #define main tst_test_paths_main
 #include "test_paths.c"
 #undef main
+#undef view
 #undef PW
 #undef PH
 #undef SW
@@ -74,7 +75,6 @@ int tst_test_tiles_main(void);
 /* static helpers both files define (a test file's macros and static names share one
    translation unit here: a name both define is renamed for the second, its macros are
    undefined after it) */
-#define view tiles_view
 #define same_float tiles_same_float
 #define compiler_contracts tiles_compiler_contracts
 #define main tst_test_tiles_main
