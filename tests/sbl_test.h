@@ -118,5 +118,23 @@ SBT_FN sbl_image sbt_view3_layout(const sbt_img *src, int lay, int pad, float **
     *mem = b.mem;
     return v;
 }
+
+/* A 1-channel view of `src` (1 channel) in layout `lay`: 0 packed, 1 channel 1 of two,
+   2 `pad` canary floats per row. *mem gets the buffer to free. */
+SBT_FN sbl_image sbt_view1_layout(const sbt_img *src, int lay, int pad, float **mem)
+{
+    const int w = src->w, h = src->h, c = lay == 1 ? 2 : 1;
+    sbt_img b = sbt_img_new(w, h, c, lay == 2 ? pad : 0);
+    sbl_image v;
+    int x, y;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) sbt_at(&b, x, y)[c - 1] = *sbt_at(src, x, y);
+    v = sbt_view(&b);
+    v.channels = 1;
+    v.pixel_bytes = c * (int)sizeof(float);
+    v.data = b.mem + (c - 1);
+    *mem = b.mem;
+    return v;
+}
 #endif
 #endif

@@ -804,18 +804,7 @@ static sbl_image nid_view3(const sbt_img *src, int lay, float **mem)
 
 static sbl_image nid_view1(const sbt_img *src, int lay, float **mem)
 {
-    const int w = src->w, h = src->h, c = lay == 1 ? 2 : 1;
-    sbt_img b = sbt_img_new(w, h, c, 0);
-    sbl_image v;
-    int x, y;
-    for (y = 0; y < h; ++y)
-        for (x = 0; x < w; ++x) sbt_at(&b, x, y)[c - 1] = *sbt_at(src, x, y);
-    v = view(&b);
-    v.channels = 1;
-    v.pixel_bytes = c * (int)sizeof(float);
-    v.data = b.mem + (c - 1);
-    *mem = b.mem;
-    return v;
+    return sbt_view1_layout(src, lay, 0, mem);
 }
 
 static void test_scenes_normals(void)
