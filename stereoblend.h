@@ -3564,6 +3564,77 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
 #endif
 }
 
+/* Taps (x0, y0) and (x0 + 1, y0) of VW lanes at once where a view's pixels are packed
+   (pixel step = its channel count nf): the 2 nf floats from each lane's index, read as
+   nf gathers of float pairs (64-bit elements), split into out[0 .. 2 nf): out[c] is
+   channel c of tap x0, out[nf + c] of tap x0 + 1. The same addresses as the float
+   gathers of both taps, half the elements (hardware gathers cost per element; SSE2
+   loads a pair per instruction instead of a float). SBL__PAIRS 0 turns them off. */
+#ifndef SBL__PAIRS
+#define SBL__PAIRS 1
+#endif
+#if SBL__VW == 16
+SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *out, int nf)
+{
+    const __m256i lo = _mm256_loadu_si256(SBL__PCAST(const __m256i *, idx));
+    const __m256i hi = _mm256_loadu_si256(SBL__PCAST(const __m256i *, idx + 8));
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
+#define SBL__PAIR(k) \
+    { \
+        const __m512 a = _mm512_castpd_ps(_mm512_i32gather_pd(lo, SBL__PCAST(const void *, base + 2 * k), 4)); \
+        const __m512 b = _mm512_castpd_ps(_mm512_i32gather_pd(hi, SBL__PCAST(const void *, base + 2 * k), 4)); \
+        out[2 * k] = _mm512_permutex2var_ps(a, even, b); \
+        out[2 * k + 1] = _mm512_permutex2var_ps(a, odd, b); \
+    }
+    SBL__PAIR(0);
+    if (nf > 1) SBL__PAIR(1);
+    if (nf > 2) SBL__PAIR(2);
+    if (nf > 3) SBL__PAIR(3);
+#undef SBL__PAIR
+}
+#elif SBL__VW == 8
+SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *out, int nf)
+{
+    const __m128i lo = _mm_loadu_si128(SBL__PCAST(const __m128i *, idx));
+    const __m128i hi = _mm_loadu_si128(SBL__PCAST(const __m128i *, idx + 4));
+    /* a = pairs of lanes 0-3, b = 4-7; per 128-bit half the shuffle takes lanes
+       (0 1 4 5 | 2 3 6 7), the 64-bit permute puts them in order */
+#define SBL__PAIR(k) \
+    { \
+        const __m256 a = _mm256_castpd_ps(_mm256_i32gather_pd(SBL__PCAST(const double *, SBL__PCAST(const void *, base + 2 * k)), lo, 4)); \
+        const __m256 b = _mm256_castpd_ps(_mm256_i32gather_pd(SBL__PCAST(const double *, SBL__PCAST(const void *, base + 2 * k)), hi, 4)); \
+        out[2 * k] = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))), _MM_SHUFFLE(3, 1, 2, 0))); \
+        out[2 * k + 1] = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))), _MM_SHUFFLE(3, 1, 2, 0))); \
+    }
+    SBL__PAIR(0);
+    if (nf > 1) SBL__PAIR(1);
+    if (nf > 2) SBL__PAIR(2);
+    if (nf > 3) SBL__PAIR(3);
+#undef SBL__PAIR
+}
+#else
+SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *out, int nf)
+{
+    const int i0 = idx[0], i1 = idx[1], i2 = idx[2], i3 = idx[3];
+#define SBL__PAIR(k) \
+    { \
+        const float *q = base + 2 * k; \
+        const __m128 a = _mm_loadh_pi(_mm_loadl_pi(_mm_setzero_ps(), SBL__PCAST(const __m64 *, SBL__PCAST(const void *, q + i0))), \
+                                      SBL__PCAST(const __m64 *, SBL__PCAST(const void *, q + i1))); \
+        const __m128 b = _mm_loadh_pi(_mm_loadl_pi(_mm_setzero_ps(), SBL__PCAST(const __m64 *, SBL__PCAST(const void *, q + i2))), \
+                                      SBL__PCAST(const __m64 *, SBL__PCAST(const void *, q + i3))); \
+        out[2 * k] = _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0)); \
+        out[2 * k + 1] = _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1)); \
+    }
+    SBL__PAIR(0);
+    if (nf > 1) SBL__PAIR(1);
+    if (nf > 2) SBL__PAIR(2);
+    if (nf > 3) SBL__PAIR(3);
+#undef SBL__PAIR
+}
+#endif
+
 /* NaN lanes, on the bits (-ffast-math may fold a float self-compare) */
 SBL__INLINE sbl__m sbl__lanes_nan(sbl__v a)
 {
@@ -3661,15 +3732,17 @@ SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan 
    second). cidx: the colour's lane indices from the first tap. */
 SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
                                        int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
-                                       int plain, sbl__v *nt, int contiguous, int sky, int full)
+                                       int plain, sbl__v *nt, int contiguous, int sky, int full,
+                                       const sbl__v *pre)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
     sbl__m ok = sbl__gt(w, zero);
     if (full || s->use_depth) {
         const ptrdiff_t o = ty * s->depth.stride + tx * s->depth.step;
-        const sbl__v d = contiguous ? sbl__load(s->depth.p + o + p->di[i])
-                                    : sbl__gatheri(s->depth.p + o, p->di + i);
+        const sbl__v d = pre ? pre[0]
+                             : contiguous ? sbl__load(s->depth.p + o + p->di[i])
+                                          : sbl__gatheri(s->depth.p + o, p->di + i);
         if (sky && !full) {
             ok = sbl__mand(ok, sbl__posinf(d));
         } else if (full || plain) {
@@ -3689,8 +3762,9 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
     *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
-        *nt = contiguous ? sbl__load(s->length.p + o + p->li[i])
-                         : sbl__gatheri(s->length.p + o, p->li + i);
+        *nt = pre ? pre[1]
+                  : contiguous ? sbl__load(s->length.p + o + p->li[i])
+                               : sbl__gatheri(s->length.p + o, p->li + i);
         ok = sbl__mand(ok, sbl__gt(*nt, zero));
     }
     return ok;
@@ -3699,7 +3773,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
 SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl__m ok, sbl__v nt,
                                     const int *cidx, const float *cbase, sbl__v *acc,
                                     sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int full,
-                                    int masked)
+                                    int masked, const sbl__v *pre)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
@@ -3709,7 +3783,12 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
     if (full || s->length.p) SBL__TAP_ADD(*accn, sbl__mul(w, nt));
     else SBL__TAP_ADD(*accn, w);
     /* the channels written out (gcc -O2 keeps a loop over them, and the sums in memory) */
-    if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB */
+    if (pre) { /* (paired gathers: sbl__lanes_taps) */
+        v[0] = pre[0];
+        if (ch > 1) v[1] = pre[1];
+        if (ch > 2) v[2] = pre[2];
+        if (ch > 3) v[3] = pre[3];
+    } else if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB */
         sbl__rgb_lanes(cp, &v[0], &v[1], &v[2]);
     } else {
         v[0] = contiguous && ch == 1 && s->color.step == 1 ? sbl__load(cp) : sbl__gatheri(cp, cidx);
@@ -3797,7 +3876,7 @@ SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *
    (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                  sbl__ring_row *r, int x, const int *cstep, int ch,
-                                 int contiguous, int sky, int full, int flag, int ev)
+                                 int contiguous, int sky, int full, int flag, int ev, int pair)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -3825,33 +3904,78 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     }
     acc[0] = acc[1] = acc[2] = acc[3] = zero;
     {   /* the tests of the taps, then the sums: without masks where every lane of every
-           tap passed (the common case), each sum's terms and order unchanged */
-        sbl__v n0, n1 = zero, n2 = zero, n3 = zero;
+           tap passed (the common case), each sum's terms and order unchanged. pair: the
+           lanes' taps are scattered (not contiguous) and every view is packed: each
+           view's taps read by rows, two taps per gather (sbl__gather_pairs) */
+        sbl__v n0, n1 = zero, n2 = zero, n3 = zero, dn[4][2], cv[4][4], q[8];
         sbl__m all;
-        ok0 = sbl__lanes_tap_test(s, p, i, 0, w0, ze, lim, inf_e, plain, &n0, contiguous, sky, full);
+        if (pair) {
+            dn[0][0] = dn[1][0] = dn[2][0] = dn[3][0] = zero;
+            dn[0][1] = dn[1][1] = dn[2][1] = dn[3][1] = zero;
+            if (full || s->use_depth) {
+                sbl__gather_pairs(s->depth.p, p->di + i, q, 1);
+                dn[0][0] = q[0]; dn[1][0] = q[1];
+                if (!skip_y) {
+                    sbl__gather_pairs(s->depth.p + s->depth.stride, p->di + i, q, 1);
+                    dn[2][0] = q[0]; dn[3][0] = q[1];
+                }
+            }
+            if (full || s->length.p) {
+                sbl__gather_pairs(s->length.p, p->li + i, q, 1);
+                dn[0][1] = q[0]; dn[1][1] = q[1];
+                if (!skip_y) {
+                    sbl__gather_pairs(s->length.p + s->length.stride, p->li + i, q, 1);
+                    dn[2][1] = q[0]; dn[3][1] = q[1];
+                }
+            }
+        }
+#define SBL__TEST(t, nt) \
+    sbl__lanes_tap_test(s, p, i, t, w##t, ze, lim, inf_e, plain, nt, contiguous, sky, full, pair ? dn[t] : NULL)
+        ok0 = SBL__TEST(0, &n0);
         ok1 = ok2 = ok3 = ok0;
-        if (!skip_x) ok1 = sbl__lanes_tap_test(s, p, i, 1, w1, ze, lim, inf_e, plain, &n1, contiguous, sky, full);
+        if (!skip_x) ok1 = SBL__TEST(1, &n1);
         if (!skip_y) {
-            ok2 = sbl__lanes_tap_test(s, p, i, 2, w2, ze, lim, inf_e, plain, &n2, contiguous, sky, full);
-            if (!skip_x) ok3 = sbl__lanes_tap_test(s, p, i, 3, w3, ze, lim, inf_e, plain, &n3, contiguous, sky, full);
+            ok2 = SBL__TEST(2, &n2);
+            if (!skip_x) ok3 = SBL__TEST(3, &n3);
             else ok3 = ok2;
         }
-        all = sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3));
-        if (sbl__mbits(all) == (1 << SBL__VW) - 1) {
-            sbl__lanes_tap_sum(s, 0, w0, ok0, n0, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
-            if (!skip_x) sbl__lanes_tap_sum(s, 1, w1, ok1, n1, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+#undef SBL__TEST
+        if (pair) { /* the colour of taps 0, 1 (row y0) and 2, 3 (row y0 + 1) */
+#define SBL__PAIR_ROW(t, q) \
+    { \
+        cv[t][0] = q[0]; cv[t + 1][0] = q[ch]; \
+        if (ch > 1) { cv[t][1] = q[1]; cv[t + 1][1] = q[ch + 1]; } \
+        if (ch > 2) { cv[t][2] = q[2]; cv[t + 1][2] = q[ch + 2]; } \
+        if (ch > 3) { cv[t][3] = q[3]; cv[t + 1][3] = q[ch + 3]; } \
+    }
+            sbl__gather_pairs(cbase, cidx, q, ch);
+            SBL__PAIR_ROW(0, q);
             if (!skip_y) {
-                sbl__lanes_tap_sum(s, 2, w2, ok2, n2, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
-                if (!skip_x) sbl__lanes_tap_sum(s, 3, w3, ok3, n3, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 0);
+                sbl__gather_pairs(cbase + s->color.stride, cidx, q, ch);
+                SBL__PAIR_ROW(2, q);
+            }
+#undef SBL__PAIR_ROW
+        }
+        all = sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3));
+#define SBL__SUM(t, m) \
+    sbl__lanes_tap_sum(s, t, w##t, ok##t, n##t, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, m, \
+                       pair ? cv[t] : NULL)
+        if (sbl__mbits(all) == (1 << SBL__VW) - 1) {
+            SBL__SUM(0, 0);
+            if (!skip_x) SBL__SUM(1, 0);
+            if (!skip_y) {
+                SBL__SUM(2, 0);
+                if (!skip_x) SBL__SUM(3, 0);
             }
         } else {
-            sbl__lanes_tap_sum(s, 0, w0, ok0, n0, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
-            if (!skip_x) sbl__lanes_tap_sum(s, 1, w1, ok1, n1, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+            SBL__SUM(0, 1);
+            if (!skip_x) SBL__SUM(1, 1);
             if (!skip_y) {
-                sbl__lanes_tap_sum(s, 2, w2, ok2, n2, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
-                if (!skip_x) sbl__lanes_tap_sum(s, 3, w3, ok3, n3, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, 1);
+                SBL__SUM(2, 1);
+                if (!skip_x) SBL__SUM(3, 1);
             }
         }
+#undef SBL__SUM
     }
     nonfinite = sbl__nonfinite(accn);
     /* (the channels written out, as in sbl__lanes_tap_sum) */
@@ -3952,6 +4076,9 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
     const int both = !sky && s->use_depth && s->length.p && !s->use_normal && !s->use_id;
     const sbl__v tol = sbl__set1(s->depth_tolerance);
     const int *cstep = p->lane_step[0];
+    /* scattered vectors read two taps per gather where every view is packed (colour:
+       pixel step = channel count) */
+    const int pairs = SBL__PAIRS && packed && s->color.step == ch;
     int i = 0;
     for (;;) {
         int contiguous, full = 0;
@@ -3969,11 +4096,14 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                                         sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
         }
         if (contiguous) {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag, ev);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag, ev);
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag, ev, 0);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag, ev, 0);
+        } else if (pairs) {
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev, 1);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev, 1);
         } else {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev);
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev, 0);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev, 0);
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
