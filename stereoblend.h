@@ -3702,18 +3702,31 @@ SBL__INLINE void sbl__lanes_normals(const sbl__flat *f, int x, int y, sbl__v *m0
    as floats, a NaN on either side never matching; a tap whose dot or nn is not finite
    fails; "no normal" (squared length below 1e-12) matches only itself. The taps are
    gathered at the plan's indices (any layout: strided or channel views). */
-SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t)
+SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
+                                     int run, const sbl__v *pre)
 {
     const ptrdiff_t tx = t & 1, ty = t >> 1;
     sbl__m ok = sbl__true;
+    /* the taps' ids and normals: pre (read already, see sbl__lanes_taps), else plain
+       loads where run (the lanes' taps are consecutive pixels in both views) and the
+       view is packed, else gathers */
     if (s->use_id) {
-        const sbl__v id = sbl__gatheri(s->ids.p + ty * s->ids.stride + tx * s->ids.step, p->ii + i);
+        const float *ib = s->ids.p + ty * s->ids.stride + tx * s->ids.step;
+        const sbl__v id = pre ? pre[0] : run && s->ids.step == 1 ? sbl__load(ib + p->ii[i]) : sbl__gatheri(ib, p->ii + i);
         ok = sbl__lanes_id_ok(id, sbl__load(p->tid + i));
     }
     if (s->use_normal) {
         const float *nb = s->normals.p + ty * s->normals.stride + tx * s->normals.step;
-        const sbl__v n0 = sbl__gatheri(nb, p->ni + i), n1 = sbl__gatheri(nb + 1, p->ni + i),
-                     n2 = sbl__gatheri(nb + 2, p->ni + i);
+        sbl__v n0, n1, n2;
+        if (pre) {
+            n0 = pre[1]; n1 = pre[2]; n2 = pre[3];
+        } else if (run && s->normals.step == 3) {
+            sbl__rgb_lanes(nb + p->ni[i], &n0, &n1, &n2);
+        } else {
+            n0 = sbl__gatheri(nb, p->ni + i);
+            n1 = sbl__gatheri(nb + 1, p->ni + i);
+            n2 = sbl__gatheri(nb + 2, p->ni + i);
+        }
         ok = sbl__mand(ok, sbl__lanes_normal_ok(n0, n1, n2, sbl__load(p->tn[0] + i), sbl__load(p->tn[1] + i),
                                                 sbl__load(p->tn[2] + i), sbl__load(p->tn2 + i),
                                                 s->normal_threshold2));
@@ -3733,7 +3746,7 @@ SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan 
 SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
                                        int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
                                        int plain, sbl__v *nt, int contiguous, int sky, int full,
-                                       const sbl__v *pre)
+                                       const sbl__v *pre, int nid_run, const sbl__v *nid_pre)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
@@ -3758,7 +3771,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
             ok = sbl__mand(ok, match);
         }
     }
-    if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t));
+    if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t, nid_run, nid_pre));
     *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
@@ -3876,7 +3889,8 @@ SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *
    (sbl__depth_match with an infinite expectation), without the tolerance. */
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                  sbl__ring_row *r, int x, const int *cstep, int ch,
-                                 int contiguous, int sky, int full, int flag, int ev, int pair)
+                                 int contiguous, int sky, int full, int flag, int ev, int pair,
+                                 int nid_run)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -3907,8 +3921,25 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
            tap passed (the common case), each sum's terms and order unchanged. pair: the
            lanes' taps are scattered (not contiguous) and every view is packed: each
            view's taps read by rows, two taps per gather (sbl__gather_pairs) */
-        sbl__v n0, n1 = zero, n2 = zero, n3 = zero, dn[4][2], cv[4][4], q[8];
+        sbl__v n0, n1 = zero, n2 = zero, n3 = zero, dn[4][2], cv[4][4], q[8], nv[4][4];
         sbl__m all;
+        /* the normal / id tests' taps in pairs too where both views are packed */
+        const int nid_pair = pair && !full && (s->use_normal || s->use_id) &&
+                             (!s->use_normal || s->normals.step == 3) && (!s->use_id || s->ids.step == 1);
+        if (nid_pair) {
+            int ty;
+            for (ty = 0; ty < (skip_y ? 1 : 2); ++ty) {
+                if (s->use_id) {
+                    sbl__gather_pairs(s->ids.p + ty * s->ids.stride, p->ii + i, q, 1);
+                    nv[2 * ty][0] = q[0]; nv[2 * ty + 1][0] = q[1];
+                }
+                if (s->use_normal) {
+                    sbl__gather_pairs(s->normals.p + ty * s->normals.stride, p->ni + i, q, 3);
+                    nv[2 * ty][1] = q[0]; nv[2 * ty][2] = q[1]; nv[2 * ty][3] = q[2];
+                    nv[2 * ty + 1][1] = q[3]; nv[2 * ty + 1][2] = q[4]; nv[2 * ty + 1][3] = q[5];
+                }
+            }
+        }
         if (pair) {
             dn[0][0] = dn[1][0] = dn[2][0] = dn[3][0] = zero;
             dn[0][1] = dn[1][1] = dn[2][1] = dn[3][1] = zero;
@@ -3930,7 +3961,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
             }
         }
 #define SBL__TEST(t, nt) \
-    sbl__lanes_tap_test(s, p, i, t, w##t, ze, lim, inf_e, plain, nt, contiguous, sky, full, pair ? dn[t] : NULL)
+    sbl__lanes_tap_test(s, p, i, t, w##t, ze, lim, inf_e, plain, nt, contiguous, sky, full, pair ? dn[t] : NULL, \
+                        nid_run, nid_pair ? nv[t] : NULL)
         ok0 = SBL__TEST(0, &n0);
         ok1 = ok2 = ok3 = ok0;
         if (!skip_x) ok1 = SBL__TEST(1, &n1);
@@ -4063,6 +4095,23 @@ SBL__INLINE int sbl__ints_step(const int *a, int step)
     return same == 0xffff;
 }
 
+/* sbl__lanes_taps of a scattered vector in pairs (pair = 1), out of line: inlined into
+   each instance of sbl__row_taps_ch it costs the common contiguous vectors ~9 SSE2
+   instructions per pixel (measured: code size, registers); constants for the common
+   packed RGB temporal call, the other shapes with the arguments as given. */
+SBL__NOINLINE void sbl__lanes_taps_pairs(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+                                         int fallback, sbl__ring_row *r, int x,
+                                         const int *cstep, int ch, int sky, int full,
+                                         int flag, int ev)
+{
+    if (ch == 3 && !sky && flag && !ev) {
+        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 0, 1, 0);
+        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 0, 1, 0);
+    } else {
+        sbl__lanes_taps(s, p, i, fallback, r, x, cstep, ch, 0, sky, full, flag, ev, 1, 0);
+    }
+}
+
 /* sbl__row_taps for one channel count and sky flag (constants where inlined). */
 SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
                                   sbl__ring_row *r, int x, int ch, int sky, int flag, int ev)
@@ -4079,9 +4128,10 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
     /* scattered vectors read two taps per gather where every view is packed (colour:
        pixel step = channel count) */
     const int pairs = SBL__PAIRS && packed && s->color.step == ch;
+    const int nid = s->use_normal || s->use_id;
     int i = 0;
     for (;;) {
-        int contiguous, full = 0;
+        int contiguous, full = 0, nid_run;
         if (i + SBL__VW > n) i = n - SBL__VW;
         /* every lane's first tap one pixel after the previous lane's, in every view
            (each lane's index is a valid one, so the vector load reads exactly the
@@ -4095,15 +4145,19 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
             full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
                                         sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
         }
+        /* the normal / id taps of contiguous vectors: consecutive in those views too? */
+        nid_run = nid && contiguous &&
+                  (p->uniform[i] == 1 ||
+                   ((!s->use_normal || sbl__ints_step(p->ni + i, SBL__CAST(int, s->normals.step))) &&
+                    (!s->use_id || sbl__ints_step(p->ii + i, SBL__CAST(int, s->ids.step)))));
         if (contiguous) {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag, ev, 0);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag, ev, 0);
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag, ev, 0, nid_run);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag, ev, 0, nid_run);
         } else if (pairs) {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev, 1);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev, 1);
+            sbl__lanes_taps_pairs(s, p, i, fallback, r, x + i, cstep, ch, sky, full, flag, ev);
         } else {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev, 0);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev, 0);
+            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev, 0, nid_run);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev, 0, nid_run);
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
