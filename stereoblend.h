@@ -2408,7 +2408,8 @@ typedef struct sbl__weight_params {
     sbl_weight_mode mode;
     float constant, alpha_min, gamma, bias_threshold;
     int temporal; /* X is a history (its N is a time since the last change) */
-    float bias_scale; /* temporal: 1 + sbl_temporal_desc.stereo_shared_bias; else 1 */
+    float shared_bias; /* temporal: sbl_temporal_desc.stereo_shared_bias c (the bias
+                          counts 1 + c times); 0 otherwise */
 } sbl__weight_params;
 
 /* Firefly limit of the robust estimator: the new sample may exceed the larger of the
@@ -2564,7 +2565,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             if (b_eb > bias2) bias2 = b_eb;
         }
         /* a stereo blend follows: a bias both eyes share counts 1 + c times (4.7) */
-        if (p->bias_scale != 1.0f) bias2 *= SBL__CAST(double, p->bias_scale);
+        if (p->shared_bias != 0.0f) bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
         {
             /* pooled stereo: the part of the bias that is X's (sbl__lag_share) */
             double fx = SBL_STEREO_LAG_SHARE && p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal
@@ -2603,7 +2604,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             if (pair_count == 1) bias2 = pd2 - k2 * (var_x + var_y);
         }
         if (bias2 < 0.0) bias2 = 0.0;
-        if (p->bias_scale != 1.0f) bias2 *= SBL__CAST(double, p->bias_scale); /* 4.7 */
+        if (p->shared_bias != 0.0f) bias2 *= 1.0 + SBL__CAST(double, p->shared_bias); /* 4.7 */
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
         break;
@@ -2661,7 +2662,7 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.gamma = gamma;
     p.bias_threshold = bias;
     p.temporal = 0;
-    p.bias_scale = 1.0f;
+    p.shared_bias = 0.0f;
     return p;
 }
 
@@ -6599,7 +6600,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
             b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
         }
-        if (p->bias_scale != 1.0f) b2 = sbl__mul(b2, sbl__set1(p->bias_scale)); /* 4.7 */
+        if (p->shared_bias != 0.0f) b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias)); /* 4.7 */
         if (SBL_STEREO_LAG_SHARE && est == SBL_ESTIMATOR_POOLED && !temporal) {
             /* the part of the bias that is X's, as sbl__lag_share */
             const sbl__v amax = sbl__set1(SBL__CAST(float, SBL__LAG_AGE_MAX));
@@ -6635,7 +6636,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         sbl__v b2 = sbl__sel(st->two_pairs, b2_p, sbl__sel(st->has_pairs, b2_s, zero));
         sbl__v num, den;
         b2 = sbl__max(b2, zero);
-        if (p->bias_scale != 1.0f) b2 = sbl__mul(b2, sbl__set1(p->bias_scale)); /* 4.7 */
+        if (p->shared_bias != 0.0f) b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias)); /* 4.7 */
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
@@ -7483,7 +7484,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.wp = sbl__weight_params_make(d.estimator, d.rectify, d.weight_mode, d.constant_alpha,
                                    d.alpha_min, d.clip_gamma, d.bias_threshold);
     k.wp.temporal = 1;
-    k.wp.bias_scale = 1.0f + d.stereo_shared_bias;
+    k.wp.shared_bias = d.stereo_shared_bias;
     k.n_cap = d.max_history;
     k.temporal = 1;
     k.own = &frame->color;
