@@ -6,7 +6,7 @@
    rho = C / sqrt(E_own E_oth), C / E_own (the share of the own error that a stereo
    average keeps), and the MSE of a fixed beta 1/2 blend, (E_own + E_oth + 2 C) / 4.
    usage: proto_stereo [scenes] [methods]   (methods from the standard table, temporal;
-   NAME@c sets sbl_temporal_desc.stereo_shared_bias = c, NAME#n max_history = n; run:NAME runs the method as the
+   NAME@c sets sbl_temporal_desc.stereo_shared_bias = c (else the table's), NAME#n max_history = n; run:NAME runs the method as the
    bench does, stereo stage included, and prints effective spp / RMSE / SSIM) */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
@@ -113,7 +113,7 @@ int main(int argc, char **argv)
             at = strchr(name, '@');
             if (at) { c = (float)atof(at + 1); *at = 0; }
             if (sbr_find_method(name, &m) != 0) { fprintf(stderr, "no method %s\n", name); return 2; }
-            m.temporal_desc.stereo_shared_bias = c;
+            if (at) m.temporal_desc.stereo_shared_bias = c;
             if (cap > 0) m.temporal_desc.max_history = cap;
             if (run) {
                 if (sbr_run(&seq, &m, &r, NULL, NULL) != 0) return 1;
