@@ -6600,7 +6600,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
             b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
         }
-        if (p->shared_bias != 0.0f) b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias)); /* 4.7 */
+        if (temporal && p->shared_bias != 0.0f) /* 4.7; stereo: always 0 */
+            b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias));
         if (SBL_STEREO_LAG_SHARE && est == SBL_ESTIMATOR_POOLED && !temporal) {
             /* the part of the bias that is X's, as sbl__lag_share */
             const sbl__v amax = sbl__set1(SBL__CAST(float, SBL__LAG_AGE_MAX));
