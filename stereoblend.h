@@ -2565,7 +2565,8 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             if (b_eb > bias2) bias2 = b_eb;
         }
         /* a stereo blend follows: a bias both eyes share counts 1 + c times (4.7) */
-        if (p->shared_bias != 0.0f) bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
+        if (p->temporal && p->shared_bias != 0.0f)
+            bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
         {
             /* pooled stereo: the part of the bias that is X's (sbl__lag_share) */
             double fx = SBL_STEREO_LAG_SHARE && p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal
@@ -2604,7 +2605,8 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             if (pair_count == 1) bias2 = pd2 - k2 * (var_x + var_y);
         }
         if (bias2 < 0.0) bias2 = 0.0;
-        if (p->shared_bias != 0.0f) bias2 *= 1.0 + SBL__CAST(double, p->shared_bias); /* 4.7 */
+        if (p->temporal && p->shared_bias != 0.0f) /* 4.7 */
+            bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
         break;
@@ -6637,7 +6639,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         sbl__v b2 = sbl__sel(st->two_pairs, b2_p, sbl__sel(st->has_pairs, b2_s, zero));
         sbl__v num, den;
         b2 = sbl__max(b2, zero);
-        if (p->shared_bias != 0.0f) b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias)); /* 4.7 */
+        if (temporal && p->shared_bias != 0.0f) /* 4.7 */
+            b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias));
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);

@@ -1364,6 +1364,7 @@ int main(void)
         k.wp.gamma = 1.25f;
         k.wp.bias_threshold = 3.0f;
         k.wp.shared_bias = it >= 5000 && !stereo ? (it & 2 ? 1.0f : 0.35f) : 0.0f;
+        if (it >= 5000) k.wp.temporal = !stereo; /* the field acts on temporal calls only */
         k.n_cap = stereo ? FLT_MAX : 64.0f;
         k.temporal = !stereo;
         k.fill = stereo && (it % 8 == 1);
