@@ -457,7 +457,9 @@ typedef struct sbl_temporal_desc {
                                other eye has too (lag, resampling blur). The blend
                                halves independent noise but keeps a shared bias, so
                                the bias counts 1 + c times (docs/ESTIMATORS.md 4.7);
-                               0 -> per-eye weights, as without a stereo stage       */
+                               1 is the derived value when the display is the stereo
+                               blend (sbl_stereo_temporal_frame); 0 -> per-eye
+                               weights, as without a stereo stage                    */
 } sbl_temporal_desc;
 
 typedef struct sbl_temporal_output {
