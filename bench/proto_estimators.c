@@ -47,6 +47,9 @@ typedef struct cand {
                         3: t <= box mean of sh */
     int loo;         /* 1: a_p from the 8 neighbours (m8, v8): independent of y_i, so the
                         risk estimate needs no divergence term for it */
+    int svgf;        /* 1: var_Y from temporal moments (carried per-channel variance V,
+                        ESTIMATORS 3.9 b) */
+    double nu;       /* degrees of freedom of the local test with it (0: 8) */
 } cand;
 
 static double post_t(double pd2, double se2, double k, double nu, double odds)
@@ -60,6 +63,7 @@ static double zsum_stats[4]; /* diagnostics: sum Z, sum Z^2, count, count over t
 /* risk-based mixing (ESTIMATORS 3.9): blend_core leaves its weight, the firefly-limited
    sample and its var_Y estimate here when these are set */
 static double *g_ad, *g_vy, *g_sh, g_shv;
+static const double *g_vt; /* SVGF prototype: temporal var_Y + var_X (3x3 mean), 0 = none */
 static float *g_yb;
 
 static void blend_core(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
@@ -154,6 +158,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 if (bound < 0) bound = 0;
                 if (sy > bound) for (ch = 0; ch < 3; ++ch) yb[ch] *= bound / sy;
             }
+            if (g_vt && g_vt[p] > 0 && np > 1) pvs = g_vt[p];
             if (np > 1) {
                 var_y = pvs * n_x / (n_x + n_y);
                 var_x = pvs - var_y;
@@ -165,7 +170,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 double odds = 0.5 * (n_x + 1), se2 = np > 1 ? pvs / np : var_x + var_y;
                 double b3 = 0, bw = 0;
                 if (np > 0) {
-                    if (c->soft) b3 = post_t(pd2, se2, c->k, 8, odds) * pd2;
+                    if (c->soft) b3 = post_t(pd2, se2, c->k, g_vt && g_vt[p] > 0 && c->nu > 0 ? c->nu : 8, odds) * pd2;
                     else b3 = pd2 - c->k * c->k * se2 > 0 ? pd2 - c->k * c->k * se2 : 0;
                 }
                 if (nw > 2) {
@@ -381,6 +386,7 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
         if (!(nx[p] > 0)) { sa[p] = sb[p] = sc[p] = 0; continue; }
         for (ch = 0; ch < 3; ++ch) { double d = (double)xs[p * 3 + ch] - yb[p * 3 + ch]; D += d * d; }
         sa[p] = dl * ((1.0 - ad[p]) * D - vy[p]);
+        if (c->sure == 4) { sa[p] = D; sb[p] = vy[p]; sc[p] = 0; continue; }
         sure_stats[3] += (1.0 - ad[p]) * D; sure_stats[4] += vy[p]; sure_stats[5] += dl;
         sure_stats[6] += sa[p]; sure_stats[7] += dl * dl * D;
         sb[p] = dl * dl * D;
@@ -393,6 +399,18 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
         double t = 0, a;
         if (!(nx[p] > 0)) continue;
         if (c->sure == 3) t = 1;
+        else if (c->sure == 5 || c->sure == 6) { /* no risk: t = the default's own shrink */
+            t = shp[p] < 1 ? shp[p] : 1;
+            if (c->sure == 6 && ap[p] < ad[p]) t = 0;
+        }
+        else if (c->sure == 4) { /* the pixel's own a_d, a_p for the whole box: window sums of D, S */
+            double dl = ap[p] - ad[p];
+            t = dl > 0 && ba[p] > 0 ? ((1.0 - ad[p]) * ba[p] - bb[p]) / (dl * ba[p]) : 0;
+            if (t < 0) t = 0;
+            if (t > 1) t = 1;
+            if (c->gate == 1 && !(shp[p] > 0)) t = 0;
+            if (c->gate == 2 && t > shp[p]) t = shp[p];
+        }
         else if (bb[p] > 0 && ba[p] > 0) {
             t = ba[p] / bb[p];
             if (c->sk > 0) { /* z^2 of the pooled gradient against its own spread */
@@ -413,6 +431,62 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
             if (nout[p] > cap) nout[p] = cap;
         }
     }
+}
+
+static double svgf_stats[3]; /* pixel-frames, with temporal variance, sum pvs_t / pvs_spatial */
+
+static void blend_svgf(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                       const float *zs, const float *ts, float cap, float *out, float *nout,
+                       float *zout, float *tsout)
+{
+    const cand *c = (const cand *)ctx;
+    const size_t n = (size_t)w * h;
+    static size_t have;
+    static double *ad, *vy, *shp, *vt;
+    static float *yb;
+    size_t p;
+    int px, py, i, j, ch;
+    if (have < n) {
+        free(ad); free(vy); free(shp); free(vt); free(yb);
+        ad = malloc(n * sizeof *ad); vy = malloc(n * sizeof *vy); shp = malloc(n * sizeof *shp);
+        vt = malloc(n * sizeof *vt); yb = malloc(n * 3 * sizeof *yb);
+        have = n;
+    }
+    /* var_Y + var_X from the carried population variance V of the pixel's own samples
+       (N of them): var_Y = V N / (N - 1), var_X = var_Y / N; 3x3 mean over valid
+       pixels with N >= 4 (SVGF's rule), else 0 (the spatial estimate) */
+    for (py = 0; py < h; ++py)
+        for (px = 0; px < w; ++px) {
+            double acc = 0;
+            int cnt = 0;
+            p = (size_t)py * w + px;
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    double nq, v;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    q = (size_t)j * w + i;
+                    nq = nx[q] < cap ? nx[q] : cap;
+                    if (!(nq >= 4)) continue;
+                    v = (double)ts[q * 3] + ts[q * 3 + 1] + ts[q * 3 + 2];
+                    acc += v * nq / (nq - 1) * (1.0 + 1.0 / nq);
+                    ++cnt;
+                }
+            vt[p] = cnt >= 5 ? acc / cnt : 0;
+        }
+    g_ad = ad; g_vy = vy; g_yb = yb; g_sh = shp; g_vt = vt;
+    blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
+    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_vt = NULL;
+    for (p = 0; p < n; ++p) {
+        double a = ad[p];
+        svgf_stats[0] += 1;
+        if (vt[p] > 0) svgf_stats[1] += 1;
+        for (ch = 0; ch < 3; ++ch) {
+            double e = (double)yb[p * 3 + ch] - xs[p * 3 + ch];
+            tsout[p * 3 + ch] = nx[p] > 0 ? (float)((1.0 - a) * (ts[p * 3 + ch] + a * e * e)) : 0.0f;
+        }
+    }
+    (void)c;
 }
 
 static float *tr_yl, *tr_xc;
@@ -576,6 +650,16 @@ static cand cands[] = {
     {"sure 3x15 t<=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 1, 0, 0, 2, 0},
     {"sure 15x15 gate sh>0", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 1, 0},
     {"sure 15x15 t<=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 2, 0},
+    /* 51..: the pixel's own a_d, a_p over the box (window sums of D and S only) */
+    {"sure own 3x15", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 4, 7, 1, 0, 0, 0, 1},
+    {"sure own 3x15 t<=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 4, 7, 1, 0, 0, 2, 1},
+    /* 53..: t = sh, no risk estimate (a = a_d + sh (a_p - a_d)) */
+    {"mix t=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 5, 1, 1, 0, 0, 0, 1},
+    {"mix t=sh, a_p > a_d only", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 6, 1, 1, 0, 0, 0, 1},
+    {"mix t=sh, a_p full 3x3", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 6, 1, 1, 0, 0, 0, 0},
+    /* 56..: var_Y from temporal moments (SVGF), the default otherwise */
+    {"svgf var, nu 8", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0},
+    {"svgf var, nu 30", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 30},
 };
 
 int main(int argc, char **argv)
@@ -615,13 +699,15 @@ int main(int argc, char **argv)
             snprintf(m.name, sizeof m.name, "%s", cands[i].name);
             m.temporal = 1;
             m.temporal_blend_ctx = &cands[i];
-            if (cands[i].sure) m.temporal_blend_carry = blend_sure;
+            if (cands[i].svgf) m.temporal_blend_carry3 = blend_svgf;
+            else if (cands[i].sure) m.temporal_blend_carry = blend_sure;
             else if (cands[i].tlam > 0) m.temporal_blend_carry3 = blend_trend;
             else if (cands[i].lambda > 0) m.temporal_blend_carry = blend_carry;
             else m.temporal_blend = blend;
             memset(zsum_stats, 0, sizeof zsum_stats);
             memset(tr_stats, 0, sizeof tr_stats);
             memset(sure_stats, 0, sizeof sure_stats);
+            memset(svgf_stats, 0, sizeof svgf_stats);
             if (sbr_run(&seq, &m, &r, NULL, NULL) != 0) return 1;
             printf("%-18s %-22s eff %6.2f  rmse %.5f", nm, cands[i].name, r.eff_spp, r.rmse);
             if (zsum_stats[2] > 0)
@@ -631,6 +717,8 @@ int main(int argc, char **argv)
             if (tr_stats[0] > 0)
                 printf("  trend on %.2f %% (mean corr^2/se2 %.3f)", 100.0 * tr_stats[1] / tr_stats[0],
                        tr_stats[2] / tr_stats[0]);
+            if (svgf_stats[0] > 0)
+                printf("  temporal var on %.1f %%", 100.0 * svgf_stats[1] / svgf_stats[0]);
             if (sure_stats[0] > 0)
                 printf("  t mean %.3f, t > 0 on %.1f %% | (1-a)D %.4g S %.4g dl %.4g A %.4g B %.4g",
                        sure_stats[1] / sure_stats[0], 100.0 * sure_stats[2] / sure_stats[0],
