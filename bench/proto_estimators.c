@@ -478,11 +478,27 @@ static void blend_svgf(void *ctx, int w, int h, const float *y, const float *xs,
     blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
     g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_vt = NULL;
     for (p = 0; p < n; ++p) {
-        double a = ad[p];
+        double a = ad[p], pdm[3] = {0, 0, 0};
         svgf_stats[0] += 1;
         if (vt[p] > 0) svgf_stats[1] += 1;
+        if (c->svgf == 2 && nx[p] > 0) {
+            /* innovations less the window's mean paired difference: a bias shared by
+               the 3x3 (a lag under a moving light) is not noise */
+            int cnt = 0;
+            px = (int)(p % (size_t)w); py = (int)(p / (size_t)w);
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    q = (size_t)j * w + i;
+                    if (!(nx[q] > 0)) continue;
+                    ++cnt;
+                    for (ch = 0; ch < 3; ++ch) pdm[ch] += (double)yb[q * 3 + ch] - xs[q * 3 + ch];
+                }
+            for (ch = 0; ch < 3; ++ch) pdm[ch] /= cnt;
+        }
         for (ch = 0; ch < 3; ++ch) {
-            double e = (double)yb[p * 3 + ch] - xs[p * 3 + ch];
+            double e = (double)yb[p * 3 + ch] - xs[p * 3 + ch] - pdm[ch];
             tsout[p * 3 + ch] = nx[p] > 0 ? (float)((1.0 - a) * (ts[p * 3 + ch] + a * e * e)) : 0.0f;
         }
     }
@@ -660,6 +676,8 @@ static cand cands[] = {
     /* 56..: var_Y from temporal moments (SVGF), the default otherwise */
     {"svgf var, nu 8", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0},
     {"svgf var, nu 30", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 30},
+    /* 58: innovations less the 3x3 mean paired difference */
+    {"svgf var - window bias", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0},
 };
 
 int main(int argc, char **argv)
