@@ -158,7 +158,11 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 if (bound < 0) bound = 0;
                 if (sy > bound) for (ch = 0; ch < 3; ++ch) yb[ch] *= bound / sy;
             }
-            if (g_vt && g_vt[p] > 0 && np > 1) pvs = g_vt[p];
+            double se2_loc = -1;
+            if (g_vt && g_vt[p] > 0 && np > 1) {
+                if (c->svgf == 3) se2_loc = (g_vt[p] > pvs ? g_vt[p] : pvs) / np;
+                else pvs = g_vt[p];
+            }
             if (np > 1) {
                 var_y = pvs * n_x / (n_x + n_y);
                 var_x = pvs - var_y;
@@ -170,7 +174,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 double odds = 0.5 * (n_x + 1), se2 = np > 1 ? pvs / np : var_x + var_y;
                 double b3 = 0, bw = 0;
                 if (np > 0) {
-                    if (c->soft) b3 = post_t(pd2, se2, c->k, g_vt && g_vt[p] > 0 && c->nu > 0 ? c->nu : 8, odds) * pd2;
+                    if (c->soft) b3 = post_t(pd2, se2_loc > 0 ? se2_loc : se2, c->k, g_vt && g_vt[p] > 0 && c->nu > 0 ? c->nu : 8, odds) * pd2;
                     else b3 = pd2 - c->k * c->k * se2 > 0 ? pd2 - c->k * c->k * se2 : 0;
                 }
                 if (nw > 2) {
@@ -678,6 +682,8 @@ static cand cands[] = {
     {"svgf var, nu 30", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 30},
     /* 58: innovations less the 3x3 mean paired difference */
     {"svgf var - window bias", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0},
+    /* 59: the local test's se^2 only, the larger of the spatial and the temporal */
+    {"svgf local test: max(pv, V)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 3, 0},
 };
 
 int main(int argc, char **argv)
