@@ -50,6 +50,8 @@ typedef struct cand {
     int svgf;        /* 1: var_Y from temporal moments (carried per-channel variance V,
                         ESTIMATORS 3.9 b) */
     double nu;       /* degrees of freedom of the local test with it (0: 8) */
+    int keepn;       /* 1: the mixed weight keeps the default's N (diagnostic: is the static
+                        loss the N bookkeeping of the following frames?) */
 } cand;
 
 static double post_t(double pd2, double se2, double k, double nu, double odds)
@@ -431,8 +433,10 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
         if (t != 0) {
             for (ch = 0; ch < 3; ++ch)
                 out[p * 3 + ch] = (float)((1 - a) * xs[p * 3 + ch] + a * yb[p * 3 + ch]);
-            nout[p] = sbl_blend_sample_count((float)a, nx[p] < cap ? nx[p] : cap, 1.0f);
-            if (nout[p] > cap) nout[p] = cap;
+            if (!c->keepn) {
+                nout[p] = sbl_blend_sample_count((float)a, nx[p] < cap ? nx[p] : cap, 1.0f);
+                if (nout[p] > cap) nout[p] = cap;
+            }
         }
     }
 }
@@ -684,6 +688,9 @@ static cand cands[] = {
     {"svgf var - window bias", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0},
     /* 59: the local test's se^2 only, the larger of the spatial and the temporal */
     {"svgf local test: max(pv, V)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 3, 0},
+    /* 60..: the mixed weight, the default's N kept (diagnostic) */
+    {"sure t* 15x15 loo, keep N", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 0, 1, 0, 0, 1},
+    {"sure t* 15x15, keep N", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 0, 0, 0, 0, 1},
 };
 
 int main(int argc, char **argv)
