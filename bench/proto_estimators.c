@@ -64,7 +64,7 @@ static double post_t(double pd2, double se2, double k, double nu, double odds)
 static double zsum_stats[4]; /* diagnostics: sum Z, sum Z^2, count, count over threshold */
 /* risk-based mixing (ESTIMATORS 3.9): blend_core leaves its weight, the firefly-limited
    sample and its var_Y estimate here when these are set */
-static double *g_ad, *g_vy, *g_sh, g_shv;
+static double *g_ad, *g_vy, *g_sh, g_shv, *g_shr, g_shrv;
 static const double *g_vt; /* SVGF prototype: temporal var_Y + var_X (3x3 mean), 0 = none */
 static float *g_yb;
 
@@ -86,12 +86,13 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 if (zout) zout[p] = 0.0f;
                 if (g_ad) {
                     g_ad[p] = 1.0; g_vy[p] = 0.0; g_sh[p] = 1.0;
+                    if (g_shr) g_shr[p] = 1.0;
                     for (ch = 0; ch < 3; ++ch) g_yb[p * 3 + ch] = y[p * 3 + ch];
                 }
                 continue;
             }
             if (n_x > cap) n_x = cap;
-            g_shv = 0;
+            g_shv = 0; g_shrv = 0;
             /* 3x3 */
             for (j = py - 1; j <= py + 1; ++j)
                 for (i = px - 1; i <= px + 1; ++i) {
@@ -280,6 +281,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                             if (r_t > 0) zsum_stats[3] += 1;
                         }
                         if ((c->carry_mode & 5) && r_t > tau2) tau2 = r_t;
+                        g_shrv = r_t > 0 ? r_t / (1.0 + r_t) : 0.0;
                         if (c->normalized) tau2 *= se2;
                         sh = tau2 / (tau2 + se2);
                         g_shv = sh;
@@ -295,6 +297,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
             if (a > 1) a = 1;
             if (g_ad) {
                 g_ad[p] = a; g_vy[p] = var_y; g_sh[p] = g_shv;
+                if (g_shr) g_shr[p] = g_shrv;
                 for (ch = 0; ch < 3; ++ch) g_yb[p * 3 + ch] = (float)yb[ch];
             }
             for (ch = 0; ch < 3; ++ch)
@@ -348,23 +351,24 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
     const cand *c = (const cand *)ctx;
     const size_t n = (size_t)w * h;
     static size_t have;
+    static double *shr;
     static double *ad, *vy, *shp, *ap, *sa, *sb, *sc, *ba, *bb, *bc, *tmp;
     static float *yb;
     size_t p;
     int px, py, i, j, ch;
     if (have < n) {
         free(ad); free(vy); free(ap); free(sa); free(sb); free(sc); free(ba); free(bb); free(bc);
-        free(tmp); free(yb); free(shp);
-        shp = malloc(n * sizeof *shp);
+        free(tmp); free(yb); free(shp); free(shr);
+        shp = malloc(n * sizeof *shp); shr = malloc(n * sizeof *shr);
         ad = malloc(n * sizeof *ad); vy = malloc(n * sizeof *vy); ap = malloc(n * sizeof *ap);
         sa = malloc(n * sizeof *sa); sb = malloc(n * sizeof *sb); sc = malloc(n * sizeof *sc);
         ba = malloc(n * sizeof *ba); bb = malloc(n * sizeof *bb); bc = malloc(n * sizeof *bc);
         tmp = malloc(n * sizeof *tmp); yb = malloc(n * 3 * sizeof *yb);
         have = n;
     }
-    g_ad = ad; g_vy = vy; g_yb = yb; g_sh = shp;
+    g_ad = ad; g_vy = vy; g_yb = yb; g_sh = shp; g_shr = shr;
     blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
-    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL;
+    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_shr = NULL;
     /* the paper's scalar weight: a = d^2 / (d^2 + s^2), d = x* - m1 (3x3), s^2 population */
     for (py = 0; py < h; ++py)
         for (px = 0; px < w; ++px) {
@@ -405,6 +409,10 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
         double t = 0, a;
         if (!(nx[p] > 0)) continue;
         if (c->sure == 3) t = 1;
+        else if (c->sure == 7) { /* no risk: t = the carried evidence's shrink, where a_p > a_d */
+            t = shr[p] < 1 ? shr[p] : 1;
+            if (ap[p] < ad[p]) t = 0;
+        }
         else if (c->sure == 5 || c->sure == 6) { /* no risk: t = the default's own shrink */
             t = shp[p] < 1 ? shp[p] : 1;
             if (c->sure == 6 && ap[p] < ad[p]) t = 0;
@@ -426,6 +434,7 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
             if (t > 1) t = 1;
             if (c->gate == 1 && !(shp[p] > 0)) t = 0;
             if (c->gate == 2 && t > shp[p]) t = shp[p];
+            if (c->gate == 4 && t > shr[p]) t = shr[p];
             if (c->sure == 2) t = t >= 0.5 ? 1 : 0;
         }
         sure_stats[0] += 1; sure_stats[1] += t; if (t > 0) sure_stats[2] += 1;
@@ -691,6 +700,10 @@ static cand cands[] = {
     /* 60..: the mixed weight, the default's N kept (diagnostic) */
     {"sure t* 15x15 loo, keep N", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 0, 1, 0, 0, 1},
     {"sure t* 15x15, keep N", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 0, 0, 0, 0, 1},
+    /* 62: t <= the carried evidence's own shrink (R's garrote only, not the one-frame blocks) */
+    {"sure 15x15 t<=sh_R", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 4, 0},
+    /* 63: no risk: a = a_d + sh_R (a_p - a_d)+, a_p the library's (full 3x3) */
+    {"mix t=sh_R, a_p > a_d", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0},
 };
 
 int main(int argc, char **argv)
