@@ -452,6 +452,14 @@ typedef struct sbl_temporal_desc {
                                it; 0 -> 3                                               */
     sbl_reproject_desc reproject;
     void *alloc_context;    /* passed to SBL_MALLOC / SBL_FREE in *_frame calls        */
+    float stereo_shared_bias; /* a stereo blend (beta about 1/2) follows for display:
+                               the share c in [0, 1] of the history's bias that the
+                               other eye has too (lag, resampling blur). The blend
+                               halves independent noise but keeps a shared bias, so
+                               the bias counts 1 + c times (docs/ESTIMATORS.md 4.7);
+                               1 is the derived value when the display is the stereo
+                               blend (sbl_stereo_temporal_frame); 0 -> per-eye
+                               weights, as without a stereo stage                    */
 } sbl_temporal_desc;
 
 typedef struct sbl_temporal_output {
@@ -2402,6 +2410,8 @@ typedef struct sbl__weight_params {
     sbl_weight_mode mode;
     float constant, alpha_min, gamma, bias_threshold;
     int temporal; /* X is a history (its N is a time since the last change) */
+    float shared_bias; /* temporal: sbl_temporal_desc.stereo_shared_bias c (the bias
+                          counts 1 + c times); 0 otherwise */
 } sbl__weight_params;
 
 /* Firefly limit of the robust estimator: the new sample may exceed the larger of the
@@ -2556,6 +2566,9 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             double sh = pool_r / (1.0 + pool_r), b_eb = sh * sh * pd2 + sh * se2;
             if (b_eb > bias2) bias2 = b_eb;
         }
+        /* a stereo blend follows: a bias both eyes share counts 1 + c times (4.7) */
+        if (p->temporal && p->shared_bias != 0.0f)
+            bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
         {
             /* pooled stereo: the part of the bias that is X's (sbl__lag_share) */
             double fx = SBL_STEREO_LAG_SHARE && p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal
@@ -2594,6 +2607,8 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             if (pair_count == 1) bias2 = pd2 - k2 * (var_x + var_y);
         }
         if (bias2 < 0.0) bias2 = 0.0;
+        if (p->temporal && p->shared_bias != 0.0f) /* 4.7 */
+            bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
         break;
@@ -2651,6 +2666,7 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.gamma = gamma;
     p.bias_threshold = bias;
     p.temporal = 0;
+    p.shared_bias = 0.0f;
     return p;
 }
 
@@ -6772,6 +6788,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
             b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
         }
+        if (temporal && p->shared_bias != 0.0f) /* 4.7; stereo: always 0 */
+            b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias));
         if (SBL_STEREO_LAG_SHARE && est == SBL_ESTIMATOR_POOLED && !temporal) {
             /* the part of the bias that is X's, as sbl__lag_share */
             const sbl__v amax = sbl__set1(SBL__CAST(float, SBL__LAG_AGE_MAX));
@@ -6807,6 +6825,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         sbl__v b2 = sbl__sel(st->two_pairs, b2_p, sbl__sel(st->has_pairs, b2_s, zero));
         sbl__v num, den;
         b2 = sbl__max(b2, zero);
+        if (temporal && p->shared_bias != 0.0f) /* 4.7 */
+            b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias));
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
@@ -7626,6 +7646,8 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                       d.bias_threshold)) != SBL_OK)
         return r;
     if (!sbl__finite(d.max_history) || d.max_history < 1.0f) return SBL_ERROR_INVALID_PARAM;
+    if (!sbl__param_ok(d.stereo_shared_bias) || d.stereo_shared_bias > 1.0f)
+        return SBL_ERROR_INVALID_PARAM;
     if ((r = sbl__temporal_rp_init(&s, &d.reproject, d.source, frame, history)) != SBL_OK)
         return r;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
@@ -7652,6 +7674,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.wp = sbl__weight_params_make(d.estimator, d.rectify, d.weight_mode, d.constant_alpha,
                                    d.alpha_min, d.clip_gamma, d.bias_threshold);
     k.wp.temporal = 1;
+    k.wp.shared_bias = d.stereo_shared_bias;
     k.n_cap = d.max_history;
     k.temporal = 1;
     k.own = &frame->color;
