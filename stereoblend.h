@@ -48,6 +48,12 @@
          prev.evidence = sbl_image_make(hist_ev, w, h, 1);   // last frame's out.evidence
          out.evidence  = sbl_image_make(out_ev, w, h, 1);
 
+     Stereo: if the display is the stereo blend of the two filtered eyes (sbl_stereo_blend
+     after sbl_temporal_filter per eye), set desc.stereo_shared_bias = 1: the blend halves
+     each eye's own noise but keeps a bias both eyes share (a light that moved), so the
+     temporal weight counts that bias twice (docs/ESTIMATORS.md 4.7). The one-call
+     pipeline sbl_stereo_temporal_frame does this by itself.
+
    CONVENTIONS (see also README.md)
      Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
                 (i + 0.5, j + 0.5). sbl_image_make() gives tight rows; otherwise
@@ -456,11 +462,15 @@ typedef struct sbl_temporal_desc {
                                the share c in [0, 1] of the history's bias that the
                                other eye has too (lag, resampling blur). The blend
                                halves independent noise but keeps a shared bias, so
-                               the bias counts 1 + c times (docs/ESTIMATORS.md 4.7);
-                               1 is the derived value when the display is the stereo
-                               blend (sbl_stereo_temporal_frame); 0 -> per-eye
-                               weights, as without a stereo stage                    */
+                               the bias counts 1 + c times (docs/ESTIMATORS.md 4.7).
+                               0 -> the call's default: per-eye weights (c = 0) in
+                               sbl_temporal_filter, c = 1 (the derived value) in
+                               sbl_stereo_temporal_frame, whose output is the blend;
+                               SBL_SHARED_BIAS_NONE -> c = 0 in either call        */
 } sbl_temporal_desc;
+
+/* sbl_temporal_desc.stereo_shared_bias: per-eye weights even in the combined call */
+#define SBL_SHARED_BIAS_NONE (-1.0f)
 
 typedef struct sbl_temporal_output {
     sbl_image color;   /* required; same size and channels as the frame colour    */
@@ -596,7 +606,8 @@ typedef struct sbl_stereo_temporal_io {
 } sbl_stereo_temporal_io;
 
 /* Scratch through SBL_MALLOC / SBL_FREE (td->alloc_context). Everything is validated
-   before anything is written. */
+   before anything is written. td->stereo_shared_bias 0 means 1 here (the display is
+   the stereo blend: docs/ESTIMATORS.md 4.7); SBL_SHARED_BIAS_NONE for per-eye weights. */
 SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
                                             const sbl_stereo_desc *sd,
                                             const sbl_stereo_temporal_io *io);
@@ -7608,6 +7619,8 @@ SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
     if (sbl__is_zero(d.max_history)) d.max_history = 64.0f;
     if (sbl__is_zero(d.clip_gamma)) d.clip_gamma = 1.25f;
     if (sbl__is_zero(d.bias_threshold)) d.bias_threshold = 3.0f;
+    /* 0 stays 0 here (no stereo stage): sbl_stereo_temporal_frame makes it 1 */
+    if (d.stereo_shared_bias == SBL_SHARED_BIAS_NONE) d.stereo_shared_bias = 0.0f;
     d.reproject = sbl__reproject_defaults(&d.reproject);
     return d;
 }
@@ -7653,6 +7666,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                       d.bias_threshold)) != SBL_OK)
         return r;
     if (!sbl__finite(d.max_history) || d.max_history < 1.0f) return SBL_ERROR_INVALID_PARAM;
+    if (d.stereo_shared_bias == SBL_SHARED_BIAS_NONE) d.stereo_shared_bias = 0.0f;
     if (!sbl__param_ok(d.stereo_shared_bias) || d.stereo_shared_bias > 1.0f)
         return SBL_ERROR_INVALID_PARAM;
     if ((r = sbl__temporal_rp_init(&s, &d.reproject, d.source, frame, history)) != SBL_OK)
@@ -8718,6 +8732,9 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         if (!sbl__finite(u.max_history) || u.max_history < 1.0f)
             sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->max_history", "",
                        "must be finite and >= 1");
+        if (!sbl__param_ok(u.stereo_shared_bias) || u.stereo_shared_bias > 1.0f)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->stereo_shared_bias", "",
+                       "must be in [0, 1] or SBL_SHARED_BIAS_NONE");
 #define SBL__TRY_RP(fieldname)                                                              \
         t = z; t.reproject.fieldname = u.reproject.fieldname;                               \
         if (sbl__check_reproject_desc(&t.reproject) != SBL_OK)                              \
@@ -9093,6 +9110,7 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
                                             const sbl_stereo_desc *sd,
                                             const sbl_stereo_temporal_io *io)
 {
+    sbl_temporal_desc tdd; /* td with the combined call's default shared bias */
     sbl__stereo_rp s;
     sbl_eye eye[2];
     sbl_image none;
@@ -9101,6 +9119,11 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
     sbl_result r;
     int e;
     if (!td || !sd || !io) return SBL_ERROR_NULL_POINTER;
+    /* the display is the stereo blend: the history's bias counts for both eyes
+       (docs/ESTIMATORS.md 4.7) unless the caller says otherwise */
+    tdd = *td;
+    if (sbl__is_zero(tdd.stereo_shared_bias)) tdd.stereo_shared_bias = 1.0f;
+    td = &tdd;
     memset(&none, 0, sizeof none);
     /* validate everything first: an empty row range checks all arguments and writes
        nothing (the scratch is not touched, so any non-NULL pointer will do) */

@@ -1263,6 +1263,8 @@ static void test_stereo_shared_bias(void)
         CHECK_EQ(seq_step(&s, &d, 1), SBL_ERROR_INVALID_PARAM);
         d.stereo_shared_bias = 1.0f;
         CHECK_EQ(seq_step(&s, &d, 1), SBL_OK);
+        d.stereo_shared_bias = SBL_SHARED_BIAS_NONE; /* per-eye weights, as 0 here */
+        CHECK_EQ(seq_step(&s, &d, 1), SBL_OK);
         seq_free(&s);
     }
 }
