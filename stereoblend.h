@@ -3113,6 +3113,11 @@ typedef struct sbl__kernel {
        evid_in at the row's plane. 0: evid_in is evid_buf, filled by a pass of its own */
     int evid_fused, evid_y0, evid_y1;
     float *evid_buf;
+    /* the image's border columns in the temporal default lanes (sbl__lanes_edge):
+       edge_ask, set by sbl__kernel_run_span per row, 1 / 2 for column 0 / w - 1 (its
+       window safe); edge_done, what sbl__kernel_lanes_pooled computed (the rest take
+       the reference path) */
+    int edge_ask, edge_done;
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -3157,7 +3162,10 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     pf = sbl__plane_floats(width);
     /* + 5 planes: the pooled estimator's per-column block statistics (two double
        planes) and its ratio */
+    /* + 16 floats ahead of the first plane: the border lanes load column -1 of a ring
+       row (a lane they then drop, sbl__lanes_y_channel), which must be memory */
     return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2 + 5) * pf * sizeof(float) + 5 * pf + 64 +
+           16 * sizeof(float) +
            SBL__CAST(size_t, SBL__COL_PLANES * channels + 1) * SBL__CHUNK_COLS * sizeof(float) +
            SBL__CAST(size_t, SBL__POOL_PLANES(channels)) * SBL__POOL_COLS * sizeof(float);
 }
@@ -3171,7 +3179,7 @@ static void *sbl__align64(void *p)
 static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
 {
     size_t pf = sbl__plane_floats(k->w);
-    float *p = SBL__PCAST(float *, sbl__align64(scratch));
+    float *p = SBL__PCAST(float *, sbl__align64(scratch)) + 16;
     int r, c;
     for (r = 0; r < 3; ++r) {
         for (c = 0; c < k->ch; ++c) { k->ring[r].y[c] = p; p += pf; }
@@ -5802,6 +5810,8 @@ typedef struct sbl__lane_stats {
     sbl__m has_pairs, two_pairs;
     sbl__v pool_r;  /* pooled estimator: prior bias-to-noise ratio (sbl__row_pool)     */
     sbl__v a2[4];   /* weight of the two-estimate blend (before the pooled lean): Eq. 5 */
+    sbl__v bessel;  /* n / (n - 1), n Y's samples in the window: 9 / 8 inside the image
+                       (sbl__lane_edge) */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one
@@ -5922,11 +5932,24 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
+/* A vector of pixels holding one of the image's border columns (the temporal default
+   lanes, sbl__kernel_lanes_pooled_ch): per lane, whether the side columns exist, their
+   samples (3, or 0 outside the image), and the window's count n (9 inside; 6 on a
+   border column) as 1 / n, 1 / (n - 1) and n / (n - 1). A lane inside the image holds
+   the constants of the interior vectors, so it gets their bits. */
+typedef struct sbl__lane_edge {
+    sbl__m keep_l, keep_r;
+    sbl__v n_l, n_r, inv_n, inv_n8, bessel;
+} sbl__lane_edge;
+
 /* Channel c of Y's moments of pixels [x, x + VW) (index i in the chunk): mean and
-   population variance of the window, of the window without its centre, the centre. */
+   population variance of the window, of the window without its centre, the centre.
+   E: NULL inside the image, else the vector's border lanes (sbl__lane_edge): a missing
+   side column enters as an empty one (sums 0, count 0, shift 0), whatever its memory
+   holds. */
 SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x, int i,
                                       int c, sbl__v *mean, sbl__v *var, sbl__v *m8, sbl__v *v8,
-                                      sbl__v *yc_out, const int v8_times8)
+                                      sbl__v *yc_out, const int v8_times8, const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
     const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
@@ -5934,27 +5957,36 @@ SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows
     const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
     const sbl__v yc = sbl__load(W->y[1][c] + x);
     const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
-    const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
     const float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
+    sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
+    sbl__v sal = sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl_ = sbl__load(SBL__COLP(cp, SBL__COL_B) - 1);
+    sbl__v sar = sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbr = sbl__load(SBL__COLP(cp, SBL__COL_B) + 1);
     sbl__v al, bl, ar, br, a8, b8, a9, b9, q;
+    if (E) {
+        dl = sbl__sel(E->keep_l, dl, zero);
+        sal = sbl__sel(E->keep_l, sal, zero);
+        sbl_ = sbl__sel(E->keep_l, sbl_, zero);
+        dr = sbl__sel(E->keep_r, dr, zero);
+        sar = sbl__sel(E->keep_r, sar, zero);
+        sbr = sbl__sel(E->keep_r, sbr, zero);
+    }
     /* side columns about s (their top sample is s + D, counted by n = 3) */
-    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
-              three, al, bl);
-    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
-              three, ar, br);
+    SBL__SIDE(sal, sbl_, dl, E ? E->n_l : three, al, bl);
+    SBL__SIDE(sar, sbr, dr, E ? E->n_r : three, ar, br);
     a8 = sbl__add(sbl__add(al, ar), a2);
     b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
     a9 = sbl__add(a8, a1);
     b9 = sbl__add(b8, sbl__mul(a1, a1));
-    q = sbl__mul(a9, ninth);
+    q = sbl__mul(a9, E ? E->inv_n : ninth);
     *mean = sbl__add(s, q);
-    *var = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
-    q = sbl__mul(a8, eighth);
+    *var = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), E ? E->inv_n : ninth);
+    q = sbl__mul(a8, E ? E->inv_n8 : eighth);
     *m8 = sbl__add(s, q);
     *v8 = sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero);
     /* v8_times8 (a constant): left as 8 v8, for a caller that scales a sum of them (a
-       power of two: the same bits as summing the scaled values) */
-    if (!v8_times8) *v8 = sbl__mul(*v8, eighth);
+       power of two: the same bits as summing the scaled values; E: the caller scales
+       by E->inv_n8) */
+    if (!v8_times8) *v8 = sbl__mul(*v8, E ? E->inv_n8 : eighth);
     *yc_out = yc;
 }
 
@@ -5970,7 +6002,7 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
     sbl__v pl, ql, pr, qr, d, dd;
     sbl__lanes_y_channel(k, W, x, i, c, &st->mean[c], &st->var[c], &st->m8[c], &st->v8[c],
-                         &st->yc[c], 0);
+                         &st->yc[c], 0, NULL);
     st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
     /* pairs: side columns about the centre column's shift tc */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
@@ -6567,7 +6599,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
                              ? SBL__CAST(float, SBL__CAST(double, p->bias_threshold) * SBL_POOLED_LOCAL_SCALE)
                              : p->bias_threshold;
         const sbl__v k2e = sbl__set1(SBL__CAST(float, 1.0 + SBL__CAST(double, kb) * SBL__CAST(double, kb) * 0.125));
-        sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
+        sbl__v vy_s = sbl__mul(s2, st->bessel);
         sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
         sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
         sbl__v vx_p = sbl__sub(pvs, vy_p);
@@ -6612,7 +6644,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
         const sbl__v k2 = sbl__set1(p->bias_threshold * p->bias_threshold);
-        sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
+        sbl__v vy_s = sbl__mul(s2, st->bessel);
         sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
         sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
         sbl__v vx_p = sbl__sub(pvs, vy_p);
@@ -6699,6 +6731,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     sbl__lanes_moments(k, W, x, base, &st);
+    st.bessel = sbl__set1(9.0f / 8.0f);
     sbl__lanes_pool(k, x, y, &st);
     sbl__lanes_rectify(k, &st);
     if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
@@ -6756,7 +6789,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
 #define SBL__FAST_Y(c) \
     do { \
-        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c], 0); \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c], 0, NULL); \
         xs[c] = sbl__load(W->x[1][c] + x); \
         /* the sums start at channel 0's values (0 + v is v: no addition) */ \
         sum_y = (c) ? sbl__add(sum_y, yc[c]) : yc[c]; \
@@ -6782,6 +6815,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
        pooled ratio of this row (sbl__kernel_lanes_pooled computed it: sbl__lanes_pool) */
     st.pool_r = sbl__load(k->pool_r + x);
+    st.bessel = sbl__set1(9.0f / 8.0f);
     (void)y;
     s2 = var[0];
     if (ch > 1) s2 = sbl__add(s2, var[1]);
@@ -6825,7 +6859,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
    weight and the blend. The same operations in the same order as
    sbl__lanes_vector_fast (bit for bit). */
 SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int x, int base,
-                                    const int ch)
+                                    const int ch, const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const int i = x - base;
@@ -6833,7 +6867,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
 #define SBL__STAGE_Y(c) \
     do { \
-        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1); \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1, E); \
         /* the sums start at channel 0's values (0 + v is v: no addition) */ \
         sum_y = (c) ? sbl__add(sum_y, yc) : yc; \
         sum_m8 = (c) ? sbl__add(sum_m8, m8) : m8; \
@@ -6844,7 +6878,8 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     SBL__LANES_CH(SBL__STAGE_Y);
 #undef SBL__STAGE_Y
     (void)mean;
-    sum_v8 = sbl__mul(sum_v8, sbl__set1(0.125f)); /* the channels' v8 (sbl__lanes_y_channel) */
+    /* the channels' v8 (sbl__lanes_y_channel) */
+    sum_v8 = sbl__mul(sum_v8, E ? E->inv_n8 : sbl__set1(0.125f));
     bound = sbl__add(sbl__max(sum_m8, sum_x),
                      sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
@@ -6856,7 +6891,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
 
 SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                                         const float *n_row, const float *nyrow, int x, int base,
-                                        const int ch, const int full)
+                                        const int ch, const int full, const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
@@ -6879,6 +6914,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     st.pool_r = sbl__load(k->pool_r + x);
+    st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
     w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
                           sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
                           sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
@@ -6914,6 +6950,40 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
 }
 #undef SBL__LANES_CH
+
+/* The image's border columns in the temporal default lanes: the vector [x, x + VW)
+   holding column 0 in its first lane (side 1) or column w - 1 in its last (side 2),
+   both stages. The border lane's window has two columns (n = 6: the side column
+   outside the image enters empty, sbl__lane_edge); the other lanes are interior pixels
+   computed with the interior's constants, so they get the bits they already have. The
+   pair terms are the blocks' (sbl__pool_lanes_blocks counts the column outside the
+   image as one without pairs). Bit for bit the same on every build (the scalar build
+   runs the same lanes, one wide). */
+SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                 const float *nyrow, int x, int base, const int ch, int side)
+{
+    float nl[SBL__VW], nr[SBL__VW], inv_n[SBL__VW], inv_n8[SBL__VW], bessel[SBL__VW];
+    const sbl__v zero = sbl__set1(0.0f);
+    sbl__lane_edge E;
+    int j;
+    for (j = 0; j < SBL__VW; ++j) {
+        const int edge = side == 1 ? j == 0 : j == SBL__VW - 1;
+        nl[j] = side == 1 && edge ? 0.0f : 3.0f;
+        nr[j] = side == 2 && edge ? 0.0f : 3.0f;
+        inv_n[j] = edge ? 1.0f / 6.0f : 1.0f / 9.0f;
+        inv_n8[j] = edge ? 1.0f / 5.0f : 0.125f;
+        bessel[j] = edge ? 6.0f / 5.0f : 9.0f / 8.0f;
+    }
+    E.n_l = sbl__load(nl);
+    E.n_r = sbl__load(nr);
+    E.keep_l = sbl__gt(E.n_l, zero);
+    E.keep_r = sbl__gt(E.n_r, zero);
+    E.inv_n = sbl__load(inv_n);
+    E.inv_n8 = sbl__load(inv_n8);
+    E.bessel = sbl__load(bessel);
+    sbl__lanes_stage_y(k, W, x, base, ch, &E);
+    sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0, &E);
+}
 
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
@@ -7107,14 +7177,19 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             }
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
-                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch));
-                if (full) SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
-                else SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
+                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, NULL));
+                if (full) SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1, NULL));
+                else SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0, NULL));
             } else {
                 SBL__RUN_VECTORS(SBL__POOLED_VECTOR(p));
             }
             lo = b;
         }
+        /* the image's border columns (sbl__kernel_run_span asked: their windows are safe) */
+        if (fast == 1 && (k->edge_ask & 1) && x == 0)
+            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, ch, 1);
+        if (fast == 1 && (k->edge_ask & 2) && e == w)
+            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, ch, 2);
         x = e;
     }
 #undef SBL__POOLED_VECTOR
@@ -7238,6 +7313,7 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
     /* the default configuration in its own instances (sbl__lanes_vector_fast) */
     const int fast = sbl__kernel_fast(k);
     k->pool_row = R[1]->row;
+    k->edge_done = fast && k->wp.temporal ? k->edge_ask : 0; /* sbl__lanes_edge */
     if (fast && k->wp.temporal) {
         switch (k->ch) {
         case 1: sbl__kernel_lanes_pooled_1_1(k, R, pa, pb, xa, xb, win); break;
@@ -7331,6 +7407,14 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 /* dim values the default configurations' lanes can take */
                 if (pool && sbl__kernel_fast(k)) sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
             }
+            /* the image's border columns in lanes (temporal default configuration) where
+               their two-column window is safe (sbl__lanes_edge) */
+            k->edge_ask = k->edge_done = 0;
+            if (lanes_ok && pool && k->wp.temporal && sbl__kernel_fast(k)) {
+                const unsigned char *cu = win ? k->column_unsafe : NULL;
+                if (x0 == 0 && !(cu && (cu[0] | cu[1]))) k->edge_ask |= 1;
+                if (x1 == k->w && !(cu && (cu[k->w - 2] | cu[k->w - 1]))) k->edge_ask |= 2;
+            }
             if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
             if (pool && lanes_ok) {
                 /* an interior row: prepass and lanes share their column sums */
@@ -7346,11 +7430,13 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             } else {
                 /* the reference path: the span's border columns, and inside [xa, xb)
                    the pixels whose window holds an unsafe value */
-                for (x = x0; x < xa; ++x) sbl__kernel_pixel_ref(k, R, x);
+                for (x = x0; x < xa; ++x)
+                    if (!(k->edge_done & 1)) sbl__kernel_pixel_ref(k, R, x);
                 if (win)
                     for (x = sbl__find_set(win, xa, xb); x < xb; x = sbl__find_set(win, x + 1, xb))
                         sbl__kernel_pixel_ref(k, R, x);
-                for (x = xb; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
+                for (x = xb; x < x1; ++x)
+                    if (!(k->edge_done & 2)) sbl__kernel_pixel_ref(k, R, x);
             }
             {   /* interleave the staged row into the outputs */
                 const float *const *stage = SBL__PCAST(const float *const *, k->stage);
