@@ -3118,6 +3118,10 @@ typedef struct sbl__kernel {
        window safe); edge_done, what sbl__kernel_lanes_pooled computed (the rest take
        the reference path) */
     int edge_ask, edge_done;
+    /* 1 / 2: the row in the lanes is the image's first / last (sbl__kernel_run_span);
+       its window has two rows: the missing one is the other border-side row again
+       (sbl__kernel_lanes_pooled_ch), counted out of the pairs (sbl__lanes_columns_cfg) */
+    int edge_row;
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -5875,7 +5879,7 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
    written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). fast (a
    constant, sbl__kernel_lanes_pooled's default configuration): no clamp box. */
 SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
-                                        int base, const int fast, const int full)
+                                        int base, const int fast, const int full, const int erow)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const int ch = k->ch, clamp = !fast && k->wp.rectify == SBL_RECTIFY_CLAMP;
@@ -5888,7 +5892,13 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
         const sbl__v v1 = full ? sbl__set1(1.0f) : sbl__load(W->row[1] + iv);
         const sbl__v v2 = full ? sbl__set1(1.0f) : sbl__load(W->row[2] + iv);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
-        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), full ? sbl__set1(3.0f) : sbl__add(sbl__add(v0, v1), v2));
+        /* erow (a constant: the image's first or last row, k->edge_row): the window's
+           missing row is row 1 again (first) or row 0 again (last), whose sums then
+           add 0 (differences to itself, sbl__kernel_lanes_pooled_ch); its pairs are
+           not counted */
+        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch),
+                   full ? sbl__set1(3.0f)
+                        : erow ? sbl__add(v1, k->edge_row == 1 ? v2 : v0) : sbl__add(sbl__add(v0, v1), v2));
         sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp, full);
         if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp, full);
         if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp, full);
@@ -5921,7 +5931,7 @@ SBL__INLINE int sbl__lanes_full(const sbl__lane_rows *W, int ca, int cb)
 SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
                                     int base)
 {
-    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0, 0);
+    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0, 0, 0);
 }
 
 /* One side column moved from its own shift to the window's: D = its shift minus the
@@ -6960,19 +6970,24 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
    image as one without pairs). Bit for bit the same on every build (the scalar build
    runs the same lanes, one wide). */
 SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
-                                 const float *nyrow, int x, int base, const int ch, int side)
+                                 const float *nyrow, int x, int base, const int ch, int side,
+                                 const int rows)
 {
+    /* rows: the window's rows (2 on the image's first and last rows: a corner's window
+       holds 4 samples) */
+    const float nc = SBL__CAST(float, rows), n9 = 3.0f * nc, n6 = 2.0f * nc;
     float nl[SBL__VW], nr[SBL__VW], inv_n[SBL__VW], inv_n8[SBL__VW], bessel[SBL__VW];
     const sbl__v zero = sbl__set1(0.0f);
     sbl__lane_edge E;
     int j;
     for (j = 0; j < SBL__VW; ++j) {
         const int edge = side == 1 ? j == 0 : j == SBL__VW - 1;
-        nl[j] = side == 1 && edge ? 0.0f : 3.0f;
-        nr[j] = side == 2 && edge ? 0.0f : 3.0f;
-        inv_n[j] = edge ? 1.0f / 6.0f : 1.0f / 9.0f;
-        inv_n8[j] = edge ? 1.0f / 5.0f : 0.125f;
-        bessel[j] = edge ? 6.0f / 5.0f : 9.0f / 8.0f;
+        const float n = edge ? n6 : n9;
+        nl[j] = side == 1 && edge ? 0.0f : nc;
+        nr[j] = side == 2 && edge ? 0.0f : nc;
+        inv_n[j] = 1.0f / n;
+        inv_n8[j] = 1.0f / (n - 1.0f);
+        bessel[j] = n / (n - 1.0f);
     }
     E.n_l = sbl__load(nl);
     E.n_r = sbl__load(nr);
@@ -7096,8 +7111,11 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
    the reference path. */
 SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                              int pa, int pb, int xa, int xb,
-                                             const unsigned char *win, const int ch, const int fast)
+                                             const unsigned char *win, const int ch, const int cfg)
 {
+    /* cfg: fast (0, 1, 2), or 3: the temporal default (fast 1) on the image's first or
+       last row (k->edge_row; R[0] or R[2] NULL) */
+    const int erow = cfg == 3, fast = erow ? 1 : cfg;
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
 #define SBL__POOLED_VECTOR(px) \
@@ -7127,9 +7145,29 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     sbl__lane_rows W;
     sbl__pool_planes Q;
     sbl__pool_rows P;
+    sbl__lane_edge E_row; /* erow: every lane's window has two rows */
+    const sbl__lane_edge *const Er = erow ? &E_row : NULL;
     int x = pa, unsafe;
     k_ch.ch = ch;
-    sbl__lane_rows_of(&W, R, ch);
+    if (erow) {
+        /* the missing row: the first row's window takes row 1 as its row 0 too, the
+           last row's takes row 0 as its row 2 too; every sum then adds 0 for it (the
+           differences of a sample to itself; sbl__lanes_column, sbl__lanes_y_channel)
+           and the pairs leave it out of their count (sbl__lanes_columns_cfg) */
+        const sbl__ring_row *RW[3];
+        const sbl__v two = sbl__set1(2.0f);
+        RW[0] = R[0] ? R[0] : R[1];
+        RW[1] = R[1];
+        RW[2] = R[2] ? R[2] : R[0];
+        sbl__lane_rows_of(&W, RW, ch);
+        E_row.keep_l = E_row.keep_r = sbl__gt(two, sbl__set1(0.0f));
+        E_row.n_l = E_row.n_r = two;
+        E_row.inv_n = sbl__set1(1.0f / 6.0f);
+        E_row.inv_n8 = sbl__set1(1.0f / 5.0f);
+        E_row.bessel = sbl__set1(6.0f / 5.0f);
+    } else {
+        sbl__lane_rows_of(&W, R, ch);
+    }
     sbl__pool_planes_of(k, ch, 0, &Q);
     unsafe = sbl__pool_rows_of(&P, R, ch, w, pa, pb);
     while (x < pb) {
@@ -7142,9 +7180,9 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             /* every pair of the chunk's columns valid: the instances without the selects
                on the pair validity (the same values); the blocks centred on the image's
                first and last columns (whose outer column is empty) excepted */
-            full = (SBL_SHORTCUTS & 8) && (k->rows_valid || sbl__lanes_full(&W, ca, cb));
-            if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1);
-            else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0);
+            full = !erow && (SBL_SHORTCUTS & 8) && (k->rows_valid || sbl__lanes_full(&W, ca, cb));
+            if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1, 0);
+            else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, erow);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
             if (full) {
@@ -7177,9 +7215,9 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             }
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
-                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, NULL));
-                if (full) SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1, NULL));
-                else SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0, NULL));
+                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, Er));
+                if (full) SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1, Er));
+                else SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0, Er));
             } else {
                 SBL__RUN_VECTORS(SBL__POOLED_VECTOR(p));
             }
@@ -7187,9 +7225,9 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         }
         /* the image's border columns (sbl__kernel_run_span asked: their windows are safe) */
         if (fast == 1 && (k->edge_ask & 1) && x == 0)
-            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, ch, 1);
+            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, ch, 1, erow ? 2 : 3);
         if (fast == 1 && (k->edge_ask & 2) && e == w)
-            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, ch, 2);
+            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, ch, 2, erow ? 2 : 3);
         x = e;
     }
 #undef SBL__POOLED_VECTOR
@@ -7305,6 +7343,7 @@ static void sbl__lane_windows_dim(const sbl__kernel *k, const sbl__ring_row *con
 SBL__POOLED_INSTANCE(1, 0) SBL__POOLED_INSTANCE(2, 0) SBL__POOLED_INSTANCE(3, 0) SBL__POOLED_INSTANCE(4, 0)
 SBL__POOLED_INSTANCE(1, 1) SBL__POOLED_INSTANCE(2, 1) SBL__POOLED_INSTANCE(3, 1) SBL__POOLED_INSTANCE(4, 1)
 SBL__POOLED_INSTANCE(1, 2) SBL__POOLED_INSTANCE(2, 2) SBL__POOLED_INSTANCE(3, 2) SBL__POOLED_INSTANCE(4, 2)
+SBL__POOLED_INSTANCE(1, 3) SBL__POOLED_INSTANCE(2, 3) SBL__POOLED_INSTANCE(3, 3) SBL__POOLED_INSTANCE(4, 3)
 #undef SBL__POOLED_INSTANCE
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
@@ -7314,7 +7353,15 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
     const int fast = sbl__kernel_fast(k);
     k->pool_row = R[1]->row;
     k->edge_done = fast && k->wp.temporal ? k->edge_ask : 0; /* sbl__lanes_edge */
-    if (fast && k->wp.temporal) {
+    if (k->edge_row) {
+        /* the image's first or last row (only the temporal default comes here) */
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_1_3(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_3(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_3(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_3(k, R, pa, pb, xa, xb, win); break;
+        }
+    } else if (fast && k->wp.temporal) {
         switch (k->ch) {
         case 1: sbl__kernel_lanes_pooled_1_1(k, R, pa, pb, xa, xb, win); break;
         case 2: sbl__kernel_lanes_pooled_2_1(k, R, pa, pb, xa, xb, win); break;
@@ -7394,23 +7441,35 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
         for (y = y0; y < y1; ++y) {
             const sbl__ring_row *R[3];
             const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
+            /* the image's first or last row (of at least two) in the temporal default
+               lanes, with a two-row window (k->edge_row, sbl__kernel_lanes_pooled_ch) */
+            const int erow = lanes_w && xa < xb && !lanes_ok && (y == 0 || y + 1 == k->h) &&
+                             k->h >= 2 && pool && k->wp.temporal && sbl__kernel_fast(k);
             const unsigned char *win = NULL;
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
-            if (lanes_ok && (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count)) {
-                /* per pixel: 1 if any of the nine values of its window is unsafe (per
-                   column over its three rows, then over three columns) */
-                unsigned char *cu = k->column_unsafe;
-                sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
-                               R[2]->unsafe + xa - 1, xb - xa + 2);
-                sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
-                win = k->window_unsafe;
-                /* dim values the default configurations' lanes can take */
-                if (pool && sbl__kernel_fast(k)) sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
+            k->edge_row = erow ? (y == 0 ? 1 : 2) : 0;
+            if (lanes_ok || erow) {
+                /* the window's rows (erow: the missing one is an existing one again, as
+                   sbl__kernel_lanes_pooled_ch takes it) */
+                const sbl__ring_row *r0 = R[0] ? R[0] : R[1], *r2 = R[2] ? R[2] : R[0];
+                if (r0->unsafe_count | R[1]->unsafe_count | r2->unsafe_count) {
+                    /* per pixel: 1 if any of the nine values of its window is unsafe (per
+                       column over its three rows, then over three columns) */
+                    unsigned char *cu = k->column_unsafe;
+                    sbl__or3_bytes(cu + xa - 1, r0->unsafe + xa - 1, R[1]->unsafe + xa - 1,
+                                   r2->unsafe + xa - 1, xb - xa + 2);
+                    sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
+                    win = k->window_unsafe;
+                    /* dim values the default configurations' lanes can take (interior
+                       rows; the border rows' flagged windows keep the reference) */
+                    if (lanes_ok && pool && sbl__kernel_fast(k))
+                        sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
+                }
             }
             /* the image's border columns in lanes (temporal default configuration) where
                their two-column window is safe (sbl__lanes_edge) */
             k->edge_ask = k->edge_done = 0;
-            if (lanes_ok && pool && k->wp.temporal && sbl__kernel_fast(k)) {
+            if ((lanes_ok || erow) && pool && k->wp.temporal && sbl__kernel_fast(k)) {
                 const unsigned char *cu = win ? k->column_unsafe : NULL;
                 if (x0 == 0 && !(cu && (cu[0] | cu[1]))) k->edge_ask |= 1;
                 if (x1 == k->w && !(cu && (cu[k->w - 2] | cu[k->w - 1]))) k->edge_ask |= 2;
@@ -7421,11 +7480,14 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 k->rows_valid = R[0]->all_valid & R[1]->all_valid & R[2]->all_valid;
                 sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
                 k->rows_valid = 0;
+            } else if (erow) {
+                sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
             } else {
                 if (pool) sbl__row_pool(k, R, pa, pb);
                 if (lanes_ok) sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
             }
-            if (!lanes_ok) {
+            k->edge_row = 0;
+            if (!lanes_ok && !erow) {
                 for (x = x0; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
             } else {
                 /* the reference path: the span's border columns, and inside [xa, xb)
