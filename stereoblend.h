@@ -3113,7 +3113,7 @@ typedef struct sbl__kernel {
        evid_in at the row's plane. 0: evid_in is evid_buf, filled by a pass of its own */
     int evid_fused, evid_y0, evid_y1;
     float *evid_buf;
-    /* the image's border columns in the temporal default lanes (sbl__lanes_edge):
+    /* the image's border columns in the default configurations' lanes (sbl__lanes_edge):
        edge_ask, set by sbl__kernel_run_span per row, 1 / 2 for column 0 / w - 1 (its
        window safe); edge_done, what sbl__kernel_lanes_pooled computed (the rest take
        the reference path) */
@@ -5816,6 +5816,8 @@ typedef struct sbl__lane_stats {
     sbl__v a2[4];   /* weight of the two-estimate blend (before the pooled lean): Eq. 5 */
     sbl__v bessel;  /* n / (n - 1), n Y's samples in the window: 9 / 8 inside the image
                        (sbl__lane_edge) */
+    sbl__v lean_s, inv_n8; /* (n - 1) / (n - 2) and 1 / (n - 1): 8 / 7 and 1 / 8 inside
+                              (the lean's neighbour count, sbl__lanes_lean) */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one
@@ -5942,14 +5944,15 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
-/* A vector of pixels holding one of the image's border columns (the temporal default
-   lanes, sbl__kernel_lanes_pooled_ch): per lane, whether the side columns exist, their
-   samples (3, or 0 outside the image), and the window's count n (9 inside; 6 on a
-   border column) as 1 / n, 1 / (n - 1) and n / (n - 1). A lane inside the image holds
-   the constants of the interior vectors, so it gets their bits. */
+/* A vector of pixels holding one of the image's border columns, or on the image's first
+   or last row (the default configurations' lanes, sbl__kernel_lanes_pooled_ch): per
+   lane, whether the side columns exist, their samples (3, 2 on a border row, 0 outside
+   the image), and the window's count n (9 inside; 6 on a border column or row; 4 at a
+   corner) as 1 / n, 1 / (n - 1), n / (n - 1) and (n - 1) / (n - 2) (the lean's). A lane
+   inside the image holds the constants of the interior vectors, so it gets their bits. */
 typedef struct sbl__lane_edge {
     sbl__m keep_l, keep_r;
-    sbl__v n_l, n_r, inv_n, inv_n8, bessel;
+    sbl__v n_l, n_r, inv_n, inv_n8, bessel, lean_s;
 } sbl__lane_edge;
 
 /* Channel c of Y's moments of pixels [x, x + VW) (index i in the chunk): mean and
@@ -6573,8 +6576,8 @@ SBL__INLINE sbl__v sbl__lanes_lean(const sbl__lane_stats *st, sbl__v a0, sbl__v 
         e = sbl__add(e, sbl__mul(sbl__sub(st->m8[c], st->xs[c]), dy));
         d = sbl__add(d, sbl__mul(dy, dy));
     }
-    vm = sbl__add(sbl__max(sbl__sub(sbl__mul(v8, sbl__set1(8.0f / 7.0f)), var_y), zero),
-                  sbl__mul(var_y, sbl__set1(0.125f)));
+    vm = sbl__add(sbl__max(sbl__sub(sbl__mul(v8, st->lean_s), var_y), zero),
+                  sbl__mul(var_y, st->inv_n8));
     vm = sbl__mul(vm, sbl__max(n_xc, one));
     q = sbl__sel(sbl__gt(vm, zero), sbl__div(sbl__mul(a0, var_y), sbl__max(vm, tiny)), zero);
     den = sbl__mul(sbl__add(one, q), d);
@@ -6742,6 +6745,8 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     sbl__lanes_moments(k, W, x, base, &st);
     st.bessel = sbl__set1(9.0f / 8.0f);
+    st.lean_s = sbl__set1(8.0f / 7.0f);
+    st.inv_n8 = sbl__set1(0.125f);
     sbl__lanes_pool(k, x, y, &st);
     sbl__lanes_rectify(k, &st);
     if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
@@ -6772,7 +6777,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
 #define SBL__LANES_CH(M) do { M(0); if (ch > 1) M(1); if (ch > 2) M(2); if (ch > 3) M(3); } while (0)
 SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                         const float *nyrow, int x, int base, int y, const int ch,
-                                        const int fast, const int full)
+                                        const int fast, const int full, const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
@@ -6799,7 +6804,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
 #define SBL__FAST_Y(c) \
     do { \
-        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c], 0, NULL); \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c], 0, E); \
         xs[c] = sbl__load(W->x[1][c] + x); \
         /* the sums start at channel 0's values (0 + v is v: no addition) */ \
         sum_y = (c) ? sbl__add(sum_y, yc[c]) : yc[c]; \
@@ -6825,7 +6830,9 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
        pooled ratio of this row (sbl__kernel_lanes_pooled computed it: sbl__lanes_pool) */
     st.pool_r = sbl__load(k->pool_r + x);
-    st.bessel = sbl__set1(9.0f / 8.0f);
+    st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
+    st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
+    st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
     (void)y;
     s2 = var[0];
     if (ch > 1) s2 = sbl__add(s2, var[1]);
@@ -6925,6 +6932,8 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     st.pool_r = sbl__load(k->pool_r + x);
     st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
+    st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
+    st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
     w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
                           sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
                           sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
@@ -6961,22 +6970,23 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
 }
 #undef SBL__LANES_CH
 
-/* The image's border columns in the temporal default lanes: the vector [x, x + VW)
-   holding column 0 in its first lane (side 1) or column w - 1 in its last (side 2),
-   both stages. The border lane's window has two columns (n = 6: the side column
+/* The image's border columns in the default configurations' lanes (fast 1: the temporal
+   filter's two stages; 2: the stereo blend's sbl__lanes_vector_fast): the vector
+   [x, x + VW) holding column 0 in its first lane (side 1) or column w - 1 in its last
+   (side 2). The border lane's window has two columns (n = 6: the side column
    outside the image enters empty, sbl__lane_edge); the other lanes are interior pixels
    computed with the interior's constants, so they get the bits they already have. The
    pair terms are the blocks' (sbl__pool_lanes_blocks counts the column outside the
    image as one without pairs). Bit for bit the same on every build (the scalar build
    runs the same lanes, one wide). */
 SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
-                                 const float *nyrow, int x, int base, const int ch, int side,
-                                 const int rows)
+                                 const float *nyrow, int x, int base, int y, const int ch, int side,
+                                 const int rows, const int fast)
 {
     /* rows: the window's rows (2 on the image's first and last rows: a corner's window
        holds 4 samples) */
     const float nc = SBL__CAST(float, rows), n9 = 3.0f * nc, n6 = 2.0f * nc;
-    float nl[SBL__VW], nr[SBL__VW], inv_n[SBL__VW], inv_n8[SBL__VW], bessel[SBL__VW];
+    float nl[SBL__VW], nr[SBL__VW], inv_n[SBL__VW], inv_n8[SBL__VW], bessel[SBL__VW], lean_s[SBL__VW];
     const sbl__v zero = sbl__set1(0.0f);
     sbl__lane_edge E;
     int j;
@@ -6988,6 +6998,7 @@ SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const 
         inv_n[j] = 1.0f / n;
         inv_n8[j] = 1.0f / (n - 1.0f);
         bessel[j] = n / (n - 1.0f);
+        lean_s[j] = (n - 1.0f) / (n - 2.0f);
     }
     E.n_l = sbl__load(nl);
     E.n_r = sbl__load(nr);
@@ -6996,8 +7007,13 @@ SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const 
     E.inv_n = sbl__load(inv_n);
     E.inv_n8 = sbl__load(inv_n8);
     E.bessel = sbl__load(bessel);
-    sbl__lanes_stage_y(k, W, x, base, ch, &E);
-    sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0, &E);
+    E.lean_s = sbl__load(lean_s);
+    if (fast == 1) {
+        sbl__lanes_stage_y(k, W, x, base, ch, &E);
+        sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0, &E);
+    } else {
+        sbl__lanes_vector_fast(k, W, n_row, nyrow, x, base, y, ch, fast, 0, &E);
+    }
 }
 
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
@@ -7113,15 +7129,15 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
                                              int pa, int pb, int xa, int xb,
                                              const unsigned char *win, const int ch, const int cfg)
 {
-    /* cfg: fast (0, 1, 2), or 3: the temporal default (fast 1) on the image's first or
-       last row (k->edge_row; R[0] or R[2] NULL) */
-    const int erow = cfg == 3, fast = erow ? 1 : cfg;
+    /* cfg: fast (0, 1, 2), or 3 / 4: the temporal / stereo default (fast 1 / 2) on the
+       image's first or last row (k->edge_row; R[0] or R[2] NULL) */
+    const int erow = cfg >= 3, fast = cfg == 3 ? 1 : cfg == 4 ? 2 : cfg;
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
 #define SBL__POOLED_VECTOR(px) \
     do { \
-        if (fast && full) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 1); \
-        else if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 0); \
+        if (fast && full) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 1, Er); \
+        else if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 0, Er); \
         else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
     } while (0)
     /* the vectors of the run [lo, b): whole vectors, the last one ending at b; a run
@@ -7165,6 +7181,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         E_row.inv_n = sbl__set1(1.0f / 6.0f);
         E_row.inv_n8 = sbl__set1(1.0f / 5.0f);
         E_row.bessel = sbl__set1(6.0f / 5.0f);
+        E_row.lean_s = sbl__set1(5.0f / 4.0f);
     } else {
         sbl__lane_rows_of(&W, R, ch);
     }
@@ -7224,10 +7241,10 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             lo = b;
         }
         /* the image's border columns (sbl__kernel_run_span asked: their windows are safe) */
-        if (fast == 1 && (k->edge_ask & 1) && x == 0)
-            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, ch, 1, erow ? 2 : 3);
-        if (fast == 1 && (k->edge_ask & 2) && e == w)
-            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, ch, 2, erow ? 2 : 3);
+        if (fast && (k->edge_ask & 1) && x == 0)
+            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, y, ch, 1, erow ? 2 : 3, fast);
+        if (fast && (k->edge_ask & 2) && e == w)
+            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, y, ch, 2, erow ? 2 : 3, fast);
         x = e;
     }
 #undef SBL__POOLED_VECTOR
@@ -7344,6 +7361,7 @@ SBL__POOLED_INSTANCE(1, 0) SBL__POOLED_INSTANCE(2, 0) SBL__POOLED_INSTANCE(3, 0)
 SBL__POOLED_INSTANCE(1, 1) SBL__POOLED_INSTANCE(2, 1) SBL__POOLED_INSTANCE(3, 1) SBL__POOLED_INSTANCE(4, 1)
 SBL__POOLED_INSTANCE(1, 2) SBL__POOLED_INSTANCE(2, 2) SBL__POOLED_INSTANCE(3, 2) SBL__POOLED_INSTANCE(4, 2)
 SBL__POOLED_INSTANCE(1, 3) SBL__POOLED_INSTANCE(2, 3) SBL__POOLED_INSTANCE(3, 3) SBL__POOLED_INSTANCE(4, 3)
+SBL__POOLED_INSTANCE(1, 4) SBL__POOLED_INSTANCE(2, 4) SBL__POOLED_INSTANCE(3, 4) SBL__POOLED_INSTANCE(4, 4)
 #undef SBL__POOLED_INSTANCE
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
@@ -7352,9 +7370,16 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
     /* the default configuration in its own instances (sbl__lanes_vector_fast) */
     const int fast = sbl__kernel_fast(k);
     k->pool_row = R[1]->row;
-    k->edge_done = fast && k->wp.temporal ? k->edge_ask : 0; /* sbl__lanes_edge */
-    if (k->edge_row) {
-        /* the image's first or last row (only the temporal default comes here) */
+    k->edge_done = fast ? k->edge_ask : 0; /* sbl__lanes_edge */
+    if (k->edge_row && !k->wp.temporal) {
+        /* the image's first or last row (only the default configurations come here) */
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_1_4(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_4(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_4(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_4(k, R, pa, pb, xa, xb, win); break;
+        }
+    } else if (k->edge_row) {
         switch (k->ch) {
         case 1: sbl__kernel_lanes_pooled_1_3(k, R, pa, pb, xa, xb, win); break;
         case 2: sbl__kernel_lanes_pooled_2_3(k, R, pa, pb, xa, xb, win); break;
@@ -7440,11 +7465,16 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
         }
         for (y = y0; y < y1; ++y) {
             const sbl__ring_row *R[3];
-            const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
-            /* the image's first or last row (of at least two) in the temporal default
-               lanes, with a two-row window (k->edge_row, sbl__kernel_lanes_pooled_ch) */
-            const int erow = lanes_w && xa < xb && !lanes_ok && (y == 0 || y + 1 == k->h) &&
-                             k->h >= 2 && pool && k->wp.temporal && sbl__kernel_fast(k);
+            /* the default configurations' lanes also compute the image's border columns
+               (sbl__lanes_edge): a span of only those (xa == xb) takes them too, as the
+               whole row does */
+            const int fast_pool = pool && sbl__kernel_fast(k);
+            const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && (xa < xb || fast_pool);
+            /* the image's first or last row (of at least two) in the default
+               configurations' lanes, with a two-row window (k->edge_row,
+               sbl__kernel_lanes_pooled_ch) */
+            const int erow = lanes_w && !lanes_ok && (y == 0 || y + 1 == k->h) && k->h >= 2 &&
+                             fast_pool;
             const unsigned char *win = NULL;
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
             k->edge_row = erow ? (y == 0 ? 1 : 2) : 0;
@@ -7466,10 +7496,10 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                         sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
                 }
             }
-            /* the image's border columns in lanes (temporal default configuration) where
+            /* the image's border columns in lanes (the default configurations) where
                their two-column window is safe (sbl__lanes_edge) */
             k->edge_ask = k->edge_done = 0;
-            if ((lanes_ok || erow) && pool && k->wp.temporal && sbl__kernel_fast(k)) {
+            if ((lanes_ok || erow) && pool && sbl__kernel_fast(k)) {
                 const unsigned char *cu = win ? k->column_unsafe : NULL;
                 if (x0 == 0 && !(cu && (cu[0] | cu[1]))) k->edge_ask |= 1;
                 if (x1 == k->w && !(cu && (cu[k->w - 2] | cu[k->w - 1]))) k->edge_ask |= 2;
