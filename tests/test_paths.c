@@ -188,6 +188,28 @@ static void compare_with_pixel_gather(sbl__temporal_rp *rp, const sbl__ring_row 
     }
 }
 
+/* Two ring rows (ra, rb) over the caller's planes, float[2][P][W] with P >= 7: x (4
+   channels), n, v and y[0], one after the other, each row's planes filled with 0xff
+   bytes (NaN) so that a value the gather should have written and did not shows. */
+static void bind_ring_rows(sbl__ring_row *ra, sbl__ring_row *rb, float *planes, int nplanes, int width,
+                           unsigned char *unsafe)
+{
+    int i, c;
+    for (i = 0; i < 2; ++i) {
+        sbl__ring_row *r = i ? rb : ra;
+        float *p = planes + (size_t)i * nplanes * width;
+        for (c = 0; c < 4; ++c) r->x[c] = p + c * width;
+        r->n = p + 4 * width;
+        r->v = p + 5 * width;
+        r->y[0] = p + 6 * width;
+        r->unsafe = unsafe;
+        memset(p, 0xff, sizeof(float) * nplanes * width);
+    }
+}
+#define BIND_RING_ROWS(ra, rb, planes, unsafe)                                                        \
+    bind_ring_rows(&(ra), &(rb), &(planes)[0][0][0], (int)(sizeof(planes)[0] / sizeof(planes)[0][0]), \
+                   (int)(sizeof(planes)[0][0] / sizeof(float)), (unsafe))
+
 #endif
 
 static void test_row_gather(void)
@@ -199,7 +221,7 @@ static void test_row_gather(void)
     int it, pixels = 0, mismatches = 0, redone = 0, flagged = 0, flag_mismatches = 0;
     for (it = 0; it < 600; ++it) {
         int w = 2 + (int)(sbt_uniform(&rng) * 80), h = 2 + (int)(sbt_uniform(&rng) * 10);
-        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i;
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c;
         int with_len = it % 5 != 0, with_depth = it % 7 != 0;
         sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
         sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
@@ -281,15 +303,7 @@ static void test_row_gather(void)
         }
         CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
         if (!sbl__row_gather_ok(&rp.src)) { CHECK(0); continue; }
-        for (i = 0; i < 2; ++i) {
-            sbl__ring_row *r = i ? &rb : &ra;
-            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
-            r->n = planes[i][4];
-            r->v = planes[i][5];
-            r->y[0] = planes[i][6];
-            r->unsafe = unsafe;
-            memset(planes[i], 0xff, sizeof planes[i]);
-        }
+        BIND_RING_ROWS(ra, rb, planes, unsafe);
         for (y = 0; y < h; ++y) {
             int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w), xb = it % 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
             memset(unsafe, 0, sizeof unsafe);
@@ -338,7 +352,7 @@ static void test_stereo_row_gather(void)
     int it, pixels = 0, mismatches = 0, none = 0;
     for (it = 0; it < 300; ++it) {
         int w = 2 + (int)(sbt_uniform(&rng) * 80), h = 2 + (int)(sbt_uniform(&rng) * 8);
-        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i, e;
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, e;
         int rig = it % 3, dch = 1 + (it / 3) % 2;
         sbt_img col[2], len[2], dep[2], disp[2];
         sbl_stereo_desc sd;
@@ -382,15 +396,7 @@ static void test_stereo_row_gather(void)
         e = it & 1;
         CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
         CHECK(sbl__row_gather_ok(&rp.src));
-        for (i = 0; i < 2; ++i) {
-            sbl__ring_row *r = i ? &rb : &ra;
-            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
-            r->n = planes[i][4];
-            r->v = planes[i][5];
-            r->y[0] = planes[i][6];
-            r->unsafe = unsafe;
-            memset(planes[i], 0xff, sizeof planes[i]);
-        }
+        BIND_RING_ROWS(ra, rb, planes, unsafe);
         for (y = 0; y < h; ++y) {
             sbl__stereo_rp_row(&rp, &ra, y, 0, w);
             for (x = 0; x < w; ++x) {
@@ -738,7 +744,7 @@ static void test_row_gather_disocclusion(void)
     int it, pixels = 0, mismatches = 0, empty = 0;
     for (it = 0; it < 300; ++it) {
         int w = 8 + (int)(sbt_uniform(&rng) * 90), h = 3 + (int)(sbt_uniform(&rng) * 10);
-        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i;
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c;
         int ax = (int)(sbt_uniform(&rng) * w * 0.6), ay = (int)(sbt_uniform(&rng) * h * 0.5);
         int aw = 3 + (int)(sbt_uniform(&rng) * w * 0.5), ah = 2 + (int)(sbt_uniform(&rng) * h);
         int shift = 1 + (int)(sbt_uniform(&rng) * 12);
@@ -792,15 +798,7 @@ static void test_row_gather_disocclusion(void)
         }
         CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
         if (!sbl__row_gather_ok(&rp.src)) { CHECK(0); continue; }
-        for (i = 0; i < 2; ++i) {
-            sbl__ring_row *r = i ? &rb : &ra;
-            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
-            r->n = planes[i][4];
-            r->v = planes[i][5];
-            r->y[0] = planes[i][6];
-            r->unsafe = unsafe;
-            memset(planes[i], 0xff, sizeof planes[i]);
-        }
+        BIND_RING_ROWS(ra, rb, planes, unsafe);
         for (y = 0; y < h; ++y) {
             int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w), xb = it % 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
             memset(unsafe, 0, sizeof unsafe);
@@ -979,7 +977,7 @@ static void test_evidence_row_gather(void)
     int it, pixels = 0, mismatches = 0, empty = 0, resets = 0, fell = 0, special = 0;
     for (it = 0; it < 400; ++it) {
         int w = 8 + (int)(sbt_uniform(&rng) * 180), h = 3 + (int)(sbt_uniform(&rng) * 9);
-        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i;
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c;
         int ax = (int)(sbt_uniform(&rng) * w * 0.6), ay = (int)(sbt_uniform(&rng) * h * 0.5);
         int aw = 3 + (int)(sbt_uniform(&rng) * w * 0.5), ah = 2 + (int)(sbt_uniform(&rng) * h);
         int shift = 1 + (int)(sbt_uniform(&rng) * 12);
@@ -1057,15 +1055,7 @@ static void test_evidence_row_gather(void)
         if (!sbl__row_gather_ok(&rp.src) || !sbl__evidence_fused_ok(&rp.src, &es.src)) { CHECK(0); continue; }
         memset(&ra, 0, sizeof ra);
         memset(&rb, 0, sizeof rb);
-        for (i = 0; i < 2; ++i) {
-            sbl__ring_row *r = i ? &rb : &ra;
-            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
-            r->n = planes[i][4];
-            r->v = planes[i][5];
-            r->y[0] = planes[i][6];
-            r->unsafe = unsafe;
-            memset(planes[i], 0xff, sizeof planes[i]);
-        }
+        BIND_RING_ROWS(ra, rb, planes, unsafe);
         ra.e = ra.e_plane = planes[0][7];
         ra.e_rp = &es;
         for (y = 0; y < h; ++y) {
@@ -1230,15 +1220,7 @@ static void test_row_gather_normals(void)
                 if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
                 if (sbt_uniform(&rng) < 0.03) *sbt_at(&len, x, y) = 0.0f;
             }
-        for (i = 0; i < 2; ++i) {
-            sbl__ring_row *r = i ? &rb : &ra;
-            for (c = 0; c < 4; ++c) r->x[c] = planes[i][c];
-            r->n = planes[i][4];
-            r->v = planes[i][5];
-            r->y[0] = planes[i][6];
-            r->unsafe = unsafe;
-            memset(planes[i], 0xff, sizeof planes[i]);
-        }
+        BIND_RING_ROWS(ra, rb, planes, unsafe);
         if (!stereo) {
             sbl_frame f;
             sbl_history hi;

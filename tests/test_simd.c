@@ -23,13 +23,7 @@ sbl_result scalar_temporal_filter(const sbl_temporal_desc *d, const sbl_frame *f
 sbl_result scalar_stereo_blend(const sbl_stereo_desc *d, const sbl_eye *l, const sbl_eye *r,
                                sbl_image ol, sbl_image orr);
 
-static sbl_image view(const sbt_img *im)
-{
-    sbl_image v;
-    memset(&v, 0, sizeof v);
-    v.data = im->mem; v.width = im->w; v.height = im->h; v.channels = im->c; v.stride = im->stride;
-    return v;
-}
+#define view sbt_view
 
 static void fill(sbt_img *im, sbt_rng *r, double lo, double hi)
 {
@@ -60,6 +54,71 @@ static int compiler_contracts(void)
     volatile float a = 1.0f + 1.0f / 4096.0f, c = -(1.0f + 1.0f / 2048.0f);
     float b = a;
     return a * b + c != 0.0f;
+}
+
+/* The temporal filter on this build's SIMD path and on the scalar path into fresh
+   outputs (colour, N and, with_plane, the evidence plane): equal bit for bit, within the
+   stated tolerance where the compiler contracts; what / iter name the case. */
+static void temporal_both_paths(const sbl_temporal_desc *d, const sbl_frame *f, const sbl_history *hi,
+                                int with_plane, int pad, double scale, int contracts, const char *what,
+                                int iter)
+{
+    const int w = f->color.width, h = f->color.height, c = f->color.channels;
+    sbt_img oc[2], on[2], oe[2];
+    sbl_temporal_output o[2];
+    int i, ok;
+    double ec, en, ee = 0.0;
+    for (i = 0; i < 2; ++i) {
+        oc[i] = sbt_img_new(w, h, c, pad + 2);
+        on[i] = sbt_img_new(w, h, 1, 1);
+        oe[i] = sbt_img_new(w, h, 1, 2);
+        memset(&o[i], 0, sizeof o[i]);
+        o[i].color = view(&oc[i]);
+        o[i].length = view(&on[i]);
+        if (with_plane) o[i].evidence = view(&oe[i]);
+    }
+    CHECK_EQ(sbl_temporal_filter_frame(d, f, hi, &o[0]), SBL_OK);
+    CHECK_EQ(scalar_temporal_filter(d, f, hi, &o[1]), SBL_OK);
+    ec = max_rel(&oc[0], &oc[1], 1e-6 * scale);
+    en = max_rel(&on[0], &on[1], 1e-6);
+    if (with_plane) ee = max_rel(&oe[0], &oe[1], 1e-6);
+    ok = ec <= 1e-5 && en <= 1e-4 && ee <= 1e-5;
+    if (!contracts) ok = ok && ec == 0.0 && en == 0.0 && ee == 0.0;
+    if (!ok) printf("  %s iter %d (%dx%dx%d): colour %.3g N %.3g evidence %.3g\n", what, iter, w, h, c, ec, en, ee);
+    CHECK(ok);
+    for (i = 0; i < 2; ++i) {
+        CHECK(sbt_canaries_ok(&oc[i]) && sbt_canaries_ok(&on[i]) && sbt_canaries_ok(&oe[i]));
+        free(oc[i].mem); free(on[i].mem); free(oe[i].mem);
+    }
+}
+
+/* The stereo blend on both paths, as temporal_both_paths */
+static void stereo_both_paths(const sbl_stereo_desc *sd, const sbl_eye *l, const sbl_eye *r, int pad,
+                              double scale, int contracts)
+{
+    const int w = l->color.width, h = l->color.height, c = l->color.channels;
+    sbt_img sl[2], sr[2];
+    int i;
+    for (i = 0; i < 2; ++i) { sl[i] = sbt_img_new(w, h, c, pad); sr[i] = sbt_img_new(w, h, c, 1); }
+    CHECK_EQ(sbl_stereo_blend_frame(sd, l, r, view(&sl[0]), view(&sr[0])), SBL_OK);
+    CHECK_EQ(scalar_stereo_blend(sd, l, r, view(&sl[1]), view(&sr[1])), SBL_OK);
+    CHECK(max_rel(&sl[0], &sl[1], 1e-6 * scale) <= (contracts ? 1e-5 : 0.0));
+    CHECK(max_rel(&sr[0], &sr[1], 1e-6 * scale) <= (contracts ? 1e-5 : 0.0));
+    for (i = 0; i < 2; ++i) {
+        CHECK(sbt_canaries_ok(&sl[i]) && sbt_canaries_ok(&sr[i]));
+        free(sl[i].mem); free(sr[i].mem);
+    }
+}
+
+/* The camera source with the camera at rest (identity pose): the row gather's rest tiles */
+static void camera_at_rest(sbl_camera *cam, int w, int h)
+{
+    sbl_intrinsics kin;
+    float pose[16];
+    int q;
+    for (q = 0; q < 16; ++q) pose[q] = q % 5 == 0 ? 1.0f : 0.0f;
+    kin.fx = kin.fy = (float)(0.8 * w + 3); kin.cx = 0.5f * w; kin.cy = 0.5f * h;
+    CHECK_EQ(sbl_camera_from_pinhole(cam, &kin, pose, SBL_AXES_OPENCV, 0, w, h), SBL_OK);
 }
 
 int main(void)
@@ -158,7 +217,6 @@ int main(void)
         {
             sbl_stereo_desc sd;
             sbl_eye l, r;
-            sbt_img sl[2], sr[2];
             memset(&sd, 0, sizeof sd);
             sd.focal_px = 10.0f;
             sd.baseline = 0.5f + (float)sbt_uniform(&rng);
@@ -169,15 +227,7 @@ int main(void)
             memset(&r, 0, sizeof r);
             l.color = view(&cur); l.gbuffer.depth = view(&depth); l.length = view(&len);
             r.color = view(&hist); r.gbuffer.depth = view(&depth);
-            for (i = 0; i < 2; ++i) { sl[i] = sbt_img_new(w, h, c, pad); sr[i] = sbt_img_new(w, h, c, 1); }
-            CHECK_EQ(sbl_stereo_blend_frame(&sd, &l, &r, view(&sl[0]), view(&sr[0])), SBL_OK);
-            CHECK_EQ(scalar_stereo_blend(&sd, &l, &r, view(&sl[1]), view(&sr[1])), SBL_OK);
-            CHECK(max_rel(&sl[0], &sl[1], 1e-6 * scale) <= (contracts ? 1e-5 : 0.0));
-            CHECK(max_rel(&sr[0], &sr[1], 1e-6 * scale) <= (contracts ? 1e-5 : 0.0));
-            for (i = 0; i < 2; ++i) {
-                CHECK(sbt_canaries_ok(&sl[i]) && sbt_canaries_ok(&sr[i]));
-                free(sl[i].mem); free(sr[i].mem);
-            }
+            stereo_both_paths(&sd, &l, &r, pad, scale, contracts);
         }
         for (i = 0; i < 2; ++i) { free(oc[i].mem); free(on[i].mem); free(oa[i].mem); }
         free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(mv.mem);
@@ -194,18 +244,12 @@ int main(void)
         int pad = (int)(sbt_uniform(&rng) * 3);
         sbt_img cur = sbt_img_new(w, h, c, pad), hist = sbt_img_new(w, h, c, pad + 1);
         sbt_img len = sbt_img_new(w, h, 1, pad), depth = sbt_img_new(w, h, 1, 1), mv = sbt_img_new(w, h, 2, pad);
-        sbt_img ev = sbt_img_new(w, h, 1, pad + 1), oc[2], on[2], oe[2];
+        sbt_img ev = sbt_img_new(w, h, 1, pad + 1);
         sbl_temporal_desc d;
         sbl_frame f;
         sbl_history hi;
-        sbl_temporal_output o[2];
-        int i, x, y;
+        int x, y;
         double scale = pow(10.0, -3.0 + 6.0 * sbt_uniform(&rng));
-        for (i = 0; i < 2; ++i) {
-            oc[i] = sbt_img_new(w, h, c, pad + 2);
-            on[i] = sbt_img_new(w, h, 1, 1);
-            oe[i] = sbt_img_new(w, h, 1, 2);
-        }
         fill(&cur, &rng, 0.0, scale);
         fill(&hist, &rng, 0.0, scale);
         /* a shifted region: bias the blocks see */
@@ -239,37 +283,12 @@ int main(void)
         if (iter % 3 == 2) {
             /* the camera source with a camera at rest: the row gather's rest tiles */
             static sbl_camera cam;
-            sbl_intrinsics kin;
-            float pose[16];
-            int q;
-            for (q = 0; q < 16; ++q) pose[q] = q % 5 == 0 ? 1.0f : 0.0f;
-            kin.fx = kin.fy = (float)(0.8 * w + 3); kin.cx = 0.5f * w; kin.cy = 0.5f * h;
-            CHECK_EQ(sbl_camera_from_pinhole(&cam, &kin, pose, SBL_AXES_OPENCV, 0, w, h), SBL_OK);
+            camera_at_rest(&cam, w, h);
             d.source = SBL_TEMPORAL_CAMERA;
             f.camera = &cam;
             hi.camera = &cam;
         }
-        for (i = 0; i < 2; ++i) {
-            memset(&o[i], 0, sizeof o[i]);
-            o[i].color = view(&oc[i]);
-            o[i].length = view(&on[i]);
-            o[i].evidence = view(&oe[i]);
-        }
-        CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o[0]), SBL_OK);
-        CHECK_EQ(scalar_temporal_filter(&d, &f, &hi, &o[1]), SBL_OK);
-        {
-            double ec = max_rel(&oc[0], &oc[1], 1e-6 * scale), en = max_rel(&on[0], &on[1], 1e-6);
-            double ee = max_rel(&oe[0], &oe[1], 1e-6);
-            int ok = ec <= 1e-5 && en <= 1e-4 && ee <= 1e-5;
-            if (!contracts) ok = ok && ec == 0.0 && en == 0.0 && ee == 0.0;
-            if (!ok) printf("  evidence iter %d (%dx%dx%d): colour %.3g N %.3g evidence %.3g\n",
-                            iter, w, h, c, ec, en, ee);
-            CHECK(ok);
-        }
-        for (i = 0; i < 2; ++i) {
-            CHECK(sbt_canaries_ok(&oc[i]) && sbt_canaries_ok(&on[i]) && sbt_canaries_ok(&oe[i]));
-            free(oc[i].mem); free(on[i].mem); free(oe[i].mem);
-        }
+        temporal_both_paths(&d, &f, &hi, 1, pad, scale, contracts, "evidence", iter);
         free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(mv.mem); free(ev.mem);
     }
     /* normals and ids in every G-buffer (the row gather's normal / id tests in lanes, the
@@ -285,18 +304,12 @@ int main(void)
         sbt_img len = sbt_img_new(w, h, 1, pad), depth = sbt_img_new(w, h, 1, 1), mv = sbt_img_new(w, h, 2, pad);
         sbt_img nrm = sbt_img_new(w, h, 3, pad), pnrm = sbt_img_new(w, h, 3, 1);
         sbt_img ids = sbt_img_new(w, h, 1, pad), pids = sbt_img_new(w, h, 1, 0);
-        sbt_img oc[2], on[2];
         sbl_temporal_desc d;
         sbl_frame f;
         sbl_history hi;
-        sbl_temporal_output o[2];
-        int i, x, y, k;
+        int x, y, k;
         const int at_rest = iter % 3 == 2;
         double scale = pow(10.0, -3.0 + 6.0 * sbt_uniform(&rng));
-        for (i = 0; i < 2; ++i) {
-            oc[i] = sbt_img_new(w, h, c, pad + 2);
-            on[i] = sbt_img_new(w, h, 1, 1);
-        }
         fill(&cur, &rng, 0.0, scale);
         fill(&hist, &rng, 0.0, scale);
         fill(&len, &rng, 0.5, 40.0);
@@ -338,34 +351,15 @@ int main(void)
         hi.gbuffer.ids = view(&pids);
         if (at_rest && iter % 2) { /* the camera source, at rest */
             static sbl_camera cam;
-            sbl_intrinsics kin;
-            float pose[16];
-            int q;
-            for (q = 0; q < 16; ++q) pose[q] = q % 5 == 0 ? 1.0f : 0.0f;
-            kin.fx = kin.fy = (float)(0.8 * w + 3); kin.cx = 0.5f * w; kin.cy = 0.5f * h;
-            CHECK_EQ(sbl_camera_from_pinhole(&cam, &kin, pose, SBL_AXES_OPENCV, 0, w, h), SBL_OK);
+            camera_at_rest(&cam, w, h);
             d.source = SBL_TEMPORAL_CAMERA;
             f.camera = &cam;
             hi.camera = &cam;
         }
-        for (i = 0; i < 2; ++i) {
-            memset(&o[i], 0, sizeof o[i]);
-            o[i].color = view(&oc[i]);
-            o[i].length = view(&on[i]);
-        }
-        CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o[0]), SBL_OK);
-        CHECK_EQ(scalar_temporal_filter(&d, &f, &hi, &o[1]), SBL_OK);
-        {
-            double ec = max_rel(&oc[0], &oc[1], 1e-6 * scale), en = max_rel(&on[0], &on[1], 1e-6);
-            int ok = ec <= 1e-5 && en <= 1e-4;
-            if (!contracts) ok = ok && ec == 0.0 && en == 0.0;
-            if (!ok) printf("  normals / ids iter %d (%dx%dx%d): colour %.3g N %.3g\n", iter, w, h, c, ec, en);
-            CHECK(ok);
-        }
+        temporal_both_paths(&d, &f, &hi, 0, pad, scale, contracts, "normals / ids", iter);
         {   /* the stereo blend: left = cur, right = hist, each with its normals and ids */
             sbl_stereo_desc sd;
             sbl_eye l, r;
-            sbt_img sl[2], sr[2];
             memset(&sd, 0, sizeof sd);
             sd.focal_px = 10.0f;
             sd.baseline = 0.5f + (float)sbt_uniform(&rng);
@@ -377,19 +371,7 @@ int main(void)
             l.gbuffer.normals = view(&nrm); l.gbuffer.ids = view(&ids);
             r.color = view(&hist); r.gbuffer.depth = view(&depth);
             r.gbuffer.normals = view(&pnrm); r.gbuffer.ids = view(&pids);
-            for (i = 0; i < 2; ++i) { sl[i] = sbt_img_new(w, h, c, pad); sr[i] = sbt_img_new(w, h, c, 1); }
-            CHECK_EQ(sbl_stereo_blend_frame(&sd, &l, &r, view(&sl[0]), view(&sr[0])), SBL_OK);
-            CHECK_EQ(scalar_stereo_blend(&sd, &l, &r, view(&sl[1]), view(&sr[1])), SBL_OK);
-            CHECK(max_rel(&sl[0], &sl[1], 1e-6 * scale) <= (contracts ? 1e-5 : 0.0));
-            CHECK(max_rel(&sr[0], &sr[1], 1e-6 * scale) <= (contracts ? 1e-5 : 0.0));
-            for (i = 0; i < 2; ++i) {
-                CHECK(sbt_canaries_ok(&sl[i]) && sbt_canaries_ok(&sr[i]));
-                free(sl[i].mem); free(sr[i].mem);
-            }
-        }
-        for (i = 0; i < 2; ++i) {
-            CHECK(sbt_canaries_ok(&oc[i]) && sbt_canaries_ok(&on[i]));
-            free(oc[i].mem); free(on[i].mem);
+            stereo_both_paths(&sd, &l, &r, pad, scale, contracts);
         }
         free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(mv.mem);
         free(nrm.mem); free(pnrm.mem); free(ids.mem); free(pids.mem);
@@ -408,18 +390,12 @@ int main(void)
         int ax = (int)(sbt_uniform(&rng) * w), aw = 3 + (int)(sbt_uniform(&rng) * w / 2), shift = 1 + iter % 9;
         sbt_img cur = sbt_img_new(w, h, c, pad), hist = sbt_img_new(w, h, c, pad + 1);
         sbt_img len = sbt_img_new(w, h, 1, pad), depth = sbt_img_new(w, h, 1, 1), pdepth = sbt_img_new(w, h, 1, 1);
-        sbt_img mv = sbt_img_new(w, h, 2, pad), ev = sbt_img_new(w, h, 1, pad), oc[2], on[2], oe[2];
+        sbt_img mv = sbt_img_new(w, h, 2, pad), ev = sbt_img_new(w, h, 1, pad);
         sbl_temporal_desc d;
         sbl_frame f;
         sbl_history hi;
-        sbl_temporal_output o[2];
-        int i, x, y;
+        int x, y;
         double scale = pow(10.0, -3.0 + 6.0 * sbt_uniform(&rng));
-        for (i = 0; i < 2; ++i) {
-            oc[i] = sbt_img_new(w, h, c, pad + 2);
-            on[i] = sbt_img_new(w, h, 1, 1);
-            oe[i] = sbt_img_new(w, h, 1, 2);
-        }
         fill(&cur, &rng, 0.0, scale);
         fill(&hist, &rng, 0.0, scale);
         fill(&len, &rng, 0.5, 40.0);
@@ -449,27 +425,7 @@ int main(void)
         hi.length = view(&len);
         hi.gbuffer.depth = view(&pdepth);
         hi.evidence = view(&ev);
-        for (i = 0; i < 2; ++i) {
-            memset(&o[i], 0, sizeof o[i]);
-            o[i].color = view(&oc[i]);
-            o[i].length = view(&on[i]);
-            o[i].evidence = view(&oe[i]);
-        }
-        CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o[0]), SBL_OK);
-        CHECK_EQ(scalar_temporal_filter(&d, &f, &hi, &o[1]), SBL_OK);
-        {
-            double ec = max_rel(&oc[0], &oc[1], 1e-6 * scale), en = max_rel(&on[0], &on[1], 1e-6);
-            double ee = max_rel(&oe[0], &oe[1], 1e-6);
-            int ok = ec <= 1e-5 && en <= 1e-4 && ee <= 1e-5;
-            if (!contracts) ok = ok && ec == 0.0 && en == 0.0 && ee == 0.0;
-            if (!ok) printf("  evidence laid out as N, iter %d (%dx%dx%d): colour %.3g N %.3g evidence %.3g\n",
-                            iter, w, h, c, ec, en, ee);
-            CHECK(ok);
-        }
-        for (i = 0; i < 2; ++i) {
-            CHECK(sbt_canaries_ok(&oc[i]) && sbt_canaries_ok(&on[i]) && sbt_canaries_ok(&oe[i]));
-            free(oc[i].mem); free(on[i].mem); free(oe[i].mem);
-        }
+        temporal_both_paths(&d, &f, &hi, 1, pad, scale, contracts, "evidence laid out as N", iter);
         free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
         free(ev.mem);
     }
