@@ -7197,7 +7197,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             /* every pair of the chunk's columns valid: the instances without the selects
                on the pair validity (the same values); the blocks centred on the image's
                first and last columns (whose outer column is empty) excepted */
-            full = !erow && (SBL_SHORTCUTS & 8) && (k->rows_valid || sbl__lanes_full(&W, ca, cb));
+            full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__lanes_full(&W, ca, cb));
             if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1, 0);
             else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, erow);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
