@@ -48,6 +48,12 @@
          prev.evidence = sbl_image_make(hist_ev, w, h, 1);   // last frame's out.evidence
          out.evidence  = sbl_image_make(out_ev, w, h, 1);
 
+     Stereo: if the display is the stereo blend of the two filtered eyes (sbl_stereo_blend
+     after sbl_temporal_filter per eye), set desc.stereo_shared_bias = 1: the blend halves
+     each eye's own noise but keeps a bias both eyes share (a light that moved), so the
+     temporal weight counts that bias twice (docs/ESTIMATORS.md 4.7). The one-call
+     pipeline sbl_stereo_temporal_frame does this by itself.
+
    CONVENTIONS (see also README.md)
      Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
                 (i + 0.5, j + 0.5). sbl_image_make() gives tight rows; otherwise
@@ -452,7 +458,19 @@ typedef struct sbl_temporal_desc {
                                it; 0 -> 3                                               */
     sbl_reproject_desc reproject;
     void *alloc_context;    /* passed to SBL_MALLOC / SBL_FREE in *_frame calls        */
+    float stereo_shared_bias; /* a stereo blend (beta about 1/2) follows for display:
+                               the share c in [0, 1] of the history's bias that the
+                               other eye has too (lag, resampling blur). The blend
+                               halves independent noise but keeps a shared bias, so
+                               the bias counts 1 + c times (docs/ESTIMATORS.md 4.7).
+                               0 -> the call's default: per-eye weights (c = 0) in
+                               sbl_temporal_filter, c = 1 (the derived value) in
+                               sbl_stereo_temporal_frame, whose output is the blend;
+                               SBL_SHARED_BIAS_NONE -> c = 0 in either call        */
 } sbl_temporal_desc;
+
+/* sbl_temporal_desc.stereo_shared_bias: per-eye weights even in the combined call */
+#define SBL_SHARED_BIAS_NONE (-1.0f)
 
 typedef struct sbl_temporal_output {
     sbl_image color;   /* required; same size and channels as the frame colour    */
@@ -588,7 +606,8 @@ typedef struct sbl_stereo_temporal_io {
 } sbl_stereo_temporal_io;
 
 /* Scratch through SBL_MALLOC / SBL_FREE (td->alloc_context). Everything is validated
-   before anything is written. */
+   before anything is written. td->stereo_shared_bias 0 means 1 here (the display is
+   the stereo blend: docs/ESTIMATORS.md 4.7); SBL_SHARED_BIAS_NONE for per-eye weights. */
 SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
                                             const sbl_stereo_desc *sd,
                                             const sbl_stereo_temporal_io *io);
@@ -2402,6 +2421,8 @@ typedef struct sbl__weight_params {
     sbl_weight_mode mode;
     float constant, alpha_min, gamma, bias_threshold;
     int temporal; /* X is a history (its N is a time since the last change) */
+    float shared_bias; /* temporal: sbl_temporal_desc.stereo_shared_bias c (the bias
+                          counts 1 + c times); 0 otherwise */
 } sbl__weight_params;
 
 /* Firefly limit of the robust estimator: the new sample may exceed the larger of the
@@ -2556,6 +2577,9 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             double sh = pool_r / (1.0 + pool_r), b_eb = sh * sh * pd2 + sh * se2;
             if (b_eb > bias2) bias2 = b_eb;
         }
+        /* a stereo blend follows: a bias both eyes share counts 1 + c times (4.7) */
+        if (p->temporal && p->shared_bias != 0.0f)
+            bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
         {
             /* pooled stereo: the part of the bias that is X's (sbl__lag_share) */
             double fx = SBL_STEREO_LAG_SHARE && p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal
@@ -2594,6 +2618,8 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             if (pair_count == 1) bias2 = pd2 - k2 * (var_x + var_y);
         }
         if (bias2 < 0.0) bias2 = 0.0;
+        if (p->temporal && p->shared_bias != 0.0f) /* 4.7 */
+            bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
         a = (bias2 + var_x + var_y > 0.0) ? (bias2 + var_x) / (bias2 + var_x + var_y)
                                           : progressive;
         break;
@@ -2651,6 +2677,7 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.gamma = gamma;
     p.bias_threshold = bias;
     p.temporal = 0;
+    p.shared_bias = 0.0f;
     return p;
 }
 
@@ -6633,6 +6660,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
             b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
         }
+        if (temporal && p->shared_bias != 0.0f) /* 4.7; stereo: always 0 */
+            b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias));
         if (SBL_STEREO_LAG_SHARE && est == SBL_ESTIMATOR_POOLED && !temporal) {
             /* the part of the bias that is X's, as sbl__lag_share */
             const sbl__v amax = sbl__set1(SBL__CAST(float, SBL__LAG_AGE_MAX));
@@ -6668,6 +6697,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         sbl__v b2 = sbl__sel(st->two_pairs, b2_p, sbl__sel(st->has_pairs, b2_s, zero));
         sbl__v num, den;
         b2 = sbl__max(b2, zero);
+        if (temporal && p->shared_bias != 0.0f) /* 4.7 */
+            b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias));
         num = sbl__add(b2, vx);
         den = sbl__add(num, vy);
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
@@ -7575,6 +7606,8 @@ SBLDEF sbl_temporal_desc sbl_temporal_defaults(const sbl_temporal_desc *desc)
     if (sbl__is_zero(d.max_history)) d.max_history = 64.0f;
     if (sbl__is_zero(d.clip_gamma)) d.clip_gamma = 1.25f;
     if (sbl__is_zero(d.bias_threshold)) d.bias_threshold = 3.0f;
+    /* 0 stays 0 here (no stereo stage): sbl_stereo_temporal_frame makes it 1 */
+    if (d.stereo_shared_bias == SBL_SHARED_BIAS_NONE) d.stereo_shared_bias = 0.0f;
     d.reproject = sbl__reproject_defaults(&d.reproject);
     return d;
 }
@@ -7620,6 +7653,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                       d.bias_threshold)) != SBL_OK)
         return r;
     if (!sbl__finite(d.max_history) || d.max_history < 1.0f) return SBL_ERROR_INVALID_PARAM;
+    if (d.stereo_shared_bias == SBL_SHARED_BIAS_NONE) d.stereo_shared_bias = 0.0f;
+    if (!sbl__param_ok(d.stereo_shared_bias) || d.stereo_shared_bias > 1.0f)
+        return SBL_ERROR_INVALID_PARAM;
     if ((r = sbl__temporal_rp_init(&s, &d.reproject, d.source, frame, history)) != SBL_OK)
         return r;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
@@ -7646,6 +7682,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.wp = sbl__weight_params_make(d.estimator, d.rectify, d.weight_mode, d.constant_alpha,
                                    d.alpha_min, d.clip_gamma, d.bias_threshold);
     k.wp.temporal = 1;
+    k.wp.shared_bias = d.stereo_shared_bias;
     k.n_cap = d.max_history;
     k.temporal = 1;
     k.own = &frame->color;
@@ -8682,6 +8719,9 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         if (!sbl__finite(u.max_history) || u.max_history < 1.0f)
             sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->max_history", "",
                        "must be finite and >= 1");
+        if (!sbl__param_ok(u.stereo_shared_bias) || u.stereo_shared_bias > 1.0f)
+            sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "desc->stereo_shared_bias", "",
+                       "must be in [0, 1] or SBL_SHARED_BIAS_NONE");
 #define SBL__TRY_RP(fieldname)                                                              \
         t = z; t.reproject.fieldname = u.reproject.fieldname;                               \
         if (sbl__check_reproject_desc(&t.reproject) != SBL_OK)                              \
@@ -9057,6 +9097,7 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
                                             const sbl_stereo_desc *sd,
                                             const sbl_stereo_temporal_io *io)
 {
+    sbl_temporal_desc tdd; /* td with the combined call's default shared bias */
     sbl__stereo_rp s;
     sbl_eye eye[2];
     sbl_image none;
@@ -9065,6 +9106,11 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
     sbl_result r;
     int e;
     if (!td || !sd || !io) return SBL_ERROR_NULL_POINTER;
+    /* the display is the stereo blend: the history's bias counts for both eyes
+       (docs/ESTIMATORS.md 4.7) unless the caller says otherwise */
+    tdd = *td;
+    if (sbl__is_zero(tdd.stereo_shared_bias)) tdd.stereo_shared_bias = 1.0f;
+    td = &tdd;
     memset(&none, 0, sizeof none);
     /* validate everything first: an empty row range checks all arguments and writes
        nothing (the scratch is not touched, so any non-NULL pointer will do) */

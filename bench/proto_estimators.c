@@ -37,6 +37,21 @@ typedef struct cand {
        u = |s|^2 / (kappa se^2) as s (1 - tc / u)+, subtracted from x* before the blend */
     double tlam, tc;
     int tmode;       /* bit 1: no R (one-frame pooled); bit 2: shrink by R's r too */
+    /* risk-based mixing (ESTIMATORS 3.9): a = a_d + t (a_p - a_d), a_d the default's weight,
+       a_p the paper's (scalar), t from the SURE risk pooled over a (2 srx + 1) x (2 sry + 1)
+       box. sure: 1 t* clipped to [0, 1]; 2 hard choice (t* >= 1/2); 3 a_p alone (check) */
+    int sure, srx, sry;
+    int svar;        /* S_i: 0 the default's var_Y (paired split); 1 the paper's s^2 9/8 */
+    double sk;       /* > 0: t* shrunk by its significance, (1 - sk / z^2)+ */
+    int gate;        /* 1: t only where the default's shrink sh = r / (1 + r) > 0; 2: t <= sh;
+                        3: t <= box mean of sh */
+    int loo;         /* 1: a_p from the 8 neighbours (m8, v8): independent of y_i, so the
+                        risk estimate needs no divergence term for it */
+    int svgf;        /* 1: var_Y from temporal moments (carried per-channel variance V,
+                        ESTIMATORS 3.9 b) */
+    double nu;       /* degrees of freedom of the local test with it (0: 8) */
+    int keepn;       /* 1: the mixed weight keeps the default's N (diagnostic: is the static
+                        loss the N bookkeeping of the following frames?) */
 } cand;
 
 static double post_t(double pd2, double se2, double k, double nu, double odds)
@@ -47,6 +62,11 @@ static double post_t(double pd2, double se2, double k, double nu, double odds)
 }
 
 static double zsum_stats[4]; /* diagnostics: sum Z, sum Z^2, count, count over threshold */
+/* risk-based mixing (ESTIMATORS 3.9): blend_core leaves its weight, the firefly-limited
+   sample and its var_Y estimate here when these are set */
+static double *g_ad, *g_vy, *g_sh, g_shv, *g_shr, g_shrv;
+static const double *g_vt; /* SVGF prototype: temporal var_Y + var_X (3x3 mean), 0 = none */
+static float *g_yb;
 
 static void blend_core(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
                        const float *zs, float cap, float *out, float *nout, float *zout)
@@ -64,9 +84,15 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 for (ch = 0; ch < 3; ++ch) out[p * 3 + ch] = y[p * 3 + ch];
                 nout[p] = 1.0f;
                 if (zout) zout[p] = 0.0f;
+                if (g_ad) {
+                    g_ad[p] = 1.0; g_vy[p] = 0.0; g_sh[p] = 1.0;
+                    if (g_shr) g_shr[p] = 1.0;
+                    for (ch = 0; ch < 3; ++ch) g_yb[p * 3 + ch] = y[p * 3 + ch];
+                }
                 continue;
             }
             if (n_x > cap) n_x = cap;
+            g_shv = 0; g_shrv = 0;
             /* 3x3 */
             for (j = py - 1; j <= py + 1; ++j)
                 for (i = px - 1; i <= px + 1; ++i) {
@@ -135,6 +161,11 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 if (bound < 0) bound = 0;
                 if (sy > bound) for (ch = 0; ch < 3; ++ch) yb[ch] *= bound / sy;
             }
+            double se2_loc = -1;
+            if (g_vt && g_vt[p] > 0 && np > 1) {
+                if (c->svgf == 3) se2_loc = (g_vt[p] > pvs ? g_vt[p] : pvs) / np;
+                else pvs = g_vt[p];
+            }
             if (np > 1) {
                 var_y = pvs * n_x / (n_x + n_y);
                 var_x = pvs - var_y;
@@ -146,7 +177,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 double odds = 0.5 * (n_x + 1), se2 = np > 1 ? pvs / np : var_x + var_y;
                 double b3 = 0, bw = 0;
                 if (np > 0) {
-                    if (c->soft) b3 = post_t(pd2, se2, c->k, 8, odds) * pd2;
+                    if (c->soft) b3 = post_t(pd2, se2_loc > 0 ? se2_loc : se2, c->k, g_vt && g_vt[p] > 0 && c->nu > 0 ? c->nu : 8, odds) * pd2;
                     else b3 = pd2 - c->k * c->k * se2 > 0 ? pd2 - c->k * c->k * se2 : 0;
                 }
                 if (nw > 2) {
@@ -250,8 +281,10 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                             if (r_t > 0) zsum_stats[3] += 1;
                         }
                         if ((c->carry_mode & 5) && r_t > tau2) tau2 = r_t;
+                        g_shrv = r_t > 0 ? r_t / (1.0 + r_t) : 0.0;
                         if (c->normalized) tau2 *= se2;
                         sh = tau2 / (tau2 + se2);
+                        g_shv = sh;
                         bw = sh * sh * pd2 + sh * se2;
                     }
                     if (bmean > bw) bw = bmean;
@@ -262,6 +295,11 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
             a = (b2 + var_x + var_y > 0) ? (b2 + var_x) / (b2 + var_x + var_y) : n_y / (n_x + n_y);
             if (a < 0) a = 0;
             if (a > 1) a = 1;
+            if (g_ad) {
+                g_ad[p] = a; g_vy[p] = var_y; g_sh[p] = g_shv;
+                if (g_shr) g_shr[p] = g_shrv;
+                for (ch = 0; ch < 3; ++ch) g_yb[p * 3 + ch] = (float)yb[ch];
+            }
             for (ch = 0; ch < 3; ++ch)
                 out[p * 3 + ch] = (float)((1 - a) * xs[p * 3 + ch] + a * yb[ch]);
             nout[p] = sbl_blend_sample_count((float)a, (float)n_x, (float)n_y);
@@ -279,6 +317,209 @@ static void blend_carry(void *ctx, int w, int h, const float *y, const float *xs
                         const float *zs, float cap, float *out, float *nout, float *zout)
 {
     blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
+}
+
+static double sure_stats[8]; /* pixel-frames with history, sum t, count t > 0 */
+
+static void box_sum(const double *src, double *dst, double *tmp, int w, int h, int rx, int ry)
+{
+    int x, y;
+    for (y = 0; y < h; ++y) { /* rows */
+        double acc = 0;
+        const double *r = src + (size_t)y * w;
+        for (x = 0; x < rx && x < w; ++x) acc += r[x];
+        for (x = 0; x < w; ++x) {
+            if (x + rx < w) acc += r[x + rx];
+            if (x - rx - 1 >= 0) acc -= r[x - rx - 1];
+            tmp[(size_t)y * w + x] = acc;
+        }
+    }
+    for (x = 0; x < w; ++x) { /* columns */
+        double acc = 0;
+        for (y = 0; y < ry && y < h; ++y) acc += tmp[(size_t)y * w + x];
+        for (y = 0; y < h; ++y) {
+            if (y + ry < h) acc += tmp[(size_t)(y + ry) * w + x];
+            if (y - ry - 1 >= 0) acc -= tmp[(size_t)(y - ry - 1) * w + x];
+            dst[(size_t)y * w + x] = acc;
+        }
+    }
+}
+
+static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                       const float *zs, float cap, float *out, float *nout, float *zout)
+{
+    const cand *c = (const cand *)ctx;
+    const size_t n = (size_t)w * h;
+    static size_t have;
+    static double *shr;
+    static double *ad, *vy, *shp, *ap, *sa, *sb, *sc, *ba, *bb, *bc, *tmp;
+    static float *yb;
+    size_t p;
+    int px, py, i, j, ch;
+    if (have < n) {
+        free(ad); free(vy); free(ap); free(sa); free(sb); free(sc); free(ba); free(bb); free(bc);
+        free(tmp); free(yb); free(shp); free(shr);
+        shp = malloc(n * sizeof *shp); shr = malloc(n * sizeof *shr);
+        ad = malloc(n * sizeof *ad); vy = malloc(n * sizeof *vy); ap = malloc(n * sizeof *ap);
+        sa = malloc(n * sizeof *sa); sb = malloc(n * sizeof *sb); sc = malloc(n * sizeof *sc);
+        ba = malloc(n * sizeof *ba); bb = malloc(n * sizeof *bb); bc = malloc(n * sizeof *bc);
+        tmp = malloc(n * sizeof *tmp); yb = malloc(n * 3 * sizeof *yb);
+        have = n;
+    }
+    g_ad = ad; g_vy = vy; g_yb = yb; g_sh = shp; g_shr = shr;
+    blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
+    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_shr = NULL;
+    /* the paper's scalar weight: a = d^2 / (d^2 + s^2), d = x* - m1 (3x3), s^2 population */
+    for (py = 0; py < h; ++py)
+        for (px = 0; px < w; ++px) {
+            double m1[3] = {0}, m2[3] = {0}, d2 = 0, s2 = 0;
+            int cnt = 0;
+            p = (size_t)py * w + px;
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    if (c->loo && i == px && j == py) continue;
+                    q = (size_t)j * w + i; ++cnt;
+                    for (ch = 0; ch < 3; ++ch) { m1[ch] += y[q * 3 + ch]; m2[ch] += (double)y[q * 3 + ch] * y[q * 3 + ch]; }
+                }
+            for (ch = 0; ch < 3; ++ch) {
+                double mu = m1[ch] / cnt, v = m2[ch] / cnt - mu * mu, d = xs[p * 3 + ch] - mu;
+                d2 += d * d; s2 += v > 0 ? v : 0;
+            }
+            ap[p] = nx[p] > 0 ? (d2 + s2 > 0 ? d2 / (d2 + s2) : 1.0) : 1.0;
+            if (c->svar == 1) vy[p] = s2 * cnt / (cnt - 1);
+        }
+    /* per pixel: delta = a_p - a_d; risk'(t) / 2 = sum delta^2 D t - sum delta ((1 - a_d) D - S) */
+    for (p = 0; p < n; ++p) {
+        double dl = ap[p] - ad[p], D = 0;
+        if (!(nx[p] > 0)) { sa[p] = sb[p] = sc[p] = 0; continue; }
+        for (ch = 0; ch < 3; ++ch) { double d = (double)xs[p * 3 + ch] - yb[p * 3 + ch]; D += d * d; }
+        sa[p] = dl * ((1.0 - ad[p]) * D - vy[p]);
+        if (c->sure == 4) { sa[p] = D; sb[p] = vy[p]; sc[p] = 0; continue; }
+        sure_stats[3] += (1.0 - ad[p]) * D; sure_stats[4] += vy[p]; sure_stats[5] += dl;
+        sure_stats[6] += sa[p]; sure_stats[7] += dl * dl * D;
+        sb[p] = dl * dl * D;
+        sc[p] = sa[p] * sa[p];
+    }
+    box_sum(sa, ba, tmp, w, h, c->srx, c->sry);
+    box_sum(sb, bb, tmp, w, h, c->srx, c->sry);
+    box_sum(sc, bc, tmp, w, h, c->srx, c->sry);
+    for (p = 0; p < n; ++p) {
+        double t = 0, a;
+        if (!(nx[p] > 0)) continue;
+        if (c->sure == 3) t = 1;
+        else if (c->sure == 7) { /* no risk: t = the carried evidence's shrink, where a_p > a_d */
+            t = shr[p] < 1 ? shr[p] : 1;
+            if (ap[p] < ad[p]) t = 0;
+        }
+        else if (c->sure == 5 || c->sure == 6) { /* no risk: t = the default's own shrink */
+            t = shp[p] < 1 ? shp[p] : 1;
+            if (c->sure == 6 && ap[p] < ad[p]) t = 0;
+        }
+        else if (c->sure == 4) { /* the pixel's own a_d, a_p for the whole box: window sums of D, S */
+            double dl = ap[p] - ad[p];
+            t = dl > 0 && ba[p] > 0 ? ((1.0 - ad[p]) * ba[p] - bb[p]) / (dl * ba[p]) : 0;
+            if (t < 0) t = 0;
+            if (t > 1) t = 1;
+            if (c->gate == 1 && !(shp[p] > 0)) t = 0;
+            if (c->gate == 2 && t > shp[p]) t = shp[p];
+        }
+        else if (bb[p] > 0 && ba[p] > 0) {
+            t = ba[p] / bb[p];
+            if (c->sk > 0) { /* z^2 of the pooled gradient against its own spread */
+                double z2 = bc[p] > 0 ? ba[p] * ba[p] / bc[p] : 1e30;
+                t *= z2 > c->sk ? 1.0 - c->sk / z2 : 0.0;
+            }
+            if (t > 1) t = 1;
+            if (c->gate == 1 && !(shp[p] > 0)) t = 0;
+            if (c->gate == 2 && t > shp[p]) t = shp[p];
+            if (c->gate == 4 && t > shr[p]) t = shr[p];
+            if (c->sure == 2) t = t >= 0.5 ? 1 : 0;
+        }
+        sure_stats[0] += 1; sure_stats[1] += t; if (t > 0) sure_stats[2] += 1;
+        a = ad[p] + t * (ap[p] - ad[p]);
+        if (t != 0) {
+            for (ch = 0; ch < 3; ++ch)
+                out[p * 3 + ch] = (float)((1 - a) * xs[p * 3 + ch] + a * yb[p * 3 + ch]);
+            if (!c->keepn) {
+                nout[p] = sbl_blend_sample_count((float)a, nx[p] < cap ? nx[p] : cap, 1.0f);
+                if (nout[p] > cap) nout[p] = cap;
+            }
+        }
+    }
+}
+
+static double svgf_stats[3]; /* pixel-frames, with temporal variance, sum pvs_t / pvs_spatial */
+
+static void blend_svgf(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                       const float *zs, const float *ts, float cap, float *out, float *nout,
+                       float *zout, float *tsout)
+{
+    const cand *c = (const cand *)ctx;
+    const size_t n = (size_t)w * h;
+    static size_t have;
+    static double *ad, *vy, *shp, *vt;
+    static float *yb;
+    size_t p;
+    int px, py, i, j, ch;
+    if (have < n) {
+        free(ad); free(vy); free(shp); free(vt); free(yb);
+        ad = malloc(n * sizeof *ad); vy = malloc(n * sizeof *vy); shp = malloc(n * sizeof *shp);
+        vt = malloc(n * sizeof *vt); yb = malloc(n * 3 * sizeof *yb);
+        have = n;
+    }
+    /* var_Y + var_X from the carried population variance V of the pixel's own samples
+       (N of them): var_Y = V N / (N - 1), var_X = var_Y / N; 3x3 mean over valid
+       pixels with N >= 4 (SVGF's rule), else 0 (the spatial estimate) */
+    for (py = 0; py < h; ++py)
+        for (px = 0; px < w; ++px) {
+            double acc = 0;
+            int cnt = 0;
+            p = (size_t)py * w + px;
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    double nq, v;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    q = (size_t)j * w + i;
+                    nq = nx[q] < cap ? nx[q] : cap;
+                    if (!(nq >= 4)) continue;
+                    v = (double)ts[q * 3] + ts[q * 3 + 1] + ts[q * 3 + 2];
+                    acc += v * nq / (nq - 1) * (1.0 + 1.0 / nq);
+                    ++cnt;
+                }
+            vt[p] = cnt >= 5 ? acc / cnt : 0;
+        }
+    g_ad = ad; g_vy = vy; g_yb = yb; g_sh = shp; g_vt = vt;
+    blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
+    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_vt = NULL;
+    for (p = 0; p < n; ++p) {
+        double a = ad[p], pdm[3] = {0, 0, 0};
+        svgf_stats[0] += 1;
+        if (vt[p] > 0) svgf_stats[1] += 1;
+        if (c->svgf == 2 && nx[p] > 0) {
+            /* innovations less the window's mean paired difference: a bias shared by
+               the 3x3 (a lag under a moving light) is not noise */
+            int cnt = 0;
+            px = (int)(p % (size_t)w); py = (int)(p / (size_t)w);
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    q = (size_t)j * w + i;
+                    if (!(nx[q] > 0)) continue;
+                    ++cnt;
+                    for (ch = 0; ch < 3; ++ch) pdm[ch] += (double)yb[q * 3 + ch] - xs[q * 3 + ch];
+                }
+            for (ch = 0; ch < 3; ++ch) pdm[ch] /= cnt;
+        }
+        for (ch = 0; ch < 3; ++ch) {
+            double e = (double)yb[p * 3 + ch] - xs[p * 3 + ch] - pdm[ch];
+            tsout[p * 3 + ch] = nx[p] > 0 ? (float)((1.0 - a) * (ts[p * 3 + ch] + a * e * e)) : 0.0f;
+        }
+    }
+    (void)c;
 }
 
 static float *tr_yl, *tr_xc;
@@ -422,6 +663,47 @@ static cand cands[] = {
        |s|^2 / (kappa se^2) is nearer chi^2_1 than chi^2_3 / 3 under H0; 6.63 = its 99 % */
     {"R garrote + 1-frame garrote", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 100, 4},
     {"trend l1/3 c6.63", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 4, 4, 1.0 / 3, 6.63, 0},
+    /* 35..: risk-based mixing of the default (garrote, index 31) with the paper's weight */
+    {"sure a_p alone (check)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 3, 1, 1, 0, 0},
+    {"sure t* 3x15", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 1, 0, 0},
+    {"sure t* 7x7", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 3, 3, 0, 0},
+    {"sure t* 15x15", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0},
+    {"sure t* 31x31", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 15, 15, 0, 0},
+    {"sure hard 15x15", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 2, 7, 7, 0, 0},
+    {"sure t* 15x15 S paper", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 1, 0},
+    {"sure t* 15x15 sk4", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 4},
+    {"sure t* 7x7 sk4", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 3, 3, 0, 4},
+    /* 44..: leave-one-out paper weight */
+    {"sure t* 3x15 loo", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 1, 0, 0, 0, 1},
+    {"sure t* 15x15 loo", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 0, 1},
+    {"sure t* 31x31 loo", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 15, 15, 0, 0, 0, 1},
+    {"sure a_p loo alone", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 3, 1, 1, 0, 0, 0, 1},
+    /* 47..: gated by the default's own evidence (sh = r / (1 + r)) */
+    {"sure 3x15 gate sh>0", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 1, 0, 0, 1, 0},
+    {"sure 3x15 t<=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 1, 0, 0, 2, 0},
+    {"sure 15x15 gate sh>0", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 1, 0},
+    {"sure 15x15 t<=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 2, 0},
+    /* 51..: the pixel's own a_d, a_p over the box (window sums of D and S only) */
+    {"sure own 3x15", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 4, 7, 1, 0, 0, 0, 1},
+    {"sure own 3x15 t<=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 4, 7, 1, 0, 0, 2, 1},
+    /* 53..: t = sh, no risk estimate (a = a_d + sh (a_p - a_d)) */
+    {"mix t=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 5, 1, 1, 0, 0, 0, 1},
+    {"mix t=sh, a_p > a_d only", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 6, 1, 1, 0, 0, 0, 1},
+    {"mix t=sh, a_p full 3x3", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 6, 1, 1, 0, 0, 0, 0},
+    /* 56..: var_Y from temporal moments (SVGF), the default otherwise */
+    {"svgf var, nu 8", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0},
+    {"svgf var, nu 30", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 30},
+    /* 58: innovations less the 3x3 mean paired difference */
+    {"svgf var - window bias", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0},
+    /* 59: the local test's se^2 only, the larger of the spatial and the temporal */
+    {"svgf local test: max(pv, V)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 3, 0},
+    /* 60..: the mixed weight, the default's N kept (diagnostic) */
+    {"sure t* 15x15 loo, keep N", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 0, 1, 0, 0, 1},
+    {"sure t* 15x15, keep N", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 0, 0, 0, 0, 1},
+    /* 62: t <= the carried evidence's own shrink (R's garrote only, not the one-frame blocks) */
+    {"sure 15x15 t<=sh_R", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 4, 0},
+    /* 63: no risk: a = a_d + sh_R (a_p - a_d)+, a_p the library's (full 3x3) */
+    {"mix t=sh_R, a_p > a_d", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0},
 };
 
 int main(int argc, char **argv)
@@ -461,11 +743,15 @@ int main(int argc, char **argv)
             snprintf(m.name, sizeof m.name, "%s", cands[i].name);
             m.temporal = 1;
             m.temporal_blend_ctx = &cands[i];
-            if (cands[i].tlam > 0) m.temporal_blend_carry3 = blend_trend;
+            if (cands[i].svgf) m.temporal_blend_carry3 = blend_svgf;
+            else if (cands[i].sure) m.temporal_blend_carry = blend_sure;
+            else if (cands[i].tlam > 0) m.temporal_blend_carry3 = blend_trend;
             else if (cands[i].lambda > 0) m.temporal_blend_carry = blend_carry;
             else m.temporal_blend = blend;
             memset(zsum_stats, 0, sizeof zsum_stats);
             memset(tr_stats, 0, sizeof tr_stats);
+            memset(sure_stats, 0, sizeof sure_stats);
+            memset(svgf_stats, 0, sizeof svgf_stats);
             if (sbr_run(&seq, &m, &r, NULL, NULL) != 0) return 1;
             printf("%-18s %-22s eff %6.2f  rmse %.5f", nm, cands[i].name, r.eff_spp, r.rmse);
             if (zsum_stats[2] > 0)
@@ -475,6 +761,14 @@ int main(int argc, char **argv)
             if (tr_stats[0] > 0)
                 printf("  trend on %.2f %% (mean corr^2/se2 %.3f)", 100.0 * tr_stats[1] / tr_stats[0],
                        tr_stats[2] / tr_stats[0]);
+            if (svgf_stats[0] > 0)
+                printf("  temporal var on %.1f %%", 100.0 * svgf_stats[1] / svgf_stats[0]);
+            if (sure_stats[0] > 0)
+                printf("  t mean %.3f, t > 0 on %.1f %% | (1-a)D %.4g S %.4g dl %.4g A %.4g B %.4g",
+                       sure_stats[1] / sure_stats[0], 100.0 * sure_stats[2] / sure_stats[0],
+                       sure_stats[3] / sure_stats[0], sure_stats[4] / sure_stats[0],
+                       sure_stats[5] / sure_stats[0], sure_stats[6] / sure_stats[0],
+                       sure_stats[7] / sure_stats[0]);
             printf("\n");
             fflush(stdout);
         }

@@ -392,7 +392,10 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n].temporal_desc.estimator = SBL_ESTIMATOR_POOLED;
     all[n++].stereo_desc.estimator = SBL_ESTIMATOR_POOLED;
     /* the library's default combined pipeline, and the oracle of the same pipeline */
-    all[n++] = sbr_method_default("default-stereo", SBR_STEREO_ADAPTIVE);
+    all[n] = sbr_method_default("default-stereo", SBR_STEREO_ADAPTIVE);
+    /* a stereo blend follows: the history's bias, which both eyes share, counts double
+       (docs/ESTIMATORS.md 4.7) */
+    all[n++].temporal_desc.stereo_shared_bias = 1.0f;
     all[n++] = sbr_method_oracle("oracle+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,
                                  SBR_ORACLE_TEMPORAL | SBR_ORACLE_STEREO);
     /* the same with the Catmull-Rom history fetch (sbl_reproject_desc.history_filter),
@@ -401,12 +404,16 @@ int sbr_standard_methods(sbr_method *m, int max)
     all[n] = sbr_method_default("default-cr", SBR_STEREO_NONE);
     all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
     all[n] = sbr_method_default("default-stereo-cr", SBR_STEREO_ADAPTIVE);
+    all[n].temporal_desc.stereo_shared_bias = 1.0f; /* as default-stereo */
     all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
     all[n] = sbr_method_oracle("oracle-cr", 1, SBR_STEREO_NONE, SBR_ORACLE_TEMPORAL);
     all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
     all[n] = sbr_method_oracle("oracle-cr+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,
                                SBR_ORACLE_TEMPORAL | SBR_ORACLE_STEREO);
     all[n++].temporal_desc.reproject.history_filter = SBL_HISTORY_CATMULL_ROM;
+    /* the combined pipeline with per-eye temporal weights (default-stereo before
+       docs/ESTIMATORS.md 4.7: stereo_shared_bias 0) */
+    all[n++] = sbr_method_default("default-stereo-per-eye", SBR_STEREO_ADAPTIVE);
     for (i = 0; i < n && i < max; ++i) m[i] = all[i];
     return i < n ? i : n;
 }

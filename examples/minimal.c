@@ -64,6 +64,9 @@ int main(void)
     int e, f, b, ping = 0;
     sbl_temporal_desc td = {0}; /* zeros: the defaults (pooled estimator) */
     sbl_stereo_desc sd = {0};
+    /* the display below is the stereo blend of the two eyes: a bias of the history that
+       both eyes share survives it, their noise does not (docs/ESTIMATORS.md 4.7) */
+    td.stereo_shared_bias = 1.0f;
     sd.focal_px = FOCAL;
     sd.baseline = BASELINE;
     if (sbl_stereo_scratch_size(W, 3) > scratch_bytes) return 1; /* the same kernel */

@@ -12,8 +12,9 @@
    No --method: the library's default temporal filter (every descriptor field zero, with
    the optional evidence plane carried from frame to frame, as a user gets the default's
    full accuracy; `pooled`: the same without the plane);
-   --method default-stereo: the default combined pipeline (temporal per eye, then the
-   default stereo blend for display). These two names stay stable. default-cr and
+   --method default-stereo: the default combined pipeline (temporal per eye, told that a
+   stereo blend follows: sbl_temporal_desc.stereo_shared_bias = 1; then the default
+   stereo blend for display). These two names stay stable. default-cr and
    default-stereo-cr: the same with the Catmull-Rom history fetch
    (sbl_reproject_desc.history_filter).
 */

@@ -783,7 +783,8 @@ static void test_stereo_temporal_frame(void)
     sbl_stereo_desc sd;
     sbl_stereo_temporal_io io;
     sbl_history hist[2];
-    int e, i, x, y, k;
+    int e, i, x, y, k, pass, differ = 0;
+    float first_display[21 * 13 * 3];
     memset(&td, 0, sizeof td);
     memset(&sd, 0, sizeof sd);
     sd.focal_px = 10.0f;
@@ -818,15 +819,20 @@ static void test_stereo_temporal_frame(void)
         io.temporal[e].length = view(&on[e][0]);
         io.display[e] = view(&disp[e][0]);
     }
-    CHECK_EQ(sbl_stereo_temporal_frame(&td, &sd, &io), SBL_OK);
-    {   /* the same by hand */
+    /* pass 0: the call's default shared bias (0 -> 1: a stereo blend follows), by hand
+       with 1; pass 1: SBL_SHARED_BIAS_NONE, by hand with per-eye weights (0) */
+    for (pass = 0; pass < 2; ++pass) {
+        sbl_temporal_desc tc = td, th = td;
         sbl_eye eye[2];
+        tc.stereo_shared_bias = pass ? SBL_SHARED_BIAS_NONE : 0.0f;
+        th.stereo_shared_bias = pass ? 0.0f : 1.0f;
+        CHECK_EQ(sbl_stereo_temporal_frame(&tc, &sd, &io), SBL_OK);
         for (e = 0; e < 2; ++e) {
             sbl_temporal_output o;
             memset(&o, 0, sizeof o);
             o.color = view(&oc[e][1]);
             o.length = view(&on[e][1]);
-            CHECK_EQ(sbl_temporal_filter_frame(&td, &io.frame[e], &hist[e], &o), SBL_OK);
+            CHECK_EQ(sbl_temporal_filter_frame(&th, &io.frame[e], &hist[e], &o), SBL_OK);
             memset(&eye[e], 0, sizeof eye[e]);
             eye[e].color = o.color;
             eye[e].length = o.length;
@@ -849,7 +855,15 @@ static void test_stereo_temporal_frame(void)
                   memcmp(sbt_at(&disp[e][0], 10, 6), sbt_at(&oc[e][0], 10, 6), 3 * sizeof(float)) != 0);
             CHECK(sbt_canaries_ok(&disp[e][0]) && sbt_canaries_ok(&on[e][0]));
         }
+        for (y = 0; y < h; ++y) /* the two passes' displays differ (the default acts) */
+            for (x = 0; x < w; ++x)
+                for (k = 0; k < 3; ++k) {
+                    float *kept = &first_display[(y * w + x) * 3 + k];
+                    if (pass == 0) *kept = sbt_at(&disp[0][0], x, y)[k];
+                    else differ += *kept != sbt_at(&disp[0][0], x, y)[k];
+                }
     }
+    CHECK(differ > 0);
     /* display over the other eye's new history: rejected, nothing written */
     for (y = 0; y < h; ++y)
         for (x = 0; x < w; ++x) sbt_at(&oc[0][0], x, y)[0] = -42.0f;

@@ -1088,6 +1088,8 @@ static void test_diagnostics(void)
     VALIDATE_T(SBL_ERROR_INVALID_PARAM, "desc->max_history", NULL);
     RESET(); d.clip_gamma = -1.0f;
     VALIDATE_T(SBL_ERROR_INVALID_PARAM, "desc->clip_gamma", "-1");
+    RESET(); d.stereo_shared_bias = 2.0f;
+    VALIDATE_T(SBL_ERROR_INVALID_PARAM, "desc->stereo_shared_bias", "[0, 1]");
     RESET(); d.reproject.depth_tolerance = (float)(HUGE_VAL - HUGE_VAL);
     VALIDATE_T(SBL_ERROR_INVALID_PARAM, "desc->reproject.depth_tolerance", NULL);
     RESET(); d.reproject.disabled_tests = 1 << 10;

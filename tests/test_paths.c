@@ -1335,7 +1335,7 @@ int main(void)
     sbt_rng rng = {77};
     double worst = 0;
     int it, compared = 0, refused = 0;
-    for (it = 0; it < 5000; ++it) {
+    for (it = 0; it < 6000; ++it) { /* 5000 on: temporal cases with stereo_shared_bias */
         sbl__kernel k;
         sbl_image im, imn;
         void *scratch;
@@ -1363,6 +1363,8 @@ int main(void)
         k.wp.constant = stereo ? 0.5f : 0.1f;
         k.wp.gamma = 1.25f;
         k.wp.bias_threshold = 3.0f;
+        k.wp.shared_bias = it >= 5000 && !stereo ? (it & 2 ? 1.0f : 0.35f) : 0.0f;
+        if (it >= 5000) k.wp.temporal = !stereo; /* the field acts on temporal calls only */
         k.n_cap = stereo ? FLT_MAX : 64.0f;
         k.temporal = !stereo;
         k.fill = stereo && (it % 8 == 1);

@@ -271,6 +271,9 @@ int main(void)
         memset(&d, 0, sizeof d);
         d.rectify = (sbl_rectify)((iter / 2) % SBL_RECTIFY_COUNT);
         d.weight_mode = (sbl_weight_mode)((iter / 6) % SBL_WEIGHT_MODE_COUNT);
+        /* a stereo blend follows (docs/ESTIMATORS.md 4.7): the bias counts 1 + c times */
+        if (iter % 4 == 1) d.stereo_shared_bias = iter % 8 == 1 ? 1.0f : 0.4f;
+        if (iter % 8 == 5) d.estimator = SBL_ESTIMATOR_HISTORY_AWARE; /* its bias term too */
         memset(&f, 0, sizeof f);
         memset(&hi, 0, sizeof hi);
         f.color = view(&cur);
