@@ -3140,6 +3140,15 @@ typedef struct sbl__kernel {
        evid_in at the row's plane. 0: evid_in is evid_buf, filled by a pass of its own */
     int evid_fused, evid_y0, evid_y1;
     float *evid_buf;
+    /* the image's border columns in the default configurations' lanes (sbl__lanes_edge):
+       edge_ask, set by sbl__kernel_run_span per row, 1 / 2 for column 0 / w - 1 (its
+       window safe); edge_done, what sbl__kernel_lanes_pooled computed (the rest take
+       the reference path) */
+    int edge_ask, edge_done;
+    /* 1 / 2: the row in the lanes is the image's first / last (sbl__kernel_run_span);
+       its window has two rows: the missing one is the other border-side row again
+       (sbl__kernel_lanes_pooled_ch), counted out of the pairs (sbl__lanes_columns_cfg) */
+    int edge_row;
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -3184,7 +3193,10 @@ static size_t sbl__kernel_scratch_size(int width, int channels)
     pf = sbl__plane_floats(width);
     /* + 5 planes: the pooled estimator's per-column block statistics (two double
        planes) and its ratio */
+    /* + 16 floats ahead of the first plane: the border lanes load column -1 of a ring
+       row (a lane they then drop, sbl__lanes_y_channel), which must be memory */
     return SBL__CAST(size_t, 3 * (2 * channels + 2) + channels + 2 + 5) * pf * sizeof(float) + 5 * pf + 64 +
+           16 * sizeof(float) +
            SBL__CAST(size_t, SBL__COL_PLANES * channels + 1) * SBL__CHUNK_COLS * sizeof(float) +
            SBL__CAST(size_t, SBL__POOL_PLANES(channels)) * SBL__POOL_COLS * sizeof(float);
 }
@@ -3198,7 +3210,7 @@ static void *sbl__align64(void *p)
 static void sbl__kernel_bind(sbl__kernel *k, void *scratch)
 {
     size_t pf = sbl__plane_floats(k->w);
-    float *p = SBL__PCAST(float *, sbl__align64(scratch));
+    float *p = SBL__PCAST(float *, sbl__align64(scratch)) + 16;
     int r, c;
     for (r = 0; r < 3; ++r) {
         for (c = 0; c < k->ch; ++c) { k->ring[r].y[c] = p; p += pf; }
@@ -6020,6 +6032,10 @@ typedef struct sbl__lane_stats {
     sbl__m has_pairs, two_pairs;
     sbl__v pool_r;  /* pooled estimator: prior bias-to-noise ratio (sbl__row_pool)     */
     sbl__v a2[4];   /* weight of the two-estimate blend (before the pooled lean): Eq. 5 */
+    sbl__v bessel;  /* n / (n - 1), n Y's samples in the window: 9 / 8 inside the image
+                       (sbl__lane_edge) */
+    sbl__v lean_s, inv_n8; /* (n - 1) / (n - 2) and 1 / (n - 1): 8 / 7 and 1 / 8 inside
+                              (the lean's neighbour count, sbl__lanes_lean) */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one
@@ -6083,7 +6099,7 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
    written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). fast (a
    constant, sbl__kernel_lanes_pooled's default configuration): no clamp box. */
 SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
-                                        int base, const int fast, const int full)
+                                        int base, const int fast, const int full, const int erow)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const int ch = k->ch, clamp = !fast && k->wp.rectify == SBL_RECTIFY_CLAMP;
@@ -6096,7 +6112,13 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
         const sbl__v v1 = full ? sbl__set1(1.0f) : sbl__load(W->row[1] + iv);
         const sbl__v v2 = full ? sbl__set1(1.0f) : sbl__load(W->row[2] + iv);
         const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
-        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch), full ? sbl__set1(3.0f) : sbl__add(sbl__add(v0, v1), v2));
+        /* erow (a constant: the image's first or last row, k->edge_row): the window's
+           missing row is row 1 again (first) or row 0 again (last), whose sums then
+           add 0 (differences to itself, sbl__kernel_lanes_pooled_ch); its pairs are
+           not counted */
+        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch),
+                   full ? sbl__set1(3.0f)
+                        : erow ? sbl__add(v1, k->edge_row == 1 ? v2 : v0) : sbl__add(sbl__add(v0, v1), v2));
         sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp, full);
         if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp, full);
         if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp, full);
@@ -6129,7 +6151,7 @@ SBL__INLINE int sbl__lanes_full(const sbl__lane_rows *W, int ca, int cb)
 SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
                                     int base)
 {
-    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0, 0);
+    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0, 0, 0);
 }
 
 /* One side column moved from its own shift to the window's: D = its shift minus the
@@ -6140,11 +6162,25 @@ SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int
         (OB) = sbl__add((B), sbl__mul((D), sbl__add((A), (OA)))); \
     } while (0)
 
+/* A vector of pixels holding one of the image's border columns, or on the image's first
+   or last row (the default configurations' lanes, sbl__kernel_lanes_pooled_ch): per
+   lane, whether the side columns exist, their samples (3, 2 on a border row, 0 outside
+   the image), and the window's count n (9 inside; 6 on a border column or row; 4 at a
+   corner) as 1 / n, 1 / (n - 1), n / (n - 1) and (n - 1) / (n - 2) (the lean's). A lane
+   inside the image holds the constants of the interior vectors, so it gets their bits. */
+typedef struct sbl__lane_edge {
+    sbl__m keep_l, keep_r;
+    sbl__v n_l, n_r, inv_n, inv_n8, bessel, lean_s;
+} sbl__lane_edge;
+
 /* Channel c of Y's moments of pixels [x, x + VW) (index i in the chunk): mean and
-   population variance of the window, of the window without its centre, the centre. */
+   population variance of the window, of the window without its centre, the centre.
+   E: NULL inside the image, else the vector's border lanes (sbl__lane_edge): a missing
+   side column enters as an empty one (sums 0, count 0, shift 0), whatever its memory
+   holds. */
 SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x, int i,
                                       int c, sbl__v *mean, sbl__v *var, sbl__v *m8, sbl__v *v8,
-                                      sbl__v *yc_out, const int v8_times8)
+                                      sbl__v *yc_out, const int v8_times8, const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), three = sbl__set1(3.0f);
     const sbl__v ninth = sbl__set1(1.0f / 9.0f), eighth = sbl__set1(0.125f);
@@ -6152,27 +6188,36 @@ SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows
     const sbl__v s = sbl__load(y0); /* the window's shift: its top-centre sample */
     const sbl__v yc = sbl__load(W->y[1][c] + x);
     const sbl__v a1 = sbl__sub(yc, s), a2 = sbl__sub(sbl__load(W->y[2][c] + x), s);
-    const sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
     const float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
+    sbl__v dl = sbl__sub(sbl__load(y0 - 1), s), dr = sbl__sub(sbl__load(y0 + 1), s);
+    sbl__v sal = sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl_ = sbl__load(SBL__COLP(cp, SBL__COL_B) - 1);
+    sbl__v sar = sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbr = sbl__load(SBL__COLP(cp, SBL__COL_B) + 1);
     sbl__v al, bl, ar, br, a8, b8, a9, b9, q;
+    if (E) {
+        dl = sbl__sel(E->keep_l, dl, zero);
+        sal = sbl__sel(E->keep_l, sal, zero);
+        sbl_ = sbl__sel(E->keep_l, sbl_, zero);
+        dr = sbl__sel(E->keep_r, dr, zero);
+        sar = sbl__sel(E->keep_r, sar, zero);
+        sbr = sbl__sel(E->keep_r, sbr, zero);
+    }
     /* side columns about s (their top sample is s + D, counted by n = 3) */
-    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) - 1), sbl__load(SBL__COLP(cp, SBL__COL_B) - 1), dl,
-              three, al, bl);
-    SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_A) + 1), sbl__load(SBL__COLP(cp, SBL__COL_B) + 1), dr,
-              three, ar, br);
+    SBL__SIDE(sal, sbl_, dl, E ? E->n_l : three, al, bl);
+    SBL__SIDE(sar, sbr, dr, E ? E->n_r : three, ar, br);
     a8 = sbl__add(sbl__add(al, ar), a2);
     b8 = sbl__add(sbl__add(bl, br), sbl__mul(a2, a2));
     a9 = sbl__add(a8, a1);
     b9 = sbl__add(b8, sbl__mul(a1, a1));
-    q = sbl__mul(a9, ninth);
+    q = sbl__mul(a9, E ? E->inv_n : ninth);
     *mean = sbl__add(s, q);
-    *var = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), ninth);
-    q = sbl__mul(a8, eighth);
+    *var = sbl__mul(sbl__max(sbl__sub(b9, sbl__mul(a9, q)), zero), E ? E->inv_n : ninth);
+    q = sbl__mul(a8, E ? E->inv_n8 : eighth);
     *m8 = sbl__add(s, q);
     *v8 = sbl__max(sbl__sub(b8, sbl__mul(a8, q)), zero);
     /* v8_times8 (a constant): left as 8 v8, for a caller that scales a sum of them (a
-       power of two: the same bits as summing the scaled values) */
-    if (!v8_times8) *v8 = sbl__mul(*v8, eighth);
+       power of two: the same bits as summing the scaled values; E: the caller scales
+       by E->inv_n8) */
+    if (!v8_times8) *v8 = sbl__mul(*v8, E ? E->inv_n8 : eighth);
     *yc_out = yc;
 }
 
@@ -6188,7 +6233,7 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     const sbl__v da = sbl__load(SBL__COLP(cp, SBL__COL_DA)), db = sbl__load(SBL__COLP(cp, SBL__COL_DB));
     sbl__v pl, ql, pr, qr, d, dd;
     sbl__lanes_y_channel(k, W, x, i, c, &st->mean[c], &st->var[c], &st->m8[c], &st->v8[c],
-                         &st->yc[c], 0);
+                         &st->yc[c], 0, NULL);
     st->xs[c] = st->xr[c] = sbl__load(W->x[1][c] + x);
     /* pairs: side columns about the centre column's shift tc */
     SBL__SIDE(sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1),
@@ -6749,8 +6794,8 @@ SBL__INLINE sbl__v sbl__lanes_lean(const sbl__lane_stats *st, sbl__v a0, sbl__v 
         e = sbl__add(e, sbl__mul(sbl__sub(st->m8[c], st->xs[c]), dy));
         d = sbl__add(d, sbl__mul(dy, dy));
     }
-    vm = sbl__add(sbl__max(sbl__sub(sbl__mul(v8, sbl__set1(8.0f / 7.0f)), var_y), zero),
-                  sbl__mul(var_y, sbl__set1(0.125f)));
+    vm = sbl__add(sbl__max(sbl__sub(sbl__mul(v8, st->lean_s), var_y), zero),
+                  sbl__mul(var_y, st->inv_n8));
     vm = sbl__mul(vm, sbl__max(n_xc, one));
     q = sbl__sel(sbl__gt(vm, zero), sbl__div(sbl__mul(a0, var_y), sbl__max(vm, tiny)), zero);
     den = sbl__mul(sbl__add(one, q), d);
@@ -6785,7 +6830,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
                              ? SBL__CAST(float, SBL__CAST(double, p->bias_threshold) * SBL_POOLED_LOCAL_SCALE)
                              : p->bias_threshold;
         const sbl__v k2e = sbl__set1(SBL__CAST(float, 1.0 + SBL__CAST(double, kb) * SBL__CAST(double, kb) * 0.125));
-        sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
+        sbl__v vy_s = sbl__mul(s2, st->bessel);
         sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
         sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
         sbl__v vx_p = sbl__sub(pvs, vy_p);
@@ -6832,7 +6877,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
         const sbl__v k2 = sbl__set1(p->bias_threshold * p->bias_threshold);
-        sbl__v vy_s = sbl__mul(s2, sbl__set1(9.0f / 8.0f));
+        sbl__v vy_s = sbl__mul(s2, st->bessel);
         sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
         sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
         sbl__v vx_p = sbl__sub(pvs, vy_p);
@@ -6921,6 +6966,9 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     sbl__lanes_moments(k, W, x, base, &st);
+    st.bessel = sbl__set1(9.0f / 8.0f);
+    st.lean_s = sbl__set1(8.0f / 7.0f);
+    st.inv_n8 = sbl__set1(0.125f);
     sbl__lanes_pool(k, x, y, &st);
     sbl__lanes_rectify(k, &st);
     if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
@@ -6951,7 +6999,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
 #define SBL__LANES_CH(M) do { M(0); if (ch > 1) M(1); if (ch > 2) M(2); if (ch > 3) M(3); } while (0)
 SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                         const float *nyrow, int x, int base, int y, const int ch,
-                                        const int fast, const int full)
+                                        const int fast, const int full, const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
@@ -6978,7 +7026,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* Y's moments; the sums of the firefly limit (sbl__lanes_firefly) */
 #define SBL__FAST_Y(c) \
     do { \
-        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c], 0); \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var[c], &m8[c], &v8[c], &yc[c], 0, E); \
         xs[c] = sbl__load(W->x[1][c] + x); \
         /* the sums start at channel 0's values (0 + v is v: no addition) */ \
         sum_y = (c) ? sbl__add(sum_y, yc[c]) : yc[c]; \
@@ -7004,6 +7052,9 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
        pooled ratio of this row (sbl__kernel_lanes_pooled computed it: sbl__lanes_pool) */
     st.pool_r = sbl__load(k->pool_r + x);
+    st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
+    st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
+    st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
     (void)y;
     s2 = var[0];
     if (ch > 1) s2 = sbl__add(s2, var[1]);
@@ -7047,7 +7098,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
    weight and the blend. The same operations in the same order as
    sbl__lanes_vector_fast (bit for bit). */
 SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int x, int base,
-                                    const int ch)
+                                    const int ch, const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const int i = x - base;
@@ -7055,7 +7106,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
 #define SBL__STAGE_Y(c) \
     do { \
-        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1); \
+        sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1, E); \
         /* the sums start at channel 0's values (0 + v is v: no addition) */ \
         sum_y = (c) ? sbl__add(sum_y, yc) : yc; \
         sum_m8 = (c) ? sbl__add(sum_m8, m8) : m8; \
@@ -7066,7 +7117,8 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     SBL__LANES_CH(SBL__STAGE_Y);
 #undef SBL__STAGE_Y
     (void)mean;
-    sum_v8 = sbl__mul(sum_v8, sbl__set1(0.125f)); /* the channels' v8 (sbl__lanes_y_channel) */
+    /* the channels' v8 (sbl__lanes_y_channel) */
+    sum_v8 = sbl__mul(sum_v8, E ? E->inv_n8 : sbl__set1(0.125f));
     bound = sbl__add(sbl__max(sum_m8, sum_x),
                      sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
@@ -7078,7 +7130,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
 
 SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                                         const float *n_row, const float *nyrow, int x, int base,
-                                        const int ch, const int full)
+                                        const int ch, const int full, const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
@@ -7101,6 +7153,9 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     st.pool_r = sbl__load(k->pool_r + x);
+    st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
+    st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
+    st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
     w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
                           sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
                           sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
@@ -7136,6 +7191,52 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
 }
 #undef SBL__LANES_CH
+
+/* The image's border columns in the default configurations' lanes (fast 1: the temporal
+   filter's two stages; 2: the stereo blend's sbl__lanes_vector_fast): the vector
+   [x, x + VW) holding column 0 in its first lane (side 1) or column w - 1 in its last
+   (side 2). The border lane's window has two columns (n = 6: the side column
+   outside the image enters empty, sbl__lane_edge); the other lanes are interior pixels
+   computed with the interior's constants, so they get the bits they already have. The
+   pair terms are the blocks' (sbl__pool_lanes_blocks counts the column outside the
+   image as one without pairs). Bit for bit the same on every build (the scalar build
+   runs the same lanes, one wide). */
+SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                 const float *nyrow, int x, int base, int y, const int ch, int side,
+                                 const int rows, const int fast)
+{
+    /* rows: the window's rows (2 on the image's first and last rows: a corner's window
+       holds 4 samples) */
+    const float nc = SBL__CAST(float, rows), n9 = 3.0f * nc, n6 = 2.0f * nc;
+    float nl[SBL__VW], nr[SBL__VW], inv_n[SBL__VW], inv_n8[SBL__VW], bessel[SBL__VW], lean_s[SBL__VW];
+    const sbl__v zero = sbl__set1(0.0f);
+    sbl__lane_edge E;
+    int j;
+    for (j = 0; j < SBL__VW; ++j) {
+        const int edge = side == 1 ? j == 0 : j == SBL__VW - 1;
+        const float n = edge ? n6 : n9;
+        nl[j] = side == 1 && edge ? 0.0f : nc;
+        nr[j] = side == 2 && edge ? 0.0f : nc;
+        inv_n[j] = 1.0f / n;
+        inv_n8[j] = 1.0f / (n - 1.0f);
+        bessel[j] = n / (n - 1.0f);
+        lean_s[j] = (n - 1.0f) / (n - 2.0f);
+    }
+    E.n_l = sbl__load(nl);
+    E.n_r = sbl__load(nr);
+    E.keep_l = sbl__gt(E.n_l, zero);
+    E.keep_r = sbl__gt(E.n_r, zero);
+    E.inv_n = sbl__load(inv_n);
+    E.inv_n8 = sbl__load(inv_n8);
+    E.bessel = sbl__load(bessel);
+    E.lean_s = sbl__load(lean_s);
+    if (fast == 1) {
+        sbl__lanes_stage_y(k, W, x, base, ch, &E);
+        sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0, &E);
+    } else {
+        sbl__lanes_vector_fast(k, W, n_row, nyrow, x, base, y, ch, fast, 0, &E);
+    }
+}
 
 SBL__INLINE int sbl__kernel_lanes_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                      int x0, int x1, const int ch)
@@ -7248,14 +7349,17 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
    the reference path. */
 SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
                                              int pa, int pb, int xa, int xb,
-                                             const unsigned char *win, const int ch, const int fast)
+                                             const unsigned char *win, const int ch, const int cfg)
 {
+    /* cfg: fast (0, 1, 2), or 3 / 4: the temporal / stereo default (fast 1 / 2) on the
+       image's first or last row (k->edge_row; R[0] or R[2] NULL) */
+    const int erow = cfg >= 3, fast = cfg == 3 ? 1 : cfg == 4 ? 2 : cfg;
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
 #define SBL__POOLED_VECTOR(px) \
     do { \
-        if (fast && full) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 1); \
-        else if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 0); \
+        if (fast && full) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 1, Er); \
+        else if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 0, Er); \
         else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
     } while (0)
     /* the vectors of the run [lo, b): whole vectors, the last one ending at b; a run
@@ -7279,9 +7383,30 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     sbl__lane_rows W;
     sbl__pool_planes Q;
     sbl__pool_rows P;
+    sbl__lane_edge E_row; /* erow: every lane's window has two rows */
+    const sbl__lane_edge *const Er = erow ? &E_row : NULL;
     int x = pa, unsafe;
     k_ch.ch = ch;
-    sbl__lane_rows_of(&W, R, ch);
+    if (erow) {
+        /* the missing row: the first row's window takes row 1 as its row 0 too, the
+           last row's takes row 0 as its row 2 too; every sum then adds 0 for it (the
+           differences of a sample to itself; sbl__lanes_column, sbl__lanes_y_channel)
+           and the pairs leave it out of their count (sbl__lanes_columns_cfg) */
+        const sbl__ring_row *RW[3];
+        const sbl__v two = sbl__set1(2.0f);
+        RW[0] = R[0] ? R[0] : R[1];
+        RW[1] = R[1];
+        RW[2] = R[2] ? R[2] : R[0];
+        sbl__lane_rows_of(&W, RW, ch);
+        E_row.keep_l = E_row.keep_r = sbl__gt(two, sbl__set1(0.0f));
+        E_row.n_l = E_row.n_r = two;
+        E_row.inv_n = sbl__set1(1.0f / 6.0f);
+        E_row.inv_n8 = sbl__set1(1.0f / 5.0f);
+        E_row.bessel = sbl__set1(6.0f / 5.0f);
+        E_row.lean_s = sbl__set1(5.0f / 4.0f);
+    } else {
+        sbl__lane_rows_of(&W, R, ch);
+    }
     sbl__pool_planes_of(k, ch, 0, &Q);
     unsafe = sbl__pool_rows_of(&P, R, ch, w, pa, pb);
     while (x < pb) {
@@ -7294,9 +7419,9 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             /* every pair of the chunk's columns valid: the instances without the selects
                on the pair validity (the same values); the blocks centred on the image's
                first and last columns (whose outer column is empty) excepted */
-            full = (SBL_SHORTCUTS & 8) && (k->rows_valid || sbl__lanes_full(&W, ca, cb));
-            if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1);
-            else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0);
+            full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__lanes_full(&W, ca, cb));
+            if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1, 0);
+            else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, erow);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
             if (full) {
@@ -7329,14 +7454,19 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             }
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
-                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch));
-                if (full) SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
-                else SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
+                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, Er));
+                if (full) SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1, Er));
+                else SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0, Er));
             } else {
                 SBL__RUN_VECTORS(SBL__POOLED_VECTOR(p));
             }
             lo = b;
         }
+        /* the image's border columns (sbl__kernel_run_span asked: their windows are safe) */
+        if (fast && (k->edge_ask & 1) && x == 0)
+            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, y, ch, 1, erow ? 2 : 3, fast);
+        if (fast && (k->edge_ask & 2) && e == w)
+            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, y, ch, 2, erow ? 2 : 3, fast);
         x = e;
     }
 #undef SBL__POOLED_VECTOR
@@ -7452,6 +7582,8 @@ static void sbl__lane_windows_dim(const sbl__kernel *k, const sbl__ring_row *con
 SBL__POOLED_INSTANCE(1, 0) SBL__POOLED_INSTANCE(2, 0) SBL__POOLED_INSTANCE(3, 0) SBL__POOLED_INSTANCE(4, 0)
 SBL__POOLED_INSTANCE(1, 1) SBL__POOLED_INSTANCE(2, 1) SBL__POOLED_INSTANCE(3, 1) SBL__POOLED_INSTANCE(4, 1)
 SBL__POOLED_INSTANCE(1, 2) SBL__POOLED_INSTANCE(2, 2) SBL__POOLED_INSTANCE(3, 2) SBL__POOLED_INSTANCE(4, 2)
+SBL__POOLED_INSTANCE(1, 3) SBL__POOLED_INSTANCE(2, 3) SBL__POOLED_INSTANCE(3, 3) SBL__POOLED_INSTANCE(4, 3)
+SBL__POOLED_INSTANCE(1, 4) SBL__POOLED_INSTANCE(2, 4) SBL__POOLED_INSTANCE(3, 4) SBL__POOLED_INSTANCE(4, 4)
 #undef SBL__POOLED_INSTANCE
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
@@ -7460,7 +7592,23 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
     /* the default configuration in its own instances (sbl__lanes_vector_fast) */
     const int fast = sbl__kernel_fast(k);
     k->pool_row = R[1]->row;
-    if (fast && k->wp.temporal) {
+    k->edge_done = fast ? k->edge_ask : 0; /* sbl__lanes_edge */
+    if (k->edge_row && !k->wp.temporal) {
+        /* the image's first or last row (only the default configurations come here) */
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_1_4(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_4(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_4(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_4(k, R, pa, pb, xa, xb, win); break;
+        }
+    } else if (k->edge_row) {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_1_3(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_3(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_3(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_3(k, R, pa, pb, xa, xb, win); break;
+        }
+    } else if (fast && k->wp.temporal) {
         switch (k->ch) {
         case 1: sbl__kernel_lanes_pooled_1_1(k, R, pa, pb, xa, xb, win); break;
         case 2: sbl__kernel_lanes_pooled_2_1(k, R, pa, pb, xa, xb, win); break;
@@ -7539,19 +7687,44 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
         }
         for (y = y0; y < y1; ++y) {
             const sbl__ring_row *R[3];
-            const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && xa < xb;
+            /* the default configurations' lanes also compute the image's border columns
+               (sbl__lanes_edge): a span of only those (xa == xb) takes them too, as the
+               whole row does */
+            const int fast_pool = pool && sbl__kernel_fast(k);
+            const int lanes_ok = lanes_w && y > 0 && y + 1 < k->h && (xa < xb || fast_pool);
+            /* the image's first or last row (of at least two) in the default
+               configurations' lanes, with a two-row window (k->edge_row,
+               sbl__kernel_lanes_pooled_ch) */
+            const int erow = lanes_w && !lanes_ok && (y == 0 || y + 1 == k->h) && k->h >= 2 &&
+                             fast_pool;
             const unsigned char *win = NULL;
             for (j = 0; j < 3; ++j) R[j] = k->ring[j].row >= 0 ? &k->ring[j] : NULL;
-            if (lanes_ok && (R[0]->unsafe_count | R[1]->unsafe_count | R[2]->unsafe_count)) {
-                /* per pixel: 1 if any of the nine values of its window is unsafe (per
-                   column over its three rows, then over three columns) */
-                unsigned char *cu = k->column_unsafe;
-                sbl__or3_bytes(cu + xa - 1, R[0]->unsafe + xa - 1, R[1]->unsafe + xa - 1,
-                               R[2]->unsafe + xa - 1, xb - xa + 2);
-                sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
-                win = k->window_unsafe;
-                /* dim values the default configurations' lanes can take */
-                if (pool && sbl__kernel_fast(k)) sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
+            k->edge_row = erow ? (y == 0 ? 1 : 2) : 0;
+            if (lanes_ok || erow) {
+                /* the window's rows (erow: the missing one is an existing one again, as
+                   sbl__kernel_lanes_pooled_ch takes it) */
+                const sbl__ring_row *r0 = R[0] ? R[0] : R[1], *r2 = R[2] ? R[2] : R[0];
+                if (r0->unsafe_count | R[1]->unsafe_count | r2->unsafe_count) {
+                    /* per pixel: 1 if any of the nine values of its window is unsafe (per
+                       column over its three rows, then over three columns) */
+                    unsigned char *cu = k->column_unsafe;
+                    sbl__or3_bytes(cu + xa - 1, r0->unsafe + xa - 1, R[1]->unsafe + xa - 1,
+                                   r2->unsafe + xa - 1, xb - xa + 2);
+                    sbl__or3_bytes(k->window_unsafe + xa, cu + xa - 1, cu + xa, cu + xa + 1, xb - xa);
+                    win = k->window_unsafe;
+                    /* dim values the default configurations' lanes can take (interior
+                       rows; the border rows' flagged windows keep the reference) */
+                    if (lanes_ok && pool && sbl__kernel_fast(k))
+                        sbl__lane_windows_dim(k, R, k->window_unsafe, xa, xb);
+                }
+            }
+            /* the image's border columns in lanes (the default configurations) where
+               their two-column window is safe (sbl__lanes_edge) */
+            k->edge_ask = k->edge_done = 0;
+            if ((lanes_ok || erow) && pool && sbl__kernel_fast(k)) {
+                const unsigned char *cu = win ? k->column_unsafe : NULL;
+                if (x0 == 0 && !(cu && (cu[0] | cu[1]))) k->edge_ask |= 1;
+                if (x1 == k->w && !(cu && (cu[k->w - 2] | cu[k->w - 1]))) k->edge_ask |= 2;
             }
             if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
             if (pool && lanes_ok) {
@@ -7559,20 +7732,25 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 k->rows_valid = R[0]->all_valid & R[1]->all_valid & R[2]->all_valid;
                 sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
                 k->rows_valid = 0;
+            } else if (erow) {
+                sbl__kernel_lanes_pooled(k, R, pa, pb, xa, xb, win);
             } else {
                 if (pool) sbl__row_pool(k, R, pa, pb);
                 if (lanes_ok) sbl__kernel_lanes_runs(k, R, xa, xb, la, lb, win);
             }
-            if (!lanes_ok) {
+            k->edge_row = 0;
+            if (!lanes_ok && !erow) {
                 for (x = x0; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
             } else {
                 /* the reference path: the span's border columns, and inside [xa, xb)
                    the pixels whose window holds an unsafe value */
-                for (x = x0; x < xa; ++x) sbl__kernel_pixel_ref(k, R, x);
+                for (x = x0; x < xa; ++x)
+                    if (!(k->edge_done & 1)) sbl__kernel_pixel_ref(k, R, x);
                 if (win)
                     for (x = sbl__find_set(win, xa, xb); x < xb; x = sbl__find_set(win, x + 1, xb))
                         sbl__kernel_pixel_ref(k, R, x);
-                for (x = xb; x < x1; ++x) sbl__kernel_pixel_ref(k, R, x);
+                for (x = xb; x < x1; ++x)
+                    if (!(k->edge_done & 2)) sbl__kernel_pixel_ref(k, R, x);
             }
             {   /* interleave the staged row into the outputs */
                 const float *const *stage = SBL__PCAST(const float *const *, k->stage);
