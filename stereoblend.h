@@ -3644,12 +3644,16 @@ SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *ou
 {
     const __m128i lo = _mm_loadu_si128(SBL__PCAST(const __m128i *, idx));
     const __m128i hi = _mm_loadu_si128(SBL__PCAST(const __m128i *, idx + 4));
+    /* the masked form with a zero source and every lane on: the same loads, but g++
+       -Wmaybe-uninitialized cannot see through the plain form's undefined source */
+    const __m256d zero = _mm256_setzero_pd(), all = _mm256_cmp_pd(zero, zero, _CMP_EQ_OQ);
     /* a = pairs of lanes 0-3, b = 4-7; per 128-bit half the shuffle takes lanes
        (0 1 4 5 | 2 3 6 7), the 64-bit permute puts them in order */
 #define SBL__PAIR(k) \
     { \
-        const __m256 a = _mm256_castpd_ps(_mm256_i32gather_pd(SBL__PCAST(const double *, SBL__PCAST(const void *, base + 2 * k)), lo, 4)); \
-        const __m256 b = _mm256_castpd_ps(_mm256_i32gather_pd(SBL__PCAST(const double *, SBL__PCAST(const void *, base + 2 * k)), hi, 4)); \
+        const double *pairs = SBL__PCAST(const double *, SBL__PCAST(const void *, base + 2 * k)); \
+        const __m256 a = _mm256_castpd_ps(_mm256_mask_i32gather_pd(zero, pairs, lo, all, 4)); \
+        const __m256 b = _mm256_castpd_ps(_mm256_mask_i32gather_pd(zero, pairs, hi, all, 4)); \
         out[2 * k] = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))), _MM_SHUFFLE(3, 1, 2, 0))); \
         out[2 * k + 1] = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))), _MM_SHUFFLE(3, 1, 2, 0))); \
     }
