@@ -379,12 +379,7 @@ int main(int argc, char **argv)
     int quick = 0, reps = 3, i;
     const char *data = "../shared/data", *out = "bench/out";
     char path[1024], csv[1024], err[512];
-    static const struct { const char *name; sbl_scene_kind kind; int jitter; } synth[] = {
-        {"synthetic-dynamic", SBL_SCENE_DYNAMIC, 1},
-        {"synthetic-static", SBL_SCENE_STATIC, 0},
-        {"synthetic-shadow", SBL_SCENE_SHADOW, 0},
-        {"synthetic-pan", SBL_SCENE_PAN, 0},
-    };
+    const sbr_synth_scene *const synth = sbr_synth_scenes;
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0) quick = 1;
         else if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = atoi(argv[++i]);
@@ -411,7 +406,7 @@ int main(int argc, char **argv)
            "# with equal RMSE (ladder, log-log); indep spp = mse(1 spp) / mse(result);\n"
            "# traced %% = right-eye pixels that still needed a ray.\n",
            quick ? " (quick)" : "", reps, reps > 1 ? "s, median" : "");
-    for (i = 0; i < (quick ? 1 : 4); ++i) {
+    for (i = 0; i < (quick ? 1 : SBR_SYNTH_SCENES); ++i) {
         sbl_scene_desc d;
         sbr_seq seq;
         if (!in_list(only_scenes, synth[i].name)) continue;

@@ -710,20 +710,15 @@ int main(int argc, char **argv)
 {
     const char *only = argc > 1 ? argv[1] : NULL;
     const char *only_c = argc > 2 ? argv[2] : NULL;
-    static const struct { const char *name; sbl_scene_kind kind; int jitter; } synth[] = {
-        {"synthetic-dynamic", SBL_SCENE_DYNAMIC, 1},
-        {"synthetic-static", SBL_SCENE_STATIC, 0},
-        {"synthetic-shadow", SBL_SCENE_SHADOW, 0},
-        {"synthetic-pan", SBL_SCENE_PAN, 0},
-    };
+    const sbr_synth_scene *const synth = sbr_synth_scenes;
     static const char *const real[] = {"atrium", "gallery"};
     int s, i, nc = (int)(sizeof cands / sizeof cands[0]);
     char err[256], path[512];
-    for (s = 0; s < 6; ++s) {
+    for (s = 0; s < SBR_SYNTH_SCENES + 2; ++s) {
         sbr_seq seq;
-        const char *nm = s < 4 ? synth[s].name : real[s - 4];
+        const char *nm = s < SBR_SYNTH_SCENES ? synth[s].name : real[s - SBR_SYNTH_SCENES];
         if (only && !strstr(only, nm)) continue;
-        if (s < 4) {
+        if (s < SBR_SYNTH_SCENES) {
             sbl_scene_desc d;
             memset(&d, 0, sizeof d);
             d.kind = synth[s].kind; d.jitter = synth[s].jitter;

@@ -74,23 +74,18 @@ int main(int argc, char **argv)
 {
     const char *only = argc > 1 ? argv[1] : NULL;
     const char *mlist = argc > 2 ? argv[2] : "default,ema-0.2,progressive,paper";
-    static const struct { const char *name; sbl_scene_kind kind; int jitter; } synth[] = {
-        {"synthetic-dynamic", SBL_SCENE_DYNAMIC, 1},
-        {"synthetic-static", SBL_SCENE_STATIC, 0},
-        {"synthetic-shadow", SBL_SCENE_SHADOW, 0},
-        {"synthetic-pan", SBL_SCENE_PAN, 0},
-    };
+    const sbr_synth_scene *const synth = sbr_synth_scenes;
     static const char *const real[] = {"atrium", "gallery"};
     char err[256], path[512], buf[512];
     int s;
     printf("%-18s %-14s %9s %9s %9s %6s %6s %9s %6s\n", "scene", "method", "E_own", "E_oth", "C",
            "rho", "C/Eown", "E_beta.5", "valid%");
-    for (s = 0; s < 6; ++s) {
+    for (s = 0; s < SBR_SYNTH_SCENES + 2; ++s) {
         sbr_seq seq;
-        const char *nm = s < 4 ? synth[s].name : real[s - 4];
+        const char *nm = s < SBR_SYNTH_SCENES ? synth[s].name : real[s - SBR_SYNTH_SCENES];
         char *tok;
         if (only && !strstr(only, nm)) continue;
-        if (s < 4) {
+        if (s < SBR_SYNTH_SCENES) {
             sbl_scene_desc d = sbr_bench_scene_desc(synth[s].kind, synth[s].jitter, 0);
             if (sbr_seq_synthetic(&seq, &d, nm, 1) != 0) return 1;
         } else {

@@ -103,6 +103,11 @@ int  sbr_seq_synthetic(sbr_seq *s, const sbl_scene_desc *desc, const char *name,
 /* The synthetic scene as `make bench` renders it: 160x90, 24 frames, 128-spp reference,
    seed 7 (quick: 96x54, 8 frames, 32 spp). */
 sbl_scene_desc sbr_bench_scene_desc(sbl_scene_kind kind, int jitter, int quick);
+/* The bench's synthetic scenes in its order (the shared renders follow it: atrium,
+   gallery); jitter: head-tracking jitter on the camera */
+typedef struct sbr_synth_scene { const char *name; sbl_scene_kind kind; int jitter; } sbr_synth_scene;
+#define SBR_SYNTH_SCENES 4
+extern const sbr_synth_scene sbr_synth_scenes[SBR_SYNTH_SCENES];
 int  sbr_seq_dataset(sbr_seq *s, const char *dir, int max_frames, char *err, int err_size);
 void sbr_seq_free(sbr_seq *s);
 
@@ -152,6 +157,13 @@ static void sbr_camera_from(sbl_camera *c, const float *world_to_cam, const floa
     memcpy(c->world_to_view, world_to_cam, sizeof c->world_to_view);
     memcpy(c->view_to_clip, proj, sizeof c->view_to_clip);
 }
+
+const sbr_synth_scene sbr_synth_scenes[SBR_SYNTH_SCENES] = {
+    {"synthetic-dynamic", SBL_SCENE_DYNAMIC, 1},
+    {"synthetic-static", SBL_SCENE_STATIC, 0},
+    {"synthetic-shadow", SBL_SCENE_SHADOW, 0},
+    {"synthetic-pan", SBL_SCENE_PAN, 0},
+};
 
 sbl_scene_desc sbr_bench_scene_desc(sbl_scene_kind kind, int jitter, int quick)
 {
