@@ -4157,6 +4157,10 @@ SBL__NOINLINE void sbl__lanes_taps_pairs(const sbl__tap_src *s, sbl__tap_plan *p
     if (ch == 3 && !sky && flag && !ev) {
         if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 0, 1, 0);
         else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 0, 1, 0);
+    } else if (ch == 3 && !sky && flag && ev) {
+        /* the same call with the evidence plane (its hard case: scattered vectors) */
+        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 1, 1, 0);
+        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 1, 1, 0);
     } else {
         sbl__lanes_taps(s, p, i, fallback, r, x, cstep, ch, 0, sky, full, flag, ev, 1, 0);
     }
