@@ -188,6 +188,30 @@ static void compare_with_pixel_gather(sbl__temporal_rp *rp, const sbl__ring_row 
     }
 }
 
+/* The stereo counterpart: row y of the stereo row gather (all w pixels) in ra against
+   the pixel gather written into rb */
+static void compare_stereo_with_pixel_gather(sbl__stereo_rp *rp, sbl__ring_row *ra, sbl__ring_row *rb, int y,
+                                             int w, int ch, int contracts, const char *what, int it, int rig,
+                                             int *pixels, int *mismatches, int *empty)
+{
+    int x, c;
+    sbl__stereo_rp_row(rp, ra, y, 0, w);
+    for (x = 0; x < w; ++x) {
+        float tmp[4] = {0, 0, 0, 0};
+        sbl__ring_put(rb, x, sbl__stereo_rp_pixel(rp, x, y, tmp), tmp, ch);
+    }
+    for (x = 0; x < w; ++x) {
+        int bad = !same_float(ra->n[x], rb->n[x], contracts) || memcmp(&ra->v[x], &rb->v[x], 4) != 0;
+        for (c = 0; c < ch; ++c) bad |= !same_float(ra->x[c][x], rb->x[c][x], contracts);
+        if (bad && *mismatches < 5)
+            printf("  %s case %d (rig %d) pixel (%d,%d): n %.9g vs %.9g\n", what, it, rig, x, y, ra->n[x],
+                   rb->n[x]);
+        *mismatches += bad;
+        *empty += !(rb->n[x] > 0.0f);
+        ++*pixels;
+    }
+}
+
 /* Two ring rows (ra, rb) over the caller's planes, float[2][P][W] with P >= 7: x (4
    channels), n, v and y[0], one after the other, each row's planes filled with 0xff
    bytes (NaN) so that a value the gather should have written and did not shows. */
@@ -397,23 +421,9 @@ static void test_stereo_row_gather(void)
         CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
         CHECK(sbl__row_gather_ok(&rp.src));
         BIND_RING_ROWS(ra, rb, planes, unsafe);
-        for (y = 0; y < h; ++y) {
-            sbl__stereo_rp_row(&rp, &ra, y, 0, w);
-            for (x = 0; x < w; ++x) {
-                float tmp[4] = {0, 0, 0, 0};
-                sbl__ring_put(&rb, x, sbl__stereo_rp_pixel(&rp, x, y, tmp), tmp, ch);
-            }
-            for (x = 0; x < w; ++x) {
-                int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
-                for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
-                if (bad && mismatches < 5)
-                    printf("  stereo row gather case %d (rig %d) pixel (%d,%d): n %.9g vs %.9g\n", it,
-                           rig, x, y, ra.n[x], rb.n[x]);
-                mismatches += bad;
-                none += !(rb.n[x] > 0.0f);
-                ++pixels;
-            }
-        }
+        for (y = 0; y < h; ++y)
+            compare_stereo_with_pixel_gather(&rp, &ra, &rb, y, w, ch, contracts, "stereo row gather", it, rig,
+                                             &pixels, &mismatches, &none);
         for (e = 0; e < 2; ++e) { free(col[e].mem); free(len[e].mem); free(dep[e].mem); free(disp[e].mem); }
     }
     printf("  %s stereo row gather vs pixel gather: %d pixels (%d without a match), %d differ\n",
@@ -1294,23 +1304,9 @@ static void test_row_gather_normals(void)
             e = (it / 2) & 1;
             CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
             CHECK(sbl__row_gather_ok(&rp.src));
-            for (y = 0; y < h; ++y) {
-                sbl__stereo_rp_row(&rp, &ra, y, 0, w);
-                for (x = 0; x < w; ++x) {
-                    float tmp[4] = {0, 0, 0, 0};
-                    sbl__ring_put(&rb, x, sbl__stereo_rp_pixel(&rp, x, y, tmp), tmp, ch);
-                }
-                for (x = 0; x < w; ++x) {
-                    int bad = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
-                    for (c = 0; c < ch; ++c) bad |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
-                    if (bad && smismatches < 5)
-                        printf("  stereo normals / ids case %d (rig %d) pixel (%d,%d): n %.9g vs %.9g\n", it,
-                               (int)sd.rig, x, y, ra.n[x], rb.n[x]);
-                    smismatches += bad;
-                    sempty += !(rb.n[x] > 0.0f);
-                    ++spixels;
-                }
-            }
+            for (y = 0; y < h; ++y)
+                compare_stereo_with_pixel_gather(&rp, &ra, &rb, y, w, ch, contracts, "stereo normals / ids", it,
+                                                 (int)sd.rig, &spixels, &smismatches, &sempty);
             free(disp.mem); free(disp2.mem);
         }
         for (i = 0; i < 4; ++i) free(mem[i]);
