@@ -3879,6 +3879,19 @@ SBL__INLINE void sbl__lanes_tap_ev(const sbl__tap_src *s, int t, sbl__v w, sbl__
     *acce = sbl__add(*acce, masked ? sbl__sel(ok, term, sbl__set1(0.0f)) : term);
 }
 
+/* TAP(t, m) for the taps that weigh in some lane: tap 0; taps 1 / 3 unless every
+   lane's x fraction is 0 (skip_x), taps 2 / 3 unless every y fraction is (skip_y); m a
+   constant (masked or not), so each inlined instance keeps it fixed */
+#define SBL__EACH_TAP(TAP, m)                                                              \
+    do {                                                                                   \
+        TAP(0, m);                                                                         \
+        if (!skip_x) TAP(1, m);                                                            \
+        if (!skip_y) {                                                                     \
+            TAP(2, m);                                                                     \
+            if (!skip_x) TAP(3, m);                                                        \
+        }                                                                                  \
+    } while (0)
+
 /* The evidence plane of plan entries [i, i + VW) into r->e + x, in the colour's taps
    (sbl__lanes_taps with the plane, after the colour: its weights w, tap masks ok, skipped
    taps, reciprocal weight sum, validity, redo and fast lanes). The plane's own gather
@@ -3901,21 +3914,8 @@ SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *
     sbl__m use;
     int c, bits;
 #define SBL__TAP_EV(t, m) sbl__lanes_tap_ev(s, t, w##t, ok##t, ebase, lidx, &acce, contiguous, m)
-    if (!masked) {
-        SBL__TAP_EV(0, 0);
-        if (!skip_x) SBL__TAP_EV(1, 0);
-        if (!skip_y) {
-            SBL__TAP_EV(2, 0);
-            if (!skip_x) SBL__TAP_EV(3, 0);
-        }
-    } else {
-        SBL__TAP_EV(0, 1);
-        if (!skip_x) SBL__TAP_EV(1, 1);
-        if (!skip_y) {
-            SBL__TAP_EV(2, 1);
-            if (!skip_x) SBL__TAP_EV(3, 1);
-        }
-    }
+    if (!masked) SBL__EACH_TAP(SBL__TAP_EV, 0);
+    else SBL__EACH_TAP(SBL__TAP_EV, 1);
 #undef SBL__TAP_EV
     e = sbl__min(sbl__max(sbl__mul(acce, inv), sbl__sub(zero, fmax)), fmax);
     use = sbl__mandnot(sbl__mand(valid, sbl__gt(e, zero)),
@@ -4042,21 +4042,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
 #define SBL__SUM(t, m) \
     sbl__lanes_tap_sum(s, t, w##t, ok##t, n##t, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, m, \
                        pair ? cv[t] : NULL)
-        if (sbl__mbits(all) == (1 << SBL__VW) - 1) {
-            SBL__SUM(0, 0);
-            if (!skip_x) SBL__SUM(1, 0);
-            if (!skip_y) {
-                SBL__SUM(2, 0);
-                if (!skip_x) SBL__SUM(3, 0);
-            }
-        } else {
-            SBL__SUM(0, 1);
-            if (!skip_x) SBL__SUM(1, 1);
-            if (!skip_y) {
-                SBL__SUM(2, 1);
-                if (!skip_x) SBL__SUM(3, 1);
-            }
-        }
+        if (sbl__mbits(all) == (1 << SBL__VW) - 1) SBL__EACH_TAP(SBL__SUM, 0);
+        else SBL__EACH_TAP(SBL__SUM, 1);
 #undef SBL__SUM
     }
     nonfinite = sbl__nonfinite(accn);
