@@ -2205,6 +2205,97 @@ SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sb
     return 1;
 }
 
+#ifdef SBL_PROTO_CR_MIX
+/* Prototype (bench/proto_stereo.c, docs/ESTIMATORS.md 5.4): the per-pixel choice between
+   the bilinear and the Catmull-Rom history, out = bil + k (cr - bil) with
+   k = (D^2 - C) / (D^2 + V_d), D^2 = max(0, |d|^2 - V_d), d = cr - bil, V_d and C the
+   noise of d and the noise the two share for a history of per-tap noise variance
+   s_h^2 = sigma^2 / N (independent taps), sigma^2 the new frame's noise variance at the
+   pixel (Laplacian residuals over the 3x3, which a linear ramp does not inflate).
+   sbl__proto_mix_mode: 0 bilinear, 1 Catmull-Rom, 2 the mix, 3 the mix with k in {0, 1},
+   4 the mix with s_h^2 = sigma^2 (N ignored), 5 the mix with the detail counted over the
+   history's memory. */
+static int sbl__proto_mix_mode = 2;
+static double sbl__proto_mix_scale = 1.0;
+static float sbl__gather_cubic_mix(const sbl__temporal_rp *s, const sbl__tap_want *t, int x,
+                                   int y, double sx, double sy, float *out)
+{
+    sbl__tap_src bs = s->src;
+    float bil[4], cr[4];
+    const int ch = s->src.color.ch;
+    float n, n2;
+    double wx[4], wy[4], bx, by, fx, fy, sbb, sbc, scc, vw, cw, d2 = 0.0, s2 = 0.0, k;
+    int c, i, j;
+    bs.cubic = 0;
+    n = sbl__gather(&bs, t, sx, sy, !s->rp.no_fallback, bil);
+    if (sbl__proto_mix_mode == 0 || !(n > 0.0f)) {
+        for (c = 0; c < ch; ++c) out[c] = bil[c];
+        return n;
+    }
+    n2 = sbl__gather(&s->src, t, sx, sy, !s->rp.no_fallback, cr);
+    (void)n2;
+    if (sbl__proto_mix_mode == 1) {
+        for (c = 0; c < ch; ++c) out[c] = cr[c];
+        return n;
+    }
+    bx = sx - 0.5; by = sy - 0.5;
+    fx = bx - floor(bx); fy = by - floor(by);
+    {
+        /* separable sums: sum wb^2, sum wb wc, sum wc^2 (wb on taps 1, 2) */
+        double bxx = 0, cxx = 0, bcx = 0, byy = 0, cyy = 0, bcy = 0;
+        sbl__catmull_rom(fx, wx);
+        sbl__catmull_rom(fy, wy);
+        for (i = 0; i < 4; ++i) {
+            const double ax = i == 1 ? 1.0 - fx : i == 2 ? fx : 0.0;
+            const double ay = i == 1 ? 1.0 - fy : i == 2 ? fy : 0.0;
+            bxx += ax * ax; cxx += wx[i] * wx[i]; bcx += ax * wx[i];
+            byy += ay * ay; cyy += wy[i] * wy[i]; bcy += ay * wy[i];
+        }
+        sbb = bxx * byy; scc = cxx * cyy; sbc = bcx * bcy;
+        vw = scc - 2.0 * sbc + sbb;
+        cw = sbc - sbb;
+    }
+    {
+        /* sigma^2 of the new frame: Laplacian residuals L = y - mean4 (variance 5/4 sigma^2
+           on white noise) averaged over the 3x3 around the pixel, summed over channels */
+        const sbl__flat f = sbl__flatten(&s->frame->color);
+        const int w = s->frame->color.width, h = s->frame->color.height;
+        double acc = 0.0;
+        int cnt = 0;
+        for (j = -1; j <= 1; ++j)
+            for (i = -1; i <= 1; ++i) {
+                const int px = x + i, py = y + j;
+                if (px < 1 || py < 1 || px >= w - 1 || py >= h - 1) continue;
+                for (c = 0; c < ch && c < 3; ++c) {
+                    const double l = SBL__AT(f, px, py)[c] -
+                                     0.25 * (SBL__AT(f, px - 1, py)[c] + SBL__AT(f, px + 1, py)[c] +
+                                             SBL__AT(f, px, py - 1)[c] + SBL__AT(f, px, py + 1)[c]);
+                    acc += l * l;
+                }
+                ++cnt;
+            }
+        s2 = cnt ? acc / (1.25 * cnt) : 0.0;
+        if (sbl__proto_mix_mode != 4) s2 /= (n > 1.0f ? n : 1.0f);
+        s2 *= sbl__proto_mix_scale;
+    }
+    for (c = 0; c < ch && c < 3; ++c) d2 += (double)(cr[c] - bil[c]) * (cr[c] - bil[c]);
+    {
+        const double vd = vw * s2;
+        /* mode 5: a fetch's blur bias stays in the history and adds up coherently over
+           its memory (about 1 / a^2 = N^2 in energy), its noise incoherently (about
+           1 / (2a - a^2)): the detail counts g = 2N - 1 times the noise */
+        const double g = sbl__proto_mix_mode == 5 ? 2.0 * (n > 1.0f ? n : 1.0f) - 1.0 : 1.0;
+        const double dd = g * (d2 > vd ? d2 - vd : 0.0);
+        k = dd + vd > 0.0 ? (dd - cw * s2) / (dd + vd) : 1.0;
+        if (k < 0.0) k = 0.0;
+        if (k > 1.0) k = 1.0;
+        if (sbl__proto_mix_mode == 3) k = k >= 0.5 ? 1.0 : 0.0;
+    }
+    for (c = 0; c < ch; ++c) out[c] = SBL__CAST(float, bil[c] + k * (cr[c] - bil[c]));
+    return n;
+}
+#endif
+
 /* x* and its N for target pixel (x, y); returns 0 when the pixel must reset. */
 static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
 {
@@ -2213,6 +2304,9 @@ static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
     double sx, sy;
     if (!s->history) return 0.0f;
     if (!sbl__temporal_rp_pos(s, x, y, &t, &sx, &sy)) return 0.0f;
+#ifdef SBL_PROTO_CR_MIX
+    if (s->src.cubic) return sbl__gather_cubic_mix(s, &t, x, y, sx, sy, out);
+#endif
     return sbl__gather(&s->src, &t, sx, sy, !s->rp.no_fallback, out);
 }
 
