@@ -2206,17 +2206,16 @@ SBL__INLINE int sbl__temporal_rp_pos(const sbl__temporal_rp *s, int x, int y, sb
 }
 
 #ifdef SBL_PROTO_CR_MIX
-/* Prototype (bench/proto_stereo.c, docs/ESTIMATORS.md 5.4): the per-pixel choice between
-   the bilinear and the Catmull-Rom history, out = bil + k (cr - bil) with
-   k = (D^2 - C) / (D^2 + V_d), D^2 = max(0, |d|^2 - V_d), d = cr - bil, V_d and C the
-   noise of d and the noise the two share for a history of per-tap noise variance
-   s_h^2 = sigma^2 / N (independent taps), sigma^2 the new frame's noise variance at the
-   pixel (Laplacian residuals over the 3x3, which a linear ramp does not inflate).
-   sbl__proto_mix_mode: 0 bilinear, 1 Catmull-Rom, 2 the mix, 3 the mix with k in {0, 1},
-   4 the mix with s_h^2 = sigma^2 (N ignored), 5 the mix with the detail counted over the
-   history's memory. */
-static int sbl__proto_mix_mode = 2;
-static double sbl__proto_mix_scale = 1.0;
+/* Prototype, measured and not adopted (docs/ESTIMATORS.md 4.8; bench/proto_stereo.c):
+   with SBL_HISTORY_CATMULL_ROM, the per-pixel choice between the bilinear and the
+   Catmull-Rom history of 5.4, out = bil + k (cr - bil), k = (g D^2 - C) / (g D^2 + V_d),
+   D^2 = max(0, |d|^2 - V_d), d = cr - bil, V_d and C the noise of d and the noise the two
+   share for a history of per-tap noise variance s_h^2 = sigma^2 / N (independent taps),
+   sigma^2 the new frame's noise at the pixel (Laplacian residuals over the 3x3, which a
+   linear ramp does not inflate). SBL_PROTO_CR_MIX: 1 bilinear, 2 the mix with g = 1 (one
+   fetch's error), 5 the mix with g = 2N - 1 (the blur adds up over the history's
+   memory), anything else Catmull-Rom. Reference gather only. */
+#define sbl__proto_mix_mode (SBL_PROTO_CR_MIX + 0 == 1 ? 0 : SBL_PROTO_CR_MIX + 0)
 static float sbl__gather_cubic_mix(const sbl__temporal_rp *s, const sbl__tap_want *t, int x,
                                    int y, double sx, double sy, float *out)
 {
@@ -2234,7 +2233,7 @@ static float sbl__gather_cubic_mix(const sbl__temporal_rp *s, const sbl__tap_wan
     }
     n2 = sbl__gather(&s->src, t, sx, sy, !s->rp.no_fallback, cr);
     (void)n2;
-    if (sbl__proto_mix_mode == 1) {
+    if (sbl__proto_mix_mode != 2 && sbl__proto_mix_mode != 5) {
         for (c = 0; c < ch; ++c) out[c] = cr[c];
         return n;
     }
@@ -2275,8 +2274,7 @@ static float sbl__gather_cubic_mix(const sbl__temporal_rp *s, const sbl__tap_wan
                 ++cnt;
             }
         s2 = cnt ? acc / (1.25 * cnt) : 0.0;
-        if (sbl__proto_mix_mode != 4) s2 /= (n > 1.0f ? n : 1.0f);
-        s2 *= sbl__proto_mix_scale;
+        s2 /= (n > 1.0f ? n : 1.0f);
     }
     for (c = 0; c < ch && c < 3; ++c) d2 += (double)(cr[c] - bil[c]) * (cr[c] - bil[c]);
     {
@@ -2289,7 +2287,6 @@ static float sbl__gather_cubic_mix(const sbl__temporal_rp *s, const sbl__tap_wan
         k = dd + vd > 0.0 ? (dd - cw * s2) / (dd + vd) : 1.0;
         if (k < 0.0) k = 0.0;
         if (k > 1.0) k = 1.0;
-        if (sbl__proto_mix_mode == 3) k = k >= 0.5 ? 1.0 : 0.0;
     }
     for (c = 0; c < ch; ++c) out[c] = SBL__CAST(float, bil[c] + k * (cr[c] - bil[c]));
     return n;
@@ -2579,6 +2576,11 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
 #define SBL_STEREO_LAG_SHARE 1 /* 0: all of the bias is X's, the rule before */
 #endif
 #define SBL__LAG_AGE_MAX 65536.0
+/* sbl_temporal_desc.stereo_shared_bias counts c times only the part of the estimated
+   bias energy beyond the noise of its estimate (docs/ESTIMATORS.md 4.8; measured) */
+#ifndef SBL_SHARED_BIAS_EXCESS
+#define SBL_SHARED_BIAS_EXCESS 0
+#endif
 static double sbl__lag_share(double n_x, double n_y)
 {
     double u = n_x - 1.0, v = n_y - 1.0;
@@ -2672,8 +2674,16 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             if (b_eb > bias2) bias2 = b_eb;
         }
         /* a stereo blend follows: a bias both eyes share counts 1 + c times (4.7) */
-        if (p->temporal && p->shared_bias != 0.0f)
+        if (p->temporal && p->shared_bias != 0.0f) {
+#if SBL_SHARED_BIAS_EXCESS
+            /* 4.8: only the bias is shared, not the noise of its estimate (se2) */
+            double ex = pd2 - se2;
+            if (ex > bias2) ex = bias2;
+            if (ex > 0.0) bias2 += SBL__CAST(double, p->shared_bias) * ex;
+#else
             bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
+#endif
+        }
         {
             /* pooled stereo: the part of the bias that is X's (sbl__lag_share) */
             double fx = SBL_STEREO_LAG_SHARE && p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal
@@ -6940,8 +6950,14 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             sbl__v b_eb = sbl__mul(sh, sbl__add(sbl__mul(sh, pd2), se2));
             b2 = sbl__sel(st->two_pairs, sbl__sel(sbl__gt(st->pool_r, zero), sbl__max(b2, b_eb), b2), b2);
         }
-        if (temporal && p->shared_bias != 0.0f) /* 4.7; stereo: always 0 */
+        if (temporal && p->shared_bias != 0.0f) { /* 4.7; stereo: always 0 */
+#if SBL_SHARED_BIAS_EXCESS
+            sbl__v ex = sbl__max(sbl__min(sbl__sub(pd2, se2), b2), zero);
+            b2 = sbl__add(b2, sbl__mul(ex, sbl__set1(p->shared_bias)));
+#else
             b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias));
+#endif
+        }
         if (SBL_STEREO_LAG_SHARE && est == SBL_ESTIMATOR_POOLED && !temporal) {
             /* the part of the bias that is X's, as sbl__lag_share */
             const sbl__v amax = sbl__set1(SBL__CAST(float, SBL__LAG_AGE_MAX));

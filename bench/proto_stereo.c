@@ -145,9 +145,7 @@ int main(int argc, char **argv)
     char err[256], path[512], buf[512];
     int s;
 #ifdef SBL_PROTO_CR_MIX
-    if (getenv("MIX")) sbl__proto_mix_mode = atoi(getenv("MIX"));
-    if (getenv("MIXS")) sbl__proto_mix_scale = atof(getenv("MIXS"));
-    printf("mix mode %d scale %g\n", sbl__proto_mix_mode, sbl__proto_mix_scale);
+    printf("history fetch mix %d (run:default-stereo-cr)\n", sbl__proto_mix_mode);
 #endif
     printf("%-18s %-14s %9s %9s %9s %6s %6s %9s %6s\n", "scene", "method", "E_own", "E_oth", "C",
            "rho", "C/Eown", "E_beta.5", "valid%");
