@@ -2578,6 +2578,11 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
 #define SBL__LAG_AGE_MAX 65536.0
 /* sbl_temporal_desc.stereo_shared_bias counts c times only the part of the estimated
    bias energy beyond the noise of its estimate (docs/ESTIMATORS.md 4.8; measured) */
+/* the eyes' lags correlated by rho = SBL_STEREO_LAG_RHO / 100 in the lag share (0:
+   independent, the default) */
+#ifndef SBL_STEREO_LAG_RHO
+#define SBL_STEREO_LAG_RHO 0
+#endif
 #ifndef SBL_SHARED_BIAS_EXCESS
 #define SBL_SHARED_BIAS_EXCESS 0
 #endif
@@ -2588,7 +2593,15 @@ static double sbl__lag_share(double n_x, double n_y)
     if (!(u > 0.0)) u = 0.0;
     if (u > SBL__LAG_AGE_MAX) u = SBL__LAG_AGE_MAX;
     if (v > SBL__LAG_AGE_MAX) v = SBL__LAG_AGE_MAX;
+#if SBL_STEREO_LAG_RHO
+    {   /* lags correlated by rho (docs/ESTIMATORS.md 4.8; measured, not adopted) */
+        const double r = SBL_STEREO_LAG_RHO / 100.0, den = u * u + v * v - 2.0 * r * u * v;
+        double f = den > 0.0 ? (u * u - r * u * v) / den : 0.5;
+        return f < 0.0 ? 0.0 : f > 1.0 ? 1.0 : f;
+    }
+#else
     return u * u / (u * u + v * v);
+#endif
 }
 
 /* The spatial lean of the pooled stereo beta (docs/ESTIMATORS.md section 4.2): a0 the
@@ -6964,7 +6977,16 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             sbl__v u = sbl__min(sbl__max(sbl__sub(n_xc, one), zero), amax);
             sbl__v v = sbl__min(sbl__max(sbl__sub(n_y, one), zero), amax);
             sbl__v u2 = sbl__mul(u, u);
+#if SBL_STEREO_LAG_RHO
+            const sbl__v rr = sbl__set1(SBL__CAST(float, SBL_STEREO_LAG_RHO / 100.0));
+            sbl__v uv = sbl__mul(rr, sbl__mul(u, v));
+            sbl__v dn = sbl__sub(sbl__add(u2, sbl__mul(v, v)), sbl__add(uv, uv));
+            sbl__v fx = sbl__sel(sbl__gt(dn, zero), sbl__div(sbl__sub(u2, uv), sbl__max(dn, tiny)),
+                                 sbl__set1(0.5f));
+            fx = sbl__min(sbl__max(fx, zero), one);
+#else
             sbl__v fx = sbl__div(u2, sbl__max(sbl__add(u2, sbl__mul(v, v)), tiny));
+#endif
             fx = sbl__sel(sbl__gt(v, zero), fx, one);
             num = sbl__add(sbl__mul(fx, b2), vx);
             den = sbl__add(sbl__add(b2, vx), vy);
