@@ -3136,7 +3136,8 @@ typedef struct sbl__kernel {
     int rows_valid;          /* sbl__kernel_run_span: 1 if the three window rows are
                                 all_valid (every chunk full); 0: the lanes look */
     /* 1: the ring rows carry the evidence plane, gathered in the colour's plan by
-       sbl__ring_load (the rows in [evid_y0, evid_y1)); sbl__evidence_gather points
+       sbl__ring_load (the rows in [evid_y0, evid_y1): every row, halo rows included,
+       so that a row is gathered the same way in every band); sbl__evidence_gather points
        evid_in at the row's plane. 0: evid_in is evid_buf, filled by a pass of its own */
     int evid_fused, evid_y0, evid_y1;
     float *evid_buf;
@@ -3610,14 +3611,7 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
    gathers of both taps, half the elements (hardware gathers cost per element; SSE2
    loads a pair per instruction instead of a float). SBL__PAIRS 0 turns them off. */
 #ifndef SBL__PAIRS
-/* off under -ffast-math: there test_paths' whole-frame against banded calls with random
-   motion differ in 2 checks with pairs on (0 with them off; not yet understood, found at
-   the end of session 10), while every build without it is bit-exact with the pixel gather */
-#ifdef __FAST_MATH__
-#define SBL__PAIRS 0
-#else
 #define SBL__PAIRS 1
-#endif
 #endif
 #if SBL__VW == 16
 SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *out, int nf)
@@ -5589,7 +5583,7 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
 {
     int x, c, ch = k->ch, count = 0;
     r->gather_flags = 0;
-    /* the evidence plane in the colour's plan, on the rows the call filters */
+    /* the evidence plane in the colour's plan (on halo rows too: see evid_y0) */
     r->e = k->evid_fused && row >= k->evid_y0 && row < k->evid_y1 ? r->e_plane : NULL;
     if (k->gather_row) {
         k->gather_row(k->gather_ctx, r, row, xa, xb);
@@ -7913,8 +7907,14 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                 int j;
                 k.evid_fused = 1;
                 k.gather_row = sbl__temporal_rp_row_ev;
-                k.evid_y0 = y0;
-                k.evid_y1 = y1;
+                /* every row the ring loads, the halo rows above and below [y0, y1)
+                   too: a row's colour then comes from the same code whichever band
+                   loads it. (-ffast-math lets the compiler reassociate the tap sums
+                   differently in the instances with and without the plane: with the
+                   plane on the band's own rows only, a banded call's halo rows
+                   differed from the whole-frame call's in the last bit: session 11) */
+                k.evid_y0 = 0;
+                k.evid_y1 = h;
                 for (j = 0; j < 3; ++j) {
                     k.ring[j].e_plane = e + SBL__CAST(size_t, 2 + j) * pf;
                     k.ring[j].e_rp = &es;

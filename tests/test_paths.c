@@ -1324,6 +1324,110 @@ static void test_row_gather_normals(void)
 #endif
 }
 
+/* Bands of rows against one whole-image call, bit for bit (colour, N, the evidence
+   plane), over the shapes the row gather specialises: 1-4 channels, with and without
+   the evidence plane, normals / ids, sky rows, a moved nearer rectangle (the 3x3
+   fallback, disocclusions), a zero-motion stretch (rest tiles), random sub-pixel motion
+   elsewhere (scattered vectors: the pair gathers). A band loads the rows above and
+   below it too, so every row is gathered by several calls: its x* must not depend on
+   which. Run in the -ffast-math build as well, where two compiled instances of the same
+   sums may round differently (session 11: halo rows gathered without the plane). */
+static void test_bands_every_shape(void)
+{
+    sbt_rng rng = {5151};
+    int it, pixels = 0, differ = 0, calls = 0;
+    for (it = 0; it < 96; ++it) {
+        const int ch = 1 + it % 4, plane = (it / 4) % 2, nid = (it / 8) % 3;
+        const int w = 20 + (int)(sbt_uniform(&rng) * 60), h = 6 + (int)(sbt_uniform(&rng) * 12);
+        const int ax = (int)(sbt_uniform(&rng) * w * 0.5), ay = (int)(sbt_uniform(&rng) * h * 0.5);
+        const int aw = 4 + (int)(sbt_uniform(&rng) * w * 0.4), ah = 2 + (int)(sbt_uniform(&rng) * h * 0.5);
+        const int shift = 1 + (int)(sbt_uniform(&rng) * 5), sky_row = it % 3 == 1 ? (int)(sbt_uniform(&rng) * h) : -1;
+        const int rx = (int)(sbt_uniform(&rng) * w), rw = (int)(sbt_uniform(&rng) * 40);
+        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 0), len = sbt_img_new(w, h, 1, 0);
+        sbt_img depth = sbt_img_new(w, h, 1, 0), pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 0);
+        sbt_img ev = sbt_img_new(w, h, 1, 0), nrm = sbt_img_new(w, h, 3, 0), pnrm = sbt_img_new(w, h, 3, 0);
+        sbt_img ids = sbt_img_new(w, h, 1, 0), pids = sbt_img_new(w, h, 1, 0);
+        sbt_img oc[2], on[2], oe[2];
+        sbl_temporal_desc d;
+        sbl_frame f;
+        sbl_history hi;
+        sbl_temporal_output o[2];
+        size_t bytes = sbl_temporal_scratch_size(w, ch);
+        void *scratch = malloc(bytes);
+        int x, y, c, i, y0;
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                const int in_rect = x >= ax && x < ax + aw && y >= ay && y < ay + ah;
+                const int was_rect = x >= ax + shift && x < ax + aw + shift && y >= ay && y < ay + ah;
+                for (c = 0; c < ch; ++c) {
+                    sbt_at(&cur, x, y)[c] = (float)(0.5 + 0.2 * sbt_uniform(&rng));
+                    sbt_at(&hist, x, y)[c] = (float)(0.5 + 0.2 * sbt_uniform(&rng) + (was_rect ? 0.2 : 0.0));
+                }
+                *sbt_at(&len, x, y) = (float)(1 + 30 * sbt_uniform(&rng));
+                *sbt_at(&depth, x, y) = y == sky_row ? (float)HUGE_VAL : in_rect ? 2.0f : (float)(4.0 + 0.1 * sbt_uniform(&rng));
+                *sbt_at(&pdepth, x, y) = y == sky_row ? (float)HUGE_VAL : was_rect ? 2.0f : (float)(4.0 + 0.1 * sbt_uniform(&rng));
+                if (in_rect) {
+                    sbt_at(&mv, x, y)[0] = (float)shift;
+                    sbt_at(&mv, x, y)[1] = 0.0f;
+                } else if (x >= rx && x < rx + rw) {
+                    sbt_at(&mv, x, y)[0] = sbt_at(&mv, x, y)[1] = 0.0f;
+                } else {
+                    sbt_at(&mv, x, y)[0] = (float)(sbt_uniform(&rng) - 0.5);
+                    sbt_at(&mv, x, y)[1] = (float)(sbt_uniform(&rng) - 0.5);
+                }
+                *sbt_at(&ev, x, y) = (float)(0.5 + 3.0 * sbt_uniform(&rng));
+                for (c = 0; c < 3; ++c) {
+                    sbt_at(&nrm, x, y)[c] = (float)((c == 2 ? 1.0 : 0.0) + 0.3 * (sbt_uniform(&rng) - 0.5));
+                    sbt_at(&pnrm, x, y)[c] = (float)((c == 2 ? 1.0 : 0.0) + 0.3 * (sbt_uniform(&rng) - 0.5));
+                }
+                *sbt_at(&ids, x, y) = in_rect ? 2.0f : 1.0f;
+                *sbt_at(&pids, x, y) = was_rect ? 2.0f : sbt_uniform(&rng) < 0.05 ? 3.0f : 1.0f;
+            }
+        memset(&d, 0, sizeof d);
+        memset(&f, 0, sizeof f);
+        memset(&hi, 0, sizeof hi);
+        f.color = sbt_view(&cur); f.gbuffer.depth = sbt_view(&depth); f.gbuffer.motion = sbt_view(&mv);
+        hi.color = sbt_view(&hist); hi.length = sbt_view(&len); hi.gbuffer.depth = sbt_view(&pdepth);
+        if (nid) {
+            f.gbuffer.ids = sbt_view(&ids);
+            hi.gbuffer.ids = sbt_view(&pids);
+            if (nid == 1) { f.gbuffer.normals = sbt_view(&nrm); hi.gbuffer.normals = sbt_view(&pnrm); }
+        }
+        if (plane) hi.evidence = sbt_view(&ev);
+        for (i = 0; i < 2; ++i) {
+            oc[i] = sbt_img_new(w, h, ch, 0); on[i] = sbt_img_new(w, h, 1, 0); oe[i] = sbt_img_new(w, h, 1, 0);
+            memset(&o[i], 0, sizeof o[i]);
+            o[i].color = sbt_view(&oc[i]); o[i].length = sbt_view(&on[i]);
+            if (plane || it % 3 == 0) o[i].evidence = sbt_view(&oe[i]);
+        }
+        CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o[0]), SBL_OK);
+        for (y0 = 0; y0 < h; ++calls) {
+            int y1 = y0 + 1 + (int)(sbt_uniform(&rng) * 4);
+            if (y1 > h) y1 = h;
+            CHECK_EQ(sbl_temporal_filter(&d, &f, &hi, &o[1], y0, y1, scratch, bytes), SBL_OK);
+            y0 = y1;
+        }
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                int bad = memcmp(sbt_at(&oc[0], x, y), sbt_at(&oc[1], x, y), sizeof(float) * (size_t)ch) != 0 ||
+                          memcmp(sbt_at(&on[0], x, y), sbt_at(&on[1], x, y), sizeof(float)) != 0;
+                if (o[0].evidence.data) bad |= memcmp(sbt_at(&oe[0], x, y), sbt_at(&oe[1], x, y), sizeof(float)) != 0;
+                if (bad && differ < 3)
+                    printf("  bands vs whole: case %d (ch %d plane %d nid %d) x %d y %d: c0 %.9g / %.9g\n", it, ch,
+                           plane, nid, x, y, sbt_at(&oc[0], x, y)[0], sbt_at(&oc[1], x, y)[0]);
+                differ += bad;
+                ++pixels;
+            }
+        for (i = 0; i < 2; ++i) { free(oc[i].mem); free(on[i].mem); free(oe[i].mem); }
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
+        free(ev.mem); free(nrm.mem); free(pnrm.mem); free(ids.mem); free(pids.mem);
+        free(scratch);
+    }
+    printf("  %s bands vs whole image, every shape: %d pixels in %d banded calls, %d differ\n", SBL_SIMD_NAME,
+           pixels, calls, differ);
+    CHECK(differ == 0);
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -1424,5 +1528,6 @@ int main(void)
     test_evidence_paths();
     test_evidence_row_gather();
     test_row_gather_normals();
+    test_bands_every_shape();
     return sbt_finish("test_paths");
 }
