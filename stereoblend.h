@@ -3862,13 +3862,14 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
 }
 
 /* The evidence plane's term of tap t (sbl__lanes_taps with the plane): N's tap index,
-   its own sum, as a 1-channel colour's in sbl__lanes_tap_sum */
+   its own sum, as a 1-channel colour's in sbl__lanes_tap_sum; pre: the tap's values
+   already read (in pairs) */
 SBL__INLINE void sbl__lanes_tap_ev(const sbl__tap_src *s, int t, sbl__v w, sbl__m ok,
                                    const float *ebase, const int *lidx, sbl__v *acce,
-                                   int contiguous, int masked)
+                                   int contiguous, int masked, const sbl__v *pre)
 {
     const ptrdiff_t o = (t >> 1) * s->length.stride + (t & 1) * s->length.step;
-    const sbl__v e = contiguous ? sbl__load(ebase + o + lidx[0]) : sbl__gatheri(ebase + o, lidx);
+    const sbl__v e = pre ? *pre : contiguous ? sbl__load(ebase + o + lidx[0]) : sbl__gatheri(ebase + o, lidx);
     const sbl__v term = sbl__mul(w, e);
     *acce = sbl__add(*acce, masked ? sbl__sel(ok, term, sbl__set1(0.0f)) : term);
 }
@@ -3892,22 +3893,30 @@ SBL__INLINE void sbl__lanes_tap_ev(const sbl__tap_src *s, int t, sbl__v w, sbl__
    has the same taps, tests, weights and validity wherever both sums are finite, so its
    value (renormalised and saturated as the colour's) where valid, stored as the ratio
    (sbl__evidence_pixel's test). Lanes the colour keeps whose evidence sum is not finite
-   take its pixel gather (redo 3); the colour's redo lanes take theirs with the colour. */
+   take its pixel gather (redo 3); the colour's redo lanes take theirs with the colour.
+   pair: a scattered vector whose views are packed (sbl__lanes_taps): the plane, laid
+   out as N (sbl__evidence_fused_ok), read two taps per gather as N is. */
 SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *p, int i,
                                           sbl__ring_row *r, int x, sbl__v w0, sbl__v w1,
                                           sbl__v w2, sbl__v w3, sbl__m ok0, sbl__m ok1,
                                           sbl__m ok2, sbl__m ok3, int skip_x, int skip_y,
                                           sbl__v inv, sbl__m valid, sbl__m redo, sbl__m fast,
-                                          int contiguous)
+                                          int contiguous, int pair)
 {
     const sbl__v zero = sbl__set1(0.0f), fmax = sbl__set1(FLT_MAX);
     const float *ebase = r->e_rp->src.color.p;
     const int *lidx = p->li + i;
     const int masked = sbl__mbits(sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3))) != (1 << SBL__VW) - 1;
-    sbl__v acce = zero, e;
+    sbl__v acce = zero, e, q[4];
     sbl__m use;
     int c, bits;
-#define SBL__TAP_EV(t, m) sbl__lanes_tap_ev(s, t, w##t, ok##t, ebase, lidx, &acce, contiguous, m)
+    if (pair) { /* taps 0, 1 (row y0) and 2, 3 (row y0 + 1) */
+        sbl__gather_pairs(ebase, lidx, q, 1);
+        if (!skip_y) sbl__gather_pairs(ebase + s->length.stride, lidx, q + 2, 1);
+        else q[2] = q[3] = zero; /* (not read) */
+    }
+#define SBL__TAP_EV(t, m) \
+    sbl__lanes_tap_ev(s, t, w##t, ok##t, ebase, lidx, &acce, contiguous, m, pair ? q + t : NULL)
     if (!masked) SBL__EACH_TAP(SBL__TAP_EV, 0);
     else SBL__EACH_TAP(SBL__TAP_EV, 1);
 #undef SBL__TAP_EV
@@ -4108,7 +4117,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
             if (bits & 1) p->redo[i + c] = SBL__CAST(unsigned char, ((only >> c) & 1) + 1);
     }
     if (ev) sbl__lanes_taps_evidence(s, p, i, r, x, w0, w1, w2, w3, ok0, ok1, ok2, ok3, skip_x, skip_y,
-                                     inv, valid, redo, fast, contiguous);
+                                     inv, valid, redo, fast, contiguous, pair);
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
