@@ -3489,6 +3489,20 @@ SBL__INLINE void sbl__tap_plan_set_nid(const sbl__tap_src *s, sbl__tap_plan *p, 
     }
 }
 
+/* The normal / id side of sbl__tap_want_init for target pixel (x, y), the same float
+   operations: for the plans that map positions in lanes and set entries one at a time
+   (the cameras). Returns 0 where the pixel resets (a normal whose squared length is not
+   finite). */
+SBL__INLINE int sbl__tap_want_nid(const sbl__target_geo *g, int x, int y, sbl__tap_want *t)
+{
+    t->id = g->ids.p ? *SBL__AT(g->ids, x, y) : 0.0f;
+    t->normal = g->normals.p ? SBL__AT(g->normals, x, y) : NULL;
+    t->normal_len2 = t->normal ? t->normal[0] * t->normal[0] + t->normal[1] * t->normal[1] +
+                                     t->normal[2] * t->normal[2]
+                               : 0.0f;
+    return !t->normal || sbl__finite(t->normal_len2);
+}
+
 /* The target's expectations of plan entry i for the pixel gather's fallback: depth and
    slack as given, normal (into nbuf) and id from the plan where the call tests them. */
 SBL__INLINE void sbl__tap_plan_want(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
@@ -5090,13 +5104,13 @@ SBL__INLINE void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x
    The camera source's position maths in double lanes (the layer is at the top of the
    row gather). */
 /* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
-   camera and no listed objects, no target normals or ids (their tests stay in
-   sbl__tap_want_init), an interior row (the depth slack reads both neighbours), target
-   depth packed. */
+   camera and no listed objects (whose ids choose the map per pixel), an interior row
+   (the depth slack reads both neighbours), target depth packed; the target's normals
+   and ids taken per entry (sbl__tap_want_nid), their taps tested in lanes. */
 SBL__INLINE int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     return s->source == SBL_TEMPORAL_CAMERA && s->history && !s->at_rest &&
-           !s->cam.object_count && !s->geo.normals.p && !s->geo.ids.p && y >= 1 &&
+           !s->cam.object_count && sbl__geo_nid_lanes_ok(&s->geo) && y >= 1 &&
            y + 1 < s->src.height && s->geo.depth.step == 1;
 }
 
@@ -5183,11 +5197,9 @@ SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan
         sbl__tap_plan_reset(p, i + l);
         if (!((keep >> l) & 1)) continue; /* no geometry, no ray, behind */
         if (!(ox[l] >= 0.0 && ox[l] < w && oy[l] >= 0.0 && oy[l] < h)) continue; /* outside */
+        if (!sbl__tap_want_nid(&s->geo, x + l, y, &t)) continue; /* a non-finite normal */
         t.depth = SBL__CAST(float, oz[l]);
         t.depth_slack = sf[l];
-        t.normal = NULL;
-        t.normal_len2 = 0.0f;
-        t.id = 0.0f;
         sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
     }
 }
@@ -8203,7 +8215,8 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 #define SBL__FAR_PX (1.0f / 256.0f)
 
 /* The two-camera rigs' plan for the VW pixels x .. x + VW - 1 of an interior row
-   (sbl__stereo_rp_pixel's target tests and map, sbl__tap_plan_set), the map in lanes;
+   (sbl__stereo_rp_pixel's target tests and map, sbl__tap_plan_set), the map in lanes,
+   the target's normal and id per entry;
    the matches' positions into psx / psy (0 where there is none). */
 SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p, int i, int x,
                                       int y, double *psx, double *psy)
@@ -8225,11 +8238,9 @@ SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p,
         psx[l] = psy[l] = 0.0;
         if (!((keep >> l) & 1)) continue;
         if (!(ox[l] >= 0.0 && ox[l] < sw && oy[l] >= 0.0 && oy[l] < sh)) continue;
+        if (!sbl__tap_want_nid(&s->geo, x + l, y, &t)) continue; /* a non-finite normal */
         t.depth = SBL__CAST(float, oz[l]);
         t.depth_slack = sf[l];
-        t.normal = NULL;
-        t.normal_len2 = 0.0f;
-        t.id = 0.0f;
         psx[l] = ox[l];
         psy[l] = oy[l];
         sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
@@ -8285,11 +8296,10 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     const int sw = s->source->color.width, sh = s->source->color.height, y = b->y;
     /* target depth packed and of the source's size, target normals / ids in lanes
-       (sbl__lanes_want_nid; the two-camera plan has none), an interior row (the depth
-       slack reads both neighbours) */
+       (sbl__lanes_want_nid; the two-camera plan: sbl__tap_want_nid per entry), an
+       interior row (the depth slack reads both neighbours) */
     const int geo = sbl__geo_nid_lanes_ok(&s->geo) && s->geo.width == sw &&
                     s->geo.height == sh && y >= 1 && y + 1 < sh;
-    const int nid = s->geo.normals.p || s->geo.ids.p;
     const int depth = s->geo.depth.p && s->geo.depth.step == 1;
     (void)r;
     if (b->row_state >= 0) { /* decided for this row */
@@ -8307,7 +8317,7 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
                       ? 3
                       : 0;
     else
-        b->mode = geo && depth && !nid ? 2 : 0;
+        b->mode = geo && depth ? 2 : 0;
     b->row_state = b->mode;
     return 0;
 }
