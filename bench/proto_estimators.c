@@ -428,6 +428,7 @@ static void region_share(const cand *c, int w, int h, const float *nx, const flo
    all its pixels. The runner calls the blend for eye 0 then eye 1 every frame, so the
    call's parity is the eye; prev_plane[e] is that eye's last output plane. */
 static float *prev_plane[2];
+static size_t prev_n[2];
 static int prev_have[2], call_count;
 static void region_share_raw(const cand *c, int w, int h)
 {
@@ -461,7 +462,11 @@ static void region_keep(const cand *c, int w, int h, const float *zout)
     const int e = call_count & 1;
     const size_t n = (size_t)w * h;
     if (c->region == 4) {
-        if (!prev_plane[e]) prev_plane[e] = (float *)malloc(n * sizeof(float));
+        if (prev_n[e] < n) { /* scenes differ in size */
+            free(prev_plane[e]);
+            prev_plane[e] = (float *)malloc(n * sizeof(float));
+            prev_n[e] = n;
+        }
         memcpy(prev_plane[e], zout, n * sizeof(float));
         prev_have[e] = 1;
     }
