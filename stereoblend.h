@@ -2514,6 +2514,10 @@ typedef struct sbl__weight_params {
     int temporal; /* X is a history (its N is a time since the last change) */
     float shared_bias; /* temporal: sbl_temporal_desc.stereo_shared_bias c (the bias
                           counts 1 + c times); 0 otherwise */
+    float region_m;    /* temporal, pooled, with the evidence plane: the factor M by which
+                          the region's share of change raises the prior odds against a
+                          change (sbl__evidence_share, set per row); 1 or 0 (a
+                          hand-made params block): none */
 } sbl__weight_params;
 
 /* Firefly limit of the robust estimator: the new sample may exceed the larger of the
@@ -2675,10 +2679,16 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             var_x = var_y * SBL__CAST(double, n_y) / SBL__CAST(double, n_x);
             se2 = pair_count == 1 ? var_x + var_y : 0.0;
         }
-        if (pair_count > 0)
-            bias2 = sbl__change_posterior(pd2, se2, k2,
-                                          p->temporal && SBL_HISTORY_PRIOR ? 0.5 * (SBL__CAST(double, n_x) + 1.0)
-                                                                          : 1.0) * pd2;
+        if (pair_count > 0) {
+            /* the history prior's odds (N + 1) / 2; with the region's share of change
+               (3.10): 0.5 ((N + 2) M - 1), the same at M = 1 */
+            double odds = 1.0;
+            if (p->temporal && SBL_HISTORY_PRIOR)
+                odds = p->region_m > 0.0f && p->region_m != 1.0f
+                           ? 0.5 * ((SBL__CAST(double, n_x) + 2.0) * SBL__CAST(double, p->region_m) - 1.0)
+                           : 0.5 * (SBL__CAST(double, n_x) + 1.0);
+            bias2 = sbl__change_posterior(pd2, se2, k2, odds) * pd2;
+        }
         if (pair_count > 1 && pool_r > 0.0) {
             /* empirical Bayes: with B ~ N(0, tau^2) and pd = B + noise(se2), the
                posterior mean of B^2 is sh^2 pd2 + sh se2, sh = tau^2 / (tau^2 + se2) =
@@ -2795,6 +2805,7 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.bias_threshold = bias;
     p.temporal = 0;
     p.shared_bias = 0.0f;
+    p.region_m = 1.0f;
     return p;
 }
 
@@ -3267,6 +3278,14 @@ typedef struct sbl__kernel {
        its window has two rows: the missing one is the other border-side row again
        (sbl__kernel_lanes_pooled_ch), counted out of the pairs (sbl__lanes_columns_cfg) */
     int edge_row;
+    /* the region's prior probability of change (sbl__evidence_share, docs/ESTIMATORS.md
+       3.10): the history's evidence plane as it is (NULL: none), the counts of its rows
+       share_at - 1 whose R passes c_R (0: not counted), and for the row in hand ln M,
+       the carried R's threshold c_R(M) and its garrote's (c_R(M) - 1)^2 */
+    const sbl_image *evid_prev;
+    long share_cnt[3];
+    int share_at[3];
+    double evid_lnm, evid_thr, evid_garrote;
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -5911,22 +5930,97 @@ static void sbl__evidence_store(const sbl__kernel *k, int y, int xa, int xb, int
     for (x = xa; x < xb; ++x) *sbl__px(&k->out_e, x, y) = pooled ? k->evid_out[x] : 1.0f;
 }
 
+/* A prior probability of change from the region (docs/ESTIMATORS.md 3.10). A moving
+   light changes most of a region, a static scene almost none of it, and the share of
+   change says how readily a pixel's own evidence should be believed. s = (k + 1) /
+   (n + 2) over the n pixels of rows y - 1 .. y + 1 of the history's evidence plane as it
+   is (last frame's R, not reprojected: a region's share needs no pixel's motion, and
+   every row-range call can read it), k of them beyond c_R: the rule of succession over
+   the region. A Beta prior of mean s and weight 2 for the pixel's probability of change,
+   updated by its history's N unchanged frames, gives 2 s / (N + 2): Laplace's 1 / (N + 2)
+   (section 2.2) at s = 1/2. So the prior odds against change grow by M = 1 / (2 s), and
+   each source of evidence asks for that much more: the local test's odds 0.5 ((N + 2) M
+   - 1), the one-frame blocks' threshold c + ln M (the tail of a ratio of unit spread,
+   e^-q), the carried R's (c_R - 1)^2 + 2 kappa ln M (Gaussian, variance kappa =
+   lambda / (2 - lambda)). Without the history's plane, M = 1: as before, bit for bit. */
+#ifndef SBL_EVIDENCE_REGION
+#define SBL_EVIDENCE_REGION 3 /* the sources M applies to: 1 the local test, 2 the blocks,
+                                 4 the carried R; 0: none (session 10's estimator) */
+#endif
+
+/* Pixels of row y of the plane beyond c_R (ratios only: > the cap is not one). */
+static long sbl__evidence_row_count(const sbl_image *plane, int y)
+{
+    const float *row = sbl__px(plane, 0, y);
+    const ptrdiff_t step = sbl__step_of(plane);
+    const float thr = SBL__CAST(float, SBL__EVIDENCE_THR), cap = SBL__CAST(float, SBL__POOL_RATIO_CAP);
+    long c = 0;
+    int x;
+    for (x = 0; x < plane->width; ++x) {
+        const float v = row[x * step];
+        c += (v > thr) & (v <= cap);
+    }
+    return c;
+}
+
+/* Row y's M (k->wp.region_m), ln M and the carried R's threshold and garrote. */
+static void sbl__evidence_share(sbl__kernel *k, int y)
+{
+    long cnt = 0, n = 0;
+    int j, i;
+    k->wp.region_m = 1.0f;
+    k->evid_lnm = 0.0;
+    k->evid_thr = SBL__EVIDENCE_THR;
+    k->evid_garrote = SBL__EVIDENCE_GARROTE;
+    if (!SBL_EVIDENCE_REGION || !k->evid_use || !k->evid_prev || !k->evid_prev->data) return;
+    for (j = y - 1; j <= y + 1; ++j) {
+        long c = -1;
+        if (j < 0 || j >= k->h) continue;
+        for (i = 0; i < 3; ++i)
+            if (k->share_at[i] == j + 1) c = k->share_cnt[i];
+        if (c < 0) { /* rows come in order: the slot of row j - 3 is free */
+            i = (j % 3 + 3) % 3;
+            c = sbl__evidence_row_count(k->evid_prev, j);
+            k->share_at[i] = j + 1;
+            k->share_cnt[i] = c;
+        }
+        cnt += c;
+        n += k->w;
+    }
+    {
+        const double kap = SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA);
+        const float m = SBL__CAST(float, SBL__CAST(double, n + 2) / (2.0 * SBL__CAST(double, cnt + 1)));
+        double lm, v;
+        if (m == 1.0f) return;
+        lm = log(SBL__CAST(double, m));
+        v = (SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0) + 2.0 * kap * lm;
+        if (SBL_EVIDENCE_REGION & 1) k->wp.region_m = m;
+        if (SBL_EVIDENCE_REGION & 2) k->evid_lnm = lm;
+        if (SBL_EVIDENCE_REGION & 4) {
+            k->evid_thr = 1.0 + sqrt(v > 0.0 ? v : 0.0);
+            k->evid_garrote = (k->evid_thr - 1.0) * (k->evid_thr - 1.0);
+        }
+    }
+}
+
 /* sbl__row_pool_ref's ratio r of pixel x with the carried evidence (in double): writes
-   the pixel's R, returns r raised to the evidence's where the history has the plane. */
+   the pixel's R, returns r raised to the evidence's where the history has the plane
+   (and the blocks' r = q - c moved to q - (c + ln M), 3.10). */
 static double sbl__evidence_ratio_ref(sbl__kernel *k, int x, double sm2, double sse2, double r)
 {
     const double lam = SBL_EVIDENCE_LAMBDA, e0 = SBL__CAST(double, k->evid_in[x]);
     double q = sse2 > 0.0 ? sm2 / sse2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0), e;
+    if (k->evid_lnm != 0.0 && sse2 > 0.0) r -= k->evid_lnm;
     if (q > SBL__POOL_RATIO_CAP) q = SBL__POOL_RATIO_CAP;
     if (!(sse2 + sm2 > 0.0)) q = 1.0; /* no block: no evidence either way */
     if (q > e0 + SBL__EVIDENCE_STEP / lam) q = e0 + SBL__EVIDENCE_STEP / lam; /* bounded step */
     e = e0 + lam * (q - e0);
     k->evid_out[x] = SBL__CAST(float, e);
     if (k->evid_use) {
-        const double thr = SBL__EVIDENCE_THR;
+        const double thr = k->evid_thr;
         double rt;
         if (SBL_EVIDENCE_GATE == 2) /* garrote: (R - 1) - (c_R - 1)^2 / (R - 1) beyond c_R */
-            rt = e > thr ? (e - 1.0) - SBL__EVIDENCE_GARROTE / (e - 1.0) : 0.0;
+            rt = e > thr ? (e - 1.0) - k->evid_garrote / (e - 1.0) : 0.0;
         else
             rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
         if (rt > r) r = rt;
@@ -5948,13 +6042,15 @@ SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, 
     q = sbl__min(q, sbl__add(e0, sbl__set1(SBL__CAST(float, SBL__EVIDENCE_STEP / SBL_EVIDENCE_LAMBDA))));
     e = sbl__add(e0, sbl__mul(lam, sbl__sub(q, e0)));
     sbl__store(k->evid_out + x, e);
+    if (k->evid_lnm != 0.0) /* the blocks' threshold c + ln M (3.10), where they have noise */
+        r = sbl__sel(sbl__gt(sse2, zero), sbl__sub(r, sbl__set1(SBL__CAST(float, k->evid_lnm))), r);
     if (k->evid_use) {
-        const sbl__v thr = sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR));
+        const sbl__v thr = sbl__set1(SBL__CAST(float, k->evid_thr));
         sbl__v rt;
         if (SBL_EVIDENCE_GATE == 2) { /* the denominator kept >= c_R - 1 where not taken */
             const sbl__v e1 = sbl__sub(e, sbl__set1(1.0f));
-            const sbl__v g = sbl__div(sbl__set1(SBL__CAST(float, SBL__EVIDENCE_GARROTE)),
-                                      sbl__max(e1, sbl__set1(SBL__CAST(float, SBL__EVIDENCE_THR - 1.0))));
+            const sbl__v g = sbl__div(sbl__set1(SBL__CAST(float, k->evid_garrote)),
+                                      sbl__max(e1, sbl__set1(SBL__CAST(float, k->evid_thr - 1.0))));
             rt = sbl__sel(sbl__gt(e, thr), sbl__sub(e1, g), zero);
         } else {
             rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), sbl__sub(e, sbl__set1(1.0f)), zero)
@@ -6969,6 +7065,9 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         sbl__v rho = sbl__div(k2e, sbl__add(one, sbl__mul(t2, sbl__set1(0.125f))));
         sbl__v r2 = sbl__mul(rho, rho);
         sbl__v odds = temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
+        if (temporal && SBL_HISTORY_PRIOR && p->region_m > 0.0f && p->region_m != 1.0f) /* 3.10 */
+            odds = sbl__mul(sbl__set1(0.5f), sbl__sub(sbl__mul(sbl__add(n_xc, sbl__set1(2.0f)),
+                                                               sbl__set1(p->region_m)), one));
         sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
         sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
         sbl__v num, den;
@@ -7869,6 +7968,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 if (x1 == k->w && !(cu && (cu[k->w - 2] | cu[k->w - 1]))) k->edge_ask |= 2;
             }
             if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
+            if (pool && k->evid_out) sbl__evidence_share(k, y); /* 3.10 */
             if (pool && lanes_ok) {
                 /* an interior row: prepass and lanes share their column sums */
                 k->rows_valid = R[0]->all_valid & R[1]->all_valid & R[2]->all_valid;
@@ -8040,6 +8140,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
             es.src.cubic = 0;
             k.evid_ctx = &es;
             k.evid_use = 1;
+            k.evid_prev = &s.history->evidence; /* its rows' share of change (3.10) */
         }
         if (k.evid_use || k.out_e.data) {
             const size_t pf = sbl__plane_floats(w);

@@ -52,7 +52,30 @@ typedef struct cand {
     double nu;       /* degrees of freedom of the local test with it (0: 8) */
     int keepn;       /* 1: the mixed weight keeps the default's N (diagnostic: is the static
                         loss the N bookkeeping of the following frames?) */
+    /* session 11 (ESTIMATORS 3.10) */
+    int off;         /* switch a source of bias evidence off: 1 the local 3x3 test, 2 the
+                        one-frame blocks, 4 the carried R (still carried) */
+    int diag;        /* 1: decompose the weight's excess over 1/(N+1) by its source */
+    /* 3.10 (c): a prior probability of change from the share s of a region's pixels whose
+       carried evidence R* (last frame's R, reprojected) passes c_R: s = (k + 1) / (n + 2)
+       over the region; region 1: the pixel's row, 2: the whole frame, 3: a 3-row window
+       of +-rwin columns. The prior odds against change are multiplied by M = 1 / (2 s)
+       (1 at s = 1/2, the rule of succession's prior mean) in the sources of rsrc:
+       1 the local test (Beta(2 s, 2 (1 - s)) prior: odds (N + 2) / (2 s) - 1, over the
+       same at s = 1/2), 2 the blocks (c + ln M: exponential tail of a unit-spread ratio),
+       4 the carried R (c_R - 1 -> sqrt((c_R - 1)^2 + 2 kappa ln M), Gaussian) */
+    int region, rsrc, rwin;
+    double mmin;     /* M floored at this (0: none) */
 } cand;
+
+static double *g_share; /* per pixel: the region's share s */
+static double share_stats[4];
+
+/* 3.10 (a): per source (0 local, 1 blocks, 2 carried R): pixel-frames whose weight exceeds
+   1/(N+1) by more than 10 %, sum (a - a0), sum (a - a0)^2 (1 + 1/N), sum of the N lost
+   (N + 1 - N_out); [3][0] pixel-frames with a history; plus a histogram of a / a0 */
+static double dg[4][4];
+static double dg_hist[8];
 
 static double post_t(double pd2, double se2, double k, double nu, double odds)
 {
@@ -61,6 +84,7 @@ static double post_t(double pd2, double se2, double k, double nu, double odds)
     return 1.0 / (1.0 + odds * pow(rho, 0.5 * (nu + 1)));
 }
 
+static double g_rb, g_rt; /* 3.10 (a): this pixel's one-frame block ratio and carried one */
 static double zsum_stats[4]; /* diagnostics: sum Z, sum Z^2, count, count over threshold */
 /* risk-based mixing (ESTIMATORS 3.9): blend_core leaves its weight, the firefly-limited
    sample and its var_Y estimate here when these are set */
@@ -92,7 +116,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 continue;
             }
             if (n_x > cap) n_x = cap;
-            g_shv = 0; g_shrv = 0;
+            g_shv = 0; g_shrv = 0; g_rb = 0; g_rt = 0;
             /* 3x3 */
             for (j = py - 1; j <= py + 1; ++j)
                 for (i = px - 1; i <= px + 1; ++i) {
@@ -175,11 +199,22 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
             }
             {
                 double odds = 0.5 * (n_x + 1), se2 = np > 1 ? pvs / np : var_x + var_y;
+                double Mreg = 1.0;
+                if (c->region && g_share) {
+                    double sr = g_share[p];
+                    Mreg = 1.0 / (2.0 * sr);
+                    if (c->mmin > 0 && Mreg < c->mmin) Mreg = c->mmin;
+                    if (c->rsrc & 1) {
+                        double s_eff = 1.0 / (2.0 * Mreg);
+                        odds = 0.5 * ((n_x + 2) / (2 * s_eff) - 1);
+                    }
+                }
                 double b3 = 0, bw = 0;
                 if (np > 0) {
                     if (c->soft) b3 = post_t(pd2, se2_loc > 0 ? se2_loc : se2, c->k, g_vt && g_vt[p] > 0 && c->nu > 0 ? c->nu : 8, odds) * pd2;
                     else b3 = pd2 - c->k * c->k * se2 > 0 ? pd2 - c->k * c->k * se2 : 0;
                 }
+                if (c->off & 1) b3 = 0;
                 if (nw > 2) {
                     double pdw2 = 0, pvws = 0, sew2;
                     for (ch = 0; ch < 3; ++ch) {
@@ -217,6 +252,12 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 if (zout && (c->carry_mode & 4) && !(np > 1)) zout[p] = (float)zc;
                 if (c->combine == 2 || c->c_eb > 0) {
                     double cc = c->c_eb > 0 ? c->c_eb : c->kw; double bmean = c->combine == 2 ? 0 : bw;
+                    double ckt = c->kt;
+                    if (c->region && (c->rsrc & 2)) cc += log(Mreg);
+                    if (c->region && (c->rsrc & 4)) {
+                        double kp = c->lambda / (2 - c->lambda), v = (c->kt - 1) * (c->kt - 1) + 2 * kp * log(Mreg);
+                        ckt = 1 + sqrt(v > 0 ? v : 0);
+                    }
                     /* empirical Bayes: prior variance of the bias from 5 3x3 blocks at
                        columns px + 3b, b = -2..2 */
                     double zsb = 0, sse = 0; int nb = 0, b;
@@ -261,14 +302,14 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                             if (q > 1e6) q = 1e6;
                             zc = (1 - c->lambda) * (zs[p] > 0 ? zs[p] : 1.0) + c->lambda * q;
                             zout[p] = (float)zc;
-                            r_t = zc - c->kt;
+                            r_t = zc - ckt;
                             if (r_t < 0) r_t = 0;
                             /* 8: a gate, then the unbiased estimate R - 1 */
                             if ((c->carry_mode & 8) && r_t > 0) r_t = zc - 1.0;
                             /* 32: non-negative garrote, (R - 1)(1 - ((c - 1) / (R - 1))^2)+:
                                0 up to c_R as the soft threshold, continuous, -> R - 1 */
                             if ((c->carry_mode & 32) && r_t > 0)
-                                r_t = (zc - 1.0) - (c->kt - 1.0) * (c->kt - 1.0) / (zc - 1.0);
+                                r_t = (zc - 1.0) - (ckt - 1.0) * (ckt - 1.0) / (zc - 1.0);
                             /* 16: soft gate, (R - 1) P, P = 1 / (1 + ((c - 1) / (R - 1))^4.5) */
                             if (c->carry_mode & 16) {
                                 r_t = 0;
@@ -280,6 +321,9 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                             zsum_stats[0] += zc; zsum_stats[1] += zc * zc; zsum_stats[2] += 1;
                             if (r_t > 0) zsum_stats[3] += 1;
                         }
+                        if (c->off & 2) tau2 = 0;
+                        if (c->off & 4) r_t = 0;
+                        g_rb = tau2; g_rt = r_t;
                         if ((c->carry_mode & 5) && r_t > tau2) tau2 = r_t;
                         g_shrv = r_t > 0 ? r_t / (1.0 + r_t) : 0.0;
                         if (c->normalized) tau2 *= se2;
@@ -304,6 +348,28 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 out[p * 3 + ch] = (float)((1 - a) * xs[p * 3 + ch] + a * yb[ch]);
             nout[p] = sbl_blend_sample_count((float)a, (float)n_x, (float)n_y);
             if (nout[p] > cap) nout[p] = cap;
+            if (c->diag) {
+                double a0 = n_y / (n_x + n_y), ex = a - a0, rr = a / a0;
+                int src, hb;
+                dg[3][0] += 1;
+                hb = rr < 1.01 ? 0 : rr < 1.1 ? 1 : rr < 1.5 ? 2 : rr < 2 ? 3 : rr < 4 ? 4 : rr < 8 ? 5 : 6;
+                dg_hist[hb] += 1;
+                if (rr > 1.1) {
+                    /* the largest bias term is the one that set b2 */
+                    double sh_b = g_rb / (1 + g_rb), sh_t = g_rt / (1 + g_rt);
+                    double se2 = np > 1 ? pvs / np : var_x + var_y;
+                    double bb = sh_b * sh_b * pd2 + sh_b * se2, bt = sh_t * sh_t * pd2 + sh_t * se2;
+                    double b3l = b2;
+                    if (bb >= bt && bb >= b2 * 0.999) src = 1;
+                    else if (bt > bb && bt >= b2 * 0.999) src = 2;
+                    else src = 0;
+                    (void)b3l;
+                    dg[src][0] += 1;
+                    dg[src][1] += ex;
+                    dg[src][2] += ex * ex * (1 + 1 / n_x);
+                    dg[src][3] += (n_x + 1) - (n_x + 1 < cap ? nout[p] : cap);
+                }
+            }
         }
 }
 
@@ -313,10 +379,108 @@ static void blend(void *ctx, int w, int h, const float *y, const float *xs, cons
     blend_core(ctx, w, h, y, xs, nx, NULL, cap, out, nout, NULL);
 }
 
+/* 3.10 (c): the region's share s of pixels whose carried R* passes c_R, into g_share */
+static void region_share(const cand *c, int w, int h, const float *nx, const float *zs)
+{
+    static double *sh_buf;
+    static size_t sh_n;
+    const size_t n = (size_t)w * h;
+    int px, py, i, j;
+    double kf = 0, nf = 0;
+    if (!c->region || c->region == 4 || !zs) return;
+    if (sh_n < n) { free(sh_buf); sh_buf = (double *)malloc(n * sizeof *sh_buf); sh_n = n; }
+    for (py = 0; py < h; ++py) {
+        double k = 0, m = 0;
+        for (px = 0; px < w; ++px) {
+            size_t p = (size_t)py * w + px;
+            if (!(nx[p] > 0)) continue;
+            m += 1; if (zs[p] > c->kt) k += 1;
+        }
+        kf += k; nf += m;
+        for (px = 0; px < w; ++px) sh_buf[(size_t)py * w + px] = (k + 1) / (m + 2);
+    }
+    if (c->region == 2)
+        for (i = 0; i < (int)n; ++i) sh_buf[i] = (kf + 1) / (nf + 2);
+    if (c->region == 3)
+        for (py = 0; py < h; ++py)
+            for (px = 0; px < w; ++px) {
+                double k = 0, m = 0;
+                for (j = py - 1; j <= py + 1; ++j)
+                    for (i = px - c->rwin; i <= px + c->rwin; ++i) {
+                        size_t q;
+                        if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                        q = (size_t)j * w + i;
+                        if (!(nx[q] > 0)) continue;
+                        m += 1; if (zs[q] > c->kt) k += 1;
+                    }
+                sh_buf[(size_t)py * w + px] = (k + 1) / (m + 2);
+            }
+    for (i = 0; i < (int)n; ++i) {
+        share_stats[0] += 1; share_stats[1] += sh_buf[i];
+        if (sh_buf[i] < 0.05) share_stats[2] += 1;
+        if (sh_buf[i] > 0.25) share_stats[3] += 1;
+    }
+    g_share = sh_buf;
+}
+
+/* region 4: the library's form: the share over rows y - 1 .. y + 1 of last frame's plane
+   as it is (not reprojected: any row-range call can read it), s = (k + 1) / (n + 2) over
+   all its pixels. The runner calls the blend for eye 0 then eye 1 every frame, so the
+   call's parity is the eye; prev_plane[e] is that eye's last output plane. */
+static float *prev_plane[2];
+static size_t prev_n[2];
+static int prev_have[2], call_count;
+static void region_share_raw(const cand *c, int w, int h)
+{
+    static double *sh_buf;
+    static size_t sh_n;
+    const int e = call_count & 1;
+    const size_t n = (size_t)w * h;
+    int px, py, j;
+    if (c->region != 4) return;
+    if (sh_n < n) { free(sh_buf); sh_buf = (double *)malloc(n * sizeof *sh_buf); sh_n = n; }
+    for (py = 0; py < h; ++py) {
+        double k = 0, m = 0;
+        for (j = py - 1; j <= py + 1; ++j) {
+            if (j < 0 || j >= h) continue;
+            for (px = 0; px < w; ++px) {
+                m += 1;
+                if (prev_have[e] && prev_plane[e][(size_t)j * w + px] > c->kt) k += 1;
+            }
+        }
+        for (px = 0; px < w; ++px) sh_buf[(size_t)py * w + px] = (k + 1) / (m + 2);
+    }
+    for (px = 0; px < (int)n; ++px) {
+        share_stats[0] += 1; share_stats[1] += sh_buf[px];
+        if (sh_buf[px] < 0.05) share_stats[2] += 1;
+        if (sh_buf[px] > 0.25) share_stats[3] += 1;
+    }
+    g_share = sh_buf;
+}
+static void region_keep(const cand *c, int w, int h, const float *zout)
+{
+    const int e = call_count & 1;
+    const size_t n = (size_t)w * h;
+    if (c->region == 4) {
+        if (prev_n[e] < n) { /* scenes differ in size */
+            free(prev_plane[e]);
+            prev_plane[e] = (float *)malloc(n * sizeof(float));
+            prev_n[e] = n;
+        }
+        memcpy(prev_plane[e], zout, n * sizeof(float));
+        prev_have[e] = 1;
+    }
+    ++call_count;
+}
+
 static void blend_carry(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
                         const float *zs, float cap, float *out, float *nout, float *zout)
 {
+    region_share((const cand *)ctx, w, h, nx, zs);
+    region_share_raw((const cand *)ctx, w, h);
     blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
+    region_keep((const cand *)ctx, w, h, zout);
+    g_share = NULL;
 }
 
 static double sure_stats[8]; /* pixel-frames with history, sum t, count t > 0 */
@@ -367,8 +531,11 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
         have = n;
     }
     g_ad = ad; g_vy = vy; g_yb = yb; g_sh = shp; g_shr = shr;
+    region_share(c, w, h, nx, zs);
+    region_share_raw(c, w, h);
     blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
-    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_shr = NULL;
+    region_keep(c, w, h, zout);
+    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_shr = NULL; g_share = NULL;
     /* the paper's scalar weight: a = d^2 / (d^2 + s^2), d = x* - m1 (3x3), s^2 population */
     for (py = 0; py < h; ++py)
         for (px = 0; px < w; ++px) {
@@ -704,6 +871,29 @@ static cand cands[] = {
     {"sure 15x15 t<=sh_R", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 1, 7, 7, 0, 0, 4, 0},
     /* 63: no risk: a = a_d + sh_R (a_p - a_d)+, a_p the library's (full 3x3) */
     {"mix t=sh_R, a_p > a_d", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0},
+    /* 64..: session 11, 3.10 (a): the default decomposed, and with one source off */
+    {"default, diag", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1},
+    {"no local test", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1},
+    {"no 1-frame blocks", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 1},
+    {"no carried R", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 1},
+    {"none (progressive+limit)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 7, 1},
+    {"R only (no local, no blocks)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 3, 1},
+    /* 70..: 3.10 (c) region prior */
+    {"row prior: local+blocks", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 3, 0, 0},
+    {"row prior: local+blocks+R", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 7, 0, 0},
+    {"frame prior: local+blocks", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 3, 0, 0},
+    {"3x31 prior: local+blocks", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 3, 3, 15, 0},
+    {"row prior: local only", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 0, 0},
+    {"row prior: blocks only", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 2, 0, 0},
+    /* 76..: the row prior (all three sources) with a more eager change rule */
+    {"row prior + R gate", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 12, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 7, 0, 0},
+    {"row prior + mix t=sh_R", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 7, 0, 0},
+    /* 79..: region 4, the library's form (last frame's plane as it is, rows y-1..y+1) */
+    {"3-row raw prior: all", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 4, 7, 0, 0},
+    {"3-row raw prior + R gate", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 12, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 4, 7, 0, 0},
+    /* 81..: the adopted form (last frame's plane rows y-1..y+1, local + blocks) + mix t = sh_R */
+    {"lib prior (3) + mix t=sh_R", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 4, 3, 0, 0},
+    {"row prior + mix t=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 6, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 7, 0, 0},
 };
 
 int main(int argc, char **argv)
@@ -747,6 +937,9 @@ int main(int argc, char **argv)
             memset(tr_stats, 0, sizeof tr_stats);
             memset(sure_stats, 0, sizeof sure_stats);
             memset(svgf_stats, 0, sizeof svgf_stats);
+            memset(dg, 0, sizeof dg); memset(dg_hist, 0, sizeof dg_hist);
+            memset(share_stats, 0, sizeof share_stats);
+            prev_have[0] = prev_have[1] = 0; call_count = 0;
             if (sbr_run(&seq, &m, &r, NULL, NULL) != 0) return 1;
             printf("%-18s %-22s eff %6.2f  rmse %.5f", nm, cands[i].name, r.eff_spp, r.rmse);
             if (zsum_stats[2] > 0)
@@ -758,6 +951,21 @@ int main(int argc, char **argv)
                        tr_stats[2] / tr_stats[0]);
             if (svgf_stats[0] > 0)
                 printf("  temporal var on %.1f %%", 100.0 * svgf_stats[1] / svgf_stats[0]);
+            if (share_stats[0] > 0)
+                printf("  share mean %.3f, < 0.05 on %.1f %%, > 0.25 on %.1f %%", share_stats[1] / share_stats[0],
+                       100 * share_stats[2] / share_stats[0], 100 * share_stats[3] / share_stats[0]);
+            if (dg[3][0] > 0) {
+                int k;
+                printf("\n   a/a0 hist <1.01 %.2f%% <1.1 %.2f%% <1.5 %.2f%% <2 %.2f%% <4 %.2f%% <8 %.2f%% >=8 %.2f%%",
+                       100 * dg_hist[0] / dg[3][0], 100 * dg_hist[1] / dg[3][0], 100 * dg_hist[2] / dg[3][0],
+                       100 * dg_hist[3] / dg[3][0], 100 * dg_hist[4] / dg[3][0], 100 * dg_hist[5] / dg[3][0],
+                       100 * dg_hist[6] / dg[3][0]);
+                for (k = 0; k < 3; ++k)
+                    printf("\n   %s: a > 1.1 a0 on %.3f%%, mean excess %.4f, sum ex^2(1+1/N) per pf %.3g, N lost per event %.2f",
+                           k == 0 ? "local " : k == 1 ? "blocks" : "R     ", 100 * dg[k][0] / dg[3][0],
+                           dg[k][0] > 0 ? dg[k][1] / dg[k][0] : 0, dg[k][2] / dg[3][0],
+                           dg[k][0] > 0 ? dg[k][3] / dg[k][0] : 0);
+            }
             if (sure_stats[0] > 0)
                 printf("  t mean %.3f, t > 0 on %.1f %% | (1-a)D %.4g S %.4g dl %.4g A %.4g B %.4g",
                        sure_stats[1] / sure_stats[0], 100.0 * sure_stats[2] / sure_stats[0],
