@@ -3136,7 +3136,8 @@ typedef struct sbl__kernel {
     int rows_valid;          /* sbl__kernel_run_span: 1 if the three window rows are
                                 all_valid (every chunk full); 0: the lanes look */
     /* 1: the ring rows carry the evidence plane, gathered in the colour's plan by
-       sbl__ring_load (the rows in [evid_y0, evid_y1)); sbl__evidence_gather points
+       sbl__ring_load (the rows in [evid_y0, evid_y1): every row, halo rows included,
+       so that a row is gathered the same way in every band); sbl__evidence_gather points
        evid_in at the row's plane. 0: evid_in is evid_buf, filled by a pass of its own */
     int evid_fused, evid_y0, evid_y1;
     float *evid_buf;
@@ -3488,6 +3489,20 @@ SBL__INLINE void sbl__tap_plan_set_nid(const sbl__tap_src *s, sbl__tap_plan *p, 
     }
 }
 
+/* The normal / id side of sbl__tap_want_init for target pixel (x, y), the same float
+   operations: for the plans that map positions in lanes and set entries one at a time
+   (the cameras). Returns 0 where the pixel resets (a normal whose squared length is not
+   finite). */
+SBL__INLINE int sbl__tap_want_nid(const sbl__target_geo *g, int x, int y, sbl__tap_want *t)
+{
+    t->id = g->ids.p ? *SBL__AT(g->ids, x, y) : 0.0f;
+    t->normal = g->normals.p ? SBL__AT(g->normals, x, y) : NULL;
+    t->normal_len2 = t->normal ? t->normal[0] * t->normal[0] + t->normal[1] * t->normal[1] +
+                                     t->normal[2] * t->normal[2]
+                               : 0.0f;
+    return !t->normal || sbl__finite(t->normal_len2);
+}
+
 /* The target's expectations of plan entry i for the pixel gather's fallback: depth and
    slack as given, normal (into nbuf) and id from the plan where the call tests them. */
 SBL__INLINE void sbl__tap_plan_want(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
@@ -3610,14 +3625,7 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
    gathers of both taps, half the elements (hardware gathers cost per element; SSE2
    loads a pair per instruction instead of a float). SBL__PAIRS 0 turns them off. */
 #ifndef SBL__PAIRS
-/* off under -ffast-math: there test_paths' whole-frame against banded calls with random
-   motion differ in 2 checks with pairs on (0 with them off; not yet understood, found at
-   the end of session 10), while every build without it is bit-exact with the pixel gather */
-#ifdef __FAST_MATH__
-#define SBL__PAIRS 0
-#else
 #define SBL__PAIRS 1
-#endif
 #endif
 #if SBL__VW == 16
 SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *out, int nf)
@@ -3868,13 +3876,14 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
 }
 
 /* The evidence plane's term of tap t (sbl__lanes_taps with the plane): N's tap index,
-   its own sum, as a 1-channel colour's in sbl__lanes_tap_sum */
+   its own sum, as a 1-channel colour's in sbl__lanes_tap_sum; pre: the tap's values
+   already read (in pairs) */
 SBL__INLINE void sbl__lanes_tap_ev(const sbl__tap_src *s, int t, sbl__v w, sbl__m ok,
                                    const float *ebase, const int *lidx, sbl__v *acce,
-                                   int contiguous, int masked)
+                                   int contiguous, int masked, const sbl__v *pre)
 {
     const ptrdiff_t o = (t >> 1) * s->length.stride + (t & 1) * s->length.step;
-    const sbl__v e = contiguous ? sbl__load(ebase + o + lidx[0]) : sbl__gatheri(ebase + o, lidx);
+    const sbl__v e = pre ? *pre : contiguous ? sbl__load(ebase + o + lidx[0]) : sbl__gatheri(ebase + o, lidx);
     const sbl__v term = sbl__mul(w, e);
     *acce = sbl__add(*acce, masked ? sbl__sel(ok, term, sbl__set1(0.0f)) : term);
 }
@@ -3898,22 +3907,30 @@ SBL__INLINE void sbl__lanes_tap_ev(const sbl__tap_src *s, int t, sbl__v w, sbl__
    has the same taps, tests, weights and validity wherever both sums are finite, so its
    value (renormalised and saturated as the colour's) where valid, stored as the ratio
    (sbl__evidence_pixel's test). Lanes the colour keeps whose evidence sum is not finite
-   take its pixel gather (redo 3); the colour's redo lanes take theirs with the colour. */
+   take its pixel gather (redo 3); the colour's redo lanes take theirs with the colour.
+   pair: a scattered vector whose views are packed (sbl__lanes_taps): the plane, laid
+   out as N (sbl__evidence_fused_ok), read two taps per gather as N is. */
 SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *p, int i,
                                           sbl__ring_row *r, int x, sbl__v w0, sbl__v w1,
                                           sbl__v w2, sbl__v w3, sbl__m ok0, sbl__m ok1,
                                           sbl__m ok2, sbl__m ok3, int skip_x, int skip_y,
                                           sbl__v inv, sbl__m valid, sbl__m redo, sbl__m fast,
-                                          int contiguous)
+                                          int contiguous, int pair)
 {
     const sbl__v zero = sbl__set1(0.0f), fmax = sbl__set1(FLT_MAX);
     const float *ebase = r->e_rp->src.color.p;
     const int *lidx = p->li + i;
     const int masked = sbl__mbits(sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3))) != (1 << SBL__VW) - 1;
-    sbl__v acce = zero, e;
+    sbl__v acce = zero, e, q[4];
     sbl__m use;
     int c, bits;
-#define SBL__TAP_EV(t, m) sbl__lanes_tap_ev(s, t, w##t, ok##t, ebase, lidx, &acce, contiguous, m)
+    if (pair) { /* taps 0, 1 (row y0) and 2, 3 (row y0 + 1) */
+        sbl__gather_pairs(ebase, lidx, q, 1);
+        if (!skip_y) sbl__gather_pairs(ebase + s->length.stride, lidx, q + 2, 1);
+        else q[2] = q[3] = zero; /* (not read) */
+    }
+#define SBL__TAP_EV(t, m) \
+    sbl__lanes_tap_ev(s, t, w##t, ok##t, ebase, lidx, &acce, contiguous, m, pair ? q + t : NULL)
     if (!masked) SBL__EACH_TAP(SBL__TAP_EV, 0);
     else SBL__EACH_TAP(SBL__TAP_EV, 1);
 #undef SBL__TAP_EV
@@ -4114,7 +4131,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
             if (bits & 1) p->redo[i + c] = SBL__CAST(unsigned char, ((only >> c) & 1) + 1);
     }
     if (ev) sbl__lanes_taps_evidence(s, p, i, r, x, w0, w1, w2, w3, ok0, ok1, ok2, ok3, skip_x, skip_y,
-                                     inv, valid, redo, fast, contiguous);
+                                     inv, valid, redo, fast, contiguous, pair);
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -5087,13 +5104,13 @@ SBL__INLINE void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x
    The camera source's position maths in double lanes (the layer is at the top of the
    row gather). */
 /* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
-   camera and no listed objects, no target normals or ids (their tests stay in
-   sbl__tap_want_init), an interior row (the depth slack reads both neighbours), target
-   depth packed. */
+   camera and no listed objects (whose ids choose the map per pixel), an interior row
+   (the depth slack reads both neighbours), target depth packed; the target's normals
+   and ids taken per entry (sbl__tap_want_nid), their taps tested in lanes. */
 SBL__INLINE int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     return s->source == SBL_TEMPORAL_CAMERA && s->history && !s->at_rest &&
-           !s->cam.object_count && !s->geo.normals.p && !s->geo.ids.p && y >= 1 &&
+           !s->cam.object_count && sbl__geo_nid_lanes_ok(&s->geo) && y >= 1 &&
            y + 1 < s->src.height && s->geo.depth.step == 1;
 }
 
@@ -5180,11 +5197,9 @@ SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan
         sbl__tap_plan_reset(p, i + l);
         if (!((keep >> l) & 1)) continue; /* no geometry, no ray, behind */
         if (!(ox[l] >= 0.0 && ox[l] < w && oy[l] >= 0.0 && oy[l] < h)) continue; /* outside */
+        if (!sbl__tap_want_nid(&s->geo, x + l, y, &t)) continue; /* a non-finite normal */
         t.depth = SBL__CAST(float, oz[l]);
         t.depth_slack = sf[l];
-        t.normal = NULL;
-        t.normal_len2 = 0.0f;
-        t.id = 0.0f;
         sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
     }
 }
@@ -5589,7 +5604,7 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
 {
     int x, c, ch = k->ch, count = 0;
     r->gather_flags = 0;
-    /* the evidence plane in the colour's plan, on the rows the call filters */
+    /* the evidence plane in the colour's plan (on halo rows too: see evid_y0) */
     r->e = k->evid_fused && row >= k->evid_y0 && row < k->evid_y1 ? r->e_plane : NULL;
     if (k->gather_row) {
         k->gather_row(k->gather_ctx, r, row, xa, xb);
@@ -7944,8 +7959,14 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                 int j;
                 k.evid_fused = 1;
                 k.gather_row = sbl__temporal_rp_row_ev;
-                k.evid_y0 = y0;
-                k.evid_y1 = y1;
+                /* every row the ring loads, the halo rows above and below [y0, y1)
+                   too: a row's colour then comes from the same code whichever band
+                   loads it. (-ffast-math lets the compiler reassociate the tap sums
+                   differently in the instances with and without the plane: with the
+                   plane on the band's own rows only, a banded call's halo rows
+                   differed from the whole-frame call's in the last bit: session 11) */
+                k.evid_y0 = 0;
+                k.evid_y1 = h;
                 for (j = 0; j < 3; ++j) {
                     k.ring[j].e_plane = e + SBL__CAST(size_t, 2 + j) * pf;
                     k.ring[j].e_rp = &es;
@@ -8225,7 +8246,8 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 #define SBL__FAR_PX (1.0f / 256.0f)
 
 /* The two-camera rigs' plan for the VW pixels x .. x + VW - 1 of an interior row
-   (sbl__stereo_rp_pixel's target tests and map, sbl__tap_plan_set), the map in lanes;
+   (sbl__stereo_rp_pixel's target tests and map, sbl__tap_plan_set), the map in lanes,
+   the target's normal and id per entry;
    the matches' positions into psx / psy (0 where there is none). */
 SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p, int i, int x,
                                       int y, double *psx, double *psy)
@@ -8247,11 +8269,9 @@ SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p,
         psx[l] = psy[l] = 0.0;
         if (!((keep >> l) & 1)) continue;
         if (!(ox[l] >= 0.0 && ox[l] < sw && oy[l] >= 0.0 && oy[l] < sh)) continue;
+        if (!sbl__tap_want_nid(&s->geo, x + l, y, &t)) continue; /* a non-finite normal */
         t.depth = SBL__CAST(float, oz[l]);
         t.depth_slack = sf[l];
-        t.normal = NULL;
-        t.normal_len2 = 0.0f;
-        t.id = 0.0f;
         psx[l] = ox[l];
         psy[l] = oy[l];
         sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
@@ -8307,11 +8327,10 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     const int sw = s->source->color.width, sh = s->source->color.height, y = b->y;
     /* target depth packed and of the source's size, target normals / ids in lanes
-       (sbl__lanes_want_nid; the two-camera plan has none), an interior row (the depth
-       slack reads both neighbours) */
+       (sbl__lanes_want_nid; the two-camera plan: sbl__tap_want_nid per entry), an
+       interior row (the depth slack reads both neighbours) */
     const int geo = sbl__geo_nid_lanes_ok(&s->geo) && s->geo.width == sw &&
                     s->geo.height == sh && y >= 1 && y + 1 < sh;
-    const int nid = s->geo.normals.p || s->geo.ids.p;
     const int depth = s->geo.depth.p && s->geo.depth.step == 1;
     (void)r;
     if (b->row_state >= 0) { /* decided for this row */
@@ -8329,7 +8348,7 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
                       ? 3
                       : 0;
     else
-        b->mode = geo && depth && !nid ? 2 : 0;
+        b->mode = geo && depth ? 2 : 0;
     b->row_state = b->mode;
     return 0;
 }

@@ -1324,6 +1324,291 @@ static void test_row_gather_normals(void)
 #endif
 }
 
+/* Bands of rows against one whole-image call, bit for bit (colour, N, the evidence
+   plane), over the shapes the row gather specialises: 1-4 channels, with and without
+   the evidence plane, normals / ids, sky rows, a moved nearer rectangle (the 3x3
+   fallback, disocclusions), a zero-motion stretch (rest tiles), random sub-pixel motion
+   elsewhere (scattered vectors: the pair gathers). A band loads the rows above and
+   below it too, so every row is gathered by several calls: its x* must not depend on
+   which. Run in the -ffast-math build as well, where two compiled instances of the same
+   sums may round differently (session 11: halo rows gathered without the plane). */
+static void test_bands_every_shape(void)
+{
+    sbt_rng rng = {5151};
+    int it, pixels = 0, differ = 0, calls = 0;
+    for (it = 0; it < 96; ++it) {
+        const int ch = 1 + it % 4, plane = (it / 4) % 2, nid = (it / 8) % 3;
+        const int w = 20 + (int)(sbt_uniform(&rng) * 60), h = 6 + (int)(sbt_uniform(&rng) * 12);
+        const int ax = (int)(sbt_uniform(&rng) * w * 0.5), ay = (int)(sbt_uniform(&rng) * h * 0.5);
+        const int aw = 4 + (int)(sbt_uniform(&rng) * w * 0.4), ah = 2 + (int)(sbt_uniform(&rng) * h * 0.5);
+        const int shift = 1 + (int)(sbt_uniform(&rng) * 5), sky_row = it % 3 == 1 ? (int)(sbt_uniform(&rng) * h) : -1;
+        const int rx = (int)(sbt_uniform(&rng) * w), rw = (int)(sbt_uniform(&rng) * 40);
+        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 0), len = sbt_img_new(w, h, 1, 0);
+        sbt_img depth = sbt_img_new(w, h, 1, 0), pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 0);
+        sbt_img ev = sbt_img_new(w, h, 1, 0), nrm = sbt_img_new(w, h, 3, 0), pnrm = sbt_img_new(w, h, 3, 0);
+        sbt_img ids = sbt_img_new(w, h, 1, 0), pids = sbt_img_new(w, h, 1, 0);
+        sbt_img oc[2], on[2], oe[2];
+        sbl_temporal_desc d;
+        sbl_frame f;
+        sbl_history hi;
+        sbl_temporal_output o[2];
+        size_t bytes = sbl_temporal_scratch_size(w, ch);
+        void *scratch = malloc(bytes);
+        int x, y, c, i, y0;
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                const int in_rect = x >= ax && x < ax + aw && y >= ay && y < ay + ah;
+                const int was_rect = x >= ax + shift && x < ax + aw + shift && y >= ay && y < ay + ah;
+                for (c = 0; c < ch; ++c) {
+                    sbt_at(&cur, x, y)[c] = (float)(0.5 + 0.2 * sbt_uniform(&rng));
+                    sbt_at(&hist, x, y)[c] = (float)(0.5 + 0.2 * sbt_uniform(&rng) + (was_rect ? 0.2 : 0.0));
+                }
+                *sbt_at(&len, x, y) = (float)(1 + 30 * sbt_uniform(&rng));
+                *sbt_at(&depth, x, y) = y == sky_row ? (float)HUGE_VAL : in_rect ? 2.0f : (float)(4.0 + 0.1 * sbt_uniform(&rng));
+                *sbt_at(&pdepth, x, y) = y == sky_row ? (float)HUGE_VAL : was_rect ? 2.0f : (float)(4.0 + 0.1 * sbt_uniform(&rng));
+                if (in_rect) {
+                    sbt_at(&mv, x, y)[0] = (float)shift;
+                    sbt_at(&mv, x, y)[1] = 0.0f;
+                } else if (x >= rx && x < rx + rw) {
+                    sbt_at(&mv, x, y)[0] = sbt_at(&mv, x, y)[1] = 0.0f;
+                } else {
+                    sbt_at(&mv, x, y)[0] = (float)(sbt_uniform(&rng) - 0.5);
+                    sbt_at(&mv, x, y)[1] = (float)(sbt_uniform(&rng) - 0.5);
+                }
+                *sbt_at(&ev, x, y) = (float)(0.5 + 3.0 * sbt_uniform(&rng));
+                for (c = 0; c < 3; ++c) {
+                    sbt_at(&nrm, x, y)[c] = (float)((c == 2 ? 1.0 : 0.0) + 0.3 * (sbt_uniform(&rng) - 0.5));
+                    sbt_at(&pnrm, x, y)[c] = (float)((c == 2 ? 1.0 : 0.0) + 0.3 * (sbt_uniform(&rng) - 0.5));
+                }
+                *sbt_at(&ids, x, y) = in_rect ? 2.0f : 1.0f;
+                *sbt_at(&pids, x, y) = was_rect ? 2.0f : sbt_uniform(&rng) < 0.05 ? 3.0f : 1.0f;
+            }
+        memset(&d, 0, sizeof d);
+        memset(&f, 0, sizeof f);
+        memset(&hi, 0, sizeof hi);
+        f.color = sbt_view(&cur); f.gbuffer.depth = sbt_view(&depth); f.gbuffer.motion = sbt_view(&mv);
+        hi.color = sbt_view(&hist); hi.length = sbt_view(&len); hi.gbuffer.depth = sbt_view(&pdepth);
+        if (nid) {
+            f.gbuffer.ids = sbt_view(&ids);
+            hi.gbuffer.ids = sbt_view(&pids);
+            if (nid == 1) { f.gbuffer.normals = sbt_view(&nrm); hi.gbuffer.normals = sbt_view(&pnrm); }
+        }
+        if (plane) hi.evidence = sbt_view(&ev);
+        for (i = 0; i < 2; ++i) {
+            oc[i] = sbt_img_new(w, h, ch, 0); on[i] = sbt_img_new(w, h, 1, 0); oe[i] = sbt_img_new(w, h, 1, 0);
+            memset(&o[i], 0, sizeof o[i]);
+            o[i].color = sbt_view(&oc[i]); o[i].length = sbt_view(&on[i]);
+            if (plane || it % 3 == 0) o[i].evidence = sbt_view(&oe[i]);
+        }
+        CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &hi, &o[0]), SBL_OK);
+        for (y0 = 0; y0 < h; ++calls) {
+            int y1 = y0 + 1 + (int)(sbt_uniform(&rng) * 4);
+            if (y1 > h) y1 = h;
+            CHECK_EQ(sbl_temporal_filter(&d, &f, &hi, &o[1], y0, y1, scratch, bytes), SBL_OK);
+            y0 = y1;
+        }
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                int bad = memcmp(sbt_at(&oc[0], x, y), sbt_at(&oc[1], x, y), sizeof(float) * (size_t)ch) != 0 ||
+                          memcmp(sbt_at(&on[0], x, y), sbt_at(&on[1], x, y), sizeof(float)) != 0;
+                if (o[0].evidence.data) bad |= memcmp(sbt_at(&oe[0], x, y), sbt_at(&oe[1], x, y), sizeof(float)) != 0;
+                if (bad && differ < 3)
+                    printf("  bands vs whole: case %d (ch %d plane %d nid %d) x %d y %d: c0 %.9g / %.9g\n", it, ch,
+                           plane, nid, x, y, sbt_at(&oc[0], x, y)[0], sbt_at(&oc[1], x, y)[0]);
+                differ += bad;
+                ++pixels;
+            }
+        for (i = 0; i < 2; ++i) { free(oc[i].mem); free(on[i].mem); free(oe[i].mem); }
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
+        free(ev.mem); free(nrm.mem); free(pnrm.mem); free(ids.mem); free(pids.mem);
+        free(scratch);
+    }
+    printf("  %s bands vs whole image, every shape: %d pixels in %d banded calls, %d differ\n", SBL_SIMD_NAME,
+           pixels, calls, differ);
+    CHECK(differ == 0);
+}
+
+/* The camera plans with normals and ids: the moving-camera temporal plan
+   (sbl__camera_plan_lanes) and the two-camera stereo plan (sbl__stereo_cam_plan, the
+   matrices and pinhole rigs) map positions in lanes and take the target's normal and id
+   per entry; the row gather against the pixel gather, bit for bit, on the scenes of
+   test_row_gather_normals (normals around the threshold's cone, "no normal", NaN / inf /
+   overflowing normals, NaN / inf / -0 ids, a moved nearer object), the views packed,
+   as channels and bottom-up. Each row is checked to take the lane plan. */
+static void test_camera_plans_normals(void)
+{
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+    static const float back_dir[3] = {0.0f, 0.0f, 1.0f}, obj_dir[3] = {0.5f, 0.1f, 0.86f};
+    sbt_rng rng = {7373};
+    int it, pixels = 0, mismatches = 0, empty = 0, spixels = 0, smismatches = 0, sempty = 0;
+    int nid_rejected = 0, lane_rows = 0, rows = 0;
+    for (it = 0; it < 160; ++it) {
+        int w = 12 + (int)(sbt_uniform(&rng) * 70), h = 4 + (int)(sbt_uniform(&rng) * 8);
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i, e;
+        int ax = (int)(sbt_uniform(&rng) * w * 0.6), ay = (int)(sbt_uniform(&rng) * h * 0.5);
+        int aw = 3 + (int)(sbt_uniform(&rng) * w * 0.5), ah = 2 + (int)(sbt_uniform(&rng) * h);
+        int shift = 1 + (int)(sbt_uniform(&rng) * 4);
+        /* which tests: 0 both, 1 normals only, 2 ids only, 3 both with normals only on the
+           target, 4 the normal test disabled */
+        const int tests = it % 5, with_len = it % 6 != 0, stereo = it % 2;
+        const double spread = 0.15 + 0.3 * sbt_uniform(&rng);
+        /* the camera's move: sub-pixel and a few pixels (x), a little in y */
+        const double tx = (sbt_uniform(&rng) - 0.3) * 0.2, ty = (sbt_uniform(&rng) - 0.5) * 0.05;
+        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
+        sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
+        sbt_img pdepth = sbt_img_new(w, h, 1, 0);
+        sbt_img nrm = sbt_img_new(w, h, 3, 0), pnrm = sbt_img_new(w, h, 3, 0);
+        sbt_img ids = sbt_img_new(w, h, 1, 0), pids = sbt_img_new(w, h, 1, 0);
+        float *mem[4] = {NULL, NULL, NULL, NULL};
+        sbl_reproject_desc rd;
+        sbl_intrinsics kin;
+        sbl_camera cam[2];
+        float pose[2][16];
+        float planes[2][7][100];
+        unsigned char unsafe[100];
+        sbl__ring_row ra, rb;
+        memset(&rd, 0, sizeof rd);
+        rd.no_fallback = it % 7 == 1;
+        if (tests == 4) {
+            if (it & 2) rd.normal_threshold = -1.0f;
+            else rd.disabled_tests = SBL_TEST_NORMAL;
+        } else if (it % 4 == 3) {
+            rd.normal_threshold = (float)(0.5 + 0.5 * sbt_uniform(&rng));
+        }
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                const int now = x >= ax && x < ax + aw && y >= ay && y < ay + ah;
+                const int was = x >= ax + shift && x < ax + shift + aw && y >= ay && y < ay + ah;
+                for (c = 0; c < ch; ++c) {
+                    sbt_at(&cur, x, y)[c] = (float)sbt_uniform(&rng);
+                    sbt_at(&hist, x, y)[c] = (float)(sbt_uniform(&rng) * 2);
+                }
+                *sbt_at(&len, x, y) = (float)(1 + sbt_uniform(&rng) * 30);
+                *sbt_at(&depth, x, y) = now ? (float)(3.9 + 0.001 * x) : (float)(4.0 + 0.001 * x);
+                *sbt_at(&pdepth, x, y) = was ? (float)(3.9 + 0.001 * x) : (float)(4.0 + 0.001 * x);
+                nid_normal(sbt_at(&nrm, x, y), &rng, now ? obj_dir : back_dir, spread, 0.04);
+                nid_normal(sbt_at(&pnrm, x, y), &rng, was ? obj_dir : back_dir, spread, 0.06);
+                *sbt_at(&ids, x, y) = nid_id(&rng, now ? 1.0f : 2.0f, 0.03);
+                *sbt_at(&pids, x, y) = nid_id(&rng, was ? 1.0f : 2.0f, 0.05);
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.03) *sbt_at(&len, x, y) = 0.0f;
+            }
+        kin.fx = kin.fy = (float)(0.8 * w + 3);
+        kin.cx = 0.5f * (float)w;
+        kin.cy = 0.5f * (float)h;
+        for (e = 0; e < 2; ++e) {
+            for (i = 0; i < 16; ++i) pose[e][i] = i % 5 == 0 ? 1.0f : 0.0f;
+            if (e) { pose[e][3] = (float)tx; pose[e][7] = (float)ty; }
+            CHECK_EQ(sbl_camera_from_pinhole(&cam[e], &kin, pose[e], SBL_AXES_OPENCV, 0, w, h), SBL_OK);
+        }
+        BIND_RING_ROWS(ra, rb, planes, unsafe);
+        if (!stereo) {
+            sbl_frame f;
+            sbl_history hi;
+            sbl__temporal_rp rp;
+            memset(&f, 0, sizeof f);
+            memset(&hi, 0, sizeof hi);
+            f.color = sbt_view(&cur);
+            f.gbuffer.depth = sbt_view(&depth);
+            f.camera = &cam[1];
+            hi.color = sbt_view(&hist);
+            if (with_len) hi.length = sbt_view(&len);
+            hi.gbuffer.depth = sbt_view(&pdepth);
+            hi.camera = &cam[0];
+            if (tests != 2) f.gbuffer.normals = nid_normals_view(&nrm, it % 4, &mem[0]);
+            if (tests != 2 && tests != 3) hi.gbuffer.normals = nid_normals_view(&pnrm, (it / 4) % 4, &mem[1]);
+            if (tests != 1) {
+                f.gbuffer.ids = nid_ids_view(&ids, it % 3, &mem[2]);
+                hi.gbuffer.ids = nid_ids_view(&pids, (it / 3) % 3, &mem[3]);
+            }
+            CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_CAMERA, &f, &hi), SBL_OK);
+            CHECK(sbl__row_gather_ok(&rp.src));
+            CHECK_EQ(rp.src.use_normal, tests == 0 || tests == 1);
+            CHECK_EQ(rp.src.use_id, tests != 1);
+            for (y = 0; y < h; ++y) {
+                int xa = it % 4 < 2 ? 0 : (int)(sbt_uniform(&rng) * w);
+                int xb = it % 4 < 2 ? w : xa + 1 + (int)(sbt_uniform(&rng) * (w - xa));
+                memset(unsafe, 0, sizeof unsafe);
+                lane_rows += sbl__camera_plan_lanes_ok(&rp, y);
+                ++rows;
+                sbl__temporal_rp_row(&rp, &ra, y, xa, xb);
+                compare_with_pixel_gather(&rp, &ra, &rb, y, xa, xb, ch, contracts, "camera normals / ids", it, w,
+                                          h, &pixels, &mismatches, &empty);
+                if (tests < 2) { /* the normal / id tests decide some pixels */
+                    sbl__temporal_rp q = rp;
+                    q.src.use_normal = q.src.use_id = 0;
+                    for (x = xa; x < xb; ++x) {
+                        float tmp[4] = {0, 0, 0, 0};
+                        nid_rejected += sbl__temporal_rp_pixel(&q, x, y, tmp) > 0.0f && !(rb.n[x] > 0.0f);
+                    }
+                }
+            }
+        } else {
+            /* the matrices rig (eye cameras) or the pinhole rig of the same pair; the
+               "history" as the other eye */
+            sbl_stereo_desc sd;
+            sbl_eye eye[2];
+            sbl__stereo_rp rp;
+            memset(eye, 0, sizeof eye);
+            eye[0].color = sbt_view(&cur);
+            eye[0].gbuffer.depth = sbt_view(&depth);
+            eye[0].camera = &cam[0];
+            eye[1].color = sbt_view(&hist);
+            if (with_len) eye[1].length = sbt_view(&len);
+            eye[1].gbuffer.depth = sbt_view(&pdepth);
+            eye[1].camera = &cam[1];
+            if (tests != 2) eye[0].gbuffer.normals = nid_normals_view(&nrm, it % 4, &mem[0]);
+            if (tests != 2 && tests != 3) eye[1].gbuffer.normals = nid_normals_view(&pnrm, (it / 4) % 4, &mem[1]);
+            if (tests != 1) {
+                eye[0].gbuffer.ids = nid_ids_view(&ids, it % 3, &mem[2]);
+                eye[1].gbuffer.ids = nid_ids_view(&pids, (it / 3) % 3, &mem[3]);
+            }
+            memset(&sd, 0, sizeof sd);
+            if (it % 4 == 1) {
+                sd.rig = SBL_RIG_MATRICES;
+            } else {
+                sd.rig = SBL_RIG_PINHOLE;
+                sd.pinhole.eye[0] = sd.pinhole.eye[1] = kin;
+                memcpy(sd.pinhole.right_from_left, pose[1], sizeof pose[1]);
+                sd.pinhole.axes = SBL_AXES_OPENCV;
+            }
+            sd.reproject = rd;
+            sd.reproject.back_check_pixels = 2.0f;
+            if (it % 8 == 7) sd.reproject.disabled_tests |= SBL_TEST_BACK_CHECK;
+            e = (it / 2) & 1;
+            CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+            CHECK(sbl__row_gather_ok(&rp.src));
+            for (y = 0; y < h; ++y) {
+                sbl__block b;
+                memset(&b, 0, sizeof b);
+                b.y = y;
+                b.row_state = -1;
+                sbl__stereo_block_start(&rp, &ra, &b);
+                lane_rows += b.mode == 2;
+                ++rows;
+                compare_stereo_with_pixel_gather(&rp, &ra, &rb, y, w, ch, contracts, "camera stereo normals / ids",
+                                                 it, (int)sd.rig, &spixels, &smismatches, &sempty);
+            }
+        }
+        for (i = 0; i < 4; ++i) free(mem[i]);
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem);
+        free(nrm.mem); free(pnrm.mem); free(ids.mem); free(pids.mem);
+    }
+    printf("  %s camera plans vs pixel gather, normals / ids: temporal %d pixels (%d without x*, %d by the "
+           "normal / id tests), %d differ; stereo %d pixels (%d without a match), %d differ; %d of %d rows "
+           "in the lane plan\n",
+           SBL_SIMD_NAME, pixels, empty, nid_rejected, mismatches, spixels, sempty, smismatches, lane_rows, rows);
+    CHECK(mismatches == 0);
+    CHECK(smismatches == 0);
+    CHECK(empty > pixels / 20 && empty < pixels / 2);
+    CHECK(sempty > spixels / 20 && sempty < spixels / 2);
+    CHECK(nid_rejected > pixels / 50);
+    CHECK(lane_rows > rows / 2);
+#endif
+}
+
 int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
@@ -1424,5 +1709,7 @@ int main(void)
     test_evidence_paths();
     test_evidence_row_gather();
     test_row_gather_normals();
+    test_bands_every_shape();
+    test_camera_plans_normals();
     return sbt_finish("test_paths");
 }
