@@ -3195,7 +3195,7 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
    SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 7)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 8)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -6422,6 +6422,7 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_PV(ch) (3 * (ch) + 4)
 #define SBL__POOL_FT(ch) (3 * (ch) + 5) /* staged lanes: the firefly factor t (sbl__lanes_stage_y) */
 #define SBL__POOL_S2(ch) (3 * (ch) + 6) /* staged lanes: Y's variance summed over the channels */
+#define SBL__POOL_W(ch) (3 * (ch) + 7) /* staged lanes: the weight (sbl__lanes_stage_weight) */
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -7199,13 +7200,15 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
 }
-/* The temporal default configuration (sbl__lanes_vector_fast with fast = 1) in two
+/* The temporal default configuration (sbl__lanes_vector_fast with fast = 1) in three
    stages over the vectors of a run, so that each stage's values fit the registers (one
-   pass holding Y's moments, the firefly sums, the weight and the blend spills them):
+   pass holding Y's moments, the firefly sums, the weight and the blend spills them) and
+   each loop is short enough for the out-of-order core to overlap several vectors' chains
+   of divisions (one loop holding the weight and the blend ran them one after another):
    sbl__lanes_stage_y, Y's moments and the firefly limit's factor t, the summed variance
-   s2 into two planes of the chunk (index column - base); then sbl__lanes_stage_blend, the
-   weight and the blend. The same operations in the same order as
-   sbl__lanes_vector_fast (bit for bit). */
+   s2 into two planes of the chunk (index column - base); sbl__lanes_stage_weight, the
+   weight into a third; then sbl__lanes_stage_blend, Eq. 5 and the blend. The same
+   operations in the same order as sbl__lanes_vector_fast (bit for bit). */
 SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int x, int base,
                                     const int ch, const sbl__lane_edge *E)
 {
@@ -7237,20 +7240,20 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_S2(ch) * SBL__POOL_COLS, s2);
 }
 
-SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
-                                        const float *n_row, const float *nyrow, int x, int base,
-                                        const int ch, const int full, const sbl__lane_edge *E)
+/* The weight of the staged lanes (sbl__lanes_weight), into the chunk's plane W: a stage
+   of its own, as its chain of divisions and a square root (t2, rho, the posterior, the
+   weight) is long; in a loop of its own more vectors' chains overlap. */
+SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, const float *nyrow,
+                                         int x, int base, const int ch, const int full,
+                                         const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
-    const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
-    const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
+    const sbl__v cap = sbl__set1(k->n_cap);
+    float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
-    sbl__m valid, hi_w, low_t;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt;
     n_x = sbl__load(n_row + x);
-    /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
-    valid = full ? sbl__true : sbl__gt(n_x, zero);
     n_y = nyrow ? sbl__load(nyrow + x) : one;
     n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
     n_xc = sbl__max(sbl__min(n_x, cap), tiny);
@@ -7265,10 +7268,32 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
     st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
     st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
-    w = sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
-                          sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
-                          sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
-    w2 = st.a2[0]; /* every channel's */
+    sbl__store(q + SBL__POOL_W(ch) * SBL__POOL_COLS,
+               sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
+                                 sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
+                                 sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1));
+}
+
+/* The blend and Eq. 5 of the staged lanes, with the weight of sbl__lanes_stage_weight
+   (one for every channel: the temporal pooled weight has no lean, so its a2 is the
+   weight itself) */
+SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
+                                        const float *n_row, const float *nyrow, int x, int base,
+                                        const int ch, const int full)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
+    const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
+    sbl__v n_x, n_y, n_xc, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
+    sbl__m valid, hi_w, low_t;
+    n_x = sbl__load(n_row + x);
+    /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
+    valid = full ? sbl__true : sbl__gt(n_x, zero);
+    n_y = nyrow ? sbl__load(nyrow + x) : one;
+    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
+    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+    w = sbl__load(q + SBL__POOL_W(ch) * SBL__POOL_COLS);
+    w2 = w; /* every channel's */
     /* Eq. 5 first (its values then leave the registers), then the blend */
     /* one weight for every channel: its mean is the weight itself (sbl__lanes_vector_fast) */
     a2_mean = w2;
@@ -7341,7 +7366,8 @@ SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const 
     E.lean_s = sbl__load(lean_s);
     if (fast == 1) {
         sbl__lanes_stage_y(k, W, x, base, ch, &E);
-        sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0, &E);
+        sbl__lanes_stage_weight(k, n_row, nyrow, x, base, ch, 0, &E);
+        sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0);
     } else {
         sbl__lanes_vector_fast(k, W, n_row, nyrow, x, base, y, ch, fast, 0, &E);
     }
@@ -7564,8 +7590,13 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
                 SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, Er));
-                if (full) SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1, Er));
-                else SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0, Er));
+                if (full) {
+                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 1, Er));
+                    SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
+                } else {
+                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 0, Er));
+                    SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
+                }
             } else {
                 SBL__RUN_VECTORS(SBL__POOLED_VECTOR(p));
             }
