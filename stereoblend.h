@@ -7059,22 +7059,30 @@ SBL__INLINE void sbl__lanes_group_add(const sbl__lane_stats *st, int c, sbl__v *
     sums[3] = sbl__add(sums[3], st->pv[c]);
 }
 
+/* The history length n_x (0: reset), the new sample's n_y (1 where absent or not
+   positive) and n_x capped for the weight, as every lane kernel reads them */
+SBL__INLINE void sbl__lanes_lengths(const sbl__kernel *k, const float *n_row, const float *nyrow,
+                                    int x, sbl__v *n_x, sbl__v *n_y, sbl__v *n_xc)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    *n_x = sbl__load(n_row + x);
+    *n_y = nyrow ? sbl__load(nyrow + x) : one;
+    *n_y = sbl__sel(sbl__gt(*n_y, zero), *n_y, one);
+    *n_xc = sbl__max(sbl__min(*n_x, sbl__set1(k->n_cap)), sbl__set1(FLT_MIN));
+}
+
 /* One vector of pixels [x, x + VW) of row y: moments from the column sums at index
    column - base (sbl__lanes_columns), the estimator, the blend, staged. */
 SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                    const float *nyrow, int x, int base, int y, const int ch)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
-    const sbl__v cap = sbl__set1(k->n_cap);
+    const sbl__v zero = sbl__set1(0.0f);
     sbl__lane_stats st;
     sbl__v a[4], n_x, n_y, n_xc;
     sbl__m valid;
     int c;
-    n_x = sbl__load(n_row + x);
+    sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     valid = sbl__gt(n_x, zero);
-    n_y = nyrow ? sbl__load(nyrow + x) : one;
-    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
-    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     sbl__lanes_moments(k, W, x, base, &st);
     st.bessel = sbl__set1(9.0f / 8.0f);
     st.lean_s = sbl__set1(8.0f / 7.0f);
@@ -7119,12 +7127,9 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w, low_t;
-    n_x = sbl__load(n_row + x);
+    sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
-    n_y = nyrow ? sbl__load(nyrow + x) : one;
-    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
-    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     /* pair counts (sbl__lanes_moments) */
     nl = full ? sbl__set1(3.0f) : sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) - 1);
     nr = full ? sbl__set1(3.0f) : sbl__load(k->col[0] + i + SBL__CHUNK_COLN(ch) + 1);
@@ -7247,16 +7252,12 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, con
                                          int x, int base, const int ch, const int full,
                                          const sbl__lane_edge *E)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
-    const sbl__v cap = sbl__set1(k->n_cap);
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
     sbl__v n_x, n_y, n_xc, nl, nr, cnt;
-    n_x = sbl__load(n_row + x);
-    n_y = nyrow ? sbl__load(nyrow + x) : one;
-    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
-    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
+    sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     nl = full ? sbl__set1(3.0f) : sbl__load(qn - 1);
     nr = full ? sbl__set1(3.0f) : sbl__load(qn + 1);
     cnt = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, sbl__load(qn)), nr);
@@ -7286,12 +7287,9 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     sbl__v n_x, n_y, n_xc, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
     sbl__m valid, hi_w, low_t;
-    n_x = sbl__load(n_row + x);
+    sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
-    n_y = nyrow ? sbl__load(nyrow + x) : one;
-    n_y = sbl__sel(sbl__gt(n_y, zero), n_y, one);
-    n_xc = sbl__max(sbl__min(n_x, cap), tiny);
     w = sbl__load(q + SBL__POOL_W(ch) * SBL__POOL_COLS);
     w2 = w; /* every channel's */
     /* Eq. 5 first (its values then leave the registers), then the blend */
