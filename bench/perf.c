@@ -116,24 +116,32 @@ static void run_stereo(job *j)
 }
 
 /* The floor: read every input plane once and write every output plane once, in the
-   same row band; the arithmetic is one add per float so that the loop is bound by
-   memory, as the library's pipeline is at best. */
+   same row band, with one add per float read, in a form every build vectorises (each
+   plane row as one run of floats into 16 running sums; the outputs filled from them),
+   so that the loop is bound by memory on every build, as the library's pipeline is at
+   best. (The per-pixel, per-channel loop it replaces stayed scalar on every build:
+   about 11 instructions per float moved, bound by instructions rather than by memory,
+   and slowed by whatever shared the core.) */
 static void run_floor(job *j)
 {
-    int y, x, k, c;
+    int y, k, l;
     for (y = j->y0; y < j->y1; ++y) {
-        float acc[4096];
-        int n = j->w;
-        for (x = 0; x < n && x < 4096; ++x) acc[x] = 0.0f;
+        float acc[16];
+        size_t i, n;
+        for (l = 0; l < 16; ++l) acc[l] = 0.0f;
         for (k = 0; k < j->in_count; ++k) {
             const float *p = j->in_planes[k] + (size_t)y * j->w * j->in_ch[k];
-            for (x = 0; x < n; ++x)
-                for (c = 0; c < j->in_ch[k]; ++c) acc[x] += p[x * j->in_ch[k] + c];
+            n = (size_t)j->w * j->in_ch[k];
+            for (i = 0; i + 16 <= n; i += 16)
+                for (l = 0; l < 16; ++l) acc[l] += p[i + l];
+            for (; i < n; ++i) acc[i & 15] += p[i];
         }
         for (k = 0; k < j->out_count; ++k) {
             float *p = j->out_planes[k] + (size_t)y * j->w * j->out_ch[k];
-            for (x = 0; x < n; ++x)
-                for (c = 0; c < j->out_ch[k]; ++c) p[x * j->out_ch[k] + c] = acc[x];
+            n = (size_t)j->w * j->out_ch[k];
+            for (i = 0; i + 16 <= n; i += 16)
+                for (l = 0; l < 16; ++l) p[i + l] = acc[l];
+            for (; i < n; ++i) p[i] = acc[i & 15];
         }
     }
     j->result = 0;
