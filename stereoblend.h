@@ -3712,22 +3712,32 @@ SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *ou
 }
 #endif
 
-/* NaN lanes, on the bits (-ffast-math may fold a float self-compare) */
+/* NaN lanes, on the bits (-ffast-math may fold a float self-compare): |a| above the
+   bits of +inf, compared as signed ints (both non-negative) */
 SBL__INLINE sbl__m sbl__lanes_nan(sbl__v a)
 {
-    return sbl__mandnot(sbl__nonfinite(a), sbl__posinf(sbl__abs(a)));
+#if SBL__VW == 16
+    return _mm512_cmpgt_epi32_mask(_mm512_and_si512(_mm512_castps_si512(a), _mm512_set1_epi32(0x7fffffff)),
+                                   _mm512_set1_epi32(0x7f800000));
+#elif SBL__VW == 8
+    return _mm256_castsi256_ps(_mm256_cmpgt_epi32(
+        _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7fffffff)), _mm256_set1_epi32(0x7f800000)));
+#else
+    return _mm_castsi128_ps(_mm_cmpgt_epi32(_mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7fffffff)),
+                                            _mm_set1_epi32(0x7f800000)));
+#endif
 }
 
 /* The normal test of sbl__tap_ok_id_normal per lane: tap normal n, target normal m and
    its squared length mm, the squared threshold thr2. */
-SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
-                                        sbl__v m2, sbl__v mm, float thr2)
+SBL__INLINE sbl__m sbl__lanes_normal_ok_m(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
+                                          sbl__v m2, sbl__v mm, sbl__m none_m, float thr2)
 {
     const sbl__v zero = sbl__set1(0.0f), eps = sbl__set1(1e-12f);
     const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, m0), sbl__mul(n1, m1)), sbl__mul(n2, m2));
     const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
     const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(thr2), nn), mm);
-    const sbl__m none_n = sbl__gt(eps, nn), none_m = sbl__gt(eps, mm);
+    const sbl__m none_n = sbl__gt(eps, nn);
     /* both with a normal: not dot < 0 and not dot^2 < threshold^2 nn mm (no NaN here
        where it matters: dot and nn finite, mm finite for a valid target) */
     const sbl__m agree = sbl__mandnot(sbl__mandnot(sbl__true, sbl__gt(zero, dot)),
@@ -3735,6 +3745,13 @@ SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v 
     const sbl__m none = sbl__mor(none_n, none_m);
     const sbl__m match = sbl__mor(sbl__mand(none_n, none_m), sbl__mandnot(agree, none));
     return sbl__mandnot(match, sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn)));
+}
+
+/* the same with the target's "no normal" lanes (mm below 1e-12) formed here */
+SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
+                                        sbl__v m2, sbl__v mm, float thr2)
+{
+    return sbl__lanes_normal_ok_m(n0, n1, n2, m0, m1, m2, mm, sbl__gt(sbl__set1(1e-12f), mm), thr2);
 }
 
 /* The id test per lane: equal as floats, a NaN on either side never matching. */
@@ -3811,6 +3828,50 @@ SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan 
     return ok;
 }
 
+/* The target's side of the normal / id tests of plan entries [i, i + VW), read once per
+   vector for its four taps (sbl__lanes_nid_run): nid 1 ids, 2 normals, 3 both. */
+typedef struct sbl__nid_want {
+    sbl__v id, m0, m1, m2, mm;
+    sbl__m id_nan, none_m;
+} sbl__nid_want;
+
+SBL__INLINE void sbl__nid_want_load(const sbl__tap_plan *p, int i, int nid, sbl__nid_want *w)
+{
+    if (nid & 1) {
+        w->id = sbl__load(p->tid + i);
+        w->id_nan = sbl__lanes_nan(w->id);
+    }
+    if (nid & 2) {
+        w->m0 = sbl__load(p->tn[0] + i);
+        w->m1 = sbl__load(p->tn[1] + i);
+        w->m2 = sbl__load(p->tn[2] + i);
+        w->mm = sbl__load(p->tn2 + i);
+        w->none_m = sbl__gt(sbl__set1(1e-12f), w->mm);
+    }
+}
+
+/* sbl__lanes_nid_ok of tap t for a run whose views are packed (ids: pixel step 1,
+   normals: 3), with which views are tested a constant (nid as above) and the target's
+   side from w: the same operations per lane, without the tests of the layout. */
+SBL__INLINE sbl__m sbl__lanes_nid_run(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
+                                      int nid, const sbl__nid_want *w)
+{
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    sbl__m ok = sbl__true;
+    if (nid & 1) {
+        const sbl__v id = sbl__load(s->ids.p + ty * s->ids.stride + tx + p->ii[i]);
+        ok = sbl__mandnot(sbl__mand(sbl__le(id, w->id), sbl__le(w->id, id)), sbl__mor(sbl__lanes_nan(id), w->id_nan));
+    }
+    if (nid & 2) {
+        sbl__v n0, n1, n2;
+        sbl__m nok;
+        sbl__rgb_lanes(s->normals.p + ty * s->normals.stride + 3 * tx + p->ni[i], &n0, &n1, &n2);
+        nok = sbl__lanes_normal_ok_m(n0, n1, n2, w->m0, w->m1, w->m2, w->mm, w->none_m, s->normal_threshold2);
+        ok = (nid & 1) ? sbl__mand(ok, nok) : nok;
+    }
+    return ok;
+}
+
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
    (x0, y0 + 1), (x0 + 1, y0 + 1). sbl__lanes_tap_test: its tests narrow ok (from w > 0),
    returned, with its N in *nt; sbl__lanes_tap_sum: its weighted N, colour and weight
@@ -3823,7 +3884,8 @@ SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan 
 SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
                                        int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
                                        int plain, sbl__v *nt, int contiguous, int sky, int full,
-                                       const sbl__v *pre, int nid_run, const sbl__v *nid_pre)
+                                       const sbl__v *pre, int nid_run, const sbl__v *nid_pre,
+                                       int nid, const sbl__nid_want *nw)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
@@ -3848,7 +3910,8 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
             ok = sbl__mand(ok, match);
         }
     }
-    if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t, nid_run, nid_pre));
+    if (nid) ok = sbl__mand(ok, sbl__lanes_nid_run(s, p, i, t, nid, nw));
+    else if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t, nid_run, nid_pre));
     *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
@@ -3976,7 +4039,7 @@ SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                  sbl__ring_row *r, int x, const int *cstep, int ch,
                                  int contiguous, int sky, int full, int flag, int ev, int pair,
-                                 int nid_run)
+                                 int nid_run, int nid)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -4008,10 +4071,12 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
            lanes' taps are scattered (not contiguous) and every view is packed: each
            view's taps read by rows, two taps per gather (sbl__gather_pairs) */
         sbl__v n0, n1 = zero, n2 = zero, n3 = zero, dn[4][2], cv[4][4], q[8], nv[4][4];
+        sbl__nid_want nw;
         sbl__m all;
         /* the normal / id tests' taps in pairs too where both views are packed */
         const int nid_pair = pair && !full && (s->use_normal || s->use_id) &&
                              (!s->use_normal || s->normals.step == 3) && (!s->use_id || s->ids.step == 1);
+        if (nid) sbl__nid_want_load(p, i, nid, &nw);
         if (nid_pair) {
             int ty;
             for (ty = 0; ty < (skip_y ? 1 : 2); ++ty) {
@@ -4048,7 +4113,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         }
 #define SBL__TEST(t, nt) \
     sbl__lanes_tap_test(s, p, i, t, w##t, ze, lim, inf_e, plain, nt, contiguous, sky, full, pair ? dn[t] : NULL, \
-                        nid_run, nid_pair ? nv[t] : NULL)
+                        nid_run, nid_pair ? nv[t] : NULL, nid, &nw)
         ok0 = SBL__TEST(0, &n0);
         ok1 = ok2 = ok3 = ok0;
         if (!skip_x) ok1 = SBL__TEST(1, &n1);
@@ -4178,14 +4243,14 @@ SBL__NOINLINE void sbl__lanes_taps_pairs(const sbl__tap_src *s, sbl__tap_plan *p
                                          int flag, int ev)
 {
     if (ch == 3 && !sky && flag && !ev) {
-        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 0, 1, 0);
-        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 0, 1, 0);
+        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 0, 1, 0, 0);
+        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 0, 1, 0, 0);
     } else if (ch == 3 && !sky && flag && ev) {
         /* the same call with the evidence plane (its hard case: scattered vectors) */
-        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 1, 1, 0);
-        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 1, 1, 0);
+        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 1, 1, 0, 0);
+        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 1, 1, 0, 0);
     } else {
-        sbl__lanes_taps(s, p, i, fallback, r, x, cstep, ch, 0, sky, full, flag, ev, 1, 0);
+        sbl__lanes_taps(s, p, i, fallback, r, x, cstep, ch, 0, sky, full, flag, ev, 1, 0, 0);
     }
 }
 
@@ -4206,6 +4271,13 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
        pixel step = channel count) */
     const int pairs = SBL__PAIRS && packed && s->color.step == ch;
     const int nid = s->use_normal || s->use_id;
+    /* the normal / id tests with their views as constants (sbl__lanes_nid_run): packed
+       RGB colour, depth and N tested, the normals and ids tested packed; for the
+       vectors that are contiguous, full and consecutive in those views too */
+    const int nid_const = !sky && ch == 3 && nid && s->use_depth && s->length.p &&
+                          (!s->use_normal || s->normals.step == 3) && (!s->use_id || s->ids.step == 1)
+                              ? (s->use_id ? 1 : 0) | (s->use_normal ? 2 : 0)
+                              : 0;
     int i = 0;
     for (;;) {
         int contiguous, full = 0, nid_run;
@@ -4217,7 +4289,7 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                      (p->uniform[i] || (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
                                         (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
                                         (!s->length.p || sbl__ints_step(p->li + i, 1))));
-        if (both) {
+        if (both || nid_const) {
             const sbl__v ze = sbl__load(p->depth + i);
             full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
                                         sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
@@ -4227,14 +4299,22 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                   (p->uniform[i] == 1 ||
                    ((!s->use_normal || sbl__ints_step(p->ni + i, SBL__CAST(int, s->normals.step))) &&
                     (!s->use_id || sbl__ints_step(p->ii + i, SBL__CAST(int, s->ids.step)))));
-        if (contiguous) {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag, ev, 0, nid_run);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag, ev, 0, nid_run);
-        } else if (pairs) {
-            sbl__lanes_taps_pairs(s, p, i, fallback, r, x + i, cstep, ch, sky, full, flag, ev);
+        if (nid_const && full && nid_run) {
+            /* (full: the plain depth test; the normal / id tests run, their views known) */
+            if (nid_const == 3) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, 3, 1, 0, 1, flag, ev, 0, 1, 3);
+            else if (nid_const == 2) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, 3, 1, 0, 1, flag, ev, 0, 1, 2);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, 3, 1, 0, 1, flag, ev, 0, 1, 1);
         } else {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev, 0, nid_run);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev, 0, nid_run);
+            if (nid) full = 0; /* (the full variants below leave the normal / id tests out) */
+            if (contiguous) {
+                if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag, ev, 0, nid_run, 0);
+                else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag, ev, 0, nid_run, 0);
+            } else if (pairs) {
+                sbl__lanes_taps_pairs(s, p, i, fallback, r, x + i, cstep, ch, sky, full, flag, ev);
+            } else {
+                if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev, 0, nid_run, 0);
+                else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev, 0, nid_run, 0);
+            }
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
