@@ -1161,75 +1161,146 @@ static sbl_image nid_ids_view(const sbt_img *src, int lay, float **mem)
     return sbt_view1_layout(src, lay, 5, mem);
 }
 
+/* The scene of the normal / id gather tests: random colours and lengths, a nearer
+   rectangle r = {x, y, w, h} that moved r[4] pixels in x, normals and ids with special
+   values, a few infinite previous depths and NaN history values. With `mv` (the motion
+   vector test) also per-pixel motion, some far previous depths and a row without
+   normals; the camera test passes NULL (its motion comes from the cameras). */
+/* the moved rectangle of nid_scene_make: x, y, w, h, then its shift 1 .. max_shift */
+static void nid_rect(int r[5], sbt_rng *rng, int w, int h, int max_shift)
+{
+    r[0] = (int)(sbt_uniform(rng) * w * 0.6);
+    r[1] = (int)(sbt_uniform(rng) * h * 0.5);
+    r[2] = 3 + (int)(sbt_uniform(rng) * w * 0.5);
+    r[3] = 2 + (int)(sbt_uniform(rng) * h);
+    r[4] = 1 + (int)(sbt_uniform(rng) * max_shift);
+}
+
+typedef struct nid_scene {
+    sbt_img cur, hist, len, depth, pdepth, nrm, pnrm, ids, pids;
+    float *mem[4];
+} nid_scene;
+
+static void nid_scene_make(nid_scene *s, sbt_rng *rng, int it, int w, int h, int ch, const int r[5],
+                           double depth_slope, double spread, sbt_img *mv)
+{
+    static const float back_dir[3] = {0.0f, 0.0f, 1.0f}, obj_dir[3] = {0.5f, 0.1f, 0.86f};
+    int x, y, c;
+    s->cur = sbt_img_new(w, h, ch, 1);
+    s->hist = sbt_img_new(w, h, ch, 2);
+    s->len = sbt_img_new(w, h, 1, 0);
+    s->depth = sbt_img_new(w, h, 1, 1);
+    s->pdepth = sbt_img_new(w, h, 1, 0);
+    s->nrm = sbt_img_new(w, h, 3, 0);
+    s->pnrm = sbt_img_new(w, h, 3, 0);
+    s->ids = sbt_img_new(w, h, 1, 0);
+    s->pids = sbt_img_new(w, h, 1, 0);
+    for (c = 0; c < 4; ++c) s->mem[c] = NULL;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x) {
+            const int inside = y >= r[1] && y < r[1] + r[3];
+            const int now = inside && x >= r[0] && x < r[0] + r[2];
+            const int was = inside && x >= r[0] + r[4] && x < r[0] + r[4] + r[2];
+            for (c = 0; c < ch; ++c) {
+                sbt_at(&s->cur, x, y)[c] = (float)sbt_uniform(rng);
+                sbt_at(&s->hist, x, y)[c] = (float)(sbt_uniform(rng) * 2);
+            }
+            *sbt_at(&s->len, x, y) = (float)(1 + sbt_uniform(rng) * 30);
+            /* depth: the object a little nearer only (many of its taps pass the depth
+               test and are decided by the normal / id tests) */
+            *sbt_at(&s->depth, x, y) = (float)((now ? 3.9 : 4.0) + depth_slope * x);
+            *sbt_at(&s->pdepth, x, y) = (float)((was ? 3.9 : 4.0) + depth_slope * x);
+            if (mv) {
+                if (it % 4 == 0 && sbt_uniform(rng) < 0.1) *sbt_at(&s->pdepth, x, y) = 1.0f;
+                sbt_at(mv, x, y)[0] = (float)((sbt_uniform(rng) - 0.5) * 2.5);
+                sbt_at(mv, x, y)[1] = (float)((sbt_uniform(rng) - 0.5) * 1.8);
+                if (it % 8 == 5) { /* uniform integer motion (the contiguous taps) */
+                    sbt_at(mv, x, y)[0] = -1.0f;
+                    sbt_at(mv, x, y)[1] = 0.0f;
+                }
+            }
+            nid_normal(sbt_at(&s->nrm, x, y), rng, now ? obj_dir : back_dir, spread, 0.04);
+            nid_normal(sbt_at(&s->pnrm, x, y), rng, was ? obj_dir : back_dir, spread, 0.06);
+            *sbt_at(&s->ids, x, y) = nid_id(rng, now ? 1.0f : 2.0f, 0.03);
+            *sbt_at(&s->pids, x, y) = nid_id(rng, was ? 1.0f : 2.0f, 0.05);
+            if (mv && it % 9 == 4 && y == 0) { /* a row without normals, in both frames */
+                for (c = 0; c < 3; ++c) sbt_at(&s->nrm, x, y)[c] = sbt_at(&s->pnrm, x, y)[c] = 0.0f;
+            }
+            if (sbt_uniform(rng) < 0.02) *sbt_at(&s->pdepth, x, y) = (float)HUGE_VAL;
+            if (sbt_uniform(rng) < 0.02) sbt_at(&s->hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
+            if (sbt_uniform(rng) < 0.03) *sbt_at(&s->len, x, y) = 0.0f;
+        }
+}
+
+/* The scene's colour, length and depth on a target (current frame / this eye) and a
+   source (history / other eye), and its normals and ids by `tests`: 0 and 4 both, 1
+   normals only, 2 ids only, 3 both with normals only on the target; the views in
+   layouts that vary with `it` */
+static void nid_scene_bind(nid_scene *s, int it, int tests, int with_len, sbl_image *color,
+                           sbl_gbuffer *g, sbl_image *src_color, sbl_image *src_len, sbl_gbuffer *src_g)
+{
+    *color = sbt_view(&s->cur);
+    g->depth = sbt_view(&s->depth);
+    *src_color = sbt_view(&s->hist);
+    if (with_len) *src_len = sbt_view(&s->len);
+    src_g->depth = sbt_view(&s->pdepth);
+    if (tests != 2) g->normals = nid_normals_view(&s->nrm, it % 4, &s->mem[0]);
+    if (tests != 2 && tests != 3) src_g->normals = nid_normals_view(&s->pnrm, (it / 4) % 4, &s->mem[1]);
+    if (tests != 1) {
+        g->ids = nid_ids_view(&s->ids, it % 3, &s->mem[2]);
+        src_g->ids = nid_ids_view(&s->pids, (it / 3) % 3, &s->mem[3]);
+    }
+}
+
+static void nid_scene_free(nid_scene *s)
+{
+    int i;
+    for (i = 0; i < 4; ++i) free(s->mem[i]);
+    free(s->cur.mem); free(s->hist.mem); free(s->len.mem); free(s->depth.mem); free(s->pdepth.mem);
+    free(s->nrm.mem); free(s->pnrm.mem); free(s->ids.mem); free(s->pids.mem);
+}
+
+/* The reprojection options of iteration `it`: the fallback off now and then; with
+   tests == 4 the normal test disabled (by a negative threshold where it & threshold_bit,
+   else by the flag), else now and then a threshold other than the default */
+static void nid_reproject(sbl_reproject_desc *rd, sbt_rng *rng, int it, int tests, int threshold_bit)
+{
+    memset(rd, 0, sizeof *rd);
+    rd->no_fallback = it % 7 == 1;
+    if (tests == 4) {
+        if (it & threshold_bit) rd->normal_threshold = -1.0f;
+        else rd->disabled_tests = SBL_TEST_NORMAL;
+    } else if (it % 4 == 3) {
+        rd->normal_threshold = (float)(0.5 + 0.5 * sbt_uniform(rng));
+    }
+}
+
 #endif
 
 static void test_row_gather_normals(void)
 {
 #ifdef SBL__ROW_GATHER
     const int contracts = compiler_contracts();
-    static const float back_dir[3] = {0.0f, 0.0f, 1.0f}, obj_dir[3] = {0.5f, 0.1f, 0.86f};
     sbt_rng rng = {9191};
     int it, pixels = 0, mismatches = 0, empty = 0, spixels = 0, smismatches = 0, sempty = 0;
     int nid_rejected = 0;
     for (it = 0; it < 400; ++it) {
         int w = 8 + (int)(sbt_uniform(&rng) * 80), h = 3 + (int)(sbt_uniform(&rng) * 9);
-        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i, e;
-        int ax = (int)(sbt_uniform(&rng) * w * 0.6), ay = (int)(sbt_uniform(&rng) * h * 0.5);
-        int aw = 3 + (int)(sbt_uniform(&rng) * w * 0.5), ah = 2 + (int)(sbt_uniform(&rng) * h);
-        int shift = 1 + (int)(sbt_uniform(&rng) * 6);
-        /* which tests: 0 both, 1 normals only, 2 ids only, 3 both with the target's
-           normals only on the target (no source normals), 4 normal test disabled */
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, e, r[5];
+        /* which tests: see nid_scene_bind (4: the normal test disabled) */
         const int tests = it % 5, with_len = it % 6 != 0, stereo = it % 3 == 2;
-        const double spread = 0.15 + 0.3 * sbt_uniform(&rng);
-        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
-        sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
-        sbt_img pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 1);
-        sbt_img nrm = sbt_img_new(w, h, 3, 0), pnrm = sbt_img_new(w, h, 3, 0);
-        sbt_img ids = sbt_img_new(w, h, 1, 0), pids = sbt_img_new(w, h, 1, 0);
-        float *mem[4] = {NULL, NULL, NULL, NULL};
+        double spread;
+        nid_scene sc;
+        sbt_img mv;
         sbl_reproject_desc rd;
         float planes[2][7][100];
         unsigned char unsafe[100];
         sbl__ring_row ra, rb;
-        memset(&rd, 0, sizeof rd);
-        rd.no_fallback = it % 7 == 1;
-        if (tests == 4) {
-            if (it & 1) rd.normal_threshold = -1.0f;
-            else rd.disabled_tests = SBL_TEST_NORMAL;
-        } else if (it % 4 == 3) {
-            rd.normal_threshold = (float)(0.5 + 0.5 * sbt_uniform(&rng));
-        }
-        for (y = 0; y < h; ++y)
-            for (x = 0; x < w; ++x) {
-                const int now = x >= ax && x < ax + aw && y >= ay && y < ay + ah;
-                const int was = x >= ax + shift && x < ax + shift + aw && y >= ay && y < ay + ah;
-                for (c = 0; c < ch; ++c) {
-                    sbt_at(&cur, x, y)[c] = (float)sbt_uniform(&rng);
-                    sbt_at(&hist, x, y)[c] = (float)(sbt_uniform(&rng) * 2);
-                }
-                *sbt_at(&len, x, y) = (float)(1 + sbt_uniform(&rng) * 30);
-                /* depth: the object a little nearer only (many of its taps pass the depth
-                   test and are decided by the normal / id tests) */
-                *sbt_at(&depth, x, y) = now ? (float)(3.9 + 0.01 * x) : (float)(4.0 + 0.01 * x);
-                *sbt_at(&pdepth, x, y) = was ? (float)(3.9 + 0.01 * x) : (float)(4.0 + 0.01 * x);
-                if (it % 4 == 0 && sbt_uniform(&rng) < 0.1) *sbt_at(&pdepth, x, y) = 1.0f;
-                sbt_at(&mv, x, y)[0] = (float)((sbt_uniform(&rng) - 0.5) * 2.5);
-                sbt_at(&mv, x, y)[1] = (float)((sbt_uniform(&rng) - 0.5) * 1.8);
-                if (it % 8 == 5) { /* uniform integer motion (the contiguous taps) */
-                    sbt_at(&mv, x, y)[0] = -1.0f;
-                    sbt_at(&mv, x, y)[1] = 0.0f;
-                }
-                nid_normal(sbt_at(&nrm, x, y), &rng, now ? obj_dir : back_dir, spread, 0.04);
-                nid_normal(sbt_at(&pnrm, x, y), &rng, was ? obj_dir : back_dir, spread, 0.06);
-                *sbt_at(&ids, x, y) = nid_id(&rng, now ? 1.0f : 2.0f, 0.03);
-                *sbt_at(&pids, x, y) = nid_id(&rng, was ? 1.0f : 2.0f, 0.05);
-                if (it % 9 == 4 && y == 0) { /* a row without normals, in both frames */
-                    for (c = 0; c < 3; ++c) sbt_at(&nrm, x, y)[c] = sbt_at(&pnrm, x, y)[c] = 0.0f;
-                }
-                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
-                if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
-                if (sbt_uniform(&rng) < 0.03) *sbt_at(&len, x, y) = 0.0f;
-            }
+        nid_rect(r, &rng, w, h, 6);
+        spread = 0.15 + 0.3 * sbt_uniform(&rng);
+        nid_reproject(&rd, &rng, it, tests, 1);
+        mv = sbt_img_new(w, h, 2, 1);
+        nid_scene_make(&sc, &rng, it, w, h, ch, r, 0.01, spread, &mv);
         BIND_RING_ROWS(ra, rb, planes, unsafe);
         if (!stereo) {
             sbl_frame f;
@@ -1237,18 +1308,8 @@ static void test_row_gather_normals(void)
             sbl__temporal_rp rp;
             memset(&f, 0, sizeof f);
             memset(&hi, 0, sizeof hi);
-            f.color = view(&cur);
-            f.gbuffer.depth = view(&depth);
+            nid_scene_bind(&sc, it, tests, with_len, &f.color, &f.gbuffer, &hi.color, &hi.length, &hi.gbuffer);
             f.gbuffer.motion = view(&mv);
-            hi.color = view(&hist);
-            if (with_len) hi.length = view(&len);
-            hi.gbuffer.depth = view(&pdepth);
-            if (tests != 2) f.gbuffer.normals = nid_normals_view(&nrm, it % 4, &mem[0]);
-            if (tests != 2 && tests != 3) hi.gbuffer.normals = nid_normals_view(&pnrm, (it / 4) % 4, &mem[1]);
-            if (tests != 1) {
-                f.gbuffer.ids = nid_ids_view(&ids, it % 3, &mem[2]);
-                hi.gbuffer.ids = nid_ids_view(&pids, (it / 3) % 3, &mem[3]);
-            }
             CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
             CHECK(sbl__row_gather_ok(&rp.src));
             CHECK_EQ(rp.src.use_normal, tests == 0 || tests == 1);
@@ -1282,19 +1343,10 @@ static void test_row_gather_normals(void)
                     *sbt_at(&disp2, x, y) = (float)(2.5 + 0.3 * sbt_uniform(&rng));
                 }
             memset(eye, 0, sizeof eye);
-            eye[0].color = view(&cur);
-            eye[0].gbuffer.depth = view(&depth);
+            nid_scene_bind(&sc, it, tests, with_len, &eye[0].color, &eye[0].gbuffer, &eye[1].color,
+                           &eye[1].length, &eye[1].gbuffer);
             eye[0].disparity = view(&disp);
-            eye[1].color = view(&hist);
-            if (with_len) eye[1].length = view(&len);
-            eye[1].gbuffer.depth = view(&pdepth);
             eye[1].disparity = view(&disp2);
-            if (tests != 2) eye[0].gbuffer.normals = nid_normals_view(&nrm, it % 4, &mem[0]);
-            if (tests != 2 && tests != 3) eye[1].gbuffer.normals = nid_normals_view(&pnrm, (it / 4) % 4, &mem[1]);
-            if (tests != 1) {
-                eye[0].gbuffer.ids = nid_ids_view(&ids, it % 3, &mem[2]);
-                eye[1].gbuffer.ids = nid_ids_view(&pids, (it / 3) % 3, &mem[3]);
-            }
             memset(&sd, 0, sizeof sd);
             sd.rig = it % 2 ? SBL_RIG_DISPARITY : SBL_RIG_PARALLEL;
             sd.focal_px = 10.0f;
@@ -1309,9 +1361,8 @@ static void test_row_gather_normals(void)
                                                  (int)sd.rig, &spixels, &smismatches, &sempty);
             free(disp.mem); free(disp2.mem);
         }
-        for (i = 0; i < 4; ++i) free(mem[i]);
-        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
-        free(nrm.mem); free(pnrm.mem); free(ids.mem); free(pids.mem);
+        nid_scene_free(&sc);
+        free(mv.mem);
     }
     printf("  %s row gather vs pixel gather, normals / ids: %d pixels (%d without x*, %d by the normal / id "
            "tests), %d differ; stereo %d pixels (%d without a match), %d differ\n",
@@ -1439,28 +1490,16 @@ static void test_camera_plans_normals(void)
 {
 #ifdef SBL__ROW_GATHER
     const int contracts = compiler_contracts();
-    static const float back_dir[3] = {0.0f, 0.0f, 1.0f}, obj_dir[3] = {0.5f, 0.1f, 0.86f};
     sbt_rng rng = {7373};
     int it, pixels = 0, mismatches = 0, empty = 0, spixels = 0, smismatches = 0, sempty = 0;
     int nid_rejected = 0, lane_rows = 0, rows = 0;
     for (it = 0; it < 160; ++it) {
         int w = 12 + (int)(sbt_uniform(&rng) * 70), h = 4 + (int)(sbt_uniform(&rng) * 8);
-        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, c, i, e;
-        int ax = (int)(sbt_uniform(&rng) * w * 0.6), ay = (int)(sbt_uniform(&rng) * h * 0.5);
-        int aw = 3 + (int)(sbt_uniform(&rng) * w * 0.5), ah = 2 + (int)(sbt_uniform(&rng) * h);
-        int shift = 1 + (int)(sbt_uniform(&rng) * 4);
-        /* which tests: 0 both, 1 normals only, 2 ids only, 3 both with normals only on the
-           target, 4 the normal test disabled */
+        int ch = 1 + (int)(sbt_uniform(&rng) * 4), x, y, i, e, r[5];
+        /* which tests: see nid_scene_bind (4: the normal test disabled) */
         const int tests = it % 5, with_len = it % 6 != 0, stereo = it % 2;
-        const double spread = 0.15 + 0.3 * sbt_uniform(&rng);
-        /* the camera's move: sub-pixel and a few pixels (x), a little in y */
-        const double tx = (sbt_uniform(&rng) - 0.3) * 0.2, ty = (sbt_uniform(&rng) - 0.5) * 0.05;
-        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 2);
-        sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
-        sbt_img pdepth = sbt_img_new(w, h, 1, 0);
-        sbt_img nrm = sbt_img_new(w, h, 3, 0), pnrm = sbt_img_new(w, h, 3, 0);
-        sbt_img ids = sbt_img_new(w, h, 1, 0), pids = sbt_img_new(w, h, 1, 0);
-        float *mem[4] = {NULL, NULL, NULL, NULL};
+        double spread, tx, ty;
+        nid_scene sc;
         sbl_reproject_desc rd;
         sbl_intrinsics kin;
         sbl_camera cam[2];
@@ -1468,33 +1507,13 @@ static void test_camera_plans_normals(void)
         float planes[2][7][100];
         unsigned char unsafe[100];
         sbl__ring_row ra, rb;
-        memset(&rd, 0, sizeof rd);
-        rd.no_fallback = it % 7 == 1;
-        if (tests == 4) {
-            if (it & 2) rd.normal_threshold = -1.0f;
-            else rd.disabled_tests = SBL_TEST_NORMAL;
-        } else if (it % 4 == 3) {
-            rd.normal_threshold = (float)(0.5 + 0.5 * sbt_uniform(&rng));
-        }
-        for (y = 0; y < h; ++y)
-            for (x = 0; x < w; ++x) {
-                const int now = x >= ax && x < ax + aw && y >= ay && y < ay + ah;
-                const int was = x >= ax + shift && x < ax + shift + aw && y >= ay && y < ay + ah;
-                for (c = 0; c < ch; ++c) {
-                    sbt_at(&cur, x, y)[c] = (float)sbt_uniform(&rng);
-                    sbt_at(&hist, x, y)[c] = (float)(sbt_uniform(&rng) * 2);
-                }
-                *sbt_at(&len, x, y) = (float)(1 + sbt_uniform(&rng) * 30);
-                *sbt_at(&depth, x, y) = now ? (float)(3.9 + 0.001 * x) : (float)(4.0 + 0.001 * x);
-                *sbt_at(&pdepth, x, y) = was ? (float)(3.9 + 0.001 * x) : (float)(4.0 + 0.001 * x);
-                nid_normal(sbt_at(&nrm, x, y), &rng, now ? obj_dir : back_dir, spread, 0.04);
-                nid_normal(sbt_at(&pnrm, x, y), &rng, was ? obj_dir : back_dir, spread, 0.06);
-                *sbt_at(&ids, x, y) = nid_id(&rng, now ? 1.0f : 2.0f, 0.03);
-                *sbt_at(&pids, x, y) = nid_id(&rng, was ? 1.0f : 2.0f, 0.05);
-                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL;
-                if (sbt_uniform(&rng) < 0.02) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL - (float)HUGE_VAL;
-                if (sbt_uniform(&rng) < 0.03) *sbt_at(&len, x, y) = 0.0f;
-            }
+        nid_rect(r, &rng, w, h, 4);
+        spread = 0.15 + 0.3 * sbt_uniform(&rng);
+        /* the camera's move: sub-pixel and a few pixels (x), a little in y */
+        tx = (sbt_uniform(&rng) - 0.3) * 0.2;
+        ty = (sbt_uniform(&rng) - 0.5) * 0.05;
+        nid_reproject(&rd, &rng, it, tests, 2);
+        nid_scene_make(&sc, &rng, it, w, h, ch, r, 0.001, spread, NULL);
         kin.fx = kin.fy = (float)(0.8 * w + 3);
         kin.cx = 0.5f * (float)w;
         kin.cy = 0.5f * (float)h;
@@ -1510,19 +1529,9 @@ static void test_camera_plans_normals(void)
             sbl__temporal_rp rp;
             memset(&f, 0, sizeof f);
             memset(&hi, 0, sizeof hi);
-            f.color = sbt_view(&cur);
-            f.gbuffer.depth = sbt_view(&depth);
+            nid_scene_bind(&sc, it, tests, with_len, &f.color, &f.gbuffer, &hi.color, &hi.length, &hi.gbuffer);
             f.camera = &cam[1];
-            hi.color = sbt_view(&hist);
-            if (with_len) hi.length = sbt_view(&len);
-            hi.gbuffer.depth = sbt_view(&pdepth);
             hi.camera = &cam[0];
-            if (tests != 2) f.gbuffer.normals = nid_normals_view(&nrm, it % 4, &mem[0]);
-            if (tests != 2 && tests != 3) hi.gbuffer.normals = nid_normals_view(&pnrm, (it / 4) % 4, &mem[1]);
-            if (tests != 1) {
-                f.gbuffer.ids = nid_ids_view(&ids, it % 3, &mem[2]);
-                hi.gbuffer.ids = nid_ids_view(&pids, (it / 3) % 3, &mem[3]);
-            }
             CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_CAMERA, &f, &hi), SBL_OK);
             CHECK(sbl__row_gather_ok(&rp.src));
             CHECK_EQ(rp.src.use_normal, tests == 0 || tests == 1);
@@ -1552,19 +1561,10 @@ static void test_camera_plans_normals(void)
             sbl_eye eye[2];
             sbl__stereo_rp rp;
             memset(eye, 0, sizeof eye);
-            eye[0].color = sbt_view(&cur);
-            eye[0].gbuffer.depth = sbt_view(&depth);
+            nid_scene_bind(&sc, it, tests, with_len, &eye[0].color, &eye[0].gbuffer, &eye[1].color,
+                           &eye[1].length, &eye[1].gbuffer);
             eye[0].camera = &cam[0];
-            eye[1].color = sbt_view(&hist);
-            if (with_len) eye[1].length = sbt_view(&len);
-            eye[1].gbuffer.depth = sbt_view(&pdepth);
             eye[1].camera = &cam[1];
-            if (tests != 2) eye[0].gbuffer.normals = nid_normals_view(&nrm, it % 4, &mem[0]);
-            if (tests != 2 && tests != 3) eye[1].gbuffer.normals = nid_normals_view(&pnrm, (it / 4) % 4, &mem[1]);
-            if (tests != 1) {
-                eye[0].gbuffer.ids = nid_ids_view(&ids, it % 3, &mem[2]);
-                eye[1].gbuffer.ids = nid_ids_view(&pids, (it / 3) % 3, &mem[3]);
-            }
             memset(&sd, 0, sizeof sd);
             if (it % 4 == 1) {
                 sd.rig = SBL_RIG_MATRICES;
@@ -1592,9 +1592,7 @@ static void test_camera_plans_normals(void)
                                                  it, (int)sd.rig, &spixels, &smismatches, &sempty);
             }
         }
-        for (i = 0; i < 4; ++i) free(mem[i]);
-        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem);
-        free(nrm.mem); free(pnrm.mem); free(ids.mem); free(pids.mem);
+        nid_scene_free(&sc);
     }
     printf("  %s camera plans vs pixel gather, normals / ids: temporal %d pixels (%d without x*, %d by the "
            "normal / id tests), %d differ; stereo %d pixels (%d without a match), %d differ; %d of %d rows "
