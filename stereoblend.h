@@ -3472,7 +3472,7 @@ typedef struct sbl__tap_plan {
        pixels in every view (planned so together: uniform integer motion); 2: planned
        together and not so (0: unknown) */
     unsigned char uniform[SBL__BLOCK];
-    int lane_step[3][SBL__VW];      /* l * pixel step of colour, depth, N (set per call) */
+    int lane_step[5][SBL__VW];      /* l * pixel step of colour, depth, N, normals, ids (set per call) */
     /* the normal and id tests (sbl__lanes_nid_ok), where the call runs them: tap (x0, y0)
        in the normals and the ids, the target's normal, its squared length and its id */
     int ni[SBL__BLOCK], ii[SBL__BLOCK];
@@ -3885,7 +3885,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
                                        int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
                                        int plain, sbl__v *nt, int contiguous, int sky, int full,
                                        const sbl__v *pre, int nid_run, const sbl__v *nid_pre,
-                                       int nid, const sbl__nid_want *nw)
+                                       int nid, sbl__m nid_ok)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
@@ -3910,7 +3910,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
             ok = sbl__mand(ok, match);
         }
     }
-    if (nid) ok = sbl__mand(ok, sbl__lanes_nid_run(s, p, i, t, nid, nw));
+    if (nid) ok = sbl__mand(ok, nid_ok); /* (sbl__lanes_nid_run, formed before) */
     else if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t, nid_run, nid_pre));
     *nt = zero;
     if (full || s->length.p) {
@@ -4071,12 +4071,22 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
            lanes' taps are scattered (not contiguous) and every view is packed: each
            view's taps read by rows, two taps per gather (sbl__gather_pairs) */
         sbl__v n0, n1 = zero, n2 = zero, n3 = zero, dn[4][2], cv[4][4], q[8], nv[4][4];
-        sbl__nid_want nw;
-        sbl__m all;
+        sbl__m all, nk[4];
         /* the normal / id tests' taps in pairs too where both views are packed */
         const int nid_pair = pair && !full && (s->use_normal || s->use_id) &&
                              (!s->use_normal || s->normals.step == 3) && (!s->use_id || s->ids.step == 1);
-        if (nid) sbl__nid_want_load(p, i, nid, &nw);
+        if (nid) {
+            /* the normal / id tests of the taps first: the target's side is live only
+               here (registers: SSE2 has 16) */
+            sbl__nid_want nw;
+            sbl__nid_want_load(p, i, nid, &nw);
+            nk[0] = nk[1] = nk[2] = nk[3] = sbl__lanes_nid_run(s, p, i, 0, nid, &nw);
+            if (!skip_x) nk[1] = sbl__lanes_nid_run(s, p, i, 1, nid, &nw);
+            if (!skip_y) {
+                nk[2] = sbl__lanes_nid_run(s, p, i, 2, nid, &nw);
+                if (!skip_x) nk[3] = sbl__lanes_nid_run(s, p, i, 3, nid, &nw);
+            }
+        }
         if (nid_pair) {
             int ty;
             for (ty = 0; ty < (skip_y ? 1 : 2); ++ty) {
@@ -4113,7 +4123,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         }
 #define SBL__TEST(t, nt) \
     sbl__lanes_tap_test(s, p, i, t, w##t, ze, lim, inf_e, plain, nt, contiguous, sky, full, pair ? dn[t] : NULL, \
-                        nid_run, nid_pair ? nv[t] : NULL, nid, &nw)
+                        nid_run, nid_pair ? nv[t] : NULL, nid, nid ? nk[t] : sbl__true)
         ok0 = SBL__TEST(0, &n0);
         ok1 = ok2 = ok3 = ok0;
         if (!skip_x) ok1 = SBL__TEST(1, &n1);
@@ -4562,6 +4572,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
         b.p.lane_step[0][i] = i * SBL__CAST(int, src->color.step);
         b.p.lane_step[1][i] = i * SBL__CAST(int, src->depth.step);
         b.p.lane_step[2][i] = i * SBL__CAST(int, src->length.step);
+        b.p.lane_step[3][i] = src->use_normal ? i * SBL__CAST(int, src->normals.step) : 0;
+        b.p.lane_step[4][i] = src->use_id ? i * SBL__CAST(int, src->ids.step) : 0;
     }
     for (b.x0 = xa; b.x0 < xb; b.x0 += SBL__BLOCK) {
         b.n = xb - b.x0 < SBL__BLOCK ? xb - b.x0 : SBL__BLOCK;
@@ -4878,15 +4890,17 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
               (flat || sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) ==
                            (1 << SBL__VW) - 1);
     memset(p->uniform + i, 0, SBL__VW);
-    if (src->use_normal || src->use_id) sbl__plan_index_nid(src, p, i, x0s, y0s);
     if (uniform) {
         const int cx = SBL__CAST(int, x0s[0]), cy = SBL__CAST(int, y0s[0]);
         p->uniform[i] = 1;
         sbl__plan_index_run(p->ci + i, cx, cy, &src->color, p->lane_step[0]);
         sbl__plan_index_run(p->di + i, cx, cy, src->use_depth ? &src->depth : NULL, p->lane_step[1]);
         sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL, p->lane_step[2]);
+        if (src->use_normal) sbl__plan_index_run(p->ni + i, cx, cy, &src->normals, p->lane_step[3]);
+        if (src->use_id) sbl__plan_index_run(p->ii + i, cx, cy, &src->ids, p->lane_step[4]);
         return bits_scalar;
     }
+    if (src->use_normal || src->use_id) sbl__plan_index_nid(src, p, i, x0s, y0s);
     p->uniform[i] = 2; /* lanes apart: not contiguous, no need to test (sbl__row_taps_ch) */
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
     sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
