@@ -3754,11 +3754,24 @@ SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v 
     return sbl__lanes_normal_ok_m(n0, n1, n2, m0, m1, m2, mm, sbl__gt(sbl__set1(1e-12f), mm), thr2);
 }
 
-/* The id test per lane: equal as floats, a NaN on either side never matching. */
+/* a == b per lane, ordered (a NaN on either side: false), in one compare: the lanes
+   where a <= b and b <= a */
+SBL__INLINE sbl__m sbl__lanes_eq(sbl__v a, sbl__v b)
+{
+#if SBL__VW == 16
+    return _mm512_cmp_ps_mask(a, b, _CMP_EQ_OQ);
+#elif SBL__VW == 8
+    return _mm256_cmp_ps(a, b, _CMP_EQ_OQ);
+#else
+    return _mm_cmpeq_ps(a, b);
+#endif
+}
+
+/* The id test per lane: equal as floats, a NaN on either side never matching (tested on
+   the bits too: -ffast-math may rewrite the compare into one true for NaN). */
 SBL__INLINE sbl__m sbl__lanes_id_ok(sbl__v id, sbl__v want)
 {
-    return sbl__mandnot(sbl__mand(sbl__le(id, want), sbl__le(want, id)),
-                        sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
+    return sbl__mandnot(sbl__lanes_eq(id, want), sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
 }
 
 /* The VW pixels x .. x + VW - 1 of row y of a view, channel c (pixel step 1: a load;
@@ -3833,6 +3846,7 @@ SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan 
 typedef struct sbl__nid_want {
     sbl__v id, m0, m1, m2, mm;
     sbl__m id_nan, none_m;
+    int all_m; /* every lane's target has a normal (none_m false in every lane) */
 } sbl__nid_want;
 
 SBL__INLINE void sbl__nid_want_load(const sbl__tap_plan *p, int i, int nid, sbl__nid_want *w)
@@ -3847,27 +3861,43 @@ SBL__INLINE void sbl__nid_want_load(const sbl__tap_plan *p, int i, int nid, sbl_
         w->m2 = sbl__load(p->tn[2] + i);
         w->mm = sbl__load(p->tn2 + i);
         w->none_m = sbl__gt(sbl__set1(1e-12f), w->mm);
+        w->all_m = !sbl__mbits(w->none_m);
     }
 }
 
 /* sbl__lanes_nid_ok of tap t for a run whose views are packed (ids: pixel step 1,
    normals: 3), with which views are tested a constant (nid as above) and the target's
-   side from w: the same operations per lane, without the tests of the layout. */
+   side from w: the same operations per lane, without the tests of the layout. all_m (a
+   constant, w->all_m): every lane's target has a normal, so sbl__lanes_normal_ok_m's
+   match is "the tap has one and agrees" and the test one union of its failures. */
 SBL__INLINE sbl__m sbl__lanes_nid_run(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
-                                      int nid, const sbl__nid_want *w)
+                                      int nid, const sbl__nid_want *w, int all_m)
 {
     const ptrdiff_t tx = t & 1, ty = t >> 1;
     sbl__m ok = sbl__true;
     if (nid & 1) {
         const sbl__v id = sbl__load(s->ids.p + ty * s->ids.stride + tx + p->ii[i]);
-        ok = sbl__mandnot(sbl__mand(sbl__le(id, w->id), sbl__le(w->id, id)), sbl__mor(sbl__lanes_nan(id), w->id_nan));
+        ok = sbl__mandnot(sbl__lanes_eq(id, w->id), sbl__mor(sbl__lanes_nan(id), w->id_nan));
     }
     if (nid & 2) {
         sbl__v n0, n1, n2;
-        sbl__m nok;
         sbl__rgb_lanes(s->normals.p + ty * s->normals.stride + 3 * tx + p->ni[i], &n0, &n1, &n2);
-        nok = sbl__lanes_normal_ok_m(n0, n1, n2, w->m0, w->m1, w->m2, w->mm, w->none_m, s->normal_threshold2);
-        ok = (nid & 1) ? sbl__mand(ok, nok) : nok;
+        if (all_m) {
+            /* sbl__lanes_normal_ok_m with none_m false in every lane, the same float
+               operations: fails where dot < 0, dot^2 < thr2 nn mm, nn < 1e-12 (no tap
+               normal) or dot or nn is not finite */
+            const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, w->m0), sbl__mul(n1, w->m1)), sbl__mul(n2, w->m2));
+            const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
+            const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(s->normal_threshold2), nn), w->mm);
+            const sbl__m fail = sbl__mor(sbl__mor(sbl__gt(sbl__set1(0.0f), dot), sbl__gt(lim, sbl__mul(dot, dot))),
+                                         sbl__mor(sbl__gt(sbl__set1(1e-12f), nn),
+                                                  sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn))));
+            ok = sbl__mandnot(ok, fail);
+        } else {
+            const sbl__m nok = sbl__lanes_normal_ok_m(n0, n1, n2, w->m0, w->m1, w->m2, w->mm, w->none_m,
+                                                      s->normal_threshold2);
+            ok = (nid & 1) ? sbl__mand(ok, nok) : nok;
+        }
     }
     return ok;
 }
@@ -4080,12 +4110,20 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
                here (registers: SSE2 has 16) */
             sbl__nid_want nw;
             sbl__nid_want_load(p, i, nid, &nw);
-            nk[0] = nk[1] = nk[2] = nk[3] = sbl__lanes_nid_run(s, p, i, 0, nid, &nw);
-            if (!skip_x) nk[1] = sbl__lanes_nid_run(s, p, i, 1, nid, &nw);
-            if (!skip_y) {
-                nk[2] = sbl__lanes_nid_run(s, p, i, 2, nid, &nw);
-                if (!skip_x) nk[3] = sbl__lanes_nid_run(s, p, i, 3, nid, &nw);
-            }
+#define SBL__NID_TAPS(all_m) \
+    { \
+        nk[0] = nk[1] = nk[2] = nk[3] = sbl__lanes_nid_run(s, p, i, 0, nid, &nw, all_m); \
+        if (!skip_x) nk[1] = sbl__lanes_nid_run(s, p, i, 1, nid, &nw, all_m); \
+        if (!skip_y) { \
+            nk[2] = sbl__lanes_nid_run(s, p, i, 2, nid, &nw, all_m); \
+            if (!skip_x) nk[3] = sbl__lanes_nid_run(s, p, i, 3, nid, &nw, all_m); \
+        } \
+    }
+            /* (all_m a constant in each instance: the targets with a normal everywhere,
+               the common case, take the shorter test) */
+            if ((nid & 2) && nw.all_m) SBL__NID_TAPS(1)
+            else SBL__NID_TAPS(0)
+#undef SBL__NID_TAPS
         }
         if (nid_pair) {
             int ty;
