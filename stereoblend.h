@@ -3472,7 +3472,7 @@ typedef struct sbl__tap_plan {
        pixels in every view (planned so together: uniform integer motion); 2: planned
        together and not so (0: unknown) */
     unsigned char uniform[SBL__BLOCK];
-    int lane_step[3][SBL__VW];      /* l * pixel step of colour, depth, N (set per call) */
+    int lane_step[5][SBL__VW];      /* l * pixel step of colour, depth, N, normals, ids (set per call) */
     /* the normal and id tests (sbl__lanes_nid_ok), where the call runs them: tap (x0, y0)
        in the normals and the ids, the target's normal, its squared length and its id */
     int ni[SBL__BLOCK], ii[SBL__BLOCK];
@@ -3712,22 +3712,32 @@ SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *ou
 }
 #endif
 
-/* NaN lanes, on the bits (-ffast-math may fold a float self-compare) */
+/* NaN lanes, on the bits (-ffast-math may fold a float self-compare): |a| above the
+   bits of +inf, compared as signed ints (both non-negative) */
 SBL__INLINE sbl__m sbl__lanes_nan(sbl__v a)
 {
-    return sbl__mandnot(sbl__nonfinite(a), sbl__posinf(sbl__abs(a)));
+#if SBL__VW == 16
+    return _mm512_cmpgt_epi32_mask(_mm512_and_si512(_mm512_castps_si512(a), _mm512_set1_epi32(0x7fffffff)),
+                                   _mm512_set1_epi32(0x7f800000));
+#elif SBL__VW == 8
+    return _mm256_castsi256_ps(_mm256_cmpgt_epi32(
+        _mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7fffffff)), _mm256_set1_epi32(0x7f800000)));
+#else
+    return _mm_castsi128_ps(_mm_cmpgt_epi32(_mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7fffffff)),
+                                            _mm_set1_epi32(0x7f800000)));
+#endif
 }
 
 /* The normal test of sbl__tap_ok_id_normal per lane: tap normal n, target normal m and
    its squared length mm, the squared threshold thr2. */
-SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
-                                        sbl__v m2, sbl__v mm, float thr2)
+SBL__INLINE sbl__m sbl__lanes_normal_ok_m(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
+                                          sbl__v m2, sbl__v mm, sbl__m none_m, float thr2)
 {
     const sbl__v zero = sbl__set1(0.0f), eps = sbl__set1(1e-12f);
     const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, m0), sbl__mul(n1, m1)), sbl__mul(n2, m2));
     const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
     const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(thr2), nn), mm);
-    const sbl__m none_n = sbl__gt(eps, nn), none_m = sbl__gt(eps, mm);
+    const sbl__m none_n = sbl__gt(eps, nn);
     /* both with a normal: not dot < 0 and not dot^2 < threshold^2 nn mm (no NaN here
        where it matters: dot and nn finite, mm finite for a valid target) */
     const sbl__m agree = sbl__mandnot(sbl__mandnot(sbl__true, sbl__gt(zero, dot)),
@@ -3737,11 +3747,31 @@ SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v 
     return sbl__mandnot(match, sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn)));
 }
 
-/* The id test per lane: equal as floats, a NaN on either side never matching. */
+/* the same with the target's "no normal" lanes (mm below 1e-12) formed here */
+SBL__INLINE sbl__m sbl__lanes_normal_ok(sbl__v n0, sbl__v n1, sbl__v n2, sbl__v m0, sbl__v m1,
+                                        sbl__v m2, sbl__v mm, float thr2)
+{
+    return sbl__lanes_normal_ok_m(n0, n1, n2, m0, m1, m2, mm, sbl__gt(sbl__set1(1e-12f), mm), thr2);
+}
+
+/* a == b per lane, ordered (a NaN on either side: false), in one compare: the lanes
+   where a <= b and b <= a */
+SBL__INLINE sbl__m sbl__lanes_eq(sbl__v a, sbl__v b)
+{
+#if SBL__VW == 16
+    return _mm512_cmp_ps_mask(a, b, _CMP_EQ_OQ);
+#elif SBL__VW == 8
+    return _mm256_cmp_ps(a, b, _CMP_EQ_OQ);
+#else
+    return _mm_cmpeq_ps(a, b);
+#endif
+}
+
+/* The id test per lane: equal as floats, a NaN on either side never matching (tested on
+   the bits too: -ffast-math may rewrite the compare into one true for NaN). */
 SBL__INLINE sbl__m sbl__lanes_id_ok(sbl__v id, sbl__v want)
 {
-    return sbl__mandnot(sbl__mand(sbl__le(id, want), sbl__le(want, id)),
-                        sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
+    return sbl__mandnot(sbl__lanes_eq(id, want), sbl__mor(sbl__lanes_nan(id), sbl__lanes_nan(want)));
 }
 
 /* The VW pixels x .. x + VW - 1 of row y of a view, channel c (pixel step 1: a load;
@@ -3811,6 +3841,67 @@ SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan 
     return ok;
 }
 
+/* The target's side of the normal / id tests of plan entries [i, i + VW), read once per
+   vector for its four taps (sbl__lanes_nid_run): nid 1 ids, 2 normals, 3 both. */
+typedef struct sbl__nid_want {
+    sbl__v id, m0, m1, m2, mm;
+    sbl__m id_nan, none_m;
+    int all_m; /* every lane's target has a normal (none_m false in every lane) */
+} sbl__nid_want;
+
+SBL__INLINE void sbl__nid_want_load(const sbl__tap_plan *p, int i, int nid, sbl__nid_want *w)
+{
+    if (nid & 1) {
+        w->id = sbl__load(p->tid + i);
+        w->id_nan = sbl__lanes_nan(w->id);
+    }
+    if (nid & 2) {
+        w->m0 = sbl__load(p->tn[0] + i);
+        w->m1 = sbl__load(p->tn[1] + i);
+        w->m2 = sbl__load(p->tn[2] + i);
+        w->mm = sbl__load(p->tn2 + i);
+        w->none_m = sbl__gt(sbl__set1(1e-12f), w->mm);
+        w->all_m = !sbl__mbits(w->none_m);
+    }
+}
+
+/* sbl__lanes_nid_ok of tap t for a run whose views are packed (ids: pixel step 1,
+   normals: 3), with which views are tested a constant (nid as above) and the target's
+   side from w: the same operations per lane, without the tests of the layout. all_m (a
+   constant, w->all_m): every lane's target has a normal, so sbl__lanes_normal_ok_m's
+   match is "the tap has one and agrees" and the test one union of its failures. */
+SBL__INLINE sbl__m sbl__lanes_nid_run(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int t,
+                                      int nid, const sbl__nid_want *w, int all_m)
+{
+    const ptrdiff_t tx = t & 1, ty = t >> 1;
+    sbl__m ok = sbl__true;
+    if (nid & 1) {
+        const sbl__v id = sbl__load(s->ids.p + ty * s->ids.stride + tx + p->ii[i]);
+        ok = sbl__mandnot(sbl__lanes_eq(id, w->id), sbl__mor(sbl__lanes_nan(id), w->id_nan));
+    }
+    if (nid & 2) {
+        sbl__v n0, n1, n2;
+        sbl__rgb_lanes(s->normals.p + ty * s->normals.stride + 3 * tx + p->ni[i], &n0, &n1, &n2);
+        if (all_m) {
+            /* sbl__lanes_normal_ok_m with none_m false in every lane, the same float
+               operations: fails where dot < 0, dot^2 < thr2 nn mm, nn < 1e-12 (no tap
+               normal) or dot or nn is not finite */
+            const sbl__v dot = sbl__add(sbl__add(sbl__mul(n0, w->m0), sbl__mul(n1, w->m1)), sbl__mul(n2, w->m2));
+            const sbl__v nn = sbl__add(sbl__add(sbl__mul(n0, n0), sbl__mul(n1, n1)), sbl__mul(n2, n2));
+            const sbl__v lim = sbl__mul(sbl__mul(sbl__set1(s->normal_threshold2), nn), w->mm);
+            const sbl__m fail = sbl__mor(sbl__mor(sbl__gt(sbl__set1(0.0f), dot), sbl__gt(lim, sbl__mul(dot, dot))),
+                                         sbl__mor(sbl__gt(sbl__set1(1e-12f), nn),
+                                                  sbl__mor(sbl__nonfinite(dot), sbl__nonfinite(nn))));
+            ok = sbl__mandnot(ok, fail);
+        } else {
+            const sbl__m nok = sbl__lanes_normal_ok_m(n0, n1, n2, w->m0, w->m1, w->m2, w->mm, w->none_m,
+                                                      s->normal_threshold2);
+            ok = (nid & 1) ? sbl__mand(ok, nok) : nok;
+        }
+    }
+    return ok;
+}
+
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
    (x0, y0 + 1), (x0 + 1, y0 + 1). sbl__lanes_tap_test: its tests narrow ok (from w > 0),
    returned, with its N in *nt; sbl__lanes_tap_sum: its weighted N, colour and weight
@@ -3823,7 +3914,8 @@ SBL__INLINE sbl__m sbl__lanes_nid_ok(const sbl__tap_src *s, const sbl__tap_plan 
 SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
                                        int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
                                        int plain, sbl__v *nt, int contiguous, int sky, int full,
-                                       const sbl__v *pre, int nid_run, const sbl__v *nid_pre)
+                                       const sbl__v *pre, int nid_run, const sbl__v *nid_pre,
+                                       int nid, sbl__m nid_ok)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
@@ -3848,7 +3940,8 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
             ok = sbl__mand(ok, match);
         }
     }
-    if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t, nid_run, nid_pre));
+    if (nid) ok = sbl__mand(ok, nid_ok); /* (sbl__lanes_nid_run, formed before) */
+    else if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t, nid_run, nid_pre));
     *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
@@ -3976,7 +4069,7 @@ SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                  sbl__ring_row *r, int x, const int *cstep, int ch,
                                  int contiguous, int sky, int full, int flag, int ev, int pair,
-                                 int nid_run)
+                                 int nid_run, int nid)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
@@ -4008,10 +4101,30 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
            lanes' taps are scattered (not contiguous) and every view is packed: each
            view's taps read by rows, two taps per gather (sbl__gather_pairs) */
         sbl__v n0, n1 = zero, n2 = zero, n3 = zero, dn[4][2], cv[4][4], q[8], nv[4][4];
-        sbl__m all;
+        sbl__m all, nk[4];
         /* the normal / id tests' taps in pairs too where both views are packed */
         const int nid_pair = pair && !full && (s->use_normal || s->use_id) &&
                              (!s->use_normal || s->normals.step == 3) && (!s->use_id || s->ids.step == 1);
+        if (nid) {
+            /* the normal / id tests of the taps first: the target's side is live only
+               here (registers: SSE2 has 16) */
+            sbl__nid_want nw;
+            sbl__nid_want_load(p, i, nid, &nw);
+#define SBL__NID_TAPS(all_m) \
+    { \
+        nk[0] = nk[1] = nk[2] = nk[3] = sbl__lanes_nid_run(s, p, i, 0, nid, &nw, all_m); \
+        if (!skip_x) nk[1] = sbl__lanes_nid_run(s, p, i, 1, nid, &nw, all_m); \
+        if (!skip_y) { \
+            nk[2] = sbl__lanes_nid_run(s, p, i, 2, nid, &nw, all_m); \
+            if (!skip_x) nk[3] = sbl__lanes_nid_run(s, p, i, 3, nid, &nw, all_m); \
+        } \
+    }
+            /* (all_m a constant in each instance: the targets with a normal everywhere,
+               the common case, take the shorter test) */
+            if ((nid & 2) && nw.all_m) SBL__NID_TAPS(1)
+            else SBL__NID_TAPS(0)
+#undef SBL__NID_TAPS
+        }
         if (nid_pair) {
             int ty;
             for (ty = 0; ty < (skip_y ? 1 : 2); ++ty) {
@@ -4048,7 +4161,7 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
         }
 #define SBL__TEST(t, nt) \
     sbl__lanes_tap_test(s, p, i, t, w##t, ze, lim, inf_e, plain, nt, contiguous, sky, full, pair ? dn[t] : NULL, \
-                        nid_run, nid_pair ? nv[t] : NULL)
+                        nid_run, nid_pair ? nv[t] : NULL, nid, nid ? nk[t] : sbl__true)
         ok0 = SBL__TEST(0, &n0);
         ok1 = ok2 = ok3 = ok0;
         if (!skip_x) ok1 = SBL__TEST(1, &n1);
@@ -4178,14 +4291,14 @@ SBL__NOINLINE void sbl__lanes_taps_pairs(const sbl__tap_src *s, sbl__tap_plan *p
                                          int flag, int ev)
 {
     if (ch == 3 && !sky && flag && !ev) {
-        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 0, 1, 0);
-        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 0, 1, 0);
+        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 0, 1, 0, 0);
+        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 0, 1, 0, 0);
     } else if (ch == 3 && !sky && flag && ev) {
         /* the same call with the evidence plane (its hard case: scattered vectors) */
-        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 1, 1, 0);
-        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 1, 1, 0);
+        if (full) sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 1, 1, 1, 1, 0, 0);
+        else sbl__lanes_taps(s, p, i, fallback, r, x, cstep, 3, 0, 0, 0, 1, 1, 1, 0, 0);
     } else {
-        sbl__lanes_taps(s, p, i, fallback, r, x, cstep, ch, 0, sky, full, flag, ev, 1, 0);
+        sbl__lanes_taps(s, p, i, fallback, r, x, cstep, ch, 0, sky, full, flag, ev, 1, 0, 0);
     }
 }
 
@@ -4206,6 +4319,13 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
        pixel step = channel count) */
     const int pairs = SBL__PAIRS && packed && s->color.step == ch;
     const int nid = s->use_normal || s->use_id;
+    /* the normal / id tests with their views as constants (sbl__lanes_nid_run): packed
+       RGB colour, depth and N tested, the normals and ids tested packed; for the
+       vectors that are contiguous, full and consecutive in those views too */
+    const int nid_const = !sky && ch == 3 && nid && s->use_depth && s->length.p &&
+                          (!s->use_normal || s->normals.step == 3) && (!s->use_id || s->ids.step == 1)
+                              ? (s->use_id ? 1 : 0) | (s->use_normal ? 2 : 0)
+                              : 0;
     int i = 0;
     for (;;) {
         int contiguous, full = 0, nid_run;
@@ -4217,7 +4337,7 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                      (p->uniform[i] || (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
                                         (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
                                         (!s->length.p || sbl__ints_step(p->li + i, 1))));
-        if (both) {
+        if (both || nid_const) {
             const sbl__v ze = sbl__load(p->depth + i);
             full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
                                         sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
@@ -4227,14 +4347,22 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                   (p->uniform[i] == 1 ||
                    ((!s->use_normal || sbl__ints_step(p->ni + i, SBL__CAST(int, s->normals.step))) &&
                     (!s->use_id || sbl__ints_step(p->ii + i, SBL__CAST(int, s->ids.step)))));
-        if (contiguous) {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag, ev, 0, nid_run);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag, ev, 0, nid_run);
-        } else if (pairs) {
-            sbl__lanes_taps_pairs(s, p, i, fallback, r, x + i, cstep, ch, sky, full, flag, ev);
+        if (nid_const && full && nid_run) {
+            /* (full: the plain depth test; the normal / id tests run, their views known) */
+            if (nid_const == 3) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, 3, 1, 0, 1, flag, ev, 0, 1, 3);
+            else if (nid_const == 2) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, 3, 1, 0, 1, flag, ev, 0, 1, 2);
+            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, 3, 1, 0, 1, flag, ev, 0, 1, 1);
         } else {
-            if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev, 0, nid_run);
-            else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev, 0, nid_run);
+            if (nid) full = 0; /* (the full variants below leave the normal / id tests out) */
+            if (contiguous) {
+                if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, 0, 1, flag, ev, 0, nid_run, 0);
+                else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 1, sky, 0, flag, ev, 0, nid_run, 0);
+            } else if (pairs) {
+                sbl__lanes_taps_pairs(s, p, i, fallback, r, x + i, cstep, ch, sky, full, flag, ev);
+            } else {
+                if (full) sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, 0, 1, flag, ev, 0, nid_run, 0);
+                else sbl__lanes_taps(s, p, i, fallback, r, x + i, cstep, ch, 0, sky, 0, flag, ev, 0, nid_run, 0);
+            }
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
@@ -4482,6 +4610,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
         b.p.lane_step[0][i] = i * SBL__CAST(int, src->color.step);
         b.p.lane_step[1][i] = i * SBL__CAST(int, src->depth.step);
         b.p.lane_step[2][i] = i * SBL__CAST(int, src->length.step);
+        b.p.lane_step[3][i] = src->use_normal ? i * SBL__CAST(int, src->normals.step) : 0;
+        b.p.lane_step[4][i] = src->use_id ? i * SBL__CAST(int, src->ids.step) : 0;
     }
     for (b.x0 = xa; b.x0 < xb; b.x0 += SBL__BLOCK) {
         b.n = xb - b.x0 < SBL__BLOCK ? xb - b.x0 : SBL__BLOCK;
@@ -4798,15 +4928,17 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
               (flat || sbl__mbits(sbl__mand(sbl__le(y0f, sbl__set1(y0s[0])), sbl__le(sbl__set1(y0s[0]), y0f))) ==
                            (1 << SBL__VW) - 1);
     memset(p->uniform + i, 0, SBL__VW);
-    if (src->use_normal || src->use_id) sbl__plan_index_nid(src, p, i, x0s, y0s);
     if (uniform) {
         const int cx = SBL__CAST(int, x0s[0]), cy = SBL__CAST(int, y0s[0]);
         p->uniform[i] = 1;
         sbl__plan_index_run(p->ci + i, cx, cy, &src->color, p->lane_step[0]);
         sbl__plan_index_run(p->di + i, cx, cy, src->use_depth ? &src->depth : NULL, p->lane_step[1]);
         sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL, p->lane_step[2]);
+        if (src->use_normal) sbl__plan_index_run(p->ni + i, cx, cy, &src->normals, p->lane_step[3]);
+        if (src->use_id) sbl__plan_index_run(p->ii + i, cx, cy, &src->ids, p->lane_step[4]);
         return bits_scalar;
     }
+    if (src->use_normal || src->use_id) sbl__plan_index_nid(src, p, i, x0s, y0s);
     p->uniform[i] = 2; /* lanes apart: not contiguous, no need to test (sbl__row_taps_ch) */
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
     sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
