@@ -5838,8 +5838,27 @@ static long sbl__evidence_row_count(const sbl_image *plane, int y)
     const ptrdiff_t step = sbl__step_of(plane);
     const float thr = SBL__CAST(float, SBL__EVIDENCE_THR), cap = SBL__CAST(float, SBL__POOL_RATIO_CAP);
     long c = 0;
-    int x;
-    for (x = 0; x < plane->width; ++x) {
+    int x = 0;
+#ifdef SBL__ROW_GATHER
+    if (step == 1) {
+        /* a vector at a time: each lane counts in float (exact below 2^24), flushed to
+           c every 2^20 vectors; the same comparisons, so the same count */
+        const sbl__v vthr = sbl__set1(thr), vcap = sbl__set1(cap), one = sbl__set1(1.0f),
+                     zero = sbl__set1(0.0f);
+        float lanes[SBL__VW];
+        while (x + SBL__VW <= plane->width) {
+            sbl__v acc = zero;
+            int j, n = 0;
+            for (; n < (1 << 20) && x + SBL__VW <= plane->width; ++n, x += SBL__VW) {
+                const sbl__v v = sbl__load(row + x);
+                acc = sbl__add(acc, sbl__sel(sbl__mand(sbl__gt(v, vthr), sbl__le(v, vcap)), one, zero));
+            }
+            sbl__store(lanes, acc);
+            for (j = 0; j < SBL__VW; ++j) c += SBL__CAST(long, lanes[j]);
+        }
+    }
+#endif
+    for (; x < plane->width; ++x) {
         const float v = row[x * step];
         c += (v > thr) & (v <= cap);
     }
