@@ -5477,15 +5477,13 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
             for (; x + 8 <= xb; x += 8, d += 24) {
                 const __m256 r = _mm256_loadu_ps(p0 + x), g = _mm256_loadu_ps(p1 + x),
                              b = _mm256_loadu_ps(p2 + x);
-                const __m256 o0 = _mm256_shuffle_ps(_mm256_shuffle_ps(r, g, _MM_SHUFFLE(0, 0, 0, 0)),
-                                                    _mm256_shuffle_ps(b, r, _MM_SHUFFLE(1, 1, 0, 0)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0));
-                const __m256 o1 = _mm256_shuffle_ps(_mm256_shuffle_ps(g, b, _MM_SHUFFLE(1, 1, 1, 1)),
-                                                    _mm256_shuffle_ps(r, g, _MM_SHUFFLE(2, 2, 2, 2)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0));
-                const __m256 o2 = _mm256_shuffle_ps(_mm256_shuffle_ps(b, r, _MM_SHUFFLE(3, 3, 2, 2)),
-                                                    _mm256_shuffle_ps(g, b, _MM_SHUFFLE(3, 3, 3, 3)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0));
+                const __m256 rg_lo = _mm256_unpacklo_ps(r, g), rg_hi = _mm256_unpackhi_ps(r, g);
+                const __m256 o0 = _mm256_shuffle_ps(rg_lo, _mm256_shuffle_ps(b, rg_lo, _MM_SHUFFLE(2, 2, 0, 0)),
+                                                    _MM_SHUFFLE(2, 0, 1, 0));
+                const __m256 o1 = _mm256_shuffle_ps(_mm256_shuffle_ps(rg_lo, b, _MM_SHUFFLE(1, 1, 3, 3)), rg_hi,
+                                                    _MM_SHUFFLE(1, 0, 2, 0));
+                const __m256 s2 = _mm256_shuffle_ps(rg_hi, b, _MM_SHUFFLE(3, 2, 3, 2));
+                const __m256 o2 = _mm256_shuffle_ps(s2, s2, _MM_SHUFFLE(3, 1, 0, 2));
                 _mm_storeu_ps(d, _mm256_castps256_ps128(o0));
                 _mm_storeu_ps(d + 4, _mm256_castps256_ps128(o1));
                 _mm_storeu_ps(d + 8, _mm256_castps256_ps128(o2));
@@ -5495,17 +5493,17 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
             }
 #endif
             for (; x + 4 <= xb; x += 4, d += 12) {
+                /* rg_lo = r0 g0 r1 g1, rg_hi = r2 g2 r3 g3; out r0 g0 b0 r1 | g1 b1 r2 g2 |
+                   b2 r3 g3 b3 in eight shuffles */
                 const __m128 r = _mm_loadu_ps(p0 + x), g = _mm_loadu_ps(p1 + x),
                              b = _mm_loadu_ps(p2 + x);
-                _mm_storeu_ps(d, _mm_shuffle_ps(_mm_shuffle_ps(r, g, _MM_SHUFFLE(0, 0, 0, 0)),
-                                                _mm_shuffle_ps(b, r, _MM_SHUFFLE(1, 1, 0, 0)),
-                                                _MM_SHUFFLE(2, 0, 2, 0)));
-                _mm_storeu_ps(d + 4, _mm_shuffle_ps(_mm_shuffle_ps(g, b, _MM_SHUFFLE(1, 1, 1, 1)),
-                                                    _mm_shuffle_ps(r, g, _MM_SHUFFLE(2, 2, 2, 2)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0)));
-                _mm_storeu_ps(d + 8, _mm_shuffle_ps(_mm_shuffle_ps(b, r, _MM_SHUFFLE(3, 3, 2, 2)),
-                                                    _mm_shuffle_ps(g, b, _MM_SHUFFLE(3, 3, 3, 3)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0)));
+                const __m128 rg_lo = _mm_unpacklo_ps(r, g), rg_hi = _mm_unpackhi_ps(r, g);
+                const __m128 b0r1 = _mm_shuffle_ps(b, rg_lo, _MM_SHUFFLE(2, 2, 0, 0)); /* b0 b0 r1 r1 */
+                const __m128 g1b1 = _mm_shuffle_ps(rg_lo, b, _MM_SHUFFLE(1, 1, 3, 3)); /* g1 g1 b1 b1 */
+                const __m128 s2 = _mm_shuffle_ps(rg_hi, b, _MM_SHUFFLE(3, 2, 3, 2));   /* r3 g3 b2 b3 */
+                _mm_storeu_ps(d, _mm_shuffle_ps(rg_lo, b0r1, _MM_SHUFFLE(2, 0, 1, 0)));
+                _mm_storeu_ps(d + 4, _mm_shuffle_ps(g1b1, rg_hi, _MM_SHUFFLE(1, 0, 2, 0)));
+                _mm_storeu_ps(d + 8, _mm_shuffle_ps(s2, s2, _MM_SHUFFLE(3, 1, 0, 2)));
             }
         } else {
             const float *p2 = planes[2], *p3 = planes[3];
