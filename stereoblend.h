@@ -5528,23 +5528,47 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
 }
 
 #ifdef SBL__ROW_GATHER
-/* Flags of own pixels [x, xb) a vector at a time, for sbl__ring_load_own; bytes one by
-   one only where a lane is unsafe (the planes in locals: a byte store may alias
-   anything, and would reload them). Returns the first pixel not flagged. */
-SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, int xb, int ch,
-                                     int *count)
+/* The flags of own pixels [x, x + VW) from their values v[0 .. cnt) (the channels, then
+   N_Y if ny): bytes one by one only where a lane is unsafe. */
+SBL__INLINE void sbl__ring_flag_vec(unsigned char *unsafe, const sbl__v *v, int cnt, int ny, int x,
+                                    int *count)
 {
     static const unsigned char safe_bytes[16] = {0};
     const int all = (1 << SBL__VW) - 1;
+    sbl__m ok;
+    int bits, l, c;
+    /* every value safe in one test of the vectors first (an own N also at most 2^20;
+       see sbl__lanes_taps) */
+    if (sbl__all_safe(v, cnt) &&
+        (!ny || sbl__mbits(sbl__le(v[cnt - 1], sbl__set1(1048576.0f))) == all)) {
+        memcpy(unsafe + x, safe_bytes, SBL__VW);
+        return;
+    }
+    ok = sbl__lane_ok(v[0]);
+    for (c = 1; c < cnt; ++c) ok = sbl__mand(ok, sbl__lane_ok(v[c]));
+    if (ny) ok = sbl__mand(ok, sbl__le(v[cnt - 1], sbl__set1(1048576.0f)));
+    bits = sbl__mbits(ok);
+    if (bits == all) {
+        memcpy(unsafe + x, safe_bytes, SBL__VW);
+        return;
+    }
+    for (l = 0; l < SBL__VW; ++l) {
+        const int bad = !((bits >> l) & 1);
+        unsafe[x + l] = SBL__CAST(unsigned char, bad);
+        *count += bad;
+    }
+}
+
+/* Flags of own pixels [x, xb) a vector at a time, for sbl__ring_load_own (the planes in
+   locals: a byte store may alias anything, and would reload them). Returns the first
+   pixel not flagged. */
+SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, int xb, int ch,
+                                     int *count)
+{
     const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
                 *y3 = ch > 3 ? r->y[3] : y0;
     unsigned char *unsafe = r->unsafe;
     for (; x + SBL__VW <= xb; x += SBL__VW) {
-        sbl__m ok;
-        int bits, l;
-#if SBL__VW == 4
-        /* SSE2: every value safe in one test of the vector first (an own N also at most
-           2^20; see sbl__lanes_taps) */
         sbl__v v[5];
         int cnt = 1;
         v[0] = sbl__load(y0 + x);
@@ -5552,30 +5576,27 @@ SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, i
         if (ch > 2) v[cnt++] = sbl__load(y2 + x);
         if (ch > 3) v[cnt++] = sbl__load(y3 + x);
         if (ny) v[cnt++] = sbl__load(ny + x);
-        if (sbl__all_safe(v, cnt) &&
-            (!ny || sbl__mbits(sbl__le(v[cnt - 1], sbl__set1(1048576.0f))) == all)) {
-            memcpy(unsafe + x, safe_bytes, SBL__VW);
-            continue;
-        }
-#endif
-        ok = sbl__lane_ok(sbl__load(y0 + x));
-        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y1 + x)));
-        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y2 + x)));
-        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y3 + x)));
-        if (ny) {
-            const sbl__v n = sbl__load(ny + x);
-            ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
-        }
-        bits = sbl__mbits(ok);
-        if (bits == all) {
-            memcpy(unsafe + x, safe_bytes, SBL__VW);
-            continue;
-        }
-        for (l = 0; l < SBL__VW; ++l) {
-            const int bad = !((bits >> l) & 1);
-            unsafe[x + l] = SBL__CAST(unsigned char, bad);
-            *count += bad;
-        }
+        sbl__ring_flag_vec(unsafe, v, cnt, ny != NULL, x, count);
+    }
+    return x;
+}
+
+/* Packed RGB (pixel step 3) own pixels [x, xb): deinterleaved into the planes and
+   flagged in one pass (the values tested in registers, not loaded again). Returns the
+   first pixel not done. */
+SBL__INLINE int sbl__ring_own_rgb(sbl__ring_row *r, const float *src, const float *ny, int x,
+                                  int xb, int *count)
+{
+    float *y0 = r->y[0], *y1 = r->y[1], *y2 = r->y[2];
+    unsigned char *unsafe = r->unsafe;
+    for (; x + SBL__VW <= xb; x += SBL__VW) {
+        sbl__v v[4];
+        sbl__rgb_lanes(src + SBL__CAST(ptrdiff_t, x) * 3, &v[0], &v[1], &v[2]);
+        sbl__store(y0 + x, v[0]);
+        sbl__store(y1 + x, v[1]);
+        sbl__store(y2 + x, v[2]);
+        if (ny) v[3] = sbl__load(ny + x);
+        sbl__ring_flag_vec(unsafe, v, ny ? 4 : 3, ny != NULL, x, count);
     }
     return x;
 }
@@ -5589,16 +5610,26 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     const ptrdiff_t ny_step = ny ? SBL__CAST(ptrdiff_t, sbl__step_of(k->own_n)) : 0;
     /* the lanes load N_Y contiguously: another pixel step takes the reference path */
     const int ny_lanes = !ny || ny_step == 1;
+    const float *src = sbl__px(k->own, 0, row);
+    const ptrdiff_t step = sbl__step_of(k->own);
     int x, c, ch = k->ch, count = 0;
-    sbl__deinterleave(sbl__px(k->own, 0, row), sbl__step_of(k->own), ch, r->y, xa, xb);
     x = xa;
 #ifdef SBL__ROW_GATHER
-    if (ny_lanes) {
+    if (ny_lanes && ch == 3 && step == 3) {
+        /* the usual layout: one pass */
+        x = sbl__ring_own_rgb(r, src, ny, x, xb, &count);
+        if (x < xb) sbl__deinterleave(src, step, ch, r->y, x, xb);
+    } else if (ny_lanes) {
+        sbl__deinterleave(src, step, ch, r->y, xa, xb);
         /* a vector at a time (the channel count a constant in each call) */
         if (ch == 3) x = sbl__ring_flag_lanes(r, ny, x, xb, 3, &count);
         else if (ch == 1) x = sbl__ring_flag_lanes(r, ny, x, xb, 1, &count);
         else x = sbl__ring_flag_lanes(r, ny, x, xb, ch, &count);
+    } else {
+        sbl__deinterleave(src, step, ch, r->y, xa, xb);
     }
+#else
+    sbl__deinterleave(src, step, ch, r->y, xa, xb);
 #endif
     for (; x < xb; ++x) {
         int safe = ny_lanes;
@@ -5635,10 +5666,15 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
     x = xa;
 #ifdef SBL__ROW_GATHER
     for (; x + SBL__VW <= xb; x += SBL__VW) {
+        sbl__v v[5];
         sbl__m ok;
         int bits, l;
-        ok = sbl__lane_ok(sbl__load(r->n + x));
-        for (c = 0; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[c] + x)));
+        v[0] = sbl__load(r->n + x);
+        for (c = 0; c < ch; ++c) v[1 + c] = sbl__load(r->x[c] + x);
+        /* every value safe and not 0 (the usual vector), in one test: no flag */
+        if (sbl__all_safe(v, ch + 1)) continue;
+        ok = sbl__lane_ok(v[0]);
+        for (c = 0; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(v[1 + c]));
         bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), sbl__set1(0.0f)), ok));
         for (l = 0; bits; ++l, bits >>= 1)
             if ((bits & 1) && !r->unsafe[x + l]) { r->unsafe[x + l] = 1; ++count; }
