@@ -7179,7 +7179,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v yc[4], xs[4], yb[4], m8[4], v8[4], var[4], mean;
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
-    sbl__m valid, hi_w, low_t;
+    sbl__m valid, hi_w;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
@@ -7208,11 +7208,12 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
                      sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
     bound = sbl__max(bound, zero);
+    /* t <= 1 (bound < max(sum_y, tiny) where divided), so y t is y where t = 1: the
+       limited sample is y t in every lane, with no select */
     t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
-    low_t = sbl__gt(one, t);
 #define SBL__FAST_YB(c) \
     do { \
-        yb[c] = sbl__sel(low_t, sbl__mul(yc[c], t), yc[c]); \
+        yb[c] = sbl__mul(yc[c], t); /* (t <= 1, above) */ \
         if (fast == 2) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
     } while (0)
     SBL__LANES_CH(SBL__FAST_YB);
@@ -7252,9 +7253,10 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     a2_mean = w2;
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
-    n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
-                     sbl__add(n_xc, n_y));
-    n_out = sbl__min(n_out, cap);
+    /* sbl__lanes_blend's guards on den fall away: in a valid lane n_xc, n_y >= 2^-40 (lane-safe N,
+       a cap >= 1) and one of (1 - a)^2, a^2 is >= 1/4, so den >= 2^-42 (a normal float:
+       > 0, > FLT_MIN); the other lanes take the select below */
+    n_out = sbl__min(sbl__div(sbl__mul(n_xc, n_y), den), cap);
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
 }
@@ -7335,11 +7337,11 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                                         const float *n_row, const float *nyrow, int x, int base,
                                         const int ch, const int full)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
     const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     sbl__v n_x, n_y, n_xc, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
-    sbl__m valid, hi_w, low_t;
+    sbl__m valid, hi_w;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
@@ -7350,12 +7352,12 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     a2_mean = w2;
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
-    n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
-                     sbl__add(n_xc, n_y));
-    n_out = sbl__min(n_out, cap);
+    /* The guards on den (sbl__lanes_blend) fall away: in a valid lane n_xc, n_y >= 2^-40 (lane-safe N,
+       a cap >= 1) and one of (1 - a)^2, a^2 is >= 1/4, so den >= 2^-42 (a normal float:
+       > 0, > FLT_MIN); the other lanes take the select below */
+    n_out = sbl__min(sbl__div(sbl__mul(n_xc, n_y), den), cap);
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
-    t = sbl__load(q + SBL__POOL_FT(ch) * SBL__POOL_COLS);
-    low_t = sbl__gt(one, t);
+    t = sbl__load(q + SBL__POOL_FT(ch) * SBL__POOL_COLS); /* (<= 1: see sbl__lanes_vector_fast) */
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
     /* the two-sided lerp: from the end the weight is nearer, by its factor (the same
@@ -7364,7 +7366,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
 #define SBL__STAGE_BLEND(c) \
     do { \
         const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
-        const sbl__v yb = sbl__sel(low_t, sbl__mul(yc, t), yc); \
+        const sbl__v yb = sbl__mul(yc, t); /* (sbl__lanes_stage_y's t) */ \
         sbl__v from, to, o; \
         SBL__SEL2(hi_w, yb, xs, from, to); \
         o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
