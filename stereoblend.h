@@ -3097,6 +3097,8 @@ typedef struct sbl__ring_row {
     int gather_unsafe; /* pixels that row gather newly flagged                  */
     int all_valid; /* sbl__kernel_run_span, after the load: 1 if x* is valid on every
                       loaded column (0: not known) */
+    int inv_lo, inv_hi; /* the first and the last loaded column whose x* is not valid
+                           (sbl__ring_note_valid; none: inv_lo > inv_hi) */
     /* the pooled estimator's evidence plane (temporal; sbl__evidence_gather): the
        history's plane gathered in the colour's plan, as one more 1-channel plane read
        with N's tap indices, weights, tests and fallback, stored as the ratio the pooled
@@ -7519,6 +7521,16 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
     }
 }
 
+/* 1 if x* is valid on every column of [ca, cb) of the three rows, as far as their
+   loads' invalid extents (sbl__ring_note_valid) tell; 0: not known */
+SBL__INLINE int sbl__rows_valid_in(const sbl__ring_row *const *R, int ca, int cb)
+{
+    int j;
+    for (j = 0; j < 3; ++j)
+        if (!(R[j]->all_valid || cb <= R[j]->inv_lo || ca > R[j]->inv_hi)) return 0;
+    return 1;
+}
+
 /* The pooled estimator's prepass and the lane kernel in one pass over an interior row
    (the three ring rows exist). The prepass's column sums over three rows (pairs N,
    A = sum v (d - t), B, T) are the same operations on the same values as the lane
@@ -7607,7 +7619,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             /* every pair of the chunk's columns valid: the instances without the selects
                on the pair validity (the same values); the blocks centred on the image's
                first and last columns (whose outer column is empty) excepted */
-            full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__lanes_full(&W, ca, cb));
+            full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__rows_valid_in(R, ca, cb) ||
+                                                     sbl__lanes_full(&W, ca, cb));
             if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1, 0);
             else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, erow);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
@@ -7829,15 +7842,31 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
    (v is 0 or 1), so that the lanes need not look chunk by chunk (sbl__lanes_full). */
 static void sbl__ring_note_valid(sbl__ring_row *r, int xa, int xb)
 {
+    /* from the left in blocks of four vectors (one test per block), then the block
+       that holds the first invalid x* a column at a time; the same from the right */
     const sbl__v half = sbl__set1(0.5f);
-    sbl__v m = sbl__set1(1.0f);
-    int x = xa;
-    r->all_valid = 0;
-    for (; x + SBL__VW <= xb; x += SBL__VW) m = sbl__min(m, sbl__load(r->v + x));
-    if (!sbl__all(sbl__gt(m, half))) return;
-    for (; x < xb; ++x)
-        if (!(r->v[x] > 0.5f)) return;
-    r->all_valid = 1;
+    const float *v = r->v;
+    int x = xa, j;
+    for (; x + 4 * SBL__VW <= xb; x += 4 * SBL__VW) {
+        sbl__v m = sbl__min(sbl__min(sbl__load(v + x), sbl__load(v + x + SBL__VW)),
+                            sbl__min(sbl__load(v + x + 2 * SBL__VW), sbl__load(v + x + 3 * SBL__VW)));
+        if (!sbl__all(sbl__gt(m, half))) break;
+    }
+    while (x < xb && v[x] > 0.5f) ++x;
+    r->inv_lo = x;
+    r->inv_hi = xa - 1;
+    r->all_valid = x >= xb;
+    if (r->all_valid) return;
+    for (x = xb; x - 4 * SBL__VW > r->inv_lo; x -= 4 * SBL__VW) {
+        j = x - 4 * SBL__VW;
+        if (!sbl__all(sbl__gt(sbl__min(sbl__min(sbl__load(v + j), sbl__load(v + j + SBL__VW)),
+                                       sbl__min(sbl__load(v + j + 2 * SBL__VW),
+                                                sbl__load(v + j + 3 * SBL__VW))),
+                              half)))
+            break;
+    }
+    while (x - 1 > r->inv_lo && v[x - 1] > 0.5f) --x;
+    r->inv_hi = x - 1;
 }
 
 /* Filter columns [x0, x1) of rows [y0, y1) into k->out (and out_n / out_a); nothing
