@@ -5539,13 +5539,16 @@ SBL__INLINE void sbl__ring_flag_vec(unsigned char *unsafe, const sbl__v *v, int 
     const int all = (1 << SBL__VW) - 1;
     sbl__m ok;
     int bits, l, c;
-    /* every value safe in one test of the vectors first (an own N also at most 2^20;
-       see sbl__lanes_taps) */
+#if SBL__VW == 4
+    /* SSE2: every value safe in one test of the vectors first (an own N also at most
+       2^20; see sbl__lanes_taps). (AVX2: the lane tests alone cost fewer instructions,
+       callgrind) */
     if (sbl__all_safe(v, cnt) &&
         (!ny || sbl__mbits(sbl__le(v[cnt - 1], sbl__set1(1048576.0f))) == all)) {
         memcpy(unsafe + x, safe_bytes, SBL__VW);
         return;
     }
+#endif
     ok = sbl__lane_ok(v[0]);
     for (c = 1; c < cnt; ++c) ok = sbl__mand(ok, sbl__lane_ok(v[c]));
     if (ny) ok = sbl__mand(ok, sbl__le(v[cnt - 1], sbl__set1(1048576.0f)));
@@ -5668,15 +5671,10 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
     x = xa;
 #ifdef SBL__ROW_GATHER
     for (; x + SBL__VW <= xb; x += SBL__VW) {
-        sbl__v v[5];
         sbl__m ok;
         int bits, l;
-        v[0] = sbl__load(r->n + x);
-        for (c = 0; c < ch; ++c) v[1 + c] = sbl__load(r->x[c] + x);
-        /* every value safe and not 0 (the usual vector), in one test: no flag */
-        if (sbl__all_safe(v, ch + 1)) continue;
-        ok = sbl__lane_ok(v[0]);
-        for (c = 0; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(v[1 + c]));
+        ok = sbl__lane_ok(sbl__load(r->n + x));
+        for (c = 0; c < ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(r->x[c] + x)));
         bits = sbl__mbits(sbl__mandnot(sbl__gt(sbl__load(r->v + x), sbl__set1(0.0f)), ok));
         for (l = 0; bits; ++l, bits >>= 1)
             if ((bits & 1) && !r->unsafe[x + l]) { r->unsafe[x + l] = 1; ++count; }
