@@ -3097,6 +3097,8 @@ typedef struct sbl__ring_row {
     int gather_unsafe; /* pixels that row gather newly flagged                  */
     int all_valid; /* sbl__kernel_run_span, after the load: 1 if x* is valid on every
                       loaded column (0: not known) */
+    int inv_lo, inv_hi; /* the first and the last loaded column whose x* is not valid
+                           (sbl__ring_note_valid; none: inv_lo > inv_hi) */
     /* the pooled estimator's evidence plane (temporal; sbl__evidence_gather): the
        history's plane gathered in the colour's plan, as one more 1-channel plane read
        with N's tap indices, weights, tests and fallback, stored as the ratio the pooled
@@ -5609,15 +5611,13 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
             for (; x + 8 <= xb; x += 8, d += 24) {
                 const __m256 r = _mm256_loadu_ps(p0 + x), g = _mm256_loadu_ps(p1 + x),
                              b = _mm256_loadu_ps(p2 + x);
-                const __m256 o0 = _mm256_shuffle_ps(_mm256_shuffle_ps(r, g, _MM_SHUFFLE(0, 0, 0, 0)),
-                                                    _mm256_shuffle_ps(b, r, _MM_SHUFFLE(1, 1, 0, 0)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0));
-                const __m256 o1 = _mm256_shuffle_ps(_mm256_shuffle_ps(g, b, _MM_SHUFFLE(1, 1, 1, 1)),
-                                                    _mm256_shuffle_ps(r, g, _MM_SHUFFLE(2, 2, 2, 2)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0));
-                const __m256 o2 = _mm256_shuffle_ps(_mm256_shuffle_ps(b, r, _MM_SHUFFLE(3, 3, 2, 2)),
-                                                    _mm256_shuffle_ps(g, b, _MM_SHUFFLE(3, 3, 3, 3)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0));
+                const __m256 rg_lo = _mm256_unpacklo_ps(r, g), rg_hi = _mm256_unpackhi_ps(r, g);
+                const __m256 o0 = _mm256_shuffle_ps(rg_lo, _mm256_shuffle_ps(b, rg_lo, _MM_SHUFFLE(2, 2, 0, 0)),
+                                                    _MM_SHUFFLE(2, 0, 1, 0));
+                const __m256 o1 = _mm256_shuffle_ps(_mm256_shuffle_ps(rg_lo, b, _MM_SHUFFLE(1, 1, 3, 3)), rg_hi,
+                                                    _MM_SHUFFLE(1, 0, 2, 0));
+                const __m256 s2 = _mm256_shuffle_ps(rg_hi, b, _MM_SHUFFLE(3, 2, 3, 2));
+                const __m256 o2 = _mm256_shuffle_ps(s2, s2, _MM_SHUFFLE(3, 1, 0, 2));
                 _mm_storeu_ps(d, _mm256_castps256_ps128(o0));
                 _mm_storeu_ps(d + 4, _mm256_castps256_ps128(o1));
                 _mm_storeu_ps(d + 8, _mm256_castps256_ps128(o2));
@@ -5627,17 +5627,17 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
             }
 #endif
             for (; x + 4 <= xb; x += 4, d += 12) {
+                /* rg_lo = r0 g0 r1 g1, rg_hi = r2 g2 r3 g3; out r0 g0 b0 r1 | g1 b1 r2 g2 |
+                   b2 r3 g3 b3 in eight shuffles */
                 const __m128 r = _mm_loadu_ps(p0 + x), g = _mm_loadu_ps(p1 + x),
                              b = _mm_loadu_ps(p2 + x);
-                _mm_storeu_ps(d, _mm_shuffle_ps(_mm_shuffle_ps(r, g, _MM_SHUFFLE(0, 0, 0, 0)),
-                                                _mm_shuffle_ps(b, r, _MM_SHUFFLE(1, 1, 0, 0)),
-                                                _MM_SHUFFLE(2, 0, 2, 0)));
-                _mm_storeu_ps(d + 4, _mm_shuffle_ps(_mm_shuffle_ps(g, b, _MM_SHUFFLE(1, 1, 1, 1)),
-                                                    _mm_shuffle_ps(r, g, _MM_SHUFFLE(2, 2, 2, 2)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0)));
-                _mm_storeu_ps(d + 8, _mm_shuffle_ps(_mm_shuffle_ps(b, r, _MM_SHUFFLE(3, 3, 2, 2)),
-                                                    _mm_shuffle_ps(g, b, _MM_SHUFFLE(3, 3, 3, 3)),
-                                                    _MM_SHUFFLE(2, 0, 2, 0)));
+                const __m128 rg_lo = _mm_unpacklo_ps(r, g), rg_hi = _mm_unpackhi_ps(r, g);
+                const __m128 b0r1 = _mm_shuffle_ps(b, rg_lo, _MM_SHUFFLE(2, 2, 0, 0)); /* b0 b0 r1 r1 */
+                const __m128 g1b1 = _mm_shuffle_ps(rg_lo, b, _MM_SHUFFLE(1, 1, 3, 3)); /* g1 g1 b1 b1 */
+                const __m128 s2 = _mm_shuffle_ps(rg_hi, b, _MM_SHUFFLE(3, 2, 3, 2));   /* r3 g3 b2 b3 */
+                _mm_storeu_ps(d, _mm_shuffle_ps(rg_lo, b0r1, _MM_SHUFFLE(2, 0, 1, 0)));
+                _mm_storeu_ps(d + 4, _mm_shuffle_ps(g1b1, rg_hi, _MM_SHUFFLE(1, 0, 2, 0)));
+                _mm_storeu_ps(d + 8, _mm_shuffle_ps(s2, s2, _MM_SHUFFLE(3, 1, 0, 2)));
             }
         } else {
             const float *p2 = planes[2], *p3 = planes[3];
@@ -5662,23 +5662,50 @@ static void sbl__interleave(float *dst, ptrdiff_t step, int ch, const float *con
 }
 
 #ifdef SBL__ROW_GATHER
-/* Flags of own pixels [x, xb) a vector at a time, for sbl__ring_load_own; bytes one by
-   one only where a lane is unsafe (the planes in locals: a byte store may alias
-   anything, and would reload them). Returns the first pixel not flagged. */
-SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, int xb, int ch,
-                                     int *count)
+/* The flags of own pixels [x, x + VW) from their values v[0 .. cnt) (the channels, then
+   N_Y if ny): bytes one by one only where a lane is unsafe. */
+SBL__INLINE void sbl__ring_flag_vec(unsigned char *unsafe, const sbl__v *v, int cnt, int ny, int x,
+                                    int *count)
 {
     static const unsigned char safe_bytes[16] = {0};
     const int all = (1 << SBL__VW) - 1;
+    sbl__m ok;
+    int bits, l, c;
+#if SBL__VW == 4
+    /* SSE2: every value safe in one test of the vectors first (an own N also at most
+       2^20; see sbl__lanes_taps). (AVX2: the lane tests alone cost fewer instructions,
+       callgrind) */
+    if (sbl__all_safe(v, cnt) &&
+        (!ny || sbl__mbits(sbl__le(v[cnt - 1], sbl__set1(1048576.0f))) == all)) {
+        memcpy(unsafe + x, safe_bytes, SBL__VW);
+        return;
+    }
+#endif
+    ok = sbl__lane_ok(v[0]);
+    for (c = 1; c < cnt; ++c) ok = sbl__mand(ok, sbl__lane_ok(v[c]));
+    if (ny) ok = sbl__mand(ok, sbl__le(v[cnt - 1], sbl__set1(1048576.0f)));
+    bits = sbl__mbits(ok);
+    if (bits == all) {
+        memcpy(unsafe + x, safe_bytes, SBL__VW);
+        return;
+    }
+    for (l = 0; l < SBL__VW; ++l) {
+        const int bad = !((bits >> l) & 1);
+        unsafe[x + l] = SBL__CAST(unsigned char, bad);
+        *count += bad;
+    }
+}
+
+/* Flags of own pixels [x, xb) a vector at a time, for sbl__ring_load_own (the planes in
+   locals: a byte store may alias anything, and would reload them). Returns the first
+   pixel not flagged. */
+SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, int xb, int ch,
+                                     int *count)
+{
     const float *y0 = r->y[0], *y1 = ch > 1 ? r->y[1] : y0, *y2 = ch > 2 ? r->y[2] : y0,
                 *y3 = ch > 3 ? r->y[3] : y0;
     unsigned char *unsafe = r->unsafe;
     for (; x + SBL__VW <= xb; x += SBL__VW) {
-        sbl__m ok;
-        int bits, l;
-#if SBL__VW == 4
-        /* SSE2: every value safe in one test of the vector first (an own N also at most
-           2^20; see sbl__lanes_taps) */
         sbl__v v[5];
         int cnt = 1;
         v[0] = sbl__load(y0 + x);
@@ -5686,30 +5713,27 @@ SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, i
         if (ch > 2) v[cnt++] = sbl__load(y2 + x);
         if (ch > 3) v[cnt++] = sbl__load(y3 + x);
         if (ny) v[cnt++] = sbl__load(ny + x);
-        if (sbl__all_safe(v, cnt) &&
-            (!ny || sbl__mbits(sbl__le(v[cnt - 1], sbl__set1(1048576.0f))) == all)) {
-            memcpy(unsafe + x, safe_bytes, SBL__VW);
-            continue;
-        }
-#endif
-        ok = sbl__lane_ok(sbl__load(y0 + x));
-        if (ch > 1) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y1 + x)));
-        if (ch > 2) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y2 + x)));
-        if (ch > 3) ok = sbl__mand(ok, sbl__lane_ok(sbl__load(y3 + x)));
-        if (ny) {
-            const sbl__v n = sbl__load(ny + x);
-            ok = sbl__mand(sbl__mand(ok, sbl__lane_ok(n)), sbl__le(n, sbl__set1(1048576.0f)));
-        }
-        bits = sbl__mbits(ok);
-        if (bits == all) {
-            memcpy(unsafe + x, safe_bytes, SBL__VW);
-            continue;
-        }
-        for (l = 0; l < SBL__VW; ++l) {
-            const int bad = !((bits >> l) & 1);
-            unsafe[x + l] = SBL__CAST(unsigned char, bad);
-            *count += bad;
-        }
+        sbl__ring_flag_vec(unsafe, v, cnt, ny != NULL, x, count);
+    }
+    return x;
+}
+
+/* Packed RGB (pixel step 3) own pixels [x, xb): deinterleaved into the planes and
+   flagged in one pass (the values tested in registers, not loaded again). Returns the
+   first pixel not done. */
+SBL__INLINE int sbl__ring_own_rgb(sbl__ring_row *r, const float *src, const float *ny, int x,
+                                  int xb, int *count)
+{
+    float *y0 = r->y[0], *y1 = r->y[1], *y2 = r->y[2];
+    unsigned char *unsafe = r->unsafe;
+    for (; x + SBL__VW <= xb; x += SBL__VW) {
+        sbl__v v[4];
+        sbl__rgb_lanes(src + SBL__CAST(ptrdiff_t, x) * 3, &v[0], &v[1], &v[2]);
+        sbl__store(y0 + x, v[0]);
+        sbl__store(y1 + x, v[1]);
+        sbl__store(y2 + x, v[2]);
+        if (ny) v[3] = sbl__load(ny + x);
+        sbl__ring_flag_vec(unsafe, v, ny ? 4 : 3, ny != NULL, x, count);
     }
     return x;
 }
@@ -5723,16 +5747,26 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     const ptrdiff_t ny_step = ny ? SBL__CAST(ptrdiff_t, sbl__step_of(k->own_n)) : 0;
     /* the lanes load N_Y contiguously: another pixel step takes the reference path */
     const int ny_lanes = !ny || ny_step == 1;
+    const float *src = sbl__px(k->own, 0, row);
+    const ptrdiff_t step = sbl__step_of(k->own);
     int x, c, ch = k->ch, count = 0;
-    sbl__deinterleave(sbl__px(k->own, 0, row), sbl__step_of(k->own), ch, r->y, xa, xb);
     x = xa;
 #ifdef SBL__ROW_GATHER
-    if (ny_lanes) {
+    if (ny_lanes && ch == 3 && step == 3) {
+        /* the usual layout: one pass */
+        x = sbl__ring_own_rgb(r, src, ny, x, xb, &count);
+        if (x < xb) sbl__deinterleave(src, step, ch, r->y, x, xb);
+    } else if (ny_lanes) {
+        sbl__deinterleave(src, step, ch, r->y, xa, xb);
         /* a vector at a time (the channel count a constant in each call) */
         if (ch == 3) x = sbl__ring_flag_lanes(r, ny, x, xb, 3, &count);
         else if (ch == 1) x = sbl__ring_flag_lanes(r, ny, x, xb, 1, &count);
         else x = sbl__ring_flag_lanes(r, ny, x, xb, ch, &count);
+    } else {
+        sbl__deinterleave(src, step, ch, r->y, xa, xb);
     }
+#else
+    sbl__deinterleave(src, step, ch, r->y, xa, xb);
 #endif
     for (; x < xb; ++x) {
         int safe = ny_lanes;
@@ -5970,8 +6004,27 @@ static long sbl__evidence_row_count(const sbl_image *plane, int y)
     const ptrdiff_t step = sbl__step_of(plane);
     const float thr = SBL__CAST(float, SBL__EVIDENCE_THR), cap = SBL__CAST(float, SBL__POOL_RATIO_CAP);
     long c = 0;
-    int x;
-    for (x = 0; x < plane->width; ++x) {
+    int x = 0;
+#ifdef SBL__ROW_GATHER
+    if (step == 1) {
+        /* a vector at a time: each lane counts in float (exact below 2^24), flushed to
+           c every 2^20 vectors; the same comparisons, so the same count */
+        const sbl__v vthr = sbl__set1(thr), vcap = sbl__set1(cap), one = sbl__set1(1.0f),
+                     zero = sbl__set1(0.0f);
+        float lanes[SBL__VW];
+        while (x + SBL__VW <= plane->width) {
+            sbl__v acc = zero;
+            int j, n = 0;
+            for (; n < (1 << 20) && x + SBL__VW <= plane->width; ++n, x += SBL__VW) {
+                const sbl__v v = sbl__load(row + x);
+                acc = sbl__add(acc, sbl__sel(sbl__mand(sbl__gt(v, vthr), sbl__le(v, vcap)), one, zero));
+            }
+            sbl__store(lanes, acc);
+            for (j = 0; j < SBL__VW; ++j) c += SBL__CAST(long, lanes[j]);
+        }
+    }
+#endif
+    for (; x < plane->width; ++x) {
         const float v = row[x * step];
         c += (v > thr) & (v <= cap);
     }
@@ -7258,7 +7311,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v yc[4], xs[4], yb[4], m8[4], v8[4], var[4], mean;
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
-    sbl__m valid, hi_w, low_t;
+    sbl__m valid, hi_w;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
@@ -7287,11 +7340,12 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
                      sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
     bound = sbl__max(bound, zero);
+    /* t <= 1 (bound < max(sum_y, tiny) where divided), so y t is y where t = 1: the
+       limited sample is y t in every lane, with no select */
     t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
-    low_t = sbl__gt(one, t);
 #define SBL__FAST_YB(c) \
     do { \
-        yb[c] = sbl__sel(low_t, sbl__mul(yc[c], t), yc[c]); \
+        yb[c] = sbl__mul(yc[c], t); /* (t <= 1, above) */ \
         if (fast == 2) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
     } while (0)
     SBL__LANES_CH(SBL__FAST_YB);
@@ -7331,9 +7385,10 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     a2_mean = w2;
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
-    n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
-                     sbl__add(n_xc, n_y));
-    n_out = sbl__min(n_out, cap);
+    /* sbl__lanes_blend's guards on den fall away: in a valid lane n_xc, n_y >= 2^-40 (lane-safe N,
+       a cap >= 1) and one of (1 - a)^2, a^2 is >= 1/4, so den >= 2^-42 (a normal float:
+       > 0, > FLT_MIN); the other lanes take the select below */
+    n_out = sbl__min(sbl__div(sbl__mul(n_xc, n_y), den), cap);
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
     sbl__store(k->stage_a + x, sbl__sel(valid, a_mean, one));
 }
@@ -7414,11 +7469,11 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                                         const float *n_row, const float *nyrow, int x, int base,
                                         const int ch, const int full)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
     const float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     sbl__v n_x, n_y, n_xc, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
-    sbl__m valid, hi_w, low_t;
+    sbl__m valid, hi_w;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
@@ -7429,12 +7484,12 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     a2_mean = w2;
     one_m = sbl__sub(one, a2_mean);
     den = sbl__add(sbl__mul(sbl__mul(one_m, one_m), n_y), sbl__mul(sbl__mul(a2_mean, a2_mean), n_xc));
-    n_out = sbl__sel(sbl__gt(den, zero), sbl__div(sbl__mul(n_xc, n_y), sbl__max(den, tiny)),
-                     sbl__add(n_xc, n_y));
-    n_out = sbl__min(n_out, cap);
+    /* The guards on den (sbl__lanes_blend) fall away: in a valid lane n_xc, n_y >= 2^-40 (lane-safe N,
+       a cap >= 1) and one of (1 - a)^2, a^2 is >= 1/4, so den >= 2^-42 (a normal float:
+       > 0, > FLT_MIN); the other lanes take the select below */
+    n_out = sbl__min(sbl__div(sbl__mul(n_xc, n_y), den), cap);
     sbl__store(k->stage_n + x, sbl__sel(valid, n_out, k->temporal ? one : n_y));
-    t = sbl__load(q + SBL__POOL_FT(ch) * SBL__POOL_COLS);
-    low_t = sbl__gt(one, t);
+    t = sbl__load(q + SBL__POOL_FT(ch) * SBL__POOL_COLS); /* (<= 1: see sbl__lanes_vector_fast) */
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
     /* the two-sided lerp: from the end the weight is nearer, by its factor (the same
@@ -7443,7 +7498,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
 #define SBL__STAGE_BLEND(c) \
     do { \
         const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
-        const sbl__v yb = sbl__sel(low_t, sbl__mul(yc, t), yc); \
+        const sbl__v yb = sbl__mul(yc, t); /* (sbl__lanes_stage_y's t) */ \
         sbl__v from, to, o; \
         SBL__SEL2(hi_w, yb, xs, from, to); \
         o = sbl__add(from, sbl__mul(f_w, sbl__sub(to, from))); \
@@ -7596,6 +7651,16 @@ static void sbl__kernel_lanes_runs(sbl__kernel *k, const sbl__ring_row *const *R
     }
 }
 
+/* 1 if x* is valid on every column of [ca, cb) of the three rows, as far as their
+   loads' invalid extents (sbl__ring_note_valid) tell; 0: not known */
+SBL__INLINE int sbl__rows_valid_in(const sbl__ring_row *const *R, int ca, int cb)
+{
+    int j;
+    for (j = 0; j < 3; ++j)
+        if (!(R[j]->all_valid || cb <= R[j]->inv_lo || ca > R[j]->inv_hi)) return 0;
+    return 1;
+}
+
 /* The pooled estimator's prepass and the lane kernel in one pass over an interior row
    (the three ring rows exist). The prepass's column sums over three rows (pairs N,
    A = sum v (d - t), B, T) are the same operations on the same values as the lane
@@ -7684,7 +7749,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             /* every pair of the chunk's columns valid: the instances without the selects
                on the pair validity (the same values); the blocks centred on the image's
                first and last columns (whose outer column is empty) excepted */
-            full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__lanes_full(&W, ca, cb));
+            full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__rows_valid_in(R, ca, cb) ||
+                                                     sbl__lanes_full(&W, ca, cb));
             if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1, 0);
             else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, erow);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
@@ -7906,15 +7972,31 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
    (v is 0 or 1), so that the lanes need not look chunk by chunk (sbl__lanes_full). */
 static void sbl__ring_note_valid(sbl__ring_row *r, int xa, int xb)
 {
+    /* from the left in blocks of four vectors (one test per block), then the block
+       that holds the first invalid x* a column at a time; the same from the right */
     const sbl__v half = sbl__set1(0.5f);
-    sbl__v m = sbl__set1(1.0f);
-    int x = xa;
-    r->all_valid = 0;
-    for (; x + SBL__VW <= xb; x += SBL__VW) m = sbl__min(m, sbl__load(r->v + x));
-    if (!sbl__all(sbl__gt(m, half))) return;
-    for (; x < xb; ++x)
-        if (!(r->v[x] > 0.5f)) return;
-    r->all_valid = 1;
+    const float *v = r->v;
+    int x = xa, j;
+    for (; x + 4 * SBL__VW <= xb; x += 4 * SBL__VW) {
+        sbl__v m = sbl__min(sbl__min(sbl__load(v + x), sbl__load(v + x + SBL__VW)),
+                            sbl__min(sbl__load(v + x + 2 * SBL__VW), sbl__load(v + x + 3 * SBL__VW)));
+        if (!sbl__all(sbl__gt(m, half))) break;
+    }
+    while (x < xb && v[x] > 0.5f) ++x;
+    r->inv_lo = x;
+    r->inv_hi = xa - 1;
+    r->all_valid = x >= xb;
+    if (r->all_valid) return;
+    for (x = xb; x - 4 * SBL__VW > r->inv_lo; x -= 4 * SBL__VW) {
+        j = x - 4 * SBL__VW;
+        if (!sbl__all(sbl__gt(sbl__min(sbl__min(sbl__load(v + j), sbl__load(v + j + SBL__VW)),
+                                       sbl__min(sbl__load(v + j + 2 * SBL__VW),
+                                                sbl__load(v + j + 3 * SBL__VW))),
+                              half)))
+            break;
+    }
+    while (x - 1 > r->inv_lo && v[x - 1] > 0.5f) --x;
+    r->inv_hi = x - 1;
 }
 
 /* Filter columns [x0, x1) of rows [y0, y1) into k->out (and out_n / out_a); nothing
