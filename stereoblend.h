@@ -5855,7 +5855,11 @@ static void sbl__evidence_store(const sbl__kernel *k, int y, int xa, int xb, int
    (session 10's estimator). With the mix towards the paper's weight (SBL_EVIDENCE_MIX)
    all three: the mix lets the paper's weight in wherever R passes its threshold, so R's
    false alarms need the region's prior too (3.10, 3.11) */
-#define SBL_EVIDENCE_REGION (SBL_EVIDENCE_MIX ? 7 : 3)
+#if SBL_EVIDENCE_MIX
+#define SBL_EVIDENCE_REGION 7
+#else
+#define SBL_EVIDENCE_REGION 3
+#endif
 #endif
 
 /* Pixels of row y of the plane beyond c_R (ratios only: > the cap is not one). */
