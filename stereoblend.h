@@ -2427,6 +2427,11 @@ typedef struct sbl__weight_params {
                           the region's share of change raises the prior odds against a
                           change (sbl__evidence_share, set per row); 1 or 0 (a
                           hand-made params block): none */
+    int evid_mix;      /* temporal, pooled, the history has the evidence plane and
+                          SBL_EVIDENCE_MIX: the weight moves towards the paper's by the
+                          carried evidence's shrink (sbl__evidence_share sets it) */
+    float evid_sh;     /* the reference path's shrink sh_R = r_R / (1 + r_R) of the pixel
+                          in hand (sbl__kernel_pixel_ref_ch); 0: no mixing */
 } sbl__weight_params;
 
 /* Firefly limit of the robust estimator: the new sample may exceed the larger of the
@@ -2452,6 +2457,17 @@ typedef struct sbl__weight_params {
 #define SBL__POOL_BLOCKS 2
 /* columns a pixel's pooled statistic reads beyond it: the farthest block centre + 1 */
 #define SBL__POOL_REACH (SBL__POOL_STEP * SBL__POOL_BLOCKS + 1)
+
+/* The pooled temporal weight moved towards the paper's (Eq. 4 / 10 / 11) where that one
+   is the larger, by the carried evidence's own shrink: a = a_d + sh_R (a_p - a_d)+,
+   sh_R = r_R / (1 + r_R), r_R the garrote of R beyond its region-raised threshold
+   (docs/ESTIMATORS.md 3.11). 0 where R has not passed it (the static case), so the
+   paper's floor near 0.1 does not come back; where a change has lasted a few frames
+   the paper's weight, which follows the change at once, gets in. Needs the history's
+   evidence plane (without it nothing changes, bit for bit). */
+#ifndef SBL_EVIDENCE_MIX
+#define SBL_EVIDENCE_MIX 1 /* 0: the weight of 3.10 (with SBL_EVIDENCE_REGION 3), bit for bit */
+#endif
 
 /* Posterior probability that a window changed, from the squared mean paired difference
    pd2 and its squared standard error se2 (robust estimator): 1 / (1 + rho^4.5), rho =
@@ -2597,6 +2613,12 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             a = (bias2 + var_x + var_y > 0.0) ? (fx * bias2 + var_x) / (bias2 + var_x + var_y)
                                               : progressive;
         }
+        /* towards the paper's weight by the carried evidence's shrink (3.11) */
+        if (SBL_EVIDENCE_MIX && p->evid_mix && p->temporal && p->estimator == SBL_ESTIMATOR_POOLED &&
+            pair_count > 1 && p->evid_sh > 0.0f) {
+            const double ap = (x_dev2 + s2 > 0.0) ? x_dev2 / (x_dev2 + s2) : progressive;
+            if (ap > a) a += SBL__CAST(double, p->evid_sh) * (ap - a);
+        }
         /* stereo: the neighbours of Y as a third estimate, where they agree (flat).
            Only for a raw own eye (N_Y <= 1): the prior assumes the neighbours' noise
            independent of each other and of y, which a temporally filtered eye's is
@@ -2689,6 +2711,8 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.temporal = 0;
     p.shared_bias = 0.0f;
     p.region_m = 1.0f;
+    p.evid_mix = 0;
+    p.evid_sh = 0.0f;
     return p;
 }
 
@@ -3197,7 +3221,7 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
    SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 8)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 9)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -5993,8 +6017,15 @@ static void sbl__evidence_store(const sbl__kernel *k, int y, int xa, int xb, int
    e^-q), the carried R's (c_R - 1)^2 + 2 kappa ln M (Gaussian, variance kappa =
    lambda / (2 - lambda)). Without the history's plane, M = 1: as before, bit for bit. */
 #ifndef SBL_EVIDENCE_REGION
-#define SBL_EVIDENCE_REGION 3 /* the sources M applies to: 1 the local test, 2 the blocks,
-                                 4 the carried R; 0: none (session 10's estimator) */
+/* the sources M applies to: 1 the local test, 2 the blocks, 4 the carried R; 0: none
+   (session 10's estimator). With the mix towards the paper's weight (SBL_EVIDENCE_MIX)
+   all three: the mix lets the paper's weight in wherever R passes its threshold, so R's
+   false alarms need the region's prior too (3.10, 3.11) */
+#if SBL_EVIDENCE_MIX
+#define SBL_EVIDENCE_REGION 7
+#else
+#define SBL_EVIDENCE_REGION 3
+#endif
 #endif
 
 /* Pixels of row y of the plane beyond c_R (ratios only: > the cap is not one). */
@@ -6037,6 +6068,8 @@ static void sbl__evidence_share(sbl__kernel *k, int y)
     long cnt = 0, n = 0;
     int j, i;
     k->wp.region_m = 1.0f;
+    k->wp.evid_mix = SBL_EVIDENCE_MIX && k->evid_use && k->wp.temporal &&
+                     k->wp.estimator == SBL_ESTIMATOR_POOLED; /* 3.11 */
     k->evid_lnm = 0.0;
     k->evid_thr = SBL__EVIDENCE_THR;
     k->evid_garrote = SBL__EVIDENCE_GARROTE;
@@ -6127,6 +6160,38 @@ SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, 
         r = sbl__max(r, rt);
     }
     return r;
+}
+
+/* The carried evidence's own shrink sh_R = r_R / (1 + r_R) at pixel x of row pool_row,
+   r_R as sbl__evidence_ratio_ref forms it, from the stored (float) R: the factor of the
+   mix towards the paper's weight (SBL_EVIDENCE_MIX, 3.11). */
+static float sbl__evidence_shrink(const sbl__kernel *k, int x)
+{
+    const double e = SBL__CAST(double, k->evid_out[x]), thr = k->evid_thr;
+    double rt;
+    if (SBL_EVIDENCE_GATE == 2)
+        rt = e > thr ? (e - 1.0) - k->evid_garrote / (e - 1.0) : 0.0;
+    else
+        rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
+    return rt > 0.0 ? SBL__CAST(float, rt / (1.0 + rt)) : 0.0f;
+}
+
+/* The same in lanes (float), for pixels [x, x + VW). */
+SBL__INLINE sbl__v sbl__evidence_shrink_lanes(const sbl__kernel *k, int x)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const sbl__v e = sbl__load(k->evid_out + x), e1 = sbl__sub(e, one);
+    const sbl__v thr = sbl__set1(SBL__CAST(float, k->evid_thr));
+    sbl__v rt;
+    if (SBL_EVIDENCE_GATE == 2) /* the denominator kept >= c_R - 1 where not taken */
+        rt = sbl__sel(sbl__gt(e, thr),
+                      sbl__sub(e1, sbl__div(sbl__set1(SBL__CAST(float, k->evid_garrote)),
+                                            sbl__max(e1, sbl__set1(SBL__CAST(float, k->evid_thr - 1.0))))),
+                      zero);
+    else
+        rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), e1, zero) : sbl__sub(e, thr);
+    rt = sbl__max(rt, zero);
+    return sbl__div(rt, sbl__add(one, rt));
 }
 
 /* Pooled estimator, the double reference of sbl__row_pool: the prior bias-to-noise ratio
@@ -6267,7 +6332,14 @@ SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *c
                           centre);
         m.pool_r = SBL__CAST(double, sbl__pool_ratio(k, x, y));
         if (n_x > k->n_cap) n_x = k->n_cap;
-        n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
+        if (SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) {
+            /* the mix's factor at this pixel (3.11) */
+            sbl__weight_params wp = k->wp;
+            wp.evid_sh = sbl__evidence_shrink(k, x);
+            n_out = sbl__blend_pixel(&wp, &m, yc, xs, n_x, n_y, ch, out, &a);
+        } else {
+            n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
+        }
     }
     if (!(n_out <= k->n_cap)) n_out = k->n_cap; /* also NaN */
     for (c = 0; c < ch; ++c) k->stage[c][x] = out[c];
@@ -6322,6 +6394,7 @@ typedef struct sbl__lane_stats {
     sbl__v inv_cnt; /* 1 / max(pairs, 1)                                            */
     sbl__m has_pairs, two_pairs;
     sbl__v pool_r;  /* pooled estimator: prior bias-to-noise ratio (sbl__row_pool)     */
+    sbl__v evid_sh; /* the carried evidence's shrink (SBL_EVIDENCE_MIX; read only then) */
     sbl__v a2[4];   /* weight of the two-estimate blend (before the pooled lean): Eq. 5 */
     sbl__v bessel;  /* n / (n - 1), n Y's samples in the window: 9 / 8 inside the image
                        (sbl__lane_edge) */
@@ -6574,6 +6647,8 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 {
     st->pool_r = (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y)
                    ? sbl__load(k->pool_r + x) : sbl__set1(0.0f);
+    st->evid_sh = (SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y)
+                    ? sbl__evidence_shrink_lanes(k, x) : sbl__set1(0.0f);
 }
 
 /* ---- the pooled estimator's prepass in lanes (sbl__row_pool) -----------------
@@ -6608,6 +6683,7 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_FT(ch) (3 * (ch) + 5) /* staged lanes: the firefly factor t (sbl__lanes_stage_y) */
 #define SBL__POOL_S2(ch) (3 * (ch) + 6) /* staged lanes: Y's variance summed over the channels */
 #define SBL__POOL_W(ch) (3 * (ch) + 7) /* staged lanes: the weight (sbl__lanes_stage_weight) */
+#define SBL__POOL_DEV2(ch) (3 * (ch) + 8) /* staged lanes: |x* - mean|^2 (SBL_EVIDENCE_MIX only) */
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -7163,6 +7239,12 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             den = sbl__add(num, vy);
         }
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
+        if (SBL_EVIDENCE_MIX && est == SBL_ESTIMATOR_POOLED && temporal && p->evid_mix) {
+            /* towards the paper's weight by the carried evidence's shrink (3.11) */
+            const sbl__v dd = sbl__add(dev2, s2);
+            const sbl__v ap = sbl__sel(sbl__gt(dd, zero), sbl__div(dev2, sbl__max(dd, tiny)), prog);
+            w = sbl__sel(st->two_pairs, sbl__add(w, sbl__mul(st->evid_sh, sbl__max(sbl__sub(ap, w), zero))), w);
+        }
         if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
             for (c = c0; c < c1; ++c) st->a2[c] = w2;
@@ -7408,9 +7490,15 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     const int i = x - base;
     sbl__v mean, var, m8, v8, yc, s2 = zero, bound, t;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
+    sbl__v dev2 = zero; /* |x* - mean|^2, for the mix towards the paper's weight (3.11) */
+    const int mix = SBL_EVIDENCE_MIX && k->wp.evid_mix;
 #define SBL__STAGE_Y(c) \
     do { \
         sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1, E); \
+        if (mix) { \
+            const sbl__v e_ = sbl__sub(sbl__load(W->x[1][c] + x), mean); \
+            dev2 = (c) ? sbl__add(dev2, sbl__mul(e_, e_)) : sbl__mul(e_, e_); \
+        } \
         /* the sums start at channel 0's values (0 + v is v: no addition) */ \
         sum_y = (c) ? sbl__add(sum_y, yc) : yc; \
         sum_m8 = (c) ? sbl__add(sum_m8, m8) : m8; \
@@ -7430,6 +7518,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_FT(ch) * SBL__POOL_COLS, t);
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_S2(ch) * SBL__POOL_COLS, s2);
+    if (mix) sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_DEV2(ch) * SBL__POOL_COLS, dev2);
 }
 
 /* The weight of the staged lanes (sbl__lanes_weight), into the chunk's plane W: a stage
@@ -7443,6 +7532,7 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, con
     float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
+    const int mix = SBL_EVIDENCE_MIX && k->wp.evid_mix; /* 3.11: |x* - m|^2 and sh_R */
     sbl__v n_x, n_y, n_xc, nl, nr, cnt;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     nl = full ? sbl__set1(3.0f) : sbl__load(qn - 1);
@@ -7456,8 +7546,10 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, con
     st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
     st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
     st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
+    st.evid_sh = mix ? sbl__evidence_shrink_lanes(k, x) : zero;
     sbl__store(q + SBL__POOL_W(ch) * SBL__POOL_COLS,
-               sbl__lanes_weight(&k->wp, &st, zero, sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
+               sbl__lanes_weight(&k->wp, &st, mix ? sbl__load(q + SBL__POOL_DEV2(ch) * SBL__POOL_COLS) : zero,
+                                 sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
                                  sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
                                  sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1));
 }

@@ -1243,8 +1243,10 @@ static void test_stereo_shared_bias(void)
            "display RMSE %.4f / %.4f / %.4f with stereo_shared_bias 0, %.4f / %.4f / %.4f with 1 "
            "(SB_SCAN=1 for more rates)\n", ramp0, mid0, flat0, ramp1, mid1, flat1);
     /* the shared lag is what the stereo blend cannot remove: weighting it double
-       follows the light more closely */
-    CHECK(ramp1 < ramp0 * 0.97);
+       follows the light more closely. Measured 0.0559 against 0.0595 before the mix
+       towards the paper's weight (docs/ESTIMATORS.md 3.11), 0.0547 against 0.0551 with
+       it: the temporal filter now follows most of the ramp itself, little lag is left */
+    CHECK(ramp1 < ramp0);
     /* measured: a change near the detection threshold loses a little (its bias estimate
        is mostly noise, now counted double; docs/ESTIMATORS.md 4.7) */
     CHECK(mid1 <= mid0 * 1.08);
@@ -1330,6 +1332,68 @@ static void test_evidence_region(void)
     CHECK(def <= one * 0.95);
 }
 
+/* A light sliding over a texture (docs/ESTIMATORS.md 3.11): every pixel's shading changes
+   every frame, by a wave of period 48 px moving 0.5 or 1 px per frame, under Gaussian
+   noise (sigma 0.3 of the value). With the plane carried, the weight moves towards the
+   paper's by the carried evidence's own shrink where that one is the larger: the paper's
+   weight follows the change at once, and R, which has seen it for frames, lets it in.
+   MSE with the plane / without it (one frame's evidence), 0.5 / 1 px per frame: measured
+   0.80 / 0.78 with the mix, 0.88 / 0.88 without it (this test fails on the code before). The static texture
+   of test_evidence_region and the light edge of test_evidence_garrote keep their bounds
+   (measured 0.943 of progressive's MSE; the edge lags 2.47 frames). */
+static double sliding_light_mse(int plane, double v)
+{
+    const int w = 96, h = 48, frames = 48;
+    seq1 s;
+    sbl_temporal_desc d;
+    sbt_rng rng = {4711};
+    double se = 0;
+    long n = 0;
+    int i, x, y, c;
+    memset(&d, 0, sizeof d);
+    d.estimator = SBL_ESTIMATOR_POOLED;
+    seq_init(&s, w, h, 3);
+    g_evidence = plane;
+    for (i = 0; i < frames; ++i) {
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                const double f = 1.0 + 0.3 * sbt_gauss(&rng);
+                const double light = 0.6 + 0.4 * sin(6.283185307179586 * (x - v * i) / 48.0);
+                for (c = 0; c < 3; ++c) {
+                    const double t = (0.4 + 0.2 * sin(0.7 * x + 0.3 * c) * cos(0.45 * y)) * light;
+                    s.cur[((size_t)y * w + x) * 3 + c] = (float)(t * f);
+                }
+            }
+        CHECK_EQ(seq_step(&s, &d, i == 0), SBL_OK);
+        if (i >= 16)
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    const double light = 0.6 + 0.4 * sin(6.283185307179586 * (x - v * i) / 48.0);
+                    for (c = 0; c < 3; ++c) {
+                        const double t = (0.4 + 0.2 * sin(0.7 * x + 0.3 * c) * cos(0.45 * y)) * light;
+                        const double e2 = seq_out(&s, x, y)[c] - t;
+                        se += e2 * e2;
+                        ++n;
+                    }
+                }
+    }
+    g_evidence = 0;
+    seq_free(&s);
+    return se / (double)n;
+}
+
+static void test_evidence_mix(void)
+{
+    static const double speeds[2] = {0.5, 1.0};
+    int k;
+    for (k = 0; k < 2; ++k) {
+        const double one = sliding_light_mse(0, speeds[k]), plane = sliding_light_mse(1, speeds[k]);
+        printf("  sliding light (%.1f px/frame, noise 0.3): MSE %.5f with the plane, %.5f without "
+               "(%.3f)\n", speeds[k], plane, one, plane / one);
+        CHECK(plane <= 0.84 * one);
+    }
+}
+
 int main(void)
 {
     test_evidence_params();
@@ -1340,6 +1404,7 @@ int main(void)
     test_evidence_firefly();
     test_evidence_noise_free_jump();
     test_evidence_region();
+    test_evidence_mix();
     test_firefly();
     test_convergence_and_step();
     test_moving_light();
