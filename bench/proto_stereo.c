@@ -7,7 +7,9 @@
    average keeps), and the MSE of a fixed beta 1/2 blend, (E_own + E_oth + 2 C) / 4.
    usage: proto_stereo [scenes] [methods]   (methods from the standard table, temporal;
    NAME@c sets sbl_temporal_desc.stereo_shared_bias = c (else the table's), NAME#n max_history = n; run:NAME runs the method as the
-   bench does, stereo stage included, and prints effective spp / RMSE / SSIM) */
+   bench does, stereo stage included, and prints effective spp / RMSE / SSIM; dump:NAME writes the
+   combined pipeline per pixel to $DUMP_DIR/SCENE_NAME.dump and `proto_stereo cmp:A,B` bins two
+   dumps (docs/ESTIMATORS.md 4.9)) */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
