@@ -282,7 +282,7 @@ static void cmp_bins(const char *fa, const char *fb)
                                             {0.3, 0.45, 0.55, 0.7, 0.95}, {0.25, 0.67, 0.9, 1.1, 1.5}};
     double acc[NK][NB][12];
     double tot = 0, tda = 0, tdb = 0;
-    int k, b, j;
+    int k, b;
     if (!pa || !pb) { printf("cmp: cannot open\n"); return; }
     memset(acc, 0, sizeof acc);
     while (fread(ra, sizeof ra, 1, pa) == 1 && fread(rb, sizeof rb, 1, pb) == 1) {
@@ -313,7 +313,6 @@ static void cmp_bins(const char *fa, const char *fb)
                    z[7] > 0 ? z[5] / z[7] : 0, z[8] > 0 ? z[6] / z[8] : 0, z[9] / z[0], z[10] / z[0], z[11] / z[0]);
         }
     }
-    (void)j;
     fclose(pa); fclose(pb);
 }
 
