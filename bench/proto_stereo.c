@@ -7,7 +7,9 @@
    average keeps), and the MSE of a fixed beta 1/2 blend, (E_own + E_oth + 2 C) / 4.
    usage: proto_stereo [scenes] [methods]   (methods from the standard table, temporal;
    NAME@c sets sbl_temporal_desc.stereo_shared_bias = c (else the table's), NAME#n max_history = n; run:NAME runs the method as the
-   bench does, stereo stage included, and prints effective spp / RMSE / SSIM) */
+   bench does, stereo stage included, and prints effective spp / RMSE / SSIM; dump:NAME writes the
+   combined pipeline per pixel to $DUMP_DIR/SCENE_NAME.dump and `proto_stereo cmp:A,B` bins two
+   dumps (docs/ESTIMATORS.md 4.9)) */
 #define _POSIX_C_SOURCE 200809L
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
@@ -136,6 +138,184 @@ static void seed_frame(void *ctx, int f, int eye, const float *rgb, int w, int h
     }
 }
 
+
+/* dump:NAME FILE (docs/ESTIMATORS.md 4.9): the combined pipeline as sbr_run runs it for a
+   method with the library's temporal filter, the evidence plane and the adaptive stereo
+   blend, written per pixel (evaluation frames, both eyes) to FILE as DUMP_F floats: the
+   display's, the temporal output's and the other eye's (reprojected) squared errors,
+   their cross product, the match's validity, N, the temporal weight, the region's M
+   (sbl__evidence_share's formula on the eye's previous evidence plane), this frame's R,
+   the stereo weight of the own eye, and the other eye's N reprojected. cmp:A,B bins two
+   dumps of the same scene pixel by pixel. */
+enum { D_ED, D_ET, D_EX, D_CX, D_VAL, D_N, D_A, D_M, D_R, D_B, D_NX, DUMP_F };
+
+static int dump_run(const sbr_seq *s, const sbr_method *m, const char *file)
+{
+    const int w = s->width, h = s->height;
+    const size_t n = (size_t)w * (size_t)h;
+    float *hist[2][2], *len[2][2], *ev[2][2], *al[2], *disp[2], *beta[2], *xs, *xn, *valid, *rec;
+    int ping[2] = {0, 0}, f, e, i, skip = s->frames / 4;
+    double mse = 0;
+    long evn = 0;
+    FILE *fo = fopen(file, "wb");
+    sbl_stereo_desc sd = m->stereo_desc;
+    if (!fo) return 1;
+    sd.rig = SBL_RIG_PARALLEL; sd.focal_px = s->focal_px; sd.baseline = s->baseline;
+    for (e = 0; e < 2; ++e) {
+        for (i = 0; i < 2; ++i) { hist[e][i] = sbr_alloc(n * 3); len[e][i] = sbr_alloc(n); ev[e][i] = sbr_alloc(n); }
+        al[e] = sbr_alloc(n); disp[e] = sbr_alloc(n * 3); beta[e] = sbr_alloc(n);
+    }
+    xs = sbr_alloc(n * 3); xn = sbr_alloc(n * 3); valid = sbr_alloc(n); rec = sbr_alloc(n * DUMP_F);
+    for (f = 0; f < s->frames; ++f) {
+        sbl_eye eye[2];
+        float mrow[1024];
+        for (e = 0; e < 2; ++e) {
+            const sbr_view *v = &s->views[f * 2 + e], *pv = f > 0 ? &s->views[(f - 1) * 2 + e] : NULL;
+            sbl_frame fr;
+            sbl_history hi;
+            sbl_temporal_output out;
+            memset(&fr, 0, sizeof fr); memset(&hi, 0, sizeof hi); memset(&out, 0, sizeof out);
+            fr.color = sbl_image_make(v->color, w, h, 3);
+            fr.gbuffer = sbr_gbuffer(v, w, h, 1);
+            fr.camera = &v->camera;
+            if (pv) {
+                hi.color = sbl_image_make(hist[e][ping[e]], w, h, 3);
+                hi.length = sbl_image_make(len[e][ping[e]], w, h, 1);
+                hi.gbuffer = sbr_gbuffer(pv, w, h, 0);
+                hi.camera = &pv->camera;
+                hi.evidence = sbl_image_make(ev[e][ping[e]], w, h, 1);
+            }
+            out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
+            out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
+            out.evidence = sbl_image_make(ev[e][!ping[e]], w, h, 1);
+            out.alpha = sbl_image_make(al[e], w, h, 1);
+            if (sbl_temporal_filter_frame(&m->temporal_desc, &fr, pv ? &hi : NULL, &out) != SBL_OK) return 1;
+            ping[e] = !ping[e];
+        }
+        for (e = 0; e < 2; ++e) {
+            memset(&eye[e], 0, sizeof eye[e]);
+            eye[e].color = sbl_image_make(hist[e][ping[e]], w, h, 3);
+            eye[e].length = sbl_image_make(len[e][ping[e]], w, h, 1);
+            eye[e].gbuffer = sbr_gbuffer(&s->views[f * 2 + e], w, h, 0);
+        }
+        for (e = 0; e < 2; ++e) {
+            sbl_stereo_output so;
+            size_t bytes = sbl_stereo_scratch_size(w, 3);
+            void *scr = malloc(bytes);
+            memset(&so, 0, sizeof so);
+            so.color = sbl_image_make(disp[e], w, h, 3);
+            so.beta = sbl_image_make(beta[e], w, h, 1);
+            if (m->stereo == SBR_STEREO_FIXED) sd.estimator = SBL_ESTIMATOR_CONSTANT;
+            if (sbl_stereo_filter(&sd, (sbl_eye_index)e, &eye[e], &eye[!e], &so, 0, h, scr, bytes) != SBL_OK) return 1;
+            free(scr);
+        }
+        if (f < skip) continue;
+        for (e = 0; e < 2; ++e) {
+            const sbr_view *v = &s->views[f * 2 + e];
+            const float *t = hist[e][ping[e]], *prev = f > 0 ? ev[e][!ping[e]] : NULL;
+            const float thr = (float)SBL__EVIDENCE_THR, cap = (float)SBL__POOL_RATIO_CAP;
+            sbl_eye xe = eye[!e];
+            size_t q;
+            int y, x, c;
+            /* the other eye's N, reprojected with the same call (N copied to 3 channels) */
+            if (sbl_reproject_stereo(&sd, (sbl_eye_index)e, &eye[e], &eye[!e], sbl_image_make(xs, w, h, 3),
+                                     sbl_image_make(valid, w, h, 1), 0, h) != SBL_OK) return 1;
+            for (q = 0; q < n; ++q) xn[q * 3] = xn[q * 3 + 1] = xn[q * 3 + 2] = len[!e][ping[!e]][q];
+            xe.color = sbl_image_make(xn, w, h, 3);
+            {
+                float *tmpv = sbr_alloc(n), *xnr = sbr_alloc(n * 3);
+                if (sbl_reproject_stereo(&sd, (sbl_eye_index)e, &eye[e], &xe, sbl_image_make(xnr, w, h, 3),
+                                         sbl_image_make(tmpv, w, h, 1), 0, h) != SBL_OK) return 1;
+                for (q = 0; q < n; ++q) rec[q * DUMP_F + D_NX] = xnr[q * 3];
+                free(tmpv); free(xnr);
+            }
+            for (y = 0; y < h && y < 1024; ++y) {
+                long cnt = 0, nn = 0;
+                int j;
+                mrow[y] = 1.0f;
+                if (!prev) continue;
+                for (j = y - 1; j <= y + 1; ++j) {
+                    if (j < 0 || j >= h) continue;
+                    for (x = 0; x < w; ++x) cnt += (prev[(size_t)j * w + x] > thr) & (prev[(size_t)j * w + x] <= cap);
+                    nn += w;
+                }
+                mrow[y] = (float)((double)(nn + 2) / (2.0 * (double)(cnt + 1)));
+            }
+            for (q = 0; q < n; ++q) {
+                float *r = rec + q * DUMP_F;
+                double ed = 0, et = 0, ex = 0, cx = 0;
+                for (c = 0; c < 3; ++c) {
+                    const double rf = v->ref[q * 3 + c];
+                    const double a = disp[e][q * 3 + c] - rf, b = t[q * 3 + c] - rf, d = xs[q * 3 + c] - rf;
+                    ed += a * a; et += b * b;
+                    if (valid[q] > 0) { ex += d * d; cx += b * d; }
+                }
+                mse += ed; evn += 3;
+                r[D_ED] = (float)ed; r[D_ET] = (float)et; r[D_EX] = (float)ex; r[D_CX] = (float)cx;
+                r[D_VAL] = valid[q] > 0; r[D_N] = len[e][ping[e]][q]; r[D_A] = al[e][q];
+                r[D_M] = mrow[q / (size_t)w]; r[D_R] = ev[e][ping[e]][q]; r[D_B] = beta[e][q];
+            }
+            fwrite(rec, sizeof(float), n * DUMP_F, fo);
+        }
+    }
+    fclose(fo);
+    printf("%-18s dump %-20s rmse %.5f (%s)\n", s->name, m->name, sqrt(mse / (double)evn), file);
+    for (e = 0; e < 2; ++e) {
+        for (i = 0; i < 2; ++i) { free(hist[e][i]); free(len[e][i]); free(ev[e][i]); }
+        free(al[e]); free(disp[e]); free(beta[e]);
+    }
+    free(xs); free(xn); free(valid); free(rec);
+    return 0;
+}
+
+/* cmp:A,B: A and B dumps of one scene (the same pixels in the same order). Bins by B's
+   M and N and by the change of N, and prints each bin's share of the pixels, A's and B's
+   display / temporal MSE, the eyes' shared error C / E_own, the stereo weight and N. */
+static void cmp_bins(const char *fa, const char *fb)
+{
+    FILE *pa = fopen(fa, "rb"), *pb = fopen(fb, "rb");
+    float ra[DUMP_F], rb[DUMP_F];
+    enum { NB = 6, NK = 6 };
+    static const char *kname[NK] = {"M (B)", "N (B)", "N B/A", "beta(B)", "beta(A)", "N/Nx(A)"};
+    static const double edge[NK][NB - 1] = {{0.9, 2, 5, 15, 40}, {2, 8, 16, 32, 60},
+                                            {0.8, 0.95, 1.05, 1.25, 2}, {0.3, 0.45, 0.55, 0.7, 0.95},
+                                            {0.3, 0.45, 0.55, 0.7, 0.95}, {0.25, 0.67, 0.9, 1.1, 1.5}};
+    double acc[NK][NB][12];
+    double tot = 0, tda = 0, tdb = 0;
+    int k, b;
+    if (!pa || !pb) { printf("cmp: cannot open\n"); return; }
+    memset(acc, 0, sizeof acc);
+    while (fread(ra, sizeof ra, 1, pa) == 1 && fread(rb, sizeof rb, 1, pb) == 1) {
+        double key[NK];
+        key[0] = rb[D_M]; key[1] = rb[D_N]; key[2] = ra[D_N] > 0 ? rb[D_N] / ra[D_N] : 1; key[3] = rb[D_B];
+        key[4] = ra[D_B]; key[5] = ra[D_NX] > 0 ? ra[D_N] / ra[D_NX] : 1;
+        tot += 1; tda += ra[D_ED]; tdb += rb[D_ED];
+        for (k = 0; k < NK; ++k) {
+            double *z;
+            for (b = 0; b < NB - 1 && key[k] >= edge[k][b]; ++b) {}
+            z = acc[k][b];
+            z[0] += 1; z[1] += ra[D_ED]; z[2] += rb[D_ED]; z[3] += ra[D_ET]; z[4] += rb[D_ET];
+            z[5] += ra[D_CX]; z[6] += rb[D_CX]; z[7] += ra[D_VAL] > 0 ? ra[D_ET] : 0; z[8] += rb[D_VAL] > 0 ? rb[D_ET] : 0;
+            z[9] += ra[D_B]; z[10] += rb[D_B]; z[11] += rb[D_N] - ra[D_N];
+        }
+    }
+    printf("cmp %s -> %s: display MSE %.4g -> %.4g (%+.2f %%)\n", fa, fb, tda / tot / 3, tdb / tot / 3,
+           100 * (tdb / tda - 1));
+    for (k = 0; k < NK; ++k) {
+        printf("  by %-7s  %5s %10s %10s %8s %10s %10s %6s %6s %6s %6s %7s\n", kname[k], "pix%", "dispA",
+               "dispB", "dDisp%", "tempA", "tempB", "C/E A", "C/E B", "betaA", "betaB", "dN");
+        for (b = 0; b < NB; ++b) {
+            double *z = acc[k][b];
+            if (z[0] == 0) continue;
+            printf("  %-3s %6.2f  %5.1f %10.4g %10.4g %8.2f %10.4g %10.4g %6.3f %6.3f %6.3f %6.3f %7.2f\n",
+                   b == 0 ? "<" : ">=", b == 0 ? edge[k][0] : edge[k][b - 1], 100 * z[0] / tot,
+                   z[1] / z[0] / 3, z[2] / z[0] / 3, 100 * (z[2] - z[1]) / tda, z[3] / z[0] / 3, z[4] / z[0] / 3,
+                   z[7] > 0 ? z[5] / z[7] : 0, z[8] > 0 ? z[6] / z[8] : 0, z[9] / z[0], z[10] / z[0], z[11] / z[0]);
+        }
+    }
+    fclose(pa); fclose(pb);
+}
+
 int main(int argc, char **argv)
 {
     const char *only = argc > 1 ? argv[1] : NULL;
@@ -144,6 +324,15 @@ int main(int argc, char **argv)
     static const char *const real[] = {"atrium", "gallery"};
     char err[256], path[512], buf[512];
     int s;
+    if (argc > 1 && !strncmp(argv[1], "cmp:", 4)) {
+        char a[512], *b;
+        snprintf(a, sizeof a, "%s", argv[1] + 4);
+        b = strchr(a, ',');
+        if (!b) return 2;
+        *b++ = 0;
+        cmp_bins(a, b);
+        return 0;
+    }
     printf("%-18s %-14s %9s %9s %9s %6s %6s %9s %6s\n", "scene", "method", "E_own", "E_oth", "C",
            "rho", "C/Eown", "E_beta.5", "valid%");
     for (s = 0; s < SBR_SYNTH_SCENES + 2; ++s) {
@@ -168,8 +357,9 @@ int main(int argc, char **argv)
             int so = 0;
             float cap = 0.0f;
             int run = strncmp(tok, "run:", 4) == 0, seeds = strncmp(tok, "seeds:", 6) == 0;
+            int dump = strncmp(tok, "dump:", 5) == 0;
             float c = 0.0f;
-            snprintf(name, sizeof name, "%s", run ? tok + 4 : seeds ? tok + 6 : tok);
+            snprintf(name, sizeof name, "%s", run ? tok + 4 : seeds ? tok + 6 : dump ? tok + 5 : tok);
             /* NAME/paper, NAME/beta, NAME/oracle, NAME/pooled: the stereo stage replaced */
             sl = strchr(name, '/');
             if (sl) {
@@ -187,6 +377,13 @@ int main(int argc, char **argv)
             if (so == 2) { m.stereo = SBR_STEREO_FIXED; m.stereo_desc.estimator = SBL_ESTIMATOR_CONSTANT; }
             if (so == 3) { m.stereo = SBR_STEREO_ADAPTIVE; m.oracle |= SBR_ORACLE_STEREO; }
             if (so == 4) { m.stereo = SBR_STEREO_ADAPTIVE; memset(&m.stereo_desc, 0, sizeof m.stereo_desc); }
+            if (dump) {
+                char file[600];
+                snprintf(file, sizeof file, "%s/%s_%s.dump", getenv("DUMP_DIR") ? getenv("DUMP_DIR") : "/tmp", nm, name);
+                if (dump_run(&seq, &m, file) != 0) return 1;
+                fflush(stdout);
+                continue;
+            }
             if (run) {
                 if (sbr_run(&seq, &m, &r, NULL, NULL) != 0) return 1;
                 printf("%-18s %-24s eff %6.3f  rmse %.5f  ssim %.4f\n", nm, tok, r.eff_spp, r.rmse, r.ssim);
