@@ -174,20 +174,8 @@ static int dump_run(const sbr_seq *s, const sbr_method *m, const char *file)
             sbl_frame fr;
             sbl_history hi;
             sbl_temporal_output out;
-            memset(&fr, 0, sizeof fr); memset(&hi, 0, sizeof hi); memset(&out, 0, sizeof out);
-            fr.color = sbl_image_make(v->color, w, h, 3);
-            fr.gbuffer = sbr_gbuffer(v, w, h, 1);
-            fr.camera = &v->camera;
-            if (pv) {
-                hi.color = sbl_image_make(hist[e][ping[e]], w, h, 3);
-                hi.length = sbl_image_make(len[e][ping[e]], w, h, 1);
-                hi.gbuffer = sbr_gbuffer(pv, w, h, 0);
-                hi.camera = &pv->camera;
-                hi.evidence = sbl_image_make(ev[e][ping[e]], w, h, 1);
-            }
-            out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
-            out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
-            out.evidence = sbl_image_make(ev[e][!ping[e]], w, h, 1);
+            sbr_temporal_bind(v, pv, v->color, w, h, hist[e][ping[e]], len[e][ping[e]], ev[e][ping[e]],
+                              hist[e][!ping[e]], len[e][!ping[e]], ev[e][!ping[e]], &fr, &hi, &out);
             out.alpha = sbl_image_make(al[e], w, h, 1);
             if (sbl_temporal_filter_frame(&m->temporal_desc, &fr, pv ? &hi : NULL, &out) != SBL_OK) return 1;
             ping[e] = !ping[e];

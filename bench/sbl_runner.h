@@ -469,6 +469,30 @@ static sbl_gbuffer sbr_gbuffer(const sbr_view *v, int w, int h, int with_motion)
     return g;
 }
 
+/* The temporal call's descriptors for view v with colour `color`: the history (colour,
+   N, evidence) read from the *_in planes, written to the *_out planes; pv the previous
+   frame's view (NULL: no history); ev_in / ev_out NULL: no evidence plane. */
+static void sbr_temporal_bind(const sbr_view *v, const sbr_view *pv, float *color, int w, int h,
+                              float *hist_in, float *len_in, float *ev_in, float *hist_out,
+                              float *len_out, float *ev_out, sbl_frame *fr, sbl_history *hi,
+                              sbl_temporal_output *out)
+{
+    memset(fr, 0, sizeof *fr); memset(hi, 0, sizeof *hi); memset(out, 0, sizeof *out);
+    fr->color = sbl_image_make(color, w, h, 3);
+    fr->gbuffer = sbr_gbuffer(v, w, h, 1);
+    fr->camera = &v->camera;
+    if (pv) {
+        hi->color = sbl_image_make(hist_in, w, h, 3);
+        hi->length = sbl_image_make(len_in, w, h, 1);
+        hi->gbuffer = sbr_gbuffer(pv, w, h, 0);
+        hi->camera = &pv->camera;
+        if (ev_in) hi->evidence = sbl_image_make(ev_in, w, h, 1);
+    }
+    out->color = sbl_image_make(hist_out, w, h, 3);
+    out->length = sbl_image_make(len_out, w, h, 1);
+    if (ev_out) out->evidence = sbl_image_make(ev_out, w, h, 1);
+}
+
 /* The oracle blend of one eye: y = own estimate (N_Y = ny, NULL: 1), xs / nx = the other
    estimate from the library's reprojection stage (nx <= 0: invalid), ref = reference.
    a = E_X / (E_X + E_Y) over the 3x3 pixels whose x* is valid, squared errors summed
@@ -646,22 +670,10 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 sbl_history hi;
                 sbl_temporal_output out;
                 const sbr_view *pv = f > 0 ? &s->views[(f - 1) * 2 + e] : NULL;
-                memset(&fr, 0, sizeof fr); memset(&hi, 0, sizeof hi); memset(&out, 0, sizeof out);
-                fr.color = sbl_image_make(input[e], w, h, 3);
-                fr.gbuffer = sbr_gbuffer(v[e], w, h, 1);
-                fr.camera = &v[e]->camera;
-                if (pv) {
-                    hi.color = sbl_image_make(hist[e][ping[e]], w, h, 3);
-                    hi.length = sbl_image_make(len[e][ping[e]], w, h, 1);
-                    hi.gbuffer = sbr_gbuffer(pv, w, h, 0);
-                    hi.camera = &pv->camera;
-                }
-                out.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
-                out.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
-                if (m->evidence) {
-                    if (pv) hi.evidence = sbl_image_make(carry[e][ping[e]], w, h, 1);
-                    out.evidence = sbl_image_make(carry[e][!ping[e]], w, h, 1);
-                }
+                sbr_temporal_bind(v[e], pv, input[e], w, h, hist[e][ping[e]], len[e][ping[e]],
+                                  m->evidence ? carry[e][ping[e]] : NULL, hist[e][!ping[e]],
+                                  len[e][!ping[e]], m->evidence ? carry[e][!ping[e]] : NULL,
+                                  &fr, &hi, &out);
                 if (alpha[e]) out.alpha = sbl_image_make(alpha[e], w, h, 1);
                 if (m->temporal_blend_carry || m->temporal_blend_carry3) {
                     /* the carried plane rides on the history's reprojection: the same call
