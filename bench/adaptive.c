@@ -352,18 +352,8 @@ static void cpu_times(const sbr_seq *s, const sbr_method *mono, int reps, double
                         sbl_frame fr;
                         sbl_history hi;
                         sbl_temporal_output o;
-                        memset(&fr, 0, sizeof fr); memset(&hi, 0, sizeof hi); memset(&o, 0, sizeof o);
-                        fr.color = sbl_image_make(v->color, w, h, 3);
-                        fr.gbuffer = sbr_gbuffer(v, w, h, 1);
-                        fr.camera = &v->camera;
-                        if (pv) {
-                            hi.color = sbl_image_make(hist[e][ping[e]], w, h, 3);
-                            hi.length = sbl_image_make(len[e][ping[e]], w, h, 1);
-                            hi.gbuffer = sbr_gbuffer(pv, w, h, 0);
-                            hi.camera = &pv->camera;
-                        }
-                        o.color = sbl_image_make(hist[e][!ping[e]], w, h, 3);
-                        o.length = sbl_image_make(len[e][!ping[e]], w, h, 1);
+                        sbr_temporal_bind(v, pv, v->color, w, h, hist[e][ping[e]], len[e][ping[e]], NULL,
+                                          hist[e][!ping[e]], len[e][!ping[e]], NULL, &fr, &hi, &o);
                         rc = sbl_temporal_filter_frame(&mono->temporal_desc, &fr, pv ? &hi : NULL, &o);
                     }
                 } else if (st == 1) {
