@@ -7525,17 +7525,15 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
 /* The weight of the staged lanes (sbl__lanes_weight), into the chunk's plane W: a stage
    of its own, as its chain of divisions and a square root (t2, rho, the posterior, the
    weight) is long; in a loop of its own more vectors' chains overlap. */
-SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const sbl__weight_params *wp,
-                                         const float *n_row, const float *nyrow, int x, int base,
-                                         const int ch, const int full, const sbl__lane_edge *E,
-                                         const int mix)
+SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, const float *nyrow,
+                                         int x, int base, const int ch, const int full,
+                                         const sbl__lane_edge *E)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
-    /* mix (a constant): 3.11's |x* - m|^2 and sh_R; wp: k->wp with evid_mix = mix, a
-       copy the compiler sees whole, so the weight's test of it folds away too */
+    const int mix = SBL_EVIDENCE_MIX && k->wp.evid_mix; /* 3.11: |x* - m|^2 and sh_R */
     sbl__v n_x, n_y, n_xc, nl, nr, cnt;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     nl = full ? sbl__set1(3.0f) : sbl__load(qn - 1);
@@ -7551,7 +7549,7 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const sbl__weight_param
     st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
     st.evid_sh = mix ? sbl__evidence_shrink_lanes(k, x) : zero;
     sbl__store(q + SBL__POOL_W(ch) * SBL__POOL_COLS,
-               sbl__lanes_weight(wp, &st, mix ? sbl__load(q + SBL__POOL_DEV2(ch) * SBL__POOL_COLS) : zero,
+               sbl__lanes_weight(&k->wp, &st, mix ? sbl__load(q + SBL__POOL_DEV2(ch) * SBL__POOL_COLS) : zero,
                                  sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
                                  sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
                                  sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1));
@@ -7617,8 +7615,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
    runs the same lanes, one wide). */
 SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                  const float *nyrow, int x, int base, int y, const int ch, int side,
-                                 const int rows, const int fast, const sbl__weight_params *wp,
-                                 const int mix)
+                                 const int rows, const int fast, const int mix)
 {
     /* rows: the window's rows (2 on the image's first and last rows: a corner's window
        holds 4 samples) */
@@ -7647,10 +7644,9 @@ SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const 
     E.lean_s = sbl__load(lean_s);
     if (fast == 1) {
         sbl__lanes_stage_y(k, W, x, base, ch, &E, mix);
-        sbl__lanes_stage_weight(k, wp, n_row, nyrow, x, base, ch, 0, &E, mix);
+        sbl__lanes_stage_weight(k, n_row, nyrow, x, base, ch, 0, &E);
         sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0);
     } else {
-        (void)wp;
         (void)mix;
         sbl__lanes_vector_fast(k, W, n_row, nyrow, x, base, y, ch, fast, 0, &E);
     }
@@ -7775,7 +7771,7 @@ SBL__INLINE int sbl__rows_valid_in(const sbl__ring_row *const *R, int ca, int cb
    are computed); its extra pixels either take the lanes too (the same values: lanes are
    independent; one past the chunk is computed again by the next) or are recomputed by
    the reference path. */
-SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
+SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_row *const *R,
                                              int pa, int pb, int xa, int xb,
                                              const unsigned char *win, const int ch, const int cfg)
 {
@@ -7785,10 +7781,10 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     const int erow = cfg == 3 || cfg == 4 || cfg == 6;
     const int fast = cfg == 3 || cfg == 5 || cfg == 6 ? 1 : cfg == 4 ? 2 : cfg;
     const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6);
+    /* k: a copy with ch (and fast 1: wp.evid_mix) the instance's constants; it never
+       escapes (the one call not inlined, sbl__row_pool_ref, takes k_in), so the compiler
+       folds its fields' tests in the loops (the weight's of evid_mix too) */
     sbl__kernel k_ch = *k_in, *k = &k_ch;
-    /* the weight's parameters with evid_mix the constant mix: a local that never
-       escapes (k does: sbl__row_pool_ref), so the weight's test of it folds away */
-    sbl__weight_params wp = k_in->wp;
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
 #define SBL__POOLED_VECTOR(px) \
     do { \
@@ -7821,7 +7817,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     const sbl__lane_edge *const Er = erow ? &E_row : NULL;
     int x = pa, unsafe;
     k_ch.ch = ch;
-    wp.evid_mix = mix;
+    if (fast == 1) k_ch.wp.evid_mix = mix; /* (the other instances test it at run time) */
     if (erow) {
         /* the missing row: the first row's window takes row 1 as its row 0 too, the
            last row's takes row 0 as its row 2 too; every sum then adds 0 for it (the
@@ -7875,7 +7871,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         if (unsafe) {
             int ra, rb;
             for (p = x; p < e && sbl__pool_unsafe_run(&P, w, p, e, &ra, &rb); p = rb)
-                sbl__row_pool_ref(k, R, ra, rb);
+                sbl__row_pool_ref(k_in, R, ra, rb); /* (k_in: see k) */
         }
         /* the chunk's lanes: each run of safe windows in whole vectors, the last one
            ending at the run's end */
@@ -7892,10 +7888,10 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
                 SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, Er, mix));
                 if (full) {
-                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, &wp, n_row, nyrow, p, base, ch, 1, Er, mix));
+                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 1, Er));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
                 } else {
-                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, &wp, n_row, nyrow, p, base, ch, 0, Er, mix));
+                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 0, Er));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
                 }
             } else {
@@ -7905,9 +7901,9 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         }
         /* the image's border columns (sbl__kernel_run_span asked: their windows are safe) */
         if (fast && (k->edge_ask & 1) && x == 0)
-            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, y, ch, 1, erow ? 2 : 3, fast, &wp, mix);
+            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, y, ch, 1, erow ? 2 : 3, fast, mix);
         if (fast && (k->edge_ask & 2) && e == w)
-            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, y, ch, 2, erow ? 2 : 3, fast, &wp, mix);
+            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, y, ch, 2, erow ? 2 : 3, fast, mix);
         x = e;
     }
 #undef SBL__POOLED_VECTOR
