@@ -7484,14 +7484,15 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
    weight into a third; then sbl__lanes_stage_blend, Eq. 5 and the blend. The same
    operations in the same order as sbl__lanes_vector_fast (bit for bit). */
 SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int x, int base,
-                                    const int ch, const sbl__lane_edge *E)
+                                    const int ch, const sbl__lane_edge *E, const int mix)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const int i = x - base;
     sbl__v mean, var, m8, v8, yc, s2 = zero, bound, t;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
-    sbl__v dev2 = zero; /* |x* - mean|^2, for the mix towards the paper's weight (3.11) */
-    const int mix = SBL_EVIDENCE_MIX && k->wp.evid_mix;
+    /* |x* - mean|^2, for the mix towards the paper's weight (3.11); mix: a constant,
+       k->wp.evid_mix (sbl__kernel_lanes_pooled_ch's instances) */
+    sbl__v dev2 = zero;
 #define SBL__STAGE_Y(c) \
     do { \
         sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1, E); \
@@ -7614,7 +7615,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
    runs the same lanes, one wide). */
 SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                  const float *nyrow, int x, int base, int y, const int ch, int side,
-                                 const int rows, const int fast)
+                                 const int rows, const int fast, const int mix)
 {
     /* rows: the window's rows (2 on the image's first and last rows: a corner's window
        holds 4 samples) */
@@ -7642,10 +7643,11 @@ SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const 
     E.bessel = sbl__load(bessel);
     E.lean_s = sbl__load(lean_s);
     if (fast == 1) {
-        sbl__lanes_stage_y(k, W, x, base, ch, &E);
+        sbl__lanes_stage_y(k, W, x, base, ch, &E, mix);
         sbl__lanes_stage_weight(k, n_row, nyrow, x, base, ch, 0, &E);
         sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0);
     } else {
+        (void)mix;
         sbl__lanes_vector_fast(k, W, n_row, nyrow, x, base, y, ch, fast, 0, &E);
     }
 }
@@ -7769,13 +7771,19 @@ SBL__INLINE int sbl__rows_valid_in(const sbl__ring_row *const *R, int ca, int cb
    are computed); its extra pixels either take the lanes too (the same values: lanes are
    independent; one past the chunk is computed again by the next) or are recomputed by
    the reference path. */
-SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl__ring_row *const *R,
+SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_row *const *R,
                                              int pa, int pb, int xa, int xb,
                                              const unsigned char *win, const int ch, const int cfg)
 {
     /* cfg: fast (0, 1, 2), or 3 / 4: the temporal / stereo default (fast 1 / 2) on the
-       image's first or last row (k->edge_row; R[0] or R[2] NULL) */
-    const int erow = cfg >= 3, fast = cfg == 3 ? 1 : cfg == 4 ? 2 : cfg;
+       image's first or last row (k->edge_row; R[0] or R[2] NULL); 5 / 6: 1 / 3 with the
+       mix towards the paper's weight (k->wp.evid_mix, 3.11), which the others lack */
+    const int erow = cfg == 3 || cfg == 4 || cfg == 6;
+    const int fast = cfg == 3 || cfg == 5 || cfg == 6 ? 1 : cfg == 4 ? 2 : cfg;
+    const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6);
+    /* k: a copy with ch (and fast 1: wp.evid_mix) the instance's constants; it never
+       escapes (the one call not inlined, sbl__row_pool_ref, takes k_in), so the compiler
+       folds its fields' tests in the loops (the weight's of evid_mix too) */
     sbl__kernel k_ch = *k_in, *k = &k_ch;
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
 #define SBL__POOLED_VECTOR(px) \
@@ -7809,6 +7817,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
     const sbl__lane_edge *const Er = erow ? &E_row : NULL;
     int x = pa, unsafe;
     k_ch.ch = ch;
+    if (fast == 1) k_ch.wp.evid_mix = mix; /* (the other instances test it at run time) */
     if (erow) {
         /* the missing row: the first row's window takes row 1 as its row 0 too, the
            last row's takes row 0 as its row 2 too; every sum then adds 0 for it (the
@@ -7862,7 +7871,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         if (unsafe) {
             int ra, rb;
             for (p = x; p < e && sbl__pool_unsafe_run(&P, w, p, e, &ra, &rb); p = rb)
-                sbl__row_pool_ref(k, R, ra, rb);
+                sbl__row_pool_ref(k_in, R, ra, rb); /* (k_in: see k) */
         }
         /* the chunk's lanes: each run of safe windows in whole vectors, the last one
            ending at the run's end */
@@ -7877,7 +7886,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
             }
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
-                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, Er));
+                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, Er, mix));
                 if (full) {
                     SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 1, Er));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
@@ -7892,9 +7901,9 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(const sbl__kernel *k_in, const sbl_
         }
         /* the image's border columns (sbl__kernel_run_span asked: their windows are safe) */
         if (fast && (k->edge_ask & 1) && x == 0)
-            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, y, ch, 1, erow ? 2 : 3, fast);
+            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, y, ch, 1, erow ? 2 : 3, fast, mix);
         if (fast && (k->edge_ask & 2) && e == w)
-            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, y, ch, 2, erow ? 2 : 3, fast);
+            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, y, ch, 2, erow ? 2 : 3, fast, mix);
         x = e;
     }
 #undef SBL__POOLED_VECTOR
@@ -7999,7 +8008,9 @@ static void sbl__lane_windows_dim(const sbl__kernel *k, const sbl__ring_row *con
 }
 
 /* one function per channel count and configuration (fast: 1 temporal default, 2 stereo
-   default, 0 any other), each compiled by itself */
+   default, 0 any other; 3 / 4 their first and last rows; 5 / 6: 1 / 3 with the mix of
+   3.11, whose runtime test in the loops cost the temporal default 5.9 instructions per
+   pixel where it is off: callgrind, SSE2), each compiled by itself */
 #define SBL__POOLED_INSTANCE(chn, f) \
     SBL__NOINLINE void sbl__kernel_lanes_pooled_##chn##_##f( \
         sbl__kernel *k, const sbl__ring_row *const *R, int pa, int pb, int xa, int xb, \
@@ -8012,6 +8023,10 @@ SBL__POOLED_INSTANCE(1, 1) SBL__POOLED_INSTANCE(2, 1) SBL__POOLED_INSTANCE(3, 1)
 SBL__POOLED_INSTANCE(1, 2) SBL__POOLED_INSTANCE(2, 2) SBL__POOLED_INSTANCE(3, 2) SBL__POOLED_INSTANCE(4, 2)
 SBL__POOLED_INSTANCE(1, 3) SBL__POOLED_INSTANCE(2, 3) SBL__POOLED_INSTANCE(3, 3) SBL__POOLED_INSTANCE(4, 3)
 SBL__POOLED_INSTANCE(1, 4) SBL__POOLED_INSTANCE(2, 4) SBL__POOLED_INSTANCE(3, 4) SBL__POOLED_INSTANCE(4, 4)
+#if SBL_EVIDENCE_MIX
+SBL__POOLED_INSTANCE(1, 5) SBL__POOLED_INSTANCE(2, 5) SBL__POOLED_INSTANCE(3, 5) SBL__POOLED_INSTANCE(4, 5)
+SBL__POOLED_INSTANCE(1, 6) SBL__POOLED_INSTANCE(2, 6) SBL__POOLED_INSTANCE(3, 6) SBL__POOLED_INSTANCE(4, 6)
+#endif
 #undef SBL__POOLED_INSTANCE
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
@@ -8029,6 +8044,22 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
         case 3: sbl__kernel_lanes_pooled_3_4(k, R, pa, pb, xa, xb, win); break;
         default: sbl__kernel_lanes_pooled_4_4(k, R, pa, pb, xa, xb, win); break;
         }
+#if SBL_EVIDENCE_MIX
+    } else if (k->edge_row && k->wp.evid_mix) {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_1_6(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_6(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_6(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_6(k, R, pa, pb, xa, xb, win); break;
+        }
+    } else if (fast && k->wp.temporal && k->wp.evid_mix) {
+        switch (k->ch) {
+        case 1: sbl__kernel_lanes_pooled_1_5(k, R, pa, pb, xa, xb, win); break;
+        case 2: sbl__kernel_lanes_pooled_2_5(k, R, pa, pb, xa, xb, win); break;
+        case 3: sbl__kernel_lanes_pooled_3_5(k, R, pa, pb, xa, xb, win); break;
+        default: sbl__kernel_lanes_pooled_4_5(k, R, pa, pb, xa, xb, win); break;
+        }
+#endif
     } else if (k->edge_row) {
         switch (k->ch) {
         case 1: sbl__kernel_lanes_pooled_1_3(k, R, pa, pb, xa, xb, win); break;

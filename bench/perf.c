@@ -116,32 +116,38 @@ static void run_stereo(job *j)
 }
 
 /* The floor: read every input plane once and write every output plane once, in the
-   same row band, with one add per float read, in a form every build vectorises (each
-   plane row as one run of floats into 16 running sums; the outputs filled from them),
-   so that the loop is bound by memory on every build, as the library's pipeline is at
-   best. (The per-pixel, per-channel loop it replaces stayed scalar on every build:
-   about 11 instructions per float moved, bound by instructions rather than by memory,
-   and slowed by whatever shared the core.) */
+   same row band, with one add per float read, bound by memory on every build as the
+   library's pipeline is at best: the row's sums in four vectors of the library's SIMD
+   layer (SBL__VW floats each: four independent chains, held in registers), then every
+   output row filled from them. (The loop before it, 16 running sums in a float array,
+   kept them in registers on AVX2 but in memory on SSE2, where GCC -O2 vectorised the
+   16 sums as an inner loop of four vectors each loaded, added and stored back per 64
+   bytes read (~34 instructions and a store-to-load chain per 64 bytes), and in one
+   512-bit chain on AVX-512: the same bytes took different times on each build.) */
 static void run_floor(job *j)
 {
-    int y, k, l;
+    int y, k;
     for (y = j->y0; y < j->y1; ++y) {
-        float acc[16];
+        sbl__v a0 = sbl__set1(0.0f), a1 = a0, a2 = a0, a3 = a0;
+        float tail = 0.0f;
         size_t i, n;
-        for (l = 0; l < 16; ++l) acc[l] = 0.0f;
         for (k = 0; k < j->in_count; ++k) {
             const float *p = j->in_planes[k] + (size_t)y * j->w * j->in_ch[k];
             n = (size_t)j->w * j->in_ch[k];
-            for (i = 0; i + 16 <= n; i += 16)
-                for (l = 0; l < 16; ++l) acc[l] += p[i + l];
-            for (; i < n; ++i) acc[i & 15] += p[i];
+            for (i = 0; i + 4 * SBL__VW <= n; i += 4 * SBL__VW) {
+                a0 = sbl__add(a0, sbl__load(p + i));
+                a1 = sbl__add(a1, sbl__load(p + i + SBL__VW));
+                a2 = sbl__add(a2, sbl__load(p + i + 2 * SBL__VW));
+                a3 = sbl__add(a3, sbl__load(p + i + 3 * SBL__VW));
+            }
+            for (; i < n; ++i) tail += p[i];
         }
+        a0 = sbl__add(sbl__add(sbl__add(a0, a1), sbl__add(a2, a3)), sbl__set1(tail));
         for (k = 0; k < j->out_count; ++k) {
             float *p = j->out_planes[k] + (size_t)y * j->w * j->out_ch[k];
             n = (size_t)j->w * j->out_ch[k];
-            for (i = 0; i + 16 <= n; i += 16)
-                for (l = 0; l < 16; ++l) p[i + l] = acc[l];
-            for (; i < n; ++i) p[i] = acc[i & 15];
+            for (i = 0; i + SBL__VW <= n; i += SBL__VW) sbl__store(p + i, a0);
+            for (; i < n; ++i) p[i] = tail;
         }
     }
     j->result = 0;
