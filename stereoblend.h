@@ -4470,6 +4470,11 @@ typedef struct sbl__block {
     int sky;                                 /* every planned entry expects sky          */
     int mode;                                /* the rig's lane plan for this row (hooks) */
     int row_state;                           /* the hooks' per-row facts (-1: not yet)   */
+    /* 1: one motion vector for the whole block, every footprint inside the image
+       (sbl__temporal_uniform_block): its fractions and the tap indices of entry 0 */
+    int uni;
+    float u_fx, u_fy;
+    int u_first[5]; /* colour, depth, N, normals, ids (as sbl__tap_plan's lane_step) */
 } sbl__block;
 
 #if defined(__GNUC__)
@@ -4652,6 +4657,7 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
         }
         b.sky = 0;
         b.mode = 0;
+        b.uni = 0;
         if (start(ctx, r, &b)) continue;
         for (i = 0; i < b.n;) {
             int bits = i + SBL__VW <= b.n ? plan_vec(ctx, &b, i) : -1, l = SBL__VW;
@@ -5280,6 +5286,113 @@ SBL__INLINE void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x
 /* ---- camera planning in lanes ---------------------------------------------------
    The camera source's position maths in double lanes (the layer is at the top of the
    row gather). */
+/* Do pixels [x0, x0 + n) of a row (n >= 2, motion packed: pixel step 2, at mp) carry
+   one motion vector, the same bits in each? Two pixels per compare; an odd n's last
+   pair is read twice. */
+SBL__INLINE int sbl__motion_one(const float *mp, int n)
+{
+    const __m128i first = _mm_unpacklo_epi64(_mm_loadl_epi64(SBL__PCAST(const __m128i *, mp)),
+                                             _mm_loadl_epi64(SBL__PCAST(const __m128i *, mp)));
+    __m128i diff = _mm_setzero_si128();
+    const int m = 2 * n;
+    int k;
+    if (memcmp(mp, mp + 2, 2 * sizeof(float))) return 0; /* a varying field shows it at once */
+    for (k = 4; k + 4 <= m; k += 4)
+        diff = _mm_or_si128(diff, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + k)), first));
+    if (k < m)
+        diff = _mm_or_si128(diff, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + m - 4)), first));
+    return _mm_movemask_epi8(_mm_cmpeq_epi32(diff, _mm_setzero_si128())) == 0xffff;
+}
+
+/* sbl__plan_lanes' position terms once for a block whose pixels all carry one motion
+   vector m (a camera pan, a uniform drift): with m exact (sbl__motion_exact) every lane
+   of every vector has the same floor and fraction, so the footprints are all inside the
+   image when the block's first and last are, and each vector's first taps are
+   consecutive pixels (uniform). Sets b->uni, its fractions and the tap indices of entry
+   0 in each view (sbl__plan_index_run's; 0: plan per vector). */
+static void sbl__temporal_uniform_block(const sbl__temporal_rp *s, sbl__block *b)
+{
+    const sbl__tap_src *src = &s->src;
+    const float *mp = SBL__AT(s->motion, b->x0, b->y);
+    const sbl__v zero = sbl__set1(0.0f);
+    const sbl__flat *f[5];
+    float fx[SBL__VW], fy[SBL__VW], dx[SBL__VW], dy[SBL__VW];
+    sbl__v mx, my, fmx, fmy;
+    int cx, cy, v;
+    b->uni = 0;
+    if (!sbl__motion_one(mp, b->n)) return;
+    mx = sbl__set1(mp[0]);
+    my = sbl__set1(mp[1]);
+    if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* (as sbl__temporal_plan_lanes) */
+    if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
+    if (!sbl__mbits(sbl__mand(sbl__motion_exact(mx), sbl__motion_exact(my)))) return;
+    fmx = sbl__floor(mx);
+    fmy = sbl__floor(my);
+    sbl__store(dx, fmx);
+    sbl__store(dy, fmy);
+    sbl__store(fx, sbl__add(sbl__sub(mx, fmx), zero));
+    sbl__store(fy, sbl__add(sbl__sub(my, fmy), zero));
+    /* the four taps of every pixel inside (sbl__plan_lanes' fast test: integers, exact) */
+    cx = b->x0 + SBL__CAST(int, dx[0]);
+    cy = b->y + SBL__CAST(int, dy[0]);
+    if (!(cx >= 0 && cx + b->n - 1 <= src->width - 2 && cy >= 0 && cy <= src->height - 2)) return;
+    f[0] = &src->color; f[1] = src->use_depth ? &src->depth : NULL;
+    f[2] = src->length.p ? &src->length : NULL;
+    f[3] = src->use_normal ? &src->normals : NULL; f[4] = src->use_id ? &src->ids : NULL;
+    for (v = 0; v < 5; ++v)
+        b->u_first[v] = f[v] ? SBL__CAST(int, SBL__CAST(ptrdiff_t, cy) * f[v]->stride +
+                                                  SBL__CAST(ptrdiff_t, cx) * f[v]->step)
+                             : 0;
+    b->u_fx = fx[0];
+    b->u_fy = fy[0];
+    b->uni = 1;
+}
+
+/* The indices of a view for VW entries whose first taps are consecutive pixels from
+   index first (sbl__plan_index_run's, the view's product already formed; 0: no view) */
+SBL__INLINE void sbl__plan_first_run(int *out, int first, const int *lane_step, int present)
+{
+    int j;
+    for (j = 0; j < SBL__VW; j += 4)
+        _mm_storeu_si128(SBL__PCAST(__m128i *, out + j),
+                         present ? _mm_add_epi32(_mm_set1_epi32(first),
+                                                 _mm_loadu_si128(SBL__PCAST(const __m128i *, lane_step + j)))
+                                 : _mm_setzero_si128());
+}
+
+/* sbl__temporal_plan_lanes for entries [i, i + VW) of a uniform block (b->uni): the
+   target side per vector, the position terms from the block. A vector with a lane the
+   target tests reject takes sbl__temporal_plan_lanes (which reads it again). */
+SBL__INLINE int sbl__temporal_plan_uni(const sbl__temporal_rp *s, sbl__block *b, int i, int x,
+                                       int sky)
+{
+    const sbl__tap_src *src = &s->src;
+    sbl__tap_plan *p = &b->p;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    sbl__v z = zero, slack = zero;
+    sbl__m keep = sky ? sbl__gt(one, zero)
+                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, b->y, &z, &slack)
+                                        : sbl__gt(one, zero));
+    if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
+    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, src, p, i, x, b->y, keep);
+    if (sbl__mbits(keep) != (1 << SBL__VW) - 1) return sbl__temporal_plan_lanes(s, p, i, x, b->y, sky);
+    /* every lane fast: sbl__plan_lanes' stores with fast true in every lane */
+    sbl__store(p->fx + i, sbl__set1(b->u_fx));
+    sbl__store(p->fy + i, sbl__set1(b->u_fy));
+    sbl__store(p->depth + i, z);
+    sbl__store(p->slack + i, slack);
+    sbl__store(p->fast + i, one);
+    memset(p->redo + i, 0, SBL__VW);
+    memset(p->uniform + i, 0, SBL__VW);
+    p->uniform[i] = 1;
+    sbl__plan_first_run(p->ci + i, b->u_first[0] + i * p->lane_step[0][1], p->lane_step[0], 1);
+    sbl__plan_first_run(p->di + i, b->u_first[1] + i * p->lane_step[1][1], p->lane_step[1], src->use_depth);
+    sbl__plan_first_run(p->li + i, b->u_first[2] + i * p->lane_step[2][1], p->lane_step[2], src->length.p != NULL);
+    if (src->use_normal) sbl__plan_first_run(p->ni + i, b->u_first[3] + i * p->lane_step[3][1], p->lane_step[3], 1);
+    if (src->use_id) sbl__plan_first_run(p->ii + i, b->u_first[4] + i * p->lane_step[4][1], p->lane_step[4], 1);
+    return 0;
+}
+
 /* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
    camera and no listed objects (whose ids choose the map per pixel), an interior row
    (the depth slack reads both neighbours), target depth packed; the target's normals
@@ -5409,6 +5522,7 @@ SBL__INLINE int sbl__temporal_block_start_in(const void *ctx, sbl__ring_row *r, 
         b->sky = kind == SBL__TILE_SKY;
     }
     b->mode = b->row_state >> 1;
+    if (b->mode == 1) sbl__temporal_uniform_block(s, b);
     return 0;
 }
 
@@ -5432,6 +5546,7 @@ SBL__INLINE int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
         return 0;
     }
+    if (b->uni) return b->sky ? sbl__temporal_plan_uni(s, b, i, x, 1) : sbl__temporal_plan_uni(s, b, i, x, 0);
     return b->sky ? sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 1)
                   : sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 0);
 }
