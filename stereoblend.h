@@ -4470,9 +4470,10 @@ typedef struct sbl__block {
     int sky;                                 /* every planned entry expects sky          */
     int mode;                                /* the rig's lane plan for this row (hooks) */
     int row_state;                           /* the hooks' per-row facts (-1: not yet)   */
-    /* 1: one motion vector for the whole block, every footprint inside the image
-       (sbl__temporal_uniform_block): its fractions and the tap indices of entry 0 */
-    int uni;
+    /* 1: one motion vector for the whole block (sbl__temporal_uniform_block), the
+       footprints of entries [u_lo, u_hi) inside the image: its fractions and the tap
+       indices of entry 0 */
+    int uni, u_lo, u_hi;
     float u_fx, u_fy;
     int u_first[5]; /* colour, depth, N, normals, ids (as sbl__tap_plan's lane_step) */
 } sbl__block;
@@ -5295,8 +5296,11 @@ SBL__INLINE int sbl__motion_one(const float *mp, int n)
                                              _mm_loadl_epi64(SBL__PCAST(const __m128i *, mp)));
     __m128i diff = _mm_setzero_si128();
     const int m = 2 * n;
+    uint64_t a, b;
     int k;
-    if (memcmp(mp, mp + 2, 2 * sizeof(float))) return 0; /* a varying field shows it at once */
+    memcpy(&a, mp, sizeof a);
+    memcpy(&b, mp + 2, sizeof b);
+    if (a != b) return 0; /* a varying field shows it at once */
     for (k = 4; k + 4 <= m; k += 4)
         diff = _mm_or_si128(diff, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + k)), first));
     if (k < m)
@@ -5306,11 +5310,11 @@ SBL__INLINE int sbl__motion_one(const float *mp, int n)
 
 /* sbl__plan_lanes' position terms once for a block whose pixels all carry one motion
    vector m (a camera pan, a uniform drift): with m exact (sbl__motion_exact) every lane
-   of every vector has the same floor and fraction, so the footprints are all inside the
-   image when the block's first and last are, and each vector's first taps are
-   consecutive pixels (uniform). Sets b->uni, its fractions and the tap indices of entry
-   0 in each view (sbl__plan_index_run's; 0: plan per vector). */
-static void sbl__temporal_uniform_block(const sbl__temporal_rp *s, sbl__block *b)
+   of every vector has the same floor and fraction, so the entries whose footprints are
+   inside the image are one range, and each vector's first taps are consecutive pixels
+   (uniform). Sets b->uni, that range, the fractions and the tap indices of entry 0 in
+   each view (sbl__plan_index_run's; 0: plan per vector). */
+SBL__NOINLINE void sbl__temporal_uniform_block(const sbl__temporal_rp *s, sbl__block *b)
 {
     const sbl__tap_src *src = &s->src;
     const float *mp = SBL__AT(s->motion, b->x0, b->y);
@@ -5332,10 +5336,14 @@ static void sbl__temporal_uniform_block(const sbl__temporal_rp *s, sbl__block *b
     sbl__store(dy, fmy);
     sbl__store(fx, sbl__add(sbl__sub(mx, fmx), zero));
     sbl__store(fy, sbl__add(sbl__sub(my, fmy), zero));
-    /* the four taps of every pixel inside (sbl__plan_lanes' fast test: integers, exact) */
+    /* the entries whose four taps are inside: cx + i in [0, w - 2], cy in [0, h - 2]
+       (sbl__plan_lanes' fast test, on integers: exact) */
     cx = b->x0 + SBL__CAST(int, dx[0]);
     cy = b->y + SBL__CAST(int, dy[0]);
-    if (!(cx >= 0 && cx + b->n - 1 <= src->width - 2 && cy >= 0 && cy <= src->height - 2)) return;
+    if (!(cy >= 0 && cy <= src->height - 2)) return;
+    b->u_lo = cx >= 0 ? 0 : -cx;
+    b->u_hi = src->width - 1 - cx < b->n ? src->width - 1 - cx : b->n;
+    if (b->u_hi - b->u_lo < SBL__VW) return;
     f[0] = &src->color; f[1] = src->use_depth ? &src->depth : NULL;
     f[2] = src->length.p ? &src->length : NULL;
     f[3] = src->use_normal ? &src->normals : NULL; f[4] = src->use_id ? &src->ids : NULL;
@@ -5526,7 +5534,7 @@ SBL__INLINE int sbl__temporal_block_start_in(const void *ctx, sbl__ring_row *r, 
     return 0;
 }
 
-static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+SBL__INLINE int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
 {
     return sbl__temporal_block_start_in(ctx, r, b, 0);
 }
@@ -5546,7 +5554,8 @@ SBL__INLINE int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
         return 0;
     }
-    if (b->uni) return b->sky ? sbl__temporal_plan_uni(s, b, i, x, 1) : sbl__temporal_plan_uni(s, b, i, x, 0);
+    if (b->uni && i >= b->u_lo && i + SBL__VW <= b->u_hi)
+        return b->sky ? sbl__temporal_plan_uni(s, b, i, x, 1) : sbl__temporal_plan_uni(s, b, i, x, 0);
     return b->sky ? sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 1)
                   : sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 0);
 }
