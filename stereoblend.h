@@ -3495,8 +3495,9 @@ typedef struct sbl__tap_plan {
        the 3x3 fallback is left (sbl__fallback_lanes, else the pixel gather) */
     unsigned char redo[SBL__BLOCK];
     /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
-       pixels in every view (planned so together: uniform integer motion); 2: planned
-       together and not so (0: unknown) */
+       pixels in every view (planned so together: uniform integer motion); 3: the same,
+       and every depth limit finite with no lane expecting sky (sbl__row_taps_ch's
+       "full"); 2: planned together and not so (0: unknown) */
     unsigned char uniform[SBL__BLOCK];
     int lane_step[5][SBL__VW];      /* l * pixel step of colour, depth, N, normals, ids (set per call) */
     /* the normal and id tests (sbl__lanes_nid_ok), where the call runs them: tap (x0, y0)
@@ -3928,6 +3929,17 @@ SBL__INLINE sbl__m sbl__lanes_nid_run(const sbl__tap_src *s, const sbl__tap_plan
     return ok;
 }
 
+/* Is a vector "full" (sbl__row_taps_ch): every lane's expected depth ze below +inf and
+   its depth limit lim = tol ze + slack (sbl__lanes_taps' expression) finite and below
+   ze? The last makes the taps' d > 0 test redundant: |fl(d - ze)| <= lim < ze needs
+   fl(d - ze) > -ze, which (rounding is monotone, -ze is a float) needs d > 0; a NaN d
+   fails either way. */
+SBL__INLINE int sbl__full_lanes(sbl__v tol, sbl__v ze, sbl__v slack)
+{
+    const sbl__v lim = sbl__add(sbl__mul(tol, ze), slack);
+    return !sbl__mbits(sbl__mor(sbl__mor(sbl__posinf(ze), sbl__nonfinite(lim)), sbl__le(ze, lim)));
+}
+
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
    (x0, y0 + 1), (x0 + 1, y0 + 1). sbl__lanes_tap_test: its tests narrow ok (from w > 0),
    returned, with its N in *nt; sbl__lanes_tap_sum: its weighted N, colour and weight
@@ -3953,7 +3965,9 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
                                           : sbl__gatheri(s->depth.p + o, p->di + i);
         if (sky && !full) {
             ok = sbl__mand(ok, sbl__posinf(d));
-        } else if (full || plain) {
+        } else if (full) { /* (d > 0 implied: sbl__full_lanes) */
+            ok = sbl__mand(ok, sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+        } else if (plain) {
             ok = sbl__mand(ok, sbl__mand(sbl__gt(d, zero), sbl__le(sbl__abs(sbl__sub(d, ze)), lim)));
         } else {
             /* sbl__depth_match: sky matches only sky; else a finite, positive depth
@@ -4336,7 +4350,8 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
        offsets are the plan's lane steps */
     const int packed = (!s->use_depth || s->depth.step == 1) && (!s->length.p || s->length.step == 1);
     /* the common views: depth and N tested (no normal / id test); "full" vectors also have every depth limit
-       finite and no lane expecting sky (the plain depth test), and take the variant of
+       finite and below its expectation, no lane expecting sky (the plain depth test
+       without d > 0: sbl__full_lanes), and take the variant of
        the taps without the tests of the views' presence */
     const int both = !sky && s->use_depth && s->length.p && !s->use_normal && !s->use_id;
     const sbl__v tol = sbl__set1(s->depth_tolerance);
@@ -4354,23 +4369,24 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                               : 0;
     int i = 0;
     for (;;) {
-        int contiguous, full = 0, nid_run;
+        int contiguous, full = 0, nid_run, u;
         if (i + SBL__VW > n) i = n - SBL__VW;
         /* every lane's first tap one pixel after the previous lane's, in every view
            (each lane's index is a valid one, so the vector load reads exactly the
            addresses the gather would) */
-        contiguous = packed && p->uniform[i] != 2 &&
-                     (p->uniform[i] || (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
-                                        (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
-                                        (!s->length.p || sbl__ints_step(p->li + i, 1))));
-        if (both || nid_const) {
-            const sbl__v ze = sbl__load(p->depth + i);
-            full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
-                                        sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
+        u = p->uniform[i];
+        contiguous = packed && u != 2 &&
+                     (u || (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
+                            (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
+                            (!s->length.p || sbl__ints_step(p->li + i, 1))));
+        if (u == 3) {
+            full = both || nid_const; /* (the plan's test, sbl__temporal_plan_uni) */
+        } else if (both || nid_const) {
+            full = sbl__full_lanes(tol, sbl__load(p->depth + i), sbl__load(p->slack + i));
         }
         /* the normal / id taps of contiguous vectors: consecutive in those views too? */
         nid_run = nid && contiguous &&
-                  (p->uniform[i] == 1 ||
+                  (u == 1 || u == 3 ||
                    ((!s->use_normal || sbl__ints_step(p->ni + i, SBL__CAST(int, s->normals.step))) &&
                     (!s->use_id || sbl__ints_step(p->ii + i, SBL__CAST(int, s->ids.step)))));
         if (nid_const && full && nid_run) {
@@ -5392,7 +5408,8 @@ SBL__INLINE int sbl__temporal_plan_uni(const sbl__temporal_rp *s, sbl__block *b,
     sbl__store(p->fast + i, one);
     memset(p->redo + i, 0, SBL__VW);
     memset(p->uniform + i, 0, SBL__VW);
-    p->uniform[i] = 1;
+    /* sbl__row_taps_ch's "full" test on the values planned (3) */
+    p->uniform[i] = sbl__full_lanes(sbl__set1(src->depth_tolerance), z, slack) ? 3 : 1;
     sbl__plan_first_run(p->ci + i, b->u_first[0] + i * p->lane_step[0][1], p->lane_step[0], 1);
     sbl__plan_first_run(p->di + i, b->u_first[1] + i * p->lane_step[1][1], p->lane_step[1], src->use_depth);
     sbl__plan_first_run(p->li + i, b->u_first[2] + i * p->lane_step[2][1], p->lane_step[2], src->length.p != NULL);
