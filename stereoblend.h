@@ -3495,8 +3495,9 @@ typedef struct sbl__tap_plan {
        the 3x3 fallback is left (sbl__fallback_lanes, else the pixel gather) */
     unsigned char redo[SBL__BLOCK];
     /* 1 at entry i: entries i .. i + VW - 1 are fast and their first taps consecutive
-       pixels in every view (planned so together: uniform integer motion); 2: planned
-       together and not so (0: unknown) */
+       pixels in every view (planned so together: uniform integer motion); 3: the same,
+       and every depth limit finite with no lane expecting sky (sbl__row_taps_ch's
+       "full"); 2: planned together and not so (0: unknown) */
     unsigned char uniform[SBL__BLOCK];
     int lane_step[5][SBL__VW];      /* l * pixel step of colour, depth, N, normals, ids (set per call) */
     /* the normal and id tests (sbl__lanes_nid_ok), where the call runs them: tap (x0, y0)
@@ -3928,6 +3929,17 @@ SBL__INLINE sbl__m sbl__lanes_nid_run(const sbl__tap_src *s, const sbl__tap_plan
     return ok;
 }
 
+/* Is a vector "full" (sbl__row_taps_ch): every lane's expected depth ze below +inf and
+   its depth limit lim = tol ze + slack (sbl__lanes_taps' expression) finite and below
+   ze? The last makes the taps' d > 0 test redundant: |fl(d - ze)| <= lim < ze needs
+   fl(d - ze) > -ze, which (rounding is monotone, -ze is a float) needs d > 0; a NaN d
+   fails either way. */
+SBL__INLINE int sbl__full_lanes(sbl__v tol, sbl__v ze, sbl__v slack)
+{
+    const sbl__v lim = sbl__add(sbl__mul(tol, ze), slack);
+    return !sbl__mbits(sbl__mor(sbl__mor(sbl__posinf(ze), sbl__nonfinite(lim)), sbl__le(ze, lim)));
+}
+
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
    (x0, y0 + 1), (x0 + 1, y0 + 1). sbl__lanes_tap_test: its tests narrow ok (from w > 0),
    returned, with its N in *nt; sbl__lanes_tap_sum: its weighted N, colour and weight
@@ -3953,7 +3965,9 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
                                           : sbl__gatheri(s->depth.p + o, p->di + i);
         if (sky && !full) {
             ok = sbl__mand(ok, sbl__posinf(d));
-        } else if (full || plain) {
+        } else if (full) { /* (d > 0 implied: sbl__full_lanes) */
+            ok = sbl__mand(ok, sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+        } else if (plain) {
             ok = sbl__mand(ok, sbl__mand(sbl__gt(d, zero), sbl__le(sbl__abs(sbl__sub(d, ze)), lim)));
         } else {
             /* sbl__depth_match: sky matches only sky; else a finite, positive depth
@@ -4336,7 +4350,8 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
        offsets are the plan's lane steps */
     const int packed = (!s->use_depth || s->depth.step == 1) && (!s->length.p || s->length.step == 1);
     /* the common views: depth and N tested (no normal / id test); "full" vectors also have every depth limit
-       finite and no lane expecting sky (the plain depth test), and take the variant of
+       finite and below its expectation, no lane expecting sky (the plain depth test
+       without d > 0: sbl__full_lanes), and take the variant of
        the taps without the tests of the views' presence */
     const int both = !sky && s->use_depth && s->length.p && !s->use_normal && !s->use_id;
     const sbl__v tol = sbl__set1(s->depth_tolerance);
@@ -4354,23 +4369,24 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                               : 0;
     int i = 0;
     for (;;) {
-        int contiguous, full = 0, nid_run;
+        int contiguous, full = 0, nid_run, u;
         if (i + SBL__VW > n) i = n - SBL__VW;
         /* every lane's first tap one pixel after the previous lane's, in every view
            (each lane's index is a valid one, so the vector load reads exactly the
            addresses the gather would) */
-        contiguous = packed && p->uniform[i] != 2 &&
-                     (p->uniform[i] || (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
-                                        (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
-                                        (!s->length.p || sbl__ints_step(p->li + i, 1))));
-        if (both || nid_const) {
-            const sbl__v ze = sbl__load(p->depth + i);
-            full = !sbl__mbits(sbl__mor(sbl__posinf(ze),
-                                        sbl__nonfinite(sbl__add(sbl__mul(tol, ze), sbl__load(p->slack + i)))));
+        u = p->uniform[i];
+        contiguous = packed && u != 2 &&
+                     (u || (sbl__ints_step(p->ci + i, SBL__CAST(int, s->color.step)) &&
+                            (!s->use_depth || sbl__ints_step(p->di + i, 1)) &&
+                            (!s->length.p || sbl__ints_step(p->li + i, 1))));
+        if (u == 3) {
+            full = both || nid_const; /* (the plan's test, sbl__temporal_plan_uni) */
+        } else if (both || nid_const) {
+            full = sbl__full_lanes(tol, sbl__load(p->depth + i), sbl__load(p->slack + i));
         }
         /* the normal / id taps of contiguous vectors: consecutive in those views too? */
         nid_run = nid && contiguous &&
-                  (p->uniform[i] == 1 ||
+                  (u == 1 || u == 3 ||
                    ((!s->use_normal || sbl__ints_step(p->ni + i, SBL__CAST(int, s->normals.step))) &&
                     (!s->use_id || sbl__ints_step(p->ii + i, SBL__CAST(int, s->ids.step)))));
         if (nid_const && full && nid_run) {
@@ -4470,6 +4486,12 @@ typedef struct sbl__block {
     int sky;                                 /* every planned entry expects sky          */
     int mode;                                /* the rig's lane plan for this row (hooks) */
     int row_state;                           /* the hooks' per-row facts (-1: not yet)   */
+    /* 1: one motion vector for the whole block (sbl__temporal_uniform_block), the
+       footprints of entries [u_lo, u_hi) inside the image: its fractions and the tap
+       indices of entry 0 */
+    int uni, u_lo, u_hi;
+    float u_fx, u_fy;
+    int u_first[5]; /* colour, depth, N, normals, ids (as sbl__tap_plan's lane_step) */
 } sbl__block;
 
 #if defined(__GNUC__)
@@ -4652,6 +4674,7 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
         }
         b.sky = 0;
         b.mode = 0;
+        b.uni = 0;
         if (start(ctx, r, &b)) continue;
         for (i = 0; i < b.n;) {
             int bits = i + SBL__VW <= b.n ? plan_vec(ctx, &b, i) : -1, l = SBL__VW;
@@ -5280,6 +5303,121 @@ SBL__INLINE void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x
 /* ---- camera planning in lanes ---------------------------------------------------
    The camera source's position maths in double lanes (the layer is at the top of the
    row gather). */
+/* Do pixels [x0, x0 + n) of a row (n >= 2, motion packed: pixel step 2, at mp) carry
+   one motion vector, the same bits in each? Two pixels per compare; an odd n's last
+   pair is read twice. */
+SBL__INLINE int sbl__motion_one(const float *mp, int n)
+{
+    const __m128i first = _mm_unpacklo_epi64(_mm_loadl_epi64(SBL__PCAST(const __m128i *, mp)),
+                                             _mm_loadl_epi64(SBL__PCAST(const __m128i *, mp)));
+    __m128i diff = _mm_setzero_si128();
+    const int m = 2 * n;
+    uint64_t a, b;
+    int k;
+    memcpy(&a, mp, sizeof a);
+    memcpy(&b, mp + 2, sizeof b);
+    if (a != b) return 0; /* a varying field shows it at once */
+    for (k = 4; k + 4 <= m; k += 4)
+        diff = _mm_or_si128(diff, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + k)), first));
+    if (k < m)
+        diff = _mm_or_si128(diff, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + m - 4)), first));
+    return _mm_movemask_epi8(_mm_cmpeq_epi32(diff, _mm_setzero_si128())) == 0xffff;
+}
+
+/* sbl__plan_lanes' position terms once for a block whose pixels all carry one motion
+   vector m (a camera pan, a uniform drift): with m exact (sbl__motion_exact) every lane
+   of every vector has the same floor and fraction, so the entries whose footprints are
+   inside the image are one range, and each vector's first taps are consecutive pixels
+   (uniform). Sets b->uni, that range, the fractions and the tap indices of entry 0 in
+   each view (sbl__plan_index_run's; 0: plan per vector). */
+SBL__NOINLINE void sbl__temporal_uniform_block(const sbl__temporal_rp *s, sbl__block *b)
+{
+    const sbl__tap_src *src = &s->src;
+    const float *mp = SBL__AT(s->motion, b->x0, b->y);
+    const sbl__v zero = sbl__set1(0.0f);
+    const sbl__flat *f[5];
+    float fx[SBL__VW], fy[SBL__VW], dx[SBL__VW], dy[SBL__VW];
+    sbl__v mx, my, fmx, fmy;
+    int cx, cy, v;
+    b->uni = 0;
+    if (!sbl__motion_one(mp, b->n)) return;
+    mx = sbl__set1(mp[0]);
+    my = sbl__set1(mp[1]);
+    if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* (as sbl__temporal_plan_lanes) */
+    if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
+    if (!sbl__mbits(sbl__mand(sbl__motion_exact(mx), sbl__motion_exact(my)))) return;
+    fmx = sbl__floor(mx);
+    fmy = sbl__floor(my);
+    sbl__store(dx, fmx);
+    sbl__store(dy, fmy);
+    sbl__store(fx, sbl__add(sbl__sub(mx, fmx), zero));
+    sbl__store(fy, sbl__add(sbl__sub(my, fmy), zero));
+    /* the entries whose four taps are inside: cx + i in [0, w - 2], cy in [0, h - 2]
+       (sbl__plan_lanes' fast test, on integers: exact) */
+    cx = b->x0 + SBL__CAST(int, dx[0]);
+    cy = b->y + SBL__CAST(int, dy[0]);
+    if (!(cy >= 0 && cy <= src->height - 2)) return;
+    b->u_lo = cx >= 0 ? 0 : -cx;
+    b->u_hi = src->width - 1 - cx < b->n ? src->width - 1 - cx : b->n;
+    if (b->u_hi - b->u_lo < SBL__VW) return;
+    f[0] = &src->color; f[1] = src->use_depth ? &src->depth : NULL;
+    f[2] = src->length.p ? &src->length : NULL;
+    f[3] = src->use_normal ? &src->normals : NULL; f[4] = src->use_id ? &src->ids : NULL;
+    for (v = 0; v < 5; ++v)
+        b->u_first[v] = f[v] ? SBL__CAST(int, SBL__CAST(ptrdiff_t, cy) * f[v]->stride +
+                                                  SBL__CAST(ptrdiff_t, cx) * f[v]->step)
+                             : 0;
+    b->u_fx = fx[0];
+    b->u_fy = fy[0];
+    b->uni = 1;
+}
+
+/* The indices of a view for VW entries whose first taps are consecutive pixels from
+   index first (sbl__plan_index_run's, the view's product already formed; 0: no view) */
+SBL__INLINE void sbl__plan_first_run(int *out, int first, const int *lane_step, int present)
+{
+    int j;
+    for (j = 0; j < SBL__VW; j += 4)
+        _mm_storeu_si128(SBL__PCAST(__m128i *, out + j),
+                         present ? _mm_add_epi32(_mm_set1_epi32(first),
+                                                 _mm_loadu_si128(SBL__PCAST(const __m128i *, lane_step + j)))
+                                 : _mm_setzero_si128());
+}
+
+/* sbl__temporal_plan_lanes for entries [i, i + VW) of a uniform block (b->uni): the
+   target side per vector, the position terms from the block. A vector with a lane the
+   target tests reject takes sbl__temporal_plan_lanes (which reads it again). */
+SBL__INLINE int sbl__temporal_plan_uni(const sbl__temporal_rp *s, sbl__block *b, int i, int x,
+                                       int sky)
+{
+    const sbl__tap_src *src = &s->src;
+    sbl__tap_plan *p = &b->p;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    sbl__v z = zero, slack = zero;
+    sbl__m keep = sky ? sbl__gt(one, zero)
+                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, b->y, &z, &slack)
+                                        : sbl__gt(one, zero));
+    if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
+    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, src, p, i, x, b->y, keep);
+    if (sbl__mbits(keep) != (1 << SBL__VW) - 1) return sbl__temporal_plan_lanes(s, p, i, x, b->y, sky);
+    /* every lane fast: sbl__plan_lanes' stores with fast true in every lane */
+    sbl__store(p->fx + i, sbl__set1(b->u_fx));
+    sbl__store(p->fy + i, sbl__set1(b->u_fy));
+    sbl__store(p->depth + i, z);
+    sbl__store(p->slack + i, slack);
+    sbl__store(p->fast + i, one);
+    memset(p->redo + i, 0, SBL__VW);
+    memset(p->uniform + i, 0, SBL__VW);
+    /* sbl__row_taps_ch's "full" test on the values planned (3) */
+    p->uniform[i] = sbl__full_lanes(sbl__set1(src->depth_tolerance), z, slack) ? 3 : 1;
+    sbl__plan_first_run(p->ci + i, b->u_first[0] + i * p->lane_step[0][1], p->lane_step[0], 1);
+    sbl__plan_first_run(p->di + i, b->u_first[1] + i * p->lane_step[1][1], p->lane_step[1], src->use_depth);
+    sbl__plan_first_run(p->li + i, b->u_first[2] + i * p->lane_step[2][1], p->lane_step[2], src->length.p != NULL);
+    if (src->use_normal) sbl__plan_first_run(p->ni + i, b->u_first[3] + i * p->lane_step[3][1], p->lane_step[3], 1);
+    if (src->use_id) sbl__plan_first_run(p->ii + i, b->u_first[4] + i * p->lane_step[4][1], p->lane_step[4], 1);
+    return 0;
+}
+
 /* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
    camera and no listed objects (whose ids choose the map per pixel), an interior row
    (the depth slack reads both neighbours), target depth packed; the target's normals
@@ -5409,10 +5547,11 @@ SBL__INLINE int sbl__temporal_block_start_in(const void *ctx, sbl__ring_row *r, 
         b->sky = kind == SBL__TILE_SKY;
     }
     b->mode = b->row_state >> 1;
+    if (b->mode == 1) sbl__temporal_uniform_block(s, b);
     return 0;
 }
 
-static int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
+SBL__INLINE int sbl__temporal_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
 {
     return sbl__temporal_block_start_in(ctx, r, b, 0);
 }
@@ -5432,6 +5571,8 @@ SBL__INLINE int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
         return 0;
     }
+    if (b->uni && i >= b->u_lo && i + SBL__VW <= b->u_hi)
+        return b->sky ? sbl__temporal_plan_uni(s, b, i, x, 1) : sbl__temporal_plan_uni(s, b, i, x, 0);
     return b->sky ? sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 1)
                   : sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 0);
 }

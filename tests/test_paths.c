@@ -365,6 +365,100 @@ static void test_row_gather(void)
 #endif
 }
 
+/* Blocks whose pixels share one motion vector (sbl__temporal_uniform_block: a pan, a
+   drift) against the pixel gather, bit for bit: one vector per row (integers, fractions,
+   small, negative, exact or not), a few rows broken by one pixel, footprints leaving the
+   image on either side, hostile history depth (0, -0, negatives, NaN, +-inf) and N, and
+   depth tolerances below and above 1 (limits below and above the expectation: the full
+   vectors' test, sbl__full_lanes). Also checks the uniform plan was taken. */
+static void test_row_gather_uniform(void)
+{
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+    static const float bad_depth[8] = {0.0f, -0.0f, -1.0f, 1e-30f, -(float)HUGE_VAL, (float)HUGE_VAL, 0.0f, 2.9f};
+    static const float moves[8] = {0.37f, -0.21f, 1.0f, -2.0f, 0.0f, 0.00390625f, -1.75f, 2.5f};
+    sbt_rng rng = {4242};
+    int it, pixels = 0, mismatches = 0, empty = 0, uniform_blocks = 0, blocks = 0;
+    for (it = 0; it < 400; ++it) {
+        int w = 8 + (int)(sbt_uniform(&rng) * 88), h = 3 + (int)(sbt_uniform(&rng) * 6);
+        int ch = 1 + it % 4, x, y, c;
+        sbt_img cur = sbt_img_new(w, h, ch, 1), hist = sbt_img_new(w, h, ch, 0);
+        sbt_img len = sbt_img_new(w, h, 1, 0), depth = sbt_img_new(w, h, 1, 1);
+        sbt_img pdepth = sbt_img_new(w, h, 1, 0), mv = sbt_img_new(w, h, 2, 1);
+        sbl_reproject_desc rd;
+        sbl_frame f;
+        sbl_history hi;
+        sbl__temporal_rp rp;
+        float planes[2][7][96];
+        unsigned char unsafe[96];
+        sbl__ring_row ra, rb;
+        memset(&rd, 0, sizeof rd);
+        rd.no_fallback = it % 4 == 1;
+        rd.depth_tolerance = it % 3 == 0 ? 1.5f : (it % 3 == 1 ? 0.05f : 0.3f);
+        rd.motion.y_up = (it / 3) % 2;
+        rd.motion.forward = (it / 6) % 2;
+        for (y = 0; y < h; ++y) {
+            const float mx = moves[(it + y) % 8] + (it % 5 == 0 ? (float)(w / 2) * (y % 2 ? 1 : -1) : 0.0f);
+            const float my = moves[(it + 3 * y) % 8] * (it % 7 == 0 ? 0.0f : 1.0f);
+            const int broken = sbt_uniform(&rng) < 0.15 ? (int)(sbt_uniform(&rng) * w) : -1;
+            for (x = 0; x < w; ++x) {
+                for (c = 0; c < ch; ++c) {
+                    sbt_at(&cur, x, y)[c] = (float)sbt_uniform(&rng);
+                    sbt_at(&hist, x, y)[c] = (float)(sbt_uniform(&rng) * 2 - 0.2);
+                }
+                *sbt_at(&len, x, y) = (float)(sbt_uniform(&rng) * 30);
+                *sbt_at(&depth, x, y) = (float)(3.0 + 0.01 * x + 0.02 * y);
+                *sbt_at(&pdepth, x, y) = (float)(3.0 + 0.01 * x + 0.02 * y + (sbt_uniform(&rng) < 0.1 ? 2.0 : 0.0));
+                sbt_at(&mv, x, y)[0] = x == broken ? mx + 0.125f : mx;
+                sbt_at(&mv, x, y)[1] = my;
+                if (sbt_uniform(&rng) < 0.05) *sbt_at(&pdepth, x, y) = bad_depth[(it + x) % 8];
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&pdepth, x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&depth, x, y) = (float)HUGE_VAL;
+                if (sbt_uniform(&rng) < 0.01) *sbt_at(&depth, x, y) = 0.02f; /* a limit above z */
+                if (sbt_uniform(&rng) < 0.02) *sbt_at(&len, x, y) = bad_depth[(it + y) % 8];
+                if (sbt_uniform(&rng) < 0.01) sbt_at(&hist, x, y)[0] = (float)HUGE_VAL;
+            }
+        }
+        memset(&f, 0, sizeof f);
+        memset(&hi, 0, sizeof hi);
+        f.color = view(&cur);
+        f.gbuffer.depth = view(&depth);
+        f.gbuffer.motion = view(&mv);
+        hi.color = view(&hist);
+        hi.length = view(&len);
+        hi.gbuffer.depth = view(&pdepth);
+        CHECK_EQ(sbl__temporal_rp_init(&rp, &rd, SBL_TEMPORAL_MOTION, &f, &hi), SBL_OK);
+        if (!sbl__row_gather_ok(&rp.src)) { CHECK(0); continue; }
+        BIND_RING_ROWS(ra, rb, planes, unsafe);
+        for (y = 0; y < h; ++y) {
+            int xa = it % 2 ? 0 : (int)(sbt_uniform(&rng) * w / 2), xb = w, x0;
+            if (sbl__temporal_plan_lanes_ok(&rp, y)) /* the blocks the row gather plans */
+                for (x0 = xa; x0 + SBL__VW <= xb; x0 += SBL__BLOCK) {
+                    sbl__block b;
+                    b.x0 = x0;
+                    b.y = y;
+                    b.n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
+                    sbl__temporal_uniform_block(&rp, &b);
+                    uniform_blocks += b.uni;
+                    ++blocks;
+                }
+            memset(unsafe, 0, sizeof unsafe);
+            sbl__temporal_rp_row(&rp, &ra, y, xa, xb);
+            compare_with_pixel_gather(&rp, &ra, &rb, y, xa, xb, ch, contracts, "uniform motion", it, w, h,
+                                      &pixels, &mismatches, &empty);
+        }
+        free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
+    }
+    printf("  %s uniform-motion row gather vs pixel gather: %d pixels (%d without), %d differ; "
+           "%d of %d blocks planned as uniform\n",
+           SBL_SIMD_NAME, pixels, empty, mismatches, uniform_blocks, blocks);
+    CHECK(mismatches == 0);
+    CHECK(uniform_blocks > blocks / 3 && uniform_blocks < blocks);
+#else
+    printf("  %s: no row gather on this path (the pixel gather runs)\n", SBL_SIMD_NAME);
+#endif
+}
+
 /* The stereo row gather against sbl__stereo_rp_pixel, bit for bit (or within the
    contraction tolerance): parallel and disparity rigs (one and two channels), both
    eyes as target, back-check on and off, hostile depth / disparity / colour / N. */
@@ -1701,6 +1795,7 @@ int main(void)
     test_pool_dim();
     test_lanes_dim();
     test_row_gather();
+    test_row_gather_uniform();
     test_stereo_row_gather();
     test_row_gather_disocclusion();
     test_all_safe();
