@@ -74,7 +74,9 @@ typedef struct cand {
                         less its noise (Laplacian of independent history noise); +8 the
                         region's M taken to 1 on the local test where S > 0 (4.9's rule);
                         +16 carry S but leave the weight alone (diagnostic); +32 B_b^2
-                        counted once (not 1 + c times) */
+                        counted once (not 1 + c times); +64 S from N and this fetch alone,
+                        (N + 1) v / 2 (the blur of a history grown from a restart at this
+                        fraction every frame), no carried plane */
     double bmax;     /* > 0: the blur's predicted |b| per channel at most bmax times the
                         3x3 range of x* (the Taylor form overshoots when S is large) */
 } cand;
@@ -863,6 +865,11 @@ static void blend_blur(void *ctx, int w, int h, const float *y, const float *xs,
             if (fy < 1e-4 || fy > 1 - 1e-4) fy = 0;
             sx[p] = ts[p * 3] + fx * (1 - fx);
             sy[p] = ts[p * 3 + 1] + fy * (1 - fy);
+            if (c->blur & 64) { /* no carried plane: the growth from a restart, S = N v / 2 */
+                const double nn = nx[p] < cap ? nx[p] : cap;
+                sx[p] = 0.5 * (nn + 1) * fx * (1 - fx);
+                sy[p] = 0.5 * (nn + 1) * fy * (1 - fy);
+            }
             okx = px > 0 && px < w - 1 && nx[p - 1] > 0 && nx[p + 1] > 0;
             oky = py > 0 && py < h - 1 && nx[p - (size_t)w] > 0 && nx[p + (size_t)w] > 0;
             for (ch = 0; ch < 3; ++ch) {
@@ -1018,6 +1025,8 @@ static cand cands[] = {
     {"blur sum, combined", C311, 1, 1, 2, 0},
     {"blur max, bmax 1/2, comb", C311, 1, 1, 1, 0.5},
     {"blur max once, combined", C311, 1, 1, 33, 0},
+    {"blur max, S = (N+1)v/2", C311, 0, 0, 65, 0},
+    {"blur max, S = (N+1)v/2, comb", C311, 1, 1, 65, 0},
 #undef C311
 };
 
@@ -1061,7 +1070,8 @@ int main(int argc, char **argv)
             m.temporal_blend_ctx = &cands[i];
             if (cands[i].stereo) m.stereo = SBR_STEREO_ADAPTIVE; /* the library's default blend */
             if (cands[i].blur) {
-                if (!g_fetch_xy) g_fetch_xy = (float *)malloc((size_t)seq.width * seq.height * 3 * sizeof(float));
+                free(g_fetch_xy); /* scenes differ in size */
+                g_fetch_xy = (float *)malloc((size_t)seq.width * seq.height * 3 * sizeof(float));
                 m.fetch_xy = g_fetch_xy;
                 m.temporal_blend_carry3 = blend_blur;
             }
