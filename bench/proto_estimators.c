@@ -74,7 +74,8 @@ typedef struct cand {
                         less its noise (Laplacian of independent history noise); +8 the
                         region's M taken to 1 on the local test where S > 0 (4.9's rule);
                         +16 carry S but leave the weight alone (diagnostic); +32 B_b^2
-                        counted once (not 1 + c times); +64 S from N and this fetch alone,
+                        counted once (not 1 + c times); +128 the second differences
+                        averaged over the 3x3 (a third of the noise); +64 S from N and this fetch alone,
                         (N + 1) v / 2 (the blur of a history grown from a restart at this
                         fraction every frame), no carried plane */
     double bmax;     /* > 0: the blur's predicted |b| per channel at most bmax times the
@@ -361,7 +362,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                     for (ch = 0; ch < 3; ++ch) bb += g_bb[p * 3 + ch] * g_bb[p * 3 + ch];
                     /* the second differences of independent history noise (var_x / channel
                        summed): each has variance 6 var_X, b = (S_x L_x + S_y L_y) / 2 */
-                    if (c->blur & 4) bb -= 1.5 * (sx * sx + sy * sy) * var_x;
+                    if (c->blur & 4) bb -= ((c->blur & 128) ? 0.5 : 1.5) * (sx * sx + sy * sy) * var_x;
                     if (bb < 0) bb = 0;
                     blur_stats[2] += var_x + var_y > 0 ? bb / (var_x + var_y) : 0;
                     if (bb > b2) blur_stats[3] += 1;
@@ -875,6 +876,23 @@ static void blend_blur(void *ctx, int w, int h, const float *y, const float *xs,
             for (ch = 0; ch < 3; ++ch) {
                 lx = okx ? (double)xs[(p - 1) * 3 + ch] + xs[(p + 1) * 3 + ch] - 2.0 * xs[p * 3 + ch] : 0;
                 ly = oky ? (double)xs[(p - (size_t)w) * 3 + ch] + xs[(p + (size_t)w) * 3 + ch] - 2.0 * xs[p * 3 + ch] : 0;
+                if ((c->blur & 128) && px > 0 && py > 0 && px < w - 1 && py < h - 1) {
+                    /* the second differences averaged over the 3x3 ([1 -2 1] x [1 1 1] / 3):
+                       a third of the noise, where all nine x* are valid */
+                    int i, j, all = 1;
+                    double sxx = 0, syy = 0;
+                    for (j = -1; j <= 1; ++j)
+                        for (i = -1; i <= 1; ++i)
+                            if (!(nx[p + (ptrdiff_t)j * w + i] > 0)) all = 0;
+                    if (all) {
+                        for (j = -1; j <= 1; ++j) {
+                            const size_t r = p + (ptrdiff_t)j * w, q = p + (ptrdiff_t)j;
+                            sxx += (double)xs[(r - 1) * 3 + ch] + xs[(r + 1) * 3 + ch] - 2.0 * xs[r * 3 + ch];
+                            syy += (double)xs[(q - (size_t)w) * 3 + ch] + xs[(q + (size_t)w) * 3 + ch] - 2.0 * xs[q * 3 + ch];
+                        }
+                        lx = sxx / 3; ly = syy / 3;
+                    }
+                }
                 bb[p * 3 + ch] = 0.5 * (sx[p] * lx + sy[p] * ly);
                 if (c->bmax > 0) {
                     int i, j;
@@ -1027,6 +1045,18 @@ static cand cands[] = {
     {"blur max once, combined", C311, 1, 1, 33, 0},
     {"blur max, S = (N+1)v/2", C311, 0, 0, 65, 0},
     {"blur max, S = (N+1)v/2, comb", C311, 1, 1, 65, 0},
+    /* 95..: the second differences averaged over the 3x3 (+128) */
+    {"blur 3x3 L", C311, 0, 0, 129, 0},
+    {"blur 3x3 L, combined", C311, 1, 1, 129, 0},
+    {"blur 3x3 L -noise", C311, 0, 0, 133, 0},
+    {"blur 3x3 L -noise, combined", C311, 1, 1, 133, 0},
+    {"blur 3x3 L -noise, S from N", C311, 0, 0, 197, 0},
+    {"blur 3x3 L -noise, S from N, comb", C311, 1, 1, 197, 0},
+    /* 101..: |b| at most half the 3x3 range of x* (a symmetric kernel moves a step's
+       value at most half-way) */
+    {"blur max, bmax 1/2", C311, 0, 0, 1, 0.5},
+    {"blur 3x3 L, bmax 1/2", C311, 0, 0, 129, 0.5},
+    {"blur 3x3 L, bmax 1/2, comb", C311, 1, 1, 129, 0.5},
 #undef C311
 };
 
