@@ -75,7 +75,9 @@ typedef struct cand {
                         region's M taken to 1 on the local test where S > 0 (4.9's rule);
                         +16 carry S but leave the weight alone (diagnostic); +32 B_b^2
                         counted once (not 1 + c times); +128 the second differences
-                        averaged over the 3x3 (a third of the noise); +64 S from N and this fetch alone,
+                        averaged over the 3x3 (a third of the noise); +256 less the noise
+                        of the second differences of the history's noise as blurred by its
+                        fetches (blur_g), not of independent noise; +64 S from N and this fetch alone,
                         (N + 1) v / 2 (the blur of a history grown from a restart at this
                         fraction every frame), no carried plane */
     double bmax;     /* > 0: the blur's predicted |b| per channel at most bmax times the
@@ -102,6 +104,7 @@ static double g_rb, g_rt; /* 3.10 (a): this pixel's one-frame block ratio and ca
 /* 4.10: per pixel, the blur variance S_x, S_y of x* (carried plus this fetch's) and the
    predicted blur bias per channel; the final weight out (for the carry) */
 static double *g_bsx, *g_bsy, *g_bb, *g_afin;
+static double *g_bgx, *g_bgy; /* per pixel: the noise factor of each axis' second difference */
 static double blur_stats[6]; /* pixel-frames, sum S, sum B_b^2 / (var_x + var_y), B_b^2 > b2, S > 0, sum a */
 static double zsum_stats[4]; /* diagnostics: sum Z, sum Z^2, count, count over threshold */
 /* risk-based mixing (ESTIMATORS 3.9): blend_core leaves its weight, the firefly-limited
@@ -362,7 +365,8 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                     for (ch = 0; ch < 3; ++ch) bb += g_bb[p * 3 + ch] * g_bb[p * 3 + ch];
                     /* the second differences of independent history noise (var_x / channel
                        summed): each has variance 6 var_X, b = (S_x L_x + S_y L_y) / 2 */
-                    if (c->blur & 4) bb -= ((c->blur & 128) ? 0.5 : 1.5) * (sx * sx + sy * sy) * var_x;
+                    if (c->blur & 256) bb -= 0.25 * (sx * sx * g_bgx[p] + sy * sy * g_bgy[p]) * var_x;
+                    else if (c->blur & 4) bb -= ((c->blur & 128) ? 0.5 : 1.5) * (sx * sx + sy * sy) * var_x;
                     if (bb < 0) bb = 0;
                     blur_stats[2] += var_x + var_y > 0 ? bb / (var_x + var_y) : 0;
                     if (bb > b2) blur_stats[3] += 1;
@@ -837,6 +841,31 @@ static void blend_trend(void *ctx, int w, int h, const float *y, const float *xs
    order the blur's bias is (S_x d2/dx2 + S_y d2/dy2) / 2 of the signal, its second
    differences taken from x*'s own 3x3. ts / tsout: (s_x, s_y, 0). */
 static float *g_fetch_xy;
+/* The variance of a second difference [1 -2 1] of unit white noise blurred by a Gaussian
+   of variance s along that axis: (1 / 2 pi) int_{-pi}^{pi} 16 sin^4(w / 2) e^{-s w^2} dw
+   (6 at s = 0, 1/6 of it after one half-pixel bilinear fetch), tabulated in steps of 1/32 */
+#define BLUR_GT 4096
+#define BLUR_PI 3.14159265358979323846
+static double blur_g(double sv)
+{
+    static double t[BLUR_GT + 1];
+    static int ready;
+    int i;
+    if (!ready) {
+        for (i = 0; i <= BLUR_GT; ++i) {
+            double acc = 0, ss = i / 32.0;
+            int k;
+            for (k = 0; k < 2000; ++k) {
+                double w = -BLUR_PI + (k + 0.5) * (2 * BLUR_PI / 2000), sn = sin(0.5 * w);
+                acc += 16 * sn * sn * sn * sn * exp(-ss * w * w);
+            }
+            t[i] = acc / 2000;
+        }
+        ready = 1;
+    }
+    i = (int)(sv * 32.0 + 0.5);
+    return t[i < BLUR_GT ? i : BLUR_GT];
+}
 static void blend_blur(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
                        const float *zs, const float *ts, float cap, float *out, float *nout,
                        float *zout, float *tsout)
@@ -847,7 +876,8 @@ static void blend_blur(void *ctx, int w, int h, const float *y, const float *xs,
     static double *sx, *sy, *bb, *af;
     int px, py, ch;
     if (have < n) {
-        free(sx); free(sy); free(bb); free(af);
+        free(sx); free(sy); free(bb); free(af); free(g_bgx); free(g_bgy);
+        g_bgx = malloc(n * sizeof *g_bgx); g_bgy = malloc(n * sizeof *g_bgy);
         sx = malloc(n * sizeof *sx); sy = malloc(n * sizeof *sy); bb = malloc(n * 3 * sizeof *bb);
         af = malloc(n * sizeof *af);
         have = n;
@@ -866,6 +896,15 @@ static void blend_blur(void *ctx, int w, int h, const float *y, const float *xs,
             if (fy < 1e-4 || fy > 1 - 1e-4) fy = 0;
             sx[p] = ts[p * 3] + fx * (1 - fx);
             sy[p] = ts[p * 3 + 1] + fy * (1 - fy);
+            if (c->blur & 256) {
+                /* the history's noise: sample k of N (equal weights) has been fetched k
+                   times at about this fraction, its noise blurred by k v */
+                const int nn = (int)(nx[p] < cap ? nx[p] : cap);
+                double gx = 0, gy = 0;
+                int k;
+                for (k = 0; k < nn; ++k) { gx += blur_g(k * fx * (1 - fx)); gy += blur_g(k * fy * (1 - fy)); }
+                g_bgx[p] = nn > 0 ? gx / nn : 6; g_bgy[p] = nn > 0 ? gy / nn : 6;
+            }
             if (c->blur & 64) { /* no carried plane: the growth from a restart, S = N v / 2 */
                 const double nn = nx[p] < cap ? nx[p] : cap;
                 sx[p] = 0.5 * (nn + 1) * fx * (1 - fx);
@@ -1057,6 +1096,13 @@ static cand cands[] = {
     {"blur max, bmax 1/2", C311, 0, 0, 1, 0.5},
     {"blur 3x3 L, bmax 1/2", C311, 0, 0, 129, 0.5},
     {"blur 3x3 L, bmax 1/2, comb", C311, 1, 1, 129, 0.5},
+    /* 104..: less the noise of the second differences of the history's blurred noise */
+    {"blur max -blurred noise", C311, 0, 0, 257, 0},
+    {"blur max -blurred noise, comb", C311, 1, 1, 257, 0},
+    {"blur max -blurred noise, S from N", C311, 0, 0, 321, 0},
+    {"blur max -blurred noise, S from N, comb", C311, 1, 1, 321, 0},
+    {"blur max -blurred noise, bmax 1/2", C311, 0, 0, 257, 0.5},
+    {"blur max -blurred noise, bmax 1/2, comb", C311, 1, 1, 257, 0.5},
 #undef C311
 };
 
