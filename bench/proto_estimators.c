@@ -1103,6 +1103,9 @@ static cand cands[] = {
     {"blur max -blurred noise, S from N, comb", C311, 1, 1, 321, 0},
     {"blur max -blurred noise, bmax 1/2", C311, 0, 0, 257, 0.5},
     {"blur max -blurred noise, bmax 1/2, comb", C311, 1, 1, 257, 0.5},
+    /* 110..: the plane-free form with the bound */
+    {"blur max, S from N, bmax 1/2", C311, 0, 0, 65, 0.5},
+    {"blur max, S from N, bmax 1/2, comb", C311, 1, 1, 65, 0.5},
 #undef C311
 };
 
