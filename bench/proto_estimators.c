@@ -1106,6 +1106,9 @@ static cand cands[] = {
     /* 110..: the plane-free form with the bound */
     {"blur max, S from N, bmax 1/2", C311, 0, 0, 65, 0.5},
     {"blur max, S from N, bmax 1/2, comb", C311, 1, 1, 65, 0.5},
+    /* 112..: the plane-free form, every correction (109 without the plane) */
+    {"blur -blurred noise, S from N, bmax 1/2", C311, 0, 0, 321, 0.5},
+    {"blur -blurred noise, S from N, bmax 1/2, comb", C311, 1, 1, 321, 0.5},
 #undef C311
 };
 
