@@ -66,6 +66,22 @@ typedef struct cand {
        4 the carried R (c_R - 1 -> sqrt((c_R - 1)^2 + 2 kappa ln M), Gaussian) */
     int region, rsrc, rwin;
     double mmin;     /* M floored at this (0: none) */
+    /* session 14 (ESTIMATORS 4.10): the combined pipeline and the resampling blur */
+    int stereo;      /* 1: the library's default stereo blend follows (combined pipeline) */
+    double cshare;   /* sbl_temporal_desc.stereo_shared_bias: bias^2 counted 1 + c times */
+    int blur;        /* the blur's bias B_b^2 from the carried blur variance (S_x, S_y) and
+                        the Laplacian of x*: 1 b2 = max(b2, B_b^2), 2 b2 + B_b^2; +4 B_b^2
+                        less its noise (Laplacian of independent history noise); +8 the
+                        region's M taken to 1 on the local test where S > 0 (4.9's rule);
+                        +16 carry S but leave the weight alone (diagnostic); +32 B_b^2
+                        counted once (not 1 + c times); +128 the second differences
+                        averaged over the 3x3 (a third of the noise); +256 less the noise
+                        of the second differences of the history's noise as blurred by its
+                        fetches (blur_g), not of independent noise; +64 S from N and this fetch alone,
+                        (N + 1) v / 2 (the blur of a history grown from a restart at this
+                        fraction every frame), no carried plane */
+    double bmax;     /* > 0: the blur's predicted |b| per channel at most bmax times the
+                        3x3 range of x* (the Taylor form overshoots when S is large) */
 } cand;
 
 static double *g_share; /* per pixel: the region's share s */
@@ -85,6 +101,11 @@ static double post_t(double pd2, double se2, double k, double nu, double odds)
 }
 
 static double g_rb, g_rt; /* 3.10 (a): this pixel's one-frame block ratio and carried one */
+/* 4.10: per pixel, the blur variance S_x, S_y of x* (carried plus this fetch's) and the
+   predicted blur bias per channel; the final weight out (for the carry) */
+static double *g_bsx, *g_bsy, *g_bb, *g_afin;
+static double *g_bgx, *g_bgy; /* per pixel: the noise factor of each axis' second difference */
+static double blur_stats[6]; /* pixel-frames, sum S, sum B_b^2 / (var_x + var_y), B_b^2 > b2, S > 0, sum a */
 static double zsum_stats[4]; /* diagnostics: sum Z, sum Z^2, count, count over threshold */
 /* risk-based mixing (ESTIMATORS 3.9): blend_core leaves its weight, the firefly-limited
    sample and its var_Y estimate here when these are set */
@@ -204,6 +225,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                     double sr = g_share[p];
                     Mreg = 1.0 / (2.0 * sr);
                     if (c->mmin > 0 && Mreg < c->mmin) Mreg = c->mmin;
+                    if ((c->blur & 8) && g_bsx && g_bsx[p] + g_bsy[p] > 0) Mreg = 1.0;
                     if (c->rsrc & 1) {
                         double s_eff = 1.0 / (2.0 * Mreg);
                         odds = 0.5 * ((n_x + 2) / (2 * s_eff) - 1);
@@ -335,6 +357,26 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                 }
                 b2 = c->combine == 1 && nw > 2 ? bw : (b3 > bw ? b3 : bw);
                 if ((c->carry_mode & 2) && np > 1 && r_t * se2 > b2) b2 = r_t * se2;
+            }
+            {
+                double bb = 0;
+                if (g_bb && c->blur && !(c->blur & 16)) {
+                    const double sx = g_bsx[p], sy = g_bsy[p];
+                    for (ch = 0; ch < 3; ++ch) bb += g_bb[p * 3 + ch] * g_bb[p * 3 + ch];
+                    /* the second differences of independent history noise (var_x / channel
+                       summed): each has variance 6 var_X, b = (S_x L_x + S_y L_y) / 2 */
+                    if (c->blur & 256) bb -= 0.25 * (sx * sx * g_bgx[p] + sy * sy * g_bgy[p]) * var_x;
+                    else if (c->blur & 4) bb -= ((c->blur & 128) ? 0.5 : 1.5) * (sx * sx + sy * sy) * var_x;
+                    if (bb < 0) bb = 0;
+                    blur_stats[2] += var_x + var_y > 0 ? bb / (var_x + var_y) : 0;
+                    if (bb > b2) blur_stats[3] += 1;
+                }
+                if (c->cshare > 0) b2 *= 1.0 + c->cshare;
+                if (bb > 0) {
+                    double bbc = (c->blur & 32) ? bb : bb * (1.0 + c->cshare);
+                    if ((c->blur & 3) == 2) b2 += bbc;
+                    else if (bbc > b2) b2 = bbc;
+                }
             }
             a = (b2 + var_x + var_y > 0) ? (b2 + var_x) / (b2 + var_x + var_y) : n_y / (n_x + n_y);
             if (a < 0) a = 0;
@@ -574,6 +616,7 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
     box_sum(sc, bc, tmp, w, h, c->srx, c->sry);
     for (p = 0; p < n; ++p) {
         double t = 0, a;
+        if (g_afin) g_afin[p] = 1.0;
         if (!(nx[p] > 0)) continue;
         if (c->sure == 3) t = 1;
         else if (c->sure == 7) { /* no risk: t = the carried evidence's shrink, where a_p > a_d */
@@ -606,6 +649,7 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
         }
         sure_stats[0] += 1; sure_stats[1] += t; if (t > 0) sure_stats[2] += 1;
         a = ad[p] + t * (ap[p] - ad[p]);
+        if (g_afin) g_afin[p] = a;
         if (t != 0) {
             for (ch = 0; ch < 3; ++ch)
                 out[p * 3 + ch] = (float)((1 - a) * xs[p * 3 + ch] + a * yb[p * 3 + ch]);
@@ -790,6 +834,136 @@ static void blend_trend(void *ctx, int w, int h, const float *y, const float *xs
         for (i = 0; i < (int)n; ++i) zout[i] = 1.0f;
 }
 
+/* 4.10: the resampling blur carried with the history. A bilinear fetch at fraction
+   (f_x, f_y) convolves the history with a kernel of variance f (1 - f) per axis; the blend
+   t = (1 - a) x* + a y leaves a kernel of variance (1 - a)(S) with S = s* + v (s* the
+   carried variance gathered with the history's taps, v this fetch's), and to second
+   order the blur's bias is (S_x d2/dx2 + S_y d2/dy2) / 2 of the signal, its second
+   differences taken from x*'s own 3x3. ts / tsout: (s_x, s_y, 0). */
+static float *g_fetch_xy;
+/* The variance of a second difference [1 -2 1] of unit white noise blurred by a Gaussian
+   of variance s along that axis: (1 / 2 pi) int_{-pi}^{pi} 16 sin^4(w / 2) e^{-s w^2} dw
+   (6 at s = 0, 1/6 of it after one half-pixel bilinear fetch), tabulated in steps of 1/32 */
+#define BLUR_GT 4096
+#define BLUR_PI 3.14159265358979323846
+static double blur_g(double sv)
+{
+    static double t[BLUR_GT + 1];
+    static int ready;
+    int i;
+    if (!ready) {
+        for (i = 0; i <= BLUR_GT; ++i) {
+            double acc = 0, ss = i / 32.0;
+            int k;
+            for (k = 0; k < 2000; ++k) {
+                double w = -BLUR_PI + (k + 0.5) * (2 * BLUR_PI / 2000), sn = sin(0.5 * w);
+                acc += 16 * sn * sn * sn * sn * exp(-ss * w * w);
+            }
+            t[i] = acc / 2000;
+        }
+        ready = 1;
+    }
+    i = (int)(sv * 32.0 + 0.5);
+    return t[i < BLUR_GT ? i : BLUR_GT];
+}
+static void blend_blur(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                       const float *zs, const float *ts, float cap, float *out, float *nout,
+                       float *zout, float *tsout)
+{
+    const cand *c = (const cand *)ctx;
+    const size_t n = (size_t)w * h;
+    static size_t have;
+    static double *sx, *sy, *bb, *af;
+    int px, py, ch;
+    if (have < n) {
+        free(sx); free(sy); free(bb); free(af); free(g_bgx); free(g_bgy);
+        g_bgx = malloc(n * sizeof *g_bgx); g_bgy = malloc(n * sizeof *g_bgy);
+        sx = malloc(n * sizeof *sx); sy = malloc(n * sizeof *sy); bb = malloc(n * 3 * sizeof *bb);
+        af = malloc(n * sizeof *af);
+        have = n;
+    }
+    for (py = 0; py < h; ++py)
+        for (px = 0; px < w; ++px) {
+            const size_t p = (size_t)py * w + px;
+            double fx, fy, lx, ly, lo, hi;
+            int okx, oky;
+            sx[p] = sy[p] = 0;
+            for (ch = 0; ch < 3; ++ch) bb[p * 3 + ch] = 0;
+            if (!(nx[p] > 0) || !(g_fetch_xy[p * 3 + 2] > 0)) continue;
+            fx = g_fetch_xy[p * 3] - floor(g_fetch_xy[p * 3]);
+            fy = g_fetch_xy[p * 3 + 1] - floor(g_fetch_xy[p * 3 + 1]);
+            if (fx < 1e-4 || fx > 1 - 1e-4) fx = 0; /* float rounding of an integer fetch */
+            if (fy < 1e-4 || fy > 1 - 1e-4) fy = 0;
+            sx[p] = ts[p * 3] + fx * (1 - fx);
+            sy[p] = ts[p * 3 + 1] + fy * (1 - fy);
+            if (c->blur & 256) {
+                /* the history's noise: sample k of N (equal weights) has been fetched k
+                   times at about this fraction, its noise blurred by k v */
+                const int nn = (int)(nx[p] < cap ? nx[p] : cap);
+                double gx = 0, gy = 0;
+                int k;
+                for (k = 0; k < nn; ++k) { gx += blur_g(k * fx * (1 - fx)); gy += blur_g(k * fy * (1 - fy)); }
+                g_bgx[p] = nn > 0 ? gx / nn : 6; g_bgy[p] = nn > 0 ? gy / nn : 6;
+            }
+            if (c->blur & 64) { /* no carried plane: the growth from a restart, S = N v / 2 */
+                const double nn = nx[p] < cap ? nx[p] : cap;
+                sx[p] = 0.5 * (nn + 1) * fx * (1 - fx);
+                sy[p] = 0.5 * (nn + 1) * fy * (1 - fy);
+            }
+            okx = px > 0 && px < w - 1 && nx[p - 1] > 0 && nx[p + 1] > 0;
+            oky = py > 0 && py < h - 1 && nx[p - (size_t)w] > 0 && nx[p + (size_t)w] > 0;
+            for (ch = 0; ch < 3; ++ch) {
+                lx = okx ? (double)xs[(p - 1) * 3 + ch] + xs[(p + 1) * 3 + ch] - 2.0 * xs[p * 3 + ch] : 0;
+                ly = oky ? (double)xs[(p - (size_t)w) * 3 + ch] + xs[(p + (size_t)w) * 3 + ch] - 2.0 * xs[p * 3 + ch] : 0;
+                if ((c->blur & 128) && px > 0 && py > 0 && px < w - 1 && py < h - 1) {
+                    /* the second differences averaged over the 3x3 ([1 -2 1] x [1 1 1] / 3):
+                       a third of the noise, where all nine x* are valid */
+                    int i, j, all = 1;
+                    double sxx = 0, syy = 0;
+                    for (j = -1; j <= 1; ++j)
+                        for (i = -1; i <= 1; ++i)
+                            if (!(nx[p + (ptrdiff_t)j * w + i] > 0)) all = 0;
+                    if (all) {
+                        for (j = -1; j <= 1; ++j) {
+                            const size_t r = p + (ptrdiff_t)j * w, q = p + (ptrdiff_t)j;
+                            sxx += (double)xs[(r - 1) * 3 + ch] + xs[(r + 1) * 3 + ch] - 2.0 * xs[r * 3 + ch];
+                            syy += (double)xs[(q - (size_t)w) * 3 + ch] + xs[(q + (size_t)w) * 3 + ch] - 2.0 * xs[q * 3 + ch];
+                        }
+                        lx = sxx / 3; ly = syy / 3;
+                    }
+                }
+                bb[p * 3 + ch] = 0.5 * (sx[p] * lx + sy[p] * ly);
+                if (c->bmax > 0) {
+                    int i, j;
+                    lo = hi = xs[p * 3 + ch];
+                    for (j = py - 1; j <= py + 1; ++j)
+                        for (i = px - 1; i <= px + 1; ++i) {
+                            size_t q;
+                            if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                            q = (size_t)j * w + i;
+                            if (!(nx[q] > 0)) continue;
+                            if (xs[q * 3 + ch] < lo) lo = xs[q * 3 + ch];
+                            if (xs[q * 3 + ch] > hi) hi = xs[q * 3 + ch];
+                        }
+                    if (fabs(bb[p * 3 + ch]) > c->bmax * (hi - lo))
+                        bb[p * 3 + ch] = bb[p * 3 + ch] > 0 ? c->bmax * (hi - lo) : -c->bmax * (hi - lo);
+                }
+            }
+            blur_stats[0] += 1; blur_stats[1] += sx[p] + sy[p];
+            if (sx[p] + sy[p] > 0) blur_stats[4] += 1;
+        }
+    g_bsx = sx; g_bsy = sy; g_bb = bb; g_afin = af;
+    blend_sure(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
+    g_bsx = g_bsy = g_bb = g_afin = NULL;
+    for (size_t p = 0; p < n; ++p) {
+        const double a = nx[p] > 0 ? af[p] : 1.0;
+        tsout[p * 3] = (float)((1 - a) * sx[p]);
+        tsout[p * 3 + 1] = (float)((1 - a) * sy[p]);
+        tsout[p * 3 + 2] = 0.0f;
+        if (nx[p] > 0) blur_stats[5] += a;
+    }
+}
+
 static cand cands[] = {
     {"ha (check)", 0, 0, 3, 3, 0, 0, 0, 0, 0, 0},
     {"s4 + EBs c3", 7, 1, 4, 3.0, 1, 0, 2, 0, 0, 2},
@@ -894,12 +1068,60 @@ static cand cands[] = {
     /* 81..: the adopted form (last frame's plane rows y-1..y+1, local + blocks) + mix t = sh_R */
     {"lib prior (3) + mix t=sh_R", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 4, 3, 0, 0},
     {"row prior + mix t=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 6, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 7, 0, 0},
+    /* 83..: session 14 (4.10): 3.11's default (the plane's prior on all three sources, the
+       mix by sh_R), temporal and combined (c = 1, the default stereo blend), then the blur */
+#define C311 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0
+    {"3.11 (check)", C311, 0, 0, 16, 0},
+    {"3.11 combined (check)", C311, 1, 1, 16, 0},
+    {"blur max", C311, 0, 0, 1, 0},
+    {"blur max, combined", C311, 1, 1, 1, 0},
+    {"blur max -noise", C311, 0, 0, 5, 0},
+    {"blur max -noise, combined", C311, 1, 1, 5, 0},
+    {"blur M->1 (4.9 rule)", C311, 0, 0, 24, 0},
+    {"blur M->1, combined", C311, 1, 1, 24, 0},
+    {"blur sum, combined", C311, 1, 1, 2, 0},
+    {"blur max, bmax 1/2, comb", C311, 1, 1, 1, 0.5},
+    {"blur max once, combined", C311, 1, 1, 33, 0},
+    {"blur max, S = (N+1)v/2", C311, 0, 0, 65, 0},
+    {"blur max, S = (N+1)v/2, comb", C311, 1, 1, 65, 0},
+    /* 95..: the second differences averaged over the 3x3 (+128) */
+    {"blur 3x3 L", C311, 0, 0, 129, 0},
+    {"blur 3x3 L, combined", C311, 1, 1, 129, 0},
+    {"blur 3x3 L -noise", C311, 0, 0, 133, 0},
+    {"blur 3x3 L -noise, combined", C311, 1, 1, 133, 0},
+    {"blur 3x3 L -noise, S from N", C311, 0, 0, 197, 0},
+    {"blur 3x3 L -noise, S from N, comb", C311, 1, 1, 197, 0},
+    /* 101..: |b| at most half the 3x3 range of x* (a symmetric kernel moves a step's
+       value at most half-way) */
+    {"blur max, bmax 1/2", C311, 0, 0, 1, 0.5},
+    {"blur 3x3 L, bmax 1/2", C311, 0, 0, 129, 0.5},
+    {"blur 3x3 L, bmax 1/2, comb", C311, 1, 1, 129, 0.5},
+    /* 104..: less the noise of the second differences of the history's blurred noise */
+    {"blur max -blurred noise", C311, 0, 0, 257, 0},
+    {"blur max -blurred noise, comb", C311, 1, 1, 257, 0},
+    {"blur max -blurred noise, S from N", C311, 0, 0, 321, 0},
+    {"blur max -blurred noise, S from N, comb", C311, 1, 1, 321, 0},
+    {"blur max -blurred noise, bmax 1/2", C311, 0, 0, 257, 0.5},
+    {"blur max -blurred noise, bmax 1/2, comb", C311, 1, 1, 257, 0.5},
+    /* 110..: the plane-free form with the bound */
+    {"blur max, S from N, bmax 1/2", C311, 0, 0, 65, 0.5},
+    {"blur max, S from N, bmax 1/2, comb", C311, 1, 1, 65, 0.5},
+    /* 112..: the plane-free form, every correction (109 without the plane) */
+    {"blur -blurred noise, S from N, bmax 1/2", C311, 0, 0, 321, 0.5},
+    {"blur -blurred noise, S from N, bmax 1/2, comb", C311, 1, 1, 321, 0.5},
+#undef C311
 };
 
 int main(int argc, char **argv)
 {
     const char *only = argc > 1 ? argv[1] : NULL;
     const char *only_c = argc > 2 ? argv[2] : NULL;
+    if (only && !strcmp(only, "list")) {
+        int k;
+        for (k = 0; k < (int)(sizeof cands / sizeof cands[0]); ++k)
+            printf("%d %s region %d rsrc %d diag %d sure %d stereo %d c %g blur %d\n", k, cands[k].name, cands[k].region, cands[k].rsrc, cands[k].diag, cands[k].sure, cands[k].stereo, cands[k].cshare, cands[k].blur);
+        return 0;
+    }
     const sbr_synth_scene *const synth = sbr_synth_scenes;
     static const char *const real[] = {"atrium", "gallery"};
     int s, i, nc = (int)(sizeof cands / sizeof cands[0]);
@@ -928,7 +1150,14 @@ int main(int argc, char **argv)
             snprintf(m.name, sizeof m.name, "%s", cands[i].name);
             m.temporal = 1;
             m.temporal_blend_ctx = &cands[i];
-            if (cands[i].svgf) m.temporal_blend_carry3 = blend_svgf;
+            if (cands[i].stereo) m.stereo = SBR_STEREO_ADAPTIVE; /* the library's default blend */
+            if (cands[i].blur) {
+                free(g_fetch_xy); /* scenes differ in size */
+                g_fetch_xy = (float *)malloc((size_t)seq.width * seq.height * 3 * sizeof(float));
+                m.fetch_xy = g_fetch_xy;
+                m.temporal_blend_carry3 = blend_blur;
+            }
+            else if (cands[i].svgf) m.temporal_blend_carry3 = blend_svgf;
             else if (cands[i].sure) m.temporal_blend_carry = blend_sure;
             else if (cands[i].tlam > 0) m.temporal_blend_carry3 = blend_trend;
             else if (cands[i].lambda > 0) m.temporal_blend_carry = blend_carry;
@@ -939,6 +1168,7 @@ int main(int argc, char **argv)
             memset(svgf_stats, 0, sizeof svgf_stats);
             memset(dg, 0, sizeof dg); memset(dg_hist, 0, sizeof dg_hist);
             memset(share_stats, 0, sizeof share_stats);
+            memset(blur_stats, 0, sizeof blur_stats);
             prev_have[0] = prev_have[1] = 0; call_count = 0;
             if (sbr_run(&seq, &m, &r, NULL, NULL) != 0) return 1;
             printf("%-18s %-22s eff %6.2f  rmse %.5f", nm, cands[i].name, r.eff_spp, r.rmse);
@@ -966,6 +1196,11 @@ int main(int argc, char **argv)
                            dg[k][0] > 0 ? dg[k][1] / dg[k][0] : 0, dg[k][2] / dg[3][0],
                            dg[k][0] > 0 ? dg[k][3] / dg[k][0] : 0);
             }
+            if (blur_stats[0] > 0)
+                printf("\n   blur: S mean %.3f, S > 0 on %.1f %%, B_b^2 / (var_x + var_y) mean %.4f, B_b^2 > b2 on %.2f %%, a mean %.4f",
+                       blur_stats[1] / blur_stats[0], 100 * blur_stats[4] / blur_stats[0],
+                       blur_stats[2] / blur_stats[0], 100 * blur_stats[3] / blur_stats[0],
+                       blur_stats[5] / blur_stats[0]);
             if (sure_stats[0] > 0)
                 printf("  t mean %.3f, t > 0 on %.1f %% | (1-a)D %.4g S %.4g dl %.4g A %.4g B %.4g",
                        sure_stats[1] / sure_stats[0], 100.0 * sure_stats[2] / sure_stats[0],

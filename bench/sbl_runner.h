@@ -85,6 +85,11 @@ typedef struct sbr_method {
     void (*temporal_blend_carry3)(void *ctx, int w, int h, const float *y, const float *xs,
                                   const float *nx, const float *zs, const float *ts, float cap,
                                   float *out, float *nout, float *zout, float *tsout);
+    /* with temporal_blend_carry3: if set (W*H*3 floats), each call first gets the
+       history's fetch position per pixel here: the previous frame's pixel coordinates
+       (x, y, 1) gathered with the history's taps (0, 0, 0 where no tap is valid), so the
+       prototype knows the fetch's fraction (docs/ESTIMATORS.md 4.10) */
+    float *fetch_xy;
 } sbr_method;
 
 typedef struct sbr_result {
@@ -700,9 +705,26 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                             for (q = 0; q < n; ++q)
                                 if (!(onx2[q] > 0)) otcarry[q * 3] = otcarry[q * 3 + 1] = otcarry[q * 3 + 2] = 0.0f;
                         }
+                        if (rc == 0 && m->temporal_blend_carry3 && m->fetch_xy) {
+                            /* the coordinates gather to the taps' weighted position */
+                            float *coord = sbr_alloc(n * 3);
+                            for (q = 0; q < n; ++q) {
+                                coord[q * 3] = (float)(q % (size_t)w);
+                                coord[q * 3 + 1] = (float)(q / (size_t)w);
+                                coord[q * 3 + 2] = 1.0f;
+                            }
+                            hz.color = sbl_image_make(coord, w, h, 3);
+                            rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, &hz,
+                                                        sbl_image_make(m->fetch_xy, w, h, 3),
+                                                        sbl_image_make(onx2, w, h, 1), 0, h);
+                            for (q = 0; q < n; ++q)
+                                if (!(onx2[q] > 0)) m->fetch_xy[q * 3] = m->fetch_xy[q * 3 + 1] = m->fetch_xy[q * 3 + 2] = 0.0f;
+                            free(coord);
+                        }
                     } else {
                         memset(ocarry, 0, n * sizeof(float));
                         if (otcarry) memset(otcarry, 0, n * 3 * sizeof(float));
+                        if (m->fetch_xy) memset(m->fetch_xy, 0, n * 3 * sizeof(float));
                     }
                     if (rc == 0 && m->temporal_blend_carry3)
                         m->temporal_blend_carry3(m->temporal_blend_ctx, w, h, input[e], ox, onx, ocarry,
