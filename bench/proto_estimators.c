@@ -85,6 +85,14 @@ typedef struct cand {
 } cand;
 
 static double *g_share; /* per pixel: the region's share s */
+
+/* session 14 (ESTIMATORS 3.12): per-pixel state of the candidate, for diag: mode */
+typedef struct diagpx {
+    float nx, a_d, a, ap, shr, b3, rb, rt, M, R, se2, vy, vx, pd2, b2;
+} diagpx;
+static diagpx *g_dx;
+static double *g_dshare; /* blend_sure: the region's share kept past blend_core (sure 9) */
+static double *g_dlocp; /* blend_sure: the local test's posterior per pixel (sure 8) */
 static double share_stats[4];
 
 /* 3.10 (a): per source (0 local, 1 blocks, 2 carried R): pixel-frames whose weight exceeds
@@ -124,7 +132,9 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
             double m[3] = {0}, v[3] = {0}, m8[3] = {0}, v8[3] = {0}, pd[3] = {0}, pv[3] = {0};
             double pdw[3] = {0}, pvw[3] = {0};
             double n_x = nx[p], n_y = 1.0, yb[3], a, var_x, var_y, b2 = 0, pd2 = 0, pvs = 0, s2 = 0;
+            double dx_b3 = 0, dx_M = 1, dx_se2 = 0;
             int n = 0, np = 0, nw = 0;
+            if (g_dx) memset(&g_dx[p], 0, sizeof g_dx[p]);
             if (!(n_x > 0)) {
                 for (ch = 0; ch < 3; ++ch) out[p * 3 + ch] = y[p * 3 + ch];
                 nout[p] = 1.0f;
@@ -237,6 +247,8 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                     else b3 = pd2 - c->k * c->k * se2 > 0 ? pd2 - c->k * c->k * se2 : 0;
                 }
                 if (c->off & 1) b3 = 0;
+                dx_b3 = b3; dx_M = Mreg; dx_se2 = se2;
+                if (g_dlocp) g_dlocp[p] = pd2 > 0 ? b3 / pd2 : 0.0;
                 if (nw > 2) {
                     double pdw2 = 0, pvws = 0, sew2;
                     for (ch = 0; ch < 3; ++ch) {
@@ -389,6 +401,13 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
             for (ch = 0; ch < 3; ++ch)
                 out[p * 3 + ch] = (float)((1 - a) * xs[p * 3 + ch] + a * yb[ch]);
             nout[p] = sbl_blend_sample_count((float)a, (float)n_x, (float)n_y);
+            if (g_dx) {
+                diagpx *d = &g_dx[p];
+                d->nx = (float)n_x; d->a_d = d->a = (float)a; d->b3 = (float)dx_b3;
+                d->rb = (float)g_rb; d->rt = (float)g_rt; d->M = (float)dx_M;
+                d->R = zout ? zout[p] : 0.0f; d->se2 = (float)dx_se2; d->vy = (float)var_y;
+                d->vx = (float)var_x; d->pd2 = (float)pd2; d->b2 = (float)b2;
+            }
             if (nout[p] > cap) nout[p] = cap;
             if (c->diag) {
                 double a0 = n_y / (n_x + n_y), ex = a - a0, rr = a / a0;
@@ -570,11 +589,13 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
         sa = malloc(n * sizeof *sa); sb = malloc(n * sizeof *sb); sc = malloc(n * sizeof *sc);
         ba = malloc(n * sizeof *ba); bb = malloc(n * sizeof *bb); bc = malloc(n * sizeof *bc);
         tmp = malloc(n * sizeof *tmp); yb = malloc(n * 3 * sizeof *yb);
+        free(g_dlocp); g_dlocp = calloc(n, sizeof *g_dlocp);
         have = n;
     }
     g_ad = ad; g_vy = vy; g_yb = yb; g_sh = shp; g_shr = shr;
     region_share(c, w, h, nx, zs);
     region_share_raw(c, w, h);
+    g_dshare = g_share;
     blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
     region_keep(c, w, h, zout);
     g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_shr = NULL; g_share = NULL;
@@ -623,6 +644,16 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
             t = shr[p] < 1 ? shr[p] : 1;
             if (ap[p] < ad[p]) t = 0;
         }
+        else if (c->sure == 9) { /* t = max(sh_R, the region's share s), where a_p > a_d */
+            t = shr[p] < 1 ? shr[p] : 1;
+            if (g_dshare && g_dshare[p] > t) t = g_dshare[p];
+            if (ap[p] < ad[p]) t = 0;
+        }
+        else if (c->sure == 8) { /* t = max(sh, the local test's posterior), where a_p > a_d */
+            t = shp[p] > g_dlocp[p] ? shp[p] : g_dlocp[p];
+            if (t > 1) t = 1;
+            if (ap[p] < ad[p]) t = 0;
+        }
         else if (c->sure == 5 || c->sure == 6) { /* no risk: t = the default's own shrink */
             t = shp[p] < 1 ? shp[p] : 1;
             if (c->sure == 6 && ap[p] < ad[p]) t = 0;
@@ -648,6 +679,7 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
             if (c->sure == 2) t = t >= 0.5 ? 1 : 0;
         }
         sure_stats[0] += 1; sure_stats[1] += t; if (t > 0) sure_stats[2] += 1;
+        if (g_dx) { g_dx[p].ap = (float)ap[p]; g_dx[p].shr = (float)shr[p]; g_dx[p].a = (float)(ad[p] + t * (ap[p] - ad[p])); }
         a = ad[p] + t * (ap[p] - ad[p]);
         if (g_afin) g_afin[p] = a;
         if (t != 0) {
@@ -1110,11 +1142,251 @@ static cand cands[] = {
     {"blur -blurred noise, S from N, bmax 1/2", C311, 0, 0, 321, 0.5},
     {"blur -blurred noise, S from N, bmax 1/2, comb", C311, 1, 1, 321, 0.5},
 #undef C311
+    /* 114..: session 14 (3.12), the 3.11 default as the library forms it (3-row prior of last
+       frame's plane on all three sources, mix t = sh_R where a_p > a_d) */
+    {"3.11 default", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0},
+    /* 3.12: the mix by the shrink of all the pooled evidence, sh = r / (1 + r),
+       r = max(r_blocks, r_R), both under the region prior (3.9's "t = sh" lost static
+       to the blocks' one-frame false alarms before the prior protected them) */
+    {"3.11 + mix t=sh", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 6, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0},
+    /* 3.12: t = max(sh_R, s), s the region's share (its prior probability of change) */
+    {"3.11 + mix t=max(shR,s)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 9, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0},
+    /* 3.12: the same and the local test's posterior: t = max(sh, P_local) */
+    {"3.11 + mix t=max(sh,P)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 8, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0},
 };
+
+/* ---- diag: (session 14, ESTIMATORS 3.12) where the candidate loses to a library method,
+   pixel by pixel. The library method runs first and its displayed images are kept; then
+   the candidate runs with its per-pixel state (g_dx) kept per eye, and each evaluated
+   frame's squared errors of both against the reference are split by what the reference
+   does at the pixel (a fixed camera: the pixel's own reference over the frames). */
+static const sbr_seq *dg_seq;
+static float *dg_vs[2 * 64];           /* the library method's displayed images [f * 2 + e] */
+static diagpx *dg_px[2];               /* the candidate's state per eye, this frame */
+static float *dg_x[2], *dg_y[2];       /* its x* and y per eye, this frame */
+static float *dg_lmin[2], *dg_lmax[2]; /* the pixel's reference luminance range over frames */
+static int dg_keep_vs;
+static void diag_keep_vs(void *ctx, int f, int e, const float *rgb, int w, int h)
+{
+    size_t n = (size_t)w * h * 3;
+    (void)ctx;
+    if (!dg_vs[f * 2 + e]) dg_vs[f * 2 + e] = (float *)malloc(n * sizeof(float));
+    memcpy(dg_vs[f * 2 + e], rgb, n * sizeof(float));
+}
+static void diag_blend(void *ctx, int w, int h, const float *y, const float *xs, const float *nx,
+                       const float *zs, float cap, float *out, float *nout, float *zout)
+{
+    const int e = call_count & 1;
+    const size_t n = (size_t)w * h;
+    if (!dg_px[e]) {
+        dg_px[e] = (diagpx *)calloc(n, sizeof(diagpx));
+        dg_x[e] = (float *)malloc(n * 3 * sizeof(float));
+        dg_y[e] = (float *)malloc(n * 3 * sizeof(float));
+    }
+    memcpy(dg_x[e], xs, n * 3 * sizeof(float));
+    memcpy(dg_y[e], y, n * 3 * sizeof(float));
+    g_dx = dg_px[e];
+    blend_sure(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
+    g_dx = NULL;
+}
+/* classes: motion state x level; motion 0 darkening now, 1 brightening now, 2 k = 1 frame
+   since the last change, 3 k = 2, 4 k = 3..4, 5 k = 5..8, 6 k > 8 (of the pixel's shadow
+   history), 7 never shadowed (range < 5 % of its max); level 0 dark (phi < 0.1),
+   1 penumbra, 2 lit (phi > 0.9); phi = (L - Lmin) / (Lmax - Lmin) */
+#define DG_MOT 8
+#define DG_LEV 3
+#define DG_ACC 16
+static double dg_acc[DG_MOT][DG_LEV][DG_ACC];
+static double dg_nacc[8][DG_ACC];      /* by the history's N bucket */
+static double dg_ladder[2];            /* sum eA, sum eB on the ladder frames */
+static const char *const dg_mot_name[DG_MOT] = {"darkening now", "brightening now", "1 frame after",
+                                                "2 frames after", "3-4 frames after", "5-8 frames after",
+                                                ">8 frames after", "never shadowed"};
+static const char *const dg_lev_name[DG_LEV] = {"dark", "penumbra", "lit"};
+static double lum3(const float *v) { return (double)v[0] + v[1] + v[2]; }
+static void dg_add(double *acc, double eA, double eB, const diagpx *d, double a_or, double dk)
+{
+    acc[0] += 1; acc[1] += eA; acc[2] += eB;
+    acc[3] += d->a; acc[4] += a_or; acc[5] += d->ap; acc[6] += d->a_d; acc[7] += d->shr;
+    acc[8] += d->rt > 0; acc[9] += d->rb > 0; acc[10] += d->pd2 > 0 && d->b3 > 0.5 * d->pd2;
+    acc[11] += d->M; acc[12] += d->nx; acc[13] += d->R;
+    acc[14] += dk;                      /* the pixel's lag: (x* - ref) over sqrt(var_Y) */
+    acc[15] += d->a < a_or ? 1 : 0;
+}
+static void diag_frame(void *ctx, int f, int e, const float *rgb, int w, int h)
+{
+    const sbr_seq *s = dg_seq;
+    const float *ref = s->views[f * 2 + e].ref, *vs = dg_vs[f * 2 + e];
+    int px, py, i, j, ch, lad = 0;
+    (void)ctx;
+    if (f < s->frames / 4 || !vs || !dg_px[e]) return;
+    for (i = 0; i < s->ladder_count; ++i) if (s->ladder[i].frame == f) lad = 1;
+    for (py = 0; py < h; ++py)
+        for (px = 0; px < w; ++px) {
+            size_t p = (size_t)py * w + px;
+            const diagpx *d = &dg_px[e][p];
+            double eA = 0, eB = 0, L = lum3(ref + p * 3), lo = dg_lmin[e][p], hi = dg_lmax[e][p];
+            double rg = hi - lo, phi, EX = 0, EY = 0, a_or, dk = 0;
+            int mot, lev, k, nb;
+            for (ch = 0; ch < 3; ++ch) {
+                double da = (double)rgb[p * 3 + ch] - ref[p * 3 + ch], db = (double)vs[p * 3 + ch] - ref[p * 3 + ch];
+                eA += da * da; eB += db * db;
+            }
+            if (lad) { dg_ladder[0] += eA; dg_ladder[1] += eB; }
+            if (!(d->nx > 0)) continue;
+            for (j = py - 1; j <= py + 1; ++j)
+                for (i = px - 1; i <= px + 1; ++i) {
+                    size_t q;
+                    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                    q = (size_t)j * w + i;
+                    for (ch = 0; ch < 3; ++ch) {
+                        double ex = (double)dg_x[e][q * 3 + ch] - ref[q * 3 + ch];
+                        double ey = (double)dg_y[e][q * 3 + ch] - ref[q * 3 + ch];
+                        EX += ex * ex; EY += ey * ey;
+                    }
+                }
+            a_or = EX + EY > 0 ? EX / (EX + EY) : 0;
+            {
+                double b = lum3(dg_x[e] + p * 3) - L;
+                dk = d->vy > 0 ? b / sqrt(d->vy) : 0;
+            }
+            if (rg < 0.05 * hi) { mot = 7; lev = 2; }
+            else {
+                phi = (L - lo) / rg;
+                lev = phi < 0.1 ? 0 : phi > 0.9 ? 2 : 1;
+                for (k = 0; k <= f && k <= 9; ++k) {
+                    double c;
+                    if (f - k - 1 < 0) { k = 10; break; }
+                    c = (lum3(s->views[(f - k) * 2 + e].ref + p * 3) - lum3(s->views[(f - k - 1) * 2 + e].ref + p * 3)) / rg;
+                    if (fabs(c) > 0.1) break;
+                }
+                if (k == 0) {
+                    double c = (L - lum3(s->views[(f - 1) * 2 + e].ref + p * 3)) / rg;
+                    mot = c < 0 ? 0 : 1;
+                } else mot = k == 1 ? 2 : k == 2 ? 3 : k <= 4 ? 4 : k <= 8 ? 5 : 6;
+            }
+            dg_add(dg_acc[mot][lev], eA, eB, d, a_or, dk);
+            nb = d->nx <= 2 ? 0 : d->nx <= 4 ? 1 : d->nx <= 8 ? 2 : d->nx <= 16 ? 3 : d->nx <= 32 ? 4 : 5;
+            dg_add(dg_nacc[nb], eA, eB, d, a_or, dk);
+        }
+}
+static void dg_print_row(const char *name, const double *a, double tot)
+{
+    double c = a[0] > 0 ? a[0] : 1;
+    printf("%-34s %6.2f%% %8.4f %8.4f %+7.1f%% | a %.3f or %.3f ap %.3f ad %.3f a<or %3.0f%% shR %.3f R>cR %4.1f%% blk %4.1f%% loc %4.1f%% M %5.1f N %5.1f R %5.2f lag %+.2f\n",
+           name, 100 * a[0] / tot, a[1] / c, a[2] / c, 100 * (a[1] - a[2]) / tot,
+           a[3] / c, a[4] / c, a[5] / c, a[6] / c, 100 * a[15] / c, a[7] / c, 100 * a[8] / c,
+           100 * a[9] / c, 100 * a[10] / c, a[11] / c, a[12] / c, a[13] / c, a[14] / c);
+}
+static int diag_run(const sbr_seq *seq, int ci, const char *vs_name)
+{
+    sbr_method m, vm;
+    sbr_result r, rv;
+    const int w = seq->width, h = seq->height;
+    const size_t n = (size_t)w * h;
+    double tot_n = 0, tot_dE = 0;
+    int f, e, a, b;
+    size_t p;
+    dg_seq = seq;
+    for (e = 0; e < 2; ++e) {
+        dg_lmin[e] = (float *)malloc(n * sizeof(float));
+        dg_lmax[e] = (float *)malloc(n * sizeof(float));
+        for (p = 0; p < n; ++p) { dg_lmin[e][p] = 1e30f; dg_lmax[e][p] = -1e30f; }
+        for (f = 0; f < seq->frames; ++f)
+            for (p = 0; p < n; ++p) {
+                float L = (float)lum3(seq->views[f * 2 + e].ref + p * 3);
+                if (L < dg_lmin[e][p]) dg_lmin[e][p] = L;
+                if (L > dg_lmax[e][p]) dg_lmax[e][p] = L;
+            }
+    }
+    if (sbr_find_method(vs_name, &vm) != 0) { printf("no method %s\n", vs_name); return 1; }
+    if (sbr_run(seq, &vm, &rv, diag_keep_vs, NULL) != 0) return 1;
+    memset(&m, 0, sizeof m);
+    snprintf(m.name, sizeof m.name, "%s", cands[ci].name);
+    m.temporal = 1;
+    m.temporal_blend_ctx = &cands[ci];
+    m.temporal_blend_carry = diag_blend;
+    prev_have[0] = prev_have[1] = 0; call_count = 0;
+    memset(dg_acc, 0, sizeof dg_acc); memset(dg_nacc, 0, sizeof dg_nacc); memset(dg_ladder, 0, sizeof dg_ladder);
+    if (sbr_run(seq, &m, &r, diag_frame, NULL) != 0) return 1;
+    printf("%s: %s eff %.2f rmse %.5f | %s eff %.2f rmse %.5f | ladder frames: sum e %.4g vs %.4g (%+.1f %%)\n",
+           seq->name, cands[ci].name, r.eff_spp, r.rmse, vs_name, rv.eff_spp, rv.rmse, dg_ladder[0], dg_ladder[1],
+           100 * (dg_ladder[0] - dg_ladder[1]) / dg_ladder[1]);
+    for (a = 0; a < DG_MOT; ++a)
+        for (b = 0; b < DG_LEV; ++b) { tot_n += dg_acc[a][b][0]; tot_dE += dg_acc[a][b][1] - dg_acc[a][b][2]; }
+    printf("pixel-frames with a history %.0f; sum (eA - eB) %.4g; columns: share of pixel-frames, mean eA, mean eB, "
+           "(eA - eB) as %% of the vs method's total error, then the candidate's state\n", tot_n, tot_dE);
+    {
+        double totB = 0;
+        for (a = 0; a < DG_MOT; ++a) for (b = 0; b < DG_LEV; ++b) totB += dg_acc[a][b][2];
+        for (a = 0; a < DG_MOT; ++a)
+            for (b = 0; b < DG_LEV; ++b) {
+                char nm[64];
+                double row[DG_ACC];
+                int k;
+                if (dg_acc[a][b][0] == 0) continue;
+                for (k = 0; k < DG_ACC; ++k) row[k] = dg_acc[a][b][k];
+                row[0] = row[0] * totB / tot_n; /* share printed against tot_n below */
+                snprintf(nm, sizeof nm, "%s, %s", dg_mot_name[a], dg_lev_name[b]);
+                /* print share of pixel-frames and the error difference as % of eB total */
+                {
+                    double c = dg_acc[a][b][0];
+                    printf("%-34s %6.2f%% %8.4f %8.4f %+7.1f%% | a %.3f or %.3f ap %.3f ad %.3f a<or %3.0f%% shR %.3f R>cR %4.1f%% blk %4.1f%% loc %4.1f%% M %5.1f N %5.1f R %5.2f lag %+.2f\n",
+                           nm, 100 * c / tot_n, dg_acc[a][b][1] / c, dg_acc[a][b][2] / c,
+                           100 * (dg_acc[a][b][1] - dg_acc[a][b][2]) / totB,
+                           dg_acc[a][b][3] / c, dg_acc[a][b][4] / c, dg_acc[a][b][5] / c, dg_acc[a][b][6] / c,
+                           100 * dg_acc[a][b][15] / c, dg_acc[a][b][7] / c, 100 * dg_acc[a][b][8] / c,
+                           100 * dg_acc[a][b][9] / c, 100 * dg_acc[a][b][10] / c, dg_acc[a][b][11] / c,
+                           dg_acc[a][b][12] / c, dg_acc[a][b][13] / c, dg_acc[a][b][14] / c);
+                }
+            }
+        printf("by N:\n");
+        for (a = 0; a < 6; ++a) {
+            static const char *const nn[6] = {"N <= 2", "N 2-4", "N 4-8", "N 8-16", "N 16-32", "N > 32"};
+            double c = dg_nacc[a][0];
+            if (c == 0) continue;
+            printf("%-34s %6.2f%% %8.4f %8.4f %+7.1f%% | a %.3f or %.3f ap %.3f ad %.3f a<or %3.0f%% shR %.3f R>cR %4.1f%% blk %4.1f%% loc %4.1f%% M %5.1f N %5.1f R %5.2f lag %+.2f\n",
+                   nn[a], 100 * c / tot_n, dg_nacc[a][1] / c, dg_nacc[a][2] / c,
+                   100 * (dg_nacc[a][1] - dg_nacc[a][2]) / totB,
+                   dg_nacc[a][3] / c, dg_nacc[a][4] / c, dg_nacc[a][5] / c, dg_nacc[a][6] / c,
+                   100 * dg_nacc[a][15] / c, dg_nacc[a][7] / c, 100 * dg_nacc[a][8] / c,
+                   100 * dg_nacc[a][9] / c, 100 * dg_nacc[a][10] / c, dg_nacc[a][11] / c,
+                   dg_nacc[a][12] / c, dg_nacc[a][13] / c, dg_nacc[a][14] / c);
+        }
+    }
+    (void)dg_print_row; (void)dg_keep_vs;
+    return 0;
+}
 
 int main(int argc, char **argv)
 {
     const char *only = argc > 1 ? argv[1] : NULL;
+    /* diag:SCENE[:CAND[:METHOD]]: the pixel split of 3.12 (candidate "3.11 default", 114, against
+       paper-per-channel unless named) */
+    if (only && !strncmp(only, "diag:", 5)) {
+        char sc[64], vs[48] = "paper-per-channel";
+        int ci = -1, k, nc = (int)(sizeof cands / sizeof cands[0]);
+        const char *c2 = strchr(only + 5, ':');
+        sbr_seq seq;
+        snprintf(sc, sizeof sc, "%.*s", c2 ? (int)(c2 - only - 5) : 63, only + 5);
+        for (k = 0; k < nc; ++k) if (!strcmp(cands[k].name, "3.11 default")) ci = k;
+        if (c2) {
+            ci = atoi(c2 + 1);
+            if (ci < 0 || ci >= nc) return 1;
+            if (strchr(c2 + 1, ':')) snprintf(vs, sizeof vs, "%s", strchr(c2 + 1, ':') + 1);
+        }
+        for (k = 0; k < SBR_SYNTH_SCENES; ++k)
+            if (!strcmp(sbr_synth_scenes[k].name, sc)) {
+                sbl_scene_desc d;
+                memset(&d, 0, sizeof d);
+                d.kind = sbr_synth_scenes[k].kind; d.jitter = sbr_synth_scenes[k].jitter;
+                d.width = 160; d.height = 90; d.frames = 24; d.ref_spp = 128; d.seed = 7;
+                if (sbr_seq_synthetic(&seq, &d, sc, 1) != 0) return 1;
+                return diag_run(&seq, ci, vs);
+            }
+        printf("diag: synthetic scenes only\n");
+        return 1;
+    }
     const char *only_c = argc > 2 ? argv[2] : NULL;
     if (only && !strcmp(only, "list")) {
         int k;
