@@ -5947,25 +5947,11 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
     return count;
 }
 
-/* The other estimate x* of columns [xa, xb) of one row (reprojected history or other
-   eye), its N and validity, into planes; adds its own unsafe values to the flags (the
-   own colour is loaded first). Returns the number of pixels newly flagged. */
-static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
+/* The check of the x* written to ring columns [xa, xb): flags the valid ones holding an
+   unsafe value that the own colour did not. Returns the number newly flagged. */
+static int sbl__ring_flag_range(sbl__ring_row *r, int xa, int xb, int ch)
 {
-    int x, c, ch = k->ch, count = 0;
-    r->gather_flags = 0;
-    /* the evidence plane in the colour's plan (on halo rows too: see evid_y0) */
-    r->e = k->evid_fused && row >= k->evid_y0 && row < k->evid_y1 ? r->e_plane : NULL;
-    if (k->gather_row) {
-        k->gather_row(k->gather_ctx, r, row, xa, xb);
-        if (r->gather_flags) return r->gather_unsafe;
-    } else {
-        for (x = xa; x < xb; ++x) {
-            float tmp[4] = {0, 0, 0, 0};
-            sbl__ring_put(r, x, k->gather(k->gather_ctx, x, row, tmp), tmp, ch);
-        }
-    }
-    x = xa;
+    int x = xa, c, count = 0;
 #ifdef SBL__ROW_GATHER
     for (; x + SBL__VW <= xb; x += SBL__VW) {
         sbl__m ok;
@@ -5985,6 +5971,27 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
         if (!safe && !r->unsafe[x]) { r->unsafe[x] = 1; ++count; }
     }
     return count;
+}
+
+/* The other estimate x* of columns [xa, xb) of one row (reprojected history or other
+   eye), its N and validity, into planes; adds its own unsafe values to the flags (the
+   own colour is loaded first). Returns the number of pixels newly flagged. */
+static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
+{
+    int x, ch = k->ch;
+    r->gather_flags = 0;
+    /* the evidence plane in the colour's plan (on halo rows too: see evid_y0) */
+    r->e = k->evid_fused && row >= k->evid_y0 && row < k->evid_y1 ? r->e_plane : NULL;
+    if (k->gather_row) {
+        k->gather_row(k->gather_ctx, r, row, xa, xb);
+        if (r->gather_flags) return r->gather_unsafe;
+    } else {
+        for (x = xa; x < xb; ++x) {
+            float tmp[4] = {0, 0, 0, 0};
+            sbl__ring_put(r, x, k->gather(k->gather_ctx, x, row, tmp), tmp, ch);
+        }
+    }
+    return sbl__ring_flag_range(r, xa, xb, ch);
 }
 
 static void sbl__ring_load(const sbl__kernel *k, sbl__ring_row *r, int row, int xa, int xb)
@@ -9162,10 +9169,213 @@ static void sbl__stereo_block_after(const void *ctx, sbl__ring_row *r, sbl__bloc
     else sbl__stereo_after_rig(s, r, b, SBL_RIG_MATRICES);
 }
 
+/* ---- the parallel rig's fused vectors (issue 9) ----------------------------------
+   On a row of the parallel rig in lane mode 1 every match lies on the pixel's row, so
+   its footprint is the two taps (x0, y), (x0 + 1, y) with fy = 0; where the VW
+   matches of a vector share one integer offset k = floor(m) (a constant or slowly
+   varying disparity), both taps of all lanes are two plain vector loads per view at
+   x + k and x + k + 1, and the back-check's source pixel floor(sx) is one of them. */
+
+/* Can sbl__stereo_parallel_vec take row y of this call? sbl__stereo_block_start's lane
+   mode 1 (target depth packed and of the source's size, an interior row, no disparity
+   offset, images up to 2^15 pixels), no target normals or ids (their tests and checks
+   stay with the blocks), depth and N tested with packed views (the "full" taps of
+   sbl__row_taps_ch), colour packed with 1 or 3 channels. */
+SBL__INLINE int sbl__stereo_parallel_ok(const sbl__stereo_rp *s, int y)
+{
+    const sbl__tap_src *src = &s->src;
+    const int sw = src->width, sh = src->height;
+    return s->d.rig == SBL_RIG_PARALLEL && s->offset == 0.0 && sw <= 32768 && sh <= 32768 &&
+           s->source->color.width == sw && s->geo.width == sw && s->geo.height == sh &&
+           y >= 1 && y + 1 < sh && s->geo.depth.p && s->geo.depth.step == 1 &&
+           !s->geo.normals.p && !s->geo.ids.p && !src->use_normal && !src->use_id &&
+           src->use_depth && src->depth.step == 1 && src->length.p && src->length.step == 1 &&
+           ((src->color.ch == 3 && src->color.step == 3) || (src->color.ch == 1 && src->color.step == 1));
+}
+
+/* sbl__stereo_plan_vec (mode 1), sbl__row_taps and sbl__stereo_after_rig for the VW
+   pixels x .. x + VW - 1 of row y (x >= 0, x + VW <= w) in registers, where every lane
+   has a match whose two taps are inside the image at one integer offset k, and
+   "full" taps (sbl__full_lanes); the same float and double operations per lane, hence
+   the same bits: w0 = (1 - fx) (1 - 0) = 1 - fx and w1 = fx (1 - 0) = fx exactly; the
+   sums unmasked where every tap of every lane passes, else masked (which is what the
+   unmasked sums give where all pass); the back-check's floor(sx) = x + l + k +
+   [m >= k + 1/2] (sx = x + l + 1/2 + m exact in double, see sbl__plan_lanes), so its
+   source depth is tap 1's or tap 0's. flag: the unsafe values flagged as
+   sbl__ring_gather's check would. Returns 0, nothing written, where a lane needs more
+   (no match, a motion sbl__plan_lanes leaves to the scalar plan, taps outside the
+   image, offsets apart, not full, redo: the blocks then decide). */
+SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row *r, int x, int y,
+                                         const int ch, int fallback, int back_check, double tol,
+                                         int flag)
+{
+    static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
+    const sbl__tap_src *src = &s->src;
+    const int all = (1 << SBL__VW) - 1;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
+    const sbl__v tol_d = sbl__set1(src->depth_tolerance);
+    float fms[SBL__VW], mt[SBL__VW + 4], fs[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    sbl__v z, slack, m, fm, fx, w0, lim, d0, d1, n0, n1 = zero, c0[3], c1[3], acc[3], accn, wsum,
+        inv, n, out[4];
+    sbl__m keep, ok0, ok1, lo, nonfinite, valid;
+    const float *dp, *np, *cp;
+    int k, x0, c, skip_x, fail = 0;
+    /* the plan: sbl__stereo_plan_vec's m = dir f b / z, sbl__plan_lanes' exact motion */
+    keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
+    m = sbl__div_exact(sbl__set1(s->fb), z);
+    keep = sbl__mandnot(keep, sbl__nonfinite(m));
+    if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
+    keep = sbl__mand(keep, sbl__motion_exact(m));
+    fm = sbl__floor(m);
+    sbl__store(fms, fm);
+    keep = sbl__mand(keep, sbl__mand(sbl__le(fm, sbl__set1(fms[0])), sbl__le(sbl__set1(fms[0]), fm)));
+    if (sbl__mbits(keep) != all) return 0;
+    k = SBL__CAST(int, fms[0]);
+    x0 = x + k;
+    /* every lane's taps inside: x0 + l in [0, w - 2] */
+    if (!(x0 >= 0 && x0 + SBL__VW <= src->width - 1)) return 0;
+    if (!sbl__full_lanes(tol_d, z, slack)) return 0;
+    lim = sbl__add(sbl__mul(tol_d, z), slack);
+    fx = sbl__add(sbl__sub(m, fm), zero); /* (+ 0: as the plan) */
+    w0 = sbl__sub(one, fx);
+    skip_x = !sbl__mbits(sbl__gt(fx, zero));
+    /* the taps: sbl__lanes_tap_test's full tests (d > 0 implied) */
+    dp = src->depth.p + SBL__CAST(ptrdiff_t, y) * src->depth.stride + x0;
+    np = src->length.p + SBL__CAST(ptrdiff_t, y) * src->length.stride + x0;
+    cp = src->color.p + SBL__CAST(ptrdiff_t, y) * src->color.stride + SBL__CAST(ptrdiff_t, x0) * ch;
+    d0 = sbl__load(dp);
+    d1 = sbl__load(dp + 1);
+    n0 = sbl__load(np);
+    ok0 = sbl__mand(sbl__mand(sbl__gt(w0, zero), sbl__le(sbl__abs(sbl__sub(d0, z)), lim)), sbl__gt(n0, zero));
+    ok1 = ok0;
+    if (!skip_x) {
+        n1 = sbl__load(np + 1);
+        ok1 = sbl__mand(sbl__mand(sbl__gt(fx, zero), sbl__le(sbl__abs(sbl__sub(d1, z)), lim)), sbl__gt(n1, zero));
+    }
+    if (ch == 3) {
+        sbl__rgb_lanes(cp, &c0[0], &c0[1], &c0[2]);
+        if (!skip_x) sbl__rgb_lanes(cp + 3, &c1[0], &c1[1], &c1[2]);
+    } else {
+        c0[0] = sbl__load(cp);
+        if (!skip_x) c1[0] = sbl__load(cp + 1);
+    }
+    /* sbl__lanes_tap_sum's sums, each from 0 in the order tap 0, tap 1 */
+#define SBL__PSUM(t0, t1) \
+    { \
+        accn = sbl__add(zero, t0(w0, n0, ok0)); \
+        wsum = sbl__add(zero, t0(w0, one, ok0)); \
+        for (c = 0; c < ch; ++c) acc[c] = sbl__add(zero, t0(w0, c0[c], ok0)); \
+        if (!skip_x) { \
+            accn = sbl__add(accn, t1(fx, n1, ok1)); \
+            wsum = sbl__add(wsum, t1(fx, one, ok1)); \
+            for (c = 0; c < ch; ++c) acc[c] = sbl__add(acc[c], t1(fx, c1[c], ok1)); \
+        } \
+    }
+    /* (w one: the weight itself, w 1 = w exactly) */
+#define SBL__PTERM(w, v, ok) sbl__mul(w, v)
+#define SBL__PTERM_M(w, v, ok) sbl__sel(ok, sbl__mul(w, v), zero)
+    if (sbl__mbits(sbl__mand(ok0, ok1)) == all) SBL__PSUM(SBL__PTERM, SBL__PTERM)
+    else SBL__PSUM(SBL__PTERM_M, SBL__PTERM_M)
+#undef SBL__PSUM
+#undef SBL__PTERM
+#undef SBL__PTERM_M
+    /* sbl__lanes_taps' end: a lane to redo leaves the vector to the blocks */
+    nonfinite = sbl__nonfinite(accn);
+    for (c = 0; c < ch; ++c) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[c]));
+    lo = sbl__gt(sbl__set1(1e-3f), wsum);
+    if (sbl__mbits(fallback ? sbl__mor(nonfinite, lo) : nonfinite)) return 0;
+    inv = sbl__div_exact(one, wsum);
+    n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
+    valid = sbl__mandnot(sbl__gt(n, zero), lo);
+    if (back_check && sbl__mbits(valid)) {
+        /* sbl__stereo_back_parallel: the source depth at floor(sx), f b / it, the same
+           double operations for ex */
+        const sbl__v zs = sbl__sel(sbl__le(sbl__add(fm, sbl__set1(0.5f)), m), d1, d0);
+        const sbl__v f = sbl__div_exact(sbl__set1(s->fb), zs);
+        const int good = sbl__mbits(sbl__mandnot(sbl__gt(zs, zero), sbl__nonfinite(f)));
+        int j, okb = 0;
+        sbl__store(mt, m);
+        sbl__store(fs, f);
+        for (j = 0; j < SBL__VW; j += SBL__DW) {
+            const sbl__dv L = sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5));
+            const sbl__dv bx = sbl__dadd(sbl__dadd(L, sbl__dfromf(mt + j)),
+                                         sbl__dmul(sbl__dset1(s->dir[1]),
+                                                   sbl__dsub(sbl__dfromf(fs + j), sbl__dset1(s->offset))));
+            const sbl__dv ex = sbl__dsub(bx, L);
+            okb |= sbl__dle_bits(sbl__dmul(ex, ex), sbl__dset1(tol * tol)) << j;
+        }
+        fail = sbl__mbits(valid) & ~(okb & good) & all;
+    }
+    sbl__store(r->n + x, sbl__sel(valid, n, zero));
+    sbl__store(r->v + x, sbl__sel(valid, one, zero));
+    out[0] = n;
+    for (c = 0; c < ch; ++c) {
+        out[c + 1] = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax);
+        sbl__store(r->x[c] + x, sbl__sel(valid, out[c + 1], zero));
+    }
+    if (flag
+#if SBL__VW == 4
+        && !sbl__all_safe(out, ch + 1) /* (SSE2: one test first, see sbl__lanes_taps) */
+#endif
+    ) {
+        sbl__m ok = sbl__lane_ok(out[0]);
+        int bits;
+        for (c = 1; c <= ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(out[c]));
+        bits = sbl__mbits(sbl__mandnot(valid, ok)) & ~fail;
+        if (bits) sbl__ring_flag_bits(r, x, bits);
+    }
+    if (fail) { /* a failed back-check clears the column (rare) */
+        int l;
+        for (l = 0; fail; ++l, fail >>= 1)
+            if (fail & 1) sbl__ring_put(r, x + l, 0.0f, NULL, ch);
+    }
+    return 1;
+}
+
+/* Row y's columns [xa, xb) (xb - xa >= VW) of the parallel rig, vector by vector: the
+   fused vectors where they apply, the blocks (sbl__row_gather_blocks) for the runs of
+   vectors they leave, whose unsafe values are then checked as sbl__ring_gather would.
+   The last vector overlaps the one before; both ways write the same values. */
+static void sbl__stereo_parallel_row(const sbl__stereo_rp *s, sbl__ring_row *r, int y, int xa,
+                                     int xb)
+{
+    const int ch = s->src.color.ch, fallback = !s->d.reproject.no_fallback;
+    const int back_check = !(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK);
+    const double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
+    /* rows held for sbl_stereo_consistency and the adaptive cache have no flags */
+    const int flag = r->unsafe != NULL;
+    int x, pa = -1, pb = -1, done;
+    if (flag) {
+        r->gather_flags = 1;
+        r->gather_unsafe = 0;
+    }
+    for (x = xa;; x += SBL__VW) {
+        if (x + SBL__VW > xb) x = xb - SBL__VW;
+        done = ch == 3 ? sbl__stereo_parallel_vec(s, r, x, y, 3, fallback, back_check, tol, flag)
+                       : sbl__stereo_parallel_vec(s, r, x, y, 1, fallback, back_check, tol, flag);
+        if (!done) {
+            if (pa < 0) pa = x;
+            pb = x + SBL__VW;
+        }
+        if ((done || x + SBL__VW >= xb) && pa >= 0) {
+            sbl__row_gather_blocks(s, r, y, pa, pb, &s->src, fallback, sbl__stereo_rp_pixel,
+                                   sbl__stereo_block_start, sbl__stereo_plan_vec, sbl__stereo_plan_one,
+                                   sbl__stereo_block_after, NULL, 0, 0);
+            if (flag) r->gather_unsafe += sbl__ring_flag_range(r, pa, pb, ch);
+            pa = -1;
+        }
+        if (x + SBL__VW >= xb) break;
+    }
+}
+
 /* The stereo reprojection of columns [xa, xb) of row y (sbl__row_gather_fn). */
 static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, int xa, int xb)
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
+    if (xb - xa >= SBL__VW && sbl__stereo_parallel_ok(s, y)) {
+        sbl__stereo_parallel_row(s, r, y, xa, xb);
+        return;
+    }
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
                            sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
                            sbl__stereo_plan_one, sbl__stereo_block_after, NULL, 0, 0);
