@@ -9219,7 +9219,7 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
         inv, n, out[4];
     sbl__m keep, ok0, ok1, lo, nonfinite, valid;
     const float *dp, *np, *cp;
-    int k, x0, c, skip_x, fail = 0;
+    int k, x0, skip_x, fail = 0;
     /* the plan: sbl__stereo_plan_vec's m = dir f b / z, sbl__plan_lanes' exact motion */
     keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
     m = sbl__div_exact(sbl__set1(s->fb), z);
@@ -9246,6 +9246,7 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     d0 = sbl__load(dp);
     d1 = sbl__load(dp + 1);
     n0 = sbl__load(np);
+    c1[0] = c1[1] = c1[2] = zero; /* (set where tap 1 weighs) */
     ok0 = sbl__mand(sbl__mand(sbl__gt(w0, zero), sbl__le(sbl__abs(sbl__sub(d0, z)), lim)), sbl__gt(n0, zero));
     ok1 = ok0;
     if (!skip_x) {
@@ -9259,29 +9260,40 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
         c0[0] = sbl__load(cp);
         if (!skip_x) c1[0] = sbl__load(cp + 1);
     }
-    /* sbl__lanes_tap_sum's sums, each from 0 in the order tap 0, tap 1 */
-#define SBL__PSUM(t0, t1) \
+    /* sbl__lanes_tap_sum's sums, each from 0 in the order tap 0, tap 1 (the channels
+       written out: gcc -O2 keeps a loop's sums in memory). N's and the weight's first
+       terms are >= +0 (w0 > 0; a tap that passes has N > 0), so 0 + them is them; a
+       colour's may be -0. */
+#define SBL__PSUM(T) \
     { \
-        accn = sbl__add(zero, t0(w0, n0, ok0)); \
-        wsum = sbl__add(zero, t0(w0, one, ok0)); \
-        for (c = 0; c < ch; ++c) acc[c] = sbl__add(zero, t0(w0, c0[c], ok0)); \
+        accn = T(w0, n0, ok0); \
+        wsum = T(w0, one, ok0); \
+        acc[0] = sbl__add(zero, T(w0, c0[0], ok0)); \
+        if (ch > 1) { \
+            acc[1] = sbl__add(zero, T(w0, c0[1], ok0)); \
+            acc[2] = sbl__add(zero, T(w0, c0[2], ok0)); \
+        } \
         if (!skip_x) { \
-            accn = sbl__add(accn, t1(fx, n1, ok1)); \
-            wsum = sbl__add(wsum, t1(fx, one, ok1)); \
-            for (c = 0; c < ch; ++c) acc[c] = sbl__add(acc[c], t1(fx, c1[c], ok1)); \
+            accn = sbl__add(accn, T(fx, n1, ok1)); \
+            wsum = sbl__add(wsum, T(fx, one, ok1)); \
+            acc[0] = sbl__add(acc[0], T(fx, c1[0], ok1)); \
+            if (ch > 1) { \
+                acc[1] = sbl__add(acc[1], T(fx, c1[1], ok1)); \
+                acc[2] = sbl__add(acc[2], T(fx, c1[2], ok1)); \
+            } \
         } \
     }
     /* (w one: the weight itself, w 1 = w exactly) */
 #define SBL__PTERM(w, v, ok) sbl__mul(w, v)
 #define SBL__PTERM_M(w, v, ok) sbl__sel(ok, sbl__mul(w, v), zero)
-    if (sbl__mbits(sbl__mand(ok0, ok1)) == all) SBL__PSUM(SBL__PTERM, SBL__PTERM)
-    else SBL__PSUM(SBL__PTERM_M, SBL__PTERM_M)
+    if (sbl__mbits(sbl__mand(ok0, ok1)) == all) SBL__PSUM(SBL__PTERM)
+    else SBL__PSUM(SBL__PTERM_M)
 #undef SBL__PSUM
 #undef SBL__PTERM
 #undef SBL__PTERM_M
     /* sbl__lanes_taps' end: a lane to redo leaves the vector to the blocks */
-    nonfinite = sbl__nonfinite(accn);
-    for (c = 0; c < ch; ++c) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[c]));
+    nonfinite = sbl__mor(sbl__nonfinite(accn), sbl__nonfinite(acc[0]));
+    if (ch > 1) nonfinite = sbl__mor(nonfinite, sbl__mor(sbl__nonfinite(acc[1]), sbl__nonfinite(acc[2])));
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
     if (sbl__mbits(fallback ? sbl__mor(nonfinite, lo) : nonfinite)) return 0;
     inv = sbl__div_exact(one, wsum);
@@ -9289,38 +9301,50 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     valid = sbl__mandnot(sbl__gt(n, zero), lo);
     if (back_check && sbl__mbits(valid)) {
         /* sbl__stereo_back_parallel: the source depth at floor(sx), f b / it, the same
-           double operations for ex */
+           double operations for ex. Where it equals the target's depth in every lane
+           (a surface at one depth along the row: a floor, a wall facing the rig), f b
+           / it is |m|, so bx = (x + l + 1/2 + m) - m = x + l + 1/2 exactly (the sum is
+           exact, see sbl__plan_lanes), ex = 0: every check passes. */
         const sbl__v zs = sbl__sel(sbl__le(sbl__add(fm, sbl__set1(0.5f)), m), d1, d0);
-        const sbl__v f = sbl__div_exact(sbl__set1(s->fb), zs);
-        const int good = sbl__mbits(sbl__mandnot(sbl__gt(zs, zero), sbl__nonfinite(f)));
-        int j, okb = 0;
-        sbl__store(mt, m);
-        sbl__store(fs, f);
-        for (j = 0; j < SBL__VW; j += SBL__DW) {
-            const sbl__dv L = sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5));
-            const sbl__dv bx = sbl__dadd(sbl__dadd(L, sbl__dfromf(mt + j)),
-                                         sbl__dmul(sbl__dset1(s->dir[1]),
-                                                   sbl__dsub(sbl__dfromf(fs + j), sbl__dset1(s->offset))));
-            const sbl__dv ex = sbl__dsub(bx, L);
-            okb |= sbl__dle_bits(sbl__dmul(ex, ex), sbl__dset1(tol * tol)) << j;
+        if (sbl__mbits(sbl__mand(sbl__le(zs, z), sbl__le(z, zs))) != all) {
+            const sbl__v f = sbl__div_exact(sbl__set1(s->fb), zs);
+            const int good = sbl__mbits(sbl__mandnot(sbl__gt(zs, zero), sbl__nonfinite(f)));
+            int j, okb = 0;
+            sbl__store(mt, m);
+            sbl__store(fs, f);
+            for (j = 0; j < SBL__VW; j += SBL__DW) {
+                const sbl__dv L = sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5));
+                const sbl__dv bx = sbl__dadd(sbl__dadd(L, sbl__dfromf(mt + j)),
+                                             sbl__dmul(sbl__dset1(s->dir[1]),
+                                                       sbl__dsub(sbl__dfromf(fs + j), sbl__dset1(s->offset))));
+                const sbl__dv ex = sbl__dsub(bx, L);
+                okb |= sbl__dle_bits(sbl__dmul(ex, ex), sbl__dset1(tol * tol)) << j;
+            }
+            fail = sbl__mbits(valid) & ~(okb & good) & all;
         }
-        fail = sbl__mbits(valid) & ~(okb & good) & all;
     }
     sbl__store(r->n + x, sbl__sel(valid, n, zero));
     sbl__store(r->v + x, sbl__sel(valid, one, zero));
     out[0] = n;
-    for (c = 0; c < ch; ++c) {
-        out[c + 1] = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax);
-        sbl__store(r->x[c] + x, sbl__sel(valid, out[c + 1], zero));
+#define SBL__POUT(c) \
+    { \
+        out[c + 1] = sbl__min(sbl__max(sbl__mul(acc[c], inv), sbl__sub(zero, fmax)), fmax); \
+        sbl__store(r->x[c] + x, sbl__sel(valid, out[c + 1], zero)); \
     }
+    SBL__POUT(0);
+    if (ch > 1) {
+        SBL__POUT(1);
+        SBL__POUT(2);
+    }
+#undef SBL__POUT
     if (flag
 #if SBL__VW == 4
         && !sbl__all_safe(out, ch + 1) /* (SSE2: one test first, see sbl__lanes_taps) */
 #endif
     ) {
-        sbl__m ok = sbl__lane_ok(out[0]);
+        sbl__m ok = sbl__mand(sbl__lane_ok(out[0]), sbl__lane_ok(out[1]));
         int bits;
-        for (c = 1; c <= ch; ++c) ok = sbl__mand(ok, sbl__lane_ok(out[c]));
+        if (ch > 1) ok = sbl__mand(ok, sbl__mand(sbl__lane_ok(out[2]), sbl__lane_ok(out[3])));
         bits = sbl__mbits(sbl__mandnot(valid, ok)) & ~fail;
         if (bits) sbl__ring_flag_bits(r, x, bits);
     }
