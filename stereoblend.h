@@ -9193,6 +9193,29 @@ SBL__INLINE int sbl__stereo_parallel_ok(const sbl__stereo_rp *s, int y)
            ((src->color.ch == 3 && src->color.step == 3) || (src->color.ch == 1 && src->color.step == 1));
 }
 
+/* sbl__stereo_parallel_vec's vectors without any match (the image's side beyond the
+   other eye's view): every lane either without target geometry or a finite m (keep),
+   or kept with an exact m whose position x + l + 1/2 + m lies outside the source
+   (sbl__plan_lanes' test, exact): they reset, the ring columns 0. Returns 1 if so. */
+SBL__INLINE int sbl__stereo_parallel_none(const sbl__stereo_rp *s, sbl__ring_row *r, int x,
+                                          sbl__m keep, sbl__m exact, sbl__v m, const int ch)
+{
+    static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f);
+    const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane));
+    const sbl__m inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), m),
+                                    sbl__gt(sbl__sub(sbl__sub(sbl__set1(SBL__CAST(float, s->src.width)), xf), half), m));
+    if (sbl__mbits(sbl__mandnot(keep, sbl__mandnot(exact, inside))) != 0) return 0;
+    sbl__store(r->n + x, zero);
+    sbl__store(r->v + x, zero);
+    sbl__store(r->x[0] + x, zero);
+    if (ch > 1) {
+        sbl__store(r->x[1] + x, zero);
+        sbl__store(r->x[2] + x, zero);
+    }
+    return 1;
+}
+
 /* sbl__stereo_plan_vec (mode 1), sbl__row_taps and sbl__stereo_after_rig for the VW
    pixels x .. x + VW - 1 of row y (x >= 0, x + VW <= w) in registers, where every lane
    has a match whose two taps are inside the image at one integer offset k, and
@@ -9202,9 +9225,10 @@ SBL__INLINE int sbl__stereo_parallel_ok(const sbl__stereo_rp *s, int y)
    unmasked sums give where all pass); the back-check's floor(sx) = x + l + k +
    [m >= k + 1/2] (sx = x + l + 1/2 + m exact in double, see sbl__plan_lanes), so its
    source depth is tap 1's or tap 0's. flag: the unsafe values flagged as
-   sbl__ring_gather's check would. Returns 0, nothing written, where a lane needs more
-   (no match, a motion sbl__plan_lanes leaves to the scalar plan, taps outside the
-   image, offsets apart, not full, redo: the blocks then decide). */
+   sbl__ring_gather's check would. A vector without any match is reset
+   (sbl__stereo_parallel_none). Returns 0, nothing written, where a lane needs more (no
+   match beside matches, a motion sbl__plan_lanes leaves to the scalar plan, taps
+   outside the image, offsets apart, not full, redo: the blocks then decide). */
 SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row *r, int x, int y,
                                          const int ch, int fallback, int back_check, double tol,
                                          int flag)
@@ -9217,7 +9241,7 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     float fms[SBL__VW], mt[SBL__VW + 4], fs[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     sbl__v z, slack, m, fm, fx, w0, lim, d0, d1, n0, n1 = zero, c0[3], c1[3], acc[3], accn, wsum,
         inv, n, out[4];
-    sbl__m keep, ok0, ok1, lo, nonfinite, valid;
+    sbl__m keep, exact, ok0, ok1, lo, nonfinite, valid;
     const float *dp, *np, *cp;
     int k, x0, skip_x, fail = 0;
     /* the plan: sbl__stereo_plan_vec's m = dir f b / z, sbl__plan_lanes' exact motion */
@@ -9225,15 +9249,16 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     m = sbl__div_exact(sbl__set1(s->fb), z);
     keep = sbl__mandnot(keep, sbl__nonfinite(m));
     if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
-    keep = sbl__mand(keep, sbl__motion_exact(m));
+    exact = sbl__motion_exact(m);
     fm = sbl__floor(m);
     sbl__store(fms, fm);
-    keep = sbl__mand(keep, sbl__mand(sbl__le(fm, sbl__set1(fms[0])), sbl__le(sbl__set1(fms[0]), fm)));
-    if (sbl__mbits(keep) != all) return 0;
-    k = SBL__CAST(int, fms[0]);
+    k = SBL__CAST(int, fms[0]); /* (used where every lane is kept: |fm| < 2^15) */
     x0 = x + k;
-    /* every lane's taps inside: x0 + l in [0, w - 2] */
-    if (!(x0 >= 0 && x0 + SBL__VW <= src->width - 1)) return 0;
+    /* every lane kept, exact, at offset k, its taps inside: x0 + l in [0, w - 2] */
+    if (sbl__mbits(sbl__mand(sbl__mand(keep, exact), sbl__mand(sbl__le(fm, sbl__set1(fms[0])),
+                                                                sbl__le(sbl__set1(fms[0]), fm)))) != all ||
+        !(x0 >= 0 && x0 + SBL__VW <= src->width - 1))
+        return sbl__stereo_parallel_none(s, r, x, keep, exact, m, ch);
     if (!sbl__full_lanes(tol_d, z, slack)) return 0;
     lim = sbl__add(sbl__mul(tol_d, z), slack);
     fx = sbl__add(sbl__sub(m, fm), zero); /* (+ 0: as the plan) */
