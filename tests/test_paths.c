@@ -527,6 +527,143 @@ static void test_stereo_row_gather(void)
 #endif
 }
 
+/* The parallel rig's fused vectors (sbl__stereo_parallel_vec) against the pixel gather,
+   bit for bit: rows at one depth (a constant disparity, integer and half-integer ones
+   included: tap 1 of weight 0, the back-check's source pixel on either side), slow
+   depth ramps (offsets that step inside a vector), steps, matches leaving the image
+   (vectors without any, and mixed ones), hostile source depth, N and colour (unsafe
+   values: the flags checked against sbl__ring_gather's re-check), the target's sky,
+   tolerances whose limits reach the expectation (not full), back-check and fallback on
+   and off, both eyes as target, column ranges. Also checks the fused path was taken. */
+static void test_stereo_parallel_fused(void)
+{
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+    static const float fracs[8] = {0.0f, 0.5f, 0.25f, 0.7f, 0.4999f, 0.125f, 0.9f, 0.5001f};
+    static const float bad[8] = {0.0f, -0.0f, -1.0f, 1e-30f, (float)HUGE_VAL, 0.0f, 1e-14f, 3e16f};
+    sbt_rng rng = {777};
+    int it, pixels = 0, mismatches = 0, none = 0, vectors = 0, fused = 0, flagged = 0, flag_mismatches = 0;
+    for (it = 0; it < 400; ++it) {
+        const int w = 12 + (int)(sbt_uniform(&rng) * 84), h = 3 + (int)(sbt_uniform(&rng) * 6);
+        const int ch = it % 4 == 3 ? 1 + (int)(sbt_uniform(&rng) * 4) : (it % 2 ? 3 : 1);
+        const float fb = 12.0f;
+        int x, y, c, e;
+        sbt_img col[2], len[2], dep[2];
+        sbl_stereo_desc sd;
+        sbl_eye eye[2];
+        sbl__stereo_rp rp;
+        float planes[3][7][96];
+        unsigned char unsafe[96], scratch_unsafe[96];
+        sbl__ring_row ra, rb, rc;
+        for (e = 0; e < 2; ++e) {
+            col[e] = sbt_img_new(w, h, ch, 1);
+            len[e] = sbt_img_new(w, h, 1, 0);
+            dep[e] = sbt_img_new(w, h, 1, 1);
+        }
+        for (y = 0; y < h; ++y) {
+            /* the row's disparity: k + a fraction (fb / z), ramps of slope up to 0.1 px
+               per pixel, some rows large enough to leave the image */
+            /* (every 6th case: one disparity for the whole image, so that a tap read past
+               the row's end would find the next row's pixel at the expected depth) */
+            const int kind = it % 6 == 4 ? 0 : (int)(sbt_uniform(&rng) * 4);
+            const double d0 = it % 6 == 4 ? 2.0 + fracs[it % 8]
+                                          : (it % 5 == 0 ? (double)w * 0.6 : 1.0 + (double)(int)(sbt_uniform(&rng) * 6)) +
+                                                fracs[(it + y) % 8];
+            const double slope = kind == 1 ? (sbt_uniform(&rng) - 0.5) * 0.2 : 0.0;
+            for (x = 0; x < w; ++x) {
+                const double d = d0 + slope * x + (kind == 2 && x > w / 2 ? 1.5 : 0.0);
+                for (e = 0; e < 2; ++e) {
+                    float z = (float)(fb / d);
+                    if (kind == 3) z = (float)(fb / (d0 + 0.001 * (x + 3 * e)));
+                    *sbt_at(&dep[e], x, y) = z;
+                    for (c = 0; c < ch; ++c) sbt_at(&col[e], x, y)[c] = (float)(sbt_uniform(&rng) * 2 - 0.3);
+                    *sbt_at(&len[e], x, y) = (float)(0.5 + sbt_uniform(&rng) * 20);
+                    if (e == 1 && sbt_uniform(&rng) < 0.03) *sbt_at(&dep[e], x, y) = bad[(it + x) % 8];
+                    if (e == 1 && sbt_uniform(&rng) < 0.01) *sbt_at(&dep[e], x, y) = (float)HUGE_VAL - (float)HUGE_VAL;
+                    if (sbt_uniform(&rng) < 0.02) *sbt_at(&len[e], x, y) = bad[(it + y) % 8];
+                    if (sbt_uniform(&rng) < 0.02) sbt_at(&col[e], x, y)[0] = bad[(it + x + y) % 8];
+                    if (sbt_uniform(&rng) < 0.005) sbt_at(&col[e], x, y)[ch - 1] = (float)HUGE_VAL;
+                    if (e == 0 && sbt_uniform(&rng) < 0.01) *sbt_at(&dep[e], x, y) = (float)HUGE_VAL;
+                }
+            }
+        }
+        for (e = 0; e < 2; ++e) {
+            memset(&eye[e], 0, sizeof eye[e]);
+            eye[e].color = view(&col[e]);
+            eye[e].length = view(&len[e]);
+            eye[e].gbuffer.depth = view(&dep[e]);
+        }
+        memset(&sd, 0, sizeof sd);
+        sd.rig = SBL_RIG_PARALLEL;
+        sd.focal_px = fb;
+        sd.baseline = 1.0f;
+        sd.reproject.depth_tolerance = it % 7 == 0 ? 1.5f : 0.05f;
+        sd.reproject.back_check_pixels = it % 3 == 0 ? 0.05f : 1.0f;
+        if (it % 4 == 1) sd.reproject.disabled_tests = SBL_TEST_BACK_CHECK;
+        sd.reproject.no_fallback = it % 5 == 2;
+        e = (it >> 1) & 1;
+        CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+        CHECK(sbl__row_gather_ok(&rp.src));
+        BIND_RING_ROWS(ra, rb, planes, unsafe);
+        rc = ra; /* (the third set of planes: the vectors tried one at a time) */
+        for (c = 0; c < 4; ++c) rc.x[c] = planes[2][c];
+        rc.n = planes[2][4];
+        rc.v = planes[2][5];
+        rc.unsafe = scratch_unsafe;
+        for (y = 0; y < h; ++y) {
+            const int xa = it % 3 == 1 ? (int)(sbt_uniform(&rng) * w / 3) : 0;
+            /* (a disparity of 2.x: the last vector's last footprint ends at the image's
+               last pixel, where no later vector overwrites it) */
+            const int xb = it % 6 == 4 ? w - 2 : it % 3 == 2 ? w - (int)(sbt_uniform(&rng) * w / 3) : w;
+            if (xb - xa >= SBL__VW && sbl__stereo_parallel_ok(&rp, y))
+                for (x = xa; x + SBL__VW <= xb; x += SBL__VW) {
+                    fused += ch == 3 ? sbl__stereo_parallel_vec(&rp, &rc, x, y, 3, 1, 1, 1.0, 0)
+                                     : sbl__stereo_parallel_vec(&rp, &rc, x, y, 1, 1, 1, 1.0, 0);
+                    ++vectors;
+                }
+            memset(unsafe, 0, sizeof unsafe);
+            ra.gather_flags = 0;
+            sbl__stereo_rp_row(&rp, &ra, y, xa, xb);
+            for (x = xa; x < xb; ++x) {
+                float tmp[4] = {0, 0, 0, 0};
+                sbl__ring_put(&rb, x, sbl__stereo_rp_pixel(&rp, x, y, tmp), tmp, ch);
+            }
+            {   /* the flags the row gather set: sbl__ring_gather's re-check */
+                int want = 0;
+                for (x = xa; x < xb; ++x) {
+                    int safe = sbl__lane_value_ok(ra.n[x]), bad_px;
+                    for (c = 0; c < ch; ++c) safe &= sbl__lane_value_ok(ra.x[c][x]);
+                    safe |= !(ra.v[x] > 0.0f);
+                    if (ra.gather_flags && unsafe[x] != !safe) ++flag_mismatches;
+                    want += !safe;
+                    bad_px = !same_float(ra.n[x], rb.n[x], contracts) || memcmp(&ra.v[x], &rb.v[x], 4) != 0;
+                    for (c = 0; c < ch; ++c) bad_px |= !same_float(ra.x[c][x], rb.x[c][x], contracts);
+                    if (bad_px && mismatches < 5)
+                        printf("  stereo fused case %d (%dx%dx%d, eye %d) pixel (%d,%d): n %.9g vs %.9g, x0 %.9g vs %.9g\n",
+                               it, w, h, ch, e, x, y, ra.n[x], rb.n[x], ra.x[0][x], rb.x[0][x]);
+                    mismatches += bad_px;
+                    none += !(rb.n[x] > 0.0f);
+                    ++pixels;
+                }
+                if (ra.gather_flags && ra.gather_unsafe != want) ++flag_mismatches;
+                flagged += ra.gather_flags ? want : 0;
+            }
+        }
+        for (e = 0; e < 2; ++e) { free(col[e].mem); free(len[e].mem); free(dep[e].mem); }
+    }
+    printf("  %s parallel rig's fused vectors vs pixel gather: %d pixels (%d without a match), %d differ; "
+           "%d of %d vectors fused; %d flagged, %d flags differ\n",
+           SBL_SIMD_NAME, pixels, none, mismatches, fused, vectors, flagged, flag_mismatches);
+    CHECK(mismatches == 0);
+    CHECK(fused > vectors / 3 && fused < vectors);
+    CHECK(none > pixels / 20 && none < pixels / 2);
+    CHECK(flag_mismatches == 0);
+    CHECK(flagged > 0);
+#else
+    printf("  %s: no row gather on this path (the pixel gather runs)\n", SBL_SIMD_NAME);
+#endif
+}
+
 
 /* Precision of the lane kernel's one-pass 3x3 sums (sbl__lanes_columns /
    sbl__lanes_moments) against the same statistics in double, on the cases a naive sum of
@@ -1797,6 +1934,7 @@ int main(void)
     test_row_gather();
     test_row_gather_uniform();
     test_stereo_row_gather();
+    test_stereo_parallel_fused();
     test_row_gather_disocclusion();
     test_all_safe();
     test_evidence_paths();
