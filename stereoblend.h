@@ -7389,7 +7389,10 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
             for (c = c0; c < c1; ++c) st->a2[c] = w2;
-            w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
+            /* the lean only where N_Y <= 1 (kernel helper: a stereo target is mostly a
+               temporal output, N_Y > 1 in every lane, whose lean the select drops) */
+            if (!sbl__all(sbl__gt(n_y, one)))
+                w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
             return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
         }
     } else {
@@ -7535,6 +7538,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w;
+    int lean;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
@@ -7569,8 +7573,10 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
 #define SBL__FAST_YB(c) \
     do { \
         yb[c] = sbl__mul(yc[c], t); /* (t <= 1, above) */ \
-        if (fast == 2) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
+        if (lean) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
     } while (0)
+    /* the lean's values (sbl__lanes_lean), only where sbl__lanes_weight takes it */
+    lean = fast == 2 && !sbl__all(sbl__gt(n_y, one));
     SBL__LANES_CH(SBL__FAST_YB);
 #undef SBL__FAST_YB
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
