@@ -7965,6 +7965,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     int x = pa, unsafe;
     k_ch.ch = ch;
     if (fast == 1) k_ch.wp.evid_mix = mix; /* (the other instances test it at run time) */
+    if (fast) k_ch.temporal = fast == 1; /* (sbl__kernel_lanes_pooled: as k->wp.temporal) */
     if (erow) {
         /* the missing row: the first row's window takes row 1 as its row 0 too, the
            last row's takes row 0 as its row 2 too; every sum then adds 0 for it (the
