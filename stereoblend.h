@@ -7396,7 +7396,10 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
             for (c = c0; c < c1; ++c) st->a2[c] = w2;
-            w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
+            /* the lean only where N_Y <= 1 (kernel helper: a stereo target is mostly a
+               temporal output, N_Y > 1 in every lane, whose lean the select drops) */
+            if (!sbl__all(sbl__gt(n_y, one)))
+                w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
             return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
         }
     } else {
@@ -7542,6 +7545,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w;
+    int lean;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
@@ -7576,8 +7580,10 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
 #define SBL__FAST_YB(c) \
     do { \
         yb[c] = sbl__mul(yc[c], t); /* (t <= 1, above) */ \
-        if (fast == 2) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
+        if (lean) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
     } while (0)
+    /* the lean's values (sbl__lanes_lean), only where sbl__lanes_weight takes it */
+    lean = fast == 2 && !sbl__all(sbl__gt(n_y, one));
     SBL__LANES_CH(SBL__FAST_YB);
 #undef SBL__FAST_YB
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
@@ -7963,9 +7969,10 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     sbl__pool_rows P;
     sbl__lane_edge E_row; /* erow: every lane's window has two rows */
     const sbl__lane_edge *const Er = erow ? &E_row : NULL;
-    int x = pa, unsafe;
+    int x = pa, unsafe, x_prev = -1, x_prev_end = -1;
     k_ch.ch = ch;
     if (fast == 1) k_ch.wp.evid_mix = mix; /* (the other instances test it at run time) */
+    if (fast) k_ch.temporal = fast == 1; /* (sbl__kernel_lanes_pooled: as k->wp.temporal) */
     if (erow) {
         /* the missing row: the first row's window takes row 1 as its row 0 too, the
            last row's takes row 0 as its row 2 too; every sum then adds 0 for it (the
@@ -7990,16 +7997,51 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     unsafe = sbl__pool_rows_of(&P, R, ch, w, pa, pb);
     while (x < pb) {
         int e = pb - x > SBL__POOL_CHUNK ? x + SBL__POOL_CHUNK : pb, base, lo, hi, p, full;
+        int carry;
         if (e - x < SBL__VW) x = e - SBL__VW; /* the last chunk: a whole vector, overlapping */
+        /* carry: the chunk starts where the one before ended (its base x_prev - reach),
+           whose column sums of [x - reach, x + reach) and blocks of [x - span, x + span)
+           are this chunk's first ones (the same values: every column and block is
+           computed alike whatever the chunk); they are moved to this chunk's indices
+           instead of computed again (the default configurations' planes: no clamp box) */
+        carry = fast && x == x_prev_end && x - reach >= 0 && w - (x + reach) >= SBL__VW + 1 &&
+                e - x >= SBL__VW;
+        if (carry) {
+            const int shift = x - x_prev; /* index of a column in the previous chunk, less its index here */
+            int c, j;
+            float *const col0 = k->col[0];
+            for (c = 0; c < ch; ++c)
+                for (j = SBL__COL_A; j <= SBL__COL_DB; ++j) {
+                    float *const d = col0 + SBL__CHUNK_COL(c) + j * SBL__CHUNK_COLS;
+                    memcpy(d, d + shift, 2 * reach * sizeof(float));
+                }
+            {
+                float *const d = col0 + SBL__CHUNK_COLN(ch);
+                memcpy(d, d + shift, 2 * reach * sizeof(float));
+            }
+            {
+                /* the blocks' planes (sbl__pool_lanes_blocks with pairs) */
+                const int planes[4] = {SBL__POOL_M2(ch), SBL__POOL_SE2(ch), SBL__POOL_PD2(ch), SBL__POOL_PV(ch)};
+                for (j = 0; j < 4; ++j) {
+                    float *const d = SBL__POOL_PLANE(k, planes[j]) + (reach - span);
+                    memcpy(d, d + shift, 2 * span * sizeof(float));
+                }
+            }
+        }
+        x_prev = x;
+        x_prev_end = e;
         base = x - reach;
         {
-            const int ca = x - reach > 0 ? x - reach : 0, cb = e + reach < w ? e + reach : w;
-            const int ba = x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
+            /* the chunk's columns [ha, cb), of which [ca, cb) are computed (carry: the rest
+               moved), and its blocks [ba, bb) computed */
+            const int ha = x - reach > 0 ? x - reach : 0, ca = carry ? x + reach : ha;
+            const int cb = e + reach < w ? e + reach : w;
+            const int ba = carry ? x + span : x - span > 0 ? x - span : 0, bb = e + span < w ? e + span : w;
             /* every pair of the chunk's columns valid: the instances without the selects
                on the pair validity (the same values); the blocks centred on the image's
                first and last columns (whose outer column is empty) excepted */
-            full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__rows_valid_in(R, ca, cb) ||
-                                                     sbl__lanes_full(&W, ca, cb));
+            full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__rows_valid_in(R, ha, cb) ||
+                                                     sbl__lanes_full(&W, ha, cb));
             if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1, 0);
             else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, erow);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
