@@ -6477,20 +6477,21 @@ static const double sbl__blur_td[33] = {
 
 static double sbl__blur_noise(double n, double v)
 {
-    const double t = n * v, u = t / (1.0 + t) * 32.0, q = 1.0 + t, rq = sqrt(q);
+    const double t = n * v, iq = 1.0 / (1.0 + t), u = t * iq * 32.0, in = 1.0 / n;
+    const double iq2 = iq * iq, iq25 = iq2 * sqrt(iq);
     const int i = u < 31.0 ? SBL__CAST(int, u) : 31;
     const double f = u - i;
-    const double j = (sbl__blur_tj[i] + f * (sbl__blur_tj[i + 1] - sbl__blur_tj[i])) / q;
-    const double g = (sbl__blur_tg[i] + f * (sbl__blur_tg[i + 1] - sbl__blur_tg[i])) / (q * q * rq);
-    const double d = (sbl__blur_td[i] + f * (sbl__blur_td[i + 1] - sbl__blur_td[i])) / (q * q * q * rq);
-    return j + (6.0 - g) / (2.0 * n) + v * (d - sbl__blur_td[0]) / (12.0 * n);
+    const double j = (sbl__blur_tj[i] + f * (sbl__blur_tj[i + 1] - sbl__blur_tj[i])) * iq;
+    const double g = (sbl__blur_tg[i] + f * (sbl__blur_tg[i + 1] - sbl__blur_tg[i])) * iq25;
+    const double d = (sbl__blur_td[i] + f * (sbl__blur_td[i + 1] - sbl__blur_td[i])) * iq25 * iq;
+    return j + in * ((6.0 - g) * 0.5 + v * (d - sbl__blur_td[0]) * (1.0 / 12.0));
 }
 
 /* The bilinear fetch's kernel variance per axis at target pixel (x, y): v = f (1 - f)
    of the fractions of the source position the gather's plan takes (sbl__temporal_rp_pos;
    the plan's fractions whatever the taps' tests then keep: a renormalised subset and the
    3x3 fallback, both rare, get the position's fraction too) */
-static void sbl__blur_fraction(const sbl__temporal_rp *s, int x, int y, double *vx, double *vy)
+SBL__INLINE void sbl__blur_fraction(const sbl__temporal_rp *s, int x, int y, double *vx, double *vy)
 {
     double sx, sy, fx, fy;
     *vx = *vy = 0.0;
@@ -6502,10 +6503,17 @@ static void sbl__blur_fraction(const sbl__temporal_rp *s, int x, int y, double *
         sbl__tap_want t;
         if (!sbl__temporal_rp_pos(s, x, y, &t, &sx, &sy)) return;
     }
-    fx = (sx - 0.5) - floor(sx - 0.5);
-    fy = (sy - 0.5) - floor(sy - 0.5);
-    if (fx >= 0.0 && fx < 1.0) *vx = fx * (1.0 - fx); /* (non-finite: 0) */
-    if (fy >= 0.0 && fy < 1.0) *vy = fy * (1.0 - fy);
+    sx -= 0.5;
+    sy -= 0.5;
+    /* x* is valid: the position is within [-0.5, size) (sbl__temporal_rp_pos), so the
+       truncation toward 0 and a step down for negatives is floor (no libm call) */
+    if (!(sx > -2.0 && sx < 1e9 && sy > -2.0 && sy < 1e9)) return;
+    fx = sx - SBL__CAST(double, SBL__CAST(int, sx));
+    fy = sy - SBL__CAST(double, SBL__CAST(int, sy));
+    if (fx < 0.0) fx += 1.0;
+    if (fy < 0.0) fy += 1.0;
+    *vx = fx * (1.0 - fx);
+    *vy = fy * (1.0 - fy);
 }
 
 /* The blur's terms at pixel x of row R[1] (x* valid there; R[0] / R[2] NULL outside the
@@ -7814,21 +7822,90 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     if (mix) sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_DEV2(ch) * SBL__POOL_COLS, dev2);
 }
 
-/* The resampling blur's terms of pixels [x, x + VW) (sbl__blur_terms, in double, one
-   pixel at a time: the reference path's values, rounded to float) into the chunk's
-   planes BB and BG, for sbl__lanes_stage_weight; R: the ring rows as they are (NULL
-   outside the image), not the edge rows' stand-ins. */
-SBL__NOINLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
-                                  int base, const int ch)
+/* The resampling blur's terms of pixels [x, x + VW) (sbl__blur_terms in lanes, float)
+   into the chunk's planes BB and BG, for sbl__lanes_stage_weight. Per pixel, in scalar:
+   the fetch's fractions, S and the noise factor (sbl__blur_fraction, sbl__blur_noise);
+   in lanes: the second differences, the 3x3 bound and the sum over the channels. R: the
+   ring rows as they are (NULL outside the image), not the edge rows' stand-ins. */
+SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                                       int base, const int ch)
 {
     float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch);
-    int l;
+    float fsx[SBL__VW], fsy[SBL__VW], fg[SBL__VW], cl[SBL__VW], cr[SBL__VW];
+    const sbl__ring_row *r = R[1];
+    const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f), two = sbl__set1(2.0f);
+    sbl__v sx, sy, sum = zero, xl, xr, vl, vr, f[3][3];
+    sbl__m okx, oky, m[3][3];
+    int l, any = 0, c, j;
     for (l = 0; l < SBL__VW; ++l) {
-        double b2, g;
-        sbl__blur_terms(k, R, x + l, ch, &b2, &g);
-        q[SBL__POOL_BB(ch) * SBL__POOL_COLS + l] = SBL__CAST(float, b2);
-        q[SBL__POOL_BG(ch) * SBL__POOL_COLS + l] = SBL__CAST(float, g);
+        const int xp = x + l;
+        double vx, vy, n;
+        fsx[l] = fsy[l] = fg[l] = 0.0f;
+        cl[l] = xp > 0 ? 1.0f : 0.0f;
+        cr[l] = xp + 1 < k->w ? 1.0f : 0.0f;
+        if (!(r->v[xp] > 0.0f)) continue;
+        sbl__blur_fraction(k->blur_rp, xp, r->row, &vx, &vy);
+        if (vx == 0.0 && vy == 0.0) continue;
+        n = SBL__CAST(double, r->n[xp] < k->n_cap ? r->n[xp] : k->n_cap);
+        if (!(n >= 1.0)) n = 1.0;
+        vx *= 0.5 * (n + 1.0); /* S */
+        vy *= 0.5 * (n + 1.0);
+        fsx[l] = SBL__CAST(float, vx);
+        fsy[l] = SBL__CAST(float, vy);
+        fg[l] = SBL__CAST(float, 0.25 * ((vx > 0.0 ? vx * vx * sbl__blur_noise(n, 2.0 * vx / (n + 1.0)) : 0.0) +
+                                         (vy > 0.0 ? vy * vy * sbl__blur_noise(n, 2.0 * vy / (n + 1.0)) : 0.0)));
+        any = 1;
     }
+    sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS, sbl__load(fg));
+    if (!any) { /* a fixed camera, integer motion: no blur */
+        sbl__store(q + SBL__POOL_BB(ch) * SBL__POOL_COLS, zero);
+        return;
+    }
+    sx = sbl__load(fsx);
+    sy = sbl__load(fsy);
+    vl = sbl__load(cl);
+    vr = sbl__load(cr);
+    /* which of the 3x3's x* exist (v is 0 or 1: products of them, then selects, so no
+       value outside them reaches a min) */
+    for (j = 0; j < 3; ++j) {
+        int i;
+        if (!R[j]) {
+            f[j][0] = f[j][1] = f[j][2] = zero;
+        } else {
+            f[j][0] = sbl__mul(vl, sbl__load(R[j]->v + x - 1));
+            f[j][1] = sbl__load(R[j]->v + x);
+            f[j][2] = sbl__mul(vr, sbl__load(R[j]->v + x + 1));
+        }
+        for (i = 0; i < 3; ++i) m[j][i] = sbl__gt(f[j][i], zero);
+    }
+    okx = sbl__gt(sbl__mul(f[1][0], f[1][2]), zero);
+    oky = sbl__gt(sbl__mul(f[0][1], f[2][1]), zero);
+    for (c = 0; c < ch; ++c) {
+        const sbl__v xc = sbl__load(r->x[c] + x);
+        sbl__v lo = xc, hi = xc, b, h, d2x, d2y;
+        xl = sbl__load(r->x[c] + x - 1);
+        xr = sbl__load(r->x[c] + x + 1);
+        d2x = sbl__sel(okx, sbl__sub(sbl__add(xl, xr), sbl__mul(two, xc)), zero);
+        d2y = zero;
+        if (R[0] && R[2])
+            d2y = sbl__sel(oky, sbl__sub(sbl__add(sbl__load(R[0]->x[c] + x), sbl__load(R[2]->x[c] + x)),
+                                         sbl__mul(two, xc)), zero);
+        for (j = 0; j < 3; ++j) {
+            int i;
+            if (!R[j]) continue;
+            for (i = 0; i < 3; ++i) {
+                const sbl__v v = sbl__sel(m[j][i], sbl__load(R[j]->x[c] + x + i - 1), xc);
+                lo = sbl__min(lo, v);
+                hi = sbl__max(hi, v);
+            }
+        }
+        b = sbl__mul(half, sbl__add(sbl__mul(sx, d2x), sbl__mul(sy, d2y)));
+        /* at most half the 3x3 range (sbl__blur_terms) */
+        h = sbl__mul(half, sbl__sub(hi, lo));
+        b = sbl__min(sbl__max(b, sbl__sub(zero, h)), h);
+        sum = sbl__add(sum, sbl__mul(b, b));
+    }
+    sbl__store(q + SBL__POOL_BB(ch) * SBL__POOL_COLS, sum);
 }
 
 /* The weight of the staged lanes (sbl__lanes_weight), into the chunk's plane W: a stage
