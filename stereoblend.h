@@ -463,6 +463,9 @@ typedef struct sbl_temporal_desc {
                                other eye has too (lag, resampling blur). The blend
                                halves independent noise but keeps a shared bias, so
                                the bias counts 1 + c times (docs/ESTIMATORS.md 4.7).
+                               c > 0 with the default estimator and a bilinear fetch:
+                               the blur of the sub-pixel history fetch counts as a
+                               bias too (4.12; a fixed camera has none).
                                0 -> the call's default: per-eye weights (c = 0) in
                                sbl_temporal_filter, c = 1 (the derived value) in
                                sbl_stereo_temporal_frame, whose output is the blend;
