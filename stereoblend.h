@@ -463,6 +463,9 @@ typedef struct sbl_temporal_desc {
                                other eye has too (lag, resampling blur). The blend
                                halves independent noise but keeps a shared bias, so
                                the bias counts 1 + c times (docs/ESTIMATORS.md 4.7).
+                               c > 0 with the default estimator and a bilinear fetch:
+                               the blur of the sub-pixel history fetch counts as a
+                               bias too (4.12; a fixed camera has none).
                                0 -> the call's default: per-eye weights (c = 0) in
                                sbl_temporal_filter, c = 1 (the derived value) in
                                sbl_stereo_temporal_frame, whose output is the blend;
@@ -2432,6 +2435,12 @@ typedef struct sbl__weight_params {
                           carried evidence's shrink (sbl__evidence_share sets it) */
     float evid_sh;     /* the reference path's shrink sh_R = r_R / (1 + r_R) of the pixel
                           in hand (sbl__kernel_pixel_ref_ch); 0: no mixing */
+    int blur;          /* temporal, pooled, default configuration, shared_bias > 0, bilinear
+                          fetch: the resampling blur's bias enters the bias energy
+                          (docs/ESTIMATORS.md 4.10, 4.12; sbl__blur_terms) */
+    double blur_b2, blur_g; /* the reference path's pixel in hand: the blur's predicted
+                               bias energy sum_c b_c^2 and its noise factor (B_b^2 =
+                               blur_b2 - blur_g var_X, at least 0) */
 } sbl__weight_params;
 
 /* Firefly limit of the robust estimator: the new sample may exceed the larger of the
@@ -2606,6 +2615,13 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         /* a stereo blend follows: a bias both eyes share counts 1 + c times (4.7) */
         if (p->temporal && p->shared_bias != 0.0f)
             bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
+        if (p->blur && p->temporal) {
+            /* the resampling blur's bias (4.12), shared by both eyes as the change's is;
+               the change's mean paired difference holds the blur already where the tests
+               fire, so the larger of the two, not their sum */
+            const double bb = (p->blur_b2 - p->blur_g * var_x) * (1.0 + SBL__CAST(double, p->shared_bias));
+            if (bb > bias2) bias2 = bb;
+        }
         {
             /* pooled stereo: the part of the bias that is X's (sbl__lag_share) */
             double fx = SBL_STEREO_LAG_SHARE && p->estimator == SBL_ESTIMATOR_POOLED && !p->temporal
@@ -2713,6 +2729,8 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.region_m = 1.0f;
     p.evid_mix = 0;
     p.evid_sh = 0.0f;
+    p.blur = 0;
+    p.blur_b2 = p.blur_g = 0.0;
     return p;
 }
 
@@ -3195,6 +3213,9 @@ typedef struct sbl__kernel {
     long share_cnt[3];
     int share_at[3];
     double evid_lnm, evid_thr, evid_garrote;
+    /* the temporal reprojection whose fetch positions give the resampling blur's
+       fractions (wp.blur; sbl__blur_terms) */
+    const sbl__temporal_rp *blur_rp;
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -3221,7 +3242,7 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
    SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 9)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 11)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -6427,6 +6448,136 @@ static float sbl__pool_ratio(const sbl__kernel *k, int x, int y)
     return (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y) ? k->pool_r[x] : 0.0f;
 }
 
+/* ---- the resampling blur's bias (docs/ESTIMATORS.md 4.10, 4.12) -----------------
+   A bilinear fetch at fraction f convolves the history with a kernel of variance
+   v = f (1 - f) per axis; a history grown from a restart at this fraction every frame
+   carries S = (N + 1) v / 2, and to second order its bias is b_c = (S_x d2x_c +
+   S_y d2y_c) / 2 (d2: x*'s second differences on the pixel's row and column), at most
+   half the 3x3 range of x*_c. Its noise: sample k of N was blurred by k v, and the
+   variance of a second difference of unit white noise blurred by a Gaussian of
+   variance s is g(s) (6 at s = 0), so E[sum_c b_c^2] exceeds B_b^2 by
+   (S_x^2 G_x + S_y^2 G_y) var_X / 4, G = (1 / N) sum_{k < N} g(k v). */
+
+/* G = mean_{k < n} g(k v) by Euler-Maclaurin: J(t) + (6 - g(t)) / (2 n) +
+   v (g'(t) - g'(0)) / (12 n), t = n v, J(t) the mean of g over [0, t]; J (1 + t),
+   g (1 + t)^2.5 and g' (1 + t)^3.5 tabulated at u = t / (1 + t) = i / 32 (finite at
+   t = inf: the asymptote g ~ 3 / (8 sqrt(pi)) t^-2.5); within 0.6 % of the sum for
+   n in [1, 200], v <= 1/4 (bench/proto_estimators.c's blur_g) */
+static const double sbl__blur_tj[33] = {
+    6, 5.62528, 5.27394, 4.94549, 4.6393, 4.35463, 4.09063, 3.84636,
+    3.6208, 3.41287, 3.22143, 3.04533, 2.88341, 2.73453, 2.59758, 2.47151,
+    2.35531, 2.24806, 2.1489, 2.05706, 1.97185, 1.89262, 1.81881, 1.74992,
+    1.68549, 1.62512, 1.56845, 1.51514, 1.46489, 1.41744, 1.37253, 1.32988,
+    1.28913
+};
+static const double sbl__blur_tg[33] = {
+    6, 5.34652, 4.74501, 4.19536, 3.69687, 3.24824, 2.84763, 2.49265,
+    2.18044, 1.90778, 1.67116, 1.46691, 1.29132, 1.14075, 1.01177, 0.901202,
+    0.806204, 0.724306, 0.653403, 0.59173, 0.53783, 0.490504, 0.448765, 0.411799,
+    0.378933, 0.349603, 0.323338, 0.299741, 0.278474, 0.259251, 0.241829, 0.225996,
+    0.211571
+};
+static const double sbl__blur_td[33] = {
+    -36.7392, -32.8195, -29.128, -25.6817, -22.4944, -19.5757, -16.9304, -14.5588,
+    -12.456, -10.6123, -9.01387, -7.64269, -6.47798, -5.49703, -4.67636, -3.9928,
+    -3.42457, -2.95195, -2.55781, -2.22769, -1.94977, -1.71448, -1.5142, -1.34282,
+    -1.19543, -1.06809, -0.957569, -0.861255, -0.776987, -0.702983, -0.637763, -0.58009,
+    -0.528928
+};
+
+static double sbl__blur_noise(double n, double v)
+{
+    const double t = n * v, iq = 1.0 / (1.0 + t), u = t * iq * 32.0, in = 1.0 / n;
+    const double iq2 = iq * iq, iq25 = iq2 * sqrt(iq);
+    const int i = u < 31.0 ? SBL__CAST(int, u) : 31;
+    const double f = u - i;
+    const double j = (sbl__blur_tj[i] + f * (sbl__blur_tj[i + 1] - sbl__blur_tj[i])) * iq;
+    const double g = (sbl__blur_tg[i] + f * (sbl__blur_tg[i + 1] - sbl__blur_tg[i])) * iq25;
+    const double d = (sbl__blur_td[i] + f * (sbl__blur_td[i + 1] - sbl__blur_td[i])) * iq25 * iq;
+    return j + in * ((6.0 - g) * 0.5 + v * (d - sbl__blur_td[0]) * (1.0 / 12.0));
+}
+
+/* The bilinear fetch's kernel variance per axis at target pixel (x, y): v = f (1 - f)
+   of the fractions of the source position the gather's plan takes (sbl__temporal_rp_pos;
+   the plan's fractions whatever the taps' tests then keep: a renormalised subset and the
+   3x3 fallback, both rare, get the position's fraction too) */
+SBL__INLINE void sbl__blur_fraction(const sbl__temporal_rp *s, int x, int y, double *vx, double *vy)
+{
+    double sx, sy, fx, fy;
+    *vx = *vy = 0.0;
+    if (s->source == SBL_TEMPORAL_MOTION) {
+        const float *mv = SBL__AT(s->motion, x, y);
+        sx = x + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]);
+        sy = y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
+    } else {
+        sbl__tap_want t;
+        if (!sbl__temporal_rp_pos(s, x, y, &t, &sx, &sy)) return;
+    }
+    sx -= 0.5;
+    sy -= 0.5;
+    /* x* is valid: the position is within [-0.5, size) (sbl__temporal_rp_pos), so the
+       truncation toward 0 and a step down for negatives is floor (no libm call) */
+    if (!(sx > -2.0 && sx < 1e9 && sy > -2.0 && sy < 1e9)) return;
+    fx = sx - SBL__CAST(double, SBL__CAST(int, sx));
+    fy = sy - SBL__CAST(double, SBL__CAST(int, sy));
+    if (fx < 0.0) fx += 1.0;
+    if (fy < 0.0) fy += 1.0;
+    *vx = fx * (1.0 - fx);
+    *vy = fy * (1.0 - fy);
+}
+
+/* The blur's terms at pixel x of row R[1] (x* valid there; R[0] / R[2] NULL outside the
+   image): *b2 = sum_c b_c^2 (each |b_c| at most half the 3x3 range of x*_c) and *g the
+   noise factor (S_x^2 G_x + S_y^2 G_y) / 4; both 0 where the fetch was at an integer
+   position or a value is not finite. */
+SBL__INLINE void sbl__blur_terms(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                                 const int ch, double *b2, double *g)
+{
+    const sbl__ring_row *r = R[1];
+    double vx, vy, n, sxx, syy, sum = 0.0, gn = 0.0;
+    int c, okx, oky;
+    *b2 = *g = 0.0;
+    if (!(r->v[x] > 0.0f)) return;
+    sbl__blur_fraction(k->blur_rp, x, r->row, &vx, &vy);
+    if (vx == 0.0 && vy == 0.0) return;
+    n = SBL__CAST(double, r->n[x] < k->n_cap ? r->n[x] : k->n_cap);
+    if (!(n >= 1.0)) n = 1.0;
+    sxx = 0.5 * (n + 1.0) * vx;
+    syy = 0.5 * (n + 1.0) * vy;
+    okx = x > 0 && x + 1 < k->w && r->v[x - 1] > 0.0f && r->v[x + 1] > 0.0f;
+    oky = R[0] && R[2] && R[0]->v[x] > 0.0f && R[2]->v[x] > 0.0f;
+    for (c = 0; c < ch; ++c) {
+        const double xc = SBL__CAST(double, r->x[c][x]);
+        const double dx = okx ? SBL__CAST(double, r->x[c][x - 1]) + SBL__CAST(double, r->x[c][x + 1]) - 2.0 * xc : 0.0;
+        const double dy = oky ? SBL__CAST(double, R[0]->x[c][x]) + SBL__CAST(double, R[2]->x[c][x]) - 2.0 * xc : 0.0;
+        double b = 0.5 * (sxx * dx + syy * dy), lo = xc, hi = xc, half;
+        int i, j;
+        for (j = 0; j < 3; ++j) {
+            if (!R[j]) continue;
+            for (i = x - 1; i <= x + 1; ++i) {
+                double q;
+                if (i < 0 || i >= k->w || !(R[j]->v[i] > 0.0f)) continue;
+                q = SBL__CAST(double, R[j]->x[c][i]);
+                if (q < lo) lo = q;
+                if (q > hi) hi = q;
+            }
+        }
+        /* a symmetric kernel moves a value at most half-way to its neighbours: the
+           Taylor form overshoots at edges and where S is large */
+        half = 0.5 * (hi - lo);
+        if (b > half) b = half;
+        if (b < -half) b = -half;
+        sum += b * b;
+    }
+    if (vx > 0.0) gn += sxx * sxx * sbl__blur_noise(n, vx);
+    if (vy > 0.0) gn += syy * syy * sbl__blur_noise(n, vy);
+    gn *= 0.25;
+    if (sbl__finite(SBL__CAST(float, sum)) && sbl__finite(SBL__CAST(float, gn))) {
+        *b2 = sum;
+        *g = gn;
+    }
+}
+
 /* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
    of the caller (sbl__kernel_pixel_ref). */
 SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *const *R, int x,
@@ -6480,10 +6631,12 @@ SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *c
                           centre);
         m.pool_r = SBL__CAST(double, sbl__pool_ratio(k, x, y));
         if (n_x > k->n_cap) n_x = k->n_cap;
-        if (SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) {
-            /* the mix's factor at this pixel (3.11) */
+        if ((SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) || k->wp.blur) {
             sbl__weight_params wp = k->wp;
-            wp.evid_sh = sbl__evidence_shrink(k, x);
+            /* the mix's factor at this pixel (3.11) */
+            if (SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) wp.evid_sh = sbl__evidence_shrink(k, x);
+            /* the resampling blur's terms at this pixel (4.12) */
+            if (k->wp.blur) sbl__blur_terms(k, R, x, ch, &wp.blur_b2, &wp.blur_g);
             n_out = sbl__blend_pixel(&wp, &m, yc, xs, n_x, n_y, ch, out, &a);
         } else {
             n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
@@ -6548,6 +6701,8 @@ typedef struct sbl__lane_stats {
                        (sbl__lane_edge) */
     sbl__v lean_s, inv_n8; /* (n - 1) / (n - 2) and 1 / (n - 1): 8 / 7 and 1 / 8 inside
                               (the lean's neighbour count, sbl__lanes_lean) */
+    sbl__v blur_b2, blur_g; /* the resampling blur's terms (sbl__blur_terms; read only
+                               where wp.blur) */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one
@@ -6832,6 +6987,8 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_S2(ch) (3 * (ch) + 6) /* staged lanes: Y's variance summed over the channels */
 #define SBL__POOL_W(ch) (3 * (ch) + 7) /* staged lanes: the weight (sbl__lanes_stage_weight) */
 #define SBL__POOL_DEV2(ch) (3 * (ch) + 8) /* staged lanes: |x* - mean|^2 (SBL_EVIDENCE_MIX only) */
+#define SBL__POOL_BB(ch) (3 * (ch) + 9) /* staged lanes: the blur's sum_c b_c^2 (wp.blur only) */
+#define SBL__POOL_BG(ch) (3 * (ch) + 10) /* staged lanes: the blur's noise factor (wp.blur only) */
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -7372,6 +7529,11 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         }
         if (temporal && p->shared_bias != 0.0f) /* 4.7; stereo: always 0 */
             b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias));
+        /* the resampling blur's bias, as sbl__weight (4.12): only the temporal default's
+           staged lanes (fast 1) hold its terms (wp.blur is set for no other) */
+        if (fast == 1 && p->blur)
+            b2 = sbl__max(b2, sbl__mul(sbl__sub(st->blur_b2, sbl__mul(st->blur_g, vx)),
+                                       sbl__set1(1.0f + p->shared_bias)));
         if (SBL_STEREO_LAG_SHARE && est == SBL_ESTIMATOR_POOLED && !temporal) {
             /* the part of the bias that is X's, as sbl__lag_share */
             const sbl__v amax = sbl__set1(SBL__CAST(float, SBL__LAG_AGE_MAX));
@@ -7676,6 +7838,92 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     if (mix) sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_DEV2(ch) * SBL__POOL_COLS, dev2);
 }
 
+/* The resampling blur's terms of pixels [x, x + VW) (sbl__blur_terms in lanes, float)
+   into the chunk's planes BB and BG, for sbl__lanes_stage_weight. Per pixel, in scalar:
+   the fetch's fractions, S and the noise factor (sbl__blur_fraction, sbl__blur_noise);
+   in lanes: the second differences, the 3x3 bound and the sum over the channels. R: the
+   ring rows as they are (NULL outside the image), not the edge rows' stand-ins. */
+SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
+                                       int base, const int ch)
+{
+    float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch);
+    float fsx[SBL__VW], fsy[SBL__VW], fg[SBL__VW], cl[SBL__VW], cr[SBL__VW];
+    const sbl__ring_row *r = R[1];
+    const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f), two = sbl__set1(2.0f);
+    sbl__v sx, sy, sum = zero, xl, xr, vl, vr, f[3][3];
+    sbl__m okx, oky, m[3][3];
+    int l, any = 0, c, j;
+    for (l = 0; l < SBL__VW; ++l) {
+        const int xp = x + l;
+        double vx, vy, n;
+        fsx[l] = fsy[l] = fg[l] = 0.0f;
+        cl[l] = xp > 0 ? 1.0f : 0.0f;
+        cr[l] = xp + 1 < k->w ? 1.0f : 0.0f;
+        if (!(r->v[xp] > 0.0f)) continue;
+        sbl__blur_fraction(k->blur_rp, xp, r->row, &vx, &vy);
+        if (vx == 0.0 && vy == 0.0) continue;
+        n = SBL__CAST(double, r->n[xp] < k->n_cap ? r->n[xp] : k->n_cap);
+        if (!(n >= 1.0)) n = 1.0;
+        vx *= 0.5 * (n + 1.0); /* S */
+        vy *= 0.5 * (n + 1.0);
+        fsx[l] = SBL__CAST(float, vx);
+        fsy[l] = SBL__CAST(float, vy);
+        fg[l] = SBL__CAST(float, 0.25 * ((vx > 0.0 ? vx * vx * sbl__blur_noise(n, 2.0 * vx / (n + 1.0)) : 0.0) +
+                                         (vy > 0.0 ? vy * vy * sbl__blur_noise(n, 2.0 * vy / (n + 1.0)) : 0.0)));
+        any = 1;
+    }
+    sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS, sbl__load(fg));
+    if (!any) { /* a fixed camera, integer motion: no blur */
+        sbl__store(q + SBL__POOL_BB(ch) * SBL__POOL_COLS, zero);
+        return;
+    }
+    sx = sbl__load(fsx);
+    sy = sbl__load(fsy);
+    vl = sbl__load(cl);
+    vr = sbl__load(cr);
+    /* which of the 3x3's x* exist (v is 0 or 1: products of them, then selects, so no
+       value outside them reaches a min) */
+    for (j = 0; j < 3; ++j) {
+        int i;
+        if (!R[j]) {
+            f[j][0] = f[j][1] = f[j][2] = zero;
+        } else {
+            f[j][0] = sbl__mul(vl, sbl__load(R[j]->v + x - 1));
+            f[j][1] = sbl__load(R[j]->v + x);
+            f[j][2] = sbl__mul(vr, sbl__load(R[j]->v + x + 1));
+        }
+        for (i = 0; i < 3; ++i) m[j][i] = sbl__gt(f[j][i], zero);
+    }
+    okx = sbl__gt(sbl__mul(f[1][0], f[1][2]), zero);
+    oky = sbl__gt(sbl__mul(f[0][1], f[2][1]), zero);
+    for (c = 0; c < ch; ++c) {
+        const sbl__v xc = sbl__load(r->x[c] + x);
+        sbl__v lo = xc, hi = xc, b, h, d2x, d2y;
+        xl = sbl__load(r->x[c] + x - 1);
+        xr = sbl__load(r->x[c] + x + 1);
+        d2x = sbl__sel(okx, sbl__sub(sbl__add(xl, xr), sbl__mul(two, xc)), zero);
+        d2y = zero;
+        if (R[0] && R[2])
+            d2y = sbl__sel(oky, sbl__sub(sbl__add(sbl__load(R[0]->x[c] + x), sbl__load(R[2]->x[c] + x)),
+                                         sbl__mul(two, xc)), zero);
+        for (j = 0; j < 3; ++j) {
+            int i;
+            if (!R[j]) continue;
+            for (i = 0; i < 3; ++i) {
+                const sbl__v v = sbl__sel(m[j][i], sbl__load(R[j]->x[c] + x + i - 1), xc);
+                lo = sbl__min(lo, v);
+                hi = sbl__max(hi, v);
+            }
+        }
+        b = sbl__mul(half, sbl__add(sbl__mul(sx, d2x), sbl__mul(sy, d2y)));
+        /* at most half the 3x3 range (sbl__blur_terms) */
+        h = sbl__mul(half, sbl__sub(hi, lo));
+        b = sbl__min(sbl__max(b, sbl__sub(zero, h)), h);
+        sum = sbl__add(sum, sbl__mul(b, b));
+    }
+    sbl__store(q + SBL__POOL_BB(ch) * SBL__POOL_COLS, sum);
+}
+
 /* The weight of the staged lanes (sbl__lanes_weight), into the chunk's plane W: a stage
    of its own, as its chain of divisions and a square root (t2, rho, the posterior, the
    weight) is long; in a loop of its own more vectors' chains overlap. */
@@ -7702,6 +7950,10 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, con
     st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
     st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
     st.evid_sh = mix ? sbl__evidence_shrink_lanes(k, x) : zero;
+    if (k->wp.blur) { /* (a constant of the instance) */
+        st.blur_b2 = sbl__load(q + SBL__POOL_BB(ch) * SBL__POOL_COLS);
+        st.blur_g = sbl__load(q + SBL__POOL_BG(ch) * SBL__POOL_COLS);
+    }
     sbl__store(q + SBL__POOL_W(ch) * SBL__POOL_COLS,
                sbl__lanes_weight(&k->wp, &st, mix ? sbl__load(q + SBL__POOL_DEV2(ch) * SBL__POOL_COLS) : zero,
                                  sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
@@ -7931,10 +8183,12 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
 {
     /* cfg: fast (0, 1, 2), or 3 / 4: the temporal / stereo default (fast 1 / 2) on the
        image's first or last row (k->edge_row; R[0] or R[2] NULL); 5 / 6: 1 / 3 with the
-       mix towards the paper's weight (k->wp.evid_mix, 3.11), which the others lack */
-    const int erow = cfg == 3 || cfg == 4 || cfg == 6;
-    const int fast = cfg == 3 || cfg == 5 || cfg == 6 ? 1 : cfg == 4 ? 2 : cfg;
-    const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6);
+       mix towards the paper's weight (k->wp.evid_mix, 3.11), which the others lack;
+       7 .. 10: 1, 3, 5, 6 with the resampling blur's bias (k->wp.blur, 4.12) */
+    const int erow = cfg == 3 || cfg == 4 || cfg == 6 || cfg == 8 || cfg == 10;
+    const int fast = cfg == 3 || cfg >= 5 ? 1 : cfg == 4 ? 2 : cfg;
+    const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6 || cfg == 9 || cfg == 10);
+    const int blur = cfg >= 7;
     /* k: a copy with ch (and fast 1: wp.evid_mix) the instance's constants; it never
        escapes (the one call not inlined, sbl__row_pool_ref, takes k_in), so the compiler
        folds its fields' tests in the loops (the weight's of evid_mix too) */
@@ -7973,6 +8227,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     k_ch.ch = ch;
     if (fast == 1) k_ch.wp.evid_mix = mix; /* (the other instances test it at run time) */
     if (fast) k_ch.temporal = fast == 1; /* (sbl__kernel_lanes_pooled: as k->wp.temporal) */
+    k_ch.wp.blur = blur; /* (only the default configuration sets it: sbl_temporal_filter) */
     if (erow) {
         /* the missing row: the first row's window takes row 1 as its row 0 too, the
            last row's takes row 0 as its row 2 too; every sum then adds 0 for it (the
@@ -8077,6 +8332,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
                 SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, Er, mix));
+                if (blur) SBL__RUN_VECTORS(sbl__lanes_stage_blur(k_in, R, p, base, ch));
                 if (full) {
                     SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 1, Er));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
@@ -8090,10 +8346,14 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
             lo = b;
         }
         /* the image's border columns (sbl__kernel_run_span asked: their windows are safe) */
-        if (fast && (k->edge_ask & 1) && x == 0)
+        if (fast && (k->edge_ask & 1) && x == 0) {
+            if (blur) sbl__lanes_stage_blur(k_in, R, 0, base, ch);
             sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, y, ch, 1, erow ? 2 : 3, fast, mix);
-        if (fast && (k->edge_ask & 2) && e == w)
+        }
+        if (fast && (k->edge_ask & 2) && e == w) {
+            if (blur) sbl__lanes_stage_blur(k_in, R, w - SBL__VW, base, ch);
             sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, y, ch, 2, erow ? 2 : 3, fast, mix);
+        }
         x = e;
     }
 #undef SBL__POOLED_VECTOR
@@ -8216,7 +8476,12 @@ SBL__POOLED_INSTANCE(1, 4) SBL__POOLED_INSTANCE(2, 4) SBL__POOLED_INSTANCE(3, 4)
 #if SBL_EVIDENCE_MIX
 SBL__POOLED_INSTANCE(1, 5) SBL__POOLED_INSTANCE(2, 5) SBL__POOLED_INSTANCE(3, 5) SBL__POOLED_INSTANCE(4, 5)
 SBL__POOLED_INSTANCE(1, 6) SBL__POOLED_INSTANCE(2, 6) SBL__POOLED_INSTANCE(3, 6) SBL__POOLED_INSTANCE(4, 6)
+SBL__POOLED_INSTANCE(1, 9) SBL__POOLED_INSTANCE(2, 9) SBL__POOLED_INSTANCE(3, 9) SBL__POOLED_INSTANCE(4, 9)
+SBL__POOLED_INSTANCE(1, 10) SBL__POOLED_INSTANCE(2, 10) SBL__POOLED_INSTANCE(3, 10) SBL__POOLED_INSTANCE(4, 10)
 #endif
+/* the resampling blur's bias (4.12): the temporal default behind a stereo blend */
+SBL__POOLED_INSTANCE(1, 7) SBL__POOLED_INSTANCE(2, 7) SBL__POOLED_INSTANCE(3, 7) SBL__POOLED_INSTANCE(4, 7)
+SBL__POOLED_INSTANCE(1, 8) SBL__POOLED_INSTANCE(2, 8) SBL__POOLED_INSTANCE(3, 8) SBL__POOLED_INSTANCE(4, 8)
 #undef SBL__POOLED_INSTANCE
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
@@ -8226,7 +8491,30 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
     const int fast = sbl__kernel_fast(k);
     k->pool_row = R[1]->row;
     k->edge_done = fast ? k->edge_ask : 0; /* sbl__lanes_edge */
-    if (k->edge_row && !k->wp.temporal) {
+    if (fast && k->wp.temporal && k->wp.blur) {
+        /* the blur's instances (a compile-time flag: the others keep their code) */
+        const int cfg = (k->edge_row ? 8 : 7) + (SBL_EVIDENCE_MIX && k->wp.evid_mix ? 2 : 0);
+        switch (k->ch * 16 + cfg) {
+        case 16 + 7: sbl__kernel_lanes_pooled_1_7(k, R, pa, pb, xa, xb, win); break;
+        case 32 + 7: sbl__kernel_lanes_pooled_2_7(k, R, pa, pb, xa, xb, win); break;
+        case 48 + 7: sbl__kernel_lanes_pooled_3_7(k, R, pa, pb, xa, xb, win); break;
+        case 16 + 8: sbl__kernel_lanes_pooled_1_8(k, R, pa, pb, xa, xb, win); break;
+        case 32 + 8: sbl__kernel_lanes_pooled_2_8(k, R, pa, pb, xa, xb, win); break;
+        case 48 + 8: sbl__kernel_lanes_pooled_3_8(k, R, pa, pb, xa, xb, win); break;
+        case 64 + 8: sbl__kernel_lanes_pooled_4_8(k, R, pa, pb, xa, xb, win); break;
+#if SBL_EVIDENCE_MIX
+        case 16 + 9: sbl__kernel_lanes_pooled_1_9(k, R, pa, pb, xa, xb, win); break;
+        case 32 + 9: sbl__kernel_lanes_pooled_2_9(k, R, pa, pb, xa, xb, win); break;
+        case 48 + 9: sbl__kernel_lanes_pooled_3_9(k, R, pa, pb, xa, xb, win); break;
+        case 64 + 9: sbl__kernel_lanes_pooled_4_9(k, R, pa, pb, xa, xb, win); break;
+        case 16 + 10: sbl__kernel_lanes_pooled_1_10(k, R, pa, pb, xa, xb, win); break;
+        case 32 + 10: sbl__kernel_lanes_pooled_2_10(k, R, pa, pb, xa, xb, win); break;
+        case 48 + 10: sbl__kernel_lanes_pooled_3_10(k, R, pa, pb, xa, xb, win); break;
+        case 64 + 10: sbl__kernel_lanes_pooled_4_10(k, R, pa, pb, xa, xb, win); break;
+#endif
+        default: sbl__kernel_lanes_pooled_4_7(k, R, pa, pb, xa, xb, win); break;
+        }
+    } else if (k->edge_row && !k->wp.temporal) {
         /* the image's first or last row (only the default configurations come here) */
         switch (k->ch) {
         case 1: sbl__kernel_lanes_pooled_1_4(k, R, pa, pb, xa, xb, win); break;
@@ -8540,6 +8828,15 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                    d.alpha_min, d.clip_gamma, d.bias_threshold);
     k.wp.temporal = 1;
     k.wp.shared_bias = d.stereo_shared_bias;
+    /* the resampling blur's bias (docs/ESTIMATORS.md 4.12): behind a stereo blend, in
+       the default configuration (its lanes: sbl__kernel_lanes_pooled's blur instances),
+       for the bilinear fetch (Catmull-Rom reproduces quadratics: no second-order blur) */
+    if (d.stereo_shared_bias > 0.0f && d.estimator == SBL_ESTIMATOR_POOLED &&
+        d.rectify == SBL_RECTIFY_NONE && d.weight_mode == SBL_WEIGHT_SCALAR && s.history &&
+        !s.src.cubic) {
+        k.wp.blur = 1;
+        k.blur_rp = &s;
+    }
     k.n_cap = d.max_history;
     k.temporal = 1;
     k.own = &frame->color;

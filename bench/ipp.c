@@ -150,6 +150,9 @@ int main(int argc, char **argv)
             hi.gbuffer.normals = sbl_image_make(b[e].prev_normal, W, H, 3);
             hi.gbuffer.ids = sbl_image_make(b[e].prev_id, W, H, 1);
         }
+        /* IPP_SHARED_BIAS=c: the temporal filter as the combined pipeline runs it
+           (stereo_shared_bias c; 1 in sbl_stereo_temporal_frame and default-stereo) */
+        if (getenv("IPP_SHARED_BIAS")) td.stereo_shared_bias = (float)atof(getenv("IPP_SHARED_BIAS"));
         if (temporal_fn(&td, &f, &hi, &o, 0, H, scratch, bytes) != SBL_OK) return 1;
     }
     {   /* the left eye's stereo blend of the two temporal outputs */
@@ -174,8 +177,9 @@ int main(int argc, char **argv)
                       sbl_image_make(NULL, 0, 0, 1), 0, H, scratch, bytes) != SBL_OK)
             return 1;
     }
-    printf("ipp case %s%s: %dx%d RGB, %s; pixels per call %d (temporal runs 2 eyes)\n",
-           names[kind], ev ? " with the evidence plane" : "", W, H, SBL_SIMD_NAME, W * H);
+    printf("ipp case %s%s%s: %dx%d RGB, %s; pixels per call %d (temporal runs 2 eyes)\n",
+           names[kind], ev ? " with the evidence plane" : "",
+           getenv("IPP_SHARED_BIAS") ? ", stereo_shared_bias set" : "", W, H, SBL_SIMD_NAME, W * H);
     if (argc > 2 && strcmp(argv[2], "hash") == 0) {
         unsigned long long h = 14695981039346656037ull;
         size_t n = (size_t)W * H;
