@@ -7888,9 +7888,11 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
         if (!R[j]) {
             f[j][0] = f[j][1] = f[j][2] = zero;
         } else {
-            f[j][0] = sbl__mul(vl, sbl__load(R[j]->v + x - 1));
+            /* (selects, not products: the columns outside the image are padding, whose
+               bits a product would carry) */
+            f[j][0] = sbl__sel(sbl__gt(vl, zero), sbl__load(R[j]->v + x - 1), zero);
             f[j][1] = sbl__load(R[j]->v + x);
-            f[j][2] = sbl__mul(vr, sbl__load(R[j]->v + x + 1));
+            f[j][2] = sbl__sel(sbl__gt(vr, zero), sbl__load(R[j]->v + x + 1), zero);
         }
         for (i = 0; i < 3; ++i) m[j][i] = sbl__gt(f[j][i], zero);
     }
