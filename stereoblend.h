@@ -8006,18 +8006,18 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
             for (c = 0; c < ch; ++c)
                 for (j = SBL__COL_A; j <= SBL__COL_DB; ++j) {
                     float *const d = col0 + SBL__CHUNK_COL(c) + j * SBL__CHUNK_COLS;
-                    memcpy(d, d + shift, 2 * reach * sizeof(float));
+                    memcpy(d, d + shift, sizeof(float[2 * SBL__POOL_REACH]));
                 }
             {
                 float *const d = col0 + SBL__CHUNK_COLN(ch);
-                memcpy(d, d + shift, 2 * reach * sizeof(float));
+                memcpy(d, d + shift, sizeof(float[2 * SBL__POOL_REACH]));
             }
             {
                 /* the blocks' planes (sbl__pool_lanes_blocks with pairs) */
                 const int planes[4] = {SBL__POOL_M2(ch), SBL__POOL_SE2(ch), SBL__POOL_PD2(ch), SBL__POOL_PV(ch)};
                 for (j = 0; j < 4; ++j) {
                     float *const d = SBL__POOL_PLANE(k, planes[j]) + (reach - span);
-                    memcpy(d, d + shift, 2 * span * sizeof(float));
+                    memcpy(d, d + shift, sizeof(float[2 * SBL__POOL_STEP * SBL__POOL_BLOCKS]));
                 }
             }
         }
