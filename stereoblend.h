@@ -7707,7 +7707,6 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w;
-    int lean;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
@@ -7742,10 +7741,8 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
 #define SBL__FAST_YB(c) \
     do { \
         yb[c] = sbl__mul(yc[c], t); /* (t <= 1, above) */ \
-        if (lean) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
+        if (fast == 2) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
     } while (0)
-    /* the lean's values (sbl__lanes_lean), only where sbl__lanes_weight takes it */
-    lean = fast == 2 && !sbl__all(sbl__gt(n_y, one));
     SBL__LANES_CH(SBL__FAST_YB);
 #undef SBL__FAST_YB
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
@@ -8270,18 +8267,18 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
             for (c = 0; c < ch; ++c)
                 for (j = SBL__COL_A; j <= SBL__COL_DB; ++j) {
                     float *const d = col0 + SBL__CHUNK_COL(c) + j * SBL__CHUNK_COLS;
-                    memcpy(d, d + shift, 2 * reach * sizeof(float));
+                    memcpy(d, d + shift, sizeof(float[2 * SBL__POOL_REACH]));
                 }
             {
                 float *const d = col0 + SBL__CHUNK_COLN(ch);
-                memcpy(d, d + shift, 2 * reach * sizeof(float));
+                memcpy(d, d + shift, sizeof(float[2 * SBL__POOL_REACH]));
             }
             {
                 /* the blocks' planes (sbl__pool_lanes_blocks with pairs) */
                 const int planes[4] = {SBL__POOL_M2(ch), SBL__POOL_SE2(ch), SBL__POOL_PD2(ch), SBL__POOL_PV(ch)};
                 for (j = 0; j < 4; ++j) {
                     float *const d = SBL__POOL_PLANE(k, planes[j]) + (reach - span);
-                    memcpy(d, d + shift, 2 * span * sizeof(float));
+                    memcpy(d, d + shift, sizeof(float[2 * SBL__POOL_STEP * SBL__POOL_BLOCKS]));
                 }
             }
         }
