@@ -6526,6 +6526,28 @@ SBL__INLINE void sbl__blur_fraction(const sbl__temporal_rp *s, int x, int y, dou
     *vy = fy * (1.0 - fy);
 }
 
+/* The blur's per-pixel scalars at pixel x of ring row r: S per axis (S = (N + 1) v / 2
+   from this fetch's fraction, sbl__blur_fraction) and the noise factor of its second
+   differences, (S_x^2 G_x + S_y^2 G_y) / 4 (sbl__blur_noise). 0: no blur at the pixel
+   (no x*, or a fetch at an integer position). */
+SBL__INLINE int sbl__blur_pixel(const sbl__kernel *k, const sbl__ring_row *r, int x,
+                                double *sxx, double *syy, double *gn)
+{
+    double vx, vy, n;
+    *sxx = *syy = *gn = 0.0;
+    if (!(r->v[x] > 0.0f)) return 0;
+    sbl__blur_fraction(k->blur_rp, x, r->row, &vx, &vy);
+    if (vx == 0.0 && vy == 0.0) return 0;
+    n = SBL__CAST(double, r->n[x] < k->n_cap ? r->n[x] : k->n_cap);
+    if (!(n >= 1.0)) n = 1.0;
+    *sxx = 0.5 * (n + 1.0) * vx;
+    *syy = 0.5 * (n + 1.0) * vy;
+    if (vx > 0.0) *gn += *sxx * *sxx * sbl__blur_noise(n, vx);
+    if (vy > 0.0) *gn += *syy * *syy * sbl__blur_noise(n, vy);
+    *gn *= 0.25;
+    return 1;
+}
+
 /* The blur's terms at pixel x of row R[1] (x* valid there; R[0] / R[2] NULL outside the
    image): *b2 = sum_c b_c^2 (each |b_c| at most half the 3x3 range of x*_c) and *g the
    noise factor (S_x^2 G_x + S_y^2 G_y) / 4; both 0 where the fetch was at an integer
@@ -6534,16 +6556,10 @@ SBL__INLINE void sbl__blur_terms(const sbl__kernel *k, const sbl__ring_row *cons
                                  const int ch, double *b2, double *g)
 {
     const sbl__ring_row *r = R[1];
-    double vx, vy, n, sxx, syy, sum = 0.0, gn = 0.0;
+    double sxx, syy, sum = 0.0, gn;
     int c, okx, oky;
     *b2 = *g = 0.0;
-    if (!(r->v[x] > 0.0f)) return;
-    sbl__blur_fraction(k->blur_rp, x, r->row, &vx, &vy);
-    if (vx == 0.0 && vy == 0.0) return;
-    n = SBL__CAST(double, r->n[x] < k->n_cap ? r->n[x] : k->n_cap);
-    if (!(n >= 1.0)) n = 1.0;
-    sxx = 0.5 * (n + 1.0) * vx;
-    syy = 0.5 * (n + 1.0) * vy;
+    if (!sbl__blur_pixel(k, r, x, &sxx, &syy, &gn)) return;
     okx = x > 0 && x + 1 < k->w && r->v[x - 1] > 0.0f && r->v[x + 1] > 0.0f;
     oky = R[0] && R[2] && R[0]->v[x] > 0.0f && R[2]->v[x] > 0.0f;
     for (c = 0; c < ch; ++c) {
@@ -6569,9 +6585,6 @@ SBL__INLINE void sbl__blur_terms(const sbl__kernel *k, const sbl__ring_row *cons
         if (b < -half) b = -half;
         sum += b * b;
     }
-    if (vx > 0.0) gn += sxx * sxx * sbl__blur_noise(n, vx);
-    if (vy > 0.0) gn += syy * syy * sbl__blur_noise(n, vy);
-    gn *= 0.25;
     if (sbl__finite(SBL__CAST(float, sum)) && sbl__finite(SBL__CAST(float, gn))) {
         *b2 = sum;
         *g = gn;
@@ -7852,22 +7865,13 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
     int l, any = 0, c, j;
     for (l = 0; l < SBL__VW; ++l) {
         const int xp = x + l;
-        double vx, vy, n;
-        fsx[l] = fsy[l] = fg[l] = 0.0f;
+        double sxx, syy, gn;
         cl[l] = xp > 0 ? 1.0f : 0.0f;
         cr[l] = xp + 1 < k->w ? 1.0f : 0.0f;
-        if (!(r->v[xp] > 0.0f)) continue;
-        sbl__blur_fraction(k->blur_rp, xp, r->row, &vx, &vy);
-        if (vx == 0.0 && vy == 0.0) continue;
-        n = SBL__CAST(double, r->n[xp] < k->n_cap ? r->n[xp] : k->n_cap);
-        if (!(n >= 1.0)) n = 1.0;
-        vx *= 0.5 * (n + 1.0); /* S */
-        vy *= 0.5 * (n + 1.0);
-        fsx[l] = SBL__CAST(float, vx);
-        fsy[l] = SBL__CAST(float, vy);
-        fg[l] = SBL__CAST(float, 0.25 * ((vx > 0.0 ? vx * vx * sbl__blur_noise(n, 2.0 * vx / (n + 1.0)) : 0.0) +
-                                         (vy > 0.0 ? vy * vy * sbl__blur_noise(n, 2.0 * vy / (n + 1.0)) : 0.0)));
-        any = 1;
+        any |= sbl__blur_pixel(k, r, xp, &sxx, &syy, &gn);
+        fsx[l] = SBL__CAST(float, sxx);
+        fsy[l] = SBL__CAST(float, syy);
+        fg[l] = SBL__CAST(float, gn);
     }
     sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS, sbl__load(fg));
     if (!any) { /* a fixed camera, integer motion: no blur */
