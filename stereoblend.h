@@ -4364,7 +4364,7 @@ SBL__NOINLINE void sbl__lanes_taps_pairs(const sbl__tap_src *s, sbl__tap_plan *p
 }
 
 /* sbl__row_taps for one channel count and sky flag (constants where inlined). */
-SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int i0, int n, int fallback,
                                   sbl__ring_row *r, int x, int ch, int sky, int flag, int ev)
 {
     /* contiguous vectors need depth and N packed (plain loads); the colour's fixed lane
@@ -4388,7 +4388,7 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
                           (!s->use_normal || s->normals.step == 3) && (!s->use_id || s->ids.step == 1)
                               ? (s->use_id ? 1 : 0) | (s->use_normal ? 2 : 0)
                               : 0;
-    int i = 0;
+    int i = i0;
     for (;;) {
         int contiguous, full = 0, nid_run, u;
         if (i + SBL__VW > n) i = n - SBL__VW;
@@ -4432,68 +4432,68 @@ SBL__INLINE void sbl__row_taps_ch(const sbl__tap_src *s, sbl__tap_plan *p, int n
     }
 }
 
-/* The vector stage over plan entries [0, n) (n >= VW) into ring columns [x, x + n); the
-   last vector overlaps the one before rather than running past the block. sky: every
+/* The vector stage over plan entries [i0, n) (n - i0 >= VW) into ring columns [x + i0,
+   x + n); the last vector overlaps the one before rather than running past the block. sky: every
    planned entry expects sky (see sbl__lanes_taps). */
-static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+static void sbl__row_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i0, int n, int fallback,
                           sbl__ring_row *r, int x, int sky)
 {
     if (sky) {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 0, 0); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 0, 0); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 0, 0); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 0, 0); break;
+        case 1: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 1, 1, 0, 0); break;
+        case 2: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 2, 1, 0, 0); break;
+        case 3: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 3, 1, 0, 0); break;
+        default: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 4, 1, 0, 0); break;
         }
     } else {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 0, 0); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 0, 0); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 0, 0); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 0, 0); break;
+        case 1: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 1, 0, 0, 0); break;
+        case 2: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 2, 0, 0, 0); break;
+        case 3: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 3, 0, 0, 0); break;
+        default: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 4, 0, 0, 0); break;
         }
     }
 }
 
 /* sbl__row_taps, flagging the unsafe values it writes (the temporal row gather) */
-static void sbl__row_taps_flag(const sbl__tap_src *s, sbl__tap_plan *p, int n, int fallback,
+static void sbl__row_taps_flag(const sbl__tap_src *s, sbl__tap_plan *p, int i0, int n, int fallback,
                                sbl__ring_row *r, int x, int sky)
 {
     if (sky) {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 1, 0); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 1, 0); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 1, 0); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 1, 0); break;
+        case 1: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 1, 1, 1, 0); break;
+        case 2: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 2, 1, 1, 0); break;
+        case 3: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 3, 1, 1, 0); break;
+        default: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 4, 1, 1, 0); break;
         }
     } else {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 1, 0); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 1, 0); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 1, 0); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 1, 0); break;
+        case 1: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 1, 0, 1, 0); break;
+        case 2: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 2, 0, 1, 0); break;
+        case 3: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 3, 0, 1, 0); break;
+        default: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 4, 0, 1, 0); break;
         }
     }
 }
 
 /* sbl__row_taps_flag with the evidence plane gathered in the same taps (r->e: the
    temporal row gather when the pooled estimator carries it) */
-SBL__NOINLINE void sbl__row_taps_flag_ev(const sbl__tap_src *s, sbl__tap_plan *p, int n,
+SBL__NOINLINE void sbl__row_taps_flag_ev(const sbl__tap_src *s, sbl__tap_plan *p, int i0, int n,
                                          int fallback, sbl__ring_row *r, int x, int sky)
 {
     if (sky) {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 1, 1, 1); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 1, 1, 1); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 1, 1, 1); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 1, 1, 1); break;
+        case 1: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 1, 1, 1, 1); break;
+        case 2: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 2, 1, 1, 1); break;
+        case 3: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 3, 1, 1, 1); break;
+        default: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 4, 1, 1, 1); break;
         }
     } else {
         switch (s->color.ch) {
-        case 1: sbl__row_taps_ch(s, p, n, fallback, r, x, 1, 0, 1, 1); break;
-        case 2: sbl__row_taps_ch(s, p, n, fallback, r, x, 2, 0, 1, 1); break;
-        case 3: sbl__row_taps_ch(s, p, n, fallback, r, x, 3, 0, 1, 1); break;
-        default: sbl__row_taps_ch(s, p, n, fallback, r, x, 4, 0, 1, 1); break;
+        case 1: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 1, 0, 1, 1); break;
+        case 2: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 2, 0, 1, 1); break;
+        case 3: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 3, 0, 1, 1); break;
+        default: sbl__row_taps_ch(s, p, i0, n, fallback, r, x, 4, 0, 1, 1); break;
         }
     }
 }
@@ -4657,7 +4657,9 @@ static SBL__RARE void sbl__fallback_lanes_ev(const sbl__tap_src *s, sbl__ring_ro
    from entry i in lanes and returns the entries it leaves to `plan_one`, or -1 where it
    cannot), the tap stage, then the pixel gather for every entry handed back, or the
    rig's own last step (`after`, when given: far lanes, back-check and that pixel
-   gather, in one pass). Blocks narrower than a vector take the pixel gather. Inlined
+   gather, in one pass). `run` (optional): settles a block's first entries in a pass of
+   its own before the plan and returns how many (no redo among them); the plan and the
+   tap stage take the rest. Blocks narrower than a vector take the pixel gather. Inlined
    with constant hooks: no call through a pointer. */
 SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y, int xa,
                                         int xb, const sbl__tap_src *src, int fallback,
@@ -4668,11 +4670,13 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                                         void (*after)(const void *, sbl__ring_row *, sbl__block *),
                                         void (*fallback_block)(const void *, sbl__ring_row *,
                                                                sbl__block *),
+                                        int (*run)(const void *, sbl__ring_row *, sbl__block *,
+                                                   int, int),
                                         int flag, int ev)
 {
     const int ch = src->color.ch;
     sbl__block b;
-    int i;
+    int i, i0;
     b.y = y;
     b.row_state = -1;
     for (i = 0; i < SBL__VW; ++i) { /* |step| < INT_MAX / VW: sbl__row_gather_ok */
@@ -4697,16 +4701,22 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
         b.mode = 0;
         b.uni = 0;
         if (start(ctx, r, &b)) continue;
-        for (i = 0; i < b.n;) {
+        i0 = 0;
+        if (run) { /* entries [0, i0) settled already (no redo among them) */
+            i0 = run(ctx, r, &b, fallback, ev);
+            if (i0 >= b.n) continue;
+            if (i0 > b.n - SBL__VW) i0 = b.n - SBL__VW; /* (planned again: the same values) */
+        }
+        for (i = i0; i < b.n;) {
             int bits = i + SBL__VW <= b.n ? plan_vec(ctx, &b, i) : -1, l = SBL__VW;
             if (bits < 0) { bits = 1; l = 1; }
             for (; bits; ++i, --l, bits >>= 1)
                 if (bits & 1) plan_one(ctx, &b, i);
             i += l;
         }
-        if (ev) sbl__row_taps_flag_ev(src, &b.p, b.n, fallback, r, b.x0, b.sky);
-        else if (flag) sbl__row_taps_flag(src, &b.p, b.n, fallback, r, b.x0, b.sky);
-        else sbl__row_taps(src, &b.p, b.n, fallback, r, b.x0, b.sky);
+        if (ev) sbl__row_taps_flag_ev(src, &b.p, i0, b.n, fallback, r, b.x0, b.sky);
+        else if (flag) sbl__row_taps_flag(src, &b.p, i0, b.n, fallback, r, b.x0, b.sky);
+        else sbl__row_taps(src, &b.p, i0, b.n, fallback, r, b.x0, b.sky);
         if (after) {
             after(ctx, r, &b);
             continue;
@@ -5650,6 +5660,62 @@ static void sbl__temporal_fallback_block_ev(const void *ctx, sbl__ring_row *r, s
     sbl__temporal_fallback_block_in(ctx, r, b, 1);
 }
 
+/* The row gather's `run` for the temporal call: a uniform block (sbl__temporal_uniform_block)
+   whose vectors, from entry 0, are each planned and tapped at once while they are what
+   the plan would make its common case: every lane kept by the target tests, "full"
+   (uniform 3), packed RGB with depth and N tested and no normal / id test. Each such
+   vector gets only the plan entries sbl__lanes_taps reads (plan_uni's values) and the
+   same sbl__lanes_taps call as sbl__row_taps_ch makes for it, so the same bits, without
+   the plan's other stores and the per-vector dispatch. Stops at the first vector that is
+   not so or needs a redo (the plan and the tap stage then take it, writing its columns
+   again). Returns the first entry not settled (b->n: all). */
+SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl__block *b, int fallback,
+                                     int ev)
+{
+    const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
+    const sbl__tap_src *src = &s->src;
+    sbl__tap_plan *p = &b->p;
+    const int all = (1 << SBL__VW) - 1;
+    sbl__v fx, fy, one, tol;
+    int i = 0;
+    if (!b->uni || b->u_lo > 0 || b->sky || src->color.ch != 3 || src->color.step != 3 ||
+        !src->use_depth || src->depth.step != 1 || !src->length.p || src->length.step != 1 ||
+        src->use_normal || src->use_id || !s->geo.depth.p || s->geo.normals.p || s->geo.ids.p ||
+        b->x0 + b->n > src->width)
+        return 0;
+    fx = sbl__set1(b->u_fx);
+    fy = sbl__set1(b->u_fy);
+    one = sbl__set1(1.0f);
+    tol = sbl__set1(src->depth_tolerance);
+    for (;;) {
+        sbl__v z, slack;
+        unsigned char redo[SBL__VW], any = 0;
+        int l;
+        if (i + SBL__VW > b->n) i = b->n - SBL__VW;
+        if (i + SBL__VW > b->u_hi) return i;
+        if (sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, b->x0 + i, b->y, &z, &slack)) != all ||
+            !sbl__full_lanes(tol, z, slack))
+            return i;
+        sbl__store(p->fx + i, fx);
+        sbl__store(p->fy + i, fy);
+        sbl__store(p->fast + i, one);
+        sbl__store(p->depth + i, z);
+        sbl__store(p->slack + i, slack);
+        memset(p->redo + i, 0, SBL__VW);
+        /* (contiguous: sbl__lanes_taps reads entry i's first tap indices only) */
+        p->ci[i] = b->u_first[0] + 3 * i;
+        p->di[i] = b->u_first[1] + i;
+        p->li[i] = b->u_first[2] + i;
+        if (ev) sbl__lanes_taps(src, p, i, fallback, r, b->x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 1, 0, 0, 0);
+        else sbl__lanes_taps(src, p, i, fallback, r, b->x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 0, 0, 0, 0);
+        memcpy(redo, p->redo + i, SBL__VW);
+        for (l = 0; l < SBL__VW; ++l) any |= redo[l];
+        if (any) return i;
+        if (i + SBL__VW >= b->n) return b->n;
+        i += SBL__VW;
+    }
+}
+
 /* Can the temporal row gather take the evidence plane (source e: the colour's whose
    colour is the plane) in the colour's plan (source s)? It reads the plane with N's tap
    indices: N present, the plane laid out as N. */
@@ -5669,7 +5735,8 @@ static void sbl__temporal_rp_row(const void *ctx, struct sbl__ring_row *r, int y
     r->gather_unsafe = 0;
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block, 1, 0);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block,
+                           sbl__temporal_uniform_run, 1, 0);
 }
 
 /* The same with the evidence plane into r->e (NULL: as sbl__temporal_rp_row) in the
@@ -5687,7 +5754,8 @@ static void sbl__temporal_rp_row_ev(const void *ctx, struct sbl__ring_row *r, in
     r->gather_unsafe = 0;
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->rp.no_fallback, sbl__temporal_rp_pixel,
                            sbl__temporal_block_start_ev, sbl__temporal_plan_vec,
-                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block_ev, 1, 1);
+                           sbl__temporal_plan_one, NULL, sbl__temporal_fallback_block_ev,
+                           sbl__temporal_uniform_run, 1, 1);
 }
 #endif
 
@@ -9751,7 +9819,7 @@ static void sbl__stereo_parallel_row(const sbl__stereo_rp *s, sbl__ring_row *r, 
         if ((done || x + SBL__VW >= xb) && pa >= 0) {
             sbl__row_gather_blocks(s, r, y, pa, pb, &s->src, fallback, sbl__stereo_rp_pixel,
                                    sbl__stereo_block_start, sbl__stereo_plan_vec, sbl__stereo_plan_one,
-                                   sbl__stereo_block_after, NULL, 0, 0);
+                                   sbl__stereo_block_after, NULL, NULL, 0, 0);
             if (flag) r->gather_unsafe += sbl__ring_flag_range(r, pa, pb, ch);
             pa = -1;
         }
@@ -9769,7 +9837,7 @@ static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, 
     }
     sbl__row_gather_blocks(ctx, r, y, xa, xb, &s->src, !s->d.reproject.no_fallback,
                            sbl__stereo_rp_pixel, sbl__stereo_block_start, sbl__stereo_plan_vec,
-                           sbl__stereo_plan_one, sbl__stereo_block_after, NULL, 0, 0);
+                           sbl__stereo_plan_one, sbl__stereo_block_after, NULL, NULL, 0, 0);
 }
 #endif
 
