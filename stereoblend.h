@@ -5334,25 +5334,50 @@ SBL__INLINE void sbl__void_tile(const sbl__tap_src *src, sbl__ring_row *r, int x
 /* ---- camera planning in lanes ---------------------------------------------------
    The camera source's position maths in double lanes (the layer is at the top of the
    row gather). */
-/* Do pixels [x0, x0 + n) of a row (n >= 2, motion packed: pixel step 2, at mp) carry
-   one motion vector, the same bits in each? Two pixels per compare; an odd n's last
-   pair is read twice. */
+/* Do pixels [x0, x0 + n) of a row (n >= VW, motion packed: pixel step 2, at mp) carry
+   one motion vector, the same bits in each? Two independent ORs of compares (the loop
+   is the cost of a uniform block's test); the last ones overlap the ones before. */
 SBL__INLINE int sbl__motion_one(const float *mp, int n)
 {
-    const __m128i first = _mm_unpacklo_epi64(_mm_loadl_epi64(SBL__PCAST(const __m128i *, mp)),
-                                             _mm_loadl_epi64(SBL__PCAST(const __m128i *, mp)));
-    __m128i diff = _mm_setzero_si128();
     const int m = 2 * n;
     uint64_t a, b;
     int k;
     memcpy(&a, mp, sizeof a);
     memcpy(&b, mp + 2, sizeof b);
     if (a != b) return 0; /* a varying field shows it at once */
-    for (k = 4; k + 4 <= m; k += 4)
-        diff = _mm_or_si128(diff, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + k)), first));
-    if (k < m)
-        diff = _mm_or_si128(diff, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + m - 4)), first));
-    return _mm_movemask_epi8(_mm_cmpeq_epi32(diff, _mm_setzero_si128())) == 0xffff;
+#if SBL__VW >= 8
+    {   /* four pixels per compare, two compares per step (m >= 16) */
+        long long a64;
+        __m256i first, d0 = _mm256_setzero_si256(), d1 = d0;
+        memcpy(&a64, mp, sizeof a64);
+        first = _mm256_set1_epi64x(a64);
+        for (k = 0; k + 16 <= m; k += 16) {
+            d0 = _mm256_or_si256(d0, _mm256_xor_si256(_mm256_loadu_si256(SBL__PCAST(const __m256i *, mp + k)), first));
+            d1 = _mm256_or_si256(d1, _mm256_xor_si256(_mm256_loadu_si256(SBL__PCAST(const __m256i *, mp + k + 8)), first));
+        }
+        if (k < m) { /* the rest: the last two (overlapping the ones before) */
+            d0 = _mm256_or_si256(d0, _mm256_xor_si256(_mm256_loadu_si256(SBL__PCAST(const __m256i *, mp + m - 16)), first));
+            d1 = _mm256_or_si256(d1, _mm256_xor_si256(_mm256_loadu_si256(SBL__PCAST(const __m256i *, mp + m - 8)), first));
+        }
+        d0 = _mm256_or_si256(d0, d1);
+        return _mm256_testz_si256(d0, d0);
+    }
+#else
+    {   /* two pixels per compare, two compares per step (m >= 8) */
+        const __m128i first = _mm_unpacklo_epi64(_mm_loadl_epi64(SBL__PCAST(const __m128i *, mp)),
+                                                 _mm_loadl_epi64(SBL__PCAST(const __m128i *, mp)));
+        __m128i d0 = _mm_setzero_si128(), d1 = d0;
+        for (k = 0; k + 8 <= m; k += 8) {
+            d0 = _mm_or_si128(d0, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + k)), first));
+            d1 = _mm_or_si128(d1, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + k + 4)), first));
+        }
+        if (k < m) {
+            d0 = _mm_or_si128(d0, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + m - 8)), first));
+            d1 = _mm_or_si128(d1, _mm_xor_si128(_mm_loadu_si128(SBL__PCAST(const __m128i *, mp + m - 4)), first));
+        }
+        return _mm_movemask_epi8(_mm_cmpeq_epi32(_mm_or_si128(d0, d1), _mm_setzero_si128())) == 0xffff;
+    }
+#endif
 }
 
 /* sbl__plan_lanes' position terms once for a block whose pixels all carry one motion
@@ -5669,8 +5694,8 @@ static void sbl__temporal_fallback_block_ev(const void *ctx, sbl__ring_row *r, s
    the plan's other stores and the per-vector dispatch. Stops at the first vector that is
    not so or needs a redo (the plan and the tap stage then take it, writing its columns
    again). Returns the first entry not settled (b->n: all). */
-SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl__block *b, int fallback,
-                                     int ev)
+SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl__block *b,
+                                          int fallback, int ev)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     const sbl__tap_src *src = &s->src;

@@ -378,7 +378,7 @@ static void test_row_gather_uniform(void)
     static const float bad_depth[8] = {0.0f, -0.0f, -1.0f, 1e-30f, -(float)HUGE_VAL, (float)HUGE_VAL, 0.0f, 2.9f};
     static const float moves[8] = {0.37f, -0.21f, 1.0f, -2.0f, 0.0f, 0.00390625f, -1.75f, 2.5f};
     sbt_rng rng = {4242};
-    int it, pixels = 0, mismatches = 0, empty = 0, uniform_blocks = 0, blocks = 0;
+    int it, pixels = 0, mismatches = 0, empty = 0, uniform_blocks = 0, blocks = 0, run_entries = 0;
     for (it = 0; it < 400; ++it) {
         int w = 8 + (int)(sbt_uniform(&rng) * 88), h = 3 + (int)(sbt_uniform(&rng) * 6);
         int ch = 1 + it % 4, x, y, c;
@@ -435,12 +435,19 @@ static void test_row_gather_uniform(void)
             if (sbl__temporal_plan_lanes_ok(&rp, y)) /* the blocks the row gather plans */
                 for (x0 = xa; x0 + SBL__VW <= xb; x0 += SBL__BLOCK) {
                     sbl__block b;
+                    int l;
                     b.x0 = x0;
                     b.y = y;
                     b.n = xb - x0 < SBL__BLOCK ? xb - x0 : SBL__BLOCK;
+                    b.sky = 0;
                     sbl__temporal_uniform_block(&rp, &b);
                     uniform_blocks += b.uni;
                     ++blocks;
+                    /* the entries the row gather settles in its uniform pass (rb: scratch,
+                       written again below) */
+                    for (l = 0; l < SBL__VW; ++l) b.p.lane_step[0][l] = l * ch;
+                    memset(unsafe, 0, sizeof unsafe);
+                    run_entries += sbl__temporal_uniform_run(&rp, &rb, &b, !rd.no_fallback, 0);
                 }
             memset(unsafe, 0, sizeof unsafe);
             sbl__temporal_rp_row(&rp, &ra, y, xa, xb);
@@ -450,10 +457,11 @@ static void test_row_gather_uniform(void)
         free(cur.mem); free(hist.mem); free(len.mem); free(depth.mem); free(pdepth.mem); free(mv.mem);
     }
     printf("  %s uniform-motion row gather vs pixel gather: %d pixels (%d without), %d differ; "
-           "%d of %d blocks planned as uniform\n",
-           SBL_SIMD_NAME, pixels, empty, mismatches, uniform_blocks, blocks);
+           "%d of %d blocks planned as uniform, %d entries settled by their uniform pass\n",
+           SBL_SIMD_NAME, pixels, empty, mismatches, uniform_blocks, blocks, run_entries);
     CHECK(mismatches == 0);
     CHECK(uniform_blocks > blocks / 3 && uniform_blocks < blocks);
+    CHECK(run_entries > 0); /* (the uniform pass taken: packed RGB, full vectors) */
 #else
     printf("  %s: no row gather on this path (the pixel gather runs)\n", SBL_SIMD_NAME);
 #endif
