@@ -226,7 +226,7 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
             double se2_loc = -1;
             if (g_vt && g_vt[p] > 0 && np > 1) {
                 if (c->svgf == 3) se2_loc = (g_vt[p] > pvs ? g_vt[p] : pvs) / np;
-                else pvs = g_vt[p];
+                else if (c->svgf != 4) pvs = g_vt[p];
             }
             if (np > 1) {
                 double rho = 1.0;
@@ -406,6 +406,15 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                     if ((c->blur & 3) == 2) b2 += bbc;
                     else if (bbc > b2) b2 = bbc;
                 }
+            }
+            if (c->svgf == 4 && g_vt && g_vt[p] > var_x && np > 1) {
+                /* 3.12: the split of pv by the history's own noise, var_X = V / (N - 1)
+                   carried (3x3 mean), where it exceeds the stationary var_Y / N: the
+                   history holds samples taken at another noise level (a pixel that went
+                   dark); the sum pv, the tests and the bias unchanged */
+                var_x = g_vt[p] < pvs ? g_vt[p] : pvs;
+                var_y = pvs - var_x;
+                vs_stats[0] += 1;
             }
             if ((c->vsplit == 5 || c->vsplit == 6) && np > 1 && g_rt > 0) {
                 /* 5: the raw rho (the 3x3 mean of y, >= 1) only where the carried R has passed
@@ -695,6 +704,21 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
             if (g_dshare && g_dshare[p] > t) t = g_dshare[p];
             if (ap[p] < ad[p]) t = 0;
         }
+        else if (c->sure == 10) {
+            /* 3.12: t = max(sh_R, P), P the posterior probability of change that 3.10 (c)'s
+               model of R gives (Gaussian of variance kappa about 1 under no change, flat
+               under change, prior odds M): ln odds = ((R - 1)^2 - (c_R(M) - 1)^2) / (2 kappa),
+               one half at c_R(M); where a_p > a_d */
+            const double kp = c->lambda / (2 - c->lambda), Rv = zout[p] > 1 ? zout[p] - 1.0 : 0.0;
+            double Mr = g_dshare ? 1.0 / (2.0 * g_dshare[p]) : 1.0, v, lo, P;
+            v = (c->kt - 1) * (c->kt - 1) + 2 * kp * log(Mr);
+            if (v < 0) v = 0;
+            lo = (Rv * Rv - v) / (2 * kp);
+            P = lo > 50 ? 1.0 : 1.0 / (1.0 + exp(-lo));
+            t = shr[p] < 1 ? shr[p] : 1;
+            if (P > t) t = P;
+            if (ap[p] < ad[p]) t = 0;
+        }
         else if (c->sure == 8) { /* t = max(sh, the local test's posterior), where a_p > a_d */
             t = shp[p] > g_dlocp[p] ? shp[p] : g_dlocp[p];
             if (t > 1) t = 1;
@@ -775,14 +799,18 @@ static void blend_svgf(void *ctx, int w, int h, const float *y, const float *xs,
                     nq = nx[q] < cap ? nx[q] : cap;
                     if (!(nq >= 4)) continue;
                     v = (double)ts[q * 3] + ts[q * 3 + 1] + ts[q * 3 + 2];
-                    acc += v * nq / (nq - 1) * (1.0 + 1.0 / nq);
+                    /* svgf 4: the variance of the history's mean, V / (N - 1) */
+                    acc += c->svgf == 4 ? v / (nq - 1) : v * nq / (nq - 1) * (1.0 + 1.0 / nq);
                     ++cnt;
                 }
             vt[p] = cnt >= 5 ? acc / cnt : 0;
         }
     g_ad = ad; g_vy = vy; g_yb = yb; g_sh = shp; g_vt = vt;
+    region_share(c, w, h, nx, zs); /* 3.12: the region prior as blend_carry has it */
+    region_share_raw(c, w, h);
     blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
-    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_vt = NULL;
+    region_keep(c, w, h, zout);
+    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_vt = NULL; g_share = NULL;
     for (p = 0; p < n; ++p) {
         double a = ad[p], pdm[3] = {0, 0, 0};
         svgf_stats[0] += 1;
@@ -1207,7 +1235,18 @@ static cand cands[] = {
     {"3.11 + split rho(f pd)>=1", C311, 0, 0, 0, 0, 4},
     {"3.11 + split rho>=1 where R>cR", C311, 0, 0, 0, 0, 5},
     {"3.11 + split 1+shR(rho-1)", C311, 0, 0, 0, 0, 6},
+#define C310 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0
+    {"3.10 (no mix; check)", C310, 0, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0, 0},
+    {"3.10 + split by carried V", C310, 4, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0, 0},
+#undef C310
     {"3.11 combined (lib blur)", C311, 1, 1, 321, 0.5, 0},
+#undef C311
+#define C311S(sure) 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, sure, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0
+    {"3.11 + mix max(shR,s), comb", C311S(9), 1, 1, 321, 0.5, 0},
+    {"3.11 + mix max(shR,P(R))", C311S(10), 0, 0, 0, 0, 0},
+    {"3.11 + mix max(shR,P(R)), comb", C311S(10), 1, 1, 321, 0.5, 0},
+#undef C311S
+#define C311 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0
     {"3.11 + split rho, comb", C311, 1, 1, 321, 0.5, 1},
     {"3.11 + split rho>=1, comb", C311, 1, 1, 321, 0.5, 2},
 #undef C311
