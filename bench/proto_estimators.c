@@ -82,6 +82,12 @@ typedef struct cand {
                         fraction every frame), no carried plane */
     double bmax;     /* > 0: the blur's predicted |b| per channel at most bmax times the
                         3x3 range of x* (the Taylor form overshoots when S is large) */
+    /* session 16 (3.12): the variance split of pv with the noise level's change: under a
+       noise whose spread scales with the signal (a path's relative variance fixed), the
+       history's N samples were taken at the brightness of x*, the new one at the window's
+       mean m, so var_X = var_Y rho / N, rho = |x*|^2 / |m|^2 (channel sums; |m|^2 less the
+       variance of the mean). 1: rho both ways; 2: rho >= 1 only (the history noisier) */
+    int vsplit;
 } cand;
 
 static double *g_share; /* per pixel: the region's share s */
@@ -114,6 +120,7 @@ static double g_rb, g_rt; /* 3.10 (a): this pixel's one-frame block ratio and ca
 static double *g_bsx, *g_bsy, *g_bb, *g_afin;
 static double *g_bgx, *g_bgy; /* per pixel: the noise factor of each axis' second difference */
 static double blur_stats[6]; /* pixel-frames, sum S, sum B_b^2 / (var_x + var_y), B_b^2 > b2, S > 0, sum a */
+static double vs_stats[3]; /* 3.12: pixel-frames, sum rho, sum ln rho */
 static double zsum_stats[4]; /* diagnostics: sum Z, sum Z^2, count, count over threshold */
 /* risk-based mixing (ESTIMATORS 3.9): blend_core leaves its weight, the firefly-limited
    sample and its var_Y estimate here when these are set */
@@ -219,10 +226,20 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
             double se2_loc = -1;
             if (g_vt && g_vt[p] > 0 && np > 1) {
                 if (c->svgf == 3) se2_loc = (g_vt[p] > pvs ? g_vt[p] : pvs) / np;
-                else pvs = g_vt[p];
+                else if (c->svgf != 4) pvs = g_vt[p];
             }
             if (np > 1) {
-                var_y = pvs * n_x / (n_x + n_y);
+                double rho = 1.0;
+                if (c->vsplit == 1 || c->vsplit == 2) {
+                    double Lx = 0, Lm = 0, sd = 0, mu2;
+                    for (ch = 0; ch < 3; ++ch) { Lx += xs[p * 3 + ch]; Lm += m[ch]; sd += sqrt(v[ch]); }
+                    mu2 = Lm * Lm - sd * sd / (n - 1);
+                    if (Lx > 0 && mu2 > 0) rho = Lx * Lx / mu2;
+                    else if (Lx > 0) rho = 1e6;
+                    if (c->vsplit == 2 && rho < 1) rho = 1;
+                    vs_stats[0] += 1; vs_stats[1] += rho; vs_stats[2] += log(rho);
+                }
+                var_y = pvs * n_x / (n_x + rho * n_y);
                 var_x = pvs - var_y;
             } else {
                 var_y = n > 1 ? s2 * n / (n - 1) : 0;
@@ -389,6 +406,44 @@ static void blend_core(void *ctx, int w, int h, const float *y, const float *xs,
                     if ((c->blur & 3) == 2) b2 += bbc;
                     else if (bbc > b2) b2 = bbc;
                 }
+            }
+            if (c->svgf == 4 && g_vt && g_vt[p] > var_x && np > 1) {
+                /* 3.12: the split of pv by the history's own noise, var_X = V / (N - 1)
+                   carried (3x3 mean), where it exceeds the stationary var_Y / N: the
+                   history holds samples taken at another noise level (a pixel that went
+                   dark); the sum pv, the tests and the bias unchanged */
+                var_x = g_vt[p] < pvs ? g_vt[p] : pvs;
+                var_y = pvs - var_x;
+                vs_stats[0] += 1;
+            }
+            if ((c->vsplit == 5 || c->vsplit == 6) && np > 1 && g_rt > 0) {
+                /* 5: the raw rho (the 3x3 mean of y, >= 1) only where the carried R has passed
+                   c_R; 6: rho moved towards 1 by R's own shrink, 1 + sh_R (rho - 1) */
+                double Lx = 0, Lm = 0, sd = 0, mu2, rho = 1.0;
+                for (ch = 0; ch < 3; ++ch) { Lx += xs[p * 3 + ch]; Lm += m[ch]; sd += sqrt(v[ch]); }
+                mu2 = Lm * Lm - sd * sd / (n - 1);
+                if (Lx > 0 && mu2 > 0) rho = Lx * Lx / mu2;
+                else if (Lx > 0) rho = 1e6;
+                if (rho < 1) rho = 1;
+                if (c->vsplit == 6) rho = 1 + g_rt / (1 + g_rt) * (rho - 1);
+                vs_stats[0] += 1; vs_stats[1] += rho; vs_stats[2] += log(rho);
+                var_y = pvs * n_x / (n_x + rho * n_y);
+                var_x = pvs - var_y;
+            }
+            if ((c->vsplit == 3 || c->vsplit == 4) && np > 1) {
+                /* 3 / 4: the new samples' brightness from the history's less the posterior
+                   mean of the bias, f pd (f the larger shrink of the local test and the
+                   pooled evidence): rho = 1 exactly wherever no change is seen (static) */
+                double Lx = 0, pdl = 0, f = g_shv, fl = pd2 > 0 ? dx_b3 / pd2 : 0, Ly, rho = 1.0;
+                if (fl > f) f = fl;
+                for (ch = 0; ch < 3; ++ch) { Lx += xs[p * 3 + ch]; pdl += pd[ch]; }
+                Ly = Lx - f * pdl;
+                if (f > 0 && Lx > 0) rho = Ly > 0 ? (Lx * Lx) / (Ly * Ly) : 1e6;
+                if (rho > 1e6) rho = 1e6;
+                if (c->vsplit == 4 && rho < 1) rho = 1;
+                vs_stats[0] += 1; vs_stats[1] += rho; vs_stats[2] += log(rho);
+                var_y = pvs * n_x / (n_x + rho * n_y);
+                var_x = pvs - var_y;
             }
             a = (b2 + var_x + var_y > 0) ? (b2 + var_x) / (b2 + var_x + var_y) : n_y / (n_x + n_y);
             if (a < 0) a = 0;
@@ -649,6 +704,21 @@ static void blend_sure(void *ctx, int w, int h, const float *y, const float *xs,
             if (g_dshare && g_dshare[p] > t) t = g_dshare[p];
             if (ap[p] < ad[p]) t = 0;
         }
+        else if (c->sure == 10) {
+            /* 3.12: t = max(sh_R, P), P the posterior probability of change that 3.10 (c)'s
+               model of R gives (Gaussian of variance kappa about 1 under no change, flat
+               under change, prior odds M): ln odds = ((R - 1)^2 - (c_R(M) - 1)^2) / (2 kappa),
+               one half at c_R(M); where a_p > a_d */
+            const double kp = c->lambda / (2 - c->lambda), Rv = zout[p] > 1 ? zout[p] - 1.0 : 0.0;
+            double Mr = g_dshare ? 1.0 / (2.0 * g_dshare[p]) : 1.0, v, lo, P;
+            v = (c->kt - 1) * (c->kt - 1) + 2 * kp * log(Mr);
+            if (v < 0) v = 0;
+            lo = (Rv * Rv - v) / (2 * kp);
+            P = lo > 50 ? 1.0 : 1.0 / (1.0 + exp(-lo));
+            t = shr[p] < 1 ? shr[p] : 1;
+            if (P > t) t = P;
+            if (ap[p] < ad[p]) t = 0;
+        }
         else if (c->sure == 8) { /* t = max(sh, the local test's posterior), where a_p > a_d */
             t = shp[p] > g_dlocp[p] ? shp[p] : g_dlocp[p];
             if (t > 1) t = 1;
@@ -729,14 +799,18 @@ static void blend_svgf(void *ctx, int w, int h, const float *y, const float *xs,
                     nq = nx[q] < cap ? nx[q] : cap;
                     if (!(nq >= 4)) continue;
                     v = (double)ts[q * 3] + ts[q * 3 + 1] + ts[q * 3 + 2];
-                    acc += v * nq / (nq - 1) * (1.0 + 1.0 / nq);
+                    /* svgf 4: the variance of the history's mean, V / (N - 1) */
+                    acc += c->svgf == 4 ? v / (nq - 1) : v * nq / (nq - 1) * (1.0 + 1.0 / nq);
                     ++cnt;
                 }
             vt[p] = cnt >= 5 ? acc / cnt : 0;
         }
     g_ad = ad; g_vy = vy; g_yb = yb; g_sh = shp; g_vt = vt;
+    region_share(c, w, h, nx, zs); /* 3.12: the region prior as blend_carry has it */
+    region_share_raw(c, w, h);
     blend_core(ctx, w, h, y, xs, nx, zs, cap, out, nout, zout);
-    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_vt = NULL;
+    region_keep(c, w, h, zout);
+    g_ad = NULL; g_vy = NULL; g_yb = NULL; g_sh = NULL; g_vt = NULL; g_share = NULL;
     for (p = 0; p < n; ++p) {
         double a = ad[p], pdm[3] = {0, 0, 0};
         svgf_stats[0] += 1;
@@ -1153,6 +1227,29 @@ static cand cands[] = {
     {"3.11 + mix t=max(shR,s)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 9, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0},
     /* 3.12: the same and the local test's posterior: t = max(sh, P_local) */
     {"3.11 + mix t=max(sh,P)", 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 8, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0},
+    /* 118..: session 16 (3.12), the variance split with the noise level's change (vsplit) */
+#define C311 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0
+    {"3.11 + split rho", C311, 0, 0, 0, 0, 1},
+    {"3.11 + split rho>=1", C311, 0, 0, 0, 0, 2},
+    {"3.11 + split rho(f pd)", C311, 0, 0, 0, 0, 3},
+    {"3.11 + split rho(f pd)>=1", C311, 0, 0, 0, 0, 4},
+    {"3.11 + split rho>=1 where R>cR", C311, 0, 0, 0, 0, 5},
+    {"3.11 + split 1+shR(rho-1)", C311, 0, 0, 0, 0, 6},
+#define C310 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0
+    {"3.10 (no mix; check)", C310, 0, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0, 0},
+    {"3.10 + split by carried V", C310, 4, 0, 0, 0, 0, 4, 7, 0, 0, 0, 0, 0, 0, 0},
+#undef C310
+    {"3.11 combined (lib blur)", C311, 1, 1, 321, 0.5, 0},
+#undef C311
+#define C311S(sure) 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, sure, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0
+    {"3.11 + mix max(shR,s), comb", C311S(9), 1, 1, 321, 0.5, 0},
+    {"3.11 + mix max(shR,P(R))", C311S(10), 0, 0, 0, 0, 0},
+    {"3.11 + mix max(shR,P(R)), comb", C311S(10), 1, 1, 321, 0.5, 0},
+#undef C311S
+#define C311 7, 1, 4, 3.5, 1, 0, 2, 0, 0, 2, 1.0 / 3, 2.118034, 36, 4, 0, 0, 0, 7, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 7, 0, 0
+    {"3.11 + split rho, comb", C311, 1, 1, 321, 0.5, 1},
+    {"3.11 + split rho>=1, comb", C311, 1, 1, 321, 0.5, 2},
+#undef C311
 };
 
 /* ---- diag: (session 14, ESTIMATORS 3.12) where the candidate loses to a library method,
@@ -1195,17 +1292,30 @@ static void diag_blend(void *ctx, int w, int h, const float *y, const float *xs,
    1 penumbra, 2 lit (phi > 0.9); phi = (L - Lmin) / (Lmax - Lmin) */
 #define DG_MOT 8
 #define DG_LEV 3
-#define DG_ACC 16
+#define DG_ACC 22
 static double dg_acc[DG_MOT][DG_LEV][DG_ACC];
 static double dg_nacc[8][DG_ACC];      /* by the history's N bucket */
 static double dg_ladder[2];            /* sum eA, sum eB on the ladder frames */
 static const char *const dg_mot_name[DG_MOT] = {"darkening now", "brightening now", "1 frame after",
                                                 "2 frames after", "3-4 frames after", "5-8 frames after",
                                                 ">8 frames after", "never shadowed"};
+static double dg_ey2, dg_ex2;
+static void dg_extra(const double *a)
+{
+    double c = a[0] > 0 ? a[0] : 1;
+    printf(" | vy %.4f (y err %.4f) vx %.4f (x* err %.4f) b2 %.4f pd2 %.4f\n", a[16] / c, a[17] / c,
+           a[18] / c, a[19] / c, a[20] / c, a[21] / c);
+}
 static const char *const dg_lev_name[DG_LEV] = {"dark", "penumbra", "lit"};
 static double lum3(const float *v) { return (double)v[0] + v[1] + v[2]; }
-static void dg_add(double *acc, double eA, double eB, const diagpx *d, double a_or, double dk)
+static void dg_add(double *acc, double eA, double eB, const diagpx *d, double a_or, double dk,
+                   double ey2, double ex2)
 {
+    /* 3.12 (session 16): the weight's variance split against the truth: var_Y and var_X as
+       the candidate estimated them (summed over channels) and the squared errors of y and
+       of x* against the reference; the bias^2 it counted */
+    acc[16] += d->vy; acc[17] += ey2; acc[18] += d->vx; acc[19] += ex2; acc[20] += d->b2;
+    acc[21] += d->pd2;
     acc[0] += 1; acc[1] += eA; acc[2] += eB;
     acc[3] += d->a; acc[4] += a_or; acc[5] += d->ap; acc[6] += d->a_d; acc[7] += d->shr;
     acc[8] += d->rt > 0; acc[9] += d->rb > 0; acc[10] += d->pd2 > 0 && d->b3 > 0.5 * d->pd2;
@@ -1265,9 +1375,18 @@ static void diag_frame(void *ctx, int f, int e, const float *rgb, int w, int h)
                     mot = c < 0 ? 0 : 1;
                 } else mot = k == 1 ? 2 : k == 2 ? 3 : k <= 4 ? 4 : k <= 8 ? 5 : 6;
             }
-            dg_add(dg_acc[mot][lev], eA, eB, d, a_or, dk);
+            {
+                double ey2 = 0, ex2 = 0;
+                for (ch = 0; ch < 3; ++ch) {
+                    double ey = (double)dg_y[e][p * 3 + ch] - ref[p * 3 + ch];
+                    double ex = (double)dg_x[e][p * 3 + ch] - ref[p * 3 + ch];
+                    ey2 += ey * ey; ex2 += ex * ex;
+                }
+                dg_ey2 = ey2; dg_ex2 = ex2;
+            }
+            dg_add(dg_acc[mot][lev], eA, eB, d, a_or, dk, dg_ey2, dg_ex2);
             nb = d->nx <= 2 ? 0 : d->nx <= 4 ? 1 : d->nx <= 8 ? 2 : d->nx <= 16 ? 3 : d->nx <= 32 ? 4 : 5;
-            dg_add(dg_nacc[nb], eA, eB, d, a_or, dk);
+            dg_add(dg_nacc[nb], eA, eB, d, a_or, dk, dg_ey2, dg_ex2);
         }
 }
 static void dg_print_row(const char *name, const double *a, double tot)
@@ -1331,13 +1450,14 @@ static int diag_run(const sbr_seq *seq, int ci, const char *vs_name)
                 /* print share of pixel-frames and the error difference as % of eB total */
                 {
                     double c = dg_acc[a][b][0];
-                    printf("%-34s %6.2f%% %8.4f %8.4f %+7.1f%% | a %.3f or %.3f ap %.3f ad %.3f a<or %3.0f%% shR %.3f R>cR %4.1f%% blk %4.1f%% loc %4.1f%% M %5.1f N %5.1f R %5.2f lag %+.2f\n",
+                    printf("%-34s %6.2f%% %8.4f %8.4f %+7.1f%% | a %.3f or %.3f ap %.3f ad %.3f a<or %3.0f%% shR %.3f R>cR %4.1f%% blk %4.1f%% loc %4.1f%% M %5.1f N %5.1f R %5.2f lag %+.2f",
                            nm, 100 * c / tot_n, dg_acc[a][b][1] / c, dg_acc[a][b][2] / c,
                            100 * (dg_acc[a][b][1] - dg_acc[a][b][2]) / totB,
                            dg_acc[a][b][3] / c, dg_acc[a][b][4] / c, dg_acc[a][b][5] / c, dg_acc[a][b][6] / c,
                            100 * dg_acc[a][b][15] / c, dg_acc[a][b][7] / c, 100 * dg_acc[a][b][8] / c,
                            100 * dg_acc[a][b][9] / c, 100 * dg_acc[a][b][10] / c, dg_acc[a][b][11] / c,
                            dg_acc[a][b][12] / c, dg_acc[a][b][13] / c, dg_acc[a][b][14] / c);
+                    dg_extra(dg_acc[a][b]);
                 }
             }
         printf("by N:\n");
@@ -1345,13 +1465,14 @@ static int diag_run(const sbr_seq *seq, int ci, const char *vs_name)
             static const char *const nn[6] = {"N <= 2", "N 2-4", "N 4-8", "N 8-16", "N 16-32", "N > 32"};
             double c = dg_nacc[a][0];
             if (c == 0) continue;
-            printf("%-34s %6.2f%% %8.4f %8.4f %+7.1f%% | a %.3f or %.3f ap %.3f ad %.3f a<or %3.0f%% shR %.3f R>cR %4.1f%% blk %4.1f%% loc %4.1f%% M %5.1f N %5.1f R %5.2f lag %+.2f\n",
+            printf("%-34s %6.2f%% %8.4f %8.4f %+7.1f%% | a %.3f or %.3f ap %.3f ad %.3f a<or %3.0f%% shR %.3f R>cR %4.1f%% blk %4.1f%% loc %4.1f%% M %5.1f N %5.1f R %5.2f lag %+.2f",
                    nn[a], 100 * c / tot_n, dg_nacc[a][1] / c, dg_nacc[a][2] / c,
                    100 * (dg_nacc[a][1] - dg_nacc[a][2]) / totB,
                    dg_nacc[a][3] / c, dg_nacc[a][4] / c, dg_nacc[a][5] / c, dg_nacc[a][6] / c,
                    100 * dg_nacc[a][15] / c, dg_nacc[a][7] / c, 100 * dg_nacc[a][8] / c,
                    100 * dg_nacc[a][9] / c, 100 * dg_nacc[a][10] / c, dg_nacc[a][11] / c,
                    dg_nacc[a][12] / c, dg_nacc[a][13] / c, dg_nacc[a][14] / c);
+            dg_extra(dg_nacc[a]);
         }
     }
     (void)dg_print_row; (void)dg_keep_vs;
@@ -1435,6 +1556,7 @@ int main(int argc, char **argv)
             else if (cands[i].lambda > 0) m.temporal_blend_carry = blend_carry;
             else m.temporal_blend = blend;
             memset(zsum_stats, 0, sizeof zsum_stats);
+            memset(vs_stats, 0, sizeof vs_stats);
             memset(tr_stats, 0, sizeof tr_stats);
             memset(sure_stats, 0, sizeof sure_stats);
             memset(svgf_stats, 0, sizeof svgf_stats);
@@ -1448,6 +1570,8 @@ int main(int argc, char **argv)
                 printf("  Z mean %+.3f sd %.3f over-threshold %.2f %%", zsum_stats[0] / zsum_stats[2],
                        sqrt(zsum_stats[1] / zsum_stats[2] - (zsum_stats[0] / zsum_stats[2]) * (zsum_stats[0] / zsum_stats[2])),
                        100.0 * zsum_stats[3] / zsum_stats[2]);
+            if (vs_stats[0] > 0)
+                printf("  rho mean %.3f, geo mean %.3f", vs_stats[1] / vs_stats[0], exp(vs_stats[2] / vs_stats[0]));
             if (tr_stats[0] > 0)
                 printf("  trend on %.2f %% (mean corr^2/se2 %.3f)", 100.0 * tr_stats[1] / tr_stats[0],
                        tr_stats[2] / tr_stats[0]);
