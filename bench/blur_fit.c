@@ -151,6 +151,9 @@ static void fit(double (*f)(double, double), double (*wt)(double), double gp0, i
 /* The three polynomials at once, by least squares of G's relative error against the
    exact sums on the grid (n = 1 .. 200, v = 1/4 iv / nv): absorbs Euler-Maclaurin's own
    error (its remainder at small n) into the coefficients. ex[iv][n]: the exact sums. */
+/* v on (0, 1/4]: quadratic spacing, v = 0 included (G = 6 there: S = 0 makes it moot, but v
+   may come as close to 0 as a fetch comes to an integer position) */
+#define VAT(iv, nv) (0.25 * ((double)(iv) / (nv)) * ((double)(iv) / (nv)))
 #define NBIG 60 /* n from 200 to 2e5, geometric, where Euler-Maclaurin's remainder is negligible */
 static double big_n(int i) { return 200.0 * pow(1000.0, (i + 1.0) / NBIG); }
 static void fit_joint(int d, int nv, double **ex, double **exb, double *A, double *H, double *K)
@@ -161,9 +164,9 @@ static void fit_joint(int d, int nv, double **ex, double **exb, double *A, doubl
     int iv, n, j, k, i;
     for (j = 0; j < m; ++j)
         for (k = 0; k <= m; ++k) M[j][k] = 0.0L;
-    for (iv = 1; iv <= nv; ++iv)
+    for (iv = 0; iv <= nv; ++iv)
         for (n = 1; n <= 200 + NBIG; ++n) {
-            const double nn = n <= 200 ? n : big_n(n - 201), v = 0.25 * iv / nv, t = nn * v;
+            const double nn = n <= 200 ? n : big_n(n - 201), v = VAT(iv, nv), t = nn * v;
             const double r = 1.0 / sqrt(1.0 + t), x = 2.0 * r - 1.0;
             const double w = 1.0 / (n <= 200 ? ex[iv][n] : exb[iv][n - 201]);
             double b[MAXD + 1], row[3 * (MAXD + 1)];
@@ -235,16 +238,16 @@ int main(int argc, char **argv)
     if (d < 1 || d > MAXD) return 1;
     /* the exact sums, v = 1/4 iv / nv, n = 1 .. 200 (by their running sum) */
     ex = malloc((nv + 1) * sizeof *ex);
-    for (iv = 1; iv <= nv; ++iv) {
-        const double v = 0.25 * iv / nv;
+    for (iv = 0; iv <= nv; ++iv) {
+        const double v = VAT(iv, nv);
         double sum = 0.0;
         ex[iv] = malloc(201 * sizeof **ex);
         for (n = 1; n <= 200; ++n) ex[iv][n] = (sum += g_at((n - 1) * v)) / n;
     }
     /* n above 200: Euler-Maclaurin with the exact functions stands for the sum */
     exb = malloc((nv + 1) * sizeof *exb);
-    for (iv = 1; iv <= nv; ++iv) {
-        const double v = 0.25 * iv / nv;
+    for (iv = 0; iv <= nv; ++iv) {
+        const double v = VAT(iv, nv);
         exb[iv] = malloc(NBIG * sizeof **exb);
         for (j = 0; j < NBIG; ++j) {
             const double nn = big_n(j), r = 1.0 / sqrt(1.0 + nn * v);
@@ -268,9 +271,9 @@ int main(int argc, char **argv)
     printf("\nK:");
     for (j = 0; j <= d; ++j) printf(" %.9g", K[j]);
     printf("\n");
-    for (iv = 1; iv <= nv; ++iv)
+    for (iv = 0; iv <= nv; ++iv)
         for (n = 1; n <= 200; ++n) {
-            const double v = 0.25 * iv / nv, t = n * v, r = 1.0 / sqrt(1.0 + t), exact = ex[iv][n];
+            const double v = VAT(iv, nv), t = n * v, r = 1.0 / sqrt(1.0 + t), exact = ex[iv][n];
             /* the fit in float, as the header evaluates it */
             const float tf = (float)n * (float)v, rf = 1.0f / sqrtf(1.0f + tf), inf = 1.0f / (float)n;
             const float gf = rf * rf * horner(Af, d, rf) + inf * (horner(Hf, d, rf) + (float)v * horner(Kf, d, rf));
@@ -286,15 +289,15 @@ int main(int argc, char **argv)
             if (fabs(sbl__blur_noise(n, v) / exact - 1.0) > worst_tab) worst_tab = fabs(sbl__blur_noise(n, v) / exact - 1.0);
 #endif
         }
-    for (iv = 1; iv <= nv; ++iv)
+    for (iv = 0; iv <= nv; ++iv)
         for (j = 0; j < NBIG; ++j) {
-            const double v = 0.25 * iv / nv;
+            const double v = VAT(iv, nv);
             const float tf = (float)big_n(j) * (float)v, rf = 1.0f / sqrtf(1.0f + tf), inf = 1.0f / (float)big_n(j);
             const float gf = rf * rf * horner(Af, d, rf) + inf * (horner(Hf, d, rf) + (float)v * horner(Kf, d, rf));
             if (fabs(gf / exb[iv][j] - 1.0) > worst_big) worst_big = fabs(gf / exb[iv][j] - 1.0);
         }
     printf("n in (200, 2e5] against Euler-Maclaurin (exact functions): %.5f\n", worst_big);
-    printf("n in [1, 200], v in (0, 1/4] (%d values): largest relative error against the exact sum\n", nv);
+    printf("n in [1, 200], v in [0, 1/4] (%d values, quadratic spacing): largest relative error against the exact sum\n", nv + 1);
     if (!joint) printf("  Euler-Maclaurin, exact functions: %.5f (n %g, v %.4f)\n", worst_em, wn_em, wv_em);
     printf("  the fit, in float: %.5f (n %g, v %.4f); n >= 4: %.5f\n", worst_fit, wn_fit, wv_fit, worst_fit_n4);
 #ifdef TABLE
