@@ -7960,7 +7960,7 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
     const sbl__ring_row *r = R[1];
     const sbl__temporal_rp *s = k->blur_rp;
     const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f), two = sbl__set1(2.0f), one = sbl__set1(1.0f);
-    sbl__v sx, sy, sum = zero, xl, xr, vl, vr, f[3][3], vx, vy, n, in, h;
+    sbl__v sx, sy, sum = zero, xl, xr, vl, vr, f[3][3], vx, vy, n, in, hn;
     sbl__m okx, oky, m[3][3], ok = sbl__gt(sbl__load(r->v + x), zero);
     int l, c, j;
     if (s->source == SBL_TEMPORAL_MOTION) {
@@ -7989,9 +7989,9 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
     n = sbl__load(r->n + x);
     n = sbl__max(sbl__min(n, sbl__set1(k->n_cap)), one);
     in = sbl__div(one, n);
-    h = sbl__mul(half, sbl__add(n, one));
-    sx = sbl__mul(h, vx);
-    sy = sbl__mul(h, vy);
+    hn = sbl__mul(half, sbl__add(n, one));
+    sx = sbl__mul(hn, vx);
+    sy = sbl__mul(hn, vy);
     sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS,
                sbl__mul(sbl__set1(0.25f), sbl__add(sbl__mul(sbl__mul(sx, sx), sbl__blur_noise_lanes(in, n, vx)),
                                                    sbl__mul(sbl__mul(sy, sy), sbl__blur_noise_lanes(in, n, vy)))));
