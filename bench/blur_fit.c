@@ -17,10 +17,6 @@
    over n = 1 .. 200, v in (0, 1/4], next to Euler-Maclaurin's own (exact A, H, K).
 
    usage: ./build/blur_fit [degree]     (cc -O2 bench/blur_fit.c -o build/blur_fit -lm) */
-#ifdef TABLE
-#define STEREOBLEND_IMPLEMENTATION
-#include "../stereoblend.h"
-#endif
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -231,9 +227,6 @@ int main(int argc, char **argv)
     float Af[MAXD + 1], Hf[MAXD + 1], Kf[MAXD + 1];
     double worst_fit = 0.0, worst_em = 0.0, wn_fit = 0, wv_fit = 0, wn_em = 0, wv_em = 0;
     double worst_fit_n4 = 0.0;
-#ifdef TABLE
-    double worst_tab = 0.0;
-#endif
     int j, iv, n;
     if (d < 1 || d > MAXD) return 1;
     /* the exact sums, v = 1/4 iv / nv, n = 1 .. 200 (by their running sum) */
@@ -285,9 +278,6 @@ int main(int argc, char **argv)
                 const double e_em = fabs(em / exact - 1.0);
                 if (e_em > worst_em) { worst_em = e_em; wn_em = n; wv_em = v; }
             }
-#ifdef TABLE
-            if (fabs(sbl__blur_noise(n, v) / exact - 1.0) > worst_tab) worst_tab = fabs(sbl__blur_noise(n, v) / exact - 1.0);
-#endif
         }
     for (iv = 0; iv <= nv; ++iv)
         for (j = 0; j < NBIG; ++j) {
@@ -300,8 +290,5 @@ int main(int argc, char **argv)
     printf("n in [1, 200], v in [0, 1/4] (%d values, quadratic spacing): largest relative error against the exact sum\n", nv + 1);
     if (!joint) printf("  Euler-Maclaurin, exact functions: %.5f (n %g, v %.4f)\n", worst_em, wn_em, wv_em);
     printf("  the fit, in float: %.5f (n %g, v %.4f); n >= 4: %.5f\n", worst_fit, wn_fit, wv_fit, worst_fit_n4);
-#ifdef TABLE
-    printf("  the tables: %.5f\n", worst_tab);
-#endif
     return 0;
 }
