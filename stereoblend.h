@@ -6551,61 +6551,63 @@ static float sbl__pool_ratio(const sbl__kernel *k, int x, int y)
    variance s is g(s) (6 at s = 0), so E[sum_c b_c^2] exceeds B_b^2 by
    (S_x^2 G_x + S_y^2 G_y) var_X / 4, G = (1 / N) sum_{k < N} g(k v). */
 
-/* G = mean_{k < n} g(k v) by Euler-Maclaurin: J(t) + (6 - g(t)) / (2 n) +
-   v (g'(t) - g'(0)) / (12 n), t = n v, J(t) the mean of g over [0, t]; J (1 + t),
-   g (1 + t)^2.5 and g' (1 + t)^3.5 tabulated at u = t / (1 + t) = i / 32 (finite at
-   t = inf: the asymptote g ~ 3 / (8 sqrt(pi)) t^-2.5); within 0.6 % of the sum for
-   n in [1, 200], v <= 1/4 (bench/proto_estimators.c's blur_g) */
-static const double sbl__blur_tj[33] = {
-    6, 5.62528, 5.27394, 4.94549, 4.6393, 4.35463, 4.09063, 3.84636,
-    3.6208, 3.41287, 3.22143, 3.04533, 2.88341, 2.73453, 2.59758, 2.47151,
-    2.35531, 2.24806, 2.1489, 2.05706, 1.97185, 1.89262, 1.81881, 1.74992,
-    1.68549, 1.62512, 1.56845, 1.51514, 1.46489, 1.41744, 1.37253, 1.32988,
-    1.28913
-};
-static const double sbl__blur_tg[33] = {
-    6, 5.34652, 4.74501, 4.19536, 3.69687, 3.24824, 2.84763, 2.49265,
-    2.18044, 1.90778, 1.67116, 1.46691, 1.29132, 1.14075, 1.01177, 0.901202,
-    0.806204, 0.724306, 0.653403, 0.59173, 0.53783, 0.490504, 0.448765, 0.411799,
-    0.378933, 0.349603, 0.323338, 0.299741, 0.278474, 0.259251, 0.241829, 0.225996,
-    0.211571
-};
-static const double sbl__blur_td[33] = {
-    -36.7392, -32.8195, -29.128, -25.6817, -22.4944, -19.5757, -16.9304, -14.5588,
-    -12.456, -10.6123, -9.01387, -7.64269, -6.47798, -5.49703, -4.67636, -3.9928,
-    -3.42457, -2.95195, -2.55781, -2.22769, -1.94977, -1.71448, -1.5142, -1.34282,
-    -1.19543, -1.06809, -0.957569, -0.861255, -0.776987, -0.702983, -0.637763, -0.58009,
-    -0.528928
-};
+/* G = mean_{k < n} g(k v), fitted (docs/ESTIMATORS.md 4.13; bench/blur_fit.c, degree 6,
+   joint): Euler-Maclaurin's form J(t) + (6 - g(t)) / (2 n) + v (g'(t) - g'(0)) / (12 n),
+   t = n v, J(t) the mean of g over [0, t], written in r = 1 / sqrt(1 + t) (in (0, 1]; g
+   ~ t^-2.5 and J's tail ~ t^-1.5 are smooth in r) as
+       G = r^2 A(r) + (H(r) + v K(r)) / n,
+   A, H, K polynomials whose coefficients were fitted together to G's relative error
+   against the exact sum (so they also take up Euler-Maclaurin's remainder at small n):
+   within 0.31 % of the sum for n in [1, 200], v in [0, 1/4], 0.28 % of Euler-Maclaurin
+   for n up to 2e5. Float, the same operations in the reference path
+   (sbl__blur_noise) and in lanes (sbl__blur_noise_lanes). */
+static const float sbl__blur_fa[7] = {1.29068747f, -0.0817370846f, 2.39499319f, -6.72754491f,
+                                      20.1641806f, -26.2452072f, 15.2113934f};
+static const float sbl__blur_fh[7] = {2.95719318f, 2.1371793f, -21.8357819f, 101.953988f,
+                                      -233.956177f, 255.783198f, -107.052042f};
+static const float sbl__blur_fk[7] = {3.22245745f, -7.2097095f, 53.0754256f, -200.223387f,
+                                      392.935917f, -371.451567f, 131.74315f};
 
-static double sbl__blur_noise(double n, double v)
+/* G at N = n (in = 1 / n) and kernel variance v, one pixel */
+SBL__INLINE float sbl__blur_noise(float in, float n, float v)
 {
-    const double t = n * v, iq = 1.0 / (1.0 + t), u = t * iq * 32.0, in = 1.0 / n;
-    const double iq2 = iq * iq, iq25 = iq2 * sqrt(iq);
-    const int i = u < 31.0 ? SBL__CAST(int, u) : 31;
-    const double f = u - i;
-    const double j = (sbl__blur_tj[i] + f * (sbl__blur_tj[i + 1] - sbl__blur_tj[i])) * iq;
-    const double g = (sbl__blur_tg[i] + f * (sbl__blur_tg[i + 1] - sbl__blur_tg[i])) * iq25;
-    const double d = (sbl__blur_td[i] + f * (sbl__blur_td[i + 1] - sbl__blur_td[i])) * iq25 * iq;
-    return j + in * ((6.0 - g) * 0.5 + v * (d - sbl__blur_td[0]) * (1.0 / 12.0));
+    const float r = 1.0f / sqrtf(1.0f + n * v);
+    float pa = sbl__blur_fa[6], ph = sbl__blur_fh[6], pk = sbl__blur_fk[6];
+    int j;
+    for (j = 5; j >= 0; --j) {
+        pa = pa * r + sbl__blur_fa[j];
+        ph = ph * r + sbl__blur_fh[j];
+        pk = pk * r + sbl__blur_fk[j];
+    }
+    return r * r * pa + in * (ph + v * pk);
+}
+
+/* v = f (1 - f) of the fraction f of m (a motion in pixels: the fraction of x + m) */
+SBL__INLINE float sbl__blur_var(float m)
+{
+    const float f = m - floorf(m);
+    return f * (1.0f - f);
 }
 
 /* The bilinear fetch's kernel variance per axis at target pixel (x, y): v = f (1 - f)
    of the fractions of the source position the gather's plan takes (sbl__temporal_rp_pos;
    the plan's fractions whatever the taps' tests then keep: a renormalised subset and the
-   3x3 fallback, both rare, get the position's fraction too) */
-SBL__INLINE void sbl__blur_fraction(const sbl__temporal_rp *s, int x, int y, double *vx, double *vy)
+   3x3 fallback, both rare, get the position's fraction too). Motion vectors: the
+   fraction of m = kx mv in float (x + 0.5 + m - 0.5 has the fraction of m; the lanes
+   compute it so too, sbl__blur_lanes_var); the camera: the position in double, as the
+   gather takes it, then v in float. */
+SBL__INLINE void sbl__blur_fraction(const sbl__temporal_rp *s, int x, int y, float *vx, float *vy)
 {
     double sx, sy, fx, fy;
-    *vx = *vy = 0.0;
+    sbl__tap_want t;
+    *vx = *vy = 0.0f;
     if (s->source == SBL_TEMPORAL_MOTION) {
         const float *mv = SBL__AT(s->motion, x, y);
-        sx = x + 0.5 + s->motion_kx * SBL__CAST(double, mv[0]);
-        sy = y + 0.5 + s->motion_ky * SBL__CAST(double, mv[1]);
-    } else {
-        sbl__tap_want t;
-        if (!sbl__temporal_rp_pos(s, x, y, &t, &sx, &sy)) return;
+        *vx = sbl__blur_var(SBL__CAST(float, s->motion_kx) * mv[0]);
+        *vy = sbl__blur_var(SBL__CAST(float, s->motion_ky) * mv[1]);
+        return;
     }
+    if (!sbl__temporal_rp_pos(s, x, y, &t, &sx, &sy)) return;
     sx -= 0.5;
     sy -= 0.5;
     /* x* is valid: the position is within [-0.5, size) (sbl__temporal_rp_pos), so the
@@ -6615,29 +6617,37 @@ SBL__INLINE void sbl__blur_fraction(const sbl__temporal_rp *s, int x, int y, dou
     fy = sy - SBL__CAST(double, SBL__CAST(int, sy));
     if (fx < 0.0) fx += 1.0;
     if (fy < 0.0) fy += 1.0;
-    *vx = fx * (1.0 - fx);
-    *vy = fy * (1.0 - fy);
+    *vx = SBL__CAST(float, fx * (1.0 - fx));
+    *vy = SBL__CAST(float, fy * (1.0 - fy));
 }
 
-/* The blur's per-pixel scalars at pixel x of ring row r: S per axis (S = (N + 1) v / 2
-   from this fetch's fraction, sbl__blur_fraction) and the noise factor of its second
-   differences, (S_x^2 G_x + S_y^2 G_y) / 4 (sbl__blur_noise). 0: no blur at the pixel
-   (no x*, or a fetch at an integer position). */
+/* The blur's per-pixel scalars from N (n_x: the ring's, capped, at least 1) and the
+   fetch's variances: S = (N + 1) v / 2 per axis and the noise factor of the second
+   differences, (S_x^2 G_x + S_y^2 G_y) / 4 (G_x = sbl__blur_noise(N, v_x): a finite
+   factor at v = 0, where S = 0) */
+SBL__INLINE float sbl__blur_scalars(float n, float vx, float vy, float *sxx, float *syy)
+{
+    const float in = 1.0f / n, h = 0.5f * (n + 1.0f), sx = h * vx, sy = h * vy;
+    *sxx = sx;
+    *syy = sy;
+    return 0.25f * (sx * sx * sbl__blur_noise(in, n, vx) + sy * sy * sbl__blur_noise(in, n, vy));
+}
+
+/* The blur's per-pixel scalars at pixel x of ring row r (sbl__blur_scalars). 0: no blur
+   at the pixel (no x*, or a fetch at an integer position). */
 SBL__INLINE int sbl__blur_pixel(const sbl__kernel *k, const sbl__ring_row *r, int x,
                                 double *sxx, double *syy, double *gn)
 {
-    double vx, vy, n;
+    float vx, vy, n, fsx, fsy;
     *sxx = *syy = *gn = 0.0;
     if (!(r->v[x] > 0.0f)) return 0;
     sbl__blur_fraction(k->blur_rp, x, r->row, &vx, &vy);
-    if (vx == 0.0 && vy == 0.0) return 0;
-    n = SBL__CAST(double, r->n[x] < k->n_cap ? r->n[x] : k->n_cap);
-    if (!(n >= 1.0)) n = 1.0;
-    *sxx = 0.5 * (n + 1.0) * vx;
-    *syy = 0.5 * (n + 1.0) * vy;
-    if (vx > 0.0) *gn += *sxx * *sxx * sbl__blur_noise(n, vx);
-    if (vy > 0.0) *gn += *syy * *syy * sbl__blur_noise(n, vy);
-    *gn *= 0.25;
+    if (vx == 0.0f && vy == 0.0f) return 0;
+    n = r->n[x] < k->n_cap ? r->n[x] : k->n_cap;
+    if (!(n >= 1.0f)) n = 1.0f;
+    *gn = SBL__CAST(double, sbl__blur_scalars(n, vx, vy, &fsx, &fsy));
+    *sxx = SBL__CAST(double, fsx);
+    *syy = SBL__CAST(double, fsy);
     return 1;
 }
 
@@ -7941,38 +7951,171 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     if (mix) sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_DEV2(ch) * SBL__POOL_COLS, dev2);
 }
 
+SBL__INLINE int sbl__rows_valid_in(const sbl__ring_row *const *R, int ca, int cb); /* (below) */
+
+/* sbl__blur_noise in lanes (the same operations) */
+SBL__INLINE sbl__v sbl__blur_noise_lanes(sbl__v in, sbl__v n, sbl__v v)
+{
+    const sbl__v one = sbl__set1(1.0f), r = sbl__div(one, sbl__sqrt(sbl__add(one, sbl__mul(n, v))));
+    sbl__v pa = sbl__set1(sbl__blur_fa[6]), ph = sbl__set1(sbl__blur_fh[6]), pk = sbl__set1(sbl__blur_fk[6]);
+    int j;
+    for (j = 5; j >= 0; --j) {
+        pa = sbl__add(sbl__mul(pa, r), sbl__set1(sbl__blur_fa[j]));
+        ph = sbl__add(sbl__mul(ph, r), sbl__set1(sbl__blur_fh[j]));
+        pk = sbl__add(sbl__mul(pk, r), sbl__set1(sbl__blur_fk[j]));
+    }
+    return sbl__add(sbl__mul(sbl__mul(r, r), pa), sbl__mul(in, sbl__add(ph, sbl__mul(v, pk))));
+}
+
+/* sbl__blur_var in lanes: floor as floorf (x86: sbl__floor, exact for |m| < 2^31, which
+   a valid x*'s motion is; other lanes are discarded) */
+SBL__INLINE sbl__v sbl__blur_var_lanes(sbl__v m)
+{
+    sbl__v f;
+#if SBL__VW == 1
+    f = sbl__sub(m, floorf(m));
+#elif defined(SBL__ROW_GATHER)
+    f = sbl__sub(m, sbl__floor(m));
+#else
+    f = sbl__sub(m, vrndmq_f32(m));
+#endif
+    return sbl__mul(f, sbl__sub(sbl__set1(1.0f), f));
+}
+
+/* Is any lane of v above 0? */
+SBL__INLINE int sbl__blur_any(sbl__v v)
+{
+#if defined(SBL__ROW_GATHER)
+    return sbl__mbits(sbl__gt(v, sbl__set1(0.0f))) != 0;
+#else
+    float a[SBL__VW];
+    int l;
+    sbl__store(a, v);
+    for (l = 0; l < SBL__VW; ++l)
+        if (a[l] > 0.0f) return 1;
+    return 0;
+#endif
+}
+
+/* The motion vectors (x components *mx, y *my, in pixels: times kx, ky) of pixels
+   [x, x + VW) of row y: two loads and shuffles where the plane is packed */
+SBL__INLINE void sbl__blur_motion_lanes(const sbl__temporal_rp *s, int x, int y, sbl__v *mx, sbl__v *my)
+{
+    const float *mvp = SBL__AT(s->motion, x, y);
+    if (s->motion.step == 2) {
+#if SBL__VW == 4 && defined(SBL__ROW_GATHER)
+        const __m128 a = _mm_loadu_ps(mvp), b = _mm_loadu_ps(mvp + 4);
+        *mx = _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0));
+        *my = _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1));
+#elif SBL__VW == 8
+        const __m256 a = _mm256_loadu_ps(mvp), b = _mm256_loadu_ps(mvp + 8);
+        /* per 128-bit half (x0 x1 x4 x5 | x2 x3 x6 x7), then the 64-bit pairs in order */
+        *mx = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))),
+                                                     _MM_SHUFFLE(3, 1, 2, 0)));
+        *my = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))),
+                                                     _MM_SHUFFLE(3, 1, 2, 0)));
+#elif SBL__VW == 16
+        static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+        *mx = sbl__gatheri(mvp, pair);
+        *my = sbl__gatheri(mvp + 1, pair);
+#else
+        float fx[SBL__VW], fy[SBL__VW];
+        int l;
+        for (l = 0; l < SBL__VW; ++l) { fx[l] = mvp[2 * l]; fy[l] = mvp[2 * l + 1]; }
+        *mx = sbl__load(fx);
+        *my = sbl__load(fy);
+#endif
+    } else {
+        float fx[SBL__VW], fy[SBL__VW];
+        int l;
+        for (l = 0; l < SBL__VW; ++l) {
+            fx[l] = mvp[l * s->motion.step];
+            fy[l] = mvp[l * s->motion.step + 1];
+        }
+        *mx = sbl__load(fx);
+        *my = sbl__load(fy);
+    }
+    *mx = sbl__mul(sbl__set1(SBL__CAST(float, s->motion_kx)), *mx);
+    *my = sbl__mul(sbl__set1(SBL__CAST(float, s->motion_ky)), *my);
+}
+
 /* The resampling blur's terms of pixels [x, x + VW) (sbl__blur_terms in lanes, float)
-   into the chunk's planes BB and BG, for sbl__lanes_stage_weight. Per pixel, in scalar:
-   the fetch's fractions, S and the noise factor (sbl__blur_fraction, sbl__blur_noise);
-   in lanes: the second differences, the 3x3 bound and the sum over the channels. R: the
-   ring rows as they are (NULL outside the image), not the edge rows' stand-ins. */
+   into the chunk's planes BB and BG, for sbl__lanes_stage_weight: the fetch's variances
+   (motion vectors in lanes; the camera's positions per pixel, sbl__blur_fraction), S and
+   the noise factor (sbl__blur_scalars), the second differences, the 3x3 bound and the
+   sum over the channels. R: the ring rows as they are (NULL outside the image), not the
+   edge rows' stand-ins. */
 SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row *const *R, int x,
                                        int base, const int ch)
 {
     float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch);
-    float fsx[SBL__VW], fsy[SBL__VW], fg[SBL__VW], cl[SBL__VW], cr[SBL__VW];
+    float cl[SBL__VW], cr[SBL__VW];
     const sbl__ring_row *r = R[1];
-    const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f), two = sbl__set1(2.0f);
-    sbl__v sx, sy, sum = zero, xl, xr, vl, vr, f[3][3];
-    sbl__m okx, oky, m[3][3];
-    int l, any = 0, c, j;
-    for (l = 0; l < SBL__VW; ++l) {
-        const int xp = x + l;
-        double sxx, syy, gn;
-        cl[l] = xp > 0 ? 1.0f : 0.0f;
-        cr[l] = xp + 1 < k->w ? 1.0f : 0.0f;
-        any |= sbl__blur_pixel(k, r, xp, &sxx, &syy, &gn);
-        fsx[l] = SBL__CAST(float, sxx);
-        fsy[l] = SBL__CAST(float, syy);
-        fg[l] = SBL__CAST(float, gn);
+    const sbl__temporal_rp *s = k->blur_rp;
+    const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f), two = sbl__set1(2.0f), one = sbl__set1(1.0f);
+    sbl__v sx, sy, sum = zero, xl, xr, vl, vr, f[3][3], vx, vy, n, in, hn;
+    sbl__m okx, oky, m[3][3], ok = sbl__gt(sbl__load(r->v + x), zero);
+    int l, c, j;
+    if (s->source == SBL_TEMPORAL_MOTION) {
+        sbl__blur_motion_lanes(s, x, r->row, &vx, &vy);
+        vx = sbl__blur_var_lanes(vx);
+        vy = sbl__blur_var_lanes(vy);
+    } else { /* the camera's position per pixel (sbl__temporal_rp_pos) */
+        float fvx[SBL__VW], fvy[SBL__VW];
+        for (l = 0; l < SBL__VW; ++l) {
+            fvx[l] = fvy[l] = 0.0f;
+            if (r->v[x + l] > 0.0f) sbl__blur_fraction(s, x + l, r->row, fvx + l, fvy + l);
+        }
+        vx = sbl__load(fvx);
+        vy = sbl__load(fvy);
     }
-    sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS, sbl__load(fg));
-    if (!any) { /* a fixed camera, integer motion: no blur */
+    /* no x*: no blur (and no value of an invalid lane's motion goes further) */
+    vx = sbl__sel(ok, vx, zero);
+    vy = sbl__sel(ok, vy, zero);
+    if (!sbl__blur_any(sbl__max(vx, vy))) {
+        /* a fixed camera, integer motion: no blur */
+        sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS, zero);
         sbl__store(q + SBL__POOL_BB(ch) * SBL__POOL_COLS, zero);
         return;
     }
-    sx = sbl__load(fsx);
-    sy = sbl__load(fsy);
+    /* sbl__blur_scalars */
+    n = sbl__load(r->n + x);
+    n = sbl__max(sbl__min(n, sbl__set1(k->n_cap)), one);
+    in = sbl__div(one, n);
+    hn = sbl__mul(half, sbl__add(n, one));
+    sx = sbl__mul(hn, vx);
+    sy = sbl__mul(hn, vy);
+    sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS,
+               sbl__mul(sbl__set1(0.25f), sbl__add(sbl__mul(sbl__mul(sx, sx), sbl__blur_noise_lanes(in, n, vx)),
+                                                   sbl__mul(sbl__mul(sy, sy), sbl__blur_noise_lanes(in, n, vy)))));
+    if (R[0] && R[2] && x > 0 && x + SBL__VW < k->w && sbl__rows_valid_in(R, x - 1, x + SBL__VW + 1)) {
+        /* every x* of the lanes' 3x3 windows valid (the rows' invalid extents), inside
+           the image: the masked loop below without its selects (the same values) */
+        for (c = 0; c < ch; ++c) {
+            const sbl__v xc = sbl__load(r->x[c] + x);
+            sbl__v lo = xc, hi = xc, b, hb, d2x, d2y;
+            d2x = sbl__sub(sbl__add(sbl__load(r->x[c] + x - 1), sbl__load(r->x[c] + x + 1)), sbl__mul(two, xc));
+            d2y = sbl__sub(sbl__add(sbl__load(R[0]->x[c] + x), sbl__load(R[2]->x[c] + x)), sbl__mul(two, xc));
+            for (j = 0; j < 3; ++j) {
+                int i;
+                for (i = 0; i < 3; ++i) {
+                    const sbl__v v = sbl__load(R[j]->x[c] + x + i - 1);
+                    lo = sbl__min(lo, v);
+                    hi = sbl__max(hi, v);
+                }
+            }
+            b = sbl__mul(half, sbl__add(sbl__mul(sx, d2x), sbl__mul(sy, d2y)));
+            hb = sbl__mul(half, sbl__sub(hi, lo));
+            b = sbl__min(sbl__max(b, sbl__sub(zero, hb)), hb);
+            sum = sbl__add(sum, sbl__mul(b, b));
+        }
+        sbl__store(q + SBL__POOL_BB(ch) * SBL__POOL_COLS, sum);
+        return;
+    }
+    for (l = 0; l < SBL__VW; ++l) {
+        cl[l] = x + l > 0 ? 1.0f : 0.0f;
+        cr[l] = x + l + 1 < k->w ? 1.0f : 0.0f;
+    }
     vl = sbl__load(cl);
     vr = sbl__load(cr);
     /* which of the 3x3's x* exist (v is 0 or 1: products of them, then selects, so no
