@@ -2433,8 +2433,10 @@ typedef struct sbl__weight_params {
     int evid_mix;      /* temporal, pooled, the history has the evidence plane and
                           SBL_EVIDENCE_MIX: the weight moves towards the paper's by the
                           carried evidence's shrink (sbl__evidence_share sets it) */
-    float evid_sh;     /* the reference path's shrink sh_R = r_R / (1 + r_R) of the pixel
-                          in hand (sbl__kernel_pixel_ref_ch); 0: no mixing */
+    float evid_sh;     /* the reference path's mix factor of the pixel in hand,
+                          max(sh_R, s) (sbl__kernel_pixel_ref_ch); 0: no mixing */
+    float evid_share;  /* the region's share s of change (sbl__evidence_share, per row):
+                          the mix factor's floor (3.12); 0: none */
     int blur;          /* temporal, pooled, default configuration, shared_bias > 0, bilinear
                           fetch: the resampling blur's bias enters the bias energy
                           (docs/ESTIMATORS.md 4.10, 4.12; sbl__blur_terms) */
@@ -2473,9 +2475,16 @@ typedef struct sbl__weight_params {
    (docs/ESTIMATORS.md 3.11). 0 where R has not passed it (the static case), so the
    paper's floor near 0.1 does not come back; where a change has lasted a few frames
    the paper's weight, which follows the change at once, gets in. Needs the history's
-   evidence plane (without it nothing changes, bit for bit). */
+   evidence plane (without it nothing changes, bit for bit).
+   2 (the default, 3.12): the mix factor is max(sh_R, s), s the region's share of change
+   (the prior probability of 3.10 (c) that the pixel changed): where most of a region
+   changes (a moving shadow) the paper's weight gets in before R has passed its threshold
+   at the pixel. The temporal filter alone only (stereo_shared_bias c = 0): behind a
+   stereo blend (c > 0) the floor cost combined static 2 % and pan 0.7 %, not explained
+   (ESTIMATORS 3.12), so the combined pipeline keeps 1. */
 #ifndef SBL_EVIDENCE_MIX
-#define SBL_EVIDENCE_MIX 1 /* 0: the weight of 3.10 (with SBL_EVIDENCE_REGION 3), bit for bit */
+#define SBL_EVIDENCE_MIX 2 /* 0: the weight of 3.10 (with SBL_EVIDENCE_REGION 3), bit for
+                              bit; 1: 3.11 without 3.12's floor */
 #endif
 
 /* Posterior probability that a window changed, from the squared mean paired difference
@@ -2729,6 +2738,7 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.region_m = 1.0f;
     p.evid_mix = 0;
     p.evid_sh = 0.0f;
+    p.evid_share = 0.0f;
     p.blur = 0;
     p.blur_b2 = p.blur_g = 0.0;
     return p;
@@ -6330,6 +6340,7 @@ static void sbl__evidence_share(sbl__kernel *k, int y)
     long cnt = 0, n = 0;
     int j, i;
     k->wp.region_m = 1.0f;
+    k->wp.evid_share = 0.0f;
     k->wp.evid_mix = SBL_EVIDENCE_MIX && k->evid_use && k->wp.temporal &&
                      k->wp.estimator == SBL_ESTIMATOR_POOLED; /* 3.11 */
     k->evid_lnm = 0.0;
@@ -6354,6 +6365,10 @@ static void sbl__evidence_share(sbl__kernel *k, int y)
         const double kap = SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA);
         const float m = SBL__CAST(float, SBL__CAST(double, n + 2) / (2.0 * SBL__CAST(double, cnt + 1)));
         double lm, v;
+        /* the share itself, s = 1 / (2 M): the prior probability that a pixel of the
+           region changed, below which the mix towards the paper's weight does not go */
+        if (SBL_EVIDENCE_MIX >= 2 && k->wp.evid_mix && k->wp.shared_bias == 0.0f)
+            k->wp.evid_share = SBL__CAST(float, SBL__CAST(double, cnt + 1) / SBL__CAST(double, n + 2));
         if (m == 1.0f) return;
         lm = log(SBL__CAST(double, m));
         v = (SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0) + 2.0 * kap * lm;
@@ -6424,18 +6439,24 @@ SBL__INLINE sbl__v sbl__evidence_ratio_lanes(sbl__kernel *k, int x, sbl__v sm2, 
     return r;
 }
 
-/* The carried evidence's own shrink sh_R = r_R / (1 + r_R) at pixel x of row pool_row,
-   r_R as sbl__evidence_ratio_ref forms it, from the stored (float) R: the factor of the
-   mix towards the paper's weight (SBL_EVIDENCE_MIX, 3.11). */
+/* The factor of the mix towards the paper's weight (SBL_EVIDENCE_MIX, 3.11) at pixel x
+   of row pool_row: the carried evidence's own shrink sh_R = r_R / (1 + r_R), r_R as
+   sbl__evidence_ratio_ref forms it from the stored (float) R, and not below the region's
+   share s of change, the prior probability that the pixel changed (3.12). */
 static float sbl__evidence_shrink(const sbl__kernel *k, int x)
 {
     const double e = SBL__CAST(double, k->evid_out[x]), thr = k->evid_thr;
     double rt;
+    float sh;
     if (SBL_EVIDENCE_GATE == 2)
         rt = e > thr ? (e - 1.0) - k->evid_garrote / (e - 1.0) : 0.0;
     else
         rt = SBL_EVIDENCE_GATE ? (e > thr ? e - 1.0 : 0.0) : e - thr;
-    return rt > 0.0 ? SBL__CAST(float, rt / (1.0 + rt)) : 0.0f;
+    sh = rt > 0.0 ? SBL__CAST(float, rt / (1.0 + rt)) : 0.0f;
+#if SBL_EVIDENCE_MIX >= 2
+    if (k->wp.evid_share > sh) sh = k->wp.evid_share;
+#endif
+    return sh;
 }
 
 /* The same in lanes (float), for pixels [x, x + VW). */
@@ -6453,7 +6474,11 @@ SBL__INLINE sbl__v sbl__evidence_shrink_lanes(const sbl__kernel *k, int x)
     else
         rt = SBL_EVIDENCE_GATE ? sbl__sel(sbl__gt(e, thr), e1, zero) : sbl__sub(e, thr);
     rt = sbl__max(rt, zero);
+#if SBL_EVIDENCE_MIX >= 2
+    return sbl__max(sbl__div(rt, sbl__add(one, rt)), sbl__set1(k->wp.evid_share));
+#else
     return sbl__div(rt, sbl__add(one, rt));
+#endif
 }
 
 /* Pooled estimator, the double reference of sbl__row_pool: the prior bias-to-noise ratio
