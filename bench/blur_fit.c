@@ -92,6 +92,19 @@ static double w_K(double r)
 
 /* least squares of f on Chebyshev T_j(2 r - 1), j <= d, by normal equations in long double
    (d <= 16 on 801 Chebyshev-spaced points: well conditioned), then monomial coefficients */
+/* T[j][k]: the coefficient of r^k in the Chebyshev polynomial T_j(2 r - 1), j, k <= d */
+static void cheb_monomials(double T[MAXD + 1][MAXD + 1], int d)
+{
+    int j, k;
+    for (j = 0; j <= d; ++j)
+        for (k = 0; k <= d; ++k) T[j][k] = 0.0;
+    T[0][0] = 1.0;
+    if (d > 0) { T[1][0] = -1.0; T[1][1] = 2.0; }
+    for (j = 2; j <= d; ++j)
+        for (k = 0; k <= j; ++k)
+            T[j][k] = 2.0 * ((k > 0 ? 2.0 * T[j - 1][k - 1] : 0.0) - T[j - 1][k]) - T[j - 2][k];
+}
+
 static void fit(double (*f)(double, double), double (*wt)(double), double gp0, int d, double *mono)
 {
     static double rs[NS], fs[NS], ws[NS];
@@ -130,14 +143,7 @@ static void fit(double (*f)(double, double), double (*wt)(double), double gp0, i
         }
     }
     for (j = 0; j <= d; ++j) cheb[j] = (double)(M[j][d + 1] / M[j][j]);
-    /* T_j(2 r - 1) in monomials of r */
-    for (j = 0; j <= d; ++j)
-        for (k = 0; k <= d; ++k) T[j][k] = 0.0;
-    T[0][0] = 1.0;
-    if (d > 0) { T[1][0] = -1.0; T[1][1] = 2.0; }
-    for (j = 2; j <= d; ++j)
-        for (k = 0; k <= j; ++k)
-            T[j][k] = 2.0 * ((k > 0 ? 2.0 * T[j - 1][k - 1] : 0.0) - T[j - 1][k]) - T[j - 2][k];
+    cheb_monomials(T, d);
     for (k = 0; k <= d; ++k) {
         mono[k] = 0.0;
         for (j = k; j <= d; ++j) mono[k] += cheb[j] * T[j][k];
@@ -192,13 +198,7 @@ static void fit_joint(int d, int nv, double **ex, double **exb, double *A, doubl
         }
     }
     for (j = 0; j < m; ++j) cheb[j] = (double)(M[j][m] / M[j][j]);
-    for (j = 0; j <= d; ++j)
-        for (k = 0; k <= d; ++k) T[j][k] = 0.0;
-    T[0][0] = 1.0;
-    if (d > 0) { T[1][0] = -1.0; T[1][1] = 2.0; }
-    for (j = 2; j <= d; ++j)
-        for (k = 0; k <= j; ++k)
-            T[j][k] = 2.0 * ((k > 0 ? 2.0 * T[j - 1][k - 1] : 0.0) - T[j - 1][k]) - T[j - 2][k];
+    cheb_monomials(T, d);
     for (k = 0; k <= d; ++k) {
         A[k] = H[k] = K[k] = 0.0;
         for (j = k; j <= d; ++j) {
