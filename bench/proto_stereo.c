@@ -147,7 +147,9 @@ static void seed_frame(void *ctx, int f, int eye, const float *rgb, int w, int h
    (sbl__evidence_share's formula on the eye's previous evidence plane), this frame's R,
    the stereo weight of the own eye, and the other eye's N reprojected. cmp:A,B bins two
    dumps of the same scene pixel by pixel. */
-enum { D_ED, D_ET, D_EX, D_CX, D_VAL, D_N, D_A, D_M, D_R, D_B, D_NX, DUMP_F };
+/* session 17: + the reference's, the display's, the input's and the 3x3 median reference's
+   channel sums (is a pixel-frame's error the reference's firefly or the output's?) */
+enum { D_ED, D_ET, D_EX, D_CX, D_VAL, D_N, D_A, D_M, D_R, D_B, D_NX, D_REF, D_DISP, D_IN, D_REFMED, DUMP_F };
 
 static int dump_run(const sbr_seq *s, const sbr_method *m, const char *file)
 {
@@ -242,6 +244,23 @@ static int dump_run(const sbr_seq *s, const sbr_method *m, const char *file)
                 r[D_ED] = (float)ed; r[D_ET] = (float)et; r[D_EX] = (float)ex; r[D_CX] = (float)cx;
                 r[D_VAL] = valid[q] > 0; r[D_N] = len[e][ping[e]][q]; r[D_A] = al[e][q];
                 r[D_M] = mrow[q / (size_t)w]; r[D_R] = ev[e][ping[e]][q]; r[D_B] = beta[e][q];
+                r[D_REF] = v->ref[q * 3] + v->ref[q * 3 + 1] + v->ref[q * 3 + 2];
+                r[D_DISP] = disp[e][q * 3] + disp[e][q * 3 + 1] + disp[e][q * 3 + 2];
+                r[D_IN] = v->color[q * 3] + v->color[q * 3 + 1] + v->color[q * 3 + 2];
+                {
+                    float nb[9], t9;
+                    int cnt = 0, px = (int)(q % (size_t)w), py = (int)(q / (size_t)w), dx, dy, i2, j2;
+                    for (dy = -1; dy <= 1; ++dy)
+                        for (dx = -1; dx <= 1; ++dx) {
+                            const int xx = px + dx, yy = py + dy;
+                            const size_t qq = (size_t)yy * w + (size_t)xx;
+                            if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+                            nb[cnt++] = v->ref[qq * 3] + v->ref[qq * 3 + 1] + v->ref[qq * 3 + 2];
+                        }
+                    for (i2 = 1; i2 < cnt; ++i2) /* insertion sort of <= 9 */
+                        for (j2 = i2; j2 > 0 && nb[j2 - 1] > nb[j2]; --j2) { t9 = nb[j2]; nb[j2] = nb[j2 - 1]; nb[j2 - 1] = t9; }
+                    r[D_REFMED] = nb[cnt / 2];
+                }
             }
             fwrite(rec, sizeof(float), n * DUMP_F, fo);
         }
@@ -259,27 +278,66 @@ static int dump_run(const sbr_seq *s, const sbr_method *m, const char *file)
 /* cmp:A,B: A and B dumps of one scene (the same pixels in the same order). Bins by B's
    M and N and by the change of N, and prints each bin's share of the pixels, A's and B's
    display / temporal MSE, the eyes' shared error C / E_own, the stereo weight and N. */
+static int cmp_float(const void *a, const void *b)
+{
+    const float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
 static void cmp_bins(const char *fa, const char *fb)
 {
     FILE *pa = fopen(fa, "rb"), *pb = fopen(fb, "rb");
     float ra[DUMP_F], rb[DUMP_F];
-    enum { NB = 6, NK = 6 };
-    static const char *kname[NK] = {"M (B)", "N (B)", "N B/A", "beta(B)", "beta(A)", "N/Nx(A)"};
-    static const double edge[NK][NB - 1] = {{0.9, 2, 5, 15, 40}, {2, 8, 16, 32, 60},
-                                            {0.8, 0.95, 1.05, 1.25, 2}, {0.3, 0.45, 0.55, 0.7, 0.95},
-                                            {0.3, 0.45, 0.55, 0.7, 0.95}, {0.25, 0.67, 0.9, 1.1, 1.5}};
+    enum { NB = 6, NK = 8 };
+    static const char *kname[NK] = {"M (B)", "N (B)", "N B/A", "beta(B)", "beta(A)", "N/Nx(A)",
+                                    "errq", "errq*N"};
+    /* errq (session 17, 4.14): the quantile of the pixel-frame's own display error (the
+       mean of A's and B's, so neither side selects its own noise): 50 / 90 / 99 / 99.9 /
+       99.99 %, thresholds from a first pass; errq*N: the same quantiles within B's N 8-16 */
+    static double edge[NK][NB - 1] = {{0.9, 2, 5, 15, 40}, {2, 8, 16, 32, 60},
+                                      {0.8, 0.95, 1.05, 1.25, 2}, {0.05, 0.3, 0.45, 0.55, 0.95},
+                                      {0.05, 0.3, 0.45, 0.55, 0.95}, {0.25, 0.67, 0.9, 1.1, 1.5},
+                                      {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}};
+    static const double qs[NB - 1] = {0.5, 0.9, 0.99, 0.999, 0.9999};
     double acc[NK][NB][12];
     double tot = 0, tda = 0, tdb = 0;
     int k, b;
     if (!pa || !pb) { printf("cmp: cannot open\n"); return; }
     memset(acc, 0, sizeof acc);
+    {
+        size_t cap = 1 << 20, nq = 0, nq8 = 0;
+        float *q = (float *)malloc(cap * sizeof(float)), *q8 = (float *)malloc(cap * sizeof(float));
+        while (fread(ra, sizeof ra, 1, pa) == 1 && fread(rb, sizeof rb, 1, pb) == 1) {
+            if (nq == cap) {
+                cap *= 2;
+                q = (float *)realloc(q, cap * sizeof(float));
+                q8 = (float *)realloc(q8, cap * sizeof(float));
+            }
+            q[nq++] = 0.5f * (ra[D_ED] + rb[D_ED]);
+            if (rb[D_N] >= 8 && rb[D_N] < 16) q8[nq8++] = 0.5f * (ra[D_ED] + rb[D_ED]);
+        }
+        qsort(q, nq, sizeof(float), cmp_float);
+        qsort(q8, nq8, sizeof(float), cmp_float);
+        for (b = 0; b < NB - 1; ++b) {
+            edge[6][b] = nq ? q[(size_t)(qs[b] * (double)(nq - 1))] : 0;
+            edge[7][b] = nq8 ? q8[(size_t)(qs[b] * (double)(nq8 - 1))] : 0;
+        }
+        printf("errq thresholds (display squared error, mean of A and B):");
+        for (b = 0; b < NB - 1; ++b) printf(" %.3g%%:%.4g", 100 * qs[b], edge[6][b]);
+        printf("\n");
+        free(q); free(q8);
+        rewind(pa); rewind(pb);
+    }
     while (fread(ra, sizeof ra, 1, pa) == 1 && fread(rb, sizeof rb, 1, pb) == 1) {
         double key[NK];
         key[0] = rb[D_M]; key[1] = rb[D_N]; key[2] = ra[D_N] > 0 ? rb[D_N] / ra[D_N] : 1; key[3] = rb[D_B];
         key[4] = ra[D_B]; key[5] = ra[D_NX] > 0 ? ra[D_N] / ra[D_NX] : 1;
+        key[6] = 0.5 * (ra[D_ED] + rb[D_ED]);
+        key[7] = rb[D_N] >= 8 && rb[D_N] < 16 ? key[6] : -1; /* -1: not binned */
         tot += 1; tda += ra[D_ED]; tdb += rb[D_ED];
         for (k = 0; k < NK; ++k) {
             double *z;
+            if (key[k] < 0) continue; /* errq*N: outside N 8-16 */
             for (b = 0; b < NB - 1 && key[k] >= edge[k][b]; ++b) {}
             z = acc[k][b];
             z[0] += 1; z[1] += ra[D_ED]; z[2] += rb[D_ED]; z[3] += ra[D_ET]; z[4] += rb[D_ET];
@@ -299,6 +357,20 @@ static void cmp_bins(const char *fa, const char *fb)
                    b == 0 ? "<" : ">=", b == 0 ? edge[k][0] : edge[k][b - 1], 100 * z[0] / tot,
                    z[1] / z[0] / 3, z[2] / z[0] / 3, 100 * (z[2] - z[1]) / tda, z[3] / z[0] / 3, z[4] / z[0] / 3,
                    z[7] > 0 ? z[5] / z[7] : 0, z[8] > 0 ? z[6] / z[8] : 0, z[9] / z[0], z[10] / z[0], z[11] / z[0]);
+        }
+    }
+    /* the pixel-frames above the 99.99 % quantile, one line each (session 17) */
+    rewind(pa); rewind(pb);
+    {
+        long rec = 0, shown = 0;
+        printf("  top pixel-frames (> %.4g): rec N(A) N(B) betaB ref refmed3x3 in dispA dispB edA edB\n", edge[6][NB - 2]);
+        while (fread(ra, sizeof ra, 1, pa) == 1 && fread(rb, sizeof rb, 1, pb) == 1) {
+            if (0.5 * (ra[D_ED] + rb[D_ED]) >= edge[6][NB - 2] && shown < 400) {
+                printf("  top %ld %.1f %.1f %.2f %.4g %.4g %.4g %.4g %.4g %.4g %.4g\n", rec, ra[D_N], rb[D_N], rb[D_B],
+                       rb[D_REF], rb[D_REFMED], rb[D_IN], ra[D_DISP], rb[D_DISP], ra[D_ED], rb[D_ED]);
+                ++shown;
+            }
+            ++rec;
         }
     }
     fclose(pa); fclose(pb);
