@@ -2436,7 +2436,8 @@ typedef struct sbl__weight_params {
     float evid_sh;     /* the reference path's mix factor of the pixel in hand,
                           max(sh_R, s) (sbl__kernel_pixel_ref_ch); 0: no mixing */
     float evid_share;  /* the region's share s of change (sbl__evidence_share, per row):
-                          the mix factor's floor (3.12); 0: none */
+                          the mix factor's floor (3.12; with stereo_shared_bias c > 0 net
+                          of R's false alarms, 4.14); 0: none */
     int blur;          /* temporal, pooled, default configuration, shared_bias > 0, bilinear
                           fetch: the resampling blur's bias enters the bias energy
                           (docs/ESTIMATORS.md 4.10, 4.12; sbl__blur_terms) */
@@ -6334,6 +6335,12 @@ static long sbl__evidence_row_count(const sbl_image *plane, int y)
     return c;
 }
 
+/* P(R > c_R) where nothing changes, under the blocks' own null model (q ~ Exp(1), the
+   tail e^-q their threshold c + ln M assumes; R its carried average with lambda = 1/3 and
+   the bounded step): 0.0230 (Monte Carlo, bench/evidence_null.c; the Gaussian tail of R's
+   spread, 0.0062, leaves static content a floor of half its false-alarm share). The
+   combined pipeline's share floor is the region's share net of it (docs/ESTIMATORS.md 4.14). */
+#define SBL__EVIDENCE_FALSE_ALARM 0.0230
 /* Row y's M (k->wp.region_m), ln M and the carried R's threshold and garrote. */
 static void sbl__evidence_share(sbl__kernel *k, int y)
 {
@@ -6367,8 +6374,19 @@ static void sbl__evidence_share(sbl__kernel *k, int y)
         double lm, v;
         /* the share itself, s = 1 / (2 M): the prior probability that a pixel of the
            region changed, below which the mix towards the paper's weight does not go */
-        if (SBL_EVIDENCE_MIX >= 2 && k->wp.evid_mix && k->wp.shared_bias == 0.0f)
-            k->wp.evid_share = SBL__CAST(float, SBL__CAST(double, cnt + 1) / SBL__CAST(double, n + 2));
+        if (SBL_EVIDENCE_MIX >= 2 && k->wp.evid_mix) {
+            double sh = SBL__CAST(double, cnt + 1) / SBL__CAST(double, n + 2);
+            /* behind a stereo blend (c > 0) the floor taken at the rows' gross share
+               costs static content its false alarms (4.14: static -2 %): there it is
+               the share of change net of R's false-alarm rate q0, (s - q0) / (1 - q0),
+               0 where the rows hold no more pixels beyond c_R than noise puts there.
+               The temporal filter alone keeps the gross share (3.12) */
+            if (k->wp.shared_bias != 0.0f)
+                sh = sh > SBL__EVIDENCE_FALSE_ALARM
+                         ? (sh - SBL__EVIDENCE_FALSE_ALARM) / (1.0 - SBL__EVIDENCE_FALSE_ALARM)
+                         : 0.0;
+            k->wp.evid_share = SBL__CAST(float, sh);
+        }
         if (m == 1.0f) return;
         lm = log(SBL__CAST(double, m));
         v = (SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0) + 2.0 * kap * lm;

@@ -1487,6 +1487,25 @@ static void test_blur_bias(void)
     CHECK_EQ(same, 1);
 }
 
+/* The combined pipeline's share floor (docs/ESTIMATORS.md 4.14): with stereo_shared_bias
+   c = 1 the mix towards the paper's weight does not go below the region's share of change
+   net of the carried R's false alarms, (s - q0) / (1 - q0). On a light both eyes see,
+   rising near the detection threshold (0.01 per frame, noise 0.1), the floor lets the
+   paper's weight in where most of the region changes: display RMSE 0.0384 / 0.0328 at a
+   rise of 0.01 / 0.004 per frame, 0.0435 / 0.0384 without the floor at c = 1 (the code
+   before, where this test fails). On flat, unchanging content the share is within its
+   false alarms and the floor is 0: 0.0112 with and without it. */
+static void test_shared_bias_floor(void)
+{
+    double mid1 = shared_bias_run(1.0f, 0.01, 0.1), slow1 = shared_bias_run(1.0f, 0.004, 0.1);
+    double flat1 = shared_bias_run(1.0f, 0.0, 0.1);
+    printf("  combined pipeline (c = 1), a light rising 0.01 / 0.004 / 0 per frame (noise 0.1): "
+           "display RMSE %.4f / %.4f / %.4f\n", mid1, slow1, flat1);
+    CHECK(mid1 < 0.0410);  /* halfway between 0.0384 and 0.0435 */
+    CHECK(slow1 < 0.0356); /* halfway between 0.0328 and 0.0384 */
+    CHECK(flat1 < 0.0113); /* 0.0112 before and after */
+}
+
 int main(void)
 {
     test_evidence_params();
@@ -1509,5 +1528,6 @@ int main(void)
     test_history_filter_bands();
     test_stereo_shared_bias();
     test_blur_bias();
+    test_shared_bias_floor();
     return sbt_finish("test_accuracy");
 }
