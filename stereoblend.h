@@ -2480,9 +2480,9 @@ typedef struct sbl__weight_params {
    2 (the default, 3.12): the mix factor is max(sh_R, s), s the region's share of change
    (the prior probability of 3.10 (c) that the pixel changed): where most of a region
    changes (a moving shadow) the paper's weight gets in before R has passed its threshold
-   at the pixel. The temporal filter alone only (stereo_shared_bias c = 0): behind a
-   stereo blend (c > 0) the floor cost combined static 2 % and pan 0.7 %, not explained
-   (ESTIMATORS 3.12), so the combined pipeline keeps 1. */
+   at the pixel. Behind a stereo blend (stereo_shared_bias c > 0) s is taken net of the
+   carried R's false alarms, (s - q0) / (1 - q0) (ESTIMATORS 4.14): the gross share cost
+   combined static 2 % and pan 0.7 % (3.12), the net one 0.2 % and 0.3 %. */
 #ifndef SBL_EVIDENCE_MIX
 #define SBL_EVIDENCE_MIX 2 /* 0: the weight of 3.10 (with SBL_EVIDENCE_REGION 3), bit for
                               bit; 1: 3.11 without 3.12's floor */
