@@ -9942,7 +9942,10 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     if (ch > 1) nonfinite = sbl__mor(nonfinite, sbl__mor(sbl__nonfinite(acc[1]), sbl__nonfinite(acc[2])));
     lo = sbl__gt(sbl__set1(1e-3f), wsum);
     if (sbl__mbits(fallback ? sbl__mor(nonfinite, lo) : nonfinite)) return 0;
-    inv = sbl__div_exact(one, wsum);
+    /* wsum = (1 - fx) + fx where both taps pass: 1 in most lanes (fx = 0, or 1 - fx
+       exact), and where it is 1 in all, 1 / wsum = 1 with the division skipped */
+    inv = sbl__mbits(sbl__mand(sbl__le(wsum, one), sbl__le(one, wsum))) == all ? one
+                                                                               : sbl__div_exact(one, wsum);
     n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
     valid = sbl__mandnot(sbl__gt(n, zero), lo);
     if (back_check && sbl__mbits(valid)) {

@@ -289,6 +289,7 @@ int main(int argc, char **argv)
         eye_bufs e[2];
         void *scratch[8];
         size_t bytes = sbl_temporal_scratch_size(w, 3);
+        int temporal_outputs_set = 0; /* both eyes' out / olen written this size */
         if (only_size && only_size != h) continue;
         fill_eye(&e[0], w, h, 0);
         fill_eye(&e[1], w, h, 1);
@@ -351,6 +352,16 @@ int main(int argc, char **argv)
                     fj.kind = 2;
                     fj.in_planes = inp; fj.in_count = ni; fj.in_ch = in_ch;
                     fj.out_planes = outp; fj.out_count = no; fj.out_ch = out_ch;
+                    /* the stereo case blends the temporal outputs: when the run left them
+                       unset (--only stereo), one temporal pass of each eye makes them, as
+                       the full run's two-eye temporal case does (zero pages instead would
+                       send every pixel to the 3x3 fallback: N = 0 fails every tap) */
+                    if (kind == 1 && !temporal_outputs_set)
+                        for (ev = 0; ev < 2; ++ev) {
+                            pj.kind = 0; pj.eye = ev;
+                            if (run_bands(&pj, 1, scratch) != 0) { fprintf(stderr, "temporal failed\n"); return 1; }
+                        }
+                    if (eyes == 2 && kind != 1) temporal_outputs_set = 1;
                     for (r = 0; r < reps + 1 && r < 64; ++r) {
                         double t0 = now_ms();
                         if (kind == 0 || kind == 2)
