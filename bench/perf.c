@@ -290,6 +290,7 @@ int main(int argc, char **argv)
         void *scratch[8];
         size_t bytes = sbl_temporal_scratch_size(w, 3);
         int temporal_outputs_set = 0; /* both eyes' out / olen written this size */
+        int eye0_rewritten = 0;       /* make_case turned eye 0 into another content */
         if (only_size && only_size != h) continue;
         fill_eye(&e[0], w, h, 0);
         fill_eye(&e[1], w, h, 1);
@@ -309,7 +310,17 @@ int main(int argc, char **argv)
                     for (k = 0; k < only_count; ++k) hit |= strcmp(only[k], names[pipe]) == 0;
                     if (!hit) continue;
                 }
-                if (pipe >= 3 && pipe <= 5) make_case(&e[0], w, h, pipe == 3 ? 4 : (pipe == 4 ? 3 : 5));
+                /* the one-eye cases 3..5 leave eye 0 at rest (case 5): the two-eye rows
+                   measure the easy content in both eyes, so eye 0 is made again */
+                if (eyes == 2 && eye0_rewritten) {
+                    free_eye(&e[0]);
+                    fill_eye(&e[0], w, h, 0);
+                    eye0_rewritten = 0;
+                }
+                if (pipe >= 3 && pipe <= 5) {
+                    make_case(&e[0], w, h, pipe == 3 ? 4 : (pipe == 4 ? 3 : 5));
+                    eye0_rewritten = 1;
+                }
                 for (threads = 1; threads <= (pipe >= 3 ? 1 : 2); ++threads) {
                     double t_lib[64], t_floor[64], t_cv[64], ms, fms, cvms = -1.0;
                     /* byte plan for the floor, matching the pipeline's reads / writes */
