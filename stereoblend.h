@@ -8085,7 +8085,7 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
     const sbl__temporal_rp *s = k->blur_rp;
     const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f), two = sbl__set1(2.0f), one = sbl__set1(1.0f);
     sbl__v sx, sy, sum = zero, xl, xr, vl, vr, f[3][3], vx, vy, n, in, hn;
-    sbl__m okx, oky, m[3][3], ok = sbl__gt(sbl__load(r->v + x), zero);
+    sbl__m okx, oky, m[3][3];
     int l, c, j;
     if (s->source == SBL_TEMPORAL_MOTION) {
         sbl__blur_motion_lanes(s, x, r->row, &vx, &vy);
@@ -8100,9 +8100,13 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
         vx = sbl__load(fvx);
         vy = sbl__load(fvy);
     }
-    /* no x*: no blur (and no value of an invalid lane's motion goes further) */
-    vx = sbl__sel(ok, vx, zero);
-    vy = sbl__sel(ok, vy, zero);
+    /* no x*: no blur (and no value of an invalid lane's motion goes further);
+       k->rows_valid: x* valid in every column of the row */
+    if (!k->rows_valid) {
+        const sbl__m ok = sbl__gt(sbl__load(r->v + x), zero);
+        vx = sbl__sel(ok, vx, zero);
+        vy = sbl__sel(ok, vy, zero);
+    }
     if (!sbl__blur_any(sbl__max(vx, vy))) {
         /* a fixed camera, integer motion: no blur */
         sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS, zero);
@@ -8124,23 +8128,28 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
         /* every x* of the lanes' 3x3 windows valid (k->rows_valid: the three rows'; else
            the rows' invalid extents), inside the image: the masked loop below without its
            selects (the same values), its nine loads written out from row pointers */
-        for (c = 0; c < ch; ++c) {
-            const float *const p0 = R[0]->x[c] + x, *const p1 = r->x[c] + x, *const p2 = R[2]->x[c] + x;
-            const sbl__v xc = sbl__load(p1), xl = sbl__load(p1 - 1), xr = sbl__load(p1 + 1);
-            const sbl__v u0 = sbl__load(p0 - 1), u1 = sbl__load(p0), u2 = sbl__load(p0 + 1);
-            const sbl__v d0 = sbl__load(p2 - 1), d1 = sbl__load(p2), d2 = sbl__load(p2 + 1);
-            const sbl__v d2x = sbl__sub(sbl__add(xl, xr), sbl__mul(two, xc));
-            const sbl__v d2y = sbl__sub(sbl__add(u1, d1), sbl__mul(two, xc));
-            /* (min and max of the nine: x* is finite here, so their order is free) */
-            const sbl__v lo = sbl__min(sbl__min(sbl__min(sbl__min(u0, u1), sbl__min(u2, xl)),
-                                                sbl__min(sbl__min(xc, xr), sbl__min(d0, d1))), d2);
-            const sbl__v hi = sbl__max(sbl__max(sbl__max(sbl__max(u0, u1), sbl__max(u2, xl)),
-                                                sbl__max(sbl__max(xc, xr), sbl__max(d0, d1))), d2);
-            const sbl__v hb = sbl__mul(half, sbl__sub(hi, lo));
-            sbl__v b = sbl__mul(half, sbl__add(sbl__mul(sx, d2x), sbl__mul(sy, d2y)));
-            b = sbl__min(sbl__max(b, sbl__sub(zero, hb)), hb);
-            sum = sbl__add(sum, sbl__mul(b, b));
-        }
+        /* (the channels written out, SBL__LANES_CH; the sum starts at channel 0's b^2,
+           which 0 + b^2 is: b^2 is never -0) */
+#define SBL__BLUR_CH(c) \
+    do { \
+        const float *const p0 = R[0]->x[c] + x, *const p1 = r->x[c] + x, *const p2 = R[2]->x[c] + x; \
+        const sbl__v xc = sbl__load(p1), xl = sbl__load(p1 - 1), xr = sbl__load(p1 + 1); \
+        const sbl__v u0 = sbl__load(p0 - 1), u1 = sbl__load(p0), u2 = sbl__load(p0 + 1); \
+        const sbl__v d0 = sbl__load(p2 - 1), d1 = sbl__load(p2), d2 = sbl__load(p2 + 1); \
+        const sbl__v d2x = sbl__sub(sbl__add(xl, xr), sbl__mul(two, xc)); \
+        const sbl__v d2y = sbl__sub(sbl__add(u1, d1), sbl__mul(two, xc)); \
+        /* (min and max of the nine: x* is finite here, so their order is free) */ \
+        const sbl__v lo = sbl__min(sbl__min(sbl__min(sbl__min(u0, u1), sbl__min(u2, xl)), \
+                                            sbl__min(sbl__min(xc, xr), sbl__min(d0, d1))), d2); \
+        const sbl__v hi = sbl__max(sbl__max(sbl__max(sbl__max(u0, u1), sbl__max(u2, xl)), \
+                                            sbl__max(sbl__max(xc, xr), sbl__max(d0, d1))), d2); \
+        const sbl__v hb = sbl__mul(half, sbl__sub(hi, lo)); \
+        sbl__v b = sbl__mul(half, sbl__add(sbl__mul(sx, d2x), sbl__mul(sy, d2y))); \
+        b = sbl__min(sbl__max(b, sbl__sub(zero, hb)), hb); \
+        sum = (c) ? sbl__add(sum, sbl__mul(b, b)) : sbl__mul(b, b); \
+    } while (0)
+        SBL__LANES_CH(SBL__BLUR_CH);
+#undef SBL__BLUR_CH
         sbl__store(q + SBL__POOL_BB(ch) * SBL__POOL_COLS, sum);
         return;
     }
