@@ -7996,19 +7996,25 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
 
 SBL__INLINE int sbl__rows_valid_in(const sbl__ring_row *const *R, int ca, int cb); /* (below) */
 
-/* sbl__blur_noise in lanes (the same operations) */
+/* sbl__blur_noise in lanes (the same operations): Horner's steps written out, so that each
+   coefficient is a constant of the instruction (in a loop it is a load and a broadcast) */
+#define SBL__BLUR_HORNER(j) \
+    pa = sbl__add(sbl__mul(pa, r), sbl__set1(sbl__blur_fa[j])); \
+    ph = sbl__add(sbl__mul(ph, r), sbl__set1(sbl__blur_fh[j])); \
+    pk = sbl__add(sbl__mul(pk, r), sbl__set1(sbl__blur_fk[j]))
 SBL__INLINE sbl__v sbl__blur_noise_lanes(sbl__v in, sbl__v n, sbl__v v)
 {
     const sbl__v one = sbl__set1(1.0f), r = sbl__div(one, sbl__sqrt(sbl__add(one, sbl__mul(n, v))));
     sbl__v pa = sbl__set1(sbl__blur_fa[6]), ph = sbl__set1(sbl__blur_fh[6]), pk = sbl__set1(sbl__blur_fk[6]);
-    int j;
-    for (j = 5; j >= 0; --j) {
-        pa = sbl__add(sbl__mul(pa, r), sbl__set1(sbl__blur_fa[j]));
-        ph = sbl__add(sbl__mul(ph, r), sbl__set1(sbl__blur_fh[j]));
-        pk = sbl__add(sbl__mul(pk, r), sbl__set1(sbl__blur_fk[j]));
-    }
+    SBL__BLUR_HORNER(5);
+    SBL__BLUR_HORNER(4);
+    SBL__BLUR_HORNER(3);
+    SBL__BLUR_HORNER(2);
+    SBL__BLUR_HORNER(1);
+    SBL__BLUR_HORNER(0);
     return sbl__add(sbl__mul(sbl__mul(r, r), pa), sbl__mul(in, sbl__add(ph, sbl__mul(v, pk))));
 }
+#undef SBL__BLUR_HORNER
 
 /* sbl__blur_var in lanes: floor as floorf (x86: sbl__floor, exact for |m| < 2^31, which
    a valid x*'s motion is; other lanes are discarded) */
@@ -8097,7 +8103,7 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
     const sbl__temporal_rp *s = k->blur_rp;
     const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f), two = sbl__set1(2.0f), one = sbl__set1(1.0f);
     sbl__v sx, sy, sum = zero, xl, xr, vl, vr, f[3][3], vx, vy, n, in, hn;
-    sbl__m okx, oky, m[3][3], ok = sbl__gt(sbl__load(r->v + x), zero);
+    sbl__m okx, oky, m[3][3];
     int l, c, j;
     if (s->source == SBL_TEMPORAL_MOTION) {
         sbl__blur_motion_lanes(s, x, r->row, &vx, &vy);
@@ -8112,9 +8118,13 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
         vx = sbl__load(fvx);
         vy = sbl__load(fvy);
     }
-    /* no x*: no blur (and no value of an invalid lane's motion goes further) */
-    vx = sbl__sel(ok, vx, zero);
-    vy = sbl__sel(ok, vy, zero);
+    /* no x*: no blur (and no value of an invalid lane's motion goes further);
+       k->rows_valid: x* valid in every column of the row */
+    if (!k->rows_valid) {
+        const sbl__m ok = sbl__gt(sbl__load(r->v + x), zero);
+        vx = sbl__sel(ok, vx, zero);
+        vy = sbl__sel(ok, vy, zero);
+    }
     if (!sbl__blur_any(sbl__max(vx, vy))) {
         /* a fixed camera, integer motion: no blur */
         sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS, zero);
@@ -8131,27 +8141,33 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
     sbl__store(q + SBL__POOL_BG(ch) * SBL__POOL_COLS,
                sbl__mul(sbl__set1(0.25f), sbl__add(sbl__mul(sbl__mul(sx, sx), sbl__blur_noise_lanes(in, n, vx)),
                                                    sbl__mul(sbl__mul(sy, sy), sbl__blur_noise_lanes(in, n, vy)))));
-    if (R[0] && R[2] && x > 0 && x + SBL__VW < k->w && sbl__rows_valid_in(R, x - 1, x + SBL__VW + 1)) {
-        /* every x* of the lanes' 3x3 windows valid (the rows' invalid extents), inside
-           the image: the masked loop below without its selects (the same values) */
-        for (c = 0; c < ch; ++c) {
-            const sbl__v xc = sbl__load(r->x[c] + x);
-            sbl__v lo = xc, hi = xc, b, hb, d2x, d2y;
-            d2x = sbl__sub(sbl__add(sbl__load(r->x[c] + x - 1), sbl__load(r->x[c] + x + 1)), sbl__mul(two, xc));
-            d2y = sbl__sub(sbl__add(sbl__load(R[0]->x[c] + x), sbl__load(R[2]->x[c] + x)), sbl__mul(two, xc));
-            for (j = 0; j < 3; ++j) {
-                int i;
-                for (i = 0; i < 3; ++i) {
-                    const sbl__v v = sbl__load(R[j]->x[c] + x + i - 1);
-                    lo = sbl__min(lo, v);
-                    hi = sbl__max(hi, v);
-                }
-            }
-            b = sbl__mul(half, sbl__add(sbl__mul(sx, d2x), sbl__mul(sy, d2y)));
-            hb = sbl__mul(half, sbl__sub(hi, lo));
-            b = sbl__min(sbl__max(b, sbl__sub(zero, hb)), hb);
-            sum = sbl__add(sum, sbl__mul(b, b));
-        }
+    if (x > 0 && x + SBL__VW < k->w &&
+        (k->rows_valid || (R[0] && R[2] && sbl__rows_valid_in(R, x - 1, x + SBL__VW + 1)))) {
+        /* every x* of the lanes' 3x3 windows valid (k->rows_valid: the three rows'; else
+           the rows' invalid extents), inside the image: the masked loop below without its
+           selects (the same values), its nine loads written out from row pointers */
+        /* (the channels written out, SBL__LANES_CH; the sum starts at channel 0's b^2,
+           which 0 + b^2 is: b^2 is never -0) */
+#define SBL__BLUR_CH(c) \
+    do { \
+        const float *const p0 = R[0]->x[c] + x, *const p1 = r->x[c] + x, *const p2 = R[2]->x[c] + x; \
+        const sbl__v xc = sbl__load(p1), xl = sbl__load(p1 - 1), xr = sbl__load(p1 + 1); \
+        const sbl__v u0 = sbl__load(p0 - 1), u1 = sbl__load(p0), u2 = sbl__load(p0 + 1); \
+        const sbl__v d0 = sbl__load(p2 - 1), d1 = sbl__load(p2), d2 = sbl__load(p2 + 1); \
+        const sbl__v d2x = sbl__sub(sbl__add(xl, xr), sbl__mul(two, xc)); \
+        const sbl__v d2y = sbl__sub(sbl__add(u1, d1), sbl__mul(two, xc)); \
+        /* (min and max of the nine: x* is finite here, so their order is free) */ \
+        const sbl__v lo = sbl__min(sbl__min(sbl__min(sbl__min(u0, u1), sbl__min(u2, xl)), \
+                                            sbl__min(sbl__min(xc, xr), sbl__min(d0, d1))), d2); \
+        const sbl__v hi = sbl__max(sbl__max(sbl__max(sbl__max(u0, u1), sbl__max(u2, xl)), \
+                                            sbl__max(sbl__max(xc, xr), sbl__max(d0, d1))), d2); \
+        const sbl__v hb = sbl__mul(half, sbl__sub(hi, lo)); \
+        sbl__v b = sbl__mul(half, sbl__add(sbl__mul(sx, d2x), sbl__mul(sy, d2y))); \
+        b = sbl__min(sbl__max(b, sbl__sub(zero, hb)), hb); \
+        sum = (c) ? sbl__add(sum, sbl__mul(b, b)) : sbl__mul(b, b); \
+    } while (0)
+        SBL__LANES_CH(SBL__BLUR_CH);
+#undef SBL__BLUR_CH
         sbl__store(q + SBL__POOL_BB(ch) * SBL__POOL_COLS, sum);
         return;
     }
