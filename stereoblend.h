@@ -8151,16 +8151,16 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
 #define SBL__BLUR_CH(c) \
     do { \
         const float *const p0 = R[0]->x[c] + x, *const p1 = r->x[c] + x, *const p2 = R[2]->x[c] + x; \
-        const sbl__v xc = sbl__load(p1), xl = sbl__load(p1 - 1), xr = sbl__load(p1 + 1); \
+        const sbl__v xc = sbl__load(p1), xw = sbl__load(p1 - 1), xe = sbl__load(p1 + 1); \
         const sbl__v u0 = sbl__load(p0 - 1), u1 = sbl__load(p0), u2 = sbl__load(p0 + 1); \
         const sbl__v d0 = sbl__load(p2 - 1), d1 = sbl__load(p2), d2 = sbl__load(p2 + 1); \
-        const sbl__v d2x = sbl__sub(sbl__add(xl, xr), sbl__mul(two, xc)); \
+        const sbl__v d2x = sbl__sub(sbl__add(xw, xe), sbl__mul(two, xc)); \
         const sbl__v d2y = sbl__sub(sbl__add(u1, d1), sbl__mul(two, xc)); \
         /* (min and max of the nine: x* is finite here, so their order is free) */ \
-        const sbl__v lo = sbl__min(sbl__min(sbl__min(sbl__min(u0, u1), sbl__min(u2, xl)), \
-                                            sbl__min(sbl__min(xc, xr), sbl__min(d0, d1))), d2); \
-        const sbl__v hi = sbl__max(sbl__max(sbl__max(sbl__max(u0, u1), sbl__max(u2, xl)), \
-                                            sbl__max(sbl__max(xc, xr), sbl__max(d0, d1))), d2); \
+        const sbl__v lo = sbl__min(sbl__min(sbl__min(sbl__min(u0, u1), sbl__min(u2, xw)), \
+                                            sbl__min(sbl__min(xc, xe), sbl__min(d0, d1))), d2); \
+        const sbl__v hi = sbl__max(sbl__max(sbl__max(sbl__max(u0, u1), sbl__max(u2, xw)), \
+                                            sbl__max(sbl__max(xc, xe), sbl__max(d0, d1))), d2); \
         const sbl__v hb = sbl__mul(half, sbl__sub(hi, lo)); \
         sbl__v b = sbl__mul(half, sbl__add(sbl__mul(sx, d2x), sbl__mul(sy, d2y))); \
         b = sbl__min(sbl__max(b, sbl__sub(zero, hb)), hb); \
