@@ -3441,6 +3441,35 @@ static void sbl__ring_put_flag(sbl__ring_row *r, int x, float n, const float *v,
 }
 #endif
 
+/* The motion vectors of pixels [x, x + VW) of a packed motion plane (pixel step 2, at
+   mvp) as one vector of x and one of y components: two loads and shuffles (a gather would
+   be a load per lane on SSE2), the pairs gathered on AVX-512, a copy elsewhere */
+SBL__INLINE void sbl__motion_packed_lanes(const float *mvp, sbl__v *mx, sbl__v *my)
+{
+#if SBL__VW == 4 && defined(SBL__ROW_GATHER)
+    const __m128 a = _mm_loadu_ps(mvp), b = _mm_loadu_ps(mvp + 4);
+    *mx = _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0));
+    *my = _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1));
+#elif SBL__VW == 8
+    const __m256 a = _mm256_loadu_ps(mvp), b = _mm256_loadu_ps(mvp + 8);
+    /* per 128-bit half (x0 x1 x4 x5 | x2 x3 x6 x7), then the 64-bit pairs in order */
+    *mx = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))),
+                                                 _MM_SHUFFLE(3, 1, 2, 0)));
+    *my = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))),
+                                                 _MM_SHUFFLE(3, 1, 2, 0)));
+#elif SBL__VW == 16
+    static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
+    *mx = sbl__gatheri(mvp, pair);
+    *my = sbl__gatheri(mvp + 1, pair);
+#else
+    float fx[SBL__VW], fy[SBL__VW];
+    int l;
+    for (l = 0; l < SBL__VW; ++l) { fx[l] = mvp[2 * l]; fy[l] = mvp[2 * l + 1]; }
+    *mx = sbl__load(fx);
+    *my = sbl__load(fy);
+#endif
+}
+
 #ifdef SBL__ROW_GATHER
 /* ---- the row gather ---------------------------------------------------------
    A scalar pass plans a block of pixels (target tests, source position, floor and
@@ -5041,9 +5070,6 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
 SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
                                          int x, int y, int sky)
 {
-#if SBL__VW == 16
-    static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
-#endif
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const float *mvp = SBL__AT(s->motion, x, y);
     sbl__v z = zero, slack = zero, mx, my;
@@ -5053,24 +5079,7 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
                                         : sbl__gt(one, zero));
     if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
     if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, keep);
-    {   /* the 2 VW floats (mx, my) of the pixels into one vector each: loads and
-           shuffles (SSE2 would emulate a gather with a load per lane) */
-#if SBL__VW == 4
-        const __m128 a = _mm_loadu_ps(mvp), b = _mm_loadu_ps(mvp + 4);
-        mx = _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0));
-        my = _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1));
-#elif SBL__VW == 8
-        const __m256 a = _mm256_loadu_ps(mvp), b = _mm256_loadu_ps(mvp + 8);
-        /* per 128-bit half: (x0 x1 x4 x5 | x2 x3 x6 x7), then the 64-bit pairs in order */
-        mx = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))),
-                                                    _MM_SHUFFLE(3, 1, 2, 0)));
-        my = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))),
-                                                    _MM_SHUFFLE(3, 1, 2, 0)));
-#else
-        mx = sbl__gatheri(mvp, pair);
-        my = sbl__gatheri(mvp + 1, pair);
-#endif
-    }
+    sbl__motion_packed_lanes(mvp, &mx, &my);
     /* a non-finite m is no exact one: sbl__plan_lanes hands it to the scalar plan, which
        resets it */
     if (s->motion_kx < 0.0) mx = sbl__sub(zero, mx); /* exact: -m (a zero's sign is moot) */
@@ -8052,28 +8061,7 @@ SBL__INLINE void sbl__blur_motion_lanes(const sbl__temporal_rp *s, int x, int y,
 {
     const float *mvp = SBL__AT(s->motion, x, y);
     if (s->motion.step == 2) {
-#if SBL__VW == 4 && defined(SBL__ROW_GATHER)
-        const __m128 a = _mm_loadu_ps(mvp), b = _mm_loadu_ps(mvp + 4);
-        *mx = _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0));
-        *my = _mm_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1));
-#elif SBL__VW == 8
-        const __m256 a = _mm256_loadu_ps(mvp), b = _mm256_loadu_ps(mvp + 8);
-        /* per 128-bit half (x0 x1 x4 x5 | x2 x3 x6 x7), then the 64-bit pairs in order */
-        *mx = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))),
-                                                     _MM_SHUFFLE(3, 1, 2, 0)));
-        *my = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))),
-                                                     _MM_SHUFFLE(3, 1, 2, 0)));
-#elif SBL__VW == 16
-        static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
-        *mx = sbl__gatheri(mvp, pair);
-        *my = sbl__gatheri(mvp + 1, pair);
-#else
-        float fx[SBL__VW], fy[SBL__VW];
-        int l;
-        for (l = 0; l < SBL__VW; ++l) { fx[l] = mvp[2 * l]; fy[l] = mvp[2 * l + 1]; }
-        *mx = sbl__load(fx);
-        *my = sbl__load(fy);
-#endif
+        sbl__motion_packed_lanes(mvp, mx, my);
     } else {
         float fx[SBL__VW], fy[SBL__VW];
         int l;
