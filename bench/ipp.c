@@ -10,6 +10,9 @@
      static  camera at rest: zero motion, unchanged depth
      normals the easy case with normals and ids in every G-buffer (frame, history, both
              eyes): the normal and id tap tests, as a renderer passes them
+     two-eyes the easy case with the stereo blend of both eyes (each eye's temporal
+             output blended with the other's, as bench/perf.c's stereo pipeline runs it;
+             ipp.sh divides the blend's count by 2 calls)
    Each case with "-ev" appended (easy-ev, hard-ev, ...) passes the optional evidence
    plane in and out (sbl_history.evidence / sbl_temporal_output.evidence), as the
    README's recommended setup does.
@@ -134,11 +137,13 @@ static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
 int main(int argc, char **argv)
 {
     static const char *names[5] = {"easy", "hard", "tiny", "static", "normals"};
-    int kind = 0, ev = 0, e, i;
+    int kind = 0, ev = 0, two = 0, e, i;
     eye_bufs b[2];
     size_t bytes = sbl_temporal_scratch_size(W, 3);
     void *scratch = malloc(bytes);
-    if (argc > 1) {
+    if (argc > 1 && strcmp(argv[1], "two-eyes") == 0) {
+        two = 1; /* the easy content */
+    } else if (argc > 1) {
         size_t len = strlen(argv[1]);
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
         for (i = 0; i < 5; ++i)
@@ -177,30 +182,33 @@ int main(int argc, char **argv)
         if (getenv("IPP_SHARED_BIAS")) td.stereo_shared_bias = (float)atof(getenv("IPP_SHARED_BIAS"));
         if (temporal_fn(&td, &f, &hi, &o, 0, H, scratch, bytes) != SBL_OK) return 1;
     }
-    {   /* the left eye's stereo blend of the two temporal outputs */
+    for (e = 0; e < (two ? 2 : 1); ++e) {
+        /* eye e's stereo blend of the two temporal outputs (the left eye's alone but in
+           case two-eyes) */
+        const eye_bufs *t = &b[e], *o = &b[!e];
         sbl_stereo_desc sd;
         sbl_eye te, se;
         memset(&sd, 0, sizeof sd); memset(&te, 0, sizeof te); memset(&se, 0, sizeof se);
         sd.focal_px = 800.0f;
         sd.baseline = 0.065f;
-        te.color = sbl_image_make(b[0].out, W, H, 3);
-        te.length = sbl_image_make(b[0].olen, W, H, 1);
-        te.gbuffer.depth = sbl_image_make(b[0].depth, W, H, 1);
-        se.color = sbl_image_make(b[1].out, W, H, 3);
-        se.length = sbl_image_make(b[1].olen, W, H, 1);
-        se.gbuffer.depth = sbl_image_make(b[1].depth, W, H, 1);
+        te.color = sbl_image_make(t->out, W, H, 3);
+        te.length = sbl_image_make(t->olen, W, H, 1);
+        te.gbuffer.depth = sbl_image_make(t->depth, W, H, 1);
+        se.color = sbl_image_make(o->out, W, H, 3);
+        se.length = sbl_image_make(o->olen, W, H, 1);
+        se.gbuffer.depth = sbl_image_make(o->depth, W, H, 1);
         if (kind == 4) {
-            te.gbuffer.normals = sbl_image_make(b[0].normal, W, H, 3);
-            te.gbuffer.ids = sbl_image_make(b[0].id, W, H, 1);
-            se.gbuffer.normals = sbl_image_make(b[1].normal, W, H, 3);
-            se.gbuffer.ids = sbl_image_make(b[1].id, W, H, 1);
+            te.gbuffer.normals = sbl_image_make(t->normal, W, H, 3);
+            te.gbuffer.ids = sbl_image_make(t->id, W, H, 1);
+            se.gbuffer.normals = sbl_image_make(o->normal, W, H, 3);
+            se.gbuffer.ids = sbl_image_make(o->id, W, H, 1);
         }
-        if (stereo_fn(&sd, SBL_EYE_LEFT, &te, &se, sbl_image_make(b[0].stereo_out, W, H, 3),
+        if (stereo_fn(&sd, (sbl_eye_index)e, &te, &se, sbl_image_make(t->stereo_out, W, H, 3),
                       sbl_image_make(NULL, 0, 0, 1), 0, H, scratch, bytes) != SBL_OK)
             return 1;
     }
     printf("ipp case %s%s%s: %dx%d RGB, %s; pixels per call %d (temporal runs 2 eyes)\n",
-           names[kind], ev ? " with the evidence plane" : "",
+           two ? "two-eyes" : names[kind], ev ? " with the evidence plane" : "",
            getenv("IPP_SHARED_BIAS") ? ", stereo_shared_bias set" : "", W, H, SBL_SIMD_NAME, W * H);
     if (argc > 2 && strcmp(argv[2], "hash") == 0) {
         unsigned long long h = 14695981039346656037ull;
@@ -211,6 +219,7 @@ int main(int argc, char **argv)
             if (ev) h = fnv(h, b[e].oev, n);
         }
         h = fnv(h, b[0].stereo_out, n * 3);
+        if (two) h = fnv(h, b[1].stereo_out, n * 3);
         printf("hash %016llx\n", h);
     }
     free(scratch);
