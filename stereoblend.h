@@ -3443,7 +3443,8 @@ static void sbl__ring_put_flag(sbl__ring_row *r, int x, float n, const float *v,
 
 /* The motion vectors of pixels [x, x + VW) of a packed motion plane (pixel step 2, at
    mvp) as one vector of x and one of y components: two loads and shuffles (a gather would
-   be a load per lane on SSE2), the pairs gathered on AVX-512, a copy elsewhere */
+   be a load per lane on SSE2, and costs ~2x the loads and permutes on AVX-512: measured,
+   see sbl__gather_pairs), a copy elsewhere */
 SBL__INLINE void sbl__motion_packed_lanes(const float *mvp, sbl__v *mx, sbl__v *my)
 {
 #if SBL__VW == 4 && defined(SBL__ROW_GATHER)
@@ -3458,9 +3459,10 @@ SBL__INLINE void sbl__motion_packed_lanes(const float *mvp, sbl__v *mx, sbl__v *
     *my = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))),
                                                  _MM_SHUFFLE(3, 1, 2, 0)));
 #elif SBL__VW == 16
-    static const int pair[16] = {0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30};
-    *mx = sbl__gatheri(mvp, pair);
-    *my = sbl__gatheri(mvp + 1, pair);
+    const __m512 a = _mm512_loadu_ps(mvp), b = _mm512_loadu_ps(mvp + 16);
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    *mx = _mm512_permutex2var_ps(a, even, b);
+    *my = _mm512_permutex2var_ps(a, _mm512_add_epi32(even, _mm512_set1_epi32(1)), b);
 #else
     float fx[SBL__VW], fy[SBL__VW];
     int l;
@@ -3726,57 +3728,90 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
 }
 
 /* Taps (x0, y0) and (x0 + 1, y0) of VW lanes at once where a view's pixels are packed
-   (pixel step = its channel count nf): the 2 nf floats from each lane's index, read as
-   nf gathers of float pairs (64-bit elements), split into out[0 .. 2 nf): out[c] is
-   channel c of tap x0, out[nf + c] of tap x0 + 1. The same addresses as the float
-   gathers of both taps, half the elements (hardware gathers cost per element; SSE2
-   loads a pair per instruction instead of a float). SBL__PAIRS 0 turns them off. */
+   (pixel step = its channel count nf): the 2 nf floats from each lane's index, split into
+   out[0 .. 2 nf): out[c] is channel c of tap x0, out[nf + c] of tap x0 + 1, i.e. out[j]
+   is float j of every lane's run. Each lane's run is read with plain loads (4 floats, 2
+   floats: exactly its 2 nf floats, the addresses a gather would read) and the lanes are
+   transposed in registers. Hardware gathers did the same in nf gathers of float pairs
+   until session 18: on the machines measured (AMD EPYC, Zen 4 class) a gather costs far
+   more than its loads (bench/gather_mb.c: nf = 3, 16 lanes, 17.7 ns gathered against 5.3
+   ns loaded and transposed; 8 lanes 12.7 against 2.6; Intel's gathers are said to be
+   slow since the Downfall (GDS) microcode, not measured here). SBL__PAIRS 0 turns the
+   pairs off (float taps). */
 #ifndef SBL__PAIRS
 #define SBL__PAIRS 1
 #endif
+#if SBL__VW == 16 || SBL__VW == 8
+/* lanes l, l + 4 (, l + 8, l + 12) of a run's 4 floats at offset o, one 128-bit block each */
+SBL__INLINE sbl__v sbl__quad_lanes(const float *base, const int *idx, int l, int o)
+{
 #if SBL__VW == 16
-SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *out, int nf)
-{
-    const __m256i lo = _mm256_loadu_si256(SBL__PCAST(const __m256i *, idx));
-    const __m256i hi = _mm256_loadu_si256(SBL__PCAST(const __m256i *, idx + 8));
-    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-    const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
-#define SBL__PAIR(k) \
-    { \
-        const __m512 a = _mm512_castpd_ps(_mm512_i32gather_pd(lo, SBL__PCAST(const void *, base + 2 * k), 4)); \
-        const __m512 b = _mm512_castpd_ps(_mm512_i32gather_pd(hi, SBL__PCAST(const void *, base + 2 * k), 4)); \
-        out[2 * k] = _mm512_permutex2var_ps(a, even, b); \
-        out[2 * k + 1] = _mm512_permutex2var_ps(a, odd, b); \
-    }
-    SBL__PAIR(0);
-    if (nf > 1) SBL__PAIR(1);
-    if (nf > 2) SBL__PAIR(2);
-    if (nf > 3) SBL__PAIR(3);
-#undef SBL__PAIR
+    const __m256 lo = _mm256_set_m128(_mm_loadu_ps(base + idx[l + 4] + o), _mm_loadu_ps(base + idx[l] + o));
+    const __m256 hi = _mm256_set_m128(_mm_loadu_ps(base + idx[l + 12] + o), _mm_loadu_ps(base + idx[l + 8] + o));
+    return _mm512_insertf32x8(_mm512_castps256_ps512(lo), hi, 1);
+#else
+    return _mm256_set_m128(_mm_loadu_ps(base + idx[l + 4] + o), _mm_loadu_ps(base + idx[l] + o));
+#endif
 }
-#elif SBL__VW == 8
+/* the 2 floats at offset o of lanes l and l + 1 (low, high half of a 128-bit block) */
+SBL__INLINE __m128 sbl__two_pairs(const float *base, const int *idx, int l, int o)
+{
+    const __m128 a = _mm_castsi128_ps(_mm_loadl_epi64(SBL__PCAST(const __m128i *, SBL__PCAST(const void *, base + idx[l] + o))));
+    return _mm_loadh_pi(a, SBL__PCAST(const __m64 *, SBL__PCAST(const void *, base + idx[l + 1] + o)));
+}
+/* floats o .. o + 3 of every lane's run to out[0 .. 4): a 4x4 transpose per 128-bit
+   block (block j holds lanes 4 j .. 4 j + 3) */
+SBL__INLINE void sbl__lanes_quad(const float *base, const int *idx, int o, sbl__v *out)
+{
+    const sbl__v a = sbl__quad_lanes(base, idx, 0, o), b = sbl__quad_lanes(base, idx, 1, o);
+    const sbl__v c = sbl__quad_lanes(base, idx, 2, o), d = sbl__quad_lanes(base, idx, 3, o);
+#if SBL__VW == 16
+#define SBL__UNPK(f, x, y) _mm512_castpd_ps(f(_mm512_castps_pd(x), _mm512_castps_pd(y)))
+    const sbl__v t0 = _mm512_unpacklo_ps(a, b), t1 = _mm512_unpackhi_ps(a, b);
+    const sbl__v t2 = _mm512_unpacklo_ps(c, d), t3 = _mm512_unpackhi_ps(c, d);
+    out[0] = SBL__UNPK(_mm512_unpacklo_pd, t0, t2);
+    out[1] = SBL__UNPK(_mm512_unpackhi_pd, t0, t2);
+    out[2] = SBL__UNPK(_mm512_unpacklo_pd, t1, t3);
+    out[3] = SBL__UNPK(_mm512_unpackhi_pd, t1, t3);
+#else
+#define SBL__UNPK(f, x, y) _mm256_castpd_ps(f(_mm256_castps_pd(x), _mm256_castps_pd(y)))
+    const sbl__v t0 = _mm256_unpacklo_ps(a, b), t1 = _mm256_unpackhi_ps(a, b);
+    const sbl__v t2 = _mm256_unpacklo_ps(c, d), t3 = _mm256_unpackhi_ps(c, d);
+    out[0] = SBL__UNPK(_mm256_unpacklo_pd, t0, t2);
+    out[1] = SBL__UNPK(_mm256_unpackhi_pd, t0, t2);
+    out[2] = SBL__UNPK(_mm256_unpacklo_pd, t1, t3);
+    out[3] = SBL__UNPK(_mm256_unpackhi_pd, t1, t3);
+#endif
+#undef SBL__UNPK
+}
+/* floats o, o + 1 of every lane's run to out[0], out[1]: e holds lanes (0 1 | 4 5 ..),
+   f (2 3 | 6 7 ..) per 128-bit block; one shuffle takes each block's evens, one its odds */
+SBL__INLINE void sbl__lanes_pair(const float *base, const int *idx, int o, sbl__v *out)
+{
+#if SBL__VW == 16
+    const sbl__v e = _mm512_insertf32x8(
+        _mm512_castps256_ps512(_mm256_set_m128(sbl__two_pairs(base, idx, 4, o), sbl__two_pairs(base, idx, 0, o))),
+        _mm256_set_m128(sbl__two_pairs(base, idx, 12, o), sbl__two_pairs(base, idx, 8, o)), 1);
+    const sbl__v f = _mm512_insertf32x8(
+        _mm512_castps256_ps512(_mm256_set_m128(sbl__two_pairs(base, idx, 6, o), sbl__two_pairs(base, idx, 2, o))),
+        _mm256_set_m128(sbl__two_pairs(base, idx, 14, o), sbl__two_pairs(base, idx, 10, o)), 1);
+    out[0] = _mm512_shuffle_ps(e, f, _MM_SHUFFLE(2, 0, 2, 0));
+    out[1] = _mm512_shuffle_ps(e, f, _MM_SHUFFLE(3, 1, 3, 1));
+#else
+    const sbl__v e = _mm256_set_m128(sbl__two_pairs(base, idx, 4, o), sbl__two_pairs(base, idx, 0, o));
+    const sbl__v f = _mm256_set_m128(sbl__two_pairs(base, idx, 6, o), sbl__two_pairs(base, idx, 2, o));
+    out[0] = _mm256_shuffle_ps(e, f, _MM_SHUFFLE(2, 0, 2, 0));
+    out[1] = _mm256_shuffle_ps(e, f, _MM_SHUFFLE(3, 1, 3, 1));
+#endif
+}
 SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *out, int nf)
 {
-    const __m128i lo = _mm_loadu_si128(SBL__PCAST(const __m128i *, idx));
-    const __m128i hi = _mm_loadu_si128(SBL__PCAST(const __m128i *, idx + 4));
-    /* the masked form with a zero source and every lane on: the same loads, but g++
-       -Wmaybe-uninitialized cannot see through the plain form's undefined source */
-    const __m256d zero = _mm256_setzero_pd(), all = _mm256_cmp_pd(zero, zero, _CMP_EQ_OQ);
-    /* a = pairs of lanes 0-3, b = 4-7; per 128-bit half the shuffle takes lanes
-       (0 1 4 5 | 2 3 6 7), the 64-bit permute puts them in order */
-#define SBL__PAIR(k) \
-    { \
-        const double *pairs = SBL__PCAST(const double *, SBL__PCAST(const void *, base + 2 * k)); \
-        const __m256 a = _mm256_castpd_ps(_mm256_mask_i32gather_pd(zero, pairs, lo, all, 4)); \
-        const __m256 b = _mm256_castpd_ps(_mm256_mask_i32gather_pd(zero, pairs, hi, all, 4)); \
-        out[2 * k] = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0))), _MM_SHUFFLE(3, 1, 2, 0))); \
-        out[2 * k + 1] = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1))), _MM_SHUFFLE(3, 1, 2, 0))); \
-    }
-    SBL__PAIR(0);
-    if (nf > 1) SBL__PAIR(1);
-    if (nf > 2) SBL__PAIR(2);
-    if (nf > 3) SBL__PAIR(3);
-#undef SBL__PAIR
+    /* runs of 2 nf floats: 2 = a pair, 4 = a quad, 6 = quad + pair, 8 = two quads
+       (out[2 k], out[2 k + 1] set where k < nf, as the callers read them) */
+    if (nf > 1) sbl__lanes_quad(base, idx, 0, out);
+    else sbl__lanes_pair(base, idx, 0, out);
+    if (nf > 3) sbl__lanes_quad(base, idx, 4, out + 4);
+    else if (nf > 2) sbl__lanes_pair(base, idx, 4, out + 4);
 }
 #else
 SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *out, int nf)
@@ -4276,10 +4311,14 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
 #define SBL__PAIR_ROW(t, q) \
     { \
         cv[t][0] = q[0]; cv[t + 1][0] = q[ch]; \
-        if (ch > 1) { cv[t][1] = q[1]; cv[t + 1][1] = q[ch + 1]; } \
-        if (ch > 2) { cv[t][2] = q[2]; cv[t + 1][2] = q[ch + 2]; } \
-        if (ch > 3) { cv[t][3] = q[3]; cv[t + 1][3] = q[ch + 3]; } \
+        cv[t][1] = q[1]; cv[t + 1][1] = q[ch + 1]; \
+        cv[t][2] = q[2]; cv[t + 1][2] = q[ch + 2]; \
+        cv[t][3] = q[3]; cv[t + 1][3] = q[ch + 3]; \
     }
+            /* (every channel's slot copied, q's unread ones zero: dead code where ch is
+               a constant; else gcc -Wmaybe-uninitialized cannot match the reads of
+               channel c under ch > c to the writes under nf > c) */
+            q[2] = q[3] = q[4] = q[5] = q[6] = q[7] = zero;
             sbl__gather_pairs(cbase, cidx, q, ch);
             SBL__PAIR_ROW(0, q);
             if (!skip_y) {
