@@ -2891,8 +2891,20 @@ typedef __mmask16 sbl__m;
 /* for the row gather: taps at int offsets idx[0..VW) from base, masks, bit tests */
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
-#define sbl__gatheri(base, idx) \
-    _mm512_i32gather_ps(_mm512_loadu_si512(SBL__PCAST(const void *, idx)), base, 4)
+/* taps at int offsets: lane loads, not a hardware gather, which costs ~1.8x as much on
+   the machines measured (bench/gather_mb.c; sbl__gather_pairs) */
+SBL__INLINE __m128 sbl__load4_at(const float *base, const int *idx)
+{
+    const __m128 a = _mm_unpacklo_ps(_mm_load_ss(base + idx[0]), _mm_load_ss(base + idx[1]));
+    const __m128 c = _mm_unpacklo_ps(_mm_load_ss(base + idx[2]), _mm_load_ss(base + idx[3]));
+    return _mm_movelh_ps(a, c);
+}
+SBL__INLINE __m512 sbl__gatheri(const float *base, const int *idx)
+{
+    const __m256 lo = _mm256_set_m128(sbl__load4_at(base, idx + 4), sbl__load4_at(base, idx));
+    const __m256 hi = _mm256_set_m128(sbl__load4_at(base, idx + 12), sbl__load4_at(base, idx + 8));
+    return _mm512_insertf32x8(_mm512_castps256_ps512(lo), hi, 1);
+}
 #define sbl__le(a, b) _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
 #define sbl__mand(a, b) SBL__CAST(__mmask16, (a) & (b))
 #define sbl__mor(a, b) SBL__CAST(__mmask16, (a) | (b))
@@ -2947,8 +2959,18 @@ typedef __m256 sbl__m;
 #define sbl__true _mm256_castsi256_ps(_mm256_set1_epi32(-1))
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
-#define sbl__gatheri(base, idx) \
-    _mm256_i32gather_ps(base, _mm256_loadu_si256(SBL__PCAST(const __m256i *, idx)), 4)
+/* taps at int offsets: lane loads, not a hardware gather, which costs ~2.3x as much on
+   the machines measured (bench/gather_mb.c; sbl__gather_pairs) */
+SBL__INLINE __m128 sbl__load4_at(const float *base, const int *idx)
+{
+    const __m128 a = _mm_unpacklo_ps(_mm_load_ss(base + idx[0]), _mm_load_ss(base + idx[1]));
+    const __m128 c = _mm_unpacklo_ps(_mm_load_ss(base + idx[2]), _mm_load_ss(base + idx[3]));
+    return _mm_movelh_ps(a, c);
+}
+SBL__INLINE __m256 sbl__gatheri(const float *base, const int *idx)
+{
+    return _mm256_set_m128(sbl__load4_at(base, idx + 4), sbl__load4_at(base, idx));
+}
 #define sbl__le(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
 #define sbl__mand(a, b) _mm256_and_ps(a, b)
 #define sbl__mor(a, b) _mm256_or_ps(a, b)
