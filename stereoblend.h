@@ -848,8 +848,11 @@ extern "C" {
 #if defined(__GNUC__) || defined(__clang__)
 #define SBL__PREFETCH(p, bytes) \
     __builtin_prefetch(SBL__PCAST(const void *, SBL__PCAST(uintptr_t, p) + SBL__CAST(uintptr_t, bytes)))
+#define SBL__PREFETCH_W(p, bytes) /* (a line about to be written) */ \
+    __builtin_prefetch(SBL__PCAST(const void *, SBL__PCAST(uintptr_t, p) + SBL__CAST(uintptr_t, bytes)), 1)
 #else
 #define SBL__PREFETCH(p, bytes) ((void)0)
+#define SBL__PREFETCH_W(p, bytes) ((void)0)
 #endif
 
 /* ------------------------------------------------------------------------ */
@@ -2911,11 +2914,16 @@ SBL__INLINE __m128 sbl__load4_at(const float *base, const int *idx)
     const __m128 c = _mm_unpacklo_ps(_mm_load_ss(base + idx[2]), _mm_load_ss(base + idx[3]));
     return _mm_movelh_ps(a, c);
 }
+/* lo in lanes 0-7, hi in 8-15 (AVX-512F: no insertf32x8, which is DQ) */
+SBL__INLINE __m512 sbl__join8(__m256 lo, __m256 hi)
+{
+    return _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1));
+}
 SBL__INLINE __m512 sbl__gatheri(const float *base, const int *idx)
 {
     const __m256 lo = _mm256_set_m128(sbl__load4_at(base, idx + 4), sbl__load4_at(base, idx));
     const __m256 hi = _mm256_set_m128(sbl__load4_at(base, idx + 12), sbl__load4_at(base, idx + 8));
-    return _mm512_insertf32x8(_mm512_castps256_ps512(lo), hi, 1);
+    return sbl__join8(lo, hi);
 }
 #define sbl__le(a, b) _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
 #define sbl__mand(a, b) SBL__CAST(__mmask16, (a) & (b))
@@ -3782,7 +3790,7 @@ SBL__INLINE sbl__v sbl__quad_lanes(const float *base, const int *idx, int l, int
 #if SBL__VW == 16
     const __m256 lo = _mm256_set_m128(_mm_loadu_ps(base + idx[l + 4] + o), _mm_loadu_ps(base + idx[l] + o));
     const __m256 hi = _mm256_set_m128(_mm_loadu_ps(base + idx[l + 12] + o), _mm_loadu_ps(base + idx[l + 8] + o));
-    return _mm512_insertf32x8(_mm512_castps256_ps512(lo), hi, 1);
+    return sbl__join8(lo, hi);
 #else
     return _mm256_set_m128(_mm_loadu_ps(base + idx[l + 4] + o), _mm_loadu_ps(base + idx[l] + o));
 #endif
@@ -3823,12 +3831,10 @@ SBL__INLINE void sbl__lanes_quad(const float *base, const int *idx, int o, sbl__
 SBL__INLINE void sbl__lanes_pair(const float *base, const int *idx, int o, sbl__v *out)
 {
 #if SBL__VW == 16
-    const sbl__v e = _mm512_insertf32x8(
-        _mm512_castps256_ps512(_mm256_set_m128(sbl__two_pairs(base, idx, 4, o), sbl__two_pairs(base, idx, 0, o))),
-        _mm256_set_m128(sbl__two_pairs(base, idx, 12, o), sbl__two_pairs(base, idx, 8, o)), 1);
-    const sbl__v f = _mm512_insertf32x8(
-        _mm512_castps256_ps512(_mm256_set_m128(sbl__two_pairs(base, idx, 6, o), sbl__two_pairs(base, idx, 2, o))),
-        _mm256_set_m128(sbl__two_pairs(base, idx, 14, o), sbl__two_pairs(base, idx, 10, o)), 1);
+    const sbl__v e = sbl__join8(_mm256_set_m128(sbl__two_pairs(base, idx, 4, o), sbl__two_pairs(base, idx, 0, o)),
+                                _mm256_set_m128(sbl__two_pairs(base, idx, 12, o), sbl__two_pairs(base, idx, 8, o)));
+    const sbl__v f = sbl__join8(_mm256_set_m128(sbl__two_pairs(base, idx, 6, o), sbl__two_pairs(base, idx, 2, o)),
+                                _mm256_set_m128(sbl__two_pairs(base, idx, 14, o), sbl__two_pairs(base, idx, 10, o)));
     out[0] = _mm512_shuffle_ps(e, f, _MM_SHUFFLE(2, 0, 2, 0));
     out[1] = _mm512_shuffle_ps(e, f, _MM_SHUFFLE(3, 1, 3, 1));
 #else
@@ -5496,8 +5502,11 @@ SBL__NOINLINE void sbl__temporal_uniform_block(const sbl__temporal_rp *s, sbl__b
     const sbl__flat *f[5];
     float fx[SBL__VW], fy[SBL__VW], dx[SBL__VW], dy[SBL__VW];
     sbl__v mx, my, fmx, fmy;
-    int cx, cy, v;
+    int cx, cy, v, o;
     b->uni = 0;
+    /* the next row's motion (each block's test is the first read of its row) */
+    for (o = 0; o < 2 * b->n * 4; o += 64)
+        SBL__PREFETCH(mp, s->motion.stride * SBL__CAST(ptrdiff_t, sizeof(float)) + o);
     if (!sbl__motion_one(mp, b->n)) return;
     mx = sbl__set1(mp[0]);
     my = sbl__set1(mp[1]);
@@ -9083,6 +9092,13 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             {   /* interleave the staged row into the outputs */
                 const float *const *stage = SBL__PCAST(const float *const *, k->stage);
                 sbl__interleave(sbl__px(&k->out, 0, y), sbl__step_of(&k->out), k->ch, stage, x0, x1);
+                if (y + 1 < y1) { /* the next row's output lines, for writing */
+                    const char *next = SBL__PCAST(const char *, sbl__px(&k->out, x0, y + 1));
+                    const ptrdiff_t bytes = SBL__CAST(ptrdiff_t, x1 - x0) * sbl__step_of(&k->out) *
+                                            SBL__CAST(ptrdiff_t, sizeof(float));
+                    ptrdiff_t o;
+                    for (o = 0; o < bytes; o += 64) SBL__PREFETCH_W(next, o);
+                }
                 if (k->out_n.data)
                     sbl__interleave(sbl__px(&k->out_n, 0, y), sbl__step_of(&k->out_n), 1,
                                     SBL__PCAST(const float *const *, &k->stage_n), x0, x1);
