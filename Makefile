@@ -39,7 +39,7 @@ FLAGS_scalar = -DSBL_NO_SIMD
 FLAGS_avx2   = -mavx2 -mfma
 FLAGS_avx512 = -mavx512f -mavx2 -mfma
 
-.PHONY: all check demo bench bench-quick bench-perf bench-ipp ipp-watch bench-adaptive bench-shortcuts bench-shortcuts-ipp ao clean tests
+.PHONY: all check demo bench bench-quick bench-perf bench-ipp bench-gather ipp-watch bench-adaptive bench-shortcuts bench-shortcuts-ipp ao clean tests
 all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
 # make check / make tests / make check-robust: the configurations and the quiet runner
@@ -146,6 +146,14 @@ $(BUILD)/ipp-avx2: bench/ipp.c stereoblend.h
 	$(CC) -std=c99 -Wall -Wextra -O2 -g -mavx2 -mfma $< -o $@ $(LDLIBS)
 bench-ipp: $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2
 	@sh bench/ipp.sh $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2 -- $(IPP_CASES)
+
+# hardware gathers against per-lane loads + transpose on this CPU (why the lane paths
+# load scattered taps lane by lane); x86-64 only, AVX2 and AVX-512 by runtime check
+$(BUILD)/gather_mb: bench/gather_mb.c
+	@mkdir -p $(dir $@)
+	$(CC) -std=c99 -Wall -Wextra -O2 $< -o $@
+bench-gather: $(BUILD)/gather_mb
+	./$(BUILD)/gather_mb
 
 # CI's speed watch: the SSE2 figures against bench/ipp_budget.txt (fails above budget)
 ipp-watch: $(BUILD)/ipp-sse2
