@@ -2907,7 +2907,7 @@ typedef __mmask16 sbl__m;
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
 /* taps at int offsets: lane loads, not a hardware gather, which costs ~1.8x as much on
-   the machines measured (bench/gather_mb.c; sbl__gather_pairs) */
+   the machine measured (make bench-gather; sbl__gather_pairs) */
 SBL__INLINE __m128 sbl__load4_at(const float *base, const int *idx)
 {
     const __m128 a = _mm_unpacklo_ps(_mm_load_ss(base + idx[0]), _mm_load_ss(base + idx[1]));
@@ -2979,8 +2979,8 @@ typedef __m256 sbl__m;
 #define sbl__true _mm256_castsi256_ps(_mm256_set1_epi32(-1))
 #define SBL__ROW_GATHER 1
 #define SBL__SHUFFLE4 1 /* 128-bit float shuffles (sbl__deinterleave / sbl__interleave) */
-/* taps at int offsets: lane loads, not a hardware gather, which costs ~2.3x as much on
-   the machines measured (bench/gather_mb.c; sbl__gather_pairs) */
+/* taps at int offsets: lane loads, not a hardware gather, which costs ~1.9x as much on
+   the machine measured (make bench-gather; sbl__gather_pairs) */
 SBL__INLINE __m128 sbl__load4_at(const float *base, const int *idx)
 {
     const __m128 a = _mm_unpacklo_ps(_mm_load_ss(base + idx[0]), _mm_load_ss(base + idx[1]));
@@ -3485,8 +3485,8 @@ static void sbl__ring_put_flag(sbl__ring_row *r, int x, float n, const float *v,
 
 /* The motion vectors of pixels [x, x + VW) of a packed motion plane (pixel step 2, at
    mvp) as one vector of x and one of y components: two loads and shuffles (a gather would
-   be a load per lane on SSE2, and costs ~2x the loads and permutes on AVX-512: measured,
-   see sbl__gather_pairs), a copy elsewhere */
+   be a load per lane on SSE2, and costs more than the loads and permutes on AVX-512:
+   sbl__gather_pairs), a copy elsewhere */
 SBL__INLINE void sbl__motion_packed_lanes(const float *mvp, sbl__v *mx, sbl__v *my)
 {
 #if SBL__VW == 4 && defined(SBL__ROW_GATHER)
@@ -3775,11 +3775,11 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
    is float j of every lane's run. Each lane's run is read with plain loads (4 floats, 2
    floats: exactly its 2 nf floats, the addresses a gather would read) and the lanes are
    transposed in registers. Hardware gathers did the same in nf gathers of float pairs
-   until session 18: on the machines measured (AMD EPYC, Zen 4 class) a gather costs far
-   more than its loads (bench/gather_mb.c: nf = 3, 16 lanes, 17.7 ns gathered against 5.3
-   ns loaded and transposed; 8 lanes 12.7 against 2.6; Intel's gathers are said to be
-   slow since the Downfall (GDS) microcode, not measured here). SBL__PAIRS 0 turns the
-   pairs off (float taps). */
+   until session 18: on the machine measured (an AMD EPYC with AVX-512) a gather costs far
+   more than its loads (make bench-gather: nf = 3, 3.4x at 16 lanes, 3.6x at 8; Intel's
+   gathers are said to be slow since the Downfall (GDS) microcode, not measured here).
+   Callgrind counts each gather as one instruction, so the counts rise (hard case, AVX2
+   +14 per pixel) where the time falls. SBL__PAIRS 0 turns the pairs off (float taps). */
 #ifndef SBL__PAIRS
 #define SBL__PAIRS 1
 #endif
@@ -9997,6 +9997,13 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     dp = src->depth.p + SBL__CAST(ptrdiff_t, y) * src->depth.stride + x0;
     np = src->length.p + SBL__CAST(ptrdiff_t, y) * src->length.stride + x0;
     cp = src->color.p + SBL__CAST(ptrdiff_t, y) * src->color.stride + SBL__CAST(ptrdiff_t, x0) * ch;
+    {   /* the next row's taps (the match's row is the target's: it moves with y) */
+        const ptrdiff_t fb = SBL__CAST(ptrdiff_t, sizeof(float));
+        int o;
+        for (o = 0; o < ch * SBL__VW * 4; o += 64) SBL__PREFETCH(cp, src->color.stride * fb + o);
+        SBL__PREFETCH(dp, src->depth.stride * fb);
+        SBL__PREFETCH(np, src->length.stride * fb);
+    }
     d0 = sbl__load(dp);
     d1 = sbl__load(dp + 1);
     n0 = sbl__load(np);
