@@ -3808,23 +3808,20 @@ SBL__INLINE void sbl__lanes_quad(const float *base, const int *idx, int o, sbl__
     const sbl__v a = sbl__quad_lanes(base, idx, 0, o), b = sbl__quad_lanes(base, idx, 1, o);
     const sbl__v c = sbl__quad_lanes(base, idx, 2, o), d = sbl__quad_lanes(base, idx, 3, o);
 #if SBL__VW == 16
-#define SBL__UNPK(f, x, y) _mm512_castpd_ps(f(_mm512_castps_pd(x), _mm512_castps_pd(y)))
-    const sbl__v t0 = _mm512_unpacklo_ps(a, b), t1 = _mm512_unpackhi_ps(a, b);
-    const sbl__v t2 = _mm512_unpacklo_ps(c, d), t3 = _mm512_unpackhi_ps(c, d);
-    out[0] = SBL__UNPK(_mm512_unpacklo_pd, t0, t2);
-    out[1] = SBL__UNPK(_mm512_unpackhi_pd, t0, t2);
-    out[2] = SBL__UNPK(_mm512_unpacklo_pd, t1, t3);
-    out[3] = SBL__UNPK(_mm512_unpackhi_pd, t1, t3);
+#define SBL__UNPK_PS(f, x, y) _mm512_##f##_ps(x, y)
+#define SBL__UNPK_PD(f, x, y) _mm512_castpd_ps(_mm512_##f##_pd(_mm512_castps_pd(x), _mm512_castps_pd(y)))
 #else
-#define SBL__UNPK(f, x, y) _mm256_castpd_ps(f(_mm256_castps_pd(x), _mm256_castps_pd(y)))
-    const sbl__v t0 = _mm256_unpacklo_ps(a, b), t1 = _mm256_unpackhi_ps(a, b);
-    const sbl__v t2 = _mm256_unpacklo_ps(c, d), t3 = _mm256_unpackhi_ps(c, d);
-    out[0] = SBL__UNPK(_mm256_unpacklo_pd, t0, t2);
-    out[1] = SBL__UNPK(_mm256_unpackhi_pd, t0, t2);
-    out[2] = SBL__UNPK(_mm256_unpacklo_pd, t1, t3);
-    out[3] = SBL__UNPK(_mm256_unpackhi_pd, t1, t3);
+#define SBL__UNPK_PS(f, x, y) _mm256_##f##_ps(x, y)
+#define SBL__UNPK_PD(f, x, y) _mm256_castpd_ps(_mm256_##f##_pd(_mm256_castps_pd(x), _mm256_castps_pd(y)))
 #endif
-#undef SBL__UNPK
+    const sbl__v t0 = SBL__UNPK_PS(unpacklo, a, b), t1 = SBL__UNPK_PS(unpackhi, a, b);
+    const sbl__v t2 = SBL__UNPK_PS(unpacklo, c, d), t3 = SBL__UNPK_PS(unpackhi, c, d);
+    out[0] = SBL__UNPK_PD(unpacklo, t0, t2);
+    out[1] = SBL__UNPK_PD(unpackhi, t0, t2);
+    out[2] = SBL__UNPK_PD(unpacklo, t1, t3);
+    out[3] = SBL__UNPK_PD(unpackhi, t1, t3);
+#undef SBL__UNPK_PS
+#undef SBL__UNPK_PD
 }
 /* floats o, o + 1 of every lane's run to out[0], out[1]: e holds lanes (0 1 | 4 5 ..),
    f (2 3 | 6 7 ..) per 128-bit block; one shuffle takes each block's evens, one its odds */
