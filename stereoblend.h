@@ -840,20 +840,21 @@ extern "C" {
 #define SBL__PCAST(T, v) ((T)(v))
 #endif
 
-/* A hint to fetch the cache line `bytes` past p: the lane paths ask one row ahead of the
-   rows they read, which the hardware's stream prefetch left to miss (session 18: the 1080p
-   temporal pass ~12 % faster, docs/RESULTS.md). The address is formed in uintptr_t, since
-   a row ahead may lie past the image (a prefetch never faults); no-op without GCC's
-   builtin. Changes no value. */
+/* A hint to fetch the cache line `floats` floats past the float pointer p: the lane
+   paths ask one row ahead of the rows they read, which the hardware's stream prefetch
+   left to miss (session 18, docs/RESULTS.md); a line is SBL__LINE_FLOATS floats. The
+   address is formed in uintptr_t, since a row ahead may lie past the image (a prefetch
+   never faults); no-op without GCC's builtin. Changes no value. */
+#define SBL__LINE_FLOATS 16
 #if defined(__GNUC__) || defined(__clang__)
-#define SBL__PREFETCH(p, bytes) \
-    __builtin_prefetch(SBL__PCAST(const void *, SBL__PCAST(uintptr_t, p) + SBL__CAST(uintptr_t, bytes)))
-#define SBL__PREFETCH_W(p, bytes) /* (a line about to be written) */ \
-    __builtin_prefetch(SBL__PCAST(const void *, SBL__PCAST(uintptr_t, p) + SBL__CAST(uintptr_t, bytes)), 1)
+#define SBL__PREFETCH_AT(p, floats, w) \
+    __builtin_prefetch(SBL__PCAST(const void *, SBL__PCAST(uintptr_t, p) + \
+                                                    SBL__CAST(uintptr_t, floats) * sizeof(float)), w)
 #else
-#define SBL__PREFETCH(p, bytes) ((void)0)
-#define SBL__PREFETCH_W(p, bytes) ((void)0)
+#define SBL__PREFETCH_AT(p, floats, w) ((void)0)
 #endif
+#define SBL__PREFETCH(p, floats) SBL__PREFETCH_AT(p, floats, 0)
+#define SBL__PREFETCH_W(p, floats) SBL__PREFETCH_AT(p, floats, 1) /* (a line about to be written) */
 
 /* ------------------------------------------------------------------------ */
 /* 1. Results                                                               */
@@ -3760,12 +3761,9 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
     __m256 r0, g0, b0, r1, g1, b1;
     sbl__rgb8(p, &r0, &g0, &b0);
     sbl__rgb8(p + 24, &r1, &g1, &b1);
-#define SBL__JOIN8(lo, hi) \
-    _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1))
-    *r = SBL__JOIN8(r0, r1);
-    *g = SBL__JOIN8(g0, g1);
-    *b = SBL__JOIN8(b0, b1);
-#undef SBL__JOIN8
+    *r = sbl__join8(r0, r1);
+    *g = sbl__join8(g0, g1);
+    *b = sbl__join8(b0, b1);
 #endif
 }
 
@@ -4210,7 +4208,7 @@ SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *
     sbl__m use;
     int c, bits;
     /* the next row's new tap row (y0 + 2), as sbl__lanes_taps asks for N's */
-    SBL__PREFETCH(ebase + lidx[0], 2 * s->length.stride * SBL__CAST(ptrdiff_t, sizeof(float)));
+    SBL__PREFETCH(ebase + lidx[0], 2 * s->length.stride);
     if (pair) { /* taps 0, 1 (row y0) and 2, 3 (row y0 + 1) */
         sbl__gather_pairs(ebase, lidx, q, 1);
         if (!skip_y) sbl__gather_pairs(ebase + s->length.stride, lidx, q + 2, 1);
@@ -4246,12 +4244,11 @@ SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *
    sbl__lanes_taps it cost the SSE2 normals case +23 instructions per pixel: registers) */
 SBL__INLINE void sbl__taps_prefetch(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int ch)
 {
-    const ptrdiff_t fb = SBL__CAST(ptrdiff_t, sizeof(float));
     const float *c = s->color.p + p->ci[i];
     int o;
-    for (o = 0; o < ch * SBL__VW * 4; o += 64) SBL__PREFETCH(c, 2 * s->color.stride * fb + o);
-    if (s->use_depth) SBL__PREFETCH(s->depth.p + p->di[i], 2 * s->depth.stride * fb);
-    if (s->length.p) SBL__PREFETCH(s->length.p + p->li[i], 2 * s->length.stride * fb);
+    for (o = 0; o < ch * SBL__VW; o += SBL__LINE_FLOATS) SBL__PREFETCH(c, 2 * s->color.stride + o);
+    if (s->use_depth) SBL__PREFETCH(s->depth.p + p->di[i], 2 * s->depth.stride);
+    if (s->length.p) SBL__PREFETCH(s->length.p + p->li[i], 2 * s->length.stride);
 }
 
 SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
@@ -4930,7 +4927,7 @@ SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int w, int x, int y, 
     const ptrdiff_t ds = depth->stride;
     sbl__v dax, dbx, day, dby;
     *z = sbl__load(dp);
-    SBL__PREFETCH(dp, 2 * ds * SBL__CAST(ptrdiff_t, sizeof(float))); /* (the next row's new row) */
+    SBL__PREFETCH(dp, 2 * ds); /* (the next row's new row) */
     dax = sbl__abs(sbl__sub(*z, sbl__load(dp - 1)));
     dbx = sbl__abs(sbl__sub(sbl__load(dp + 1), *z));
     if (x == 0 || x + SBL__VW == w) {
@@ -5510,8 +5507,7 @@ SBL__NOINLINE void sbl__temporal_uniform_block(const sbl__temporal_rp *s, sbl__b
     int cx, cy, v, o;
     b->uni = 0;
     /* the next row's motion (each block's test is the first read of its row) */
-    for (o = 0; o < 2 * b->n * 4; o += 64)
-        SBL__PREFETCH(mp, s->motion.stride * SBL__CAST(ptrdiff_t, sizeof(float)) + o);
+    for (o = 0; o < 2 * b->n; o += SBL__LINE_FLOATS) SBL__PREFETCH(mp, s->motion.stride + o);
     if (!sbl__motion_one(mp, b->n)) return;
     mx = sbl__set1(mp[0]);
     my = sbl__set1(mp[1]);
@@ -6125,8 +6121,8 @@ SBL__INLINE int sbl__ring_own_rgb(sbl__ring_row *r, const float *src, const floa
     for (; x + SBL__VW <= xb; x += SBL__VW) {
         sbl__v v[4];
         int o;
-        /* the next row's colour and N (ahead, ahead_n: their row strides in bytes) */
-        for (o = 0; o < 3 * SBL__VW * 4; o += 64) SBL__PREFETCH(src + SBL__CAST(ptrdiff_t, x) * 3, ahead + o);
+        /* the next row's colour and N (ahead, ahead_n: their row strides in floats) */
+        for (o = 0; o < 3 * SBL__VW; o += SBL__LINE_FLOATS) SBL__PREFETCH(src + SBL__CAST(ptrdiff_t, x) * 3, ahead + o);
         if (ny) SBL__PREFETCH(ny + x, ahead_n);
         sbl__rgb_lanes(src + SBL__CAST(ptrdiff_t, x) * 3, &v[0], &v[1], &v[2]);
         sbl__store(y0 + x, v[0]);
@@ -6154,9 +6150,7 @@ static int sbl__ring_load_own(const sbl__kernel *k, sbl__ring_row *r, int row, i
 #ifdef SBL__ROW_GATHER
     if (ny_lanes && ch == 3 && step == 3) {
         /* the usual layout: one pass */
-        const ptrdiff_t fb = SBL__CAST(ptrdiff_t, sizeof(float));
-        x = sbl__ring_own_rgb(r, src, ny, x, xb, sbl__stride(k->own) * fb, ny ? sbl__stride(k->own_n) * fb : 0,
-                              &count);
+        x = sbl__ring_own_rgb(r, src, ny, x, xb, sbl__stride(k->own), ny ? sbl__stride(k->own_n) : 0, &count);
         if (x < xb) sbl__deinterleave(src, step, ch, r->y, x, xb);
     } else if (ny_lanes) {
         sbl__deinterleave(src, step, ch, r->y, xa, xb);
@@ -8998,9 +8992,9 @@ static void sbl__prefetch_row_w(const sbl_image *im, int y, int x0, int x1)
 {
     if (im->data) {
         const float *row = sbl__px(im, x0, y);
-        const ptrdiff_t bytes = SBL__CAST(ptrdiff_t, x1 - x0) * sbl__step_of(im) * SBL__CAST(ptrdiff_t, sizeof(float));
+        const ptrdiff_t n = SBL__CAST(ptrdiff_t, x1 - x0) * sbl__step_of(im);
         ptrdiff_t o;
-        for (o = 0; o < bytes; o += 64) SBL__PREFETCH_W(row, o);
+        for (o = 0; o < n; o += SBL__LINE_FLOATS) SBL__PREFETCH_W(row, o);
     }
 }
 
@@ -10013,11 +10007,10 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     np = src->length.p + SBL__CAST(ptrdiff_t, y) * src->length.stride + x0;
     cp = src->color.p + SBL__CAST(ptrdiff_t, y) * src->color.stride + SBL__CAST(ptrdiff_t, x0) * ch;
     {   /* the next row's taps (the match's row is the target's: it moves with y) */
-        const ptrdiff_t fb = SBL__CAST(ptrdiff_t, sizeof(float));
         int o;
-        for (o = 0; o < ch * SBL__VW * 4; o += 64) SBL__PREFETCH(cp, src->color.stride * fb + o);
-        SBL__PREFETCH(dp, src->depth.stride * fb);
-        SBL__PREFETCH(np, src->length.stride * fb);
+        for (o = 0; o < ch * SBL__VW; o += SBL__LINE_FLOATS) SBL__PREFETCH(cp, src->color.stride + o);
+        SBL__PREFETCH(dp, src->depth.stride);
+        SBL__PREFETCH(np, src->length.stride);
     }
     d0 = sbl__load(dp);
     d1 = sbl__load(dp + 1);
