@@ -2784,7 +2784,7 @@ static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
    sample that enters the blend is limited; the window statistics keep it (with a
    firefly in them they drive the weight towards 1/(N+1), see docs/ESTIMATORS.md). */
 static void sbl__firefly_limit(const sbl__moments *m, const float *y, const float *xs, int ch,
-                               float *ylim)
+                               double n_scale, float *ylim)
 {
     double sum_y = 0.0, sum_m8 = 0.0, sum_x = 0.0, v8 = 0.0, bound, t = 1.0;
     int k;
@@ -2794,7 +2794,7 @@ static void sbl__firefly_limit(const sbl__moments *m, const float *y, const floa
         sum_x += SBL__CAST(double, xs[k]);
         v8 += m->var8[k];
     }
-    bound = (sum_m8 > sum_x ? sum_m8 : sum_x) + SBL_FIREFLY_SIGMAS * sqrt(v8);
+    bound = (sum_m8 > sum_x ? sum_m8 : sum_x) + SBL_FIREFLY_SIGMAS * sqrt(v8 * n_scale);
     /* a relative slack: y equal to x* must stay untouched under any summation order */
     bound += 1e-5 * fabs(bound);
     if (bound < 0.0) bound = 0.0;
@@ -2814,7 +2814,10 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
     float ylim[4];
     if ((p->estimator == SBL_ESTIMATOR_ROBUST || p->estimator == SBL_ESTIMATOR_POOLED) &&
         m->count > 1) {
-        sbl__firefly_limit(m, y, xs, ch, ylim);
+        /* temporal: the limit bounds the step a sample makes in the output, a (y - x*),
+           by the output's own noise (about sigma / sqrt(N + 1) at a = 1 / (N + 1)), so
+           its sigmas grow with sqrt(N + 1); 1 for the stereo blend */
+        sbl__firefly_limit(m, y, xs, ch, p->temporal ? SBL__CAST(double, n_x) + 1.0 : 1.0, ylim);
         y = ylim;
     }
     sbl__rectify(p, m, y, xs, ch);
@@ -5216,6 +5219,27 @@ SBL__INLINE int sbl__temporal_tiles_ok(const sbl__temporal_rp *s)
 #define sbl__vor(a, b) sbl__mor(a, b)
 #endif
 
+/* Is every lane +-0? On the bits: -ffast-math lets the compiler turn |a| <= 0 into an
+   unordered compare, true for NaN (clang -O3 -march=native did: a NaN motion vector
+   passed for a tile at rest). */
+SBL__INLINE int sbl__lanes_all_zero(sbl__v a)
+{
+#if defined(__AVX512F__) && SBL__VW == 16
+    return _mm512_test_epi32_mask(_mm512_castps_si512(a), _mm512_set1_epi32(0x7fffffff)) == 0;
+#elif defined(__AVX2__) && SBL__VW == 8
+    return _mm256_testz_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0x7fffffff));
+#elif defined(__SSE2__) && SBL__VW == 4 && !defined(SBL_NO_SIMD)
+    return _mm_movemask_epi8(_mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(a), _mm_set1_epi32(0x7fffffff)),
+                                             _mm_setzero_si128())) == 0xffff;
+#else
+    float t[SBL__VW];
+    int l, nonzero = 0;
+    sbl__store(t, a);
+    for (l = 0; l < SBL__VW; ++l) nonzero |= !sbl__is_zero(t[l]);
+    return !nonzero;
+#endif
+}
+
 /* Are the motion vectors of tile pixels [x0, x0 + n) of row y all +-0 (kx * +-0 = +-0)?
    The tile's bits OR-ed together are 0 but for the sign bit exactly when every component
    is +-0 (any other value, a NaN included, leaves a bit): one load and one OR per vector. */
@@ -5225,10 +5249,9 @@ SBL__INLINE int sbl__tile_motion_zero(const sbl__temporal_rp *s, int y, int x0, 
     int i;
     if (s->motion.step == 2) {
         const int m = 2 * n; /* >= 2 VW */
-        const sbl__v zero = sbl__set1(0.0f);
         sbl__v a = sbl__load(mp), b = sbl__load(mp + SBL__VW);
         /* a moving tile usually shows it in its first pixels */
-        if (~sbl__mbits(sbl__le(sbl__abs(sbl__vor(a, b)), zero)) & ((1 << SBL__VW) - 1)) return 0;
+        if (!sbl__lanes_all_zero(sbl__vor(a, b))) return 0;
         for (i = 2 * SBL__VW; i + 2 * SBL__VW <= m; i += 2 * SBL__VW) {
             a = sbl__vor(a, sbl__load(mp + i));
             b = sbl__vor(b, sbl__load(mp + i + SBL__VW));
@@ -5237,12 +5260,11 @@ SBL__INLINE int sbl__tile_motion_zero(const sbl__temporal_rp *s, int y, int x0, 
             a = sbl__vor(a, sbl__load(mp + m - 2 * SBL__VW));
             b = sbl__vor(b, sbl__load(mp + m - SBL__VW));
         }
-        return !(~sbl__mbits(sbl__le(sbl__abs(sbl__vor(a, b)), zero)) &
-                 ((1 << SBL__VW) - 1));
+        return sbl__lanes_all_zero(sbl__vor(a, b));
     }
     for (i = 0; i < n; ++i) {
         const float *m = mp + SBL__CAST(ptrdiff_t, i) * s->motion.step;
-        if (!(fabsf(m[0]) <= 0.0f && fabsf(m[1]) <= 0.0f)) return 0;
+        if (!sbl__is_zero(m[0]) || !sbl__is_zero(m[1])) return 0;
     }
     return 1;
 }
@@ -7669,11 +7691,27 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
 #undef SBL__POOL_CASE
 }
 
-/* Firefly limit of the own sample, as sbl__firefly_limit. */
-SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
+/* The firefly limit's factor t from the channel sums of y, the neighbours' mean m8, x*
+   and the neighbours' variance v8 (sbl__firefly_limit; n_xc the capped history length,
+   whose sqrt(N + 1) widens the temporal bound). t <= 1; y t is the limited sample. */
+SBL__INLINE sbl__v sbl__lanes_firefly_t(const sbl__kernel *k, sbl__v sum_y, sbl__v sum_m8, sbl__v sum_x,
+                                        sbl__v sum_v8, sbl__v n_xc)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
-    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, v8 = zero, bound, t;
+    sbl__v bound;
+    if (k->wp.temporal) sum_v8 = sbl__mul(sum_v8, sbl__add(n_xc, one));
+    bound = sbl__add(sbl__max(sum_m8, sum_x),
+                     sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
+    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
+    bound = sbl__max(bound, zero);
+    return sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+}
+
+/* Firefly limit of the own sample, as sbl__firefly_limit. */
+SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st, sbl__v n_xc)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, v8 = zero, t;
     int c, ch = k->ch;
     for (c = 0; c < ch; ++c) {
         sum_y = sbl__add(sum_y, st->yc[c]);
@@ -7681,24 +7719,20 @@ SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st)
         sum_x = sbl__add(sum_x, st->xr[c]);
         v8 = sbl__add(v8, st->v8[c]);
     }
-    bound = sbl__add(sbl__max(sum_m8, sum_x),
-                     sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(v8)));
-    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
-    bound = sbl__max(bound, zero);
-    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, v8, n_xc);
     for (c = 0; c < ch; ++c) st->yb[c] = sbl__sel(sbl__gt(one, t), sbl__mul(st->yc[c], t), st->yc[c]);
 }
 
 /* Neighbourhood clamp / variance clip of x*, as sbl__rectify (after the firefly limit
    of the robust estimator, as in sbl__blend_pixel). */
-SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st)
+SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st, sbl__v n_xc)
 {
     const sbl__v one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v gamma = sbl__set1(k->wp.gamma);
     int c, ch = k->ch;
     for (c = 0; c < ch; ++c) st->yb[c] = st->yc[c];
     if (k->wp.estimator == SBL_ESTIMATOR_ROBUST || k->wp.estimator == SBL_ESTIMATOR_POOLED)
-        sbl__lanes_firefly(k, st);
+        sbl__lanes_firefly(k, st, n_xc);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
     } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
@@ -7933,7 +7967,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
     st.lean_s = sbl__set1(8.0f / 7.0f);
     st.inv_n8 = sbl__set1(0.125f);
     sbl__lanes_pool(k, x, y, &st);
-    sbl__lanes_rectify(k, &st);
+    sbl__lanes_rectify(k, &st, n_xc);
     if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
         for (c = 0; c < ch; ++c) {
             sbl__v sums[4] = {zero, zero, zero, zero};
@@ -7964,12 +7998,12 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
                                         const float *nyrow, int x, int base, int y, const int ch,
                                         const int fast, const int full, const sbl__lane_edge *E)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const sbl__v cap = sbl__set1(k->n_cap), half = sbl__set1(0.5f);
     const int i = x - base;
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
     sbl__v yc[4], xs[4], yb[4], m8[4], v8[4], var[4], mean;
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, bound, a_mean, a2_mean, one_m, den, n_out;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, s2, w, w2, one_w, f_w, t, a_mean, a2_mean, one_m, den, n_out;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero;
     sbl__m valid, hi_w;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
@@ -7996,13 +8030,9 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     } while (0)
     SBL__LANES_CH(SBL__FAST_Y);
 #undef SBL__FAST_Y
-    bound = sbl__add(sbl__max(sum_m8, sum_x),
-                     sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
-    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
-    bound = sbl__max(bound, zero);
     /* t <= 1 (bound < max(sum_y, tiny) where divided), so y t is y where t = 1: the
        limited sample is y t in every lane, with no select */
-    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, sum_v8, n_xc);
 #define SBL__FAST_YB(c) \
     do { \
         yb[c] = sbl__mul(yc[c], t); /* (t <= 1, above) */ \
@@ -8061,12 +8091,13 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
    s2 into two planes of the chunk (index column - base); sbl__lanes_stage_weight, the
    weight into a third; then sbl__lanes_stage_blend, Eq. 5 and the blend. The same
    operations in the same order as sbl__lanes_vector_fast (bit for bit). */
-SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int x, int base,
-                                    const int ch, const sbl__lane_edge *E, const int mix)
+SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                    int x, int base, const int ch, const sbl__lane_edge *E,
+                                    const int mix)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v zero = sbl__set1(0.0f);
     const int i = x - base;
-    sbl__v mean, var, m8, v8, yc, s2 = zero, bound, t;
+    sbl__v mean, var, m8, v8, yc, s2 = zero, t, n_x, n_y, n_xc;
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
     /* |x* - mean|^2, for the mix towards the paper's weight (3.11); mix: a constant,
        k->wp.evid_mix (sbl__kernel_lanes_pooled_ch's instances) */
@@ -8090,11 +8121,8 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, int
     (void)mean;
     /* the channels' v8 (sbl__lanes_y_channel) */
     sum_v8 = sbl__mul(sum_v8, E ? E->inv_n8 : sbl__set1(0.125f));
-    bound = sbl__add(sbl__max(sum_m8, sum_x),
-                     sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
-    bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
-    bound = sbl__max(bound, zero);
-    t = sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
+    sbl__lanes_lengths(k, n_row, NULL, x, &n_x, &n_y, &n_xc);
+    t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, sum_v8, n_xc);
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_FT(ch) * SBL__POOL_COLS, t);
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_S2(ch) * SBL__POOL_COLS, s2);
     if (mix) sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_DEV2(ch) * SBL__POOL_COLS, dev2);
@@ -8432,7 +8460,7 @@ SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const 
     E.bessel = sbl__load(bessel);
     E.lean_s = sbl__load(lean_s);
     if (fast == 1) {
-        sbl__lanes_stage_y(k, W, x, base, ch, &E, mix);
+        sbl__lanes_stage_y(k, W, n_row, x, base, ch, &E, mix);
         sbl__lanes_stage_weight(k, n_row, nyrow, x, base, ch, 0, &E);
         sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0);
     } else {
@@ -8714,7 +8742,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
             }
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
-                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, p, base, ch, Er, mix));
+                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, n_row, p, base, ch, Er, mix));
                 if (blur) SBL__RUN_VECTORS(sbl__lanes_stage_blur(k_in, R, p, base, ch));
                 if (full) {
                     SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 1, Er));

@@ -820,8 +820,14 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                     spp[k] = l->spp[k];
                     r[k] = sbl_metric_rmse(l->img[e][k], w * 3, v[e]->ref, w * 3, w, h, 3);
                 }
-                eff_sum += sbl_metric_effective_spp(sbl_metric_rmse(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3),
-                                                    spp, r, l->count);
+                {
+                    const double rm = sbl_metric_rmse(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3);
+                    const double es = sbl_metric_effective_spp(rm, spp, r, l->count);
+                    if (getenv("SBR_EFF_DEBUG"))
+                        fprintf(stderr, "eff %s frame %d eye %d rmse %.5f eff %.3f ladder %.5f..%.5f\n", m->name, f, e,
+                                rm, es, r[0], r[l->count - 1]);
+                    eff_sum += es;
+                }
                 ++eff_n;
             }
         }

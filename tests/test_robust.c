@@ -1410,8 +1410,10 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                 if (pass == 0 && (p->est == SBL_ESTIMATOR_ROBUST || p->est == SBL_ESTIMATOR_POOLED) &&
                     cnt > 1) {
                     /* neighbours without the centre: mean and population variance,
-                       summed over channels; bound = max(their mean, x*) + 6 sigma */
+                       summed over channels; bound = max(their mean, x*) + 6 sigma
+                       sqrt(N + 1), N the capped history length */
                     double sy = 0, sm = 0, sx = 0, sv = 0, bound, t = 1;
+                    const double ncap = nx > p->max_history ? p->max_history : nx;
                     int n;
                     for (k = 0; k < c; ++k) {
                         double m8 = 0, v8 = 0;
@@ -1420,7 +1422,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                             if (n != centre) v8 += (REF_Y(n, k) - m8) * (REF_Y(n, k) - m8) / (cnt - 1);
                         sy += yv[k]; sm += m8; sx += x1[k]; sv += v8;
                     }
-                    bound = (sm > sx ? sm : sx) + 6.0 * sqrt(sv);
+                    bound = (sm > sx ? sm : sx) + 6.0 * sqrt(sv * (ncap + 1.0));
                     bound += 1e-5 * fabs(bound);
                     if (bound < 0) bound = 0;
                     if (sy > bound) t = bound / sy;
