@@ -4068,10 +4068,14 @@ SBL__INLINE sbl__m sbl__lanes_nid_run(const sbl__tap_src *s, const sbl__tap_plan
    ze? The last makes the taps' d > 0 test redundant: |fl(d - ze)| <= lim < ze needs
    fl(d - ze) > -ze, which (rounding is monotone, -ze is a float) needs d > 0; a NaN d
    fails either way. */
+SBL__INLINE int sbl__full_lim(sbl__v ze, sbl__v lim)
+{
+    return !sbl__mbits(sbl__mor(sbl__mor(sbl__posinf(ze), sbl__nonfinite(lim)), sbl__le(ze, lim)));
+}
+
 SBL__INLINE int sbl__full_lanes(sbl__v tol, sbl__v ze, sbl__v slack)
 {
-    const sbl__v lim = sbl__add(sbl__mul(tol, ze), slack);
-    return !sbl__mbits(sbl__mor(sbl__mor(sbl__posinf(ze), sbl__nonfinite(lim)), sbl__le(ze, lim)));
+    return sbl__full_lim(ze, sbl__add(sbl__mul(tol, ze), slack));
 }
 
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
@@ -4196,7 +4200,7 @@ SBL__INLINE void sbl__lanes_tap_ev(const sbl__tap_src *s, int t, sbl__v w, sbl__
    take its pixel gather (redo 3); the colour's redo lanes take theirs with the colour.
    pair: a scattered vector whose views are packed (sbl__lanes_taps): the plane, laid
    out as N (sbl__evidence_fused_ok), read two taps per gather as N is. */
-SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+SBL__INLINE int sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *p, int i,
                                           sbl__ring_row *r, int x, sbl__v w0, sbl__v w1,
                                           sbl__v w2, sbl__v w3, sbl__m ok0, sbl__m ok1,
                                           sbl__m ok2, sbl__m ok3, int skip_x, int skip_y,
@@ -4209,7 +4213,7 @@ SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *
     const int masked = sbl__mbits(sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3))) != (1 << SBL__VW) - 1;
     sbl__v acce = zero, e, q[4];
     sbl__m use;
-    int c, bits;
+    int c, bits, any;
     /* the next row's new tap row (y0 + 2), as sbl__lanes_taps asks for N's */
     SBL__PREFETCH(ebase + lidx[0], 2 * s->length.stride);
     if (pair) { /* taps 0, 1 (row y0) and 2, 3 (row y0 + 1) */
@@ -4226,9 +4230,10 @@ SBL__INLINE void sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *
     use = sbl__mandnot(sbl__mand(valid, sbl__gt(e, zero)),
                        sbl__gt(e, sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP))));
     sbl__store(r->e + x, sbl__sel(use, e, sbl__set1(1.0f)));
-    bits = sbl__mbits(sbl__mandnot(sbl__mand(fast, sbl__nonfinite(acce)), redo));
+    bits = any = sbl__mbits(sbl__mandnot(sbl__mand(fast, sbl__nonfinite(acce)), redo));
     for (c = 0; bits; ++c, bits >>= 1)
         if (bits & 1) p->redo[i + c] = 3;
+    return any; /* (the lanes marked) */
 }
 
 /* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
@@ -4254,20 +4259,23 @@ SBL__INLINE void sbl__taps_prefetch(const sbl__tap_src *s, const sbl__tap_plan *
     if (s->length.p) SBL__PREFETCH(s->length.p + p->li[i], 2 * s->length.stride);
 }
 
-SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
-                                 sbl__ring_row *r, int x, const int *cstep, int ch,
-                                 int contiguous, int sky, int full, int flag, int ev, int pair,
-                                 int nid_run, int nid)
+/* sbl__lanes_taps with plan entry i's fractions fx, fy, fast lanes, expected depth ze and
+   depth limit lim (read only where full or the depth test needs them) given in registers
+   (sbl__temporal_uniform_run has them: no store and reload). Returns whether any lane
+   was marked for redo. */
+SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
+                                   sbl__ring_row *r, int x, const int *cstep, int ch,
+                                   int contiguous, int sky, int full, int flag, int ev, int pair,
+                                   int nid_run, int nid, sbl__v fx, sbl__v fy, sbl__m fast,
+                                   sbl__v ze_in, sbl__v lim_in)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
-    const sbl__v fx = sbl__load(p->fx + i), fy = sbl__load(p->fy + i);
     const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
-    const sbl__m fast = sbl__gt(sbl__load(p->fast + i), zero);
     const int *cidx = contiguous ? cstep : p->ci + i;
     const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
     sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = zero, lim = zero;
     sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero), ok0, ok1, ok2, ok3;
-    int c, bits, plain = 0;
+    int c, bits, any, plain = 0;
     /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
        in every lane (a camera at rest; the rows of a parallel stereo rig) */
     const int skip_x = !sbl__mbits(sbl__gt(fx, zero)), skip_y = !sbl__mbits(sbl__gt(fy, zero));
@@ -4276,8 +4284,8 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     w2 = sbl__mul(gx, fy);
     w3 = sbl__mul(fx, fy);
     if (full || (s->use_depth && !sky)) {
-        ze = sbl__load(p->depth + i);
-        lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sbl__load(p->slack + i));
+        ze = ze_in;
+        lim = lim_in;
         if (!full) {
             inf_e = sbl__posinf(ze);
             plain = !sbl__mbits(sbl__mor(inf_e, sbl__nonfinite(lim)));
@@ -4447,15 +4455,33 @@ SBL__INLINE void sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i,
     }
 #endif
 #undef SBL__TAPS_OUT
-    bits = sbl__mbits(redo);
+    any = bits = sbl__mbits(redo);
     if (bits) {
         /* 2: only the fallback is left (sums finite, weight below 1e-3) */
         const int only = fallback ? sbl__mbits(sbl__mandnot(sbl__mand(lo, fast), nonfinite)) : 0;
         for (c = 0; bits; ++c, bits >>= 1)
             if (bits & 1) p->redo[i + c] = SBL__CAST(unsigned char, ((only >> c) & 1) + 1);
     }
-    if (ev) sbl__lanes_taps_evidence(s, p, i, r, x, w0, w1, w2, w3, ok0, ok1, ok2, ok3, skip_x, skip_y,
-                                     inv, valid, redo, fast, contiguous, pair);
+    if (ev) any |= sbl__lanes_taps_evidence(s, p, i, r, x, w0, w1, w2, w3, ok0, ok1, ok2, ok3, skip_x, skip_y,
+                                            inv, valid, redo, fast, contiguous, pair);
+    return any;
+}
+
+/* sbl__lanes_taps_in with plan entry i's values read from the plan */
+SBL__INLINE int sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
+                                sbl__ring_row *r, int x, const int *cstep, int ch,
+                                int contiguous, int sky, int full, int flag, int ev, int pair,
+                                int nid_run, int nid)
+{
+    const sbl__v zero = sbl__set1(0.0f);
+    sbl__v ze = zero, lim = zero;
+    if (full || (s->use_depth && !sky)) {
+        ze = sbl__load(p->depth + i);
+        lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sbl__load(p->slack + i));
+    }
+    return sbl__lanes_taps_in(s, p, i, fallback, r, x, cstep, ch, contiguous, sky, full, flag, ev,
+                              pair, nid_run, nid, sbl__load(p->fx + i), sbl__load(p->fy + i),
+                              sbl__gt(sbl__load(p->fast + i), zero), ze, lim);
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -5835,7 +5861,7 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
     const sbl__tap_src *src = &s->src;
     sbl__tap_plan *p = &b->p;
     const int all = (1 << SBL__VW) - 1;
-    sbl__v fx, fy, one, tol;
+    sbl__v fx, fy, tol;
     int i = 0;
     if (!b->uni || b->u_lo > 0 || b->sky || src->color.ch != 3 || src->color.step != 3 ||
         !src->use_depth || src->depth.step != 1 || !src->length.p || src->length.step != 1 ||
@@ -5844,32 +5870,29 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
         return 0;
     fx = sbl__set1(b->u_fx);
     fy = sbl__set1(b->u_fy);
-    one = sbl__set1(1.0f);
     tol = sbl__set1(src->depth_tolerance);
     for (;;) {
-        sbl__v z, slack;
-        unsigned char redo[SBL__VW], any = 0;
-        int l;
+        sbl__v z, slack, lim;
+        int any;
         if (i + SBL__VW > b->n) i = b->n - SBL__VW;
         if (i + SBL__VW > b->u_hi) return i;
-        if (sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, b->x0 + i, b->y, &z, &slack)) != all ||
-            !sbl__full_lanes(tol, z, slack))
+        if (sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, b->x0 + i, b->y, &z, &slack)) != all)
             return i;
-        sbl__store(p->fx + i, fx);
-        sbl__store(p->fy + i, fy);
-        sbl__store(p->fast + i, one);
-        sbl__store(p->depth + i, z);
-        sbl__store(p->slack + i, slack);
+        lim = sbl__add(sbl__mul(tol, z), slack);
+        if (!sbl__full_lim(z, lim)) return i;
+        /* the fractions, fast lanes (all), depth and limit in registers: a settled
+           entry's are read by its taps only (the plan writes a vector it hands back
+           again, and the block's redo pass reads no settled entry) */
         memset(p->redo + i, 0, SBL__VW);
         /* (contiguous: sbl__lanes_taps reads entry i's first tap indices only) */
         p->ci[i] = b->u_first[0] + 3 * i;
         p->di[i] = b->u_first[1] + i;
         p->li[i] = b->u_first[2] + i;
         sbl__taps_prefetch(src, p, i, 3);
-        if (ev) sbl__lanes_taps(src, p, i, fallback, r, b->x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 1, 0, 0, 0);
-        else sbl__lanes_taps(src, p, i, fallback, r, b->x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 0, 0, 0, 0);
-        memcpy(redo, p->redo + i, SBL__VW);
-        for (l = 0; l < SBL__VW; ++l) any |= redo[l];
+        if (ev) any = sbl__lanes_taps_in(src, p, i, fallback, r, b->x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 1,
+                                         0, 0, 0, fx, fy, sbl__true, z, lim);
+        else any = sbl__lanes_taps_in(src, p, i, fallback, r, b->x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 0,
+                                      0, 0, 0, fx, fy, sbl__true, z, lim);
         if (any) return i;
         if (i + SBL__VW >= b->n) return b->n;
         i += SBL__VW;
