@@ -5858,16 +5858,27 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
                                           int fallback, int ev)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    const sbl__tap_src *src = &s->src;
+    const sbl__tap_src *src0 = &s->src, *src;
     sbl__tap_plan *p = &b->p;
     const int all = (1 << SBL__VW) - 1;
+    sbl__tap_src sc;
     sbl__v fx, fy, tol;
     int i = 0;
-    if (!b->uni || b->u_lo > 0 || b->sky || src->color.ch != 3 || src->color.step != 3 ||
-        !src->use_depth || src->depth.step != 1 || !src->length.p || src->length.step != 1 ||
-        src->use_normal || src->use_id || !s->geo.depth.p || s->geo.normals.p || s->geo.ids.p ||
-        b->x0 + b->n > src->width)
+    if (!b->uni || b->u_lo > 0 || b->sky || src0->color.ch != 3 || src0->color.step != 3 ||
+        !src0->use_depth || src0->depth.step != 1 || !src0->length.p || src0->length.step != 1 ||
+        src0->use_normal || src0->use_id || !s->geo.depth.p || s->geo.normals.p || s->geo.ids.p ||
+        b->x0 + b->n > src0->width)
         return 0;
+    /* a local copy with what was just tested as constants: the taps' tests of the
+       views fold, and no store of theirs can alias its fields (not reloaded) */
+    sc = *src0;
+    sc.color.ch = 3;
+    sc.color.step = 3;
+    sc.use_depth = 1;
+    sc.depth.step = 1;
+    sc.length.step = 1;
+    sc.use_normal = sc.use_id = 0;
+    src = &sc;
     fx = sbl__set1(b->u_fx);
     fy = sbl__set1(b->u_fy);
     tol = sbl__set1(src->depth_tolerance);
