@@ -4199,7 +4199,8 @@ SBL__INLINE void sbl__lanes_tap_ev(const sbl__tap_src *s, int t, sbl__v w, sbl__
    (sbl__evidence_pixel's test). Lanes the colour keeps whose evidence sum is not finite
    take its pixel gather (redo 3); the colour's redo lanes take theirs with the colour.
    pair: a scattered vector whose views are packed (sbl__lanes_taps): the plane, laid
-   out as N (sbl__evidence_fused_ok), read two taps per gather as N is. */
+   out as N (sbl__evidence_fused_ok), read two taps per gather as N is. Returns the mask
+   of the lanes it marked (redo 3), 0 if none. */
 SBL__INLINE int sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *p, int i,
                                           sbl__ring_row *r, int x, sbl__v w0, sbl__v w1,
                                           sbl__v w2, sbl__v w3, sbl__m ok0, sbl__m ok1,
