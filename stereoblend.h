@@ -4068,6 +4068,12 @@ SBL__INLINE sbl__m sbl__lanes_nid_run(const sbl__tap_src *s, const sbl__tap_plan
    ze? The last makes the taps' d > 0 test redundant: |fl(d - ze)| <= lim < ze needs
    fl(d - ze) > -ze, which (rounding is monotone, -ze is a float) needs d > 0; a NaN d
    fails either way. */
+/* the taps' depth limit |d - ze| <= lim: tol ze + slack */
+SBL__INLINE sbl__v sbl__depth_lim(sbl__v tol, sbl__v ze, sbl__v slack)
+{
+    return sbl__add(sbl__mul(tol, ze), slack);
+}
+
 SBL__INLINE int sbl__full_lim(sbl__v ze, sbl__v lim)
 {
     return !sbl__mbits(sbl__mor(sbl__mor(sbl__posinf(ze), sbl__nonfinite(lim)), sbl__le(ze, lim)));
@@ -4075,7 +4081,7 @@ SBL__INLINE int sbl__full_lim(sbl__v ze, sbl__v lim)
 
 SBL__INLINE int sbl__full_lanes(sbl__v tol, sbl__v ze, sbl__v slack)
 {
-    return sbl__full_lim(ze, sbl__add(sbl__mul(tol, ze), slack));
+    return sbl__full_lim(ze, sbl__depth_lim(tol, ze, slack));
 }
 
 /* One tap of sbl__lanes_taps: t = 0 .. 3 is the footprint's (x0, y0), (x0 + 1, y0),
@@ -4274,7 +4280,7 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
     const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
     const int *cidx = contiguous ? cstep : p->ci + i;
     const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
-    sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = zero, lim = zero;
+    sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = ze_in, lim = lim_in;
     sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero), ok0, ok1, ok2, ok3;
     int c, bits, any, plain = 0;
     /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
@@ -4284,13 +4290,9 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
     w1 = sbl__mul(fx, gy);
     w2 = sbl__mul(gx, fy);
     w3 = sbl__mul(fx, fy);
-    if (full || (s->use_depth && !sky)) {
-        ze = ze_in;
-        lim = lim_in;
-        if (!full) {
-            inf_e = sbl__posinf(ze);
-            plain = !sbl__mbits(sbl__mor(inf_e, sbl__nonfinite(lim)));
-        }
+    if (!full && s->use_depth && !sky) {
+        inf_e = sbl__posinf(ze);
+        plain = !sbl__mbits(sbl__mor(inf_e, sbl__nonfinite(lim)));
     }
     acc[0] = acc[1] = acc[2] = acc[3] = zero;
     {   /* the tests of the taps, then the sums: without masks where every lane of every
@@ -4478,7 +4480,7 @@ SBL__INLINE int sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, 
     sbl__v ze = zero, lim = zero;
     if (full || (s->use_depth && !sky)) {
         ze = sbl__load(p->depth + i);
-        lim = sbl__add(sbl__mul(sbl__set1(s->depth_tolerance), ze), sbl__load(p->slack + i));
+        lim = sbl__depth_lim(sbl__set1(s->depth_tolerance), ze, sbl__load(p->slack + i));
     }
     return sbl__lanes_taps_in(s, p, i, fallback, r, x, cstep, ch, contiguous, sky, full, flag, ev,
                               pair, nid_run, nid, sbl__load(p->fx + i), sbl__load(p->fy + i),
@@ -5890,7 +5892,7 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
         if (i + SBL__VW > b->u_hi) return i;
         if (sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, b->x0 + i, b->y, &z, &slack)) != all)
             return i;
-        lim = sbl__add(sbl__mul(tol, z), slack);
+        lim = sbl__depth_lim(tol, z, slack);
         if (!sbl__full_lim(z, lim)) return i;
         /* the fractions, fast lanes (all), depth and limit in registers: a settled
            entry's are read by its taps only (the plan writes a vector it hands back
