@@ -4097,22 +4097,35 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
                                        int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
                                        int plain, sbl__v *nt, int contiguous, int sky, int full,
                                        const sbl__v *pre, int nid_run, const sbl__v *nid_pre,
-                                       int nid, sbl__m nid_ok)
+                                       int nid, sbl__m nid_ok, int wpos)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
+    /* wpos (a constant): w > 0 in every lane (sbl__taps_uni), so ok starts as the first
+       test's mask, not that mask and the weight's (an and with all ones, which the
+       compiler keeps) */
     sbl__m ok = sbl__gt(w, zero);
+    int first = wpos;
+#define SBL__OK_AND(m) \
+    do { \
+        if (first) { \
+            ok = (m); \
+            first = 0; \
+        } else { \
+            ok = sbl__mand(ok, (m)); \
+        } \
+    } while (0)
     if (full || s->use_depth) {
         const ptrdiff_t o = ty * s->depth.stride + tx * s->depth.step;
         const sbl__v d = pre ? pre[0]
                              : contiguous ? sbl__load(s->depth.p + o + p->di[i])
                                           : sbl__gatheri(s->depth.p + o, p->di + i);
         if (sky && !full) {
-            ok = sbl__mand(ok, sbl__posinf(d));
+            SBL__OK_AND(sbl__posinf(d));
         } else if (full) { /* (d > 0 implied: sbl__full_lanes) */
-            ok = sbl__mand(ok, sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
+            SBL__OK_AND(sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
         } else if (plain) {
-            ok = sbl__mand(ok, sbl__mand(sbl__gt(d, zero), sbl__le(sbl__abs(sbl__sub(d, ze)), lim)));
+            SBL__OK_AND(sbl__mand(sbl__gt(d, zero), sbl__le(sbl__abs(sbl__sub(d, ze)), lim)));
         } else {
             /* sbl__depth_match: sky matches only sky; else a finite, positive depth
                within the tolerance */
@@ -4121,19 +4134,20 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
                                           sbl__le(sbl__abs(sbl__sub(d, ze)), lim));
             const sbl__m match = sbl__mor(sbl__mand(inf_e, inf_t),
                                           sbl__mandnot(near, sbl__mor(inf_e, inf_t)));
-            ok = sbl__mand(ok, match);
+            SBL__OK_AND(match);
         }
     }
-    if (nid) ok = sbl__mand(ok, nid_ok); /* (sbl__lanes_nid_run, formed before) */
-    else if (!full && (s->use_normal || s->use_id)) ok = sbl__mand(ok, sbl__lanes_nid_ok(s, p, i, t, nid_run, nid_pre));
+    if (nid) SBL__OK_AND(nid_ok); /* (sbl__lanes_nid_run, formed before) */
+    else if (!full && (s->use_normal || s->use_id)) SBL__OK_AND(sbl__lanes_nid_ok(s, p, i, t, nid_run, nid_pre));
     *nt = zero;
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
         *nt = pre ? pre[1]
                   : contiguous ? sbl__load(s->length.p + o + p->li[i])
                                : sbl__gatheri(s->length.p + o, p->li + i);
-        ok = sbl__mand(ok, sbl__gt(*nt, zero));
+        SBL__OK_AND(sbl__gt(*nt, zero));
     }
+#undef SBL__OK_AND
     return ok;
 }
 
@@ -4266,30 +4280,87 @@ SBL__INLINE void sbl__taps_prefetch(const sbl__tap_src *s, const sbl__tap_plan *
     if (s->length.p) SBL__PREFETCH(s->length.p + p->li[i], 2 * s->length.stride);
 }
 
+/* The terms of sbl__lanes_taps_in that depend on the fractions alone, for vectors whose
+   lanes all share one pair of fractions (sbl__temporal_uniform_run's block): formed once
+   per block by sbl__taps_uni_of, not once per vector; the same expressions, so the same
+   values. wsum, inv, lo: the weight sum (the taps taken, in their order, from 0), its
+   reciprocal and its "below 1e-3" mask, which are the vector's where every tap passes
+   in every lane (no mask). wpos: every weight taken is above 0 in every lane (its test
+   always true). */
+typedef struct sbl__taps_uni {
+    sbl__v w[4], wsum, inv;
+    sbl__m lo;
+    int skip_x, skip_y, wpos;
+} sbl__taps_uni;
+
+SBL__INLINE void sbl__taps_uni_of(sbl__taps_uni *u, sbl__v fx, sbl__v fy)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
+    sbl__m pos;
+    /* (as sbl__lanes_taps_in: fractions are >= 0) */
+    u->skip_x = !sbl__mbits(sbl__gt(fx, zero));
+    u->skip_y = !sbl__mbits(sbl__gt(fy, zero));
+    u->w[0] = sbl__mul(gx, gy);
+    u->w[1] = sbl__mul(fx, gy);
+    u->w[2] = sbl__mul(gx, fy);
+    u->w[3] = sbl__mul(fx, fy);
+    /* the unmasked sum of sbl__lanes_tap_sum (SBL__EACH_TAP's taps and order) */
+    u->wsum = sbl__add(zero, u->w[0]);
+    pos = sbl__gt(u->w[0], zero);
+    if (!u->skip_x) {
+        u->wsum = sbl__add(u->wsum, u->w[1]);
+        pos = sbl__mand(pos, sbl__gt(u->w[1], zero));
+    }
+    if (!u->skip_y) {
+        u->wsum = sbl__add(u->wsum, u->w[2]);
+        pos = sbl__mand(pos, sbl__gt(u->w[2], zero));
+        if (!u->skip_x) {
+            u->wsum = sbl__add(u->wsum, u->w[3]);
+            pos = sbl__mand(pos, sbl__gt(u->w[3], zero));
+        }
+    }
+    u->inv = sbl__div_exact(one, u->wsum);
+    u->lo = sbl__gt(sbl__set1(1e-3f), u->wsum);
+    u->wpos = sbl__mbits(pos) == (1 << SBL__VW) - 1;
+}
+
 /* sbl__lanes_taps with plan entry i's fractions fx, fy, fast lanes, expected depth ze and
    depth limit lim (read only where full or the depth test needs them) given in registers
-   (sbl__temporal_uniform_run has them: no store and reload). Returns whether any lane
-   was marked for redo. */
+   (sbl__temporal_uniform_run has them: no store and reload). u (NULL: none): the terms
+   of the fractions, formed per block (then fx, fy are not read). Returns whether any
+   lane was marked for redo. */
 SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                    sbl__ring_row *r, int x, const int *cstep, int ch,
                                    int contiguous, int sky, int full, int flag, int ev, int pair,
                                    int nid_run, int nid, sbl__v fx, sbl__v fy, sbl__m fast,
-                                   sbl__v ze_in, sbl__v lim_in)
+                                   sbl__v ze_in, sbl__v lim_in, const sbl__taps_uni *u)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
-    const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
     const int *cidx = contiguous ? cstep : p->ci + i;
     const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
     sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = ze_in, lim = lim_in;
     sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero), ok0, ok1, ok2, ok3;
-    int c, bits, any, plain = 0;
-    /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0
-       in every lane (a camera at rest; the rows of a parallel stereo rig) */
-    const int skip_x = !sbl__mbits(sbl__gt(fx, zero)), skip_y = !sbl__mbits(sbl__gt(fy, zero));
-    w0 = sbl__mul(gx, gy);
-    w1 = sbl__mul(fx, gy);
-    w2 = sbl__mul(gx, fy);
-    w3 = sbl__mul(fx, fy);
+    int c, bits, any, plain = 0, unmasked, skip_x, skip_y;
+    const int wpos = u ? u->wpos : 0;
+    if (u) {
+        skip_x = u->skip_x;
+        skip_y = u->skip_y;
+        w0 = u->w[0];
+        w1 = u->w[1];
+        w2 = u->w[2];
+        w3 = u->w[3];
+    } else {
+        const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
+        /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh
+           0 in every lane (a camera at rest; the rows of a parallel stereo rig) */
+        skip_x = !sbl__mbits(sbl__gt(fx, zero));
+        skip_y = !sbl__mbits(sbl__gt(fy, zero));
+        w0 = sbl__mul(gx, gy);
+        w1 = sbl__mul(fx, gy);
+        w2 = sbl__mul(gx, fy);
+        w3 = sbl__mul(fx, fy);
+    }
     if (!full && s->use_depth && !sky) {
         inf_e = sbl__posinf(ze);
         plain = !sbl__mbits(sbl__mor(inf_e, sbl__nonfinite(lim)));
@@ -4360,7 +4431,7 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
         }
 #define SBL__TEST(t, nt) \
     sbl__lanes_tap_test(s, p, i, t, w##t, ze, lim, inf_e, plain, nt, contiguous, sky, full, pair ? dn[t] : NULL, \
-                        nid_run, nid_pair ? nv[t] : NULL, nid, nid ? nk[t] : sbl__true)
+                        nid_run, nid_pair ? nv[t] : NULL, nid, nid ? nk[t] : sbl__true, wpos)
         ok0 = SBL__TEST(0, &n0);
         ok1 = ok2 = ok3 = ok0;
         if (!skip_x) ok1 = SBL__TEST(1, &n1);
@@ -4394,7 +4465,8 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
 #define SBL__SUM(t, m) \
     sbl__lanes_tap_sum(s, t, w##t, ok##t, n##t, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, m, \
                        pair ? cv[t] : NULL)
-        if (sbl__mbits(all) == (1 << SBL__VW) - 1) SBL__EACH_TAP(SBL__SUM, 0);
+        unmasked = sbl__mbits(all) == (1 << SBL__VW) - 1;
+        if (unmasked) SBL__EACH_TAP(SBL__SUM, 0);
         else SBL__EACH_TAP(SBL__SUM, 1);
 #undef SBL__SUM
     }
@@ -4404,10 +4476,15 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
     if (ch > 1) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[1]));
     if (ch > 2) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[2]));
     if (ch > 3) nonfinite = sbl__mor(nonfinite, sbl__nonfinite(acc[3]));
-    lo = sbl__gt(sbl__set1(1e-3f), wsum);
+    if (u && unmasked) { /* wsum is u's (the same adds) */
+        lo = u->lo;
+        inv = u->inv;
+    } else {
+        lo = sbl__gt(sbl__set1(1e-3f), wsum);
+        inv = sbl__div_exact(one, wsum);
+    }
     redo = fallback ? sbl__mor(nonfinite, lo) : nonfinite;
     redo = sbl__mand(redo, fast);
-    inv = sbl__div_exact(one, wsum);
     n = sbl__min(sbl__max(sbl__mul(accn, inv), sbl__sub(zero, fmax)), fmax);
     valid = sbl__mandnot(sbl__mandnot(sbl__mand(fast, sbl__gt(n, zero)), lo), redo);
     sbl__store(r->n + x, sbl__sel(valid, n, zero));
@@ -4484,7 +4561,7 @@ SBL__INLINE int sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, 
     }
     return sbl__lanes_taps_in(s, p, i, fallback, r, x, cstep, ch, contiguous, sky, full, flag, ev,
                               pair, nid_run, nid, sbl__load(p->fx + i), sbl__load(p->fy + i),
-                              sbl__gt(sbl__load(p->fast + i), zero), ze, lim);
+                              sbl__gt(sbl__load(p->fast + i), zero), ze, lim, NULL);
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -4951,12 +5028,12 @@ SBL__INLINE int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
    min intrinsics commutative, so a NaN operand's result depends on register allocation.
    Where every difference is finite (then so is z: the common case) the slack is the sum
    of the mins; else every lane takes sbl__slack_axis's rule written out on the bits. */
-SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int w, int x, int y, sbl__v *z,
-                                   sbl__v *slack)
+/* (dp: the target depth at (x, y), ds: its row stride; the caller's loop may keep its
+   row pointer, sbl__temporal_uniform_run) */
+SBL__INLINE sbl__m sbl__lanes_want_at(const float *dp, ptrdiff_t ds, int w, int x, sbl__v *z,
+                                      sbl__v *slack)
 {
     const sbl__v zero = sbl__set1(0.0f);
-    const float *dp = SBL__AT(*depth, x, y);
-    const ptrdiff_t ds = depth->stride;
     sbl__v dax, dbx, day, dby;
     *z = sbl__load(dp);
     SBL__PREFETCH(dp, 2 * ds); /* (the next row's new row) */
@@ -4992,6 +5069,12 @@ SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int w, int x, int y, 
         *slack = sbl__sel(sbl__nonfinite(*z), zero, sbl__add(sx, sy));
     }
     return sbl__gt(*z, zero);
+}
+
+SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int w, int x, int y, sbl__v *z,
+                                   sbl__v *slack)
+{
+    return sbl__lanes_want_at(SBL__AT(*depth, x, y), depth->stride, w, x, z, slack);
 }
 
 /* Tap indices y0 stride + x0 step of a view (NULL: 0) for VW lanes of integer-valued
@@ -5865,8 +5948,11 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
     sbl__tap_plan *p = &b->p;
     const int all = (1 << SBL__VW) - 1;
     sbl__tap_src sc;
-    sbl__v fx, fy, tol;
-    int i = 0;
+    sbl__taps_uni u;
+    sbl__v tol;
+    const float *zp;
+    ptrdiff_t zs;
+    int i = 0, x0, n, u_hi, gw, c0, d0, l0;
     if (!b->uni || b->u_lo > 0 || b->sky || src0->color.ch != 3 || src0->color.step != 3 ||
         !src0->use_depth || src0->depth.step != 1 || !src0->length.p || src0->length.step != 1 ||
         src0->use_normal || src0->use_id || !s->geo.depth.p || s->geo.normals.p || s->geo.ids.p ||
@@ -5882,33 +5968,45 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
     sc.length.step = 1;
     sc.use_normal = sc.use_id = 0;
     src = &sc;
-    fx = sbl__set1(b->u_fx);
-    fy = sbl__set1(b->u_fy);
+    /* the weights and what follows from them, once for the block's vectors */
+    sbl__taps_uni_of(&u, sbl__set1(b->u_fx), sbl__set1(b->u_fy));
     tol = sbl__set1(src->depth_tolerance);
+    /* the loop's invariants in locals: the plan's and the ring's stores (bytes may alias
+       anything) would have the block's and the target's fields loaded again per vector */
+    x0 = b->x0;
+    n = b->n;
+    u_hi = b->u_hi;
+    gw = s->geo.width;
+    zs = s->geo.depth.stride;
+    zp = SBL__AT(s->geo.depth, x0, b->y); /* (depth step 1: sbl__temporal_plan_lanes_ok) */
+    c0 = b->u_first[0];
+    d0 = b->u_first[1];
+    l0 = b->u_first[2];
+    /* the redo bytes of every entry the loop may settle, at once (the block's redo pass
+       reads settled entries; the plan rewrites those of a vector handed back) */
+    memset(p->redo, 0, SBL__BLOCK);
     for (;;) {
         sbl__v z, slack, lim;
         int any;
-        if (i + SBL__VW > b->n) i = b->n - SBL__VW;
-        if (i + SBL__VW > b->u_hi) return i;
-        if (sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, b->x0 + i, b->y, &z, &slack)) != all)
-            return i;
+        if (i + SBL__VW > n) i = n - SBL__VW;
+        if (i + SBL__VW > u_hi) return i;
+        if (sbl__mbits(sbl__lanes_want_at(zp + i, zs, gw, x0 + i, &z, &slack)) != all) return i;
         lim = sbl__depth_lim(tol, z, slack);
         if (!sbl__full_lim(z, lim)) return i;
         /* the fractions, fast lanes (all), depth and limit in registers: a settled
            entry's are read by its taps only (the plan writes a vector it hands back
-           again, and the block's redo pass reads no settled entry) */
-        memset(p->redo + i, 0, SBL__VW);
+           again, and the block's redo pass reads no settled entry's but redo) */
         /* (contiguous: sbl__lanes_taps reads entry i's first tap indices only) */
-        p->ci[i] = b->u_first[0] + 3 * i;
-        p->di[i] = b->u_first[1] + i;
-        p->li[i] = b->u_first[2] + i;
+        p->ci[i] = c0 + 3 * i;
+        p->di[i] = d0 + i;
+        p->li[i] = l0 + i;
         sbl__taps_prefetch(src, p, i, 3);
-        if (ev) any = sbl__lanes_taps_in(src, p, i, fallback, r, b->x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 1,
-                                         0, 0, 0, fx, fy, sbl__true, z, lim);
-        else any = sbl__lanes_taps_in(src, p, i, fallback, r, b->x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 0,
-                                      0, 0, 0, fx, fy, sbl__true, z, lim);
+        if (ev) any = sbl__lanes_taps_in(src, p, i, fallback, r, x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 1,
+                                         0, 0, 0, sbl__set1(0.0f), sbl__set1(0.0f), sbl__true, z, lim, &u);
+        else any = sbl__lanes_taps_in(src, p, i, fallback, r, x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 0,
+                                      0, 0, 0, sbl__set1(0.0f), sbl__set1(0.0f), sbl__true, z, lim, &u);
         if (any) return i;
-        if (i + SBL__VW >= b->n) return b->n;
+        if (i + SBL__VW >= n) return n;
         i += SBL__VW;
     }
 }
