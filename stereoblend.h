@@ -7621,7 +7621,8 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
 /* Ratios of pixels [xa, xb) (xb - xa >= VW) from the blocks at index column - base, as
    sbl__row_pool_ref: pooled squared mean over pooled squared standard error, less the
    threshold, in [0, cap]; no noise at all and a mean: the cap. */
-SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int xb, int base)
+SBL__INLINE void sbl__pool_lanes_ratio_cfg(sbl__kernel *k, const int ch, int xa, int xb, int base,
+                                           const int evid)
 {
     const sbl__v zero = sbl__set1(0.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP));
@@ -7646,12 +7647,19 @@ SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int
 #endif
         r = sbl__sub(sbl__div(sm2, sbl__max(sse2, tiny)), thr);
         r = sbl__sel(sbl__gt(sse2, zero), r, sbl__sel(sbl__gt(sm2, zero), cap, zero));
-        if (k->evid_out) r = sbl__evidence_ratio_lanes(k, x, sm2, sse2, r);
+        if (evid) r = sbl__evidence_ratio_lanes(k, x, sm2, sse2, r);
         sbl__store(k->pool_r + x, sbl__max(sbl__min(r, cap), zero));
         if (x + SBL__VW >= xb) break;
         x += SBL__VW;
         if (x + SBL__VW > xb) x = xb - SBL__VW;
     }
+}
+
+/* evid (a constant of each loop): k->evid_out, tested once per call, not per vector */
+SBL__INLINE void sbl__pool_lanes_ratio(sbl__kernel *k, const int ch, int xa, int xb, int base)
+{
+    if (k->evid_out) sbl__pool_lanes_ratio_cfg(k, ch, xa, xb, base, 1);
+    else sbl__pool_lanes_ratio_cfg(k, ch, xa, xb, base, 0);
 }
 
 /* Pixel x of pool row j, flagged unsafe at load (a value outside the lane range): 1 if
@@ -8168,13 +8176,16 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* t <= 1 (bound < max(sum_y, tiny) where divided), so y t is y where t = 1: the
        limited sample is y t in every lane, with no select */
     t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, sum_v8, n_xc);
-#define SBL__FAST_YB(c) \
-    do { \
-        yb[c] = sbl__mul(yc[c], t); /* (t <= 1, above) */ \
-        if (fast == 2) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
-    } while (0)
+#define SBL__FAST_YB(c) yb[c] = sbl__mul(yc[c], t) /* (t <= 1, above) */
     SBL__LANES_CH(SBL__FAST_YB);
 #undef SBL__FAST_YB
+    /* the stereo weight's lean reads these copies, and runs only in a vector with a lane
+       of N_Y <= 1 (sbl__lanes_weight, the same test): elsewhere (a stereo target is mostly
+       a temporal output) the twelve stores to the stack would be dead */
+#define SBL__FAST_LEAN(c) \
+    do { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } while (0)
+    if (fast == 2 && !sbl__all(sbl__gt(n_y, one))) SBL__LANES_CH(SBL__FAST_LEAN);
+#undef SBL__FAST_LEAN
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
        pooled ratio of this row (sbl__kernel_lanes_pooled computed it: sbl__lanes_pool) */
     st.pool_r = sbl__load(k->pool_r + x);
@@ -8194,7 +8205,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* the blend (sbl__lanes_blend with one weight, no fill) */
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
-    f_w = sbl__sel(hi_w, one_w, w); /* the two-sided lerp's factor (as the staged lanes) */
+    f_w = sbl__min(w, one_w); /* the two-sided lerp's factor (as the staged lanes) */
 #define SBL__FAST_BLEND(c) \
     do { \
         sbl__v from, to, o; \
@@ -8538,8 +8549,11 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     hi_w = sbl__gt(w, half);
     one_w = sbl__sub(one, w);
     /* the two-sided lerp: from the end the weight is nearer, by its factor (the same
-       expression per lane as both lerps and a select) */
-    f_w = sbl__sel(hi_w, one_w, w);
+       expression per lane as both lerps and a select). The factor is min(w, 1 - w), the
+       select's value in one instruction (SSE2: a select is three): w is in [0, 1], not NaN
+       (sbl__lanes_weight's clamp), and for w > 1/2 the subtraction is exact, 1 - w < w;
+       else 1 - w >= 1/2 >= w, and at w = 1/2 both are 1/2 */
+    f_w = sbl__min(w, one_w);
 #define SBL__STAGE_BLEND(c) \
     do { \
         const sbl__v yc = sbl__load(W->y[1][c] + x), xs = sbl__load(W->x[1][c] + x); \
@@ -8761,7 +8775,10 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
         } \
     } while (0)
     const int span = SBL__POOL_STEP * SBL__POOL_BLOCKS;
-    const float *nyrow = (k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
+    /* N_Y: the temporal filter's own sample is one frame (sbl_temporal_filter sets no
+       own_n), so in its instances (fast 1) nyrow is the constant NULL and the stages'
+       N_Y is 1 with no test per vector (sbl__lanes_lengths) */
+    const float *nyrow = (fast != 1 && k->own_n && k->own_n->data) ? sbl__px(k->own_n, 0, y) : NULL;
     float *const pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *const ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
     const float *const n_row = R[1]->n;
     sbl__lane_rows W;
