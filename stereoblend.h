@@ -8176,16 +8176,16 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* t <= 1 (bound < max(sum_y, tiny) where divided), so y t is y where t = 1: the
        limited sample is y t in every lane, with no select */
     t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, sum_v8, n_xc);
-#define SBL__FAST_YB(c) yb[c] = sbl__mul(yc[c], t) /* (t <= 1, above) */
+    /* (the copies for the stereo weight's lean are stored in every vector: storing them
+       only where the lean runs, a lane of N_Y <= 1, left gcc -Wmaybe-uninitialized
+       warnings in the scalar build, which cannot see that the weight tests the same) */
+#define SBL__FAST_YB(c) \
+    do { \
+        yb[c] = sbl__mul(yc[c], t); /* (t <= 1, above) */ \
+        if (fast == 2) { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } \
+    } while (0)
     SBL__LANES_CH(SBL__FAST_YB);
 #undef SBL__FAST_YB
-    /* the stereo weight's lean reads these copies, and runs only in a vector with a lane
-       of N_Y <= 1 (sbl__lanes_weight, the same test): elsewhere (a stereo target is mostly
-       a temporal output) the twelve stores to the stack would be dead */
-#define SBL__FAST_LEAN(c) \
-    do { st.yb[c] = yb[c]; st.xs[c] = xs[c]; st.m8[c] = m8[c]; st.v8[c] = v8[c]; } while (0)
-    if (fast == 2 && !sbl__all(sbl__gt(n_y, one))) SBL__LANES_CH(SBL__FAST_LEAN);
-#undef SBL__FAST_LEAN
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
        pooled ratio of this row (sbl__kernel_lanes_pooled computed it: sbl__lanes_pool) */
     st.pool_r = sbl__load(k->pool_r + x);
