@@ -28,10 +28,15 @@ STRICT_LOGS = $(foreach c,$(STRICT_COMPILERS),$(foreach p,$(STRICT_PATHS),$(BUIL
 # flags), so that check's configurations use these objects as they are.
 STRICT_INTERNAL_SET = gcc-default gcc-scalar gcc-avx2 gcc-avx512 clang-default
 STRICT_INTERNAL = $(if $(filter $(1),$(STRICT_INTERNAL_SET)),-DSBL_TEST_INTERNAL)
+# clang's warnings all come from its front end, so the clang compiles whose object no
+# configuration links (all but clang-default) run -fsyntax-only: the same warnings, about
+# 0.4 s instead of 40 s each (7 of them: CI's time). gcc's compiles stay -O2 (its
+# -Wmaybe-uninitialized and the like need the optimiser).
+STRICT_SYNTAX_ONLY = $(and $(filter clang clangxx,$(1)),$(if $(filter $(1)-$(2),$(STRICT_INTERNAL_SET)),,1))
 define STRICT_RULE
 $(BUILD)/strict/$(1)-$(2).log: tests/sbl_impl.c stereoblend.h tests/sbl_test_alloc.h $$(if $$(call STRICT_INTERNAL,$(1)-$(2)),$$(INTERNAL_DEPS))
 	@mkdir -p $$(@D)
-	@rm -f $$(@:.log=.o); $$(STRICT_CC_$(1)) $$(STRICT_$(2)) $$(call STRICT_INTERNAL,$(1)-$(2)) -O2 -c $$< -o $$(@:.log=.o) > $$@ 2>&1 || echo "error: did not compile" >> $$@
+	@rm -f $$(@:.log=.o); $$(STRICT_CC_$(1)) $$(STRICT_$(2)) $$(call STRICT_INTERNAL,$(1)-$(2)) -O2 $$(if $$(call STRICT_SYNTAX_ONLY,$(1),$(2)),-fsyntax-only,-c -o $$(@:.log=.o)) $$< > $$@ 2>&1 || echo "error: did not compile" >> $$@
 endef
 $(foreach c,$(STRICT_COMPILERS),$(foreach p,$(STRICT_PATHS),$(eval $(call STRICT_RULE,$(c),$(p)))))
 
