@@ -4293,18 +4293,26 @@ typedef struct sbl__taps_uni {
     int skip_x, skip_y, wpos;
 } sbl__taps_uni;
 
-SBL__INLINE void sbl__taps_uni_of(sbl__taps_uni *u, sbl__v fx, sbl__v fy)
+/* The bilinear weights of fractions fx, fy (>= 0), and whether the x / y taps can be
+   skipped: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh 0 in every lane
+   (a camera at rest; the rows of a parallel stereo rig) */
+SBL__INLINE void sbl__tap_weights(sbl__v fx, sbl__v fy, sbl__v *w, int *skip_x, int *skip_y)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
+    *skip_x = !sbl__mbits(sbl__gt(fx, zero));
+    *skip_y = !sbl__mbits(sbl__gt(fy, zero));
+    w[0] = sbl__mul(gx, gy);
+    w[1] = sbl__mul(fx, gy);
+    w[2] = sbl__mul(gx, fy);
+    w[3] = sbl__mul(fx, fy);
+}
+
+SBL__INLINE void sbl__taps_uni_of(sbl__taps_uni *u, sbl__v fx, sbl__v fy)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     sbl__m pos;
-    /* (as sbl__lanes_taps_in: fractions are >= 0) */
-    u->skip_x = !sbl__mbits(sbl__gt(fx, zero));
-    u->skip_y = !sbl__mbits(sbl__gt(fy, zero));
-    u->w[0] = sbl__mul(gx, gy);
-    u->w[1] = sbl__mul(fx, gy);
-    u->w[2] = sbl__mul(gx, fy);
-    u->w[3] = sbl__mul(fx, fy);
+    sbl__tap_weights(fx, fy, u->w, &u->skip_x, &u->skip_y);
     /* the unmasked sum of sbl__lanes_tap_sum (SBL__EACH_TAP's taps and order) */
     u->wsum = sbl__add(zero, u->w[0]);
     pos = sbl__gt(u->w[0], zero);
@@ -4351,15 +4359,12 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
         w2 = u->w[2];
         w3 = u->w[3];
     } else {
-        const sbl__v gx = sbl__sub(one, fx), gy = sbl__sub(one, fy);
-        /* fractions are >= 0: none above 0 in x (in y) means taps 1 and 3 (2 and 3) weigh
-           0 in every lane (a camera at rest; the rows of a parallel stereo rig) */
-        skip_x = !sbl__mbits(sbl__gt(fx, zero));
-        skip_y = !sbl__mbits(sbl__gt(fy, zero));
-        w0 = sbl__mul(gx, gy);
-        w1 = sbl__mul(fx, gy);
-        w2 = sbl__mul(gx, fy);
-        w3 = sbl__mul(fx, fy);
+        sbl__v wt[4];
+        sbl__tap_weights(fx, fy, wt, &skip_x, &skip_y);
+        w0 = wt[0];
+        w1 = wt[1];
+        w2 = wt[2];
+        w3 = wt[3];
     }
     if (!full && s->use_depth && !sky) {
         inf_e = sbl__posinf(ze);

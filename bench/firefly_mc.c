@@ -17,16 +17,7 @@
    cc -O2 bench/firefly_mc.c -o build/firefly_mc -lm && ./build/firefly_mc */
 #include <math.h>
 #include <stdio.h>
-
-static unsigned long long rng_state = 88172645463325252ull;
-
-static double uniform01(void) /* xorshift64, (0, 1) */
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return ((double)(rng_state >> 11) + 0.5) / 9007199254740992.0;
-}
+#include "mc_rng.h"
 
 static double gauss(void) /* Box-Muller, one of the pair */
 {
