@@ -3296,10 +3296,10 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
 #define SBL__CHUNK_COLS 144
 
 /* sbl__row_pool's lanes: pixels per chunk, and floats per plane (the chunk and the
-   SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
+   SBL__POOL_REACH columns each side, padded); per channel three planes, then twelve */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 11)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 12)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -7005,6 +7005,82 @@ SBL__INLINE void sbl__blur_terms(const sbl__kernel *k, const sbl__ring_row *cons
     }
 }
 
+/* Pooled stereo (docs/ESTIMATORS.md 4.15, 4.16): the pairs' variance within the
+   window's columns, in place of their variance about the window's mean, where the
+   columns differ. A silhouette that crosses the rows biases the pairs of a column alike
+   (its mixed pixels match one layer only); their spread about the window's mean is then
+   that bias, not noise, and it hid the bias from the window's own test. The window's
+   pairs by column (one-way analysis of variance), summed over the channels: SS_T =
+   (n - 1) pv = SS_B + SS_W, SS_W = sum_j sum_i (d_ij - mean_j)^2 on n - J degrees of
+   freedom (J the columns with a pair), SS_B on J - 1. With one mean for all columns,
+   F = (SS_B / (J - 1)) / (SS_W / (n - J)) is F(J - 1, n - J) (channels' noise fully
+   correlated; less dispersed if not); past its upper SBL__FGATE_ALPHA point (the window's
+   own test's false alarm, P(|t_8| > 4)) every channel's pair variance becomes
+   s_w^2 = SS_W_c / (n - J). In terms of the two variances: pv > H s_w^2 (channel sums),
+   H = (n - J + (J - 1) F_c) / (n - 1), tabled by n - J (2 .. 6) for J = 3 and J = 2;
+   no gate below 2 degrees of freedom within or 2 columns. */
+#define SBL__FGATE_ALPHA 0.00395
+static const float sbl__fgate_h3[7] = {0.0f, 0.0f, 126.59f, 24.0125f, 10.6077f, 6.53496f, 4.74465f};
+static const float sbl__fgate_h2[5] = {0.0f, 0.0f, 84.56f, 17.1033f, 7.93283f};
+#include <stdlib.h> /* DEBUG */
+static float sbl__fgate_dbg(void) /* DEBUG: env SBL_FGATE_F = the F threshold of the full window */
+{
+    static float m = -1.0f;
+    if (m < 0.0f) { const char *e = getenv("SBL_FGATE_F"); m = e ? (6.0f + 2.0f * (float)atof(e)) / 8.0f / 4.74465f : 1.0f; }
+    return m;
+}
+
+/* The reference path's pairs and the order of the window's loop in
+   sbl__kernel_pixel_ref_ch (in double; the lanes: sbl__fgate_h_lanes) */
+static void sbl__pair_var_within(sbl__moments *m, const sbl__ring_row *const *R, int i0, int i1,
+                                 const int ch)
+{
+    double d[3][4], ss[4] = {0.0, 0.0, 0.0, 0.0}, pvs = 0.0, sws = 0.0, h;
+    int i, j, c, n = 0, cols = 0;
+    for (i = i0; i <= i1; ++i) {
+        double s[4] = {0.0, 0.0, 0.0, 0.0};
+        int nc = 0, r;
+        for (j = 0; j < 3; ++j) {
+            int ok = 1;
+            if (!R[j] || !(R[j]->v[i] > 0.0f)) continue;
+            for (c = 0; c < ch; ++c) ok &= sbl__finite(R[j]->y[c][i]);
+            if (!ok) continue;
+            for (c = 0; c < ch; ++c) {
+                d[nc][c] = SBL__CAST(double, R[j]->x[c][i]) - SBL__CAST(double, R[j]->y[c][i]);
+                s[c] += d[nc][c];
+            }
+            ++nc;
+        }
+        if (!nc) continue;
+        for (c = 0; c < ch; ++c)
+            for (r = 0; r < nc; ++r) ss[c] += (d[r][c] - s[c] / nc) * (d[r][c] - s[c] / nc);
+        n += nc;
+        ++cols;
+    }
+    if (cols < 2 || n - cols < 2 || n - cols > (cols == 3 ? 6 : 4)) return;
+    h = SBL__CAST(double, cols == 3 ? sbl__fgate_h3[n - cols] : sbl__fgate_h2[n - cols]) * sbl__fgate_dbg();
+    for (c = 0; c < ch; ++c) {
+        pvs += m->pair_var[c];
+        sws += ss[c] / (n - cols);
+    }
+    if (pvs > h * sws)
+        for (c = 0; c < ch; ++c) m->pair_var[c] = ss[c] / (n - cols);
+}
+
+/* H of sbl__pair_var_within's F gate per lane: J the columns with a pair, dfw = n - J,
+   both >= 2 (floats; the full window: sbl__fgate_h3[6]) */
+SBL__INLINE sbl__v sbl__fgate_h_lanes(sbl__v J, sbl__v dfw)
+{
+    sbl__v h3 = sbl__set1(sbl__fgate_h3[2]), h2 = sbl__set1(sbl__fgate_h2[2]);
+    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(2.5f)), sbl__set1(sbl__fgate_h3[3]), h3);
+    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(3.5f)), sbl__set1(sbl__fgate_h3[4]), h3);
+    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(4.5f)), sbl__set1(sbl__fgate_h3[5]), h3);
+    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(5.5f)), sbl__set1(sbl__fgate_h3[6]), h3);
+    h2 = sbl__sel(sbl__gt(dfw, sbl__set1(2.5f)), sbl__set1(sbl__fgate_h2[3]), h2);
+    h2 = sbl__sel(sbl__gt(dfw, sbl__set1(3.5f)), sbl__set1(sbl__fgate_h2[4]), h2);
+    return sbl__mul(sbl__set1(sbl__fgate_dbg()), sbl__sel(sbl__gt(J, sbl__set1(2.5f)), h3, h2));
+}
+
 /* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
    of the caller (sbl__kernel_pixel_ref). */
 SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *const *R, int x,
@@ -7057,6 +7133,7 @@ SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *c
         sbl__moments_core(&m, SBL__PCAST(const float(*)[4], vals), SBL__PCAST(const float(*)[4], xvals), xvalid, n, ch,
                           centre);
         m.pool_r = SBL__CAST(double, sbl__pool_ratio(k, x, y));
+        if (k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->temporal) sbl__pair_var_within(&m, R, i0, i1, ch);
         if (n_x > k->n_cap) n_x = k->n_cap;
         if ((SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) || k->wp.blur) {
             sbl__weight_params wp = k->wp;
@@ -7319,7 +7396,7 @@ SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows
    sbl__lanes_moments: nl / nr are the side columns' pair counts. */
 SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
                                             int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
-                                            sbl__lane_stats *st)
+                                            const sbl__v *inv_w, sbl__v *sw, sbl__lane_stats *st)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
@@ -7339,6 +7416,16 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     st->pd[c] = sbl__mul(d, st->inv_cnt);
     /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
     st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
+    if (inv_w) {
+        /* pooled stereo: within the columns (sbl__pair_var_within, 4.16); inv_w: 1 / n_j
+           of the columns -1, 0, +1, then 1 / (n - J); sbl__lanes_moments gates it */
+        sbl__v a = sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), ssw;
+        ssw = sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1), sbl__mul(sbl__mul(a, a), inv_w[0]));
+        ssw = sbl__add(ssw, sbl__sub(db, sbl__mul(sbl__mul(da, da), inv_w[1])));
+        a = sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1);
+        ssw = sbl__add(ssw, sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1), sbl__mul(sbl__mul(a, a), inv_w[2])));
+        sw[c] = sbl__mul(sbl__max(ssw, zero), inv_w[3]);
+    }
     st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
@@ -7359,15 +7446,44 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
     const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch); /* k->col_n + i */
     const sbl__v nl = sbl__load(qn - 1), nr = sbl__load(qn + 1);
     const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
-    sbl__v inv_cnt1;
+    sbl__v inv_cnt1, inv_w[4], sw[4], J = zero, dof = zero;
+    const sbl__v *w = NULL;
+    sw[0] = sw[1] = sw[2] = sw[3] = zero;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
     inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
-    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, st);
-    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, st);
-    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, st);
-    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, st);
+    if (k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->temporal) {
+        /* pooled stereo: the columns' counts for the pairs' variance within them (4.16) */
+        const sbl__v nc = sbl__load(qn);
+        J = sbl__add(sbl__add(sbl__sel(sbl__gt(nl, zero), one, zero), sbl__sel(sbl__gt(nc, zero), one, zero)),
+                     sbl__sel(sbl__gt(nr, zero), one, zero));
+        dof = sbl__sub(cnt, J);
+        inv_w[0] = sbl__div(one, sbl__max(nl, one));
+        inv_w[1] = sbl__div(one, sbl__max(nc, one));
+        inv_w[2] = sbl__div(one, sbl__max(nr, one));
+        inv_w[3] = sbl__sel(sbl__gt(dof, one), sbl__div(one, sbl__max(dof, one)), zero);
+        w = inv_w;
+    }
+    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, w, sw, st);
+    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, w, sw, st);
+    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, w, sw, st);
+    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, w, sw, st);
+    if (w) {
+        /* the F gate on the channel sums (sbl__pair_var_within): none below 2 columns or
+           2 degrees of freedom within */
+        const sbl__v big = sbl__set1(FLT_MAX), lim = sbl__set1(1.5f);
+        sbl__v pvs = st->pv[0], sws = sw[0], thr;
+        sbl__m gate;
+        int c;
+        for (c = 1; c < ch; ++c) {
+            pvs = sbl__add(pvs, st->pv[c]);
+            sws = sbl__add(sws, sw[c]);
+        }
+        thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), sbl__mul(sbl__fgate_h_lanes(J, dof), sws), big), big);
+        gate = sbl__gt(pvs, thr);
+        for (c = 0; c < ch; ++c) st->pv[c] = sbl__sel(gate, sw[c], st->pv[c]);
+    }
 }
 #undef SBL__SIDE
 
@@ -7416,6 +7532,7 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_DEV2(ch) (3 * (ch) + 8) /* staged lanes: |x* - mean|^2 (SBL_EVIDENCE_MIX only) */
 #define SBL__POOL_BB(ch) (3 * (ch) + 9) /* staged lanes: the blur's sum_c b_c^2 (wp.blur only) */
 #define SBL__POOL_BG(ch) (3 * (ch) + 10) /* staged lanes: the blur's noise factor (wp.blur only) */
+#define SBL__POOL_SW(ch) (3 * (ch) + 11) /* pooled stereo: a column's within sum of squares (4.16) */
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -7585,9 +7702,32 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     const ptrdiff_t cstep = own ? 3 * SBL__POOL_COLS : SBL__COL_PLANES * SBL__CHUNK_COLS;
     const ptrdiff_t o_m2 = pool + SBL__POOL_M2(ch) * SBL__POOL_COLS, o_se2 = pool + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
     const ptrdiff_t o_pd2 = pool + SBL__POOL_PD2(ch) * SBL__POOL_COLS, o_pv = pool + SBL__POOL_PV(ch) * SBL__POOL_COLS;
+    const ptrdiff_t o_sw = pool + SBL__POOL_SW(ch) * SBL__POOL_COLS;
     float *const col0 = k->col[0];
     int x = ba;
     (void)Q;
+    if (pairs == 2) {
+        /* the stereo blend (4.16): each column's sum of squares within it, summed over the
+           channels, sum_c (B_jc - A_jc^2 / n_j) (its sums are about its own shift t_j,
+           which the spread within it does not see), once per column: each serves three
+           blocks. Columns [ba - 1, bb + 1). */
+        const sbl__v third = sbl__set1(1.0f / 3.0f);
+        int xc = ba - 1;
+        for (;;) {
+            float *const q = col0 + (xc - base);
+            const sbl__v inv = full ? third : sbl__div(one, sbl__max(sbl__load(q + o_n), one));
+            sbl__v a = sbl__load(q + o_a), ssw = sbl__sub(sbl__load(q + o_b), sbl__mul(sbl__mul(a, a), inv));
+            int c;
+            for (c = 1; c < ch; ++c) {
+                a = sbl__load(q + o_a + c * cstep);
+                ssw = sbl__add(ssw, sbl__sub(sbl__load(q + o_b + c * cstep), sbl__mul(sbl__mul(a, a), inv)));
+            }
+            sbl__store(q + o_sw, ssw);
+            if (xc + SBL__VW >= bb + 1) break;
+            xc += SBL__VW;
+            if (xc + SBL__VW > bb + 1) xc = bb + 1 - SBL__VW;
+        }
+    }
     for (;;) {
         float *const q = col0 + (x - base); /* the column's index in every plane */
         /* full: three pairs in each column, nine in the block (the same values) */
@@ -7612,6 +7752,25 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
 #undef SBL__POOL_BLOCK_CH
         sbl__store(q + o_m2, full ? m2 : sbl__sel(valid, m2, zero));
         sbl__store(q + o_se2, full ? se2 : sbl__sel(valid, se2, zero));
+        if (pairs == 2) {
+            /* the stereo blend: the pairs' variance within the columns where they differ
+               (sbl__pair_var_within, 4.16): SS_W = the three columns' terms, on n - J */
+            const sbl__v ssw = sbl__add(sbl__add(sbl__load(q + o_sw - 1), sbl__load(q + o_sw)), sbl__load(q + o_sw + 1));
+            if (full) {
+                const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__set1(1.0f / 6.0f));
+                pv = sbl__sel(sbl__gt(pv, sbl__mul(sbl__set1(sbl__fgate_h3[6] * sbl__fgate_dbg()), sw)), sw, pv);
+            } else {
+                const sbl__v J = sbl__add(sbl__add(sbl__sel(has_l, one, zero), sbl__sel(has_c, one, zero)),
+                                          sbl__sel(sbl__gt(nr, zero), one, zero));
+                const sbl__v dof = sbl__sub(n, J), lim = sbl__set1(1.5f);
+                const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__div(one, sbl__max(dof, one)));
+                const sbl__v thr = sbl__sel(sbl__gt(J, lim),
+                                            sbl__sel(sbl__gt(dof, lim), sbl__mul(sbl__fgate_h_lanes(J, dof), sw),
+                                                     sbl__set1(FLT_MAX)),
+                                            sbl__set1(FLT_MAX));
+                pv = sbl__sel(sbl__gt(pv, thr), sw, pv);
+            }
+        }
         if (pairs) {
             sbl__store(q + o_pd2, m2);
             sbl__store(q + o_pv, pv);
