@@ -7010,24 +7010,36 @@ SBL__INLINE void sbl__blur_terms(const sbl__kernel *k, const sbl__ring_row *cons
    columns differ. A silhouette that crosses the rows biases the pairs of a column alike
    (its mixed pixels match one layer only); their spread about the window's mean is then
    that bias, not noise, and it hid the bias from the window's own test. The window's
-   pairs by column (one-way analysis of variance), summed over the channels: SS_T =
-   (n - 1) pv = SS_B + SS_W, SS_W = sum_j sum_i (d_ij - mean_j)^2 on n - J degrees of
-   freedom (J the columns with a pair), SS_B on J - 1. With one mean for all columns,
-   F = (SS_B / (J - 1)) / (SS_W / (n - J)) is F(J - 1, n - J) (channels' noise fully
-   correlated; less dispersed if not); past its upper SBL__FGATE_ALPHA point (the window's
-   own test's false alarm, P(|t_8| > 4)) every channel's pair variance becomes
-   s_w^2 = SS_W_c / (n - J). In terms of the two variances: pv > H s_w^2 (channel sums),
-   H = (n - J + (J - 1) F_c) / (n - 1), tabled by n - J (2 .. 6) for J = 3 and J = 2;
-   no gate below 2 degrees of freedom within or 2 columns. */
+   pairs by column (one-way analysis of variance), summed over the ch channels (taken as
+   independent replicates): SS_T = (n - 1) pv = SS_B + SS_W, SS_W = sum_j sum_i (d_ij -
+   mean_j)^2 on (n - J) ch degrees of freedom (J the columns with a pair), SS_B on
+   (J - 1) ch. With one mean for all columns F = (SS_B / (J - 1)) / (SS_W / (n - J)) is
+   F((J - 1) ch, (n - J) ch); past its upper SBL__FGATE_ALPHA point (the window's own
+   test's false alarm, P(|t_8| > 4)) every channel's pair variance becomes s_w^2 =
+   SS_W_c / (n - J). In the two variances: pv > H s_w^2 (channel sums), H = (n - J +
+   (J - 1) F_c) / (n - 1), tabled by ch and n - J (2 .. 6) for J = 3 and J = 2; no gate
+   below 2 columns or 2 degrees of freedom within per channel. The analysis assumes one
+   noise variance for the columns: where the columns' own variances s_j^2 = SS_j / (n_j
+   - 1) (channel sums, n_j >= 2) differ by more than the upper SBL__FGATE_ALPHA point of
+   Hartley's max / min ratio of 3 variances on 2 ch degrees of freedom (sbl__fgate_r),
+   the noise is not one (a light's samples in one column, 4.16) and pv stays. */
 #define SBL__FGATE_ALPHA 0.00395
-static const float sbl__fgate_h3[7] = {0.0f, 0.0f, 126.59f, 24.0125f, 10.6077f, 6.53496f, 4.74465f};
-static const float sbl__fgate_h2[5] = {0.0f, 0.0f, 84.56f, 17.1033f, 7.93283f};
+static const float sbl__fgate_h3[4][7] = {
+    {0.0f, 0.0f, 126.59f, 24.0125f, 10.6077f, 6.53496f, 4.74465f},
+    {0.0f, 0.0f, 13.6101f, 5.86717f, 3.83026f, 2.95566f, 2.4819f},
+    {0.0f, 0.0f, 6.55268f, 3.65388f, 2.69995f, 2.24052f, 1.97339f},
+    {0.0f, 0.0f, 4.52733f, 2.86181f, 2.24894f, 1.93597f, 1.74723f}};
+static const float sbl__fgate_h2[4][5] = {{0.0f, 0.0f, 84.56f, 17.1033f, 7.93283f},
+                                          {0.0f, 0.0f, 10.6077f, 4.74465f, 3.19115f},
+                                          {0.0f, 0.0f, 5.38646f, 3.0916f, 2.33855f},
+                                          {0.0f, 0.0f, 3.83026f, 2.4819f, 1.98972f}};
+static const float sbl__fgate_r[4] = {1136.81f, 59.3344f, 21.8773f, 13.0117f};
 #include <stdlib.h> /* DEBUG */
-static float sbl__fgate_dbg(void) /* DEBUG: env SBL_FGATE_F = the F threshold of the full window */
+static float sbl__fgate_dbg(int which) /* DEBUG: env SBL_FGATE_HS / SBL_FGATE_RS scale H / r */
 {
-    static float m = -1.0f;
-    if (m < 0.0f) { const char *e = getenv("SBL_FGATE_F"); m = e ? (6.0f + 2.0f * (float)atof(e)) / 8.0f / 4.74465f : 1.0f; }
-    return m;
+    static float m[2] = {-1.0f, -1.0f};
+    if (m[which] < 0.0f) { const char *e = getenv(which ? "SBL_FGATE_RS" : "SBL_FGATE_HS"); m[which] = e ? (float)atof(e) : 1.0f; }
+    return m[which];
 }
 
 /* The reference path's pairs and the order of the window's loop in
@@ -7035,10 +7047,10 @@ static float sbl__fgate_dbg(void) /* DEBUG: env SBL_FGATE_F = the F threshold of
 static void sbl__pair_var_within(sbl__moments *m, const sbl__ring_row *const *R, int i0, int i1,
                                  const int ch)
 {
-    double d[3][4], ss[4] = {0.0, 0.0, 0.0, 0.0}, pvs = 0.0, sws = 0.0, h;
-    int i, j, c, n = 0, cols = 0;
+    double d[3][4], ss[4] = {0.0, 0.0, 0.0, 0.0}, pvs = 0.0, sws = 0.0, h, smax = 0.0, smin = 0.0;
+    int i, j, c, n = 0, cols = 0, vcols = 0;
     for (i = i0; i <= i1; ++i) {
-        double s[4] = {0.0, 0.0, 0.0, 0.0};
+        double s[4] = {0.0, 0.0, 0.0, 0.0}, sc = 0.0;
         int nc = 0, r;
         for (j = 0; j < 3; ++j) {
             int ok = 1;
@@ -7053,12 +7065,22 @@ static void sbl__pair_var_within(sbl__moments *m, const sbl__ring_row *const *R,
         }
         if (!nc) continue;
         for (c = 0; c < ch; ++c)
+            for (r = 0; r < nc; ++r) sc += (d[r][c] - s[c] / nc) * (d[r][c] - s[c] / nc);
+        for (c = 0; c < ch; ++c)
             for (r = 0; r < nc; ++r) ss[c] += (d[r][c] - s[c] / nc) * (d[r][c] - s[c] / nc);
+        if (nc > 1) {
+            /* the column's own variance (channel sum) */
+            sc /= nc - 1;
+            if (!vcols || sc > smax) smax = sc;
+            if (!vcols || sc < smin) smin = sc;
+            ++vcols;
+        }
         n += nc;
         ++cols;
     }
     if (cols < 2 || n - cols < 2 || n - cols > (cols == 3 ? 6 : 4)) return;
-    h = SBL__CAST(double, cols == 3 ? sbl__fgate_h3[n - cols] : sbl__fgate_h2[n - cols]) * sbl__fgate_dbg();
+    if (vcols && !(smax < SBL__CAST(double, sbl__fgate_r[ch - 1] * sbl__fgate_dbg(1)) * smin)) return;
+    h = SBL__CAST(double, cols == 3 ? sbl__fgate_h3[ch - 1][n - cols] : sbl__fgate_h2[ch - 1][n - cols]) * sbl__fgate_dbg(0);
     for (c = 0; c < ch; ++c) {
         pvs += m->pair_var[c];
         sws += ss[c] / (n - cols);
@@ -7068,17 +7090,26 @@ static void sbl__pair_var_within(sbl__moments *m, const sbl__ring_row *const *R,
 }
 
 /* H of sbl__pair_var_within's F gate per lane: J the columns with a pair, dfw = n - J,
-   both >= 2 (floats; the full window: sbl__fgate_h3[6]) */
-SBL__INLINE sbl__v sbl__fgate_h_lanes(sbl__v J, sbl__v dfw)
+   both >= 2 (floats; the full window: sbl__fgate_h3[ch - 1][6]) */
+SBL__INLINE sbl__v sbl__fgate_h_lanes(sbl__v J, sbl__v dfw, const int ch)
 {
-    sbl__v h3 = sbl__set1(sbl__fgate_h3[2]), h2 = sbl__set1(sbl__fgate_h2[2]);
-    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(2.5f)), sbl__set1(sbl__fgate_h3[3]), h3);
-    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(3.5f)), sbl__set1(sbl__fgate_h3[4]), h3);
-    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(4.5f)), sbl__set1(sbl__fgate_h3[5]), h3);
-    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(5.5f)), sbl__set1(sbl__fgate_h3[6]), h3);
-    h2 = sbl__sel(sbl__gt(dfw, sbl__set1(2.5f)), sbl__set1(sbl__fgate_h2[3]), h2);
-    h2 = sbl__sel(sbl__gt(dfw, sbl__set1(3.5f)), sbl__set1(sbl__fgate_h2[4]), h2);
-    return sbl__mul(sbl__set1(sbl__fgate_dbg()), sbl__sel(sbl__gt(J, sbl__set1(2.5f)), h3, h2));
+    const float *const t3 = sbl__fgate_h3[ch - 1], *const t2 = sbl__fgate_h2[ch - 1];
+    sbl__v h3 = sbl__set1(t3[2]), h2 = sbl__set1(t2[2]);
+    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(2.5f)), sbl__set1(t3[3]), h3);
+    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(3.5f)), sbl__set1(t3[4]), h3);
+    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(4.5f)), sbl__set1(t3[5]), h3);
+    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(5.5f)), sbl__set1(t3[6]), h3);
+    h2 = sbl__sel(sbl__gt(dfw, sbl__set1(2.5f)), sbl__set1(t2[3]), h2);
+    h2 = sbl__sel(sbl__gt(dfw, sbl__set1(3.5f)), sbl__set1(t2[4]), h2);
+    return sbl__mul(sbl__set1(sbl__fgate_dbg(0)), sbl__sel(sbl__gt(J, sbl__set1(2.5f)), h3, h2));
+}
+
+/* sbl__pair_var_within's test of one noise variance per lane: 1 where the largest of the
+   columns' variances (channel sums; columns with fewer than 2 pairs: 0 and big) is below
+   sbl__fgate_r times the smallest */
+SBL__INLINE sbl__m sbl__fgate_one_var(sbl__v mx, sbl__v mn, const int ch)
+{
+    return sbl__gt(sbl__mul(mn, sbl__set1(sbl__fgate_r[ch - 1] * sbl__fgate_dbg(1))), mx);
 }
 
 /* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
@@ -7419,12 +7450,16 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     if (inv_w) {
         /* pooled stereo: within the columns (sbl__pair_var_within, 4.16); inv_w: 1 / n_j
            of the columns -1, 0, +1, then 1 / (n - J); sbl__lanes_moments gates it */
-        sbl__v a = sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), ssw;
-        ssw = sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1), sbl__mul(sbl__mul(a, a), inv_w[0]));
-        ssw = sbl__add(ssw, sbl__sub(db, sbl__mul(sbl__mul(da, da), inv_w[1])));
+        sbl__v a = sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), ssw, t[3];
+        int j;
+        t[0] = sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1), sbl__mul(sbl__mul(a, a), inv_w[0]));
+        t[1] = sbl__sub(db, sbl__mul(sbl__mul(da, da), inv_w[1]));
         a = sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1);
-        ssw = sbl__add(ssw, sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1), sbl__mul(sbl__mul(a, a), inv_w[2])));
+        t[2] = sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1), sbl__mul(sbl__mul(a, a), inv_w[2]));
+        ssw = sbl__add(sbl__add(t[0], t[1]), t[2]);
         sw[c] = sbl__mul(sbl__max(ssw, zero), inv_w[3]);
+        /* sw[4 + j]: the columns' sums of squares, summed over the channels */
+        for (j = 0; j < 3; ++j) sw[4 + j] = c == 0 ? t[j] : sbl__add(sw[4 + j], t[j]);
     }
     st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
@@ -7446,9 +7481,12 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
     const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch); /* k->col_n + i */
     const sbl__v nl = sbl__load(qn - 1), nr = sbl__load(qn + 1);
     const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
-    sbl__v inv_cnt1, inv_w[4], sw[4], J = zero, dof = zero;
+    sbl__v inv_cnt1, inv_w[4], sw[7], J = zero, dof = zero, cn[3];
     const sbl__v *w = NULL;
-    sw[0] = sw[1] = sw[2] = sw[3] = zero;
+    sw[0] = sw[1] = sw[2] = sw[3] = sw[4] = sw[5] = sw[6] = zero;
+    cn[0] = nl;
+    cn[1] = sbl__load(qn);
+    cn[2] = nr;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
@@ -7472,15 +7510,23 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
     if (w) {
         /* the F gate on the channel sums (sbl__pair_var_within): none below 2 columns or
            2 degrees of freedom within */
-        const sbl__v big = sbl__set1(FLT_MAX), lim = sbl__set1(1.5f);
-        sbl__v pvs = st->pv[0], sws = sw[0], thr;
+        const sbl__v big = sbl__set1(1e35f), lim = sbl__set1(1.5f);
+        sbl__v pvs = st->pv[0], sws = sw[0], thr, mx = zero, mn = big;
         sbl__m gate;
         int c;
         for (c = 1; c < ch; ++c) {
             pvs = sbl__add(pvs, st->pv[c]);
             sws = sbl__add(sws, sw[c]);
         }
-        thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), sbl__mul(sbl__fgate_h_lanes(J, dof), sws), big), big);
+        for (c = 0; c < 3; ++c) {
+            /* the columns' own variances, those with 2 pairs or more */
+            const sbl__m has2 = sbl__gt(cn[c], lim);
+            const sbl__v v = sbl__mul(sw[4 + c], sbl__div(one, sbl__max(sbl__sub(cn[c], one), one)));
+            mx = sbl__max(mx, sbl__sel(has2, v, zero));
+            mn = sbl__min(mn, sbl__sel(has2, v, big));
+        }
+        thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), sbl__mul(sbl__fgate_h_lanes(J, dof, ch), sws), big), big);
+        thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
         gate = sbl__gt(pvs, thr);
         for (c = 0; c < ch; ++c) st->pv[c] = sbl__sel(gate, sw[c], st->pv[c]);
     }
@@ -7757,17 +7803,31 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
                (sbl__pair_var_within, 4.16): SS_W = the three columns' terms, on n - J */
             const sbl__v ssw = sbl__add(sbl__add(sbl__load(q + o_sw - 1), sbl__load(q + o_sw)), sbl__load(q + o_sw + 1));
             if (full) {
+                /* the columns' own variances: their sums of squares (2 degrees of freedom each) */
+                const sbl__v wl = sbl__load(q + o_sw - 1), wc = sbl__load(q + o_sw), wr = sbl__load(q + o_sw + 1);
                 const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__set1(1.0f / 6.0f));
-                pv = sbl__sel(sbl__gt(pv, sbl__mul(sbl__set1(sbl__fgate_h3[6] * sbl__fgate_dbg()), sw)), sw, pv);
+                const sbl__m one_var = sbl__fgate_one_var(sbl__max(sbl__max(wl, wc), wr), sbl__min(sbl__min(wl, wc), wr), ch);
+                pv = sbl__sel(sbl__gt(pv, sbl__mul(sbl__set1(sbl__fgate_h3[ch - 1][6] * sbl__fgate_dbg(0)), sw)),
+                              sbl__sel(one_var, sw, pv), pv);
             } else {
                 const sbl__v J = sbl__add(sbl__add(sbl__sel(has_l, one, zero), sbl__sel(has_c, one, zero)),
                                           sbl__sel(sbl__gt(nr, zero), one, zero));
                 const sbl__v dof = sbl__sub(n, J), lim = sbl__set1(1.5f);
                 const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__div(one, sbl__max(dof, one)));
-                const sbl__v thr = sbl__sel(sbl__gt(J, lim),
-                                            sbl__sel(sbl__gt(dof, lim), sbl__mul(sbl__fgate_h_lanes(J, dof), sw),
-                                                     sbl__set1(FLT_MAX)),
-                                            sbl__set1(FLT_MAX));
+                const sbl__v big = sbl__set1(1e35f);
+                sbl__v thr = sbl__sel(sbl__gt(J, lim),
+                                      sbl__sel(sbl__gt(dof, lim), sbl__mul(sbl__fgate_h_lanes(J, dof, ch), sw), big), big);
+                sbl__v mx = zero, mn = big;
+                int j;
+                for (j = -1; j <= 1; ++j) {
+                    /* the columns' own variances, those with 2 pairs or more */
+                    const sbl__v nj = sbl__load(q + o_n + j);
+                    const sbl__m has2 = sbl__gt(nj, lim);
+                    const sbl__v v = sbl__mul(sbl__load(q + o_sw + j), sbl__div(one, sbl__max(sbl__sub(nj, one), one)));
+                    mx = sbl__max(mx, sbl__sel(has2, v, zero));
+                    mn = sbl__min(mn, sbl__sel(has2, v, big));
+                }
+                thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
                 pv = sbl__sel(sbl__gt(pv, thr), sw, pv);
             }
         }
