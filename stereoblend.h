@@ -7010,44 +7010,28 @@ SBL__INLINE void sbl__blur_terms(const sbl__kernel *k, const sbl__ring_row *cons
    columns differ. A silhouette that crosses the rows biases the pairs of a column alike
    (its mixed pixels match one layer only); their spread about the window's mean is then
    that bias, not noise, and it hid the bias from the window's own test. The window's
-   pairs by column (one-way analysis of variance), summed over the ch channels (taken as
-   independent replicates): SS_T = (n - 1) pv = SS_B + SS_W, SS_W = sum_j sum_i (d_ij -
-   mean_j)^2 on (n - J) ch degrees of freedom (J the columns with a pair), SS_B on
-   (J - 1) ch. With one mean for all columns F = (SS_B / (J - 1)) / (SS_W / (n - J)) is
-   F((J - 1) ch, (n - J) ch); past its upper SBL__FGATE_ALPHA point (the window's own
-   test's false alarm, P(|t_8| > 4)) every channel's pair variance becomes s_w^2 =
-   SS_W_c / (n - J). In the two variances: pv > H s_w^2 (channel sums), H = (n - J +
-   (J - 1) F_c) / (n - 1), tabled by ch and n - J (2 .. 6) for J = 3 and J = 2; no gate
-   below 2 columns or 2 degrees of freedom within per channel. The analysis assumes one
-   noise variance for the columns: where the columns' own variances s_j^2 = SS_j / (n_j
-   - 1) (channel sums, n_j >= 2) differ by more than the upper SBL__FGATE_ALPHA point of
-   Hartley's max / min ratio of 3 variances on 2 ch degrees of freedom (sbl__fgate_r),
-   the noise is not one (a light's samples in one column, 4.16) and pv stays. */
-#define SBL__FGATE_ALPHA 0.00395
-static const float sbl__fgate_h3[4][7] = {
-    {0.0f, 0.0f, 126.59f, 24.0125f, 10.6077f, 6.53496f, 4.74465f},
-    {0.0f, 0.0f, 13.6101f, 5.86717f, 3.83026f, 2.95566f, 2.4819f},
-    {0.0f, 0.0f, 6.55268f, 3.65388f, 2.69995f, 2.24052f, 1.97339f},
-    {0.0f, 0.0f, 4.52733f, 2.86181f, 2.24894f, 1.93597f, 1.74723f}};
-static const float sbl__fgate_h2[4][5] = {{0.0f, 0.0f, 84.56f, 17.1033f, 7.93283f},
-                                          {0.0f, 0.0f, 10.6077f, 4.74465f, 3.19115f},
-                                          {0.0f, 0.0f, 5.38646f, 3.0916f, 2.33855f},
-                                          {0.0f, 0.0f, 3.83026f, 2.4819f, 1.98972f}};
+   pairs by column (one-way analysis of variance), summed over the channels as the
+   window's test sums them: SS_T = (n - 1) pv = SS_B + SS_W, SS_W = sum_j sum_i (d_ij -
+   mean_j)^2 on n - J degrees of freedom (J the columns with a pair), s_w^2 = SS_W /
+   (n - J). The columns differ when some contrast of their means passes the window's own
+   test, k standard errors (k = bias_threshold * SBL_POOLED_LOCAL_SCALE, 4): the largest
+   t^2 over the contrasts is SS_B / s_w^2 = (J - 1) F (Scheffe), so the gate is
+   SS_B > k^2 s_w^2, in the two variances pv > H s_w^2, H = (n - J + k^2) / (n - 1); none
+   below 2 columns or 2 degrees of freedom within. Then every channel's pair variance
+   becomes SS_W_c / (n - J). The analysis assumes one noise variance for the columns:
+   where the columns' own variances s_j^2 = SS_j / (n_j - 1) (channel sums, n_j >= 2)
+   differ by more than sbl__fgate_r (the upper 0.00395 point, P(|t_8| > 4), of Hartley's
+   max / min ratio of 3 variances on 2 ch degrees of freedom) the noise is not one (a
+   light's samples in one column of one eye, 4.16) and pv stays. */
 static const float sbl__fgate_r[4] = {1136.81f, 59.3344f, 21.8773f, 13.0117f};
-#include <stdlib.h> /* DEBUG */
-static float sbl__fgate_dbg(int which) /* DEBUG: env SBL_FGATE_HS / SBL_FGATE_RS scale H / r */
-{
-    static float m[2] = {-1.0f, -1.0f};
-    if (m[which] < 0.0f) { const char *e = getenv(which ? "SBL_FGATE_RS" : "SBL_FGATE_HS"); m[which] = e ? (float)atof(e) : 1.0f; }
-    return m[which];
-}
 
 /* The reference path's pairs and the order of the window's loop in
-   sbl__kernel_pixel_ref_ch (in double; the lanes: sbl__fgate_h_lanes) */
+   sbl__kernel_pixel_ref_ch (in double; the lanes: sbl__lanes_moments,
+   sbl__pool_lanes_blocks) */
 static void sbl__pair_var_within(sbl__moments *m, const sbl__ring_row *const *R, int i0, int i1,
-                                 const int ch)
+                                 const int ch, double k2)
 {
-    double d[3][4], ss[4] = {0.0, 0.0, 0.0, 0.0}, pvs = 0.0, sws = 0.0, h, smax = 0.0, smin = 0.0;
+    double d[3][4], ss[4] = {0.0, 0.0, 0.0, 0.0}, pvs = 0.0, sws = 0.0, smax = 0.0, smin = 0.0;
     int i, j, c, n = 0, cols = 0, vcols = 0;
     for (i = i0; i <= i1; ++i) {
         double s[4] = {0.0, 0.0, 0.0, 0.0}, sc = 0.0;
@@ -7064,10 +7048,12 @@ static void sbl__pair_var_within(sbl__moments *m, const sbl__ring_row *const *R,
             ++nc;
         }
         if (!nc) continue;
-        for (c = 0; c < ch; ++c)
-            for (r = 0; r < nc; ++r) sc += (d[r][c] - s[c] / nc) * (d[r][c] - s[c] / nc);
-        for (c = 0; c < ch; ++c)
-            for (r = 0; r < nc; ++r) ss[c] += (d[r][c] - s[c] / nc) * (d[r][c] - s[c] / nc);
+        for (c = 0; c < ch; ++c) {
+            double sj = 0.0;
+            for (r = 0; r < nc; ++r) sj += (d[r][c] - s[c] / nc) * (d[r][c] - s[c] / nc);
+            ss[c] += sj;
+            sc += sj;
+        }
         if (nc > 1) {
             /* the column's own variance (channel sum) */
             sc /= nc - 1;
@@ -7078,30 +7064,14 @@ static void sbl__pair_var_within(sbl__moments *m, const sbl__ring_row *const *R,
         n += nc;
         ++cols;
     }
-    if (cols < 2 || n - cols < 2 || n - cols > (cols == 3 ? 6 : 4)) return;
-    if (vcols && !(smax < SBL__CAST(double, sbl__fgate_r[ch - 1] * sbl__fgate_dbg(1)) * smin)) return;
-    h = SBL__CAST(double, cols == 3 ? sbl__fgate_h3[ch - 1][n - cols] : sbl__fgate_h2[ch - 1][n - cols]) * sbl__fgate_dbg(0);
+    if (cols < 2 || n - cols < 2) return;
+    if (vcols && !(smax < SBL__CAST(double, sbl__fgate_r[ch - 1]) * smin)) return;
     for (c = 0; c < ch; ++c) {
         pvs += m->pair_var[c];
         sws += ss[c] / (n - cols);
     }
-    if (pvs > h * sws)
+    if (pvs > (n - cols + k2) / (n - 1) * sws)
         for (c = 0; c < ch; ++c) m->pair_var[c] = ss[c] / (n - cols);
-}
-
-/* H of sbl__pair_var_within's F gate per lane: J the columns with a pair, dfw = n - J,
-   both >= 2 (floats; the full window: sbl__fgate_h3[ch - 1][6]) */
-SBL__INLINE sbl__v sbl__fgate_h_lanes(sbl__v J, sbl__v dfw, const int ch)
-{
-    const float *const t3 = sbl__fgate_h3[ch - 1], *const t2 = sbl__fgate_h2[ch - 1];
-    sbl__v h3 = sbl__set1(t3[2]), h2 = sbl__set1(t2[2]);
-    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(2.5f)), sbl__set1(t3[3]), h3);
-    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(3.5f)), sbl__set1(t3[4]), h3);
-    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(4.5f)), sbl__set1(t3[5]), h3);
-    h3 = sbl__sel(sbl__gt(dfw, sbl__set1(5.5f)), sbl__set1(t3[6]), h3);
-    h2 = sbl__sel(sbl__gt(dfw, sbl__set1(2.5f)), sbl__set1(t2[3]), h2);
-    h2 = sbl__sel(sbl__gt(dfw, sbl__set1(3.5f)), sbl__set1(t2[4]), h2);
-    return sbl__mul(sbl__set1(sbl__fgate_dbg(0)), sbl__sel(sbl__gt(J, sbl__set1(2.5f)), h3, h2));
 }
 
 /* sbl__pair_var_within's test of one noise variance per lane: 1 where the largest of the
@@ -7109,7 +7079,14 @@ SBL__INLINE sbl__v sbl__fgate_h_lanes(sbl__v J, sbl__v dfw, const int ch)
    sbl__fgate_r times the smallest */
 SBL__INLINE sbl__m sbl__fgate_one_var(sbl__v mx, sbl__v mn, const int ch)
 {
-    return sbl__gt(sbl__mul(mn, sbl__set1(sbl__fgate_r[ch - 1] * sbl__fgate_dbg(1))), mx);
+    return sbl__gt(sbl__mul(mn, sbl__set1(sbl__fgate_r[ch - 1])), mx);
+}
+
+/* k^2 of the window's test in the pooled estimator (sbl__weight) */
+SBL__INLINE float sbl__fgate_k2(const sbl__kernel *k)
+{
+    const float kk = SBL__CAST(float, SBL__CAST(double, k->wp.bias_threshold) * SBL_POOLED_LOCAL_SCALE);
+    return kk * kk;
 }
 
 /* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
@@ -7164,7 +7141,7 @@ SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *c
         sbl__moments_core(&m, SBL__PCAST(const float(*)[4], vals), SBL__PCAST(const float(*)[4], xvals), xvalid, n, ch,
                           centre);
         m.pool_r = SBL__CAST(double, sbl__pool_ratio(k, x, y));
-        if (k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->temporal) sbl__pair_var_within(&m, R, i0, i1, ch);
+        if (k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->temporal) sbl__pair_var_within(&m, R, i0, i1, ch, SBL__CAST(double, sbl__fgate_k2(k)));
         if (n_x > k->n_cap) n_x = k->n_cap;
         if ((SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) || k->wp.blur) {
             sbl__weight_params wp = k->wp;
@@ -7525,7 +7502,9 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
             mx = sbl__max(mx, sbl__sel(has2, v, zero));
             mn = sbl__min(mn, sbl__sel(has2, v, big));
         }
-        thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), sbl__mul(sbl__fgate_h_lanes(J, dof, ch), sws), big), big);
+        /* H = (n - J + k^2) / (n - 1) */
+        thr = sbl__mul(sbl__mul(sbl__add(dof, sbl__set1(sbl__fgate_k2(k))), inv_cnt1), sws);
+        thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), thr, big), big);
         thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
         gate = sbl__gt(pvs, thr);
         for (c = 0; c < ch; ++c) st->pv[c] = sbl__sel(gate, sw[c], st->pv[c]);
@@ -7749,6 +7728,9 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     const ptrdiff_t o_m2 = pool + SBL__POOL_M2(ch) * SBL__POOL_COLS, o_se2 = pool + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
     const ptrdiff_t o_pd2 = pool + SBL__POOL_PD2(ch) * SBL__POOL_COLS, o_pv = pool + SBL__POOL_PV(ch) * SBL__POOL_COLS;
     const ptrdiff_t o_sw = pool + SBL__POOL_SW(ch) * SBL__POOL_COLS;
+    /* the stereo blend's gate (sbl__pair_var_within): k^2, and H of a full window */
+    const sbl__v k2 = sbl__set1(pairs == 2 ? sbl__fgate_k2(k) : 0.0f);
+    const sbl__v h_full = sbl__mul(sbl__add(sbl__set1(6.0f), k2), sbl__set1(0.125f));
     float *const col0 = k->col[0];
     int x = ba;
     (void)Q;
@@ -7807,16 +7789,15 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
                 const sbl__v wl = sbl__load(q + o_sw - 1), wc = sbl__load(q + o_sw), wr = sbl__load(q + o_sw + 1);
                 const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__set1(1.0f / 6.0f));
                 const sbl__m one_var = sbl__fgate_one_var(sbl__max(sbl__max(wl, wc), wr), sbl__min(sbl__min(wl, wc), wr), ch);
-                pv = sbl__sel(sbl__gt(pv, sbl__mul(sbl__set1(sbl__fgate_h3[ch - 1][6] * sbl__fgate_dbg(0)), sw)),
-                              sbl__sel(one_var, sw, pv), pv);
+                pv = sbl__sel(sbl__gt(pv, sbl__mul(h_full, sw)), sbl__sel(one_var, sw, pv), pv);
             } else {
                 const sbl__v J = sbl__add(sbl__add(sbl__sel(has_l, one, zero), sbl__sel(has_c, one, zero)),
                                           sbl__sel(sbl__gt(nr, zero), one, zero));
                 const sbl__v dof = sbl__sub(n, J), lim = sbl__set1(1.5f);
                 const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__div(one, sbl__max(dof, one)));
                 const sbl__v big = sbl__set1(1e35f);
-                sbl__v thr = sbl__sel(sbl__gt(J, lim),
-                                      sbl__sel(sbl__gt(dof, lim), sbl__mul(sbl__fgate_h_lanes(J, dof, ch), sw), big), big);
+                /* H = (n - J + k^2) / (n - 1) */
+                sbl__v thr = sbl__mul(sbl__mul(sbl__add(dof, k2), inv_n1), sw);
                 sbl__v mx = zero, mn = big;
                 int j;
                 for (j = -1; j <= 1; ++j) {
@@ -7827,6 +7808,7 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
                     mx = sbl__max(mx, sbl__sel(has2, v, zero));
                     mn = sbl__min(mn, sbl__sel(has2, v, big));
                 }
+                thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), thr, big), big);
                 thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
                 pv = sbl__sel(sbl__gt(pv, thr), sw, pv);
             }
