@@ -437,7 +437,8 @@ static void test_stereo_edge_and_flat(void)
        beta and never worse than not blending (issue 11). The mixed pixels' bias used to
        inflate their window's pair spread, which hid it from the window's test (0.0312
        against the input's 0.0202 at noise 0.02); the stereo weight now takes its noise
-       from the pairs' spread within the window's columns (docs/ESTIMATORS.md 4.15) */
+       from the pairs' spread within the window's columns where the columns differ
+       (docs/ESTIMATORS.md 4.15, 4.16) */
     {
         static const double sigmas[3] = {0.02, 0.05, 0.1};
         int l;
