@@ -7485,7 +7485,7 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
     if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, w, sw, st);
     if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, w, sw, st);
     if (w) {
-        /* the F gate on the channel sums (sbl__pair_var_within): none below 2 columns or
+        /* the gate on the channel sums (sbl__pair_var_within): none below 2 columns or
            2 degrees of freedom within */
         const sbl__v big = sbl__set1(1e35f), lim = sbl__set1(1.5f);
         sbl__v pvs = st->pv[0], sws = sw[0], thr, mx = zero, mn = big;
