@@ -3296,10 +3296,10 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
 #define SBL__CHUNK_COLS 144
 
 /* sbl__row_pool's lanes: pixels per chunk, and floats per plane (the chunk and the
-   SBL__POOL_REACH columns each side, padded); per channel three planes, then three */
+   SBL__POOL_REACH columns each side, padded); per channel three planes, then twelve */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 11)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 12)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -7005,6 +7005,90 @@ SBL__INLINE void sbl__blur_terms(const sbl__kernel *k, const sbl__ring_row *cons
     }
 }
 
+/* Pooled stereo (docs/ESTIMATORS.md 4.15, 4.16): the pairs' variance within the
+   window's columns, in place of their variance about the window's mean, where the
+   columns differ. A silhouette that crosses the rows biases the pairs of a column alike
+   (its mixed pixels match one layer only); their spread about the window's mean is then
+   that bias, not noise, and it hid the bias from the window's own test. The window's
+   pairs by column (one-way analysis of variance), summed over the channels as the
+   window's test sums them: SS_T = (n - 1) pv = SS_B + SS_W, SS_W = sum_j sum_i (d_ij -
+   mean_j)^2 on n - J degrees of freedom (J the columns with a pair), s_w^2 = SS_W /
+   (n - J). The columns differ when some contrast of their means passes the window's own
+   test, k standard errors (k = bias_threshold * SBL_POOLED_LOCAL_SCALE, 4): the largest
+   t^2 over the contrasts is SS_B / s_w^2 = (J - 1) F (Scheffe), so the gate is
+   SS_B > k^2 s_w^2, in the two variances pv > H s_w^2, H = (n - J + k^2) / (n - 1); none
+   below 2 columns or 2 degrees of freedom within. Then every channel's pair variance
+   becomes SS_W_c / (n - J). The analysis assumes one noise variance for the columns:
+   where the columns' own variances s_j^2 = SS_j / (n_j - 1) (channel sums, n_j >= 2)
+   differ by more than sbl__fgate_r (the upper 0.00395 point, P(|t_8| > 4), of Hartley's
+   max / min ratio of 3 variances on 2 ch degrees of freedom) the noise is not one (a
+   light's samples in one column of one eye, 4.16) and pv stays. */
+static const float sbl__fgate_r[4] = {1136.81f, 59.3344f, 21.8773f, 13.0117f};
+
+/* The reference path's pairs and the order of the window's loop in
+   sbl__kernel_pixel_ref_ch (in double; the lanes: sbl__lanes_moments,
+   sbl__pool_lanes_blocks) */
+static void sbl__pair_var_within(sbl__moments *m, const sbl__ring_row *const *R, int i0, int i1,
+                                 const int ch, double k2)
+{
+    double d[3][4], ss[4] = {0.0, 0.0, 0.0, 0.0}, pvs = 0.0, sws = 0.0, smax = 0.0, smin = 0.0;
+    int i, j, c, n = 0, cols = 0, vcols = 0;
+    for (i = i0; i <= i1; ++i) {
+        double s[4] = {0.0, 0.0, 0.0, 0.0}, sc = 0.0;
+        int nc = 0, r;
+        for (j = 0; j < 3; ++j) {
+            int ok = 1;
+            if (!R[j] || !(R[j]->v[i] > 0.0f)) continue;
+            for (c = 0; c < ch; ++c) ok &= sbl__finite(R[j]->y[c][i]);
+            if (!ok) continue;
+            for (c = 0; c < ch; ++c) {
+                d[nc][c] = SBL__CAST(double, R[j]->x[c][i]) - SBL__CAST(double, R[j]->y[c][i]);
+                s[c] += d[nc][c];
+            }
+            ++nc;
+        }
+        if (!nc) continue;
+        for (c = 0; c < ch; ++c) {
+            double sj = 0.0;
+            for (r = 0; r < nc; ++r) sj += (d[r][c] - s[c] / nc) * (d[r][c] - s[c] / nc);
+            ss[c] += sj;
+            sc += sj;
+        }
+        if (nc > 1) {
+            /* the column's own variance (channel sum) */
+            sc /= nc - 1;
+            if (!vcols || sc > smax) smax = sc;
+            if (!vcols || sc < smin) smin = sc;
+            ++vcols;
+        }
+        n += nc;
+        ++cols;
+    }
+    if (cols < 2 || n - cols < 2) return;
+    if (vcols && !(smax < SBL__CAST(double, sbl__fgate_r[ch - 1]) * smin)) return;
+    for (c = 0; c < ch; ++c) {
+        pvs += m->pair_var[c];
+        sws += ss[c] / (n - cols);
+    }
+    if (pvs > (n - cols + k2) / (n - 1) * sws)
+        for (c = 0; c < ch; ++c) m->pair_var[c] = ss[c] / (n - cols);
+}
+
+/* sbl__pair_var_within's test of one noise variance per lane: 1 where the largest of the
+   columns' variances (channel sums; columns with fewer than 2 pairs: 0 and big) is below
+   sbl__fgate_r times the smallest */
+SBL__INLINE sbl__m sbl__fgate_one_var(sbl__v mx, sbl__v mn, const int ch)
+{
+    return sbl__gt(sbl__mul(mn, sbl__set1(sbl__fgate_r[ch - 1])), mx);
+}
+
+/* k^2 of the window's test in the pooled estimator (sbl__weight) */
+SBL__INLINE float sbl__fgate_k2(const sbl__kernel *k)
+{
+    const float kk = SBL__CAST(float, SBL__CAST(double, k->wp.bias_threshold) * SBL_POOLED_LOCAL_SCALE);
+    return kk * kk;
+}
+
 /* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
    of the caller (sbl__kernel_pixel_ref). */
 SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *const *R, int x,
@@ -7057,6 +7141,7 @@ SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *c
         sbl__moments_core(&m, SBL__PCAST(const float(*)[4], vals), SBL__PCAST(const float(*)[4], xvals), xvalid, n, ch,
                           centre);
         m.pool_r = SBL__CAST(double, sbl__pool_ratio(k, x, y));
+        if (k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->temporal) sbl__pair_var_within(&m, R, i0, i1, ch, SBL__CAST(double, sbl__fgate_k2(k)));
         if (n_x > k->n_cap) n_x = k->n_cap;
         if ((SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) || k->wp.blur) {
             sbl__weight_params wp = k->wp;
@@ -7319,7 +7404,7 @@ SBL__INLINE void sbl__lanes_y_channel(const sbl__kernel *k, const sbl__lane_rows
    sbl__lanes_moments: nl / nr are the side columns' pair counts. */
 SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lane_rows *W, int x,
                                             int i, int c, sbl__v nl, sbl__v nr, sbl__v inv_cnt1,
-                                            sbl__lane_stats *st)
+                                            const sbl__v *inv_w, sbl__v *sw, sbl__lane_stats *st)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const float *cp = k->col[0] + i + SBL__CHUNK_COL(c);
@@ -7339,6 +7424,20 @@ SBL__INLINE void sbl__lanes_moments_channel(const sbl__kernel *k, const sbl__lan
     st->pd[c] = sbl__mul(d, st->inv_cnt);
     /* sample variance of the pairs: (sum d^2 - n mean^2) / (n - 1) */
     st->pv[c] = sbl__mul(sbl__max(sbl__sub(dd, sbl__mul(d, st->pd[c])), zero), inv_cnt1);
+    if (inv_w) {
+        /* pooled stereo: within the columns (sbl__pair_var_within, 4.16); inv_w: 1 / n_j
+           of the columns -1, 0, +1, then 1 / (n - J); sbl__lanes_moments gates it */
+        sbl__v a = sbl__load(SBL__COLP(cp, SBL__COL_DA) - 1), ssw, t[3];
+        int j;
+        t[0] = sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_DB) - 1), sbl__mul(sbl__mul(a, a), inv_w[0]));
+        t[1] = sbl__sub(db, sbl__mul(sbl__mul(da, da), inv_w[1]));
+        a = sbl__load(SBL__COLP(cp, SBL__COL_DA) + 1);
+        t[2] = sbl__sub(sbl__load(SBL__COLP(cp, SBL__COL_DB) + 1), sbl__mul(sbl__mul(a, a), inv_w[2]));
+        ssw = sbl__add(sbl__add(t[0], t[1]), t[2]);
+        sw[c] = sbl__mul(sbl__max(ssw, zero), inv_w[3]);
+        /* sw[4 + j]: the columns' sums of squares, summed over the channels */
+        for (j = 0; j < 3; ++j) sw[4 + j] = c == 0 ? t[j] : sbl__add(sw[4 + j], t[j]);
+    }
     st->pd[c] = sbl__sel(st->has_pairs, sbl__add(st->pd[c], tc), zero);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         const float *lo = SBL__COLP(cp, SBL__COL_LO), *hi = SBL__COLP(cp, SBL__COL_HI);
@@ -7359,15 +7458,57 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
     const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch); /* k->col_n + i */
     const sbl__v nl = sbl__load(qn - 1), nr = sbl__load(qn + 1);
     const sbl__v cnt = sbl__add(sbl__add(nl, sbl__load(qn)), nr);
-    sbl__v inv_cnt1;
+    sbl__v inv_cnt1, inv_w[4], sw[7], J = zero, dof = zero, cn[3];
+    const sbl__v *w = NULL;
+    sw[0] = sw[1] = sw[2] = sw[3] = sw[4] = sw[5] = sw[6] = zero;
+    cn[0] = nl;
+    cn[1] = sbl__load(qn);
+    cn[2] = nr;
     st->has_pairs = sbl__gt(cnt, zero);
     st->two_pairs = sbl__gt(cnt, one);
     st->inv_cnt = sbl__div(one, sbl__max(cnt, one));
     inv_cnt1 = sbl__div(one, sbl__max(sbl__sub(cnt, one), one));
-    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, st);
-    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, st);
-    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, st);
-    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, st);
+    if (k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->temporal) {
+        /* pooled stereo: the columns' counts for the pairs' variance within them (4.16) */
+        const sbl__v nc = sbl__load(qn);
+        J = sbl__add(sbl__add(sbl__sel(sbl__gt(nl, zero), one, zero), sbl__sel(sbl__gt(nc, zero), one, zero)),
+                     sbl__sel(sbl__gt(nr, zero), one, zero));
+        dof = sbl__sub(cnt, J);
+        inv_w[0] = sbl__div(one, sbl__max(nl, one));
+        inv_w[1] = sbl__div(one, sbl__max(nc, one));
+        inv_w[2] = sbl__div(one, sbl__max(nr, one));
+        inv_w[3] = sbl__sel(sbl__gt(dof, one), sbl__div(one, sbl__max(dof, one)), zero);
+        w = inv_w;
+    }
+    sbl__lanes_moments_channel(k, W, x, i, 0, nl, nr, inv_cnt1, w, sw, st);
+    if (ch > 1) sbl__lanes_moments_channel(k, W, x, i, 1, nl, nr, inv_cnt1, w, sw, st);
+    if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, w, sw, st);
+    if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, w, sw, st);
+    if (w) {
+        /* the gate on the channel sums (sbl__pair_var_within): none below 2 columns or
+           2 degrees of freedom within */
+        const sbl__v big = sbl__set1(1e35f), lim = sbl__set1(1.5f);
+        sbl__v pvs = st->pv[0], sws = sw[0], thr, mx = zero, mn = big;
+        sbl__m gate;
+        int c;
+        for (c = 1; c < ch; ++c) {
+            pvs = sbl__add(pvs, st->pv[c]);
+            sws = sbl__add(sws, sw[c]);
+        }
+        for (c = 0; c < 3; ++c) {
+            /* the columns' own variances, those with 2 pairs or more */
+            const sbl__m has2 = sbl__gt(cn[c], lim);
+            const sbl__v v = sbl__mul(sw[4 + c], sbl__div(one, sbl__max(sbl__sub(cn[c], one), one)));
+            mx = sbl__max(mx, sbl__sel(has2, v, zero));
+            mn = sbl__min(mn, sbl__sel(has2, v, big));
+        }
+        /* H = (n - J + k^2) / (n - 1) */
+        thr = sbl__mul(sbl__mul(sbl__add(dof, sbl__set1(sbl__fgate_k2(k))), inv_cnt1), sws);
+        thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), thr, big), big);
+        thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
+        gate = sbl__gt(pvs, thr);
+        for (c = 0; c < ch; ++c) st->pv[c] = sbl__sel(gate, sw[c], st->pv[c]);
+    }
 }
 #undef SBL__SIDE
 
@@ -7416,6 +7557,7 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_DEV2(ch) (3 * (ch) + 8) /* staged lanes: |x* - mean|^2 (SBL_EVIDENCE_MIX only) */
 #define SBL__POOL_BB(ch) (3 * (ch) + 9) /* staged lanes: the blur's sum_c b_c^2 (wp.blur only) */
 #define SBL__POOL_BG(ch) (3 * (ch) + 10) /* staged lanes: the blur's noise factor (wp.blur only) */
+#define SBL__POOL_SW(ch) (3 * (ch) + 11) /* pooled stereo: a column's within sum of squares (4.16) */
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -7585,9 +7727,35 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     const ptrdiff_t cstep = own ? 3 * SBL__POOL_COLS : SBL__COL_PLANES * SBL__CHUNK_COLS;
     const ptrdiff_t o_m2 = pool + SBL__POOL_M2(ch) * SBL__POOL_COLS, o_se2 = pool + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
     const ptrdiff_t o_pd2 = pool + SBL__POOL_PD2(ch) * SBL__POOL_COLS, o_pv = pool + SBL__POOL_PV(ch) * SBL__POOL_COLS;
+    const ptrdiff_t o_sw = pool + SBL__POOL_SW(ch) * SBL__POOL_COLS;
+    /* the stereo blend's gate (sbl__pair_var_within): k^2, and H of a full window */
+    const sbl__v k2 = sbl__set1(pairs == 2 ? sbl__fgate_k2(k) : 0.0f);
+    const sbl__v h_full = sbl__mul(sbl__add(sbl__set1(6.0f), k2), sbl__set1(0.125f));
     float *const col0 = k->col[0];
     int x = ba;
     (void)Q;
+    if (pairs == 2) {
+        /* the stereo blend (4.16): each column's sum of squares within it, summed over the
+           channels, sum_c (B_jc - A_jc^2 / n_j) (its sums are about its own shift t_j,
+           which the spread within it does not see), once per column: each serves three
+           blocks. Columns [ba - 1, bb + 1). */
+        const sbl__v third = sbl__set1(1.0f / 3.0f);
+        int xc = ba - 1;
+        for (;;) {
+            float *const q = col0 + (xc - base);
+            const sbl__v inv = full ? third : sbl__div(one, sbl__max(sbl__load(q + o_n), one));
+            sbl__v a = sbl__load(q + o_a), ssw = sbl__sub(sbl__load(q + o_b), sbl__mul(sbl__mul(a, a), inv));
+            int c;
+            for (c = 1; c < ch; ++c) {
+                a = sbl__load(q + o_a + c * cstep);
+                ssw = sbl__add(ssw, sbl__sub(sbl__load(q + o_b + c * cstep), sbl__mul(sbl__mul(a, a), inv)));
+            }
+            sbl__store(q + o_sw, ssw);
+            if (xc + SBL__VW >= bb + 1) break;
+            xc += SBL__VW;
+            if (xc + SBL__VW > bb + 1) xc = bb + 1 - SBL__VW;
+        }
+    }
     for (;;) {
         float *const q = col0 + (x - base); /* the column's index in every plane */
         /* full: three pairs in each column, nine in the block (the same values) */
@@ -7612,6 +7780,39 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
 #undef SBL__POOL_BLOCK_CH
         sbl__store(q + o_m2, full ? m2 : sbl__sel(valid, m2, zero));
         sbl__store(q + o_se2, full ? se2 : sbl__sel(valid, se2, zero));
+        if (pairs == 2) {
+            /* the stereo blend: the pairs' variance within the columns where they differ
+               (sbl__pair_var_within, 4.16): SS_W = the three columns' terms, on n - J */
+            const sbl__v ssw = sbl__add(sbl__add(sbl__load(q + o_sw - 1), sbl__load(q + o_sw)), sbl__load(q + o_sw + 1));
+            if (full) {
+                /* the columns' own variances: their sums of squares (2 degrees of freedom each) */
+                const sbl__v wl = sbl__load(q + o_sw - 1), wc = sbl__load(q + o_sw), wr = sbl__load(q + o_sw + 1);
+                const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__set1(1.0f / 6.0f));
+                const sbl__m one_var = sbl__fgate_one_var(sbl__max(sbl__max(wl, wc), wr), sbl__min(sbl__min(wl, wc), wr), ch);
+                pv = sbl__sel(sbl__gt(pv, sbl__mul(h_full, sw)), sbl__sel(one_var, sw, pv), pv);
+            } else {
+                const sbl__v J = sbl__add(sbl__add(sbl__sel(has_l, one, zero), sbl__sel(has_c, one, zero)),
+                                          sbl__sel(sbl__gt(nr, zero), one, zero));
+                const sbl__v dof = sbl__sub(n, J), lim = sbl__set1(1.5f);
+                const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__div(one, sbl__max(dof, one)));
+                const sbl__v big = sbl__set1(1e35f);
+                /* H = (n - J + k^2) / (n - 1) */
+                sbl__v thr = sbl__mul(sbl__mul(sbl__add(dof, k2), inv_n1), sw);
+                sbl__v mx = zero, mn = big;
+                int j;
+                for (j = -1; j <= 1; ++j) {
+                    /* the columns' own variances, those with 2 pairs or more */
+                    const sbl__v nj = sbl__load(q + o_n + j);
+                    const sbl__m has2 = sbl__gt(nj, lim);
+                    const sbl__v v = sbl__mul(sbl__load(q + o_sw + j), sbl__div(one, sbl__max(sbl__sub(nj, one), one)));
+                    mx = sbl__max(mx, sbl__sel(has2, v, zero));
+                    mn = sbl__min(mn, sbl__sel(has2, v, big));
+                }
+                thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), thr, big), big);
+                thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
+                pv = sbl__sel(sbl__gt(pv, thr), sw, pv);
+            }
+        }
         if (pairs) {
             sbl__store(q + o_pd2, m2);
             sbl__store(q + o_pv, pv);
