@@ -3719,11 +3719,11 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
 }
 
 #if SBL__VW == 4
-/* Four consecutive packed RGB pixels (12 floats) to one vector per channel: three loads
-   and seven shuffles (SSE2 emulates a gather with four loads). */
-SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
+/* Four consecutive packed RGB pixels (12 floats, in a, c, e in memory order) to one
+   vector per channel: seven shuffles (SSE2 emulates a gather with four loads); sbl__rgb4
+   with the three loads. */
+SBL__INLINE void sbl__rgb4_split(__m128 a, __m128 c, __m128 e, __m128 *r, __m128 *g, __m128 *b)
 {
-    const __m128 a = _mm_loadu_ps(p), c = _mm_loadu_ps(p + 4), e = _mm_loadu_ps(p + 8);
     const __m128 rr = _mm_shuffle_ps(c, e, _MM_SHUFFLE(0, 1, 0, 2));  /* r2 . r3 .    */
     const __m128 g01 = _mm_shuffle_ps(a, c, _MM_SHUFFLE(0, 0, 1, 1)); /* g0 g0 g1 g1 */
     const __m128 g23 = _mm_shuffle_ps(c, e, _MM_SHUFFLE(2, 2, 3, 3)); /* g2 g2 g3 g3 */
@@ -3732,17 +3732,19 @@ SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
     *g = _mm_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0));
     *b = _mm_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0));
 }
+SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
+{
+    sbl__rgb4_split(_mm_loadu_ps(p), _mm_loadu_ps(p + 4), _mm_loadu_ps(p + 8), r, g, b);
+}
 #endif
 
 #if SBL__VW >= 8
 /* Eight consecutive packed RGB pixels (24 floats) to one 8-float vector per channel:
-   sbl__rgb4's shuffles in each 128-bit half (pixels 0-3 low, 4-7 high). Loads and
-   shuffles instead of three gathers (slow on current x86). */
-SBL__INLINE void sbl__rgb8(const float *p, __m256 *r, __m256 *g, __m256 *b)
+   sbl__rgb4's shuffles in each 128-bit half (pixels 0-3 low, 4-7 high; a, c, e as
+   sbl__rgb8 loads them). Loads and shuffles instead of three gathers (slow on current
+   x86). */
+SBL__INLINE void sbl__rgb8_split(__m256 a, __m256 c, __m256 e, __m256 *r, __m256 *g, __m256 *b)
 {
-    const __m256 a = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p)), _mm_loadu_ps(p + 12), 1);
-    const __m256 c = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4)), _mm_loadu_ps(p + 16), 1);
-    const __m256 e = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 8)), _mm_loadu_ps(p + 20), 1);
     const __m256 rr = _mm256_shuffle_ps(c, e, _MM_SHUFFLE(0, 1, 0, 2));
     const __m256 g01 = _mm256_shuffle_ps(a, c, _MM_SHUFFLE(0, 0, 1, 1));
     const __m256 g23 = _mm256_shuffle_ps(c, e, _MM_SHUFFLE(2, 2, 3, 3));
@@ -3750,6 +3752,21 @@ SBL__INLINE void sbl__rgb8(const float *p, __m256 *r, __m256 *g, __m256 *b)
     *r = _mm256_shuffle_ps(a, rr, _MM_SHUFFLE(2, 0, 3, 0));
     *g = _mm256_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0));
     *b = _mm256_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0));
+}
+SBL__INLINE void sbl__rgb8(const float *p, __m256 *r, __m256 *g, __m256 *b)
+{
+    sbl__rgb8_split(_mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p)), _mm_loadu_ps(p + 12), 1),
+                    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4)), _mm_loadu_ps(p + 16), 1),
+                    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 8)), _mm_loadu_ps(p + 20), 1),
+                    r, g, b);
+}
+/* sbl__rgb8 of the 24 floats held in memory order (v0: floats 0-7, v1: 8-15, v2: 16-23):
+   its 128-bit halves (floats 0-3 with 12-15, 4-7 with 16-19, 8-11 with 20-23) by two
+   blends and one lane permute */
+SBL__INLINE void sbl__rgb8_of(__m256 v0, __m256 v1, __m256 v2, __m256 *r, __m256 *g, __m256 *b)
+{
+    sbl__rgb8_split(_mm256_blend_ps(v0, v1, 0xf0), _mm256_permute2f128_ps(v0, v2, 0x21),
+                    _mm256_blend_ps(v1, v2, 0xf0), r, g, b);
 }
 #endif
 
@@ -3764,6 +3781,28 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
     __m256 r0, g0, b0, r1, g1, b1;
     sbl__rgb8(p, &r0, &g0, &b0);
     sbl__rgb8(p + 24, &r1, &g1, &b1);
+    *r = sbl__join8(r0, r1);
+    *g = sbl__join8(g0, g1);
+    *b = sbl__join8(b0, b1);
+#endif
+}
+
+/* sbl__rgb_lanes of the 3 VW floats held in registers in memory order (v[0]: floats
+   0 .. VW - 1, v[1] the next VW, v[2] the last): the same values, without the loads */
+SBL__INLINE void sbl__rgb_lanes_of(const sbl__v *v, sbl__v *r, sbl__v *g, sbl__v *b)
+{
+#if SBL__VW == 4
+    sbl__rgb4_split(v[0], v[1], v[2], r, g, b);
+#elif SBL__VW == 8
+    sbl__rgb8_of(v[0], v[1], v[2], r, g, b);
+#else
+#define SBL__LO8(a) _mm512_castps512_ps256(a)
+#define SBL__HI8(a) _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(a), 1))
+    __m256 r0, g0, b0, r1, g1, b1;
+    sbl__rgb8_of(SBL__LO8(v[0]), SBL__HI8(v[0]), SBL__LO8(v[1]), &r0, &g0, &b0);
+    sbl__rgb8_of(SBL__HI8(v[1]), SBL__LO8(v[2]), SBL__HI8(v[2]), &r1, &g1, &b1);
+#undef SBL__LO8
+#undef SBL__HI8
     *r = sbl__join8(r0, r1);
     *g = sbl__join8(g0, g1);
     *b = sbl__join8(b0, b1);
@@ -4154,7 +4193,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
 SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl__m ok, sbl__v nt,
                                     const int *cidx, const float *cbase, sbl__v *acc,
                                     sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int full,
-                                    int masked, const sbl__v *pre)
+                                    int masked, const sbl__v *pre, int il)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
@@ -4169,6 +4208,10 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
         if (ch > 1) v[1] = pre[1];
         if (ch > 2) v[2] = pre[2];
         if (ch > 3) v[3] = pre[3];
+    } else if (il) { /* (sbl__lanes_taps_in: the floats in memory order) */
+        v[0] = sbl__load(cp);
+        v[1] = sbl__load(cp + SBL__VW);
+        v[2] = sbl__load(cp + 2 * SBL__VW);
     } else if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB */
         sbl__rgb_lanes(cp, &v[0], &v[1], &v[2]);
     } else {
@@ -4351,6 +4394,12 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
     sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero), ok0, ok1, ok2, ok3;
     int c, bits, any, plain = 0, unmasked, skip_x, skip_y;
     const int wpos = u ? u->wpos : 0;
+    /* il: packed RGB taps of contiguous lanes with u's weights, which are one value in
+       every lane: the unmasked colour sums are then taken over the 3 VW floats in memory
+       order (acc[c]: floats c VW .. c VW + VW - 1), each float the same terms in the
+       same order as its channel's lane, and split into channels once (sbl__rgb_lanes_of)
+       instead of at every tap */
+    const int il = u && contiguous && !pair && ch == 3 && s->color.step == 3;
     if (u) {
         skip_x = u->skip_x;
         skip_y = u->skip_y;
@@ -4469,10 +4518,17 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
         all = sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3));
 #define SBL__SUM(t, m) \
     sbl__lanes_tap_sum(s, t, w##t, ok##t, n##t, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, m, \
-                       pair ? cv[t] : NULL)
+                       pair ? cv[t] : NULL, m ? 0 : il)
         unmasked = sbl__mbits(all) == (1 << SBL__VW) - 1;
-        if (unmasked) SBL__EACH_TAP(SBL__SUM, 0);
-        else SBL__EACH_TAP(SBL__SUM, 1);
+        if (unmasked) {
+            SBL__EACH_TAP(SBL__SUM, 0);
+            if (il) { /* the channels of the interleaved sums */
+                const sbl__v mixed[3] = {acc[0], acc[1], acc[2]};
+                sbl__rgb_lanes_of(mixed, &acc[0], &acc[1], &acc[2]);
+            }
+        } else {
+            SBL__EACH_TAP(SBL__SUM, 1);
+        }
 #undef SBL__SUM
     }
     nonfinite = sbl__nonfinite(accn);
