@@ -4113,9 +4113,11 @@ SBL__INLINE sbl__v sbl__depth_lim(sbl__v tol, sbl__v ze, sbl__v slack)
     return sbl__add(sbl__mul(tol, ze), slack);
 }
 
+/* (lim = sbl__depth_lim(tol, ze, slack), as every caller forms it: where ze is +inf, tol
+   ze is +-inf or NaN and so is lim, so the test of lim covers "ze is +inf") */
 SBL__INLINE int sbl__full_lim(sbl__v ze, sbl__v lim)
 {
-    return !sbl__mbits(sbl__mor(sbl__mor(sbl__posinf(ze), sbl__nonfinite(lim)), sbl__le(ze, lim)));
+    return !sbl__mbits(sbl__mor(sbl__nonfinite(lim), sbl__le(ze, lim)));
 }
 
 SBL__INLINE int sbl__full_lanes(sbl__v tol, sbl__v ze, sbl__v slack)
@@ -4327,7 +4329,11 @@ SBL__INLINE void sbl__taps_prefetch_at(const sbl__tap_src *s, ptrdiff_t ci, ptrd
 /* (the first tap indices from the plan) */
 SBL__INLINE void sbl__taps_prefetch(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int ch)
 {
-    sbl__taps_prefetch_at(s, p->ci[i], s->use_depth ? p->di[i] : 0, s->length.p ? p->li[i] : 0, ch);
+    const float *c = s->color.p + p->ci[i];
+    int o;
+    for (o = 0; o < ch * SBL__VW; o += SBL__LINE_FLOATS) SBL__PREFETCH(c, 2 * s->color.stride + o);
+    if (s->use_depth) SBL__PREFETCH(s->depth.p + p->di[i], 2 * s->depth.stride);
+    if (s->length.p) SBL__PREFETCH(s->length.p + p->li[i], 2 * s->length.stride);
 }
 
 /* The terms of sbl__lanes_taps_in that depend on the fractions alone, for vectors whose
@@ -5099,9 +5105,10 @@ SBL__INLINE int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
    Where every difference is finite (then so is z: the common case) the slack is the sum
    of the mins; else every lane takes sbl__slack_axis's rule written out on the bits. */
 /* (dp: the target depth at (x, y), ds: its row stride; the caller's loop may keep its
-   row pointer, sbl__temporal_uniform_run) */
-SBL__INLINE sbl__m sbl__lanes_want_at(const float *dp, ptrdiff_t ds, int w, int x, sbl__v *z,
-                                      sbl__v *slack)
+   row pointer, sbl__temporal_uniform_run. edge: x may be an edge column (0: the caller
+   knows it is not, the test skipped) */
+SBL__INLINE sbl__m sbl__lanes_want_in(const float *dp, ptrdiff_t ds, int w, int x, sbl__v *z,
+                                      sbl__v *slack, int edge)
 {
     const sbl__v zero = sbl__set1(0.0f);
     sbl__v dax, dbx, day, dby;
@@ -5109,7 +5116,7 @@ SBL__INLINE sbl__m sbl__lanes_want_at(const float *dp, ptrdiff_t ds, int w, int 
     SBL__PREFETCH(dp, 2 * ds); /* (the next row's new row) */
     dax = sbl__abs(sbl__sub(*z, sbl__load(dp - 1)));
     dbx = sbl__abs(sbl__sub(sbl__load(dp + 1), *z));
-    if (x == 0 || x + SBL__VW == w) {
+    if (edge && (x == 0 || x + SBL__VW == w)) {
         /* an edge column (its missing neighbour read from the previous or next row in
            memory, a valid address on an interior row, then replaced before any test): the
            one-sided difference is the other side's, as sbl__depth_slack takes it */
@@ -5139,6 +5146,12 @@ SBL__INLINE sbl__m sbl__lanes_want_at(const float *dp, ptrdiff_t ds, int w, int 
         *slack = sbl__sel(sbl__nonfinite(*z), zero, sbl__add(sx, sy));
     }
     return sbl__gt(*z, zero);
+}
+
+SBL__INLINE sbl__m sbl__lanes_want_at(const float *dp, ptrdiff_t ds, int w, int x, sbl__v *z,
+                                      sbl__v *slack)
+{
+    return sbl__lanes_want_in(dp, ds, w, x, z, slack, 1);
 }
 
 SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int w, int x, int y, sbl__v *z,
@@ -6022,7 +6035,7 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
     sbl__v tol;
     const float *zp;
     ptrdiff_t zs, first[3];
-    int i = 0, x0, n, u_hi, gw, c0, d0, l0;
+    int i = 0, x0, n, u_hi, gw, c0, d0, l0, edge;
     if (!b->uni || b->u_lo > 0 || b->sky || src0->color.ch != 3 || src0->color.step != 3 ||
         !src0->use_depth || src0->depth.step != 1 || !src0->length.p || src0->length.step != 1 ||
         src0->use_normal || src0->use_id || !s->geo.depth.p || s->geo.normals.p || s->geo.ids.p ||
@@ -6052,6 +6065,7 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
     c0 = b->u_first[0];
     d0 = b->u_first[1];
     l0 = b->u_first[2];
+    edge = x0 == 0 || x0 + n >= gw; /* (else no vector's x is 0 or w - VW) */
     /* the redo bytes of every entry the loop may settle, at once (the block's redo pass
        reads settled entries; the plan rewrites those of a vector handed back) */
     memset(p->redo, 0, SBL__BLOCK);
@@ -6060,7 +6074,7 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
         int any;
         if (i + SBL__VW > n) i = n - SBL__VW;
         if (i + SBL__VW > u_hi) return i;
-        if (sbl__mbits(sbl__lanes_want_at(zp + i, zs, gw, x0 + i, &z, &slack)) != all) return i;
+        if (sbl__mbits(sbl__lanes_want_in(zp + i, zs, gw, x0 + i, &z, &slack, edge)) != all) return i;
         lim = sbl__depth_lim(tol, z, slack);
         if (!sbl__full_lim(z, lim)) return i;
         /* the fractions, fast lanes (all), depth and limit in registers: a settled
@@ -10263,10 +10277,10 @@ typedef struct sbl__parallel_rows {
     const float *z, *d, *n, *c;
     ptrdiff_t zs, ds, ns, cs;
     float fb, tol;
-    int gw, sw, neg;
+    int gw, sw, neg, edge; /* edge: a vector may lie at column 0 or w - VW (sbl__lanes_want_in) */
 } sbl__parallel_rows;
 
-SBL__INLINE void sbl__parallel_rows_of(const sbl__stereo_rp *s, int y, sbl__parallel_rows *pr)
+SBL__INLINE void sbl__parallel_rows_of(const sbl__stereo_rp *s, int y, int xa, int xb, sbl__parallel_rows *pr)
 {
     const sbl__tap_src *src = &s->src;
     pr->z = SBL__AT(s->geo.depth, 0, y);
@@ -10282,6 +10296,7 @@ SBL__INLINE void sbl__parallel_rows_of(const sbl__stereo_rp *s, int y, sbl__para
     pr->gw = s->geo.width;
     pr->sw = src->width;
     pr->neg = s->dir[0] < 0.0;
+    pr->edge = xa == 0 || xb >= pr->gw;
 }
 
 /* sbl__stereo_plan_vec (mode 1), sbl__row_taps and sbl__stereo_after_rig for the VW
@@ -10312,7 +10327,7 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, const sbl__par
     const float *dp, *np, *cp;
     int k, x0, skip_x, fail = 0;
     /* the plan: sbl__stereo_plan_vec's m = dir f b / z, sbl__plan_lanes' exact motion */
-    keep = sbl__lanes_want_at(pr->z + x, pr->zs, pr->gw, x, &z, &slack);
+    keep = sbl__lanes_want_in(pr->z + x, pr->zs, pr->gw, x, &z, &slack, pr->edge);
     m = sbl__div_exact(sbl__set1(pr->fb), z);
     keep = sbl__mandnot(keep, sbl__nonfinite(m));
     if (pr->neg) m = sbl__sub(zero, m);
@@ -10471,7 +10486,7 @@ static void sbl__stereo_parallel_row(const sbl__stereo_rp *s, sbl__ring_row *r, 
     const int flag = r->unsafe != NULL;
     int x, pa = -1, pb = -1, done;
     sbl__parallel_rows pr;
-    sbl__parallel_rows_of(s, y, &pr);
+    sbl__parallel_rows_of(s, y, xa, xb, &pr);
     if (flag) {
         r->gather_flags = 1;
         r->gather_unsafe = 0;
