@@ -10312,9 +10312,9 @@ SBL__INLINE void sbl__parallel_rows_of(const sbl__stereo_rp *s, int y, int xa, i
    (sbl__stereo_parallel_none). Returns 0, nothing written, where a lane needs more (no
    match beside matches, a motion sbl__plan_lanes leaves to the scalar plan, taps
    outside the image, offsets apart, not full, redo: the blocks then decide). */
-SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, const sbl__parallel_rows *pr,
-                                         sbl__ring_row *r, int x, const int ch, int fallback,
-                                         int back_check, double tol, int flag)
+SBL__INLINE int sbl__stereo_parallel_vec_in(const sbl__stereo_rp *s, const sbl__parallel_rows *pr,
+                                            sbl__ring_row *r, int x, const int ch, int fallback,
+                                            int back_check, double tol, int flag)
 {
     static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
     const int all = (1 << SBL__VW) - 1;
@@ -10472,6 +10472,16 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, const sbl__par
     return 1;
 }
 
+/* sbl__stereo_parallel_vec_in with row y's values formed for this vector alone (tests) */
+SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row *r, int x, int y,
+                                         const int ch, int fallback, int back_check, double tol,
+                                         int flag)
+{
+    sbl__parallel_rows pr;
+    sbl__parallel_rows_of(s, y, 0, s->geo.width, &pr);
+    return sbl__stereo_parallel_vec_in(s, &pr, r, x, ch, fallback, back_check, tol, flag);
+}
+
 /* Row y's columns [xa, xb) (xb - xa >= VW) of the parallel rig, vector by vector: the
    fused vectors where they apply, the blocks (sbl__row_gather_blocks) for the runs of
    vectors they leave, whose unsafe values are then checked as sbl__ring_gather would.
@@ -10493,8 +10503,8 @@ static void sbl__stereo_parallel_row(const sbl__stereo_rp *s, sbl__ring_row *r, 
     }
     for (x = xa;; x += SBL__VW) {
         if (x + SBL__VW > xb) x = xb - SBL__VW;
-        done = ch == 3 ? sbl__stereo_parallel_vec(s, &pr, r, x, 3, fallback, back_check, tol, flag)
-                       : sbl__stereo_parallel_vec(s, &pr, r, x, 1, fallback, back_check, tol, flag);
+        done = ch == 3 ? sbl__stereo_parallel_vec_in(s, &pr, r, x, 3, fallback, back_check, tol, flag)
+                       : sbl__stereo_parallel_vec_in(s, &pr, r, x, 1, fallback, back_check, tol, flag);
         if (!done) {
             if (pa < 0) pa = x;
             pb = x + SBL__VW;
