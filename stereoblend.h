@@ -6406,9 +6406,9 @@ SBL__INLINE int sbl__ring_own_rgb(sbl__ring_row *r, const float *src, const floa
     float *y0 = r->y[0], *y1 = r->y[1], *y2 = r->y[2];
     unsigned char *unsafe = r->unsafe;
 #if SBL__VW == 4
-    /* SSE2: two vectors per safety test (sbl__ring_own_rgb2) */
-    if (ny) x = sbl__ring_own_rgb2(r, src, ny, x, xb, ahead, ahead_n, count, 1);
-    else x = sbl__ring_own_rgb2(r, src, ny, x, xb, ahead, ahead_n, count, 0);
+    /* SSE2: two vectors per safety test (sbl__ring_own_rgb2); with N_Y (eight vectors)
+       it cost more than it saved (stereo normals-ev +0.5 instructions per pixel) */
+    if (!ny) x = sbl__ring_own_rgb2(r, src, ny, x, xb, ahead, ahead_n, count, 0);
 #endif
     for (; x + SBL__VW <= xb; x += SBL__VW) {
         sbl__v v[4];
