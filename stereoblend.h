@@ -3719,11 +3719,11 @@ SBL__INLINE void sbl__tap_plan_set(const sbl__tap_src *s, sbl__tap_plan *p, int 
 }
 
 #if SBL__VW == 4
-/* Four consecutive packed RGB pixels (12 floats) to one vector per channel: three loads
-   and seven shuffles (SSE2 emulates a gather with four loads). */
-SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
+/* Four consecutive packed RGB pixels (12 floats, in a, c, e in memory order) to one
+   vector per channel: seven shuffles (SSE2 emulates a gather with four loads); sbl__rgb4
+   with the three loads. */
+SBL__INLINE void sbl__rgb4_split(__m128 a, __m128 c, __m128 e, __m128 *r, __m128 *g, __m128 *b)
 {
-    const __m128 a = _mm_loadu_ps(p), c = _mm_loadu_ps(p + 4), e = _mm_loadu_ps(p + 8);
     const __m128 rr = _mm_shuffle_ps(c, e, _MM_SHUFFLE(0, 1, 0, 2));  /* r2 . r3 .    */
     const __m128 g01 = _mm_shuffle_ps(a, c, _MM_SHUFFLE(0, 0, 1, 1)); /* g0 g0 g1 g1 */
     const __m128 g23 = _mm_shuffle_ps(c, e, _MM_SHUFFLE(2, 2, 3, 3)); /* g2 g2 g3 g3 */
@@ -3732,17 +3732,19 @@ SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
     *g = _mm_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0));
     *b = _mm_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0));
 }
+SBL__INLINE void sbl__rgb4(const float *p, __m128 *r, __m128 *g, __m128 *b)
+{
+    sbl__rgb4_split(_mm_loadu_ps(p), _mm_loadu_ps(p + 4), _mm_loadu_ps(p + 8), r, g, b);
+}
 #endif
 
 #if SBL__VW >= 8
 /* Eight consecutive packed RGB pixels (24 floats) to one 8-float vector per channel:
-   sbl__rgb4's shuffles in each 128-bit half (pixels 0-3 low, 4-7 high). Loads and
-   shuffles instead of three gathers (slow on current x86). */
-SBL__INLINE void sbl__rgb8(const float *p, __m256 *r, __m256 *g, __m256 *b)
+   sbl__rgb4's shuffles in each 128-bit half (pixels 0-3 low, 4-7 high; a, c, e as
+   sbl__rgb8 loads them). Loads and shuffles instead of three gathers (slow on current
+   x86). */
+SBL__INLINE void sbl__rgb8_split(__m256 a, __m256 c, __m256 e, __m256 *r, __m256 *g, __m256 *b)
 {
-    const __m256 a = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p)), _mm_loadu_ps(p + 12), 1);
-    const __m256 c = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4)), _mm_loadu_ps(p + 16), 1);
-    const __m256 e = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 8)), _mm_loadu_ps(p + 20), 1);
     const __m256 rr = _mm256_shuffle_ps(c, e, _MM_SHUFFLE(0, 1, 0, 2));
     const __m256 g01 = _mm256_shuffle_ps(a, c, _MM_SHUFFLE(0, 0, 1, 1));
     const __m256 g23 = _mm256_shuffle_ps(c, e, _MM_SHUFFLE(2, 2, 3, 3));
@@ -3750,6 +3752,21 @@ SBL__INLINE void sbl__rgb8(const float *p, __m256 *r, __m256 *g, __m256 *b)
     *r = _mm256_shuffle_ps(a, rr, _MM_SHUFFLE(2, 0, 3, 0));
     *g = _mm256_shuffle_ps(g01, g23, _MM_SHUFFLE(2, 0, 2, 0));
     *b = _mm256_shuffle_ps(b01, e, _MM_SHUFFLE(3, 0, 2, 0));
+}
+SBL__INLINE void sbl__rgb8(const float *p, __m256 *r, __m256 *g, __m256 *b)
+{
+    sbl__rgb8_split(_mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p)), _mm_loadu_ps(p + 12), 1),
+                    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4)), _mm_loadu_ps(p + 16), 1),
+                    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 8)), _mm_loadu_ps(p + 20), 1),
+                    r, g, b);
+}
+/* sbl__rgb8 of the 24 floats held in memory order (v0: floats 0-7, v1: 8-15, v2: 16-23):
+   its 128-bit halves (floats 0-3 with 12-15, 4-7 with 16-19, 8-11 with 20-23) by two
+   blends and one lane permute */
+SBL__INLINE void sbl__rgb8_of(__m256 v0, __m256 v1, __m256 v2, __m256 *r, __m256 *g, __m256 *b)
+{
+    sbl__rgb8_split(_mm256_blend_ps(v0, v1, 0xf0), _mm256_permute2f128_ps(v0, v2, 0x21),
+                    _mm256_blend_ps(v1, v2, 0xf0), r, g, b);
 }
 #endif
 
@@ -3764,6 +3781,28 @@ SBL__INLINE void sbl__rgb_lanes(const float *p, sbl__v *r, sbl__v *g, sbl__v *b)
     __m256 r0, g0, b0, r1, g1, b1;
     sbl__rgb8(p, &r0, &g0, &b0);
     sbl__rgb8(p + 24, &r1, &g1, &b1);
+    *r = sbl__join8(r0, r1);
+    *g = sbl__join8(g0, g1);
+    *b = sbl__join8(b0, b1);
+#endif
+}
+
+/* sbl__rgb_lanes of the 3 VW floats held in registers in memory order (v[0]: floats
+   0 .. VW - 1, v[1] the next VW, v[2] the last): the same values, without the loads */
+SBL__INLINE void sbl__rgb_lanes_of(const sbl__v *v, sbl__v *r, sbl__v *g, sbl__v *b)
+{
+#if SBL__VW == 4
+    sbl__rgb4_split(v[0], v[1], v[2], r, g, b);
+#elif SBL__VW == 8
+    sbl__rgb8_of(v[0], v[1], v[2], r, g, b);
+#else
+#define SBL__LO8(a) _mm512_castps512_ps256(a)
+#define SBL__HI8(a) _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(a), 1))
+    __m256 r0, g0, b0, r1, g1, b1;
+    sbl__rgb8_of(SBL__LO8(v[0]), SBL__HI8(v[0]), SBL__LO8(v[1]), &r0, &g0, &b0);
+    sbl__rgb8_of(SBL__HI8(v[1]), SBL__LO8(v[2]), SBL__HI8(v[2]), &r1, &g1, &b1);
+#undef SBL__LO8
+#undef SBL__HI8
     *r = sbl__join8(r0, r1);
     *g = sbl__join8(g0, g1);
     *b = sbl__join8(b0, b1);
@@ -4074,9 +4113,11 @@ SBL__INLINE sbl__v sbl__depth_lim(sbl__v tol, sbl__v ze, sbl__v slack)
     return sbl__add(sbl__mul(tol, ze), slack);
 }
 
+/* (lim = sbl__depth_lim(tol, ze, slack), as every caller forms it: where ze is +inf, tol
+   ze is +-inf or NaN and so is lim, so the test of lim covers "ze is +inf") */
 SBL__INLINE int sbl__full_lim(sbl__v ze, sbl__v lim)
 {
-    return !sbl__mbits(sbl__mor(sbl__mor(sbl__posinf(ze), sbl__nonfinite(lim)), sbl__le(ze, lim)));
+    return !sbl__mbits(sbl__mor(sbl__nonfinite(lim), sbl__le(ze, lim)));
 }
 
 SBL__INLINE int sbl__full_lanes(sbl__v tol, sbl__v ze, sbl__v slack)
@@ -4092,12 +4133,13 @@ SBL__INLINE int sbl__full_lanes(sbl__v tol, sbl__v ze, sbl__v slack)
    inlined per tap with t constant, so the offsets fold and every vector stays in a
    register. plain: no lane expects sky and every depth limit is finite, so
    sbl__depth_match reduces to d > 0 and |d - z| <= limit (a non-finite d fails the
-   second). cidx: the colour's lane indices from the first tap. */
+   second). cidx: the colour's lane indices from the first tap. idx0 (NULL: the plan's):
+   the first taps' indices of a contiguous vector (sbl__lanes_taps_in's first). */
 SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_plan *p, int i,
                                        int t, sbl__v w, sbl__v ze, sbl__v lim, sbl__m inf_e,
                                        int plain, sbl__v *nt, int contiguous, int sky, int full,
                                        const sbl__v *pre, int nid_run, const sbl__v *nid_pre,
-                                       int nid, sbl__m nid_ok, int wpos)
+                                       int nid, sbl__m nid_ok, int wpos, const ptrdiff_t *idx0)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
@@ -4118,7 +4160,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
     if (full || s->use_depth) {
         const ptrdiff_t o = ty * s->depth.stride + tx * s->depth.step;
         const sbl__v d = pre ? pre[0]
-                             : contiguous ? sbl__load(s->depth.p + o + p->di[i])
+                             : contiguous ? sbl__load(s->depth.p + o + (idx0 ? idx0[1] : p->di[i]))
                                           : sbl__gatheri(s->depth.p + o, p->di + i);
         if (sky && !full) {
             SBL__OK_AND(sbl__posinf(d));
@@ -4143,7 +4185,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
     if (full || s->length.p) {
         const ptrdiff_t o = ty * s->length.stride + tx * s->length.step;
         *nt = pre ? pre[1]
-                  : contiguous ? sbl__load(s->length.p + o + p->li[i])
+                  : contiguous ? sbl__load(s->length.p + o + (idx0 ? idx0[2] : p->li[i]))
                                : sbl__gatheri(s->length.p + o, p->li + i);
         SBL__OK_AND(sbl__gt(*nt, zero));
     }
@@ -4154,7 +4196,7 @@ SBL__INLINE sbl__m sbl__lanes_tap_test(const sbl__tap_src *s, const sbl__tap_pla
 SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl__m ok, sbl__v nt,
                                     const int *cidx, const float *cbase, sbl__v *acc,
                                     sbl__v *accn, sbl__v *wsum, int ch, int contiguous, int full,
-                                    int masked, const sbl__v *pre)
+                                    int masked, const sbl__v *pre, int il, int no_wsum)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const ptrdiff_t tx = t & 1, ty = t >> 1;
@@ -4169,6 +4211,10 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
         if (ch > 1) v[1] = pre[1];
         if (ch > 2) v[2] = pre[2];
         if (ch > 3) v[3] = pre[3];
+    } else if (il) { /* (sbl__lanes_taps_in: the floats in memory order) */
+        v[0] = sbl__load(cp);
+        v[1] = sbl__load(cp + SBL__VW);
+        v[2] = sbl__load(cp + 2 * SBL__VW);
     } else if (contiguous && ch == 3 && s->color.step == 3) { /* packed RGB */
         sbl__rgb_lanes(cp, &v[0], &v[1], &v[2]);
     } else {
@@ -4181,7 +4227,7 @@ SBL__INLINE void sbl__lanes_tap_sum(const sbl__tap_src *s, int t, sbl__v w, sbl_
     if (ch > 1) SBL__TAP_ADD(acc[1], sbl__mul(w, v[1]));
     if (ch > 2) SBL__TAP_ADD(acc[2], sbl__mul(w, v[2]));
     if (ch > 3) SBL__TAP_ADD(acc[3], sbl__mul(w, v[3]));
-    SBL__TAP_ADD(*wsum, w);
+    if (!no_wsum) SBL__TAP_ADD(*wsum, w);
 #undef SBL__TAP_ADD
 }
 
@@ -4271,6 +4317,16 @@ SBL__INLINE int sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *p
 /* Prefetch the tap row the next row will read first (y0 + 2, at lane 0's taps: colour,
    depth, N) for the vector at plan entry i; called by the loops over vectors (inside
    sbl__lanes_taps it cost the SSE2 normals case +23 instructions per pixel: registers) */
+SBL__INLINE void sbl__taps_prefetch_at(const sbl__tap_src *s, ptrdiff_t ci, ptrdiff_t di, ptrdiff_t li, int ch)
+{
+    const float *c = s->color.p + ci;
+    int o;
+    for (o = 0; o < ch * SBL__VW; o += SBL__LINE_FLOATS) SBL__PREFETCH(c, 2 * s->color.stride + o);
+    if (s->use_depth) SBL__PREFETCH(s->depth.p + di, 2 * s->depth.stride);
+    if (s->length.p) SBL__PREFETCH(s->length.p + li, 2 * s->length.stride);
+}
+
+/* (the first tap indices from the plan) */
 SBL__INLINE void sbl__taps_prefetch(const sbl__tap_src *s, const sbl__tap_plan *p, int i, int ch)
 {
     const float *c = s->color.p + p->ci[i];
@@ -4336,21 +4392,29 @@ SBL__INLINE void sbl__taps_uni_of(sbl__taps_uni *u, sbl__v fx, sbl__v fy)
 /* sbl__lanes_taps with plan entry i's fractions fx, fy, fast lanes, expected depth ze and
    depth limit lim (read only where full or the depth test needs them) given in registers
    (sbl__temporal_uniform_run has them: no store and reload). u (NULL: none): the terms
-   of the fractions, formed per block (then fx, fy are not read). Returns whether any
-   lane was marked for redo. */
+   of the fractions, formed per block (then fx, fy are not read). first (NULL: the
+   plan's): entry i's first tap indices of a contiguous vector, given in registers (not
+   stored in the plan). Returns whether any lane was marked for redo. */
 SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int i, int fallback,
                                    sbl__ring_row *r, int x, const int *cstep, int ch,
                                    int contiguous, int sky, int full, int flag, int ev, int pair,
                                    int nid_run, int nid, sbl__v fx, sbl__v fy, sbl__m fast,
-                                   sbl__v ze_in, sbl__v lim_in, const sbl__taps_uni *u)
+                                   sbl__v ze_in, sbl__v lim_in, const sbl__taps_uni *u,
+                                   const ptrdiff_t *first)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const int *cidx = contiguous ? cstep : p->ci + i;
-    const float *cbase = contiguous ? s->color.p + p->ci[i] : s->color.p;
+    const float *cbase = contiguous ? s->color.p + (first ? first[0] : p->ci[i]) : s->color.p;
     sbl__v w0, w1, w2, w3, acc[4], accn = zero, wsum = zero, inv, n, ze = ze_in, lim = lim_in;
     sbl__m redo, nonfinite, lo, valid, inf_e = sbl__gt(zero, zero), ok0, ok1, ok2, ok3;
     int c, bits, any, plain = 0, unmasked, skip_x, skip_y;
     const int wpos = u ? u->wpos : 0;
+    /* il: packed RGB taps of contiguous lanes with u's weights, which are one value in
+       every lane: the unmasked colour sums are then taken over the 3 VW floats in memory
+       order (acc[c]: floats c VW .. c VW + VW - 1), each float the same terms in the
+       same order as its channel's lane, and split into channels once (sbl__rgb_lanes_of)
+       instead of at every tap */
+    const int il = u && contiguous && !pair && ch == 3 && s->color.step == 3;
     if (u) {
         skip_x = u->skip_x;
         skip_y = u->skip_y;
@@ -4436,7 +4500,7 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
         }
 #define SBL__TEST(t, nt) \
     sbl__lanes_tap_test(s, p, i, t, w##t, ze, lim, inf_e, plain, nt, contiguous, sky, full, pair ? dn[t] : NULL, \
-                        nid_run, nid_pair ? nv[t] : NULL, nid, nid ? nk[t] : sbl__true, wpos)
+                        nid_run, nid_pair ? nv[t] : NULL, nid, nid ? nk[t] : sbl__true, wpos, first)
         ok0 = SBL__TEST(0, &n0);
         ok1 = ok2 = ok3 = ok0;
         if (!skip_x) ok1 = SBL__TEST(1, &n1);
@@ -4469,10 +4533,17 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
         all = sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3));
 #define SBL__SUM(t, m) \
     sbl__lanes_tap_sum(s, t, w##t, ok##t, n##t, cidx, cbase, acc, &accn, &wsum, ch, contiguous, full, m, \
-                       pair ? cv[t] : NULL)
+                       pair ? cv[t] : NULL, m ? 0 : il, !m && u)
         unmasked = sbl__mbits(all) == (1 << SBL__VW) - 1;
-        if (unmasked) SBL__EACH_TAP(SBL__SUM, 0);
-        else SBL__EACH_TAP(SBL__SUM, 1);
+        if (unmasked) {
+            SBL__EACH_TAP(SBL__SUM, 0);
+            if (il) { /* the channels of the interleaved sums */
+                const sbl__v mixed[3] = {acc[0], acc[1], acc[2]};
+                sbl__rgb_lanes_of(mixed, &acc[0], &acc[1], &acc[2]);
+            }
+        } else {
+            SBL__EACH_TAP(SBL__SUM, 1);
+        }
 #undef SBL__SUM
     }
     nonfinite = sbl__nonfinite(accn);
@@ -4566,7 +4637,7 @@ SBL__INLINE int sbl__lanes_taps(const sbl__tap_src *s, sbl__tap_plan *p, int i, 
     }
     return sbl__lanes_taps_in(s, p, i, fallback, r, x, cstep, ch, contiguous, sky, full, flag, ev,
                               pair, nid_run, nid, sbl__load(p->fx + i), sbl__load(p->fy + i),
-                              sbl__gt(sbl__load(p->fast + i), zero), ze, lim, NULL);
+                              sbl__gt(sbl__load(p->fast + i), zero), ze, lim, NULL, NULL);
 }
 
 /* Are the VW ints at a equal to a[0] + l step, l = 0 .. VW - 1? Four at a time with
@@ -5034,9 +5105,10 @@ SBL__INLINE int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
    Where every difference is finite (then so is z: the common case) the slack is the sum
    of the mins; else every lane takes sbl__slack_axis's rule written out on the bits. */
 /* (dp: the target depth at (x, y), ds: its row stride; the caller's loop may keep its
-   row pointer, sbl__temporal_uniform_run) */
-SBL__INLINE sbl__m sbl__lanes_want_at(const float *dp, ptrdiff_t ds, int w, int x, sbl__v *z,
-                                      sbl__v *slack)
+   row pointer, sbl__temporal_uniform_run. edge: x may be an edge column (0: the caller
+   knows it is not, the test skipped) */
+SBL__INLINE sbl__m sbl__lanes_want_in(const float *dp, ptrdiff_t ds, int w, int x, sbl__v *z,
+                                      sbl__v *slack, int edge)
 {
     const sbl__v zero = sbl__set1(0.0f);
     sbl__v dax, dbx, day, dby;
@@ -5044,7 +5116,7 @@ SBL__INLINE sbl__m sbl__lanes_want_at(const float *dp, ptrdiff_t ds, int w, int 
     SBL__PREFETCH(dp, 2 * ds); /* (the next row's new row) */
     dax = sbl__abs(sbl__sub(*z, sbl__load(dp - 1)));
     dbx = sbl__abs(sbl__sub(sbl__load(dp + 1), *z));
-    if (x == 0 || x + SBL__VW == w) {
+    if (edge && (x == 0 || x + SBL__VW == w)) {
         /* an edge column (its missing neighbour read from the previous or next row in
            memory, a valid address on an interior row, then replaced before any test): the
            one-sided difference is the other side's, as sbl__depth_slack takes it */
@@ -5074,6 +5146,12 @@ SBL__INLINE sbl__m sbl__lanes_want_at(const float *dp, ptrdiff_t ds, int w, int 
         *slack = sbl__sel(sbl__nonfinite(*z), zero, sbl__add(sx, sy));
     }
     return sbl__gt(*z, zero);
+}
+
+SBL__INLINE sbl__m sbl__lanes_want_at(const float *dp, ptrdiff_t ds, int w, int x, sbl__v *z,
+                                      sbl__v *slack)
+{
+    return sbl__lanes_want_in(dp, ds, w, x, z, slack, 1);
 }
 
 SBL__INLINE sbl__m sbl__lanes_want(const sbl__flat *depth, int w, int x, int y, sbl__v *z,
@@ -5956,8 +6034,8 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
     sbl__taps_uni u;
     sbl__v tol;
     const float *zp;
-    ptrdiff_t zs;
-    int i = 0, x0, n, u_hi, gw, c0, d0, l0;
+    ptrdiff_t zs, first[3];
+    int i = 0, x0, n, u_hi, gw, c0, d0, l0, edge;
     if (!b->uni || b->u_lo > 0 || b->sky || src0->color.ch != 3 || src0->color.step != 3 ||
         !src0->use_depth || src0->depth.step != 1 || !src0->length.p || src0->length.step != 1 ||
         src0->use_normal || src0->use_id || !s->geo.depth.p || s->geo.normals.p || s->geo.ids.p ||
@@ -5987,6 +6065,7 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
     c0 = b->u_first[0];
     d0 = b->u_first[1];
     l0 = b->u_first[2];
+    edge = x0 == 0 || x0 + n >= gw; /* (else no vector's x is 0 or w - VW) */
     /* the redo bytes of every entry the loop may settle, at once (the block's redo pass
        reads settled entries; the plan rewrites those of a vector handed back) */
     memset(p->redo, 0, SBL__BLOCK);
@@ -5995,21 +6074,23 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
         int any;
         if (i + SBL__VW > n) i = n - SBL__VW;
         if (i + SBL__VW > u_hi) return i;
-        if (sbl__mbits(sbl__lanes_want_at(zp + i, zs, gw, x0 + i, &z, &slack)) != all) return i;
+        if (sbl__mbits(sbl__lanes_want_in(zp + i, zs, gw, x0 + i, &z, &slack, edge)) != all) return i;
         lim = sbl__depth_lim(tol, z, slack);
         if (!sbl__full_lim(z, lim)) return i;
         /* the fractions, fast lanes (all), depth and limit in registers: a settled
            entry's are read by its taps only (the plan writes a vector it hands back
            again, and the block's redo pass reads no settled entry's but redo) */
-        /* (contiguous: sbl__lanes_taps reads entry i's first tap indices only) */
-        p->ci[i] = c0 + 3 * i;
-        p->di[i] = d0 + i;
-        p->li[i] = l0 + i;
-        sbl__taps_prefetch(src, p, i, 3);
+        /* (contiguous: sbl__lanes_taps reads entry i's first tap indices only, given
+           in registers; the evidence plane's taps read N's from the plan) */
+        first[0] = c0 + 3 * SBL__CAST(ptrdiff_t, i);
+        first[1] = d0 + SBL__CAST(ptrdiff_t, i);
+        first[2] = l0 + SBL__CAST(ptrdiff_t, i);
+        if (ev) p->li[i] = l0 + i;
+        sbl__taps_prefetch_at(src, first[0], first[1], first[2], 3);
         if (ev) any = sbl__lanes_taps_in(src, p, i, fallback, r, x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 1,
-                                         0, 0, 0, sbl__set1(0.0f), sbl__set1(0.0f), sbl__true, z, lim, &u);
+                                         0, 0, 0, sbl__set1(0.0f), sbl__set1(0.0f), sbl__true, z, lim, &u, first);
         else any = sbl__lanes_taps_in(src, p, i, fallback, r, x0 + i, p->lane_step[0], 3, 1, 0, 1, 1, 0,
-                                      0, 0, 0, sbl__set1(0.0f), sbl__set1(0.0f), sbl__true, z, lim, &u);
+                                      0, 0, 0, sbl__set1(0.0f), sbl__set1(0.0f), sbl__true, z, lim, &u, first);
         if (any) return i;
         if (i + SBL__VW >= n) return n;
         i += SBL__VW;
@@ -6275,11 +6356,60 @@ SBL__INLINE int sbl__ring_flag_lanes(sbl__ring_row *r, const float *ny, int x, i
 /* Packed RGB (pixel step 3) own pixels [x, xb): deinterleaved into the planes and
    flagged in one pass (the values tested in registers, not loaded again). Returns the
    first pixel not done. */
+#if SBL__VW == 4
+/* sbl__ring_own_rgb two vectors at a time, with one safety test for both (sbl__ring_flag_vec's
+   first test; where it fails, each vector's own tests); has_ny (a constant per instance:
+   the vectors' slots fixed, in registers) whether ny is given. Returns the first column
+   not done. */
+SBL__INLINE int sbl__ring_own_rgb2(sbl__ring_row *r, const float *src, const float *ny, int x,
+                                   int xb, ptrdiff_t ahead, ptrdiff_t ahead_n, int *count,
+                                   const int has_ny)
+{
+    static const unsigned char safe_bytes[2 * SBL__VW] = {0};
+    const int cnt = has_ny ? 4 : 3;
+    float *y0 = r->y[0], *y1 = r->y[1], *y2 = r->y[2];
+    unsigned char *unsafe = r->unsafe;
+    for (; x + 2 * SBL__VW <= xb; x += 2 * SBL__VW) {
+        const float *p = src + SBL__CAST(ptrdiff_t, x) * 3;
+        sbl__v v[8];
+        int o;
+        for (o = 0; o < 6 * SBL__VW; o += SBL__LINE_FLOATS) SBL__PREFETCH(p, ahead + o);
+        if (has_ny) SBL__PREFETCH(ny + x, ahead_n);
+        sbl__rgb_lanes(p, &v[0], &v[1], &v[2]);
+        sbl__rgb_lanes(p + 3 * SBL__VW, &v[cnt], &v[cnt + 1], &v[cnt + 2]);
+        sbl__store(y0 + x, v[0]);
+        sbl__store(y1 + x, v[1]);
+        sbl__store(y2 + x, v[2]);
+        sbl__store(y0 + x + SBL__VW, v[cnt]);
+        sbl__store(y1 + x + SBL__VW, v[cnt + 1]);
+        sbl__store(y2 + x + SBL__VW, v[cnt + 2]);
+        if (has_ny) {
+            v[3] = sbl__load(ny + x);
+            v[7] = sbl__load(ny + x + SBL__VW);
+        }
+        if (sbl__all_safe(v, 2 * cnt) &&
+            (!has_ny || sbl__mbits(sbl__mand(sbl__le(v[3], sbl__set1(1048576.0f)),
+                                             sbl__le(v[7], sbl__set1(1048576.0f)))) == 15)) {
+            memcpy(unsafe + x, safe_bytes, 2 * SBL__VW);
+        } else {
+            sbl__ring_flag_vec(unsafe, v, cnt, has_ny, x, count);
+            sbl__ring_flag_vec(unsafe, v + cnt, cnt, has_ny, x + SBL__VW, count);
+        }
+    }
+    return x;
+}
+#endif
+
 SBL__INLINE int sbl__ring_own_rgb(sbl__ring_row *r, const float *src, const float *ny, int x,
                                   int xb, ptrdiff_t ahead, ptrdiff_t ahead_n, int *count)
 {
     float *y0 = r->y[0], *y1 = r->y[1], *y2 = r->y[2];
     unsigned char *unsafe = r->unsafe;
+#if SBL__VW == 4
+    /* SSE2: two vectors per safety test (sbl__ring_own_rgb2); with N_Y (eight vectors)
+       it cost more than it saved (stereo normals-ev +0.5 instructions per pixel) */
+    if (!ny) x = sbl__ring_own_rgb2(r, src, ny, x, xb, ahead, ahead_n, count, 0);
+#endif
     for (; x + SBL__VW <= xb; x += SBL__VW) {
         sbl__v v[4];
         int o;
@@ -10340,8 +10470,38 @@ SBL__INLINE int sbl__stereo_parallel_none(const sbl__stereo_rp *s, sbl__ring_row
     return 1;
 }
 
+/* What sbl__stereo_parallel_vec reads of the call and row y, formed once per row (in
+   locals: the vectors' stores, bytes among them, would have the call's fields loaded
+   and the row pointers formed again per vector): the target depth's row and stride, and
+   the source's depth, N and colour rows (column 0), strides and sizes */
+typedef struct sbl__parallel_rows {
+    const float *z, *d, *n, *c;
+    ptrdiff_t zs, ds, ns, cs;
+    float fb, tol;
+    int gw, sw, neg, edge; /* edge: a vector may lie at column 0 or w - VW (sbl__lanes_want_in) */
+} sbl__parallel_rows;
+
+SBL__INLINE void sbl__parallel_rows_of(const sbl__stereo_rp *s, int y, int xa, int xb, sbl__parallel_rows *pr)
+{
+    const sbl__tap_src *src = &s->src;
+    pr->z = SBL__AT(s->geo.depth, 0, y);
+    pr->zs = s->geo.depth.stride;
+    pr->d = src->depth.p + SBL__CAST(ptrdiff_t, y) * src->depth.stride;
+    pr->ds = src->depth.stride;
+    pr->n = src->length.p + SBL__CAST(ptrdiff_t, y) * src->length.stride;
+    pr->ns = src->length.stride;
+    pr->c = src->color.p + SBL__CAST(ptrdiff_t, y) * src->color.stride;
+    pr->cs = src->color.stride;
+    pr->fb = s->fb;
+    pr->tol = src->depth_tolerance;
+    pr->gw = s->geo.width;
+    pr->sw = src->width;
+    pr->neg = s->dir[0] < 0.0;
+    pr->edge = xa == 0 || xb >= pr->gw;
+}
+
 /* sbl__stereo_plan_vec (mode 1), sbl__row_taps and sbl__stereo_after_rig for the VW
-   pixels x .. x + VW - 1 of row y (x >= 0, x + VW <= w) in registers, where every lane
+   pixels x .. x + VW - 1 of row y (pr: its row's values) (x >= 0, x + VW <= w) in registers, where every lane
    has a match whose two taps are inside the image at one integer offset k, and
    "full" taps (sbl__full_lanes); the same float and double operations per lane, hence
    the same bits: w0 = (1 - fx) (1 - 0) = 1 - fx and w1 = fx (1 - 0) = fx exactly; the
@@ -10353,15 +10513,14 @@ SBL__INLINE int sbl__stereo_parallel_none(const sbl__stereo_rp *s, sbl__ring_row
    (sbl__stereo_parallel_none). Returns 0, nothing written, where a lane needs more (no
    match beside matches, a motion sbl__plan_lanes leaves to the scalar plan, taps
    outside the image, offsets apart, not full, redo: the blocks then decide). */
-SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row *r, int x, int y,
-                                         const int ch, int fallback, int back_check, double tol,
-                                         int flag)
+SBL__INLINE int sbl__stereo_parallel_vec_in(const sbl__stereo_rp *s, const sbl__parallel_rows *pr,
+                                            sbl__ring_row *r, int x, const int ch, int fallback,
+                                            int back_check, double tol, int flag)
 {
     static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
-    const sbl__tap_src *src = &s->src;
     const int all = (1 << SBL__VW) - 1;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
-    const sbl__v tol_d = sbl__set1(src->depth_tolerance);
+    const sbl__v tol_d = sbl__set1(pr->tol);
     float fms[SBL__VW], mt[SBL__VW + 4], fs[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     sbl__v z, slack, m, fm, fx, w0, lim, d0, d1, n0, n1 = zero, c0[3], c1[3], acc[3], accn, wsum,
         inv, n, out[4];
@@ -10369,10 +10528,10 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     const float *dp, *np, *cp;
     int k, x0, skip_x, fail = 0;
     /* the plan: sbl__stereo_plan_vec's m = dir f b / z, sbl__plan_lanes' exact motion */
-    keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
-    m = sbl__div_exact(sbl__set1(s->fb), z);
+    keep = sbl__lanes_want_in(pr->z + x, pr->zs, pr->gw, x, &z, &slack, pr->edge);
+    m = sbl__div_exact(sbl__set1(pr->fb), z);
     keep = sbl__mandnot(keep, sbl__nonfinite(m));
-    if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
+    if (pr->neg) m = sbl__sub(zero, m);
     exact = sbl__motion_exact(m);
     fm = sbl__floor(m);
     sbl__store(fms, fm);
@@ -10381,7 +10540,7 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     /* every lane kept, exact, at offset k, its taps inside: x0 + l in [0, w - 2] */
     if (sbl__mbits(sbl__mand(sbl__mand(keep, exact), sbl__mand(sbl__le(fm, sbl__set1(fms[0])),
                                                                 sbl__le(sbl__set1(fms[0]), fm)))) != all ||
-        !(x0 >= 0 && x0 + SBL__VW <= src->width - 1))
+        !(x0 >= 0 && x0 + SBL__VW <= pr->sw - 1))
         return sbl__stereo_parallel_none(s, r, x, keep, exact, m, ch);
     if (!sbl__full_lanes(tol_d, z, slack)) return 0;
     lim = sbl__add(sbl__mul(tol_d, z), slack);
@@ -10389,14 +10548,14 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     w0 = sbl__sub(one, fx);
     skip_x = !sbl__mbits(sbl__gt(fx, zero));
     /* the taps: sbl__lanes_tap_test's full tests (d > 0 implied) */
-    dp = src->depth.p + SBL__CAST(ptrdiff_t, y) * src->depth.stride + x0;
-    np = src->length.p + SBL__CAST(ptrdiff_t, y) * src->length.stride + x0;
-    cp = src->color.p + SBL__CAST(ptrdiff_t, y) * src->color.stride + SBL__CAST(ptrdiff_t, x0) * ch;
+    dp = pr->d + x0;
+    np = pr->n + x0;
+    cp = pr->c + SBL__CAST(ptrdiff_t, x0) * ch;
     {   /* the next row's taps (the match's row is the target's: it moves with y) */
         int o;
-        for (o = 0; o < ch * SBL__VW; o += SBL__LINE_FLOATS) SBL__PREFETCH(cp, src->color.stride + o);
-        SBL__PREFETCH(dp, src->depth.stride);
-        SBL__PREFETCH(np, src->length.stride);
+        for (o = 0; o < ch * SBL__VW; o += SBL__LINE_FLOATS) SBL__PREFETCH(cp, pr->cs + o);
+        SBL__PREFETCH(dp, pr->ds);
+        SBL__PREFETCH(np, pr->ns);
     }
     d0 = sbl__load(dp);
     d1 = sbl__load(dp + 1);
@@ -10465,7 +10624,7 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
            exact, see sbl__plan_lanes), ex = 0: every check passes. */
         const sbl__v zs = sbl__sel(sbl__le(sbl__add(fm, sbl__set1(0.5f)), m), d1, d0);
         if (sbl__mbits(sbl__mand(sbl__le(zs, z), sbl__le(z, zs))) != all) {
-            const sbl__v f = sbl__div_exact(sbl__set1(s->fb), zs);
+            const sbl__v f = sbl__div_exact(sbl__set1(pr->fb), zs);
             const int good = sbl__mbits(sbl__mandnot(sbl__gt(zs, zero), sbl__nonfinite(f)));
             int j, okb = 0;
             sbl__store(mt, m);
@@ -10514,6 +10673,16 @@ SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row 
     return 1;
 }
 
+/* sbl__stereo_parallel_vec_in with row y's values formed for this vector alone (tests) */
+SBL__INLINE int sbl__stereo_parallel_vec(const sbl__stereo_rp *s, sbl__ring_row *r, int x, int y,
+                                         const int ch, int fallback, int back_check, double tol,
+                                         int flag)
+{
+    sbl__parallel_rows pr;
+    sbl__parallel_rows_of(s, y, 0, s->geo.width, &pr);
+    return sbl__stereo_parallel_vec_in(s, &pr, r, x, ch, fallback, back_check, tol, flag);
+}
+
 /* Row y's columns [xa, xb) (xb - xa >= VW) of the parallel rig, vector by vector: the
    fused vectors where they apply, the blocks (sbl__row_gather_blocks) for the runs of
    vectors they leave, whose unsafe values are then checked as sbl__ring_gather would.
@@ -10527,14 +10696,16 @@ static void sbl__stereo_parallel_row(const sbl__stereo_rp *s, sbl__ring_row *r, 
     /* rows held for sbl_stereo_consistency and the adaptive cache have no flags */
     const int flag = r->unsafe != NULL;
     int x, pa = -1, pb = -1, done;
+    sbl__parallel_rows pr;
+    sbl__parallel_rows_of(s, y, xa, xb, &pr);
     if (flag) {
         r->gather_flags = 1;
         r->gather_unsafe = 0;
     }
     for (x = xa;; x += SBL__VW) {
         if (x + SBL__VW > xb) x = xb - SBL__VW;
-        done = ch == 3 ? sbl__stereo_parallel_vec(s, r, x, y, 3, fallback, back_check, tol, flag)
-                       : sbl__stereo_parallel_vec(s, r, x, y, 1, fallback, back_check, tol, flag);
+        done = ch == 3 ? sbl__stereo_parallel_vec_in(s, &pr, r, x, 3, fallback, back_check, tol, flag)
+                       : sbl__stereo_parallel_vec_in(s, &pr, r, x, 1, fallback, back_check, tol, flag);
         if (!done) {
             if (pa < 0) pa = x;
             pb = x + SBL__VW;
