@@ -7219,6 +7219,31 @@ SBL__INLINE float sbl__fgate_k2(const sbl__kernel *k)
     return kk * kk;
 }
 
+/* sbl__pair_var_within's gate in lanes: 1 where the pairs' variance pvs (channel sum)
+   exceeds H s_w^2, H = (n - J + k^2) / (n - 1), with 2 columns or more and 2 degrees of
+   freedom within (dof = n - J), and the columns' own variances agree. n[j], ss[j]: the
+   three columns' pair counts and sums of squares within them (channel sums); sws: s_w^2
+   (channel sum); inv_n1: 1 / (n - 1). Shared by sbl__lanes_moments and
+   sbl__pool_lanes_blocks. */
+SBL__INLINE sbl__m sbl__fgate_lanes(const sbl__v n[3], const sbl__v ss[3], sbl__v J, sbl__v dof,
+                                    sbl__v inv_n1, sbl__v k2, sbl__v sws, sbl__v pvs, const int ch)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const sbl__v big = sbl__set1(1e35f), lim = sbl__set1(1.5f);
+    sbl__v thr = sbl__mul(sbl__mul(sbl__add(dof, k2), inv_n1), sws), mx = zero, mn = big;
+    int j;
+    for (j = 0; j < 3; ++j) {
+        /* the columns' own variances, those with 2 pairs or more */
+        const sbl__m has2 = sbl__gt(n[j], lim);
+        const sbl__v v = sbl__mul(ss[j], sbl__div(one, sbl__max(sbl__sub(n[j], one), one)));
+        mx = sbl__max(mx, sbl__sel(has2, v, zero));
+        mn = sbl__min(mn, sbl__sel(has2, v, big));
+    }
+    thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), thr, big), big);
+    thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
+    return sbl__gt(pvs, thr);
+}
+
 /* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
    of the caller (sbl__kernel_pixel_ref). */
 SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *const *R, int x,
@@ -7615,28 +7640,15 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
     if (ch > 2) sbl__lanes_moments_channel(k, W, x, i, 2, nl, nr, inv_cnt1, w, sw, st);
     if (ch > 3) sbl__lanes_moments_channel(k, W, x, i, 3, nl, nr, inv_cnt1, w, sw, st);
     if (w) {
-        /* the gate on the channel sums (sbl__pair_var_within): none below 2 columns or
-           2 degrees of freedom within */
-        const sbl__v big = sbl__set1(1e35f), lim = sbl__set1(1.5f);
-        sbl__v pvs = st->pv[0], sws = sw[0], thr, mx = zero, mn = big;
+        /* the gate on the channel sums (sbl__pair_var_within) */
+        sbl__v pvs = st->pv[0], sws = sw[0];
         sbl__m gate;
         int c;
         for (c = 1; c < ch; ++c) {
             pvs = sbl__add(pvs, st->pv[c]);
             sws = sbl__add(sws, sw[c]);
         }
-        for (c = 0; c < 3; ++c) {
-            /* the columns' own variances, those with 2 pairs or more */
-            const sbl__m has2 = sbl__gt(cn[c], lim);
-            const sbl__v v = sbl__mul(sw[4 + c], sbl__div(one, sbl__max(sbl__sub(cn[c], one), one)));
-            mx = sbl__max(mx, sbl__sel(has2, v, zero));
-            mn = sbl__min(mn, sbl__sel(has2, v, big));
-        }
-        /* H = (n - J + k^2) / (n - 1) */
-        thr = sbl__mul(sbl__mul(sbl__add(dof, sbl__set1(sbl__fgate_k2(k))), inv_cnt1), sws);
-        thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), thr, big), big);
-        thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
-        gate = sbl__gt(pvs, thr);
+        gate = sbl__fgate_lanes(cn, sw + 4, J, dof, inv_cnt1, sbl__set1(sbl__fgate_k2(k)), sws, pvs, ch);
         for (c = 0; c < ch; ++c) st->pv[c] = sbl__sel(gate, sw[c], st->pv[c]);
     }
 }
@@ -7923,24 +7935,15 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
             } else {
                 const sbl__v J = sbl__add(sbl__add(sbl__sel(has_l, one, zero), sbl__sel(has_c, one, zero)),
                                           sbl__sel(sbl__gt(nr, zero), one, zero));
-                const sbl__v dof = sbl__sub(n, J), lim = sbl__set1(1.5f);
+                const sbl__v dof = sbl__sub(n, J);
                 const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__div(one, sbl__max(dof, one)));
-                const sbl__v big = sbl__set1(1e35f);
-                /* H = (n - J + k^2) / (n - 1) */
-                sbl__v thr = sbl__mul(sbl__mul(sbl__add(dof, k2), inv_n1), sw);
-                sbl__v mx = zero, mn = big;
+                sbl__v nj[3], ssj[3];
                 int j;
-                for (j = -1; j <= 1; ++j) {
-                    /* the columns' own variances, those with 2 pairs or more */
-                    const sbl__v nj = sbl__load(q + o_n + j);
-                    const sbl__m has2 = sbl__gt(nj, lim);
-                    const sbl__v v = sbl__mul(sbl__load(q + o_sw + j), sbl__div(one, sbl__max(sbl__sub(nj, one), one)));
-                    mx = sbl__max(mx, sbl__sel(has2, v, zero));
-                    mn = sbl__min(mn, sbl__sel(has2, v, big));
+                for (j = 0; j < 3; ++j) {
+                    nj[j] = sbl__load(q + o_n + j - 1);
+                    ssj[j] = sbl__load(q + o_sw + j - 1);
                 }
-                thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), thr, big), big);
-                thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
-                pv = sbl__sel(sbl__gt(pv, thr), sw, pv);
+                pv = sbl__sel(sbl__fgate_lanes(nj, ssj, J, dof, inv_n1, k2, sw, pv, ch), sw, pv);
             }
         }
         if (pairs) {
