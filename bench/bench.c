@@ -417,7 +417,7 @@ int main(int argc, char **argv)
         sbl_scene_desc d;
         sbr_seq seq;
         if (!in_list(only_scenes, synth[i].name)) continue;
-        d = sbr_bench_scene_desc(synth[i].kind, synth[i].jitter, quick);
+        d = sbr_synth_desc(&synth[i], quick);
         if (sbr_seq_synthetic(&seq, &d, synth[i].name, 1) != 0) { fprintf(stderr, "render failed\n"); return 1; }
         bench_scene(&seq, reps);
         sbr_seq_free(&seq);

@@ -1498,10 +1498,7 @@ int main(int argc, char **argv)
         }
         for (k = 0; k < SBR_SYNTH_SCENES; ++k)
             if (!strcmp(sbr_synth_scenes[k].name, sc)) {
-                sbl_scene_desc d;
-                memset(&d, 0, sizeof d);
-                d.kind = sbr_synth_scenes[k].kind; d.jitter = sbr_synth_scenes[k].jitter;
-                d.width = 160; d.height = 90; d.frames = 24; d.ref_spp = 128; d.seed = 7;
+                sbl_scene_desc d = sbr_synth_desc(&sbr_synth_scenes[k], 0);
                 if (sbr_seq_synthetic(&seq, &d, sc, 1) != 0) return 1;
                 return diag_run(&seq, ci, vs);
             }
@@ -1524,10 +1521,7 @@ int main(int argc, char **argv)
         const char *nm = s < SBR_SYNTH_SCENES ? synth[s].name : real[s - SBR_SYNTH_SCENES];
         if (only && !strstr(only, nm)) continue;
         if (s < SBR_SYNTH_SCENES) {
-            sbl_scene_desc d;
-            memset(&d, 0, sizeof d);
-            d.kind = synth[s].kind; d.jitter = synth[s].jitter;
-            d.width = 160; d.height = 90; d.frames = 24; d.ref_spp = 128; d.seed = 7;
+            sbl_scene_desc d = sbr_synth_desc(&synth[s], 0);
             if (sbr_seq_synthetic(&seq, &d, nm, 1) != 0) return 1;
         } else {
             snprintf(path, sizeof path, "../shared/data/%s", nm);

@@ -401,7 +401,7 @@ int main(int argc, char **argv)
         char *tok;
         if (only && !strstr(only, nm)) continue;
         if (s < SBR_SYNTH_SCENES) {
-            sbl_scene_desc d = sbr_bench_scene_desc(synth[s].kind, synth[s].jitter, 0);
+            sbl_scene_desc d = sbr_synth_desc(&synth[s], 0);
             if (sbr_seq_synthetic(&seq, &d, nm, 1) != 0) return 1;
         } else {
             snprintf(path, sizeof path, "../shared/data/%s", nm);
@@ -457,7 +457,7 @@ int main(int argc, char **argv)
                 sbl_scene_desc d;
                 int i;
                 if (s >= SBR_SYNTH_SCENES) { printf("%s: seeds needs a synthetic scene\n", nm); continue; }
-                d = sbr_bench_scene_desc(synth[s].kind, synth[s].jitter, 0);
+                d = sbr_synth_desc(&synth[s], 0);
                 d.seed = d.seed + 1000;
                 if (sbr_seq_synthetic(&sb, &d, nm, 0) != 0) return 1;
                 memset(&sp, 0, sizeof sp);

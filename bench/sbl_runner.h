@@ -110,9 +110,14 @@ int  sbr_seq_synthetic(sbr_seq *s, const sbl_scene_desc *desc, const char *name,
 sbl_scene_desc sbr_bench_scene_desc(sbl_scene_kind kind, int jitter, int quick);
 /* The bench's synthetic scenes in its order (the shared renders follow it: atrium,
    gallery); jitter: head-tracking jitter on the camera */
-typedef struct sbr_synth_scene { const char *name; sbl_scene_kind kind; int jitter; } sbr_synth_scene;
-#define SBR_SYNTH_SCENES 4
+typedef struct sbr_synth_scene {
+    const char *name; sbl_scene_kind kind; int jitter;
+    float spike_rate, spike_gain; /* heavy-tailed samples (sbl_scene_desc), 0 = none */
+} sbr_synth_scene;
+#define SBR_SYNTH_SCENES 5
 extern const sbr_synth_scene sbr_synth_scenes[SBR_SYNTH_SCENES];
+/* sbr_bench_scene_desc for one of sbr_synth_scenes (its kind, jitter and spikes). */
+sbl_scene_desc sbr_synth_desc(const sbr_synth_scene *scene, int quick);
 int  sbr_seq_dataset(sbr_seq *s, const char *dir, int max_frames, char *err, int err_size);
 void sbr_seq_free(sbr_seq *s);
 
@@ -164,10 +169,14 @@ static void sbr_camera_from(sbl_camera *c, const float *world_to_cam, const floa
 }
 
 const sbr_synth_scene sbr_synth_scenes[SBR_SYNTH_SCENES] = {
-    {"synthetic-dynamic", SBL_SCENE_DYNAMIC, 1},
-    {"synthetic-static", SBL_SCENE_STATIC, 0},
-    {"synthetic-shadow", SBL_SCENE_SHADOW, 0},
-    {"synthetic-pan", SBL_SCENE_PAN, 0},
+    {"synthetic-dynamic", SBL_SCENE_DYNAMIC, 1, 0.0f, 0.0f},
+    {"synthetic-static", SBL_SCENE_STATIC, 0, 0.0f, 0.0f},
+    {"synthetic-shadow", SBL_SCENE_SHADOW, 0, 0.0f, 0.0f},
+    {"synthetic-pan", SBL_SCENE_PAN, 0, 0.0f, 0.0f},
+    /* pan with heavy-tailed samples: 2 % of the samples carry a third of the energy
+       (unclamped light paths of low probability; the reference is their mean exactly,
+       as on the other synthetic scenes, not a render with its own spikes) */
+    {"synthetic-firefly", SBL_SCENE_PAN, 0, 0.02f, 25.0f},
 };
 
 sbl_scene_desc sbr_bench_scene_desc(sbl_scene_kind kind, int jitter, int quick)
@@ -181,6 +190,14 @@ sbl_scene_desc sbr_bench_scene_desc(sbl_scene_kind kind, int jitter, int quick)
     d.frames = quick ? 8 : 24;
     d.ref_spp = quick ? 32 : 128;
     d.seed = 7;
+    return d;
+}
+
+sbl_scene_desc sbr_synth_desc(const sbr_synth_scene *scene, int quick)
+{
+    sbl_scene_desc d = sbr_bench_scene_desc(scene->kind, scene->jitter, quick);
+    d.spike_rate = scene->spike_rate;
+    d.spike_gain = scene->spike_gain;
     return d;
 }
 

@@ -66,6 +66,13 @@ typedef struct sbl_scene_desc {
     float baseline;      /* 0 -> 0.065 m */
     float hfov_deg;      /* 0 -> 65 degrees horizontal field of view */
     int bg_motion;       /* 0: motion 0 on the background (as Blender); 1: rotation-only motion of the sky */
+    /* Heavy-tailed samples (0 = off): each sample of the colour and ladder streams is, with
+       probability spike_rate, (1 + spike_gain) times its radiance, otherwise 1 times, both
+       divided by (1 + spike_rate spike_gain) so that the mean, and so the reference (rendered
+       without spikes), are unchanged: a fraction r g / (1 + r g) of the energy arrives in
+       the rare samples, as unclamped light paths of low probability deliver it. Applied after
+       the per-sample clamp. */
+    float spike_rate, spike_gain;
 } sbl_scene_desc;
 
 typedef struct sbl_scene_view {   /* one eye, one frame; caller allocates every non-NULL array */
@@ -751,6 +758,10 @@ static void sbl_scene__shade_rows(const sbl_scene__world *w, const sbl_scene_des
     uint32_t kb = sbl_scene__key(sbl_scene__key(sbl_scene__key(sbl_scene__mix(d->seed), stream),
                                                 (uint32_t)frame), (uint32_t)eye);
     double inv = 1.0 / spp;
+    /* the spikes (sbl_scene_desc.spike_rate); never in the reference stream */
+    const int spikes = stream != SBL_SCENE__S_REF && d->spike_rate > 0.0f && d->spike_gain > 0.0f;
+    const double body = 1.0 / (1.0 + (double)d->spike_rate * d->spike_gain);
+    const double spike = (1.0 + (double)d->spike_gain) * body;
     int x, y, s;
     for (y = y0; y < y1; ++y) {
         uint32_t ky = sbl_scene__key(kb, (uint32_t)y);
@@ -759,7 +770,12 @@ static void sbl_scene__shade_rows(const sbl_scene__world *w, const sbl_scene_des
             double acc[3] = { 0.0, 0.0, 0.0 }, L[3];
             float *px = dst + ((size_t)y * (size_t)w->w + (size_t)x) * 3;
             for (s = 0; s < spp; ++s) {
-                sbl_scene__sample(w, x, y, sbl_scene__key(kp, (uint32_t)s), L);
+                const uint32_t ks = sbl_scene__key(kp, (uint32_t)s);
+                sbl_scene__sample(w, x, y, ks, L);
+                if (spikes) {
+                    const double g = sbl_scene__rnd(ks, 8) < (double)d->spike_rate ? spike : body;
+                    L[0] *= g; L[1] *= g; L[2] *= g;
+                }
                 acc[0] += L[0]; acc[1] += L[1]; acc[2] += L[2];
             }
             px[0] = (float)(acc[0] * inv); px[1] = (float)(acc[1] * inv); px[2] = (float)(acc[2] * inv);
@@ -863,6 +879,7 @@ static int sbl_scene__check(const sbl_scene_desc *in, sbl_scene_desc *d, int fra
     if ((int)d->kind < (int)SBL_SCENE_DYNAMIC || (int)d->kind > (int)SBL_SCENE_PAN) return 0;
     if (d->width > 65536 || d->height > 65536) return 0;
     if (y0 < 0 || y1 > d->height || y0 > y1) return 0;
+    if (!(d->spike_rate >= 0.0f && d->spike_rate <= 1.0f) || !(d->spike_gain >= 0.0f && d->spike_gain <= 1e6f)) return 0;
     return 1;
 }
 

@@ -425,6 +425,65 @@ static void check_unbiased(void)
     free(c); free(s1); free(s2); free(q1); free(q2); free(R.v.reference);
 }
 
+/* Heavy-tailed samples (sbl_scene_desc.spike_rate): the mean must stay the reference's
+   (the spike factor g has E[g] = 1 and is independent of the sample), the share of
+   spiked samples must be the rate, and the variance must grow. */
+static void check_spikes(void)
+{
+    sbl_scene_desc d;
+    float *c, *c0, *ref;
+    double bsum = 0.0, bvar = 0.0, v_spk = 0.0, v_off = 0.0, *q1, *q2, *r1, *r2;
+    long np, i, hi = 0, tot = 0;
+    int f, N = 128;
+    printf("[4c] heavy-tailed samples (STATIC 80x45, spike_rate 0.02, gain 25, %d frames)\n", N);
+    memset(&d, 0, sizeof(d));
+    d.kind = SBL_SCENE_STATIC; d.width = 80; d.height = 45; d.ref_spp = 256; d.seed = 5u;
+    d.spike_rate = 0.02f; d.spike_gain = 25.0f;
+    sbl_scene_defaults(&d);
+    np = (long)d.width * d.height;
+    c = (float *)xcalloc((size_t)np * 3, sizeof(float));
+    c0 = (float *)xcalloc((size_t)np * 3, sizeof(float));
+    ref = (float *)xcalloc((size_t)np * 3, sizeof(float));
+    q1 = (double *)xcalloc((size_t)np, sizeof(double)); q2 = (double *)xcalloc((size_t)np, sizeof(double));
+    r1 = (double *)xcalloc((size_t)np, sizeof(double)); r2 = (double *)xcalloc((size_t)np, sizeof(double));
+    {
+        sbl_scene_view v;
+        memset(&v, 0, sizeof(v));
+        v.reference = ref;
+        sbl_scene_render(&d, 0, 0, &v, 0, d.height);
+    }
+    for (f = 0; f < N; ++f) {
+        sbl_scene_view v;
+        sbl_scene_desc d0 = d;
+        memset(&v, 0, sizeof(v));
+        v.color = c;
+        sbl_scene_render(&d, f, 0, &v, 0, d.height);
+        d0.spike_rate = 0.0f;
+        v.color = c0;
+        sbl_scene_render(&d0, f, 0, &v, 0, d.height);
+        for (i = 0; i < np; ++i) {
+            const double q = (double)c[i * 3] + c[i * 3 + 1] + c[i * 3 + 2];
+            const double q0 = (double)c0[i * 3] + c0[i * 3 + 1] + c0[i * 3 + 2];
+            q1[i] += q; q2[i] += q * q; r1[i] += q0; r2[i] += q0 * q0;
+            /* the same sample with and without its factor: q / q0 is the factor itself */
+            if (q0 > 1e-6) { hi += q > 2.0 * q0; tot++; }
+        }
+    }
+    for (i = 0; i < np; ++i) {
+        const double m = q1[i] / N, var = (q2[i] - N * m * m) / (N - 1);
+        const double m0 = r1[i] / N, var0 = (r2[i] - N * m0 * m0) / (N - 1);
+        bsum += m - ((double)ref[i * 3] + ref[i * 3 + 1] + ref[i * 3 + 2]);
+        bvar += var / N + var / d.ref_spp; /* (the reference's own noise: its variance is var0's) */
+        v_spk += var; v_off += var0;
+    }
+    printf("  spiked share %.4f (rate 0.02); image-wide bias of the RGB sum %+.2e (%+.2f SE); variance x%.2f\n",
+           (double)hi / tot, bsum / np, bsum / sqrt(bvar), v_spk / v_off);
+    CHECK(fabs((double)hi / tot - 0.02) < 0.002, "spiked share is not the rate");
+    CHECK(fabs(bsum) < 4.0 * sqrt(bvar), "spikes moved the mean beyond 4 standard errors");
+    CHECK(v_spk > 2.0 * v_off, "spikes did not widen the noise");
+    free(c); free(c0); free(ref); free(q1); free(q2); free(r1); free(r2);
+}
+
 static void check_projection(void)
 {
     sbl_scene_desc d;
@@ -534,6 +593,7 @@ int main(int argc, char **argv)
     check_motion(SBL_SCENE_STATIC, 0, "STATIC");
     check_bg_motion();
     check_unbiased();
+    check_spikes();
     check_projection();
     check_timing(previews);
     printf("%s (%d failure%s)\n", g_fail ? "FAILED" : "all checks passed", g_fail, g_fail == 1 ? "" : "s");
