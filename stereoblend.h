@@ -3296,10 +3296,10 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
 #define SBL__CHUNK_COLS 144
 
 /* sbl__row_pool's lanes: pixels per chunk, and floats per plane (the chunk and the
-   SBL__POOL_REACH columns each side, padded); per channel three planes, then twelve */
+   SBL__POOL_REACH columns each side, padded); per channel three planes, then fourteen */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 12)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 14)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -7219,12 +7219,43 @@ SBL__INLINE float sbl__fgate_k2(const sbl__kernel *k)
     return kk * kk;
 }
 
+/* One column's own variance ss / (n - 1) for the gate's largest (*vmx) and smallest
+   (*vmn): a column with fewer than 2 pairs enters as 0 and big, which neither extreme
+   takes (as sbl__fgate_lanes). n: its pair count, ss: its sum of squares within it
+   (channel sum). sbl__pool_lanes_blocks forms it once per column (each serves three
+   blocks). */
+SBL__INLINE void sbl__fgate_column(sbl__v n, sbl__v ss, sbl__v *vmx, sbl__v *vmn)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const sbl__m has2 = sbl__gt(n, sbl__set1(1.5f));
+    const sbl__v v = sbl__mul(ss, sbl__div(one, sbl__max(sbl__sub(n, one), one)));
+    *vmx = sbl__sel(has2, v, zero);
+    *vmn = sbl__sel(has2, v, sbl__set1(1e35f));
+}
+
+/* sbl__fgate_lanes from the three columns' sbl__fgate_column terms vmx[j], vmn[j] (the
+   same operations) */
+SBL__INLINE sbl__m sbl__fgate_cols(const sbl__v vmx[3], const sbl__v vmn[3], sbl__v J, sbl__v dof,
+                                   sbl__v inv_n1, sbl__v k2, sbl__v sws, sbl__v pvs, const int ch)
+{
+    const sbl__v big = sbl__set1(1e35f), lim = sbl__set1(1.5f);
+    sbl__v thr = sbl__mul(sbl__mul(sbl__add(dof, k2), inv_n1), sws), mx = sbl__set1(0.0f), mn = big;
+    int j;
+    for (j = 0; j < 3; ++j) {
+        mx = sbl__max(mx, vmx[j]);
+        mn = sbl__min(mn, vmn[j]);
+    }
+    thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), thr, big), big);
+    thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
+    return sbl__gt(pvs, thr);
+}
+
 /* sbl__pair_var_within's gate in lanes: 1 where the pairs' variance pvs (channel sum)
    exceeds H s_w^2, H = (n - J + k^2) / (n - 1), with 2 columns or more and 2 degrees of
    freedom within (dof = n - J), and the columns' own variances agree. n[j], ss[j]: the
    three columns' pair counts and sums of squares within them (channel sums); sws: s_w^2
-   (channel sum); inv_n1: 1 / (n - 1). Shared by sbl__lanes_moments and
-   sbl__pool_lanes_blocks. */
+   (channel sum); inv_n1: 1 / (n - 1). sbl__lanes_moments; sbl__pool_lanes_blocks takes
+   its columns' terms from planes (sbl__fgate_column, sbl__fgate_cols). */
 SBL__INLINE sbl__m sbl__fgate_lanes(const sbl__v n[3], const sbl__v ss[3], sbl__v J, sbl__v dof,
                                     sbl__v inv_n1, sbl__v k2, sbl__v sws, sbl__v pvs, const int ch)
 {
@@ -7700,6 +7731,8 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_BB(ch) (3 * (ch) + 9) /* staged lanes: the blur's sum_c b_c^2 (wp.blur only) */
 #define SBL__POOL_BG(ch) (3 * (ch) + 10) /* staged lanes: the blur's noise factor (wp.blur only) */
 #define SBL__POOL_SW(ch) (3 * (ch) + 11) /* pooled stereo: a column's within sum of squares (4.16) */
+#define SBL__POOL_VMX(ch) (3 * (ch) + 12) /* pooled stereo: a column's sbl__fgate_column terms */
+#define SBL__POOL_VMN(ch) (3 * (ch) + 13)
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -7870,6 +7903,7 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     const ptrdiff_t o_m2 = pool + SBL__POOL_M2(ch) * SBL__POOL_COLS, o_se2 = pool + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
     const ptrdiff_t o_pd2 = pool + SBL__POOL_PD2(ch) * SBL__POOL_COLS, o_pv = pool + SBL__POOL_PV(ch) * SBL__POOL_COLS;
     const ptrdiff_t o_sw = pool + SBL__POOL_SW(ch) * SBL__POOL_COLS;
+    const ptrdiff_t o_vmx = pool + SBL__POOL_VMX(ch) * SBL__POOL_COLS, o_vmn = pool + SBL__POOL_VMN(ch) * SBL__POOL_COLS;
     /* the stereo blend's gate (sbl__pair_var_within): k^2, and H of a full window */
     const sbl__v k2 = sbl__set1(pairs == 2 ? sbl__fgate_k2(k) : 0.0f);
     const sbl__v h_full = sbl__mul(sbl__add(sbl__set1(6.0f), k2), sbl__set1(0.125f));
@@ -7893,6 +7927,14 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
                 ssw = sbl__add(ssw, sbl__sub(sbl__load(q + o_b + c * cstep), sbl__mul(sbl__mul(a, a), inv)));
             }
             sbl__store(q + o_sw, ssw);
+            if (!full) {
+                /* the column's own variance for the blocks' gate, once per column (a full
+                   block's columns have 3 pairs each: it reads ssw) */
+                sbl__v vmx, vmn;
+                sbl__fgate_column(sbl__load(q + o_n), ssw, &vmx, &vmn);
+                sbl__store(q + o_vmx, vmx);
+                sbl__store(q + o_vmn, vmn);
+            }
             if (xc + SBL__VW >= bb + 1) break;
             xc += SBL__VW;
             if (xc + SBL__VW > bb + 1) xc = bb + 1 - SBL__VW;
@@ -7937,13 +7979,13 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
                                           sbl__sel(sbl__gt(nr, zero), one, zero));
                 const sbl__v dof = sbl__sub(n, J);
                 const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__div(one, sbl__max(dof, one)));
-                sbl__v nj[3], ssj[3];
+                sbl__v vmx[3], vmn[3];
                 int j;
                 for (j = 0; j < 3; ++j) {
-                    nj[j] = sbl__load(q + o_n + j - 1);
-                    ssj[j] = sbl__load(q + o_sw + j - 1);
+                    vmx[j] = sbl__load(q + o_vmx + j - 1);
+                    vmn[j] = sbl__load(q + o_vmn + j - 1);
                 }
-                pv = sbl__sel(sbl__fgate_lanes(nj, ssj, J, dof, inv_n1, k2, sw, pv, ch), sw, pv);
+                pv = sbl__sel(sbl__fgate_cols(vmx, vmn, J, dof, inv_n1, k2, sw, pv, ch), sw, pv);
             }
         }
         if (pairs) {
