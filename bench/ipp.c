@@ -10,6 +10,9 @@
      static  camera at rest: zero motion, unchanged depth
      normals the easy case with normals and ids in every G-buffer (frame, history, both
              eyes): the normal and id tap tests, as a renderer passes them
+     slant   the easy case on a surface turned about the vertical axis (depth also
+             rising along each row, as most surfaces in a render: no two vectors of a
+             row hold the same depth bits, unlike the ramp of the other cases)
      two-eyes the easy case with the stereo blend of both eyes (each eye's temporal
              output blended with the other's, as bench/perf.c's stereo pipeline runs it;
              ipp.sh divides the blend's count by 2 calls)
@@ -59,7 +62,7 @@ static float texture(float u, float v, int c)
     return 0.05f * sinf(2.2f * u + 1.3f * (float)c) * cosf(1.9f * v + 0.7f * (float)c);
 }
 
-/* case 0 easy, 1 hard, 2 tiny, 3 static, 4 normals; tex: add texture() */
+/* case 0 easy, 1 hard, 2 tiny, 3 static, 4 normals, 5 slant; tex: add texture() */
 static void fill_eye(eye_bufs *b, int eye, int kind, int tex)
 {
     size_t n = (size_t)W * H, i;
@@ -77,7 +80,7 @@ static void fill_eye(eye_bufs *b, int eye, int kind, int tex)
                                   (float)(s >> 8) * (1.0f / 16777216.0f) * 0.2f;
             b->hist[i * 3 + c] = 0.5f + 0.3f * sinf(x * 0.05f + c);
         }
-        b->depth[i] = 2.0f + 0.001f * (float)y;
+        b->depth[i] = 2.0f + 0.001f * (float)y + (kind == 5 ? 0.0002f * (float)x : 0.0f);
         b->prev_depth[i] = b->depth[i];
         b->motion[i * 2] = 0.37f + 0.1f * sinf(y * 0.01f);
         b->motion[i * 2 + 1] = -0.21f;
@@ -136,7 +139,7 @@ static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
 
 int main(int argc, char **argv)
 {
-    static const char *names[5] = {"easy", "hard", "tiny", "static", "normals"};
+    static const char *names[6] = {"easy", "hard", "tiny", "static", "normals", "slant"};
     int kind = 0, ev = 0, two = 0, e, i;
     eye_bufs b[2];
     size_t bytes = sbl_temporal_scratch_size(W, 3);
@@ -146,7 +149,7 @@ int main(int argc, char **argv)
     } else if (argc > 1) {
         size_t len = strlen(argv[1]);
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
-        for (i = 0; i < 5; ++i)
+        for (i = 0; i < 6; ++i)
             if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
                 strlen(names[i]) == (ev ? len - 3 : len))
                 kind = i;
