@@ -137,7 +137,7 @@ bench-perf: $(BUILD)/perf
 
 # instructions per pixel (callgrind, inside the public call only) on the SSE2 and the
 # AVX2 build: the noise-free speed figure (valgrind cannot run AVX-512 code)
-IPP_CASES ?= easy hard tiny static
+IPP_CASES ?= easy hard tiny static slant
 $(BUILD)/ipp-sse2: bench/ipp.c stereoblend.h
 	@mkdir -p $(dir $@)
 	$(CC) -std=c99 -Wall -Wextra -O2 -g $< -o $@ $(LDLIBS)
