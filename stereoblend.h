@@ -7233,8 +7233,8 @@ SBL__INLINE void sbl__fgate_column(sbl__v n, sbl__v ss, sbl__v *vmx, sbl__v *vmn
     *vmn = sbl__sel(has2, v, sbl__set1(1e35f));
 }
 
-/* sbl__fgate_lanes from the three columns' sbl__fgate_column terms vmx[j], vmn[j] (the
-   same operations) */
+/* The gate (sbl__fgate_lanes) from the three columns' sbl__fgate_column terms vmx[j],
+   vmn[j] */
 SBL__INLINE sbl__m sbl__fgate_cols(const sbl__v vmx[3], const sbl__v vmn[3], sbl__v J, sbl__v dof,
                                    sbl__v inv_n1, sbl__v k2, sbl__v sws, sbl__v pvs, const int ch)
 {
@@ -7259,20 +7259,10 @@ SBL__INLINE sbl__m sbl__fgate_cols(const sbl__v vmx[3], const sbl__v vmn[3], sbl
 SBL__INLINE sbl__m sbl__fgate_lanes(const sbl__v n[3], const sbl__v ss[3], sbl__v J, sbl__v dof,
                                     sbl__v inv_n1, sbl__v k2, sbl__v sws, sbl__v pvs, const int ch)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
-    const sbl__v big = sbl__set1(1e35f), lim = sbl__set1(1.5f);
-    sbl__v thr = sbl__mul(sbl__mul(sbl__add(dof, k2), inv_n1), sws), mx = zero, mn = big;
+    sbl__v vmx[3], vmn[3];
     int j;
-    for (j = 0; j < 3; ++j) {
-        /* the columns' own variances, those with 2 pairs or more */
-        const sbl__m has2 = sbl__gt(n[j], lim);
-        const sbl__v v = sbl__mul(ss[j], sbl__div(one, sbl__max(sbl__sub(n[j], one), one)));
-        mx = sbl__max(mx, sbl__sel(has2, v, zero));
-        mn = sbl__min(mn, sbl__sel(has2, v, big));
-    }
-    thr = sbl__sel(sbl__gt(J, lim), sbl__sel(sbl__gt(dof, lim), thr, big), big);
-    thr = sbl__sel(sbl__fgate_one_var(mx, mn, ch), thr, big);
-    return sbl__gt(pvs, thr);
+    for (j = 0; j < 3; ++j) sbl__fgate_column(n[j], ss[j], &vmx[j], &vmn[j]);
+    return sbl__fgate_cols(vmx, vmn, J, dof, inv_n1, k2, sws, pvs, ch);
 }
 
 /* Reference path for one pixel: borders, non-finite and extreme values. ch a constant
