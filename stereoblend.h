@@ -10513,6 +10513,7 @@ typedef struct sbl__parallel_rows {
     const float *z, *d, *n, *c;
     ptrdiff_t zs, ds, ns, cs;
     float fb, tol;
+    float half_back; /* half the back-check's tolerance (-1 where it is below 2e-3 pixels) */
     int gw, sw, neg, edge; /* edge: a vector may lie at column 0 or w - VW (sbl__lanes_want_in) */
 } sbl__parallel_rows;
 
@@ -10529,6 +10530,7 @@ SBL__INLINE void sbl__parallel_rows_of(const sbl__stereo_rp *s, int y, int xa, i
     pr->cs = src->color.stride;
     pr->fb = s->fb;
     pr->tol = src->depth_tolerance;
+    pr->half_back = s->d.reproject.back_check_pixels >= 2e-3f ? 0.5f * s->d.reproject.back_check_pixels : -1.0f;
     pr->gw = s->geo.width;
     pr->sw = src->width;
     pr->neg = s->dir[0] < 0.0;
@@ -10661,18 +10663,27 @@ SBL__INLINE int sbl__stereo_parallel_vec_in(const sbl__stereo_rp *s, const sbl__
         if (sbl__mbits(sbl__mand(sbl__le(zs, z), sbl__le(z, zs))) != all) {
             const sbl__v f = sbl__div_exact(sbl__set1(pr->fb), zs);
             const int good = sbl__mbits(sbl__mandnot(sbl__gt(zs, zero), sbl__nonfinite(f)));
-            int j, okb = 0;
-            sbl__store(mt, m);
-            sbl__store(fs, f);
-            for (j = 0; j < SBL__VW; j += SBL__DW) {
-                const sbl__dv L = sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5));
-                const sbl__dv bx = sbl__dadd(sbl__dadd(L, sbl__dfromf(mt + j)),
-                                             sbl__dmul(sbl__dset1(s->dir[1]),
-                                                       sbl__dsub(sbl__dfromf(fs + j), sbl__dset1(s->offset))));
-                const sbl__dv ex = sbl__dsub(bx, L);
-                okb |= sbl__dle_bits(sbl__dmul(ex, ex), sbl__dset1(tol * tol)) << j;
+            /* ex is (L + m) + dir1 f - L with L = x + l + 1/2, L + m exact: the real
+               e = m + dir1 f within |L| 2^-52 < 1e-10 (|L| < 2^16). Its float sum ef is e
+               within |e| 2^-24, so every lane with |ef| <= tol / 2 passes the double test
+               (tol >= 2e-3); only the others need it. Depth that varies along the row
+               (any surface not facing the rig) takes this test at every vector. */
+            const sbl__v ef = pr->neg ? sbl__add(m, f) : sbl__sub(m, f);
+            const int sure = good & sbl__mbits(sbl__le(sbl__abs(ef), sbl__set1(pr->half_back)));
+            if (sbl__mbits(valid) & ~sure & all) {
+                int j, okb = 0;
+                sbl__store(mt, m);
+                sbl__store(fs, f);
+                for (j = 0; j < SBL__VW; j += SBL__DW) {
+                    const sbl__dv L = sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5));
+                    const sbl__dv bx = sbl__dadd(sbl__dadd(L, sbl__dfromf(mt + j)),
+                                                 sbl__dmul(sbl__dset1(s->dir[1]),
+                                                           sbl__dsub(sbl__dfromf(fs + j), sbl__dset1(s->offset))));
+                    const sbl__dv ex = sbl__dsub(bx, L);
+                    okb |= sbl__dle_bits(sbl__dmul(ex, ex), sbl__dset1(tol * tol)) << j;
+                }
+                fail = sbl__mbits(valid) & ~(okb & good) & all;
             }
-            fail = sbl__mbits(valid) & ~(okb & good) & all;
         }
     }
     sbl__store(r->n + x, sbl__sel(valid, n, zero));
