@@ -10537,48 +10537,45 @@ SBL__INLINE void sbl__parallel_rows_of(const sbl__stereo_rp *s, int y, int xa, i
     pr->edge = xa == 0 || xb >= pr->gw;
 }
 
-/* sbl__stereo_plan_vec (mode 1), sbl__row_taps and sbl__stereo_after_rig for the VW
-   pixels x .. x + VW - 1 of row y (pr: its row's values) (x >= 0, x + VW <= w) in registers, where every lane
-   has a match whose two taps are inside the image at one integer offset k, and
+/* sbl__stereo_parallel_vec_in's plan: sbl__stereo_plan_vec's m = dir f b / z and
+   sbl__plan_lanes' exact motion; returns the lanes to keep */
+SBL__INLINE sbl__m sbl__parallel_plan(const sbl__parallel_rows *pr, int x, sbl__v *z, sbl__v *slack, sbl__v *m,
+                                      sbl__m *exact)
+{
+    sbl__m keep = sbl__lanes_want_in(pr->z + x, pr->zs, pr->gw, x, z, slack, pr->edge);
+    *m = sbl__div_exact(sbl__set1(pr->fb), *z);
+    keep = sbl__mandnot(keep, sbl__nonfinite(*m));
+    if (pr->neg) *m = sbl__sub(sbl__set1(0.0f), *m);
+    *exact = sbl__motion_exact(*m);
+    return keep;
+}
+
+/* sbl__stereo_parallel_vec_in after its plan, where every lane has a match whose two
+   taps are inside the image at one integer offset k (two = 0), or at k and k + 1 lane
+   by lane (two = 1; up: the k + 1 lanes; two is a constant where this is inlined), and
    "full" taps (sbl__full_lanes); the same float and double operations per lane, hence
    the same bits: w0 = (1 - fx) (1 - 0) = 1 - fx and w1 = fx (1 - 0) = fx exactly; the
    sums unmasked where every tap of every lane passes, else masked (which is what the
-   unmasked sums give where all pass); the back-check's floor(sx) = x + l + k +
-   [m >= k + 1/2] (sx = x + l + 1/2 + m exact in double, see sbl__plan_lanes), so its
-   source depth is tap 1's or tap 0's. flag: the unsafe values flagged as
-   sbl__ring_gather's check would. A vector without any match is reset
-   (sbl__stereo_parallel_none). Returns 0, nothing written, where a lane needs more (no
-   match beside matches, a motion sbl__plan_lanes leaves to the scalar plan, taps
-   outside the image, offsets apart, not full, redo: the blocks then decide). */
-SBL__INLINE int sbl__stereo_parallel_vec_in(const sbl__stereo_rp *s, const sbl__parallel_rows *pr,
-                                            sbl__ring_row *r, int x, const int ch, int fallback,
-                                            int back_check, double tol, int flag)
+   unmasked sums give where all pass); the back-check's floor(sx) = x + l + k_l +
+   [m >= k_l + 1/2] (sx = x + l + 1/2 + m exact in double, see sbl__plan_lanes), so its
+   source depth is the lane's tap 1's or tap 0's. flag: the unsafe values flagged as
+   sbl__ring_gather's check would. Returns 0, nothing written, where the taps are not
+   full or a lane is to redo. */
+SBL__INLINE int sbl__parallel_vec_finish(const sbl__stereo_rp *s, const sbl__parallel_rows *pr,
+                                         sbl__ring_row *r, int x, const int ch, int fallback,
+                                         int back_check, double tol, int flag, sbl__v z, sbl__v slack,
+                                         sbl__v m, sbl__v fm, int k, const int two, sbl__m up)
 {
     static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
     const int all = (1 << SBL__VW) - 1;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v tol_d = sbl__set1(pr->tol);
-    float fms[SBL__VW], mt[SBL__VW + 4], fs[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
-    sbl__v z, slack, m, fm, fx, w0, lim, d0, d1, n0, n1 = zero, c0[3], c1[3], acc[3], accn, wsum,
-        inv, n, out[4];
-    sbl__m keep, exact, ok0, ok1, lo, nonfinite, valid;
+    float mt[SBL__VW + 4], fs[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    sbl__v fx, w0, lim, d0, d1, n0, n1 = zero, c0[3], c1[3], acc[3], accn, wsum, inv, n, out[4];
+    sbl__m ok0, ok1, lo, nonfinite, valid;
     const float *dp, *np, *cp;
-    int k, x0, skip_x, fail = 0;
-    /* the plan: sbl__stereo_plan_vec's m = dir f b / z, sbl__plan_lanes' exact motion */
-    keep = sbl__lanes_want_in(pr->z + x, pr->zs, pr->gw, x, &z, &slack, pr->edge);
-    m = sbl__div_exact(sbl__set1(pr->fb), z);
-    keep = sbl__mandnot(keep, sbl__nonfinite(m));
-    if (pr->neg) m = sbl__sub(zero, m);
-    exact = sbl__motion_exact(m);
-    fm = sbl__floor(m);
-    sbl__store(fms, fm);
-    k = SBL__CAST(int, fms[0]); /* (used where every lane is kept: |fm| < 2^15) */
-    x0 = x + k;
-    /* every lane kept, exact, at offset k, its taps inside: x0 + l in [0, w - 2] */
-    if (sbl__mbits(sbl__mand(sbl__mand(keep, exact), sbl__mand(sbl__le(fm, sbl__set1(fms[0])),
-                                                                sbl__le(sbl__set1(fms[0]), fm)))) != all ||
-        !(x0 >= 0 && x0 + SBL__VW <= pr->sw - 1))
-        return sbl__stereo_parallel_none(s, r, x, keep, exact, m, ch);
+    const int x0 = x + k;
+    int skip_x, fail = 0;
     if (!sbl__full_lanes(tol_d, z, slack)) return 0;
     lim = sbl__add(sbl__mul(tol_d, z), slack);
     fx = sbl__add(sbl__sub(m, fm), zero); /* (+ 0: as the plan) */
@@ -10594,22 +10591,52 @@ SBL__INLINE int sbl__stereo_parallel_vec_in(const sbl__stereo_rp *s, const sbl__
         SBL__PREFETCH(dp, pr->ds);
         SBL__PREFETCH(np, pr->ns);
     }
-    d0 = sbl__load(dp);
-    d1 = sbl__load(dp + 1);
-    n0 = sbl__load(np);
-    c1[0] = c1[1] = c1[2] = zero; /* (set where tap 1 weighs) */
-    ok0 = sbl__mand(sbl__mand(sbl__gt(w0, zero), sbl__le(sbl__abs(sbl__sub(d0, z)), lim)), sbl__gt(n0, zero));
-    ok1 = ok0;
-    if (!skip_x) {
-        n1 = sbl__load(np + 1);
-        ok1 = sbl__mand(sbl__mand(sbl__gt(fx, zero), sbl__le(sbl__abs(sbl__sub(d1, z)), lim)), sbl__gt(n1, zero));
-    }
-    if (ch == 3) {
-        sbl__rgb_lanes(cp, &c0[0], &c0[1], &c0[2]);
-        if (!skip_x) sbl__rgb_lanes(cp + 3, &c1[0], &c1[1], &c1[2]);
+    if (two) {
+        /* each tap the lane's pick of two loads one float apart: the values its own
+           offset addresses */
+        const sbl__v d_1 = sbl__load(dp + 1), n_1 = sbl__load(np + 1);
+        sbl__v c_0[3], c_1[3], c_2[3];
+        int c;
+        d0 = sbl__sel(up, d_1, sbl__load(dp));
+        d1 = sbl__sel(up, sbl__load(dp + 2), d_1);
+        n0 = sbl__sel(up, n_1, sbl__load(np));
+        n1 = sbl__sel(up, sbl__load(np + 2), n_1);
+        if (ch == 3) {
+            sbl__rgb_lanes(cp, &c_0[0], &c_0[1], &c_0[2]);
+            sbl__rgb_lanes(cp + 3, &c_1[0], &c_1[1], &c_1[2]);
+            sbl__rgb_lanes(cp + 6, &c_2[0], &c_2[1], &c_2[2]);
+        } else {
+            c_0[0] = sbl__load(cp);
+            c_1[0] = sbl__load(cp + 1);
+            c_2[0] = sbl__load(cp + 2);
+        }
+        c1[0] = c1[1] = c1[2] = zero;
+        for (c = 0; c < ch; ++c) {
+            c0[c] = sbl__sel(up, c_1[c], c_0[c]);
+            c1[c] = sbl__sel(up, c_2[c], c_1[c]);
+        }
+        ok0 = sbl__mand(sbl__mand(sbl__gt(w0, zero), sbl__le(sbl__abs(sbl__sub(d0, z)), lim)), sbl__gt(n0, zero));
+        ok1 = ok0;
+        if (!skip_x)
+            ok1 = sbl__mand(sbl__mand(sbl__gt(fx, zero), sbl__le(sbl__abs(sbl__sub(d1, z)), lim)), sbl__gt(n1, zero));
     } else {
-        c0[0] = sbl__load(cp);
-        if (!skip_x) c1[0] = sbl__load(cp + 1);
+        d0 = sbl__load(dp);
+        d1 = sbl__load(dp + 1);
+        n0 = sbl__load(np);
+        c1[0] = c1[1] = c1[2] = zero; /* (set where tap 1 weighs) */
+        ok0 = sbl__mand(sbl__mand(sbl__gt(w0, zero), sbl__le(sbl__abs(sbl__sub(d0, z)), lim)), sbl__gt(n0, zero));
+        ok1 = ok0;
+        if (!skip_x) {
+            n1 = sbl__load(np + 1);
+            ok1 = sbl__mand(sbl__mand(sbl__gt(fx, zero), sbl__le(sbl__abs(sbl__sub(d1, z)), lim)), sbl__gt(n1, zero));
+        }
+        if (ch == 3) {
+            sbl__rgb_lanes(cp, &c0[0], &c0[1], &c0[2]);
+            if (!skip_x) sbl__rgb_lanes(cp + 3, &c1[0], &c1[1], &c1[2]);
+        } else {
+            c0[0] = sbl__load(cp);
+            if (!skip_x) c1[0] = sbl__load(cp + 1);
+        }
     }
     /* sbl__lanes_tap_sum's sums, each from 0 in the order tap 0, tap 1 (the channels
        written out: gcc -O2 keeps a loop's sums in memory). N's and the weight's first
@@ -10661,16 +10688,25 @@ SBL__INLINE int sbl__stereo_parallel_vec_in(const sbl__stereo_rp *s, const sbl__
            exact, see sbl__plan_lanes), ex = 0: every check passes. */
         const sbl__v zs = sbl__sel(sbl__le(sbl__add(fm, sbl__set1(0.5f)), m), d1, d0);
         if (sbl__mbits(sbl__mand(sbl__le(zs, z), sbl__le(z, zs))) != all) {
-            const sbl__v f = sbl__div_exact(sbl__set1(pr->fb), zs);
-            const int good = sbl__mbits(sbl__mandnot(sbl__gt(zs, zero), sbl__nonfinite(f)));
-            /* ex is (L + m) + dir1 f - L with L = x + l + 1/2, L + m exact: the real
-               e = m + dir1 f within |L| 2^-52 < 1e-10 (|L| < 2^16). Its float sum ef is e
-               within |e| 2^-24, so every lane with |ef| <= tol / 2 passes the double test
-               (tol >= 2e-3); only the others need it. Depth that varies along the row
-               (any surface not facing the rig) takes this test at every vector. */
-            const sbl__v ef = pr->neg ? sbl__add(m, f) : sbl__sub(m, f);
-            const int sure = good & sbl__mbits(sbl__le(sbl__abs(ef), sbl__set1(pr->half_back)));
+            /* ex is (L + m) + dir1 f - L with L = x + l + 1/2, L + m exact, f = f b / zs
+               rounded: the real e = m + dir1 f within |L| 2^-52 < 1e-10 (|L| < 2^16),
+               and m + dir1 f b / zs within |f| 2^-24. So a lane passes the double test
+               (tol >= 2e-3) wherever |m + dir1 f b / zs| <= tol / 2 is certain, which
+               needs no division: g = m zs + dir1 f b is within (|m zs| + f b) 2^-23 of
+               its real value (FMA or not), tested with 8 times that against tol / 2 zs
+               (zs in [1e-20, 1e20]: flushed products stay far below the margin; +inf,
+               whose f is 0, is left to the double test). Only the other
+               lanes take the division and the double test. Depth that varies along
+               the row (any surface not facing the rig) comes here at every vector. */
+            const sbl__v fbv = sbl__set1(pr->fb), mz = sbl__mul(m, zs);
+            const sbl__v g = pr->neg ? sbl__add(mz, fbv) : sbl__sub(mz, fbv);
+            const sbl__v margin = sbl__mul(sbl__add(sbl__abs(mz), fbv), sbl__set1(1.0f / 1048576.0f));
+            const int sure = sbl__mbits(sbl__mand(sbl__mand(sbl__le(sbl__set1(1e-20f), zs), sbl__le(zs, sbl__set1(1e20f))),
+                                                  sbl__le(sbl__add(sbl__abs(g), margin),
+                                                          sbl__mul(sbl__set1(pr->half_back), zs))));
             if (sbl__mbits(valid) & ~sure & all) {
+                const sbl__v f = sbl__div_exact(fbv, zs);
+                const int good = sbl__mbits(sbl__mandnot(sbl__gt(zs, zero), sbl__nonfinite(f)));
                 int j, okb = 0;
                 sbl__store(mt, m);
                 sbl__store(fs, f);
@@ -10717,6 +10753,68 @@ SBL__INLINE int sbl__stereo_parallel_vec_in(const sbl__stereo_rp *s, const sbl__
             if (fail & 1) sbl__ring_put(r, x + l, 0.0f, NULL, ch);
     }
     return 1;
+}
+
+/* sbl__stereo_parallel_vec_in's vectors whose lanes lie at two offsets (a surface
+   slanted to the rig: the disparity crosses an integer within the vector); out of line,
+   so that the one-offset vectors, far more common, keep their registers. Offsets more
+   than 1 apart go to the blocks. */
+SBL__NOINLINE int sbl__stereo_parallel_vec_two(const sbl__stereo_rp *s, const sbl__parallel_rows *pr,
+                                               sbl__ring_row *r, int x, const int ch, int fallback,
+                                               int back_check, double tol, int flag)
+{
+    float fms[SBL__VW];
+    sbl__v z, slack, m, fm;
+    sbl__m exact, keep = sbl__parallel_plan(pr, x, &z, &slack, &m, &exact);
+    int l, k, kmax;
+    fm = sbl__floor(m);
+    sbl__store(fms, fm);
+    k = kmax = SBL__CAST(int, fms[0]); /* (every lane is kept and exact: |fm| < 2^15) */
+    for (l = 1; l < SBL__VW; ++l) {
+        const int kl = SBL__CAST(int, fms[l]);
+        k = kl < k ? kl : k;
+        kmax = kl > kmax ? kl : kmax;
+    }
+    if (kmax != k + 1 || !(x + k >= 0 && x + k + SBL__VW + 1 <= pr->sw - 1))
+        return sbl__stereo_parallel_none(s, r, x, keep, exact, m, ch);
+    /* (ch as a constant in each instance, as in sbl__stereo_parallel_row's calls) */
+    return ch == 3 ? sbl__parallel_vec_finish(s, pr, r, x, 3, fallback, back_check, tol, flag, z, slack, m, fm, k,
+                                              1, sbl__gt(fm, sbl__set1(SBL__CAST(float, k))))
+                   : sbl__parallel_vec_finish(s, pr, r, x, 1, fallback, back_check, tol, flag, z, slack, m, fm, k,
+                                              1, sbl__gt(fm, sbl__set1(SBL__CAST(float, k))));
+}
+
+/* sbl__stereo_plan_vec (mode 1), sbl__row_taps and sbl__stereo_after_rig for the VW
+   pixels x .. x + VW - 1 of row y (pr: its row's values) (x >= 0, x + VW <= w) in
+   registers: the plan here, the rest in sbl__parallel_vec_finish (see there; two
+   offsets in sbl__stereo_parallel_vec_two). Returns 0, nothing written, where a lane
+   needs more (no match beside matches, a motion sbl__plan_lanes leaves to the scalar
+   plan, taps outside the image, offsets more than 1 apart, not full, redo: the blocks
+   then decide). */
+SBL__INLINE int sbl__stereo_parallel_vec_in(const sbl__stereo_rp *s, const sbl__parallel_rows *pr,
+                                            sbl__ring_row *r, int x, const int ch, int fallback,
+                                            int back_check, double tol, int flag)
+{
+    const int all = (1 << SBL__VW) - 1;
+    float fms[SBL__VW];
+    sbl__v z, slack, m, fm;
+    sbl__m exact, keep = sbl__parallel_plan(pr, x, &z, &slack, &m, &exact);
+    int k, x0;
+    fm = sbl__floor(m);
+    sbl__store(fms, fm);
+    k = SBL__CAST(int, fms[0]); /* (used where every lane is kept: |fm| < 2^15) */
+    x0 = x + k;
+    /* every lane kept, exact, at offset k, its taps inside: x0 + l in [0, w - 2] */
+    if (sbl__mbits(sbl__mand(sbl__mand(keep, exact), sbl__mand(sbl__le(fm, sbl__set1(fms[0])),
+                                                                sbl__le(sbl__set1(fms[0]), fm)))) != all ||
+        !(x0 >= 0 && x0 + SBL__VW <= pr->sw - 1)) {
+        if (sbl__mbits(sbl__mand(keep, exact)) == all &&
+            sbl__mbits(sbl__mand(sbl__le(fm, sbl__set1(fms[0])), sbl__le(sbl__set1(fms[0]), fm))) != all)
+            return sbl__stereo_parallel_vec_two(s, pr, r, x, ch, fallback, back_check, tol, flag);
+        return sbl__stereo_parallel_none(s, r, x, keep, exact, m, ch);
+    }
+    return sbl__parallel_vec_finish(s, pr, r, x, ch, fallback, back_check, tol, flag, z, slack, m, fm, k, 0,
+                                    sbl__gt(z, z));
 }
 
 /* sbl__stereo_parallel_vec_in with row y's values formed for this vector alone (tests) */
