@@ -7449,39 +7449,15 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
     }
 }
 
-/* Column sums of the column vector [x, x + VW) (index i in the chunk) from its pairs'
-   validity v0..v2, for sbl__lanes_columns_cfg. */
-SBL__INLINE void sbl__lanes_columns_vec(sbl__kernel *k, const sbl__lane_rows *W, int x, int i,
-                                        sbl__v v0, sbl__v v1, sbl__v v2, int clamp, const int full,
-                                        const int erow)
-{
-    const sbl__v zero = sbl__set1(0.0f);
-    const int ch = k->ch;
-    const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
-    /* erow (a constant: the image's first or last row, k->edge_row): the window's
-       missing row is row 1 again (first) or row 0 again (last), whose sums then
-       add 0 (differences to itself, sbl__kernel_lanes_pooled_ch); its pairs are
-       not counted */
-    sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch),
-               full ? sbl__set1(3.0f)
-                    : erow ? sbl__add(v1, k->edge_row == 1 ? v2 : v0) : sbl__add(sbl__add(v0, v1), v2));
-    sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp, full);
-    if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp, full);
-    if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp, full);
-    if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1, clamp, full);
-}
-
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
    column - base; the last vector overlaps the one before (same values). The channels are
    written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). fast (a
-   constant, sbl__kernel_lanes_pooled's default configuration): no clamp box. vfull (a
-   constant; not with full or erow): a vector whose three rows' pairs are all valid
-   takes full's operations (the same values) inside a chunk that is not full. */
+   constant, sbl__kernel_lanes_pooled's default configuration): no clamp box. */
 SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
-                                        int base, const int fast, const int full, const int erow,
-                                        const int vfull)
+                                        int base, const int fast, const int full, const int erow)
 {
-    const int clamp = !fast && k->wp.rectify == SBL_RECTIFY_CLAMP;
+    const sbl__v zero = sbl__set1(0.0f);
+    const int ch = k->ch, clamp = !fast && k->wp.rectify == SBL_RECTIFY_CLAMP;
     int x = ca;
     for (;;) {
         const int i = x - base;
@@ -7490,10 +7466,18 @@ SBL__INLINE void sbl__lanes_columns_cfg(sbl__kernel *k, const sbl__lane_rows *W,
         const sbl__v v0 = full ? sbl__set1(1.0f) : sbl__load(W->row[0] + iv);
         const sbl__v v1 = full ? sbl__set1(1.0f) : sbl__load(W->row[1] + iv);
         const sbl__v v2 = full ? sbl__set1(1.0f) : sbl__load(W->row[2] + iv);
-        if (vfull && sbl__all(sbl__gt(sbl__min(sbl__min(v0, v1), v2), sbl__set1(0.5f))))
-            sbl__lanes_columns_vec(k, W, x, i, v0, v1, v2, clamp, 1, 0);
-        else
-            sbl__lanes_columns_vec(k, W, x, i, v0, v1, v2, clamp, full, erow);
+        const sbl__m ok0 = sbl__gt(v0, zero), ok1 = sbl__gt(v1, zero);
+        /* erow (a constant: the image's first or last row, k->edge_row): the window's
+           missing row is row 1 again (first) or row 0 again (last), whose sums then
+           add 0 (differences to itself, sbl__kernel_lanes_pooled_ch); its pairs are
+           not counted */
+        sbl__store(k->col[0] + i + SBL__CHUNK_COLN(ch),
+                   full ? sbl__set1(3.0f)
+                        : erow ? sbl__add(v1, k->edge_row == 1 ? v2 : v0) : sbl__add(sbl__add(v0, v1), v2));
+        sbl__lanes_column(k, W, x, i, 0, v1, v2, ok0, ok1, clamp, full);
+        if (ch > 1) sbl__lanes_column(k, W, x, i, 1, v1, v2, ok0, ok1, clamp, full);
+        if (ch > 2) sbl__lanes_column(k, W, x, i, 2, v1, v2, ok0, ok1, clamp, full);
+        if (ch > 3) sbl__lanes_column(k, W, x, i, 3, v1, v2, ok0, ok1, clamp, full);
         if (x + SBL__VW >= cb) break;
         x += SBL__VW;
         if (x + SBL__VW > cb) x = cb - SBL__VW;
@@ -7522,7 +7506,7 @@ SBL__INLINE int sbl__lanes_full(const sbl__lane_rows *W, int ca, int cb)
 SBL__INLINE void sbl__lanes_columns(sbl__kernel *k, const sbl__lane_rows *W, int ca, int cb,
                                     int base)
 {
-    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0, 0, 0, 0);
+    sbl__lanes_columns_cfg(k, W, ca, cb, base, 0, 0, 0);
 }
 
 /* One side column moved from its own shift to the window's: D = its shift minus the
@@ -9172,9 +9156,15 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     const int fast = cfg == 3 || cfg >= 5 ? 1 : cfg == 4 ? 2 : cfg;
     const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6 || cfg == 9 || cfg == 10);
     const int blur = cfg >= 7;
-    /* per vector in a chunk that is not full: a vector whose column sums, blocks or
-       windows hold only valid pairs takes the full chunk's operations (the same values) */
-    const int vfull = fast && !erow && (SBL_SHORTCUTS & 8);
+    /* the stereo default, per vector in a chunk that is not full: a vector whose blocks
+       or windows hold only valid pairs takes the full chunk's operations (the same
+       values). Not the column sums: under -ffast-math gcc reorders the full column's
+       differences (x* - y, no select, no product by v) unlike the others', a last-bit
+       change wherever a span's chunks start elsewhere than the whole run's
+       (tests/test_paths.c, spans vs whole run), and their test per column vector cost
+       more than it saved (callgrind, SSE2). Not the temporal default: its chunks that
+       are not full hold few such vectors (hard: +7.6 instructions per pixel SSE2) */
+    const int vfull = fast == 2 && !erow && (SBL_SHORTCUTS & 8);
     /* k: a copy with ch (and fast 1: wp.evid_mix) the instance's constants; it never
        escapes (the one call not inlined, sbl__row_pool_ref, takes k_in), so the compiler
        folds its fields' tests in the loops (the weight's of evid_mix too) */
@@ -9287,9 +9277,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
                first and last columns (whose outer column is empty) excepted */
             full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__rows_valid_in(R, ha, cb) ||
                                                      sbl__lanes_full(&W, ha, cb));
-            if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1, 0, 0);
-            else if (vfull) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, 0, 1);
-            else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, erow, 0);
+            if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1, 0);
+            else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, erow);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
             if (full) {
@@ -9327,13 +9316,6 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
                 if (full) {
                     SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 1, Er));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
-                } else if (vfull) {
-                    SBL__RUN_VECTORS(if (sbl__lanes_vec_full(k, p - base, ch))
-                                         sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 1, Er);
-                                     else sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 0, Er));
-                    SBL__RUN_VECTORS(if (sbl__lanes_vec_full(k, p - base, ch))
-                                         sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1);
-                                     else sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
                 } else {
                     SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 0, Er));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
