@@ -9164,7 +9164,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
        (tests/test_paths.c, spans vs whole run), and their test per column vector cost
        more than it saved (callgrind, SSE2). Not the temporal default: its chunks that
        are not full hold few such vectors (hard: +7.6 instructions per pixel SSE2) */
-    const int vfull = fast == 2 && !erow && (SBL_SHORTCUTS & 8);
+    const int vfull = (SBL_SHORTCUTS & 8) && fast == 2 && !erow;
     /* k: a copy with ch (and fast 1: wp.evid_mix) the instance's constants; it never
        escapes (the one call not inlined, sbl__row_pool_ref, takes k_in), so the compiler
        folds its fields' tests in the loops (the weight's of evid_mix too) */
