@@ -7868,18 +7868,10 @@ SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const
     }
 }
 
-/* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
-   sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs.
-   The channels written out (ch is a constant in each instance), in channel order.
-   own (a constant): the column sums are the prepass's planes (1) or the lane kernel's
-   (0, sbl__pool_planes_of). pairs = 1 (the lane kernel's column sums): also PD2 and PV,
-   whatever the count. Every plane is read at a constant distance from one pointer
-   (sbl__kernel_bind lays the chunk's planes out in one block: k->col[0..ch), col_n,
-   pool_col), which moves with the column: one register for all, so the loop does not
-   reload a dozen plane pointers from the stack on each vector. */
-SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
-                                        int ba, int bb, int base, const int own, const int pairs,
-                                        const int full)
+/* The blocks centred on the column vector at q (its index in every plane, from
+   k->col[0]), for sbl__pool_lanes_blocks (which see). */
+SBL__INLINE void sbl__pool_block_vec(float *q, const int ch, const int own, const int pairs,
+                                     sbl__v k2, sbl__v h_full, const int full)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), min_pairs = sbl__set1(2.5f);
     /* offsets from k->col[0] (floats): the column sums, then the prepass's planes */
@@ -7892,6 +7884,84 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     const ptrdiff_t cstep = own ? 3 * SBL__POOL_COLS : SBL__COL_PLANES * SBL__CHUNK_COLS;
     const ptrdiff_t o_m2 = pool + SBL__POOL_M2(ch) * SBL__POOL_COLS, o_se2 = pool + SBL__POOL_SE2(ch) * SBL__POOL_COLS;
     const ptrdiff_t o_pd2 = pool + SBL__POOL_PD2(ch) * SBL__POOL_COLS, o_pv = pool + SBL__POOL_PV(ch) * SBL__POOL_COLS;
+    const ptrdiff_t o_sw = pool + SBL__POOL_SW(ch) * SBL__POOL_COLS;
+    const ptrdiff_t o_vmx = pool + SBL__POOL_VMX(ch) * SBL__POOL_COLS, o_vmn = pool + SBL__POOL_VMN(ch) * SBL__POOL_COLS;
+    /* full: three pairs in each column, nine in the block (the same values) */
+    const sbl__v nl = full ? sbl__set1(3.0f) : sbl__load(q + o_n - 1);
+    const sbl__v nc = full ? sbl__set1(3.0f) : sbl__load(q + o_n);
+    const sbl__v nr = full ? sbl__set1(3.0f) : sbl__load(q + o_n + 1);
+    const sbl__v n = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, nc), nr);
+    /* full (sbl__lanes_full): every column holds three pairs */
+    const sbl__m has_c = full ? sbl__true : sbl__gt(nc, zero);
+    const sbl__m has_l = full ? sbl__true : sbl__gt(nl, zero);
+    const sbl__m valid = full ? sbl__true : sbl__gt(n, min_pairs);
+    const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
+    const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
+    sbl__v m2 = zero, se2 = zero, pv = zero;
+#define SBL__POOL_BLOCK_CH(c) \
+    sbl__pool_block_channel(q + o_a + (c) * cstep, q + o_b + (c) * cstep, q + o_t + (c) * cstep, \
+                            has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv, full)
+    SBL__POOL_BLOCK_CH(0);
+    if (ch > 1) SBL__POOL_BLOCK_CH(1);
+    if (ch > 2) SBL__POOL_BLOCK_CH(2);
+    if (ch > 3) SBL__POOL_BLOCK_CH(3);
+#undef SBL__POOL_BLOCK_CH
+    sbl__store(q + o_m2, full ? m2 : sbl__sel(valid, m2, zero));
+    sbl__store(q + o_se2, full ? se2 : sbl__sel(valid, se2, zero));
+    if (pairs == 2) {
+        /* the stereo blend: the pairs' variance within the columns where they differ
+           (sbl__pair_var_within, 4.16): SS_W = the three columns' terms, on n - J */
+        const sbl__v ssw = sbl__add(sbl__add(sbl__load(q + o_sw - 1), sbl__load(q + o_sw)), sbl__load(q + o_sw + 1));
+        if (full) {
+            /* the columns' own variances: their sums of squares (2 degrees of freedom each) */
+            const sbl__v wl = sbl__load(q + o_sw - 1), wc = sbl__load(q + o_sw), wr = sbl__load(q + o_sw + 1);
+            const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__set1(1.0f / 6.0f));
+            const sbl__m one_var = sbl__fgate_one_var(sbl__max(sbl__max(wl, wc), wr), sbl__min(sbl__min(wl, wc), wr), ch);
+            pv = sbl__sel(sbl__gt(pv, sbl__mul(h_full, sw)), sbl__sel(one_var, sw, pv), pv);
+        } else {
+            const sbl__v J = sbl__add(sbl__add(sbl__sel(has_l, one, zero), sbl__sel(has_c, one, zero)),
+                                      sbl__sel(sbl__gt(nr, zero), one, zero));
+            const sbl__v dof = sbl__sub(n, J);
+            const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__div(one, sbl__max(dof, one)));
+            sbl__v vmx[3], vmn[3];
+            int j;
+            for (j = 0; j < 3; ++j) {
+                vmx[j] = sbl__load(q + o_vmx + j - 1);
+                vmn[j] = sbl__load(q + o_vmn + j - 1);
+            }
+            pv = sbl__sel(sbl__fgate_cols(vmx, vmn, J, dof, inv_n1, k2, sw, pv, ch), sw, pv);
+        }
+    }
+    if (pairs) {
+        sbl__store(q + o_pd2, m2);
+        sbl__store(q + o_pv, pv);
+    }
+}
+
+/* Blocks centred on columns [ba, bb) (inside the image, bb - ba >= VW), from the column
+   sums at index column - base: M2 and SE2, 0 where the block has fewer than 3 pairs.
+   The channels written out (ch is a constant in each instance), in channel order.
+   own (a constant): the column sums are the prepass's planes (1) or the lane kernel's
+   (0, sbl__pool_planes_of). pairs = 1 (the lane kernel's column sums): also PD2 and PV,
+   whatever the count. Every plane is read at a constant distance from one pointer
+   (sbl__kernel_bind lays the chunk's planes out in one block: k->col[0..ch), col_n,
+   pool_col), which moves with the column: one register for all, so the loop does not
+   reload a dozen plane pointers from the stack on each vector. vfull (a constant; not
+   with full): in a chunk that is not full, a vector whose blocks' columns all hold three
+   pairs takes full's operations (the same values). */
+SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *Q, const int ch,
+                                        int ba, int bb, int base, const int own, const int pairs,
+                                        const int full, const int vfull)
+{
+    const sbl__v one = sbl__set1(1.0f);
+    /* offsets from k->col[0] (floats), as sbl__pool_block_vec's: the pairs per column,
+       the channels' column sums, the stereo gate's column planes */
+    const ptrdiff_t coln = SBL__CAST(ptrdiff_t, ch) * SBL__COL_PLANES * SBL__CHUNK_COLS;
+    const ptrdiff_t pool = coln + SBL__CHUNK_COLS;
+    const ptrdiff_t o_n = own ? pool + SBL__POOL_N(ch) * SBL__POOL_COLS : coln;
+    const ptrdiff_t o_a = own ? pool + SBL__POOL_A(0) * SBL__POOL_COLS : SBL__COL_DA * SBL__CHUNK_COLS;
+    const ptrdiff_t o_b = own ? pool + SBL__POOL_B(0) * SBL__POOL_COLS : SBL__COL_DB * SBL__CHUNK_COLS;
+    const ptrdiff_t cstep = own ? 3 * SBL__POOL_COLS : SBL__COL_PLANES * SBL__CHUNK_COLS;
     const ptrdiff_t o_sw = pool + SBL__POOL_SW(ch) * SBL__POOL_COLS;
     const ptrdiff_t o_vmx = pool + SBL__POOL_VMX(ch) * SBL__POOL_COLS, o_vmn = pool + SBL__POOL_VMN(ch) * SBL__POOL_COLS;
     /* the stereo blend's gate (sbl__pair_var_within): k^2, and H of a full window */
@@ -7932,56 +8002,12 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     }
     for (;;) {
         float *const q = col0 + (x - base); /* the column's index in every plane */
-        /* full: three pairs in each column, nine in the block (the same values) */
-        const sbl__v nl = full ? sbl__set1(3.0f) : sbl__load(q + o_n - 1);
-        const sbl__v nc = full ? sbl__set1(3.0f) : sbl__load(q + o_n);
-        const sbl__v nr = full ? sbl__set1(3.0f) : sbl__load(q + o_n + 1);
-        const sbl__v n = full ? sbl__set1(9.0f) : sbl__add(sbl__add(nl, nc), nr);
-        /* full (sbl__lanes_full): every column holds three pairs */
-        const sbl__m has_c = full ? sbl__true : sbl__gt(nc, zero);
-        const sbl__m has_l = full ? sbl__true : sbl__gt(nl, zero);
-        const sbl__m valid = full ? sbl__true : sbl__gt(n, min_pairs);
-        const sbl__v inv_n = sbl__div(one, sbl__max(n, one));
-        const sbl__v inv_n1 = sbl__div(one, sbl__max(sbl__sub(n, one), one));
-        sbl__v m2 = zero, se2 = zero, pv = zero;
-#define SBL__POOL_BLOCK_CH(c) \
-        sbl__pool_block_channel(q + o_a + (c) * cstep, q + o_b + (c) * cstep, q + o_t + (c) * cstep, \
-                                has_c, has_l, nl, nr, inv_n, inv_n1, c, &m2, &se2, &pv, full)
-        SBL__POOL_BLOCK_CH(0);
-        if (ch > 1) SBL__POOL_BLOCK_CH(1);
-        if (ch > 2) SBL__POOL_BLOCK_CH(2);
-        if (ch > 3) SBL__POOL_BLOCK_CH(3);
-#undef SBL__POOL_BLOCK_CH
-        sbl__store(q + o_m2, full ? m2 : sbl__sel(valid, m2, zero));
-        sbl__store(q + o_se2, full ? se2 : sbl__sel(valid, se2, zero));
-        if (pairs == 2) {
-            /* the stereo blend: the pairs' variance within the columns where they differ
-               (sbl__pair_var_within, 4.16): SS_W = the three columns' terms, on n - J */
-            const sbl__v ssw = sbl__add(sbl__add(sbl__load(q + o_sw - 1), sbl__load(q + o_sw)), sbl__load(q + o_sw + 1));
-            if (full) {
-                /* the columns' own variances: their sums of squares (2 degrees of freedom each) */
-                const sbl__v wl = sbl__load(q + o_sw - 1), wc = sbl__load(q + o_sw), wr = sbl__load(q + o_sw + 1);
-                const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__set1(1.0f / 6.0f));
-                const sbl__m one_var = sbl__fgate_one_var(sbl__max(sbl__max(wl, wc), wr), sbl__min(sbl__min(wl, wc), wr), ch);
-                pv = sbl__sel(sbl__gt(pv, sbl__mul(h_full, sw)), sbl__sel(one_var, sw, pv), pv);
-            } else {
-                const sbl__v J = sbl__add(sbl__add(sbl__sel(has_l, one, zero), sbl__sel(has_c, one, zero)),
-                                          sbl__sel(sbl__gt(nr, zero), one, zero));
-                const sbl__v dof = sbl__sub(n, J);
-                const sbl__v sw = sbl__mul(sbl__max(ssw, zero), sbl__div(one, sbl__max(dof, one)));
-                sbl__v vmx[3], vmn[3];
-                int j;
-                for (j = 0; j < 3; ++j) {
-                    vmx[j] = sbl__load(q + o_vmx + j - 1);
-                    vmn[j] = sbl__load(q + o_vmn + j - 1);
-                }
-                pv = sbl__sel(sbl__fgate_cols(vmx, vmn, J, dof, inv_n1, k2, sw, pv, ch), sw, pv);
-            }
-        }
-        if (pairs) {
-            sbl__store(q + o_pd2, m2);
-            sbl__store(q + o_pv, pv);
-        }
+        /* vfull: a vector whose blocks' columns all hold three pairs */
+        if (vfull && sbl__all(sbl__gt(sbl__min(sbl__min(sbl__load(q + o_n - 1), sbl__load(q + o_n)),
+                                               sbl__load(q + o_n + 1)), sbl__set1(2.5f))))
+            sbl__pool_block_vec(q, ch, own, pairs, k2, h_full, 1);
+        else
+            sbl__pool_block_vec(q, ch, own, pairs, k2, h_full, full);
         if (x + SBL__VW >= bb) break;
         x += SBL__VW;
         if (x + SBL__VW > bb) x = bb - SBL__VW;
@@ -8132,7 +8158,7 @@ SBL__INLINE void sbl__row_pool_lanes(sbl__kernel *k, const sbl__ring_row *const 
             sbl__pool_lanes_columns(k, P, np, ch, ca, cb, base);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
-            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 1, 0, 0);
+            sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 1, 0, 0, 0);
             for (c = x - span; c < 0; ++c)
                 SBL__POOL_PLANE(k, SBL__POOL_M2(ch))[c - base] = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch))[c - base] = 0.0f;
             for (c = w; c < e + span; ++c)
@@ -9092,6 +9118,16 @@ SBL__INLINE int sbl__rows_valid_in(const sbl__ring_row *const *R, int ca, int cb
     return 1;
 }
 
+/* 1 if every window of the vector at index i of the chunk holds nine pairs (its columns
+   i - 1 .. i + VW three each, so every x* of the vector valid too): it may take a full
+   chunk's operations (sbl__lanes_vector_fast, the stages' full) */
+SBL__INLINE int sbl__lanes_vec_full(const sbl__kernel *k, int i, const int ch)
+{
+    const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch);
+    return sbl__all(sbl__gt(sbl__min(sbl__min(sbl__load(qn - 1), sbl__load(qn)), sbl__load(qn + 1)),
+                            sbl__set1(2.5f)));
+}
+
 /* The pooled estimator's prepass and the lane kernel in one pass over an interior row
    (the three ring rows exist). The prepass's column sums over three rows (pairs N,
    A = sum v (d - t), B, T) are the same operations on the same values as the lane
@@ -9120,6 +9156,15 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     const int fast = cfg == 3 || cfg >= 5 ? 1 : cfg == 4 ? 2 : cfg;
     const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6 || cfg == 9 || cfg == 10);
     const int blur = cfg >= 7;
+    /* the stereo default, per vector in a chunk that is not full: a vector whose blocks
+       or windows hold only valid pairs takes the full chunk's operations (the same
+       values). Not the column sums: under -ffast-math gcc reorders the full column's
+       differences (x* - y, no select, no product by v) unlike the others', a last-bit
+       change wherever a span's chunks start elsewhere than the whole run's
+       (tests/test_paths.c, spans vs whole run), and their test per column vector cost
+       more than it saved (callgrind, SSE2). Not the temporal default: its chunks that
+       are not full hold few such vectors (hard: +7.6 instructions per pixel SSE2) */
+    const int vfull = (SBL_SHORTCUTS & 8) && fast == 2 && !erow;
     /* k: a copy with ch (and fast 1: wp.evid_mix) the instance's constants; it never
        escapes (the one call not inlined, sbl__row_pool_ref, takes k_in), so the compiler
        folds its fields' tests in the loops (the weight's of evid_mix too) */
@@ -9127,7 +9172,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     const int w = k->w, y = R[1]->row, reach = SBL__POOL_REACH;
 #define SBL__POOLED_VECTOR(px) \
     do { \
-        if (fast && full) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 1, Er); \
+        if (fast && (full || (vfull && sbl__lanes_vec_full(k, (px) - base, ch)))) \
+            sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 1, Er); \
         else if (fast) sbl__lanes_vector_fast(k, &W, n_row, nyrow, px, base, y, ch, fast, 0, Er); \
         else sbl__lanes_vector(k, &W, n_row, nyrow, px, base, y, ch); \
     } while (0)
@@ -9237,11 +9283,11 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
             if (e + reach > w) sbl__pool_column_zero(&Q, ch, w - base);
             if (full) {
                 int fa = ba, fb = bb;
-                if (ba == 0) { sbl__pool_lanes_blocks(k, &Q, ch, 0, SBL__VW, base, 0, fast, 0); fa = 1; }
-                if (bb == w) { sbl__pool_lanes_blocks(k, &Q, ch, w - SBL__VW, w, base, 0, fast, 0); fb = w - 1; }
-                sbl__pool_lanes_blocks(k, &Q, ch, fa, fb, base, 0, fast, 1);
+                if (ba == 0) { sbl__pool_lanes_blocks(k, &Q, ch, 0, SBL__VW, base, 0, fast, 0, 0); fa = 1; }
+                if (bb == w) { sbl__pool_lanes_blocks(k, &Q, ch, w - SBL__VW, w, base, 0, fast, 0, 0); fb = w - 1; }
+                sbl__pool_lanes_blocks(k, &Q, ch, fa, fb, base, 0, fast, 1, 0);
             } else {
-                sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 0, fast, 0);
+                sbl__pool_lanes_blocks(k, &Q, ch, ba, bb, base, 0, fast, 0, vfull);
             }
         }
         for (p = x - span; p < 0; ++p) pm[p - base] = ps[p - base] = 0.0f;
