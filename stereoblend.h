@@ -2878,11 +2878,14 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
    gather, which the row gather must equal bit for bit (test_simd, test_paths). */
 #if !defined(SBL_NO_SIMD) && defined(__AVX512F__)
 /* g++ 12's AVX-512 intrinsics start from `__m512 __Y = __Y;` (an undefined vector) and
-   -Wmaybe-uninitialized then flags every inlined min / max / sqrt / gather: a false
-   positive inside the compiler's own header, silenced for that header only */
+   -Wmaybe-uninitialized then flags every inlined min / max / sqrt / gather, and
+   -Wuninitialized some (the floor and the double conversions inlined into a function of
+   their own): false positives inside the compiler's own header, silenced for that
+   header only */
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
 #pragma GCC diagnostic pop
 #else
@@ -7449,6 +7452,19 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
     }
 }
 
+/* Under -ffast-math (gcc, clang: __FAST_MATH__; MSVC /fp:fast: _M_FP_FAST) the compiler
+   may reassociate the same sums differently in two instances: the full chunks' code,
+   which leaves out selects and products that are identities there, then rounds unlike
+   the general code, and since a chunk (or a vector's window) can be full in one call's
+   range and not in another's, a pixel's result would depend on the range
+   (tests/test_paths.c test_spans: 144 pixels differed, 23 with the columns alone
+   general). There the general code runs in every chunk. (With SBL_SHORTCUTS' bit 8.) */
+#if defined(__FAST_MATH__) || defined(_M_FP_FAST)
+#define SBL__FULL_CHUNKS 0
+#else
+#define SBL__FULL_CHUNKS ((SBL_SHORTCUTS & 8) != 0)
+#endif
+
 /* Column sums of columns [ca, cb) (cb - ca >= VW) of the window rows W, stored at index
    column - base; the last vector overlaps the one before (same values). The channels are
    written out (k->ch is a constant in each instance of sbl__kernel_lanes_ch). fast (a
@@ -9164,7 +9180,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
        (tests/test_paths.c, spans vs whole run), and their test per column vector cost
        more than it saved (callgrind, SSE2). Not the temporal default: its chunks that
        are not full hold few such vectors (hard: +7.6 instructions per pixel SSE2) */
-    const int vfull = (SBL_SHORTCUTS & 8) && fast == 2 && !erow;
+    const int vfull = SBL__FULL_CHUNKS && fast == 2 && !erow;
     /* k: a copy with ch (and fast 1: wp.evid_mix) the instance's constants; it never
        escapes (the one call not inlined, sbl__row_pool_ref, takes k_in), so the compiler
        folds its fields' tests in the loops (the weight's of evid_mix too) */
@@ -9275,8 +9291,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
             /* every pair of the chunk's columns valid: the instances without the selects
                on the pair validity (the same values); the blocks centred on the image's
                first and last columns (whose outer column is empty) excepted */
-            full = (SBL_SHORTCUTS & 8) && !erow && (k->rows_valid || sbl__rows_valid_in(R, ha, cb) ||
-                                                     sbl__lanes_full(&W, ha, cb));
+            full = SBL__FULL_CHUNKS && !erow &&
+                   (k->rows_valid || sbl__rows_valid_in(R, ha, cb) || sbl__lanes_full(&W, ha, cb));
             if (full) sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 1, 0);
             else sbl__lanes_columns_cfg(k, &W, ca, cb, base, fast, 0, erow);
             if (x - reach < 0) sbl__pool_column_zero(&Q, ch, -1 - base);
