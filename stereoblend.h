@@ -7452,14 +7452,16 @@ SBL__INLINE void sbl__lanes_column(sbl__kernel *k, const sbl__lane_rows *W, int 
     }
 }
 
-/* Under -ffast-math (gcc, clang: __FAST_MATH__; MSVC /fp:fast: _M_FP_FAST) the compiler
+/* Under -ffast-math (gcc, clang: __FAST_MATH__; MSVC /fp:fast: _M_FP_FAST), or gcc's
+   -funsafe-math-optimizations / -fassociative-math alone (__ASSOCIATIVE_MATH__; clang
+   defines no macro for those, so there they are not detected) the compiler
    may reassociate the same sums differently in two instances: the full chunks' code,
    which leaves out selects and products that are identities there, then rounds unlike
    the general code, and since a chunk (or a vector's window) can be full in one call's
    range and not in another's, a pixel's result would depend on the range
    (tests/test_paths.c test_spans: 144 pixels differed, 23 with the columns alone
    general). There the general code runs in every chunk. (With SBL_SHORTCUTS' bit 8.) */
-#if defined(__FAST_MATH__) || defined(_M_FP_FAST)
+#if defined(__FAST_MATH__) || defined(__ASSOCIATIVE_MATH__) || defined(_M_FP_FAST)
 #define SBL__FULL_CHUNKS 0
 #else
 #define SBL__FULL_CHUNKS ((SBL_SHORTCUTS & 8) != 0)
