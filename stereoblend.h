@@ -10758,8 +10758,10 @@ SBL__INLINE int sbl__parallel_vec_finish(const sbl__stereo_rp *s, const sbl__par
                (tol >= 2e-3) wherever |m + dir1 f b / zs| <= tol / 2 is certain, which
                needs no division: g = m zs + dir1 f b is within (|m zs| + f b) 2^-23 of
                its real value (FMA or not), tested with 8 times that against tol / 2 zs
-               (zs in [1e-20, 1e20]: flushed products stay far below the margin; +inf,
-               whose f is 0, is left to the double test). Only the other
+               (zs in [1e-20, 1e20]: m zs is normal, |m| >= 2^-8 where not 0; what a
+               flush to zero can lose, a denormal f b or the margin, lies far inside the
+               gap between tol / 2 and tol; +inf, whose f is 0, is left to the double
+               test). Only the other
                lanes take the division and the double test. Depth that varies along
                the row (any surface not facing the rig) comes here at every vector. */
             const sbl__v fbv = sbl__set1(pr->fb), mz = sbl__mul(m, zs);
