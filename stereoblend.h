@@ -7886,6 +7886,14 @@ SBL__INLINE void sbl__pool_block_channel(const float *pa, const float *pb, const
     }
 }
 
+/* 1 if the columns at qn[-1 .. VW] (a plane of pairs per column) hold three pairs each:
+   the blocks or windows of the VW columns at qn hold only valid pairs */
+SBL__INLINE int sbl__cols_three_pairs(const float *qn)
+{
+    return sbl__all(sbl__gt(sbl__min(sbl__min(sbl__load(qn - 1), sbl__load(qn)), sbl__load(qn + 1)),
+                            sbl__set1(2.5f)));
+}
+
 /* The blocks centred on the column vector at q (its index in every plane, from
    k->col[0]), for sbl__pool_lanes_blocks (which see). */
 SBL__INLINE void sbl__pool_block_vec(float *q, const int ch, const int own, const int pairs,
@@ -8021,8 +8029,7 @@ SBL__INLINE void sbl__pool_lanes_blocks(sbl__kernel *k, const sbl__pool_planes *
     for (;;) {
         float *const q = col0 + (x - base); /* the column's index in every plane */
         /* vfull: a vector whose blocks' columns all hold three pairs */
-        if (vfull && sbl__all(sbl__gt(sbl__min(sbl__min(sbl__load(q + o_n - 1), sbl__load(q + o_n)),
-                                               sbl__load(q + o_n + 1)), sbl__set1(2.5f))))
+        if (vfull && sbl__cols_three_pairs(q + o_n))
             sbl__pool_block_vec(q, ch, own, pairs, k2, h_full, 1);
         else
             sbl__pool_block_vec(q, ch, own, pairs, k2, h_full, full);
@@ -9141,9 +9148,7 @@ SBL__INLINE int sbl__rows_valid_in(const sbl__ring_row *const *R, int ca, int cb
    chunk's operations (sbl__lanes_vector_fast, the stages' full) */
 SBL__INLINE int sbl__lanes_vec_full(const sbl__kernel *k, int i, const int ch)
 {
-    const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch);
-    return sbl__all(sbl__gt(sbl__min(sbl__min(sbl__load(qn - 1), sbl__load(qn)), sbl__load(qn + 1)),
-                            sbl__set1(2.5f)));
+    return sbl__cols_three_pairs(k->col[0] + i + SBL__CHUNK_COLN(ch));
 }
 
 /* The pooled estimator's prepass and the lane kernel in one pass over an interior row
@@ -10824,14 +10829,16 @@ SBL__INLINE int sbl__parallel_vec_finish(const sbl__stereo_rp *s, const sbl__par
 /* sbl__stereo_parallel_vec_in's vectors whose lanes lie at two offsets (a surface
    slanted to the rig: the disparity crosses an integer within the vector); out of line,
    so that the one-offset vectors, far more common, keep their registers. Offsets more
-   than 1 apart go to the blocks. */
+   than 1 apart go to the blocks. The plan is formed again here: vectors passed by value
+   to a function not inlined are not portable (MSVC x86), and passed by address they
+   would leave the caller's registers on its common path. */
 SBL__NOINLINE int sbl__stereo_parallel_vec_two(const sbl__stereo_rp *s, const sbl__parallel_rows *pr,
                                                sbl__ring_row *r, int x, const int ch, int fallback,
                                                int back_check, double tol, int flag)
 {
     float fms[SBL__VW];
     sbl__v z, slack, m, fm;
-    sbl__m exact, keep = sbl__parallel_plan(pr, x, &z, &slack, &m, &exact);
+    sbl__m exact, keep = sbl__parallel_plan(pr, x, &z, &slack, &m, &exact), up;
     int l, k, kmax;
     fm = sbl__floor(m);
     sbl__store(fms, fm);
@@ -10843,11 +10850,10 @@ SBL__NOINLINE int sbl__stereo_parallel_vec_two(const sbl__stereo_rp *s, const sb
     }
     if (kmax != k + 1 || !(x + k >= 0 && x + k + SBL__VW + 1 <= pr->sw - 1))
         return sbl__stereo_parallel_none(s, r, x, keep, exact, m, ch);
+    up = sbl__gt(fm, sbl__set1(SBL__CAST(float, k)));
     /* (ch as a constant in each instance, as in sbl__stereo_parallel_row's calls) */
-    return ch == 3 ? sbl__parallel_vec_finish(s, pr, r, x, 3, fallback, back_check, tol, flag, z, slack, m, fm, k,
-                                              1, sbl__gt(fm, sbl__set1(SBL__CAST(float, k))))
-                   : sbl__parallel_vec_finish(s, pr, r, x, 1, fallback, back_check, tol, flag, z, slack, m, fm, k,
-                                              1, sbl__gt(fm, sbl__set1(SBL__CAST(float, k))));
+    return ch == 3 ? sbl__parallel_vec_finish(s, pr, r, x, 3, fallback, back_check, tol, flag, z, slack, m, fm, k, 1, up)
+                   : sbl__parallel_vec_finish(s, pr, r, x, 1, fallback, back_check, tol, flag, z, slack, m, fm, k, 1, up);
 }
 
 /* sbl__stereo_plan_vec (mode 1), sbl__row_taps and sbl__stereo_after_rig for the VW
@@ -10864,18 +10870,17 @@ SBL__INLINE int sbl__stereo_parallel_vec_in(const sbl__stereo_rp *s, const sbl__
     const int all = (1 << SBL__VW) - 1;
     float fms[SBL__VW];
     sbl__v z, slack, m, fm;
-    sbl__m exact, keep = sbl__parallel_plan(pr, x, &z, &slack, &m, &exact);
+    sbl__m exact, keep = sbl__parallel_plan(pr, x, &z, &slack, &m, &exact), kept, one_k;
     int k, x0;
     fm = sbl__floor(m);
     sbl__store(fms, fm);
     k = SBL__CAST(int, fms[0]); /* (used where every lane is kept: |fm| < 2^15) */
     x0 = x + k;
+    kept = sbl__mand(keep, exact);
+    one_k = sbl__mand(sbl__le(fm, sbl__set1(fms[0])), sbl__le(sbl__set1(fms[0]), fm));
     /* every lane kept, exact, at offset k, its taps inside: x0 + l in [0, w - 2] */
-    if (sbl__mbits(sbl__mand(sbl__mand(keep, exact), sbl__mand(sbl__le(fm, sbl__set1(fms[0])),
-                                                                sbl__le(sbl__set1(fms[0]), fm)))) != all ||
-        !(x0 >= 0 && x0 + SBL__VW <= pr->sw - 1)) {
-        if (sbl__mbits(sbl__mand(keep, exact)) == all &&
-            sbl__mbits(sbl__mand(sbl__le(fm, sbl__set1(fms[0])), sbl__le(sbl__set1(fms[0]), fm))) != all)
+    if (sbl__mbits(sbl__mand(kept, one_k)) != all || !(x0 >= 0 && x0 + SBL__VW <= pr->sw - 1)) {
+        if (sbl__mbits(kept) == all && sbl__mbits(one_k) != all)
             return sbl__stereo_parallel_vec_two(s, pr, r, x, ch, fallback, back_check, tol, flag);
         return sbl__stereo_parallel_none(s, r, x, keep, exact, m, ch);
     }
