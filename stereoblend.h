@@ -3380,15 +3380,21 @@ static int sbl__lane_value_ok(float v)
 }
 
 /* SBL_SHORTCUTS: which adaptive shortcuts the passes may take, one bit each (default:
-   all). For measuring them (bench/shortcuts.c, `make bench-shortcuts`): every one but the
-   far tiles gives the general path's bits, so switching one off costs only time.
+   15, all but the far tiles). For measuring them (bench/shortcuts.c, `make
+   bench-shortcuts`): every one but the far tiles gives the general path's bits, so
+   switching one off costs only time.
      1  void tiles                  2  tiles at rest               4  sky tiles
      8  full chunks: lane-kernel chunks whose window pairs are all valid run without the
         pair-validity selects (the fallback bookkeeping)
     16  far tiles of the parallel stereo rig (the other eye at the same pixel: not the
-        same bits, see SBL__FAR_PX) */
+        same bits, see SBL__FAR_PX). Opt in (SBL_SHORTCUTS 31) since session 27: they
+        are the one shortcut whose result may depend on the span a pixel is gathered in
+        (a block of fewer than VW entries takes the exact pixel gather) and on the
+        build, against the rule that no result does; they fire only on geometry beyond
+        256 f b (13 km at f = 800 px, b = 6.5 cm) and save there 537 against 831 SSE2
+        instructions per pixel of the stereo blend (bench/ipp.c with depth 2e4). */
 #ifndef SBL_SHORTCUTS
-#define SBL_SHORTCUTS 31
+#define SBL_SHORTCUTS 15
 #endif
 
 /* One gathered x* (N > 0: valid) into ring column x. */
@@ -10184,7 +10190,8 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
    contrast to the neighbour (tests/test_tiles.c); where it fails, the pixel gather
    decides, so validity never changes. The back-check keeps the exact position. This is
    the one result by which a build with the row gather (x86 SIMD) may differ from the
-   scalar reference build: within that bound, on far geometry only. */
+   scalar reference build: within that bound, on far geometry only; hence not in the
+   default SBL_SHORTCUTS (bit 16). */
 #define SBL__FAR_PX (1.0f / 256.0f)
 
 /* The two-camera rigs' plan for the VW pixels x .. x + VW - 1 of an interior row
@@ -10336,8 +10343,8 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
         float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
         sbl__v z, slack, m;
-        sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
-        int far;
+        sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack), far;
+        int far_bits;
         if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
         m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
         keep = sbl__mandnot(keep, sbl__nonfinite(m));
@@ -10346,12 +10353,15 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
            has no match): sbl__stereo_back_parallel clamps them with a min and a max, whose
            NaN result -ffast-math leaves to the operand order gcc picks */
         sbl__store(fbz, sbl__sel(keep, m, zero));
-        /* a far tile: every disparity below SBL__FAR_PX (and some not 0), so the other
-           eye is read at the same pixel (see SBL__FAR_PX) */
-        far = (SBL_SHORTCUTS & 16) && s->tiles &&
-              !sbl__mbits(sbl__mandnot(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m)))) &&
-              sbl__mbits(sbl__mand(keep, sbl__gt(sbl__abs(m), zero)));
-        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, far ? zero : m, zero, 1);
+        /* far lanes: a disparity below SBL__FAR_PX and not 0, so the other eye is read
+           at the same pixel (see SBL__FAR_PX). Decided lane by lane, on the lane's own
+           disparity: a pixel's result then does not depend on which vector holds it
+           (the span's start, the vector width); until session 27 the whole vector was
+           far or not, so a pixel next to near geometry could come out either way. */
+        far = sbl__mand(sbl__mand(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m))), sbl__gt(sbl__abs(m), zero));
+        far_bits = (SBL_SHORTCUTS & 16) && s->tiles ? sbl__mbits(far) : 0;
+        if (!far_bits) far = sbl__gt(zero, zero);
+        bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, sbl__sel(far, zero, m), zero, 1);
         for (l = 0; l < SBL__VW; l += SBL__DW) {
             /* x + l + 0.5 + dir (f b / z - offset), as the map: offset is 0 in this lane
                mode and dir = +-1, so dir (f b / z - 0) is the float dir f b / z exactly
@@ -10360,7 +10370,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
                                                   sbl__dfromf(fbz + l)));
             sbl__dstore(b->psy + i + l, sbl__dset1(y + 0.5));
         }
-        memset(b->snapped + i, far, SBL__VW);
+        for (l = 0; l < SBL__VW; ++l) b->snapped[i + l] = SBL__CAST(unsigned char, (far_bits >> l) & 1);
         return bits;
     }
 }
@@ -10381,6 +10391,16 @@ static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
     want.depth = SBL__CAST(float, sz);
     b->psx[i] = sx;
     b->psy[i] = sy;
+    if (b->mode == 1 && (SBL_SHORTCUTS & 16) && s->tiles) {
+        /* a far lane as sbl__stereo_plan_vec decides it (the same float f b / z), so that
+           an entry gets the same result here as in a vector: the taps at the pixel
+           itself, the back-check from the exact position */
+        const float fbz = s->fb / z;
+        if (fbz != 0.0f && fabsf(fbz) < SBL__FAR_PX) {
+            b->snapped[i] = 1;
+            sx = x + 0.5;
+        }
+    }
     sbl__tap_plan_set(&s->src, &b->p, i, &want, sx, sy);
 }
 

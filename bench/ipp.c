@@ -149,10 +149,17 @@ int main(int argc, char **argv)
     } else if (argc > 1) {
         size_t len = strlen(argv[1]);
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
+        kind = -1;
         for (i = 0; i < 6; ++i)
             if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
                 strlen(names[i]) == (ev ? len - 3 : len))
                 kind = i;
+        if (kind < 0) { /* a name not measured must not pass as the easy case */
+            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant, "
+                            "each also with -ev; two-eyes)\n", argv[1]);
+            free(scratch);
+            return 2;
+        }
     }
     for (e = 0; e < 2; ++e) fill_eye(&b[e], e, kind, getenv("IPP_SHARED_BIAS") != NULL);
     for (e = 0; e < 2; ++e) {

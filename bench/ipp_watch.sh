@@ -5,6 +5,8 @@
 # named there is run). Instruction counts do not drift with machine load, so this can
 # fail a change that makes the inner loops slower without timing anything; the budgets
 # carry a margin for other compiler versions. usage: ipp_watch.sh IPP_SSE2_BINARY
+# Fails if a run fails (valgrind, the binary) or a budget line has no measured figure:
+# a watch that cannot measure must not pass.
 set -e
 bin=$1
 here=$(dirname "$0")
@@ -14,14 +16,24 @@ if ! command -v valgrind >/dev/null 2>&1; then
 fi
 cases=$(awk '!/^#/ && NF == 3 && !seen[$1]++ { printf "%s ", $1 }' "$budgets")
 [ -n "$cases" ] || { echo "FAIL  ipp watch: no budget lines in $budgets"; exit 1; }
+tmp=$(mktemp)
+trap 'rm -f "$tmp"' EXIT
+if ! sh "$here/ipp.sh" "$bin" -- $cases >"$tmp" 2>&1; then
+  cat "$tmp"; echo "FAIL  ipp watch: bench/ipp.sh failed"; exit 1
+fi
 status=0
-out=$(sh "$here/ipp.sh" "$bin" -- $cases | tail -n +2)
-echo "$out" | while read -r b c fn ipp; do
-  budget=$(awk -v c="$c" -v f="$fn" '!/^#/ && $1 == c && $2 == f { print $3 }' "$budgets")
-  [ -n "$budget" ] || continue # measured with its case, not watched
+# every budget line against its measured figure (ipp.sh prints: binary case function ipp)
+while read -r c fn budget; do
+  case "$c" in '#'*|'') continue ;; esac
+  [ -n "$budget" ] || continue
+  ipp=$(awk -v c="$c" -v f="$fn" 'NR > 1 && $2 == c && $3 == f { print $4 }' "$tmp")
+  case "$ipp" in
+    ''|*[!0-9.]*) echo "FAIL  ipp watch: $c $fn not measured (budget $budget)"; status=1; continue ;;
+  esac
   if [ "$(echo "$ipp > $budget" | bc -l)" = 1 ]; then
-    echo "FAIL  ipp watch: $c $fn $ipp instructions per pixel, budget $budget"; exit 1
+    echo "FAIL  ipp watch: $c $fn $ipp instructions per pixel, budget $budget"; status=1
+  else
+    echo "PASS  ipp watch: $c $fn $ipp instructions per pixel (budget $budget)"
   fi
-  echo "PASS  ipp watch: $c $fn $ipp instructions per pixel (budget $budget)"
-done || status=1
+done <"$budgets"
 exit $status

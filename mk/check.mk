@@ -22,7 +22,8 @@
 #                   the same paths: `make check-robust CHECK_O3=1` adds it back)
 #   fastmath        test_robust, test_paths with gcc -ffast-math (FTZ/DAZ set by crtfastmath.o)
 #   clang-fastmath  test_robust with clang -O3 -march=native -ffast-math
-#   asan            every test under -fsanitize=address,undefined at -O0 (clang, else gcc;
+#   asan            every test under -fsanitize=address,undefined at -O0, with SBL_SHORTCUTS 31
+#                   (the far tiles, off by default, on) (clang, else gcc;
 #                   -O0: a third of the compile time of -O1, and nothing optimised away), and
 #                   the fuzz harness replaying tests/fuzz_corpus
 #   valgrind        VALGRIND_TESTS of the gcc configuration under memcheck (no rebuild)
@@ -116,7 +117,8 @@ CFG_FLAGS_clang-fastmath = $(CFLAGS_STRICT) -O3 -march=native -ffast-math
 CFG_TESTS_clang-fastmath = test_robust
 
 CFG_CC_asan = $(if $(SAN_CC),$(SAN_CC),$(CC_GCC))
-CFG_FLAGS_asan = $(CFLAGS_STRICT) -O0 -g $(if $(SAN_CC),$(SAN_FLAGS))
+# (with the far tiles, the one shortcut off by default, so that its code stays tested)
+CFG_FLAGS_asan = $(CFLAGS_STRICT) -O0 -g $(if $(SAN_CC),$(SAN_FLAGS)) -DSBL_SHORTCUTS=31
 CFG_TESTS_asan = $(TESTS) fuzz_sbl
 CFG_ENV_asan = $(SAN_ENV)
 $(BUILD)/asan/fuzz_sbl: EXTRA_FLAGS = -DSBL_FUZZ_STANDALONE
