@@ -934,6 +934,13 @@ static int sbl__is_pos_inf(float v)
     memcpy(&bits, &v, sizeof bits);
     return bits == 0x7f800000u;
 }
+/* A depth that is valid geometry: z > 0, finite or +inf (sky); NaN, -inf, 0 and
+   negatives are not. The one scalar form of the test (sbl__tap_want_init,
+   sbl__valid_depth; the lane form is sbl__lanes_want's). */
+static int sbl__depth_is_geometry(float z)
+{
+    return z > 0.0f && (sbl__finite(z) || sbl__is_pos_inf(z));
+}
 
 /* Views are addressed in per-pixel loops of the stage calls: keep these inlined. */
 #if defined(__GNUC__) || defined(__clang__)
@@ -2012,7 +2019,7 @@ static int sbl__tap_want_init(sbl__tap_want *t, const sbl__target_geo *g, int x,
     float z = 0.0f;
     if (g->depth.p) {
         z = *SBL__AT(g->depth, x, y);
-        if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0;
+        if (!sbl__depth_is_geometry(z)) return 0;
         t->depth_slack = sbl__depth_slack(g, x, y, z);
     } else {
         t->depth_slack = 0.0f;
@@ -10022,7 +10029,7 @@ static int sbl__eye_height(const sbl_eye *e)
 SBL__INLINE float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
 {
     float z = *SBL__AT(*depth, ix, iy);
-    if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
+    if (!sbl__depth_is_geometry(z)) return 0.0f;
     return z;
 }
 
