@@ -2325,6 +2325,20 @@ static sbl_result sbl__check_rows(int y0, int y1, int h)
     return SBL_OK;
 }
 
+/* The write of the per-pixel reprojection calls (sbl_reproject_temporal,
+   sbl_reproject_stereo, sbl_stereo_fill): pixel (x, y) of out_color gets the reprojected
+   colour v (ch channels), zeros where it has no correspondence (n, its history length or
+   weight, not > 0). Returns whether it has one; each call writes its second output. */
+SBL__INLINE int sbl__write_reprojected(const sbl_image *out_color, int x, int y, const float *v,
+                                       float n, int ch)
+{
+    float *o = sbl__px(out_color, x, y);
+    const int valid = n > 0.0f;
+    int k;
+    for (k = 0; k < ch; ++k) o[k] = valid ? v[k] : 0.0f;
+    return valid;
+}
+
 SBLDEF sbl_result sbl_reproject_temporal(const sbl_reproject_desc *desc,
                                          sbl_temporal_source source,
                                          const sbl_frame *frame, const sbl_history *history,
@@ -2333,7 +2347,7 @@ SBLDEF sbl_result sbl_reproject_temporal(const sbl_reproject_desc *desc,
 {
     sbl__temporal_rp s;
     sbl_result r;
-    int x, y, k, ch;
+    int x, y, ch;
     if (!desc || !frame) return SBL_ERROR_NULL_POINTER;
     if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
     if ((r = sbl__check_image(&out_color, 0)) != SBL_OK) return r;
@@ -2353,8 +2367,7 @@ SBLDEF sbl_result sbl_reproject_temporal(const sbl_reproject_desc *desc,
         for (x = 0; x < frame->color.width; ++x) {
             float v[4] = {0, 0, 0, 0};
             float n = sbl__temporal_rp_pixel(&s, x, y, v);
-            float *o = sbl__px(&out_color, x, y);
-            for (k = 0; k < ch; ++k) o[k] = n > 0.0f ? v[k] : 0.0f;
+            sbl__write_reprojected(&out_color, x, y, v, n, ch);
             *sbl__px(&out_length, x, y) = n;
         }
     return SBL_OK;
@@ -11036,7 +11049,7 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
 {
     sbl__stereo_rp s;
     sbl_result r;
-    int x, y, k, w, h, ch;
+    int x, y, w, h, ch;
     if ((r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0)) != SBL_OK) return r;
     w = source->color.width; h = source->color.height; ch = source->color.channels;
     if ((r = sbl__check_image(&out_color, ch)) != SBL_OK)
@@ -11052,9 +11065,8 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
         for (x = 0; x < w; ++x) {
             float v[4] = {0, 0, 0, 0};
             float n = sbl__stereo_rp_pixel(&s, x, y, v);
-            float *o = sbl__px(&out_color, x, y);
-            for (k = 0; k < ch; ++k) o[k] = n > 0.0f ? v[k] : 0.0f;
-            if (out_valid.data) *sbl__px(&out_valid, x, y) = n > 0.0f ? 1.0f : 0.0f;
+            int valid = sbl__write_reprojected(&out_color, x, y, v, n, ch);
+            if (out_valid.data) *sbl__px(&out_valid, x, y) = valid ? 1.0f : 0.0f;
         }
     return SBL_OK;
 }
@@ -11838,7 +11850,7 @@ SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index tar
     sbl__stereo_rp s;
     sbl_result r;
     long count = 0;
-    int x, y, k, w, h, ch;
+    int x, y, w, h, ch;
     if ((r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0)) != SBL_OK) return r;
     w = source->color.width; h = source->color.height; ch = source->color.channels;
     if (!mask) return SBL_ERROR_NULL_POINTER;
@@ -11854,9 +11866,7 @@ SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index tar
         for (x = 0; x < w; ++x) {
             float v[4] = {0, 0, 0, 0};
             float n = sbl__stereo_rp_pixel(&s, x, y, v);
-            float *o = sbl__px(&out_color, x, y);
-            unsigned char need = n > 0.0f ? 0 : 1;
-            for (k = 0; k < ch; ++k) o[k] = need ? 0.0f : v[k];
+            unsigned char need = sbl__write_reprojected(&out_color, x, y, v, n, ch) ? 0 : 1;
             mask[SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, x)] = need;
             count += need;
         }
