@@ -1129,6 +1129,11 @@ static int sbl__eye_planes(const sbl_eye *e, const sbl_image **p)
     p[0] = &e->color; p[1] = &e->length; p[2] = &e->disparity;
     return 3 + sbl__gbuffer_planes(&e->gbuffer, p + 3);
 }
+static int sbl__temporal_output_planes(const sbl_temporal_output *o, const sbl_image **p)
+{
+    p[0] = &o->color; p[1] = &o->length; p[2] = &o->alpha; p[3] = &o->evidence;
+    return 4;
+}
 
 /* Does view a (or the byte range [m0, m1)) overlap any of the n views p[0 .. n)? */
 static int sbl__overlap_any(const sbl_image *a, const sbl_image *const *p, int n)
@@ -9910,14 +9915,12 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
         return r;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     {   /* outputs: disjoint from each other and from every input */
-        const sbl_image *outs[4];
-        int o, p;
-        outs[0] = &out->color; outs[1] = &out->length; outs[2] = &out->alpha;
-        outs[3] = &out->evidence;
-        for (o = 0; o < 4; ++o)
-            for (p = o + 1; p < 4; ++p)
+        const sbl_image *outs[SBL__PLANES_MAX];
+        int o, p, n = sbl__temporal_output_planes(out, outs);
+        for (o = 0; o < n; ++o)
+            for (p = o + 1; p < n; ++p)
                 if (sbl__overlap(outs[o], outs[p])) return SBL_ERROR_OVERLAP;
-        for (o = 0; o < 4; ++o)
+        for (o = 0; o < n; ++o)
             if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1))
                 return SBL_ERROR_OVERLAP;
     }
@@ -11446,7 +11449,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         }
     }
     {   /* outputs: disjoint from each other and from every input */
-        const sbl_image *o[4], *in[5 + SBL__PLANES_MAX];
+        const sbl_image *o[SBL__PLANES_MAX], *in[5 + SBL__PLANES_MAX];
         const char *on[4] = {"out->color", "out->length", "out->alpha", "out->evidence"};
         const char *names[12] = {
             "overlaps frame->color", "overlaps frame->gbuffer.depth",
@@ -11457,8 +11460,9 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
             "overlaps history->gbuffer.motion", "overlaps history->evidence"};
         int i, j, n;
         const sbl_history *hi = history && history->color.data ? history : NULL;
-        o[0] = &out->color; o[1] = &out->length; o[2] = &out->alpha; o[3] = &out->evidence;
-        n = sbl__frame_planes(frame, in); /* 5: the names' order */
+        /* in the names' order: 4 outputs; the frame's 5 planes, then the history's 7 */
+        sbl__temporal_output_planes(out, o);
+        n = sbl__frame_planes(frame, in);
         n += sbl__history_planes(hi, in + n, 1);
         for (i = 0; i < 4; ++i)
             for (j = i + 1; j < 4; ++j)
@@ -11666,7 +11670,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
             "overlaps source->gbuffer.depth", "overlaps source->gbuffer.normals",
             "overlaps source->gbuffer.ids", "overlaps source->gbuffer.motion"};
         int i, j, n;
-        n = sbl__eye_planes(target, in); /* 7 each: the names' order */
+        n = sbl__eye_planes(target, in); /* in the names' order: 7 planes an eye */
         n += sbl__eye_planes(source, in + n);
         o[0] = &out->color; o[1] = &out->length; o[2] = &out->beta;
         for (i = 0; i < 3; ++i)
@@ -11782,18 +11786,13 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
     for (e = 0; e < 2; ++e) {
         /* one eye's temporal outputs may not overlap the other eye's outputs nor its
            inputs (eye 0 runs first: it would change what eye 1 reads) */
-        const sbl_image *oe[4];
-        int i, j;
-        oe[0] = &io->temporal[e].color; oe[1] = &io->temporal[e].length;
-        oe[2] = &io->temporal[e].alpha; oe[3] = &io->temporal[e].evidence;
-        for (i = 0; i < 4; ++i) {
+        const sbl_image *oe[SBL__PLANES_MAX], *other[SBL__PLANES_MAX];
+        int i, n = sbl__temporal_output_planes(&io->temporal[e], oe);
+        sbl__temporal_output_planes(&io->temporal[!e], other);
+        for (i = 0; i < n; ++i) {
             if (sbl__overlap_frame(oe[i], &io->frame[!e]) || sbl__overlap_history(oe[i], io->history[!e]))
                 return SBL_ERROR_OVERLAP;
-            if (e == 0)
-                for (j = 0; j < 4; ++j)
-                    if (sbl__overlap(oe[i], j == 0 ? &io->temporal[1].color : j == 1 ? &io->temporal[1].length
-                                                   : j == 2 ? &io->temporal[1].alpha : &io->temporal[1].evidence))
-                        return SBL_ERROR_OVERLAP;
+            if (e == 0 && sbl__overlap_any(oe[i], other, n)) return SBL_ERROR_OVERLAP;
         }
         eye[e] = sbl__eye_from_temporal(io, e);
     }
