@@ -934,6 +934,13 @@ static int sbl__is_pos_inf(float v)
     memcpy(&bits, &v, sizeof bits);
     return bits == 0x7f800000u;
 }
+/* A depth that is valid geometry: z > 0, finite or +inf (sky); NaN, -inf, 0 and
+   negatives are not. The one scalar form of the test (sbl__tap_want_init,
+   sbl__valid_depth; the lane form is sbl__lanes_want's). */
+static int sbl__depth_is_geometry(float z)
+{
+    return z > 0.0f && (sbl__finite(z) || sbl__is_pos_inf(z));
+}
 
 /* Views are addressed in per-pixel loops of the stage calls: keep these inlined. */
 #if defined(__GNUC__) || defined(__clang__)
@@ -1049,6 +1056,16 @@ static void sbl__range(const sbl_image *im, const char **begin, const char **end
     *end = *begin + sbl__footprint(im);
 }
 
+/* Does the byte range [m0, m1) (a mask, or another view's range) overlap an image's?
+   An absent image (NULL data) overlaps nothing. */
+static int sbl__overlap_bytes(const char *m0, const char *m1, const sbl_image *im)
+{
+    const char *c0, *c1;
+    if (!im->data) return 0;
+    sbl__range(im, &c0, &c1);
+    return m0 < c1 && c0 < m1;
+}
+
 /* Do two views share a float? Views with the same row period whose rows interleave
    without touching (the two eyes of a side-by-side texture) do not, nor do views with
    the same pixel step whose channels interleave (the colour and a 4th-channel weight
@@ -1057,10 +1074,10 @@ static int sbl__overlap(const sbl_image *a, const sbl_image *b)
 {
     const char *a0, *a1, *b0, *b1;
     ptrdiff_t sa, sb;
-    if (!a->data || !b->data) return 0;
+    if (!a->data) return 0;
     sbl__range(a, &a0, &a1);
+    if (!sbl__overlap_bytes(a0, a1, b)) return 0;
     sbl__range(b, &b0, &b1);
-    if (!(a0 < b1 && b0 < a1)) return 0;
     sa = sbl__stride(a); if (sa < 0) sa = -sa;
     sb = sbl__stride(b); if (sb < 0) sb = -sb;
     if (sa == sb && (a->height > 1 || b->height > 1)) {
@@ -1083,21 +1100,80 @@ static int sbl__overlap(const sbl_image *a, const sbl_image *b)
     return 1;
 }
 
+/* The planes of a G-buffer, a frame, a history and an eye: the one list of each, for the
+   overlap checks and the diagnostic walks (whose names follow this order). Each writes
+   the planes' addresses to p (room for SBL__PLANES_MAX) and returns their count. */
+#define SBL__PLANES_MAX 7
+static int sbl__gbuffer_planes(const sbl_gbuffer *g, const sbl_image **p)
+{
+    p[0] = &g->depth; p[1] = &g->normals; p[2] = &g->ids; p[3] = &g->motion;
+    return 4;
+}
+static int sbl__frame_planes(const sbl_frame *f, const sbl_image **p)
+{
+    p[0] = &f->color;
+    return 1 + sbl__gbuffer_planes(&f->gbuffer, p + 1);
+}
+/* h may be NULL (none); with_evidence 0: all but the evidence plane (the last) */
+static int sbl__history_planes(const sbl_history *h, const sbl_image **p, int with_evidence)
+{
+    int n;
+    if (!h) return 0;
+    p[0] = &h->color; p[1] = &h->length;
+    n = 2 + sbl__gbuffer_planes(&h->gbuffer, p + 2);
+    if (with_evidence) p[n++] = &h->evidence;
+    return n;
+}
+static int sbl__eye_planes(const sbl_eye *e, const sbl_image **p)
+{
+    p[0] = &e->color; p[1] = &e->length; p[2] = &e->disparity;
+    return 3 + sbl__gbuffer_planes(&e->gbuffer, p + 3);
+}
+static int sbl__temporal_output_planes(const sbl_temporal_output *o, const sbl_image **p)
+{
+    p[0] = &o->color; p[1] = &o->length; p[2] = &o->alpha; p[3] = &o->evidence;
+    return 4;
+}
+
+/* Does view a (or the byte range [m0, m1)) overlap any of the n views p[0 .. n)? */
+static int sbl__overlap_any(const sbl_image *a, const sbl_image *const *p, int n)
+{
+    int i;
+    for (i = 0; i < n; ++i)
+        if (sbl__overlap(a, p[i])) return 1;
+    return 0;
+}
+static int sbl__overlap_bytes_any(const char *m0, const char *m1, const sbl_image *const *p,
+                                  int n)
+{
+    int i;
+    for (i = 0; i < n; ++i)
+        if (sbl__overlap_bytes(m0, m1, p[i])) return 1;
+    return 0;
+}
+
 static int sbl__overlap_gbuffer(const sbl_image *a, const sbl_gbuffer *g)
 {
-    return sbl__overlap(a, &g->depth) || sbl__overlap(a, &g->normals) ||
-           sbl__overlap(a, &g->ids) || sbl__overlap(a, &g->motion);
+    const sbl_image *p[SBL__PLANES_MAX];
+    return sbl__overlap_any(a, p, sbl__gbuffer_planes(g, p));
 }
 
 static int sbl__overlap_frame(const sbl_image *a, const sbl_frame *f)
 {
-    return sbl__overlap(a, &f->color) || sbl__overlap_gbuffer(a, &f->gbuffer);
+    const sbl_image *p[SBL__PLANES_MAX];
+    return sbl__overlap_any(a, p, sbl__frame_planes(f, p));
 }
 
 static int sbl__overlap_history(const sbl_image *a, const sbl_history *h) /* h may be NULL */
 {
-    return h && (sbl__overlap(a, &h->color) || sbl__overlap(a, &h->length) ||
-                 sbl__overlap(a, &h->evidence) || sbl__overlap_gbuffer(a, &h->gbuffer));
+    const sbl_image *p[SBL__PLANES_MAX];
+    return sbl__overlap_any(a, p, sbl__history_planes(h, p, 1));
+}
+
+static int sbl__overlap_eye(const sbl_image *a, const sbl_eye *e)
+{
+    const sbl_image *p[SBL__PLANES_MAX];
+    return sbl__overlap_any(a, p, sbl__eye_planes(e, p));
 }
 
 static int sbl__param_ok(float v) /* finite and >= 0 */
@@ -2012,7 +2088,7 @@ static int sbl__tap_want_init(sbl__tap_want *t, const sbl__target_geo *g, int x,
     float z = 0.0f;
     if (g->depth.p) {
         z = *SBL__AT(g->depth, x, y);
-        if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0;
+        if (!sbl__depth_is_geometry(z)) return 0;
         t->depth_slack = sbl__depth_slack(g, x, y, z);
     } else {
         t->depth_slack = 0.0f;
@@ -2235,21 +2311,37 @@ static float sbl__temporal_rp_pixel(const void *ctx, int x, int y, float *out)
     return sbl__gather(&s->src, &t, sx, sy, !s->rp.no_fallback, out);
 }
 
-/* An output of a temporal call must not overlap the history it reads (colour, N,
-   G-buffer) nor the frame's G-buffer; with_color: nor the frame's colour. */
+/* An output of a temporal call must not overlap a plane the call reads. The filter
+   (all = 1) reads every plane of the frame and of the history; sbl_reproject_temporal
+   (all = 0) reads neither the frame's colour nor the history's evidence plane (which it
+   does not validate either): the frame's G-buffer and the history's other planes. */
 static int sbl__overlaps_temporal_inputs(const sbl_image *o, const sbl_frame *frame,
-                                         const sbl_history *history, int with_color)
+                                         const sbl_history *history, int all)
 {
-    if (with_color && sbl__overlap(o, &frame->color)) return 1;
-    if (sbl__overlap_gbuffer(o, &frame->gbuffer)) return 1;
-    return history && (sbl__overlap(o, &history->color) || sbl__overlap(o, &history->length) ||
-                       sbl__overlap_gbuffer(o, &history->gbuffer));
+    const sbl_image *p[SBL__PLANES_MAX];
+    if (all) return sbl__overlap_frame(o, frame) || sbl__overlap_history(o, history);
+    return sbl__overlap_gbuffer(o, &frame->gbuffer) ||
+           sbl__overlap_any(o, p, sbl__history_planes(history, p, 0));
 }
 
 static sbl_result sbl__check_rows(int y0, int y1, int h)
 {
     if (y0 < 0 || y1 < y0 || y1 > h) return SBL_ERROR_INVALID_ROWS;
     return SBL_OK;
+}
+
+/* The write of the per-pixel reprojection calls (sbl_reproject_temporal,
+   sbl_reproject_stereo, sbl_stereo_fill): pixel (x, y) of out_color gets the reprojected
+   colour v (ch channels), zeros where it has no correspondence (n, its history length or
+   weight, not > 0). Returns whether it has one; each call writes its second output. */
+SBL__INLINE int sbl__write_reprojected(const sbl_image *out_color, int x, int y, const float *v,
+                                       float n, int ch)
+{
+    float *o = sbl__px(out_color, x, y);
+    const int valid = n > 0.0f;
+    int k;
+    for (k = 0; k < ch; ++k) o[k] = valid ? v[k] : 0.0f;
+    return valid;
 }
 
 SBLDEF sbl_result sbl_reproject_temporal(const sbl_reproject_desc *desc,
@@ -2260,7 +2352,7 @@ SBLDEF sbl_result sbl_reproject_temporal(const sbl_reproject_desc *desc,
 {
     sbl__temporal_rp s;
     sbl_result r;
-    int x, y, k, ch;
+    int x, y, ch;
     if (!desc || !frame) return SBL_ERROR_NULL_POINTER;
     if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
     if ((r = sbl__check_image(&out_color, 0)) != SBL_OK) return r;
@@ -2280,8 +2372,7 @@ SBLDEF sbl_result sbl_reproject_temporal(const sbl_reproject_desc *desc,
         for (x = 0; x < frame->color.width; ++x) {
             float v[4] = {0, 0, 0, 0};
             float n = sbl__temporal_rp_pixel(&s, x, y, v);
-            float *o = sbl__px(&out_color, x, y);
-            for (k = 0; k < ch; ++k) o[k] = n > 0.0f ? v[k] : 0.0f;
+            sbl__write_reprojected(&out_color, x, y, v, n, ch);
             *sbl__px(&out_length, x, y) = n;
         }
     return SBL_OK;
@@ -9830,16 +9921,13 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
         return r;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     {   /* outputs: disjoint from each other and from every input */
-        const sbl_image *outs[4];
-        int o, p;
-        outs[0] = &out->color; outs[1] = &out->length; outs[2] = &out->alpha;
-        outs[3] = &out->evidence;
-        for (o = 0; o < 4; ++o)
-            for (p = o + 1; p < 4; ++p)
+        const sbl_image *outs[SBL__PLANES_MAX];
+        int o, p, n = sbl__temporal_output_planes(out, outs);
+        for (o = 0; o < n; ++o)
+            for (p = o + 1; p < n; ++p)
                 if (sbl__overlap(outs[o], outs[p])) return SBL_ERROR_OVERLAP;
-        for (o = 0; o < 4; ++o)
-            if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1) ||
-                (s.history && sbl__overlap(outs[o], &s.history->evidence)))
+        for (o = 0; o < n; ++o)
+            if (sbl__overlaps_temporal_inputs(outs[o], frame, s.history, 1))
                 return SBL_ERROR_OVERLAP;
     }
     if (!scratch) return SBL_ERROR_NULL_POINTER;
@@ -10028,7 +10116,7 @@ static int sbl__eye_height(const sbl_eye *e)
 SBL__INLINE float sbl__valid_depth(const sbl__flat *depth, int ix, int iy)
 {
     float z = *SBL__AT(*depth, ix, iy);
-    if (!(z > 0.0f) || (!sbl__finite(z) && !sbl__is_pos_inf(z))) return 0.0f;
+    if (!sbl__depth_is_geometry(z)) return 0.0f;
     return z;
 }
 
@@ -10974,14 +11062,7 @@ static void sbl__stereo_rp_row(const void *ctx, struct sbl__ring_row *r, int y, 
 static sbl_result sbl__check_outputs_vs_eyes(const sbl_image *o, const sbl_eye *a,
                                              const sbl_eye *b)
 {
-    const sbl_eye *e[2];
-    int i;
-    e[0] = a; e[1] = b;
-    for (i = 0; i < 2; ++i)
-        if (sbl__overlap(o, &e[i]->color) || sbl__overlap(o, &e[i]->length) ||
-            sbl__overlap(o, &e[i]->disparity) || sbl__overlap_gbuffer(o, &e[i]->gbuffer))
-            return SBL_ERROR_OVERLAP;
-    return SBL_OK;
+    return sbl__overlap_eye(o, a) || sbl__overlap_eye(o, b) ? SBL_ERROR_OVERLAP : SBL_OK;
 }
 
 SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
@@ -10991,7 +11072,7 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
 {
     sbl__stereo_rp s;
     sbl_result r;
-    int x, y, k, w, h, ch;
+    int x, y, w, h, ch;
     if ((r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0)) != SBL_OK) return r;
     w = source->color.width; h = source->color.height; ch = source->color.channels;
     if ((r = sbl__check_image(&out_color, ch)) != SBL_OK)
@@ -11007,9 +11088,8 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
         for (x = 0; x < w; ++x) {
             float v[4] = {0, 0, 0, 0};
             float n = sbl__stereo_rp_pixel(&s, x, y, v);
-            float *o = sbl__px(&out_color, x, y);
-            for (k = 0; k < ch; ++k) o[k] = n > 0.0f ? v[k] : 0.0f;
-            if (out_valid.data) *sbl__px(&out_valid, x, y) = n > 0.0f ? 1.0f : 0.0f;
+            int valid = sbl__write_reprojected(&out_color, x, y, v, n, ch);
+            if (out_valid.data) *sbl__px(&out_valid, x, y) = valid ? 1.0f : 0.0f;
         }
     return SBL_OK;
 }
@@ -11389,7 +11469,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
         }
     }
     {   /* outputs: disjoint from each other and from every input */
-        const sbl_image *o[4], *in[12];
+        const sbl_image *o[SBL__PLANES_MAX], *in[5 + SBL__PLANES_MAX];
         const char *on[4] = {"out->color", "out->length", "out->alpha", "out->evidence"};
         const char *names[12] = {
             "overlaps frame->color", "overlaps frame->gbuffer.depth",
@@ -11398,20 +11478,17 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
             "overlaps history->length", "overlaps history->gbuffer.depth",
             "overlaps history->gbuffer.normals", "overlaps history->gbuffer.ids",
             "overlaps history->gbuffer.motion", "overlaps history->evidence"};
-        int i, j;
+        int i, j, n;
         const sbl_history *hi = history && history->color.data ? history : NULL;
-        o[0] = &out->color; o[1] = &out->length; o[2] = &out->alpha; o[3] = &out->evidence;
-        in[0] = &frame->color; in[1] = &frame->gbuffer.depth; in[2] = &frame->gbuffer.normals;
-        in[3] = &frame->gbuffer.ids; in[4] = &frame->gbuffer.motion;
-        in[5] = hi ? &hi->color : NULL; in[6] = hi ? &hi->length : NULL;
-        in[7] = hi ? &hi->gbuffer.depth : NULL; in[8] = hi ? &hi->gbuffer.normals : NULL;
-        in[9] = hi ? &hi->gbuffer.ids : NULL; in[10] = hi ? &hi->gbuffer.motion : NULL;
-        in[11] = hi ? &hi->evidence : NULL;
+        /* in the names' order: 4 outputs; the frame's 5 planes, then the history's 7 */
+        sbl__temporal_output_planes(out, o);
+        n = sbl__frame_planes(frame, in);
+        n += sbl__history_planes(hi, in + n, 1);
         for (i = 0; i < 4; ++i)
             for (j = i + 1; j < 4; ++j)
                 if (sbl__overlap_checked(o[i], o[j]))
                     sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
-        for (i = 0; i < 4; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 12);
+        for (i = 0; i < 4; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, n);
     }
     if (r != SBL_OK && !wk.found) {
         sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);
@@ -11603,7 +11680,7 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
 #undef SBL__TRY_RP
     }
     if (out) {
-        const sbl_image *o[3], *in[14];
+        const sbl_image *o[3], *in[2 * SBL__PLANES_MAX];
         const char *on[3] = {"out->color", "out->length", "out->beta"};
         const char *names[14] = {
             "overlaps target->color", "overlaps target->length", "overlaps target->disparity",
@@ -11612,20 +11689,15 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
             "overlaps source->color", "overlaps source->length", "overlaps source->disparity",
             "overlaps source->gbuffer.depth", "overlaps source->gbuffer.normals",
             "overlaps source->gbuffer.ids", "overlaps source->gbuffer.motion"};
-        int i, j;
-        for (e = 0; e < 2; ++e) {
-            const sbl_eye *eye = e ? source : target;
-            in[e * 7 + 0] = &eye->color; in[e * 7 + 1] = &eye->length;
-            in[e * 7 + 2] = &eye->disparity; in[e * 7 + 3] = &eye->gbuffer.depth;
-            in[e * 7 + 4] = &eye->gbuffer.normals; in[e * 7 + 5] = &eye->gbuffer.ids;
-            in[e * 7 + 6] = &eye->gbuffer.motion;
-        }
+        int i, j, n;
+        n = sbl__eye_planes(target, in); /* in the names' order: 7 planes an eye */
+        n += sbl__eye_planes(source, in + n);
         o[0] = &out->color; o[1] = &out->length; o[2] = &out->beta;
         for (i = 0; i < 3; ++i)
             for (j = i + 1; j < 3; ++j)
                 if (sbl__overlap_checked(o[i], o[j]))
                     sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
-        for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, 14);
+        for (i = 0; i < 3; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, n);
     }
     if (r != SBL_OK && !wk.found) {
         sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);
@@ -11734,18 +11806,13 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
     for (e = 0; e < 2; ++e) {
         /* one eye's temporal outputs may not overlap the other eye's outputs nor its
            inputs (eye 0 runs first: it would change what eye 1 reads) */
-        const sbl_image *oe[4];
-        int i, j;
-        oe[0] = &io->temporal[e].color; oe[1] = &io->temporal[e].length;
-        oe[2] = &io->temporal[e].alpha; oe[3] = &io->temporal[e].evidence;
-        for (i = 0; i < 4; ++i) {
+        const sbl_image *oe[SBL__PLANES_MAX], *other[SBL__PLANES_MAX];
+        int i, n = sbl__temporal_output_planes(&io->temporal[e], oe);
+        sbl__temporal_output_planes(&io->temporal[!e], other);
+        for (i = 0; i < n; ++i) {
             if (sbl__overlap_frame(oe[i], &io->frame[!e]) || sbl__overlap_history(oe[i], io->history[!e]))
                 return SBL_ERROR_OVERLAP;
-            if (e == 0)
-                for (j = 0; j < 4; ++j)
-                    if (sbl__overlap(oe[i], j == 0 ? &io->temporal[1].color : j == 1 ? &io->temporal[1].length
-                                                   : j == 2 ? &io->temporal[1].alpha : &io->temporal[1].evidence))
-                        return SBL_ERROR_OVERLAP;
+            if (e == 0 && sbl__overlap_any(oe[i], other, n)) return SBL_ERROR_OVERLAP;
         }
         eye[e] = sbl__eye_from_temporal(io, e);
     }
@@ -11780,21 +11847,18 @@ SBLDEF sbl_result sbl_stereo_temporal_frame(const sbl_temporal_desc *td,
 /* 9. Fill mode                                                             */
 /* ------------------------------------------------------------------------ */
 
-/* Does the byte range [m0, m1) (a mask) overlap an image / any image of an eye? */
-static int sbl__overlap_bytes(const char *m0, const char *m1, const sbl_image *im)
+/* Does the byte mask [mask, mask + (h - 1) mask_stride + w) overlap image a or b, or
+   any plane of eye e0 or e1? Each of the four may be NULL (none). */
+static int sbl__mask_overlaps(const unsigned char *mask, int mask_stride, int w, int h,
+                              const sbl_image *a, const sbl_image *b,
+                              const sbl_eye *e0, const sbl_eye *e1)
 {
-    const char *c0, *c1;
-    if (!im->data) return 0;
-    sbl__range(im, &c0, &c1);
-    return m0 < c1 && c0 < m1;
-}
-static int sbl__overlap_bytes_eye(const char *m0, const char *m1, const sbl_eye *e)
-{
-    const sbl_gbuffer *g = &e->gbuffer;
-    return sbl__overlap_bytes(m0, m1, &e->color) || sbl__overlap_bytes(m0, m1, &e->length) ||
-           sbl__overlap_bytes(m0, m1, &e->disparity) || sbl__overlap_bytes(m0, m1, &g->depth) ||
-           sbl__overlap_bytes(m0, m1, &g->normals) || sbl__overlap_bytes(m0, m1, &g->ids) ||
-           sbl__overlap_bytes(m0, m1, &g->motion);
+    const char *m0 = SBL__PCAST(const char *, mask);
+    const char *m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
+    const sbl_image *p[SBL__PLANES_MAX];
+    return (a && sbl__overlap_bytes(m0, m1, a)) || (b && sbl__overlap_bytes(m0, m1, b)) ||
+           (e0 && sbl__overlap_bytes_any(m0, m1, p, sbl__eye_planes(e0, p))) ||
+           (e1 && sbl__overlap_bytes_any(m0, m1, p, sbl__eye_planes(e1, p)));
 }
 
 SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
@@ -11805,7 +11869,7 @@ SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index tar
     sbl__stereo_rp s;
     sbl_result r;
     long count = 0;
-    int x, y, k, w, h, ch;
+    int x, y, w, h, ch;
     if ((r = sbl__stereo_rp_init(&s, desc, target_eye, target, source, 0)) != SBL_OK) return r;
     w = source->color.width; h = source->color.height; ch = source->color.channels;
     if (!mask) return SBL_ERROR_NULL_POINTER;
@@ -11815,20 +11879,13 @@ SBLDEF sbl_result sbl_stereo_fill(const sbl_stereo_desc *desc, sbl_eye_index tar
     if (out_color.channels != ch) return SBL_ERROR_CHANNEL_MISMATCH;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     if ((r = sbl__check_outputs_vs_eyes(&out_color, target, source)) != SBL_OK) return r;
-    {
-        const char *m0 = SBL__PCAST(const char *, mask);
-        const char *m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
-        if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes_eye(m0, m1, target) ||
-            sbl__overlap_bytes_eye(m0, m1, source))
-            return SBL_ERROR_OVERLAP;
-    }
+    if (sbl__mask_overlaps(mask, mask_stride, w, h, &out_color, NULL, target, source))
+        return SBL_ERROR_OVERLAP;
     for (y = y0; y < y1; ++y)
         for (x = 0; x < w; ++x) {
             float v[4] = {0, 0, 0, 0};
             float n = sbl__stereo_rp_pixel(&s, x, y, v);
-            float *o = sbl__px(&out_color, x, y);
-            unsigned char need = n > 0.0f ? 0 : 1;
-            for (k = 0; k < ch; ++k) o[k] = need ? 0.0f : v[k];
+            unsigned char need = sbl__write_reprojected(&out_color, x, y, v, n, ch) ? 0 : 1;
             mask[SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, x)] = need;
             count += need;
         }
@@ -11849,11 +11906,9 @@ SBLDEF sbl_result sbl_merge_traced(sbl_image dst, sbl_image traced,
     if (mask_stride < dst.width) return SBL_ERROR_INVALID_STRIDE;
     if ((r = sbl__check_rows(y0, y1, dst.height)) != SBL_OK) return r;
     if (sbl__overlap(&dst, &traced)) return SBL_ERROR_OVERLAP;
-    {   /* the mask is read while dst is written */
-        const char *m0 = SBL__PCAST(const char *, mask);
-        const char *m1 = m0 + SBL__CAST(size_t, dst.height - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, dst.width);
-        if (sbl__overlap_bytes(m0, m1, &dst)) return SBL_ERROR_OVERLAP;
-    }
+    /* the mask is read while dst is written */
+    if (sbl__mask_overlaps(mask, mask_stride, dst.width, dst.height, &dst, NULL, NULL, NULL))
+        return SBL_ERROR_OVERLAP;
     for (y = y0; y < y1; ++y)
         for (x = 0; x < dst.width; ++x)
             if (mask[SBL__CAST(size_t, y) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, x)]) {
@@ -11876,16 +11931,6 @@ static double sbl__weber_ratio(float a, float b)
     double m = da > db ? da : db;
     if (!(m > 0.0)) return 0.0; /* both +-0 */
     return fabs(SBL__CAST(double, a) - SBL__CAST(double, b)) / m;
-}
-
-/* Does the byte mask [mask, mask + (h-1)*stride + w) overlap any image of the eyes or
-   either value image? */
-static int sbl__mask_overlaps(const unsigned char *mask, int mask_stride, int w, int h,
-                              const sbl_eye *a, const sbl_eye *b)
-{
-    const char *m0 = SBL__PCAST(const char *, mask);
-    const char *m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
-    return sbl__overlap_bytes_eye(m0, m1, a) || sbl__overlap_bytes_eye(m0, m1, b);
 }
 
 SBLDEF size_t sbl_stereo_consistency_scratch_size(int width, int channels)
@@ -11938,8 +11983,8 @@ SBLDEF sbl_result sbl_stereo_consistency(const sbl_stereo_desc *desc, float thre
     if (!mask) return SBL_ERROR_NULL_POINTER;
     if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
-    if (sbl__mask_overlaps(mask, mask_stride, w, h, &t, &o) ||
-        sbl__mask_overlaps(mask, mask_stride, w, h, target, source))
+    if (sbl__mask_overlaps(mask, mask_stride, w, h, NULL, NULL, &t, &o) ||
+        sbl__mask_overlaps(mask, mask_stride, w, h, NULL, NULL, target, source))
         return SBL_ERROR_OVERLAP;
     if (scratch || scratch_bytes) {
         if (!scratch) return SBL_ERROR_NULL_POINTER;
@@ -12062,12 +12107,9 @@ SBLDEF sbl_result sbl_stereo_blend_masked(const sbl_stereo_desc *desc, sbl_eye_i
     if (!mask) return SBL_ERROR_NULL_POINTER;
     if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
-    {   /* the mask is read while the outputs are written */
-        const char *m0 = SBL__PCAST(const char *, mask);
-        const char *m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
-        if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes(m0, m1, &out_length))
-            return SBL_ERROR_OVERLAP;
-    }
+    /* the mask is read while the outputs are written */
+    if (sbl__mask_overlaps(mask, mask_stride, w, h, &out_color, &out_length, NULL, NULL))
+        return SBL_ERROR_OVERLAP;
     if ((r = sbl__stereo_blend_check(&s, desc, target_eye, target, source, &out_color,
                                      &out_length)) != SBL_OK)
         return r;
@@ -12292,11 +12334,8 @@ SBLDEF sbl_result sbl_stereo_blend_adaptive(const sbl_stereo_desc *desc,
     w = target->color.width; h = target->color.height; ch = target->color.channels;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
     if (mask) {
-        const char *m0 = SBL__PCAST(const char *, mask), *m1;
         if (mask_stride < w) return SBL_ERROR_INVALID_STRIDE;
-        m1 = m0 + SBL__CAST(size_t, h - 1) * SBL__CAST(size_t, mask_stride) + SBL__CAST(size_t, w);
-        if (sbl__overlap_bytes(m0, m1, &out_color) || sbl__overlap_bytes(m0, m1, &out_length) ||
-            sbl__overlap_bytes_eye(m0, m1, target) || sbl__overlap_bytes_eye(m0, m1, source))
+        if (sbl__mask_overlaps(mask, mask_stride, w, h, &out_color, &out_length, target, source))
             return SBL_ERROR_OVERLAP;
     }
     need = sbl_stereo_adaptive_scratch_size(w, ch);

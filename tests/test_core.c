@@ -686,6 +686,14 @@ static void test_errors(void)
     CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &h, &o), SBL_ERROR_OVERLAP);
     RESET(); o.alpha = view(&t.len[1]);                    /* two outputs */
     CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &h, &o), SBL_ERROR_OVERLAP);
+    RESET(); h.evidence = view(&t.alpha); o.alpha = view(&t.alpha); /* over a plane it reads */
+    CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &h, &o), SBL_ERROR_OVERLAP);
+    /* sbl_reproject_temporal reads (and validates) no evidence plane: an output may lie on it */
+    RESET(); h.evidence = view(&t.alpha);
+    CHECK_EQ(sbl_reproject_temporal(&d.reproject, SBL_TEMPORAL_MOTION, &f, &h, view(&t.hist[1]),
+                                    view(&t.alpha), 0, 7), SBL_OK);
+    CHECK_EQ(sbl_reproject_temporal(&d.reproject, SBL_TEMPORAL_MOTION, &f, &h, view(&t.hist[1]),
+                                    view(&t.depth), 0, 7), SBL_ERROR_OVERLAP); /* the G-buffer */
     RESET(); d.estimator = (sbl_estimator)17;
     CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &h, &o), SBL_ERROR_INVALID_PARAM);
     RESET(); d.rectify = (sbl_rectify)-1;
