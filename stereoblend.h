@@ -10051,11 +10051,6 @@ SBLDEF sbl_stereo_desc sbl_stereo_defaults(const sbl_stereo_desc *desc)
 }
 
 struct sbl__stereo_rp;
-/* A rig's correspondence: pixel (ix, iy) of the target eye (back = 0) or of the source
-   eye (back = 1), at continuous position (px, py), to its position (ox, oy) in the other
-   eye and its planar depth oz there (0 if unknown). Returns 0 if there is none. */
-typedef int (*sbl__stereo_map_fn)(const struct sbl__stereo_rp *s, int back, int ix, int iy,
-                                  double px, double py, double *ox, double *oy, double *oz);
 
 typedef struct sbl__stereo_rp {
     sbl_stereo_desc d;
@@ -10063,7 +10058,6 @@ typedef struct sbl__stereo_rp {
     const sbl_eye *target, *source;
     sbl__tap_src src;
     sbl__target_geo geo;
-    sbl__stereo_map_fn map;
     sbl__flat depth[2], disparity[2];  /* [0] target, [1] source                      */
     double dir[2];            /* -1 for the left eye, +1 for the right: other = p + dir d */
     float fb;                 /* parallel: focal_px * baseline                          */
@@ -10217,16 +10211,14 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
     s->fb = s->d.focal_px * s->d.baseline;
     s->offset = SBL__CAST(double, s->d.disparity_offset);
     s->tiles = 1;
-    switch (s->d.rig) {
-    case SBL_RIG_PARALLEL: s->map = sbl__stereo_map_parallel; break;
-    case SBL_RIG_DISPARITY: s->map = sbl__stereo_map_disparity; break;
+    switch (s->d.rig) { /* (the maps: sbl__stereo_map) */
+    case SBL_RIG_PARALLEL:
+    case SBL_RIG_DISPARITY: break;
     case SBL_RIG_PINHOLE:
-        s->map = sbl__stereo_map_cameras;
         if (!sbl__pinhole_rig_maps(s, &s->d.pinhole, w, h)) return SBL_ERROR_INVALID_PARAM;
         break;
     case SBL_RIG_MATRICES:
     case SBL_RIG_COUNT:
-        s->map = sbl__stereo_map_cameras;
         if (!sbl__cam_map_init(&s->to_source, target->camera, w, h, source->camera, w, h) ||
             !sbl__cam_map_init(&s->to_target, source->camera, w, h, target->camera, w, h))
             return SBL_ERROR_INVALID_PARAM;
@@ -10237,6 +10229,21 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
 
 /* The other eye's colour at target pixel (x, y) after tap tests and back-check;
    returns its N (0: no valid correspondence). */
+/* A rig's correspondence: pixel (ix, iy) of the target eye (back = 0) or of the source
+   eye (back = 1), at continuous position (px, py), to its position (ox, oy) in the other
+   eye and its planar depth oz there (0 if unknown). Returns 0 if there is none. The rig
+   is the call's, so the branch is decided once per call in effect (no pointer call per
+   pixel, issue 9). */
+SBL__INLINE int sbl__stereo_map(const sbl__stereo_rp *s, int back, int ix, int iy, double px,
+                                double py, double *ox, double *oy, double *oz)
+{
+    switch (s->d.rig) {
+    case SBL_RIG_PARALLEL: return sbl__stereo_map_parallel(s, back, ix, iy, px, py, ox, oy, oz);
+    case SBL_RIG_DISPARITY: return sbl__stereo_map_disparity(s, back, ix, iy, px, py, ox, oy, oz);
+    default: return sbl__stereo_map_cameras(s, back, ix, iy, px, py, ox, oy, oz);
+    }
+}
+
 static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 {
     const sbl__stereo_rp *s = SBL__CAST(const sbl__stereo_rp *, ctx);
@@ -10246,7 +10253,7 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
     sbl__tap_want want;
     int ix, iy;
     if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) return 0.0f;
-    if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) return 0.0f;
+    if (!sbl__stereo_map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) return 0.0f;
     /* the match must lie inside the source image: outside it, the bilinear
        renormalisation and the 3x3 fallback would replicate the edge pixels */
     if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh)))
@@ -10260,7 +10267,7 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
     if (s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK) return n;
     ix = SBL__CAST(int, floor(sx));
     iy = SBL__CAST(int, floor(sy));
-    if (!s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)) return 0.0f;
+    if (!sbl__stereo_map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)) return 0.0f;
     {
         double ex = bx - (x + 0.5), ey = by - (y + 0.5);
         double tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
@@ -10342,17 +10349,6 @@ static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int 
             if (!(((ok >> l) & 1) && zf[l] != 0.0f && ex * ex + ey * ey <= tol * tol))
                 sbl__ring_put(r, x, 0.0f, NULL, ch);
         }
-    }
-}
-
-/* The rig's map called directly (no pointer): s->map's function. */
-SBL__INLINE int sbl__stereo_map(const sbl__stereo_rp *s, int back, int ix, int iy, double px,
-                                double py, double *ox, double *oy, double *oz)
-{
-    switch (s->d.rig) {
-    case SBL_RIG_PARALLEL: return sbl__stereo_map_parallel(s, back, ix, iy, px, py, ox, oy, oz);
-    case SBL_RIG_DISPARITY: return sbl__stereo_map_disparity(s, back, ix, iy, px, py, ox, oy, oz);
-    default: return sbl__stereo_map_cameras(s, back, ix, iy, px, py, ox, oy, oz);
     }
 }
 
@@ -11523,10 +11519,10 @@ static double sbl__sample_roundtrip(const sbl__stereo_rp *s, int w, int h, long 
             float z;
             sbl__tap_want want;
             if (!sbl__tap_want_init(&want, &s->geo, x, y, &z)) continue;
-            if (!s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
+            if (!sbl__stereo_map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)) continue;
             if (!(sx >= 0.0 && sx < SBL__CAST(double, w) && sy >= 0.0 && sy < SBL__CAST(double, h)))
                 continue;
-            if (!s->map(s, 1, SBL__CAST(int, floor(sx)), SBL__CAST(int, floor(sy)), sx, sy, &bx,
+            if (!sbl__stereo_map(s, 1, SBL__CAST(int, floor(sx)), SBL__CAST(int, floor(sy)), sx, sy, &bx,
                         &by, &bz))
                 continue;
             ex = bx - (x + 0.5);
@@ -12261,9 +12257,9 @@ static unsigned char sbl__adaptive_class_nearest(const sbl__stereo_rp *s, const 
     const float *other;
     int ix, iy, k;
     /* the parallel rig called directly, so that it inlines */
-    const int parallel = s->map == sbl__stereo_map_parallel;
+    const int parallel = s->d.rig == SBL_RIG_PARALLEL;
     if (!(parallel ? sbl__stereo_map_parallel(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)
-                   : s->map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)))
+                   : sbl__stereo_map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz)))
         return SBL_NO_CORRESPONDENCE;
     if (!(sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh)))
         return SBL_NO_CORRESPONDENCE;
@@ -12275,7 +12271,7 @@ static unsigned char sbl__adaptive_class_nearest(const sbl__stereo_rp *s, const 
     if (!(s->d.reproject.disabled_tests & SBL_TEST_BACK_CHECK)) {
         double ex, ey, tol = SBL__CAST(double, s->d.reproject.back_check_pixels);
         if (!(parallel ? sbl__stereo_map_parallel(s, 1, ix, iy, sx, sy, &bx, &by, &bz)
-                       : s->map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)))
+                       : sbl__stereo_map(s, 1, ix, iy, sx, sy, &bx, &by, &bz)))
             return SBL_NO_CORRESPONDENCE;
         ex = bx - (x + 0.5);
         ey = by - (y + 0.5);
