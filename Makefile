@@ -146,6 +146,8 @@ $(BUILD)/ipp-avx2: bench/ipp.c stereoblend.h
 	$(CC) -std=c99 -Wall -Wextra -O2 -g -mavx2 -mfma $< -o $@ $(LDLIBS)
 bench-ipp: $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2
 	@sh bench/ipp.sh $(BUILD)/ipp-sse2 $(BUILD)/ipp-avx2 -- $(IPP_CASES)
+# where they go, by header function (inlined code charged to its function):
+#   python3 bench/ipp_breakdown.py build/ipp-avx2 easy sbl_temporal_filter
 
 # hardware gathers against per-lane loads + transpose on this CPU (why the lane paths
 # load scattered taps lane by lane); x86-64 only, AVX2 and AVX-512 by runtime check

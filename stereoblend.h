@@ -10443,7 +10443,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
            (the span's start, the vector width); until session 27 the whole vector was
            far or not, so a pixel next to near geometry could come out either way. */
         far = sbl__mand(sbl__mand(keep, sbl__gt(sbl__set1(SBL__FAR_PX), sbl__abs(m))), sbl__gt(sbl__abs(m), zero));
-        far_bits = (SBL_SHORTCUTS & 16) && s->tiles ? sbl__mbits(far) : 0;
+        far_bits = (SBL_SHORTCUTS & 16) != 0 && s->tiles ? sbl__mbits(far) : 0;
         if (!far_bits) far = sbl__gt(zero, zero);
         bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, sbl__sel(far, zero, m), zero, 1);
         for (l = 0; l < SBL__VW; l += SBL__DW) {
@@ -10475,7 +10475,7 @@ static void sbl__stereo_plan_one(const void *ctx, sbl__block *b, int i)
     want.depth = SBL__CAST(float, sz);
     b->psx[i] = sx;
     b->psy[i] = sy;
-    if (b->mode == 1 && (SBL_SHORTCUTS & 16) && s->tiles) {
+    if ((SBL_SHORTCUTS & 16) != 0 && b->mode == 1 && s->tiles) {
         /* a far lane as sbl__stereo_plan_vec decides it (the same float f b / z), so that
            an entry gets the same result here as in a vector: the taps at the pixel
            itself, the back-check from the exact position */
