@@ -524,6 +524,7 @@ static void test_stereo_row_gather(void)
         sd.reproject.no_fallback = it % 5 == 1;
         e = it & 1;
         CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+        rp.tiles = 0; /* (the far tiles, opt-in and within a bound: test_tiles) */
         CHECK(sbl__row_gather_ok(&rp.src));
         BIND_RING_ROWS(ra, rb, planes, unsafe);
         for (y = 0; y < h; ++y)
@@ -614,6 +615,7 @@ static void test_stereo_parallel_fused(void)
         sd.reproject.no_fallback = it % 5 == 2;
         e = (it >> 1) & 1;
         CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+        rp.tiles = 0; /* (the far tiles, opt-in and within a bound: test_tiles) */
         CHECK(sbl__row_gather_ok(&rp.src));
         BIND_RING_ROWS(ra, rb, planes, unsafe);
         rc = ra; /* (the third set of planes: the vectors tried one at a time) */
@@ -1600,6 +1602,7 @@ static void test_row_gather_normals(void)
             if (it % 4 == 3) sd.reproject.disabled_tests |= SBL_TEST_BACK_CHECK;
             e = (it / 2) & 1;
             CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+            rp.tiles = 0; /* (the far tiles, opt-in and within a bound: test_tiles) */
             CHECK(sbl__row_gather_ok(&rp.src));
             for (y = 0; y < h; ++y)
                 compare_stereo_with_pixel_gather(&rp, &ra, &rb, y, w, ch, contracts, "stereo normals / ids", it,
@@ -1824,6 +1827,7 @@ static void test_camera_plans_normals(void)
             if (it % 8 == 7) sd.reproject.disabled_tests |= SBL_TEST_BACK_CHECK;
             e = (it / 2) & 1;
             CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+            rp.tiles = 0; /* (the far tiles, opt-in and within a bound: test_tiles) */
             CHECK(sbl__row_gather_ok(&rp.src));
             for (y = 0; y < h; ++y) {
                 sbl__block b;
