@@ -5195,6 +5195,15 @@ SBL__INLINE int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
            (!s->geo.depth.p || s->geo.depth.step == 1);
 }
 
+/* The same for motion vectors in UV or NDC units (sbl__temporal_plan_lanes_scaled): any
+   finite scale */
+SBL__INLINE int sbl__temporal_plan_scaled_ok(const sbl__temporal_rp *s, int y)
+{
+    const int w = s->src.width, h = s->src.height;
+    return s->source == SBL_TEMPORAL_MOTION && w <= 32768 && h <= 32768 && sbl__geo_nid_lanes_ok(&s->geo) &&
+           y >= 1 && y + 1 < h && s->motion.step == 2 && (!s->geo.depth.p || s->geo.depth.step == 1);
+}
+
 /* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 (in [0, w)) of
    an interior row (rows y - 1 and y + 1 exist), when the target has depth (its normals
    and ids: sbl__lanes_want_nid):
@@ -5364,55 +5373,19 @@ SBL__INLINE sbl__m sbl__motion_exact(sbl__v m)
 #endif
 }
 
-/* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
-   (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
-   results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
-   exact in double, so the reference's floor and fraction are floor(m) and the
-   correctly rounded m - floor(m), and its bounds tests are exact float comparisons of
-   m. Lanes with any other m are left to the scalar plan (returned as bits). flat (a
-   constant where inlined): my is +0 in every lane, as on a parallel rig's rows. */
-SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i, int x, int y,
-                                sbl__m keep, sbl__v z, sbl__v slack, sbl__v mx, sbl__v my, int flat)
+/* The plan's stores for VW entries from entry i (pixels x .. x + VW - 1), shared by the
+   lane plans: lanes `fast` (bits_fast) get fractions fx, fy, the expected depth z and its
+   slack, first taps at (x0f, y0f) (fmx = x0f - x - l, the taps' integer offset); lanes
+   bits_redo go to the pixel gather; the others reset. */
+SBL__INLINE void sbl__plan_lanes_store(const sbl__tap_src *src, sbl__tap_plan *p, int i, int x, sbl__m fast,
+                                       int bits_fast, int bits_redo, sbl__v fx, sbl__v fy, sbl__v fmx,
+                                       sbl__v x0f, sbl__v y0f, sbl__v z, sbl__v slack, int flat)
 {
-    static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), half = sbl__set1(0.5f);
-    const sbl__v wf = sbl__set1(SBL__CAST(float, src->width)), hf = sbl__set1(SBL__CAST(float, src->height));
-    const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane)), yf = sbl__set1(SBL__CAST(float, y));
-    sbl__v fmx, fmy, x0f, y0f;
-    sbl__m exact, fast;
-    int l, bits_scalar, bits_fast, bits_redo;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     float x0s[SBL__VW + 4], y0s[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
-    int uniform;
-    /* flat: my is +0 in every lane (the parallel rig): exact, floor 0, y0 = y, fy = 0 */
-    exact = flat ? sbl__motion_exact(mx) : sbl__mand(sbl__motion_exact(mx), sbl__motion_exact(my));
-    bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
-    keep = sbl__mand(keep, exact);
-    fmx = sbl__floor(mx);
-    fmy = flat ? zero : sbl__floor(my);
-    x0f = sbl__add(xf, fmx);
-    y0f = flat ? yf : sbl__add(yf, fmy);
-    /* the four taps inside the image, else the pixel gather decides */
-    fast = sbl__mand(sbl__le(zero, x0f), sbl__le(x0f, sbl__set1(SBL__CAST(float, src->width - 2))));
-    if (!flat)
-        fast = sbl__mand(fast, sbl__mand(sbl__le(zero, y0f), sbl__le(y0f, sbl__set1(SBL__CAST(float, src->height - 2)))));
-    else if (!(y >= 0 && y + 2 <= src->height))
-        fast = sbl__gt(zero, zero);
-    fast = sbl__mand(fast, keep);
-    /* the others kept: the pixel gather where the position is inside the image, else a
-       reset (four taps inside imply the position inside: only those need the test);
-       x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
-    bits_fast = sbl__mbits(fast);
-    bits_redo = sbl__mbits(sbl__mandnot(keep, fast));
-    if (bits_redo) {
-        sbl__m inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
-                                  sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
-        inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
-                                             sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
-        bits_redo &= sbl__mbits(inside);
-    }
-    /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
-    sbl__store(p->fx + i, sbl__sel(fast, sbl__add(sbl__sub(mx, fmx), zero), zero));
-    sbl__store(p->fy + i, flat ? zero : sbl__sel(fast, sbl__add(sbl__sub(my, fmy), zero), zero));
+    int l, uniform;
+    sbl__store(p->fx + i, sbl__sel(fast, fx, zero));
+    sbl__store(p->fy + i, flat ? zero : sbl__sel(fast, fy, zero));
     sbl__store(p->depth + i, sbl__sel(fast, z, one));
     sbl__store(p->slack + i, sbl__sel(fast, slack, zero));
     sbl__store(p->fast + i, sbl__sel(fast, one, zero));
@@ -5444,13 +5417,62 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
         sbl__plan_index_run(p->li + i, cx, cy, src->length.p ? &src->length : NULL, p->lane_step[2]);
         if (src->use_normal) sbl__plan_index_run(p->ni + i, cx, cy, &src->normals, p->lane_step[3]);
         if (src->use_id) sbl__plan_index_run(p->ii + i, cx, cy, &src->ids, p->lane_step[4]);
-        return bits_scalar;
+        return;
     }
     if (src->use_normal || src->use_id) sbl__plan_index_nid(src, p, i, x0s, y0s);
     p->uniform[i] = 2; /* lanes apart: not contiguous, no need to test (sbl__row_taps_ch) */
     sbl__plan_index(p->ci + i, x0s, y0s, &src->color);
     sbl__plan_index(p->di + i, x0s, y0s, src->use_depth ? &src->depth : NULL);
     sbl__plan_index(p->li + i, x0s, y0s, src->length.p ? &src->length : NULL);
+}
+
+/* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
+   (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
+   results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
+   exact in double, so the reference's floor and fraction are floor(m) and the
+   correctly rounded m - floor(m), and its bounds tests are exact float comparisons of
+   m. Lanes with any other m are left to the scalar plan (returned as bits). flat (a
+   constant where inlined): my is +0 in every lane, as on a parallel rig's rows. */
+SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i, int x, int y,
+                                sbl__m keep, sbl__v z, sbl__v slack, sbl__v mx, sbl__v my, int flat)
+{
+    static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f);
+    const sbl__v wf = sbl__set1(SBL__CAST(float, src->width)), hf = sbl__set1(SBL__CAST(float, src->height));
+    const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane)), yf = sbl__set1(SBL__CAST(float, y));
+    sbl__v fmx, fmy, x0f, y0f;
+    sbl__m exact, fast;
+    int bits_scalar, bits_fast, bits_redo;
+    /* flat: my is +0 in every lane (the parallel rig): exact, floor 0, y0 = y, fy = 0 */
+    exact = flat ? sbl__motion_exact(mx) : sbl__mand(sbl__motion_exact(mx), sbl__motion_exact(my));
+    bits_scalar = sbl__mbits(sbl__mandnot(keep, exact));
+    keep = sbl__mand(keep, exact);
+    fmx = sbl__floor(mx);
+    fmy = flat ? zero : sbl__floor(my);
+    x0f = sbl__add(xf, fmx);
+    y0f = flat ? yf : sbl__add(yf, fmy);
+    /* the four taps inside the image, else the pixel gather decides */
+    fast = sbl__mand(sbl__le(zero, x0f), sbl__le(x0f, sbl__set1(SBL__CAST(float, src->width - 2))));
+    if (!flat)
+        fast = sbl__mand(fast, sbl__mand(sbl__le(zero, y0f), sbl__le(y0f, sbl__set1(SBL__CAST(float, src->height - 2)))));
+    else if (!(y >= 0 && y + 2 <= src->height))
+        fast = sbl__gt(zero, zero);
+    fast = sbl__mand(fast, keep);
+    /* the others kept: the pixel gather where the position is inside the image, else a
+       reset (four taps inside imply the position inside: only those need the test);
+       x + 0.5 + m in [0, w): m >= -(x + 0.5) and m < w - x - 0.5, both sides exact */
+    bits_fast = sbl__mbits(fast);
+    bits_redo = sbl__mbits(sbl__mandnot(keep, fast));
+    if (bits_redo) {
+        sbl__m inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), mx),
+                                  sbl__gt(sbl__sub(sbl__sub(wf, xf), half), mx));
+        inside = sbl__mand(inside, sbl__mand(sbl__le(sbl__sub(zero, sbl__add(yf, half)), my),
+                                             sbl__gt(sbl__sub(sbl__sub(hf, yf), half), my)));
+        bits_redo &= sbl__mbits(inside);
+    }
+    /* + 0 turns a -0 fraction (from m = -0) into the reference's +0 */
+    sbl__plan_lanes_store(src, p, i, x, fast, bits_fast, bits_redo, sbl__add(sbl__sub(mx, fmx), zero),
+                          flat ? zero : sbl__add(sbl__sub(my, fmy), zero), fmx, x0f, y0f, z, slack, flat);
     return bits_scalar;
 }
 
@@ -5474,6 +5496,61 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
     if (s->motion_ky < 0.0) my = sbl__sub(zero, my);
     /* motion carries no depth change: the expected depth is z (sz = z) */
     return sbl__plan_lanes(&s->src, p, i, x, y, keep, z, slack, mx, my, 0);
+}
+
+/* sbl__temporal_rp_pos and sbl__tap_plan_set for motion vectors in UV or NDC units (|k|
+   not 1, where x + 0.5 + k m is not exact in float and sbl__plan_lanes does not apply):
+   each lane's position with the reference's double operations (x + 0.5 + k m, less 0.5,
+   its floor, the fraction rounded to float once), then the lane plan's stores. The same
+   decisions as the reference: a non-finite vector or a position outside the image
+   resets, taps outside it go to the pixel gather. */
+SBL__NOINLINE int sbl__temporal_plan_lanes_scaled(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
+                                                  int x, int y, int sky)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const float *mvp = SBL__AT(s->motion, x, y);
+    const double kx = s->motion_kx, ky = s->motion_ky;
+    const double wd = SBL__CAST(double, s->src.width), hd = SBL__CAST(double, s->src.height);
+    const int w = s->src.width, h = s->src.height;
+    float fxs[SBL__VW], fys[SBL__VW], x0s[SBL__VW], y0s[SBL__VW], fms[SBL__VW], fast_s[SBL__VW];
+    sbl__v z = zero, slack = zero;
+    sbl__m keep = sky ? sbl__gt(one, zero)
+                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
+                                        : sbl__gt(one, zero));
+    sbl__m fast;
+    int l, bits_keep, bits_fast = 0, bits_redo = 0;
+    if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
+    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, keep);
+    bits_keep = sbl__mbits(keep);
+    for (l = 0; l < SBL__VW; ++l) {
+        const float mx = mvp[2 * l], my = mvp[2 * l + 1];
+        double sx, sy, bx, by;
+        int x0, y0;
+        fxs[l] = fys[l] = x0s[l] = y0s[l] = fms[l] = fast_s[l] = 0.0f;
+        if (!((bits_keep >> l) & 1) || !sbl__finite(mx) || !sbl__finite(my)) continue;
+        sx = (x + l) + 0.5 + kx * SBL__CAST(double, mx);
+        sy = y + 0.5 + ky * SBL__CAST(double, my);
+        if (!(sx >= 0.0 && sx < wd && sy >= 0.0 && sy < hd)) continue; /* a reset */
+        bx = sx - 0.5;
+        by = sy - 0.5;
+        x0 = SBL__CAST(int, floor(bx));
+        y0 = SBL__CAST(int, floor(by));
+        if (!(x0 >= 0 && y0 >= 0 && x0 + 1 < w && y0 + 1 < h)) {
+            bits_redo |= 1 << l;
+            continue;
+        }
+        bits_fast |= 1 << l;
+        fast_s[l] = 1.0f;
+        fxs[l] = SBL__CAST(float, bx - x0);
+        fys[l] = SBL__CAST(float, by - y0);
+        x0s[l] = SBL__CAST(float, x0);
+        y0s[l] = SBL__CAST(float, y0);
+        fms[l] = SBL__CAST(float, x0 - (x + l));
+    }
+    fast = sbl__gt(sbl__load(fast_s), zero);
+    sbl__plan_lanes_store(&s->src, p, i, x, fast, bits_fast, bits_redo, sbl__load(fxs), sbl__load(fys),
+                          sbl__load(fms), sbl__load(x0s), sbl__load(y0s), z, slack, 0);
+    return 0;
 }
 
 /* ---- tile classification -----------------------------------------------------
@@ -6005,14 +6082,17 @@ SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan
 }
 
 /* The temporal row gather's hooks (sbl__row_gather_blocks). Lane modes: 1 motion
-   vectors, 2 the camera; bit 4: the row's tiles may take the shortcuts. */
+   vectors in pixels, 2 the camera, 3 motion vectors in UV / NDC units; bit 0 of the row
+   state: the row's tiles may take the shortcuts. */
 SBL__INLINE int sbl__temporal_block_start_in(const void *ctx, sbl__ring_row *r, sbl__block *b,
                                              int ev)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
     if (b->row_state < 0) /* once per row: the tiles allowed (bit 0), the lane mode */
         b->row_state = sbl__temporal_tiles_ok(s) |
-                       (sbl__temporal_plan_lanes_ok(s, b->y) ? 2 : (sbl__camera_plan_lanes_ok(s, b->y) ? 4 : 0));
+                       (sbl__temporal_plan_lanes_ok(s, b->y)
+                            ? 2
+                            : (sbl__camera_plan_lanes_ok(s, b->y) ? 4 : (sbl__temporal_plan_scaled_ok(s, b->y) ? 6 : 0)));
     if (b->row_state & 1) {
         int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
         if (kind && !(SBL_SHORTCUTS & (1 << (kind - 1)))) kind = SBL__TILE_GENERAL;
@@ -6056,6 +6136,8 @@ SBL__INLINE int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
         sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
         return 0;
     }
+    if (b->mode == 3) /* (out of line: the pixel-unit plan below keeps its registers) */
+        return sbl__temporal_plan_lanes_scaled(s, &b->p, i, x, b->y, b->sky);
     if (b->uni && i >= b->u_lo && i + SBL__VW <= b->u_hi)
         return b->sky ? sbl__temporal_plan_uni(s, b, i, x, 1) : sbl__temporal_plan_uni(s, b, i, x, 0);
     return b->sky ? sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 1)
