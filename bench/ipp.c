@@ -13,6 +13,8 @@
      slant   the easy case on a surface turned about the vertical axis (depth also
              rising along each row, as most surfaces in a render: no two vectors of a
              row hold the same depth bits, unlike the ramp of the other cases)
+     uv      the easy case with its motion vectors in UV units (fractions of the width
+             and height, as Unity gives them): the plan's positions in double lanes
      two-eyes the easy case with the stereo blend of both eyes (each eye's temporal
              output blended with the other's, as bench/perf.c's stereo pipeline runs it;
              ipp.sh divides the blend's count by 2 calls)
@@ -112,6 +114,10 @@ static void fill_eye(eye_bufs *b, int eye, int kind, int tex)
                 b->hist[i * 3 + c] += 0.1f + texture((float)x - b->motion[i * 2], (float)y - b->motion[i * 2 + 1], c);
             }
         if (kind == 2 && x == (y * 37) % W) b->color[i * 3 + (y % 3)] = 1e-14f;
+        if (kind == 6) { /* the same motion in UV units (fractions of the width / height) */
+            b->motion[i * 2] /= (float)W;
+            b->motion[i * 2 + 1] /= (float)H;
+        }
         /* a gently curved surface (every tap within the normal threshold), two objects */
         b->normal[i * 3] = b->prev_normal[i * 3] = 0.2f * sinf(x * 0.01f);
         b->normal[i * 3 + 1] = b->prev_normal[i * 3 + 1] = 0.1f * cosf(y * 0.02f);
@@ -139,7 +145,7 @@ static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
 
 int main(int argc, char **argv)
 {
-    static const char *names[6] = {"easy", "hard", "tiny", "static", "normals", "slant"};
+    static const char *names[7] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv"};
     int kind = 0, ev = 0, two = 0, e, i;
     eye_bufs b[2];
     size_t bytes = sbl_temporal_scratch_size(W, 3);
@@ -150,12 +156,12 @@ int main(int argc, char **argv)
         size_t len = strlen(argv[1]);
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
         kind = -1;
-        for (i = 0; i < 6; ++i)
+        for (i = 0; i < 7; ++i)
             if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
                 strlen(names[i]) == (ev ? len - 3 : len))
                 kind = i;
         if (kind < 0) { /* a name not measured must not pass as the easy case */
-            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant, "
+            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv, "
                             "each also with -ev; two-eyes)\n", argv[1]);
             free(scratch);
             return 2;
@@ -190,6 +196,7 @@ int main(int argc, char **argv)
         /* IPP_SHARED_BIAS=c: the temporal filter as the combined pipeline runs it
            (stereo_shared_bias c; 1 in sbl_stereo_temporal_frame and default-stereo) */
         if (getenv("IPP_SHARED_BIAS")) td.stereo_shared_bias = (float)atof(getenv("IPP_SHARED_BIAS"));
+        if (kind == 6) td.reproject.motion.units = SBL_MOTION_UV;
         if (temporal_fn(&td, &f, &hi, &o, 0, H, scratch, bytes) != SBL_OK) return 1;
     }
     for (e = 0; e < (two ? 2 : 1); ++e) {
