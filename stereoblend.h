@@ -5499,7 +5499,8 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
 }
 
 /* sbl__temporal_rp_pos and sbl__tap_plan_set for motion vectors in UV or NDC units (|k|
-   not 1, where x + 0.5 + k m is not exact in float and sbl__plan_lanes does not apply):
+   not 1, where x + 0.5 + k m is not exact in float and sbl__plan_lanes does not apply),
+   and for the vectors of pixel units sbl__plan_lanes leaves (0 < |m| < 2^-8):
    each lane's position with the reference's double operations (x + 0.5 + k m, less 0.5,
    its floor, the fraction rounded to float once), then the lane plan's stores. The same
    decisions as the reference: a non-finite vector or a position outside the image
@@ -6140,8 +6141,16 @@ SBL__INLINE int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
         return sbl__temporal_plan_lanes_scaled(s, &b->p, i, x, b->y, b->sky);
     if (b->uni && i >= b->u_lo && i + SBL__VW <= b->u_hi)
         return b->sky ? sbl__temporal_plan_uni(s, b, i, x, 1) : sbl__temporal_plan_uni(s, b, i, x, 0);
-    return b->sky ? sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 1)
-                  : sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 0);
+    {
+        const int bits = b->sky ? sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 1)
+                                : sbl__temporal_plan_lanes(s, &b->p, i, x, b->y, 0);
+        /* lanes whose motion the float plan cannot take exactly (0 < |m| < 2^-8: motion
+           that is nearly 0, e.g. static geometry with a rounding residue): where two or
+           more, the whole vector again with the positions in double lanes (the same
+           values as the scalar plan's, and as the float plan's on its other lanes); a
+           lone one (random motion) goes to the scalar plan, which costs less there */
+        return (bits & (bits - 1)) ? sbl__temporal_plan_lanes_scaled(s, &b->p, i, x, b->y, b->sky) : bits;
+    }
 }
 
 SBL__INLINE void sbl__temporal_plan_one(const void *ctx, sbl__block *b, int i)
