@@ -5186,23 +5186,20 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
    float), target normals and ids read in lanes (sbl__lanes_want_nid), and an
    interior row (the depth slack reads both neighbours); motion and target depth packed
    (pixel steps 2 and 1). */
-SBL__INLINE int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
-{
-    const int w = s->src.width, h = s->src.height;
-    return s->source == SBL_TEMPORAL_MOTION && fabs(s->motion_kx) == 1.0 &&
-           fabs(s->motion_ky) == 1.0 && w <= 32768 && h <= 32768 && sbl__geo_nid_lanes_ok(&s->geo) &&
-           y >= 1 && y + 1 < h && s->motion.step == 2 &&
-           (!s->geo.depth.p || s->geo.depth.step == 1);
-}
-
-/* The same for motion vectors in UV or NDC units (sbl__temporal_plan_lanes_scaled): any
-   finite scale */
+/* Can the lane plans take row y of this call at all (sbl__temporal_plan_lanes_scaled, any
+   finite scale of the motion vectors: UV, NDC)? */
 SBL__INLINE int sbl__temporal_plan_scaled_ok(const sbl__temporal_rp *s, int y)
 {
     const int w = s->src.width, h = s->src.height;
     return s->source == SBL_TEMPORAL_MOTION && w <= 32768 && h <= 32768 && sbl__geo_nid_lanes_ok(&s->geo) &&
            y >= 1 && y + 1 < h && s->motion.step == 2 && (!s->geo.depth.p || s->geo.depth.step == 1);
 }
+
+SBL__INLINE int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
+{
+    return fabs(s->motion_kx) == 1.0 && fabs(s->motion_ky) == 1.0 && sbl__temporal_plan_scaled_ok(s, y);
+}
+
 
 /* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 (in [0, w)) of
    an interior row (rows y - 1 and y + 1 exist), when the target has depth (its normals
@@ -5476,19 +5473,32 @@ SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i
     return bits_scalar;
 }
 
+/* The target side of sbl__temporal_rp_pos for the VW pixels x .. x + VW - 1 of row y, for
+   the temporal lane plans: the lanes with valid geometry (and normal / id data), their
+   depth z and its slack; a sky tile: z = +inf, which is valid geometry with slack 0
+   (sbl__lanes_want). */
+SBL__INLINE sbl__m sbl__temporal_want_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i, int x, int y,
+                                           int sky, sbl__v *z, sbl__v *slack)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    sbl__m keep;
+    *z = *slack = zero;
+    keep = sky ? sbl__gt(one, zero)
+               : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, z, slack)
+                                 : sbl__gt(one, zero));
+    if (sky) *z = sbl__set1(SBL__CAST(float, HUGE_VAL));
+    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, keep);
+    return keep;
+}
+
 /* sbl__temporal_rp_pos and sbl__tap_plan_set in lanes (motion vectors in pixels) */
 SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
                                          int x, int y, int sky)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const sbl__v zero = sbl__set1(0.0f);
     const float *mvp = SBL__AT(s->motion, x, y);
-    sbl__v z = zero, slack = zero, mx, my;
-    /* a sky tile: z = +inf, which is valid geometry with slack 0 (sbl__lanes_want) */
-    sbl__m keep = sky ? sbl__gt(one, zero)
-                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
-                                        : sbl__gt(one, zero));
-    if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
-    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, keep);
+    sbl__v z, slack, mx, my;
+    sbl__m keep = sbl__temporal_want_lanes(s, p, i, x, y, sky, &z, &slack);
     sbl__motion_packed_lanes(mvp, &mx, &my);
     /* a non-finite m is no exact one: sbl__plan_lanes hands it to the scalar plan, which
        resets it */
@@ -5508,21 +5518,16 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
 SBL__NOINLINE int sbl__temporal_plan_lanes_scaled(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
                                                   int x, int y, int sky)
 {
-    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const sbl__v zero = sbl__set1(0.0f);
     const float *mvp = SBL__AT(s->motion, x, y);
     const double kx = s->motion_kx, ky = s->motion_ky;
     const double wd = SBL__CAST(double, s->src.width), hd = SBL__CAST(double, s->src.height);
     const int w = s->src.width, h = s->src.height;
     float fxs[SBL__VW], fys[SBL__VW], x0s[SBL__VW], y0s[SBL__VW], fms[SBL__VW], fast_s[SBL__VW];
-    sbl__v z = zero, slack = zero;
-    sbl__m keep = sky ? sbl__gt(one, zero)
-                      : (s->geo.depth.p ? sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack)
-                                        : sbl__gt(one, zero));
+    sbl__v z, slack;
+    const int bits_keep = sbl__mbits(sbl__temporal_want_lanes(s, p, i, x, y, sky, &z, &slack));
     sbl__m fast;
-    int l, bits_keep, bits_fast = 0, bits_redo = 0;
-    if (sky) z = sbl__set1(SBL__CAST(float, HUGE_VAL));
-    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, keep);
-    bits_keep = sbl__mbits(keep);
+    int l, bits_fast = 0, bits_redo = 0;
     for (l = 0; l < SBL__VW; ++l) {
         const float mx = mvp[2 * l], my = mvp[2 * l + 1];
         double sx, sy, bx, by;
