@@ -3633,8 +3633,9 @@ SBL__INLINE void sbl__motion_packed_lanes(const float *mvp, sbl__v *mx, sbl__v *
    operations in its order, so every lane gets its bits, and the tap indices (y0 stride
    + x0 step, exact in double). A few operations suffice: set1, load, store, add, sub,
    mul, div; SBL__DW floats in (sbl__dfromf: from VW + 4 readable floats), SBL__DW ints
-   out (sbl__dstorei, truncating; the values are integers); min / max (x86: the second
-   operand where one is NaN) and a bit mask of a <= b. */
+   out (sbl__dstorei, truncating; the values are integers), SBL__DW floats out
+   (sbl__dstoref, rounded as a cast); floor; min / max (x86: the second operand where one
+   is NaN) and a bit mask of a <= b. */
 #if SBL__VW == 16
 #define SBL__DW 8
 typedef __m512d sbl__dv;
@@ -3650,6 +3651,8 @@ typedef __m512d sbl__dv;
 #define sbl__dmin(a, b) _mm512_min_pd(a, b)
 #define sbl__dmax(a, b) _mm512_max_pd(a, b)
 #define sbl__dle_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ))
+#define sbl__dfloor(a) _mm512_roundscale_pd(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
+#define sbl__dstoref(q, a) _mm256_storeu_ps(q, _mm512_cvtpd_ps(a))
 #elif SBL__VW == 8
 #define SBL__DW 4
 typedef __m256d sbl__dv;
@@ -3665,6 +3668,8 @@ typedef __m256d sbl__dv;
 #define sbl__dmin(a, b) _mm256_min_pd(a, b)
 #define sbl__dmax(a, b) _mm256_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LE_OQ))
+#define sbl__dfloor(a) _mm256_floor_pd(a)
+#define sbl__dstoref(q, a) _mm_storeu_ps(q, _mm256_cvtpd_ps(a))
 #else
 #define SBL__DW 2
 typedef __m128d sbl__dv;
@@ -3680,6 +3685,14 @@ typedef __m128d sbl__dv;
 #define sbl__dmin(a, b) _mm_min_pd(a, b)
 #define sbl__dmax(a, b) _mm_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm_movemask_pd(_mm_cmple_pd(a, b))
+/* (SSE2 has no floor: truncate, then one less where that rounded up; exact for |a| <
+   2^31, the only values it is given) */
+SBL__INLINE __m128d sbl__dfloor(__m128d a)
+{
+    const __m128d t = _mm_cvtepi32_pd(_mm_cvttpd_epi32(a));
+    return _mm_sub_pd(t, _mm_and_pd(_mm_cmpgt_pd(t, a), _mm_set1_pd(1.0)));
+}
+#define sbl__dstoref(q, a) _mm_storel_pi(SBL__PCAST(__m64 *, q), _mm_cvtpd_ps(a))
 #endif
 
 /* sbl__gather_fallback_ch for the source's channel count (the row gather's fallback-only
@@ -5423,6 +5436,51 @@ SBL__INLINE void sbl__plan_lanes_store(const sbl__tap_src *src, sbl__tap_plan *p
     sbl__plan_index(p->li + i, x0s, y0s, src->length.p ? &src->length : NULL);
 }
 
+/* sbl__tap_plan_set for the VW entries from entry i (pixels x .. x + VW - 1) at source
+   positions (sx[l], sy[l]) given in double, for the plans whose positions are not exact
+   in float (UV / NDC motion, motion that is nearly 0, the cameras): lanes outside
+   bits_keep, and positions outside [0, w) x [0, h), reset (the callers' own test, as
+   the reference makes it before sbl__tap_plan_set); footprints with a tap outside the
+   image go to the pixel gather; the others are fast, with the reference's double floor
+   of sx - 0.5 and its fraction rounded to float once. In double lanes (the floor
+   exact: inside, |sx| < 2^15), then the lane plan's stores with the expected depth z
+   and its slack. Returns the lanes that are fast or redone (a position inside). */
+SBL__INLINE int sbl__plan_lanes_at(const sbl__tap_src *src, sbl__tap_plan *p, int i, int x, int bits_keep,
+                                   const double *sx, const double *sy, sbl__v z, sbl__v slack)
+{
+    static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
+    const sbl__dv dzero = sbl__dset1(0.0), half = sbl__dset1(0.5), wd = sbl__dset1(SBL__CAST(double, src->width)),
+                  hd = sbl__dset1(SBL__CAST(double, src->height)),
+                  w2 = sbl__dset1(SBL__CAST(double, src->width - 2)),
+                  h2 = sbl__dset1(SBL__CAST(double, src->height - 2));
+    const int dmask = (1 << SBL__DW) - 1;
+    float fxs[SBL__VW], fys[SBL__VW], x0s[SBL__VW], y0s[SBL__VW], fms[SBL__VW], fast_s[SBL__VW];
+    int j, l, bits_fast = 0, bits_in = 0;
+    for (j = 0; j < SBL__VW; j += SBL__DW) {
+        const sbl__dv sxv = sbl__dload(sx + j), syv = sbl__dload(sy + j);
+        const sbl__dv bx = sbl__dsub(sxv, half), by = sbl__dsub(syv, half);
+        /* 0 <= s < w: a NaN fails the first test (and so needs no second) */
+        const int in = (bits_keep >> j) & dmask & sbl__dle_bits(dzero, sxv) & sbl__dle_bits(dzero, syv) &
+                       ~sbl__dle_bits(wd, sxv) & ~sbl__dle_bits(hd, syv);
+        /* (lanes not inside are not used: their floor may be anything) */
+        const sbl__dv x0 = sbl__dfloor(bx), y0 = sbl__dfloor(by);
+        const int fast = in & sbl__dle_bits(dzero, x0) & sbl__dle_bits(dzero, y0) & sbl__dle_bits(x0, w2) &
+                         sbl__dle_bits(y0, h2);
+        sbl__dstoref(fxs + j, sbl__dsub(bx, x0));
+        sbl__dstoref(fys + j, sbl__dsub(by, y0));
+        sbl__dstoref(x0s + j, x0);
+        sbl__dstoref(y0s + j, y0);
+        sbl__dstoref(fms + j, sbl__dsub(x0, sbl__dadd(sbl__dload(lane_d), sbl__dset1(SBL__CAST(double, x + j)))));
+        bits_fast |= fast << j;
+        bits_in |= in << j;
+    }
+    for (l = 0; l < SBL__VW; ++l) fast_s[l] = SBL__CAST(float, (bits_fast >> l) & 1);
+    sbl__plan_lanes_store(src, p, i, x, sbl__gt(sbl__load(fast_s), sbl__set1(0.0f)), bits_fast,
+                          bits_in & ~bits_fast, sbl__load(fxs), sbl__load(fys), sbl__load(fms), sbl__load(x0s),
+                          sbl__load(y0s), z, slack, 0);
+    return bits_in;
+}
+
 /* sbl__tap_plan_set for the VW pixels x .. x + VW - 1 of row y at source positions
    (x + 0.5 + mx, y + 0.5 + my), where lanes `keep`, in float lanes with the same
    results: for |m| = 0 or in [2^-8, 2^15) and images up to 2^15 pixels, x + 0.5 + m is
@@ -5518,44 +5576,26 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
 SBL__NOINLINE int sbl__temporal_plan_lanes_scaled(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
                                                   int x, int y, int sky)
 {
-    const sbl__v zero = sbl__set1(0.0f);
+    static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
     const float *mvp = SBL__AT(s->motion, x, y);
-    const double kx = s->motion_kx, ky = s->motion_ky;
-    const double wd = SBL__CAST(double, s->src.width), hd = SBL__CAST(double, s->src.height);
-    const int w = s->src.width, h = s->src.height;
-    float fxs[SBL__VW], fys[SBL__VW], x0s[SBL__VW], y0s[SBL__VW], fms[SBL__VW], fast_s[SBL__VW];
-    sbl__v z, slack;
-    const int bits_keep = sbl__mbits(sbl__temporal_want_lanes(s, p, i, x, y, sky, &z, &slack));
-    sbl__m fast;
-    int l, bits_fast = 0, bits_redo = 0;
-    for (l = 0; l < SBL__VW; ++l) {
-        const float mx = mvp[2 * l], my = mvp[2 * l + 1];
-        double sx, sy, bx, by;
-        int x0, y0;
-        fxs[l] = fys[l] = x0s[l] = y0s[l] = fms[l] = fast_s[l] = 0.0f;
-        if (!((bits_keep >> l) & 1) || !sbl__finite(mx) || !sbl__finite(my)) continue;
-        sx = (x + l) + 0.5 + kx * SBL__CAST(double, mx);
-        sy = y + 0.5 + ky * SBL__CAST(double, my);
-        if (!(sx >= 0.0 && sx < wd && sy >= 0.0 && sy < hd)) continue; /* a reset */
-        bx = sx - 0.5;
-        by = sy - 0.5;
-        x0 = SBL__CAST(int, floor(bx));
-        y0 = SBL__CAST(int, floor(by));
-        if (!(x0 >= 0 && y0 >= 0 && x0 + 1 < w && y0 + 1 < h)) {
-            bits_redo |= 1 << l;
-            continue;
-        }
-        bits_fast |= 1 << l;
-        fast_s[l] = 1.0f;
-        fxs[l] = SBL__CAST(float, bx - x0);
-        fys[l] = SBL__CAST(float, by - y0);
-        x0s[l] = SBL__CAST(float, x0);
-        y0s[l] = SBL__CAST(float, y0);
-        fms[l] = SBL__CAST(float, x0 - (x + l));
+    const sbl__dv kx = sbl__dset1(s->motion_kx), ky = sbl__dset1(s->motion_ky);
+    const sbl__dv yh = sbl__dset1(y + 0.5);
+    float mxs[SBL__VW + 4], mys[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    double sx[SBL__VW], sy[SBL__VW];
+    sbl__v z, slack, mx, my;
+    sbl__m keep = sbl__temporal_want_lanes(s, p, i, x, y, sky, &z, &slack);
+    int j;
+    sbl__motion_packed_lanes(mvp, &mx, &my);
+    keep = sbl__mandnot(sbl__mandnot(keep, sbl__nonfinite(mx)), sbl__nonfinite(my)); /* a reset */
+    sbl__store(mxs, mx);
+    sbl__store(mys, my);
+    for (j = 0; j < SBL__VW; j += SBL__DW) { /* (x + l) + 0.5 + k m, as the reference */
+        sbl__dstore(sx + j, sbl__dadd(sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(SBL__CAST(double, x + j))),
+                                                sbl__dset1(0.5)),
+                                      sbl__dmul(kx, sbl__dfromf(mxs + j))));
+        sbl__dstore(sy + j, sbl__dadd(yh, sbl__dmul(ky, sbl__dfromf(mys + j))));
     }
-    fast = sbl__gt(sbl__load(fast_s), zero);
-    sbl__plan_lanes_store(&s->src, p, i, x, fast, bits_fast, bits_redo, sbl__load(fxs), sbl__load(fys),
-                          sbl__load(fms), sbl__load(x0s), sbl__load(y0s), z, slack, 0);
+    sbl__plan_lanes_at(&s->src, p, i, x, sbl__mbits(keep), sx, sy, z, slack);
     return 0;
 }
 
@@ -6061,30 +6101,24 @@ SBL__INLINE int sbl__cam_lanes(const sbl__cam_map *m, const double *px, const do
 }
 
 /* sbl__temporal_rp_pos (camera source) and sbl__tap_plan_set for the VW pixels
-   x .. x + VW - 1 of row y. */
+   x .. x + VW - 1 of row y: the map in double lanes (sbl__cam_lanes), the target's
+   normals and ids in lanes (sbl__lanes_want_nid), the plan from the positions
+   (sbl__plan_lanes_at). */
 SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
                                         int x, int y)
 {
-    const double w = SBL__CAST(double, s->frame->color.width), h = SBL__CAST(double, s->frame->color.height);
-    float zf[SBL__VW], sf[SBL__VW];
+    float zf[SBL__VW], zo[SBL__VW];
     double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
     sbl__v z, slack;
+    sbl__m want = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
     int keep, l;
-    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack));
+    if (s->geo.normals.p || s->geo.ids.p) want = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, want);
+    keep = sbl__mbits(want);
     sbl__store(zf, z);
-    sbl__store(sf, slack);
     for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
     keep &= sbl__cam_lanes(&s->cam, px, py, zf, ox, oy, oz);
-    for (l = 0; l < SBL__VW; ++l) {
-        sbl__tap_want t;
-        sbl__tap_plan_reset(p, i + l);
-        if (!((keep >> l) & 1)) continue; /* no geometry, no ray, behind */
-        if (!(ox[l] >= 0.0 && ox[l] < w && oy[l] >= 0.0 && oy[l] < h)) continue; /* outside */
-        if (!sbl__tap_want_nid(&s->geo, x + l, y, &t)) continue; /* a non-finite normal */
-        t.depth = SBL__CAST(float, oz[l]);
-        t.depth_slack = sf[l];
-        sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
-    }
+    for (l = 0; l < SBL__VW; l += SBL__DW) sbl__dstoref(zo + l, sbl__dload(oz + l)); /* the expected depth */
+    sbl__plan_lanes_at(&s->src, p, i, x, keep, ox, oy, sbl__load(zo), slack);
 }
 
 /* The temporal row gather's hooks (sbl__row_gather_blocks). Lane modes: 1 motion
@@ -10392,29 +10426,23 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
 SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p, int i, int x,
                                       int y, double *psx, double *psy)
 {
-    const double sw = SBL__CAST(double, s->source->color.width), sh = SBL__CAST(double, s->source->color.height);
-    float zf[SBL__VW], sf[SBL__VW];
+    float zf[SBL__VW], zo[SBL__VW];
     double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
     sbl__v z, slack;
-    int keep, l;
     /* sbl__tap_want_init and sbl__valid_depth agree: z > 0, or +inf */
-    keep = sbl__mbits(sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack));
+    sbl__m want = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
+    int keep, l, in;
+    if (s->geo.normals.p || s->geo.ids.p) want = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, want);
+    keep = sbl__mbits(want);
     sbl__store(zf, z);
-    sbl__store(sf, slack);
     for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
     keep &= sbl__cam_lanes(&s->to_source, px, py, zf, ox, oy, oz);
-    for (l = 0; l < SBL__VW; ++l) {
-        sbl__tap_want t;
-        sbl__tap_plan_reset(p, i + l);
-        psx[l] = psy[l] = 0.0;
-        if (!((keep >> l) & 1)) continue;
-        if (!(ox[l] >= 0.0 && ox[l] < sw && oy[l] >= 0.0 && oy[l] < sh)) continue;
-        if (!sbl__tap_want_nid(&s->geo, x + l, y, &t)) continue; /* a non-finite normal */
-        t.depth = SBL__CAST(float, oz[l]);
-        t.depth_slack = sf[l];
-        psx[l] = ox[l];
-        psy[l] = oy[l];
-        sbl__tap_plan_set(&s->src, p, i + l, &t, ox[l], oy[l]);
+    for (l = 0; l < SBL__VW; l += SBL__DW) sbl__dstoref(zo + l, sbl__dload(oz + l)); /* the expected depth */
+    in = sbl__plan_lanes_at(&s->src, p, i, x, keep, ox, oy, sbl__load(zo), slack);
+    for (l = 0; l < SBL__VW; ++l) { /* the matches' positions (0: none) */
+        const int m = (in >> l) & 1;
+        psx[l] = m ? ox[l] : 0.0;
+        psy[l] = m ? oy[l] : 0.0;
     }
 }
 
