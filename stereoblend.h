@@ -1300,6 +1300,12 @@ typedef struct sbl__cam_map {
     double world_to_other[16];/* world -> other view (objects that move)              */
     double width, height;     /* this image (for pixel -> ndc)                        */
     double other_width, other_height;
+    /* The static map folded (sbl__cam_map_fold): each term a row over (ndc x, ndc y, 1)
+       for a pixel's ray, q = clip_to_view (ndc x, ndc y, 0, 1), scaled to view depth 1:
+       the ray's q2 and q3 (its validity); the other clip's c0, c1, c3 and the other
+       view's v2, v3 from the ray's first three terms (through other_proj view_to_view
+       and view_to_view), and their columns for the point's w = 1. */
+    double ray[2][3], clip[3][3], clip_w[3], view[2][3], view_w[2];
     const sbl_object_motion *objects; /* sorted by id; NULL: everything static        */
     int object_count;
 } sbl__cam_map;
@@ -1419,6 +1425,39 @@ SBLDEF sbl_result sbl_camera_from_world_to_pixel(sbl_camera *out, const float *w
     return SBL_OK;
 }
 
+/* The folded terms of sbl__cam_map_apply: clip_to_view's rows 2 and 3, and the rows of
+   M = other_proj view_to_view (0, 1, 3) and of view_to_view (2, 3) times clip_to_view's
+   first three rows, each over (ndc x, ndc y, 1) (clip_to_view's columns 0, 1, 3; ndc z
+   is 0). */
+static void sbl__cam_map_fold(sbl__cam_map *m)
+{
+    static const int col[3] = {0, 1, 3}, clip_row[3] = {0, 1, 3};
+    const double *C = m->clip_to_view, *V = m->view_to_view;
+    double M[16];
+    int r, k, j;
+    sbl__mat_mul(M, m->other_proj, V);
+    for (k = 0; k < 3; ++k) {
+        m->ray[0][k] = C[8 + col[k]];
+        m->ray[1][k] = C[12 + col[k]];
+    }
+    for (r = 0; r < 3; ++r) {
+        for (k = 0; k < 3; ++k) {
+            double t = 0.0;
+            for (j = 0; j < 3; ++j) t += M[clip_row[r] * 4 + j] * C[j * 4 + col[k]];
+            m->clip[r][k] = t;
+        }
+        m->clip_w[r] = M[clip_row[r] * 4 + 3];
+    }
+    for (r = 0; r < 2; ++r) {
+        for (k = 0; k < 3; ++k) {
+            double t = 0.0;
+            for (j = 0; j < 3; ++j) t += V[(2 + r) * 4 + j] * C[j * 4 + col[k]];
+            m->view[r][k] = t;
+        }
+        m->view_w[r] = V[(2 + r) * 4 + 3];
+    }
+}
+
 /* From view / projection pairs in double (the other camera forms). */
 static int sbl__cam_map_init_gl(sbl__cam_map *m, const double *view, const double *proj,
                                 int w, int h, const double *other_view,
@@ -1432,6 +1471,7 @@ static int sbl__cam_map_init_gl(sbl__cam_map *m, const double *view, const doubl
     if (!sbl__mat_invert(m->view_to_world, view)) return 0;
     sbl__mat_mul(m->view_to_view, other_view, m->view_to_world);
     m->width = w; m->height = h; m->other_width = ow; m->other_height = oh;
+    sbl__cam_map_fold(m);
     return 1;
 }
 
@@ -1503,14 +1543,39 @@ static void sbl__mat_apply(double *out, const double *m, const double *p)
 }
 
 /* Pixel centre (px, py) at planar depth z (may be +inf: a direction) -> position in the
-   other image and the point's planar depth there. Returns 0 if behind the camera. */
+   other image and the point's planar depth there. Returns 0 if the ray is degenerate or
+   the point behind the other camera. The static map, folded (sbl__cam_map_fold): the
+   ray q = clip_to_view (n, 0, 1) scaled to view depth 1 is q / -q2 (valid where q2 and
+   q3 have opposite signs: -q2 / q3 > 0), and the point at depth z is z q / -q2 with w = 1
+   (a direction: q / -q2, w = 0), so each clip or view term is s r(n) + w r_w, with s =
+   z / -q2 and r(n) a row over (n, 1): the same map as sbl__cam_map_point, then
+   view_to_view, then sbl__cam_map_project, in about half the operations (the lanes:
+   sbl__cam_lanes, the same operations in the same order). */
+static double sbl__cam_row(const double *r, double n0, double n1)
+{
+    return r[0] * n0 + r[1] * n1 + r[2];
+}
+
 static int sbl__cam_map_apply(const sbl__cam_map *m, double px, double py, float z,
                               double *ox, double *oy, double *oz)
 {
-    double p[4], v[4];
-    if (!sbl__cam_map_point(m, px, py, z, p)) return 0;
-    sbl__mat_apply(v, m->view_to_view, p);
-    return sbl__cam_map_project(m, v, ox, oy, oz);
+    const double n0 = 2.0 * px / m->width - 1.0, n1 = 1.0 - 2.0 * py / m->height;
+    const double q2 = sbl__cam_row(m->ray[0], n0, n1), q3 = sbl__cam_row(m->ray[1], n0, n1);
+    const int sky = sbl__is_pos_inf(z);
+    const double w = sky ? 0.0 : 1.0;
+    double sc, c0, c1, c3, v2, v3;
+    if (!((q2 < 0.0 && q3 > 0.0) || (q2 > 0.0 && q3 < 0.0))) return 0;
+    sc = (sky ? 1.0 : SBL__CAST(double, z)) / (0.0 - q2);
+    c0 = sc * sbl__cam_row(m->clip[0], n0, n1) + m->clip_w[0] * w;
+    c1 = sc * sbl__cam_row(m->clip[1], n0, n1) + m->clip_w[1] * w;
+    c3 = sc * sbl__cam_row(m->clip[2], n0, n1) + m->clip_w[2] * w;
+    v2 = sc * sbl__cam_row(m->view[0], n0, n1) + m->view_w[0] * w;
+    v3 = sc * sbl__cam_row(m->view[1], n0, n1) + m->view_w[1] * w;
+    if (!(c3 > 0.0)) return 0;
+    *ox = (c0 / c3 + 1.0) * 0.5 * m->other_width;
+    *oy = (1.0 - c1 / c3) * 0.5 * m->other_height;
+    *oz = v3 == 0.0 ? HUGE_VAL : -v2;
+    return 1;
 }
 
 /* Solves M q = p for an object_to_world M (float, row-major) in double with partial
@@ -3635,7 +3700,7 @@ SBL__INLINE void sbl__motion_packed_lanes(const float *mvp, sbl__v *mx, sbl__v *
    mul, div; SBL__DW floats in (sbl__dfromf: from VW + 4 readable floats), SBL__DW ints
    out (sbl__dstorei, truncating; the values are integers), SBL__DW floats out
    (sbl__dstoref, rounded as a cast); floor; min / max (x86: the second operand where one
-   is NaN) and a bit mask of a <= b. */
+   is NaN) and bit masks of a <= b and a < b. */
 #if SBL__VW == 16
 #define SBL__DW 8
 typedef __m512d sbl__dv;
@@ -3651,6 +3716,7 @@ typedef __m512d sbl__dv;
 #define sbl__dmin(a, b) _mm512_min_pd(a, b)
 #define sbl__dmax(a, b) _mm512_max_pd(a, b)
 #define sbl__dle_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ))
+#define sbl__dlt_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ))
 #define sbl__dfloor(a) _mm512_roundscale_pd(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
 #define sbl__dstoref(q, a) _mm256_storeu_ps(q, _mm512_cvtpd_ps(a))
 #elif SBL__VW == 8
@@ -3668,6 +3734,7 @@ typedef __m256d sbl__dv;
 #define sbl__dmin(a, b) _mm256_min_pd(a, b)
 #define sbl__dmax(a, b) _mm256_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LE_OQ))
+#define sbl__dlt_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LT_OQ))
 #define sbl__dfloor(a) _mm256_floor_pd(a)
 #define sbl__dstoref(q, a) _mm_storeu_ps(q, _mm256_cvtpd_ps(a))
 #else
@@ -3685,6 +3752,7 @@ typedef __m128d sbl__dv;
 #define sbl__dmin(a, b) _mm_min_pd(a, b)
 #define sbl__dmax(a, b) _mm_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm_movemask_pd(_mm_cmple_pd(a, b))
+#define sbl__dlt_bits(a, b) _mm_movemask_pd(_mm_cmplt_pd(a, b))
 /* (SSE2 has no floor: truncate, then one less where that rounded up; exact for |a| <
    2^31, the only values it is given) */
 SBL__INLINE __m128d sbl__dfloor(__m128d a)
@@ -6039,64 +6107,55 @@ SBL__INLINE int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 
 /* sbl__cam_map_apply for VW positions (px[l], py[l]) at planar depths zf[l] (+inf: a
    direction): (ox, oy, oz)[l]; bit l of the result is set where the map gives a
-   position (a ray through the pixel, in front of the other camera). The sums start
-   from 0.0 and take the terms in the reference's order (C * 0.0 included: it can turn
-   a -0 into +0). */
+   position. The same operations in the same order as the reference. */
+SBL__INLINE sbl__dv sbl__cam_row_lanes(const double *r, sbl__dv n0, sbl__dv n1)
+{
+    return sbl__dadd(sbl__dadd(sbl__dmul(sbl__dset1(r[0]), n0), sbl__dmul(sbl__dset1(r[1]), n1)),
+                     sbl__dset1(r[2]));
+}
+
 SBL__INLINE int sbl__cam_lanes(const sbl__cam_map *m, const double *px, const double *py,
                                const float *zf, double *ox, double *oy, double *oz)
 {
-    const double *C = m->clip_to_view, *V = m->view_to_view, *P = m->other_proj;
     const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
                   half = sbl__dset1(0.5);
-    double zmul[SBL__VW], p3[SBL__VW], q3[SBL__VW], chk[SBL__VW], c3[SBL__VW];
-    int l, j, k, bits = 0;
-    for (l = 0; l < SBL__VW; ++l) { /* a direction for sky (+inf): p = q, p[3] = 0 */
+    double zmul[SBL__VW], wl[SBL__VW];
+    int l, j, bits = 0;
+    for (l = 0; l < SBL__VW; ++l) { /* a direction for sky (+inf): scale 1, w = 0 */
         const int sky = sbl__is_pos_inf(zf[l]);
         zmul[l] = sky ? 1.0 : SBL__CAST(double, zf[l]);
-        p3[l] = sky ? 0.0 : 1.0;
+        wl[l] = sky ? 0.0 : 1.0;
     }
     for (j = 0; j < SBL__VW; j += SBL__DW) {
         const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, sbl__dload(px + j)), sbl__dset1(m->width)), one);
         const sbl__dv n1 = sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), sbl__dset1(m->height)));
-        sbl__dv q[4], a[3], pv[4], v[4], c[4], t, zm;
-        for (k = 0; k < 4; ++k) { /* q = clip_to_view (n0, n1, 0, 1) */
-            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(C[k * 4]), n0));
-            t = sbl__dadd(t, sbl__dmul(sbl__dset1(C[k * 4 + 1]), n1));
-            t = sbl__dadd(t, sbl__dset1(C[k * 4 + 2] * 0.0));
-            q[k] = sbl__dadd(t, sbl__dset1(C[k * 4 + 3] * 1.0));
-        }
-        t = sbl__ddiv(sbl__dsub(zero, q[2]), q[3]); /* -q2 / q3 (negation exact) */
-        sbl__dstore(q3 + j, q[3]);
-        sbl__dstore(chk + j, t);
-        for (k = 0; k < 3; ++k) a[k] = sbl__ddiv(sbl__ddiv(q[k], q[3]), t);
-        zm = sbl__dload(zmul + j);
-        for (k = 0; k < 3; ++k) pv[k] = sbl__dmul(a[k], zm); /* a * 1.0 = a for sky */
-        pv[3] = sbl__dload(p3 + j);
-        for (k = 0; k < 4; ++k) {
-            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(V[k * 4]), pv[0]));
-            t = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 1]), pv[1]));
-            t = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 2]), pv[2]));
-            v[k] = sbl__dadd(t, sbl__dmul(sbl__dset1(V[k * 4 + 3]), pv[3]));
-        }
-        for (k = 0; k < 4; ++k) {
-            if (k == 2) continue; /* (unused) */
-            t = sbl__dadd(zero, sbl__dmul(sbl__dset1(P[k * 4]), v[0]));
-            t = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 1]), v[1]));
-            t = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 2]), v[2]));
-            c[k] = sbl__dadd(t, sbl__dmul(sbl__dset1(P[k * 4 + 3]), v[3]));
-        }
-        sbl__dstore(c3 + j, c[3]);
-        sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c[0], c[3]), one), half),
+        const sbl__dv q2 = sbl__cam_row_lanes(m->ray[0], n0, n1), q3 = sbl__cam_row_lanes(m->ray[1], n0, n1);
+        const sbl__dv w = sbl__dload(wl + j);
+        const sbl__dv sc = sbl__ddiv(sbl__dload(zmul + j), sbl__dsub(zero, q2));
+        const sbl__dv c0 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->clip[0], n0, n1)),
+                                     sbl__dmul(sbl__dset1(m->clip_w[0]), w));
+        const sbl__dv c1 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->clip[1], n0, n1)),
+                                     sbl__dmul(sbl__dset1(m->clip_w[1]), w));
+        const sbl__dv c3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->clip[2], n0, n1)),
+                                     sbl__dmul(sbl__dset1(m->clip_w[2]), w));
+        const sbl__dv v2 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->view[0], n0, n1)),
+                                     sbl__dmul(sbl__dset1(m->view_w[0]), w));
+        const sbl__dv v3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->view[1], n0, n1)),
+                                     sbl__dmul(sbl__dset1(m->view_w[1]), w));
+        /* (q2 < 0 and q3 > 0) or (q2 > 0 and q3 < 0), and c3 > 0 */
+        const int ok = ((sbl__dlt_bits(q2, zero) & sbl__dlt_bits(zero, q3)) |
+                        (sbl__dlt_bits(zero, q2) & sbl__dlt_bits(q3, zero))) &
+                       sbl__dlt_bits(zero, c3);
+        sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c0, c3), one), half),
                                       sbl__dset1(m->other_width)));
-        sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c[1], c[3])), half),
+        sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c1, c3)), half),
                                       sbl__dset1(m->other_height)));
-        sbl__dstore(oz + j, sbl__dsub(zero, v[2])); /* -v2 (v3 = 0: a direction, below) */
-        sbl__dstore(p3 + j, v[3]);
+        sbl__dstore(oz + j, sbl__dsub(zero, v2)); /* -v2 (v3 = 0: a direction, below) */
+        sbl__dstore(wl + j, v3);
+        bits |= ok << j;
     }
-    for (l = 0; l < SBL__VW; ++l) {
-        if (p3[l] == 0.0) oz[l] = HUGE_VAL;
-        if (!(q3[l] == 0.0 || chk[l] <= 0.0) && c3[l] > 0.0) bits |= 1 << l;
-    }
+    for (l = 0; l < SBL__VW; ++l)
+        if (wl[l] == 0.0) oz[l] = HUGE_VAL;
     return bits;
 }
 
