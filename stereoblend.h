@@ -10518,13 +10518,17 @@ static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int 
     for (b = 0; b < nback; b += SBL__VW) {
         float zf[SBL__VW];
         double px[SBL__VW], py[SBL__VW], bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
-        int ok;
+        int ix[SBL__VW], iy[SBL__VW], ok, j;
         for (l = 0; l < SBL__VW; ++l) {
             const int e = back[b + l < nback ? b + l : b]; /* past the end: a copy */
             px[l] = psx[e];
             py[l] = psy[e];
-            zf[l] = sbl__valid_depth(&s->depth[1], SBL__CAST(int, floor(psx[e])), SBL__CAST(int, floor(psy[e])));
         }
+        for (j = 0; j < SBL__VW; j += SBL__DW) { /* the nearest source pixel (in the image) */
+            sbl__dstorei(ix + j, sbl__dfloor(sbl__dload(px + j)));
+            sbl__dstorei(iy + j, sbl__dfloor(sbl__dload(py + j)));
+        }
+        for (l = 0; l < SBL__VW; ++l) zf[l] = sbl__valid_depth(&s->depth[1], ix[l], iy[l]);
         ok = sbl__cam_lanes(&s->to_target, px, py, zf, bx, by, bz);
         for (l = 0; l < SBL__VW && b + l < nback; ++l) {
             const int x = x0 + back[b + l];

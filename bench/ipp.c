@@ -15,6 +15,10 @@
              row hold the same depth bits, unlike the ramp of the other cases)
      uv      the easy case with its motion vectors in UV units (fractions of the width
              and height, as Unity gives them): the plan's positions in double lanes
+     camera  the easy content with camera matrices instead of motion vectors (a pinhole
+             camera moved ~(0.37, -0.21) px at depth 2; the temporal camera source) and a
+             two-camera stereo rig (SBL_RIG_PINHOLE, baseline 6.5 cm): the camera maps
+             and their plans in double lanes, and the rig's back-check
      two-eyes the easy case with the stereo blend of both eyes (each eye's temporal
              output blended with the other's, as bench/perf.c's stereo pipeline runs it;
              ipp.sh divides the blend's count by 2 calls)
@@ -145,8 +149,10 @@ static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
 
 int main(int argc, char **argv)
 {
-    static const char *names[7] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv"};
+    static const char *names[8] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv", "camera"};
     int kind = 0, ev = 0, two = 0, e, i;
+    sbl_camera cam[2]; /* case camera: the history's and the frame's */
+    sbl_intrinsics kin;
     eye_bufs b[2];
     size_t bytes = sbl_temporal_scratch_size(W, 3);
     void *scratch = malloc(bytes);
@@ -156,18 +162,28 @@ int main(int argc, char **argv)
         size_t len = strlen(argv[1]);
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
         kind = -1;
-        for (i = 0; i < 7; ++i)
+        for (i = 0; i < 8; ++i)
             if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
                 strlen(names[i]) == (ev ? len - 3 : len))
                 kind = i;
         if (kind < 0) { /* a name not measured must not pass as the easy case */
-            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv, "
+            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv camera, "
                             "each also with -ev; two-eyes)\n", argv[1]);
             free(scratch);
             return 2;
         }
     }
     for (e = 0; e < 2; ++e) fill_eye(&b[e], e, kind, getenv("IPP_SHARED_BIAS") != NULL);
+    memset(&kin, 0, sizeof kin);
+    kin.fx = kin.fy = 800.0f;
+    kin.cx = 0.5f * W;
+    kin.cy = 0.5f * H;
+    for (e = 0; e < 2; ++e) { /* (case camera) the frame's camera moved by (-0.93, 0.52) mm */
+        float pose[16];
+        for (i = 0; i < 16; ++i) pose[i] = i % 5 == 0 ? 1.0f : 0.0f;
+        if (e) { pose[3] = -0.00093f; pose[7] = 0.00052f; }
+        if (sbl_camera_from_pinhole(&cam[e], &kin, pose, SBL_AXES_OPENCV, 0, W, H) != SBL_OK) return 1;
+    }
     for (e = 0; e < 2; ++e) {
         sbl_temporal_desc td;
         sbl_frame f;
@@ -197,6 +213,11 @@ int main(int argc, char **argv)
            (stereo_shared_bias c; 1 in sbl_stereo_temporal_frame and default-stereo) */
         if (getenv("IPP_SHARED_BIAS")) td.stereo_shared_bias = (float)atof(getenv("IPP_SHARED_BIAS"));
         if (kind == 6) td.reproject.motion.units = SBL_MOTION_UV;
+        if (kind == 7) {
+            td.source = SBL_TEMPORAL_CAMERA;
+            f.camera = &cam[1];
+            hi.camera = &cam[0];
+        }
         if (temporal_fn(&td, &f, &hi, &o, 0, H, scratch, bytes) != SBL_OK) return 1;
     }
     for (e = 0; e < (two ? 2 : 1); ++e) {
@@ -208,6 +229,13 @@ int main(int argc, char **argv)
         memset(&sd, 0, sizeof sd); memset(&te, 0, sizeof te); memset(&se, 0, sizeof se);
         sd.focal_px = 800.0f;
         sd.baseline = 0.065f;
+        if (kind == 7) { /* the same rig as two pinhole cameras (eye 0 the left) */
+            sd.rig = SBL_RIG_PINHOLE;
+            sd.pinhole.eye[0] = sd.pinhole.eye[1] = kin;
+            for (i = 0; i < 16; ++i) sd.pinhole.right_from_left[i] = i % 5 == 0 ? 1.0f : 0.0f;
+            sd.pinhole.right_from_left[3] = -0.065f;
+            sd.pinhole.axes = SBL_AXES_OPENCV;
+        }
         te.color = sbl_image_make(t->out, W, H, 3);
         te.length = sbl_image_make(t->olen, W, H, 1);
         te.gbuffer.depth = sbl_image_make(t->depth, W, H, 1);
