@@ -3700,7 +3700,7 @@ SBL__INLINE void sbl__motion_packed_lanes(const float *mvp, sbl__v *mx, sbl__v *
    mul, div; SBL__DW floats in (sbl__dfromf: from VW + 4 readable floats), SBL__DW ints
    out (sbl__dstorei, truncating; the values are integers), SBL__DW floats out
    (sbl__dstoref, rounded as a cast); floor; min / max (x86: the second operand where one
-   is NaN) and bit masks of a <= b and a < b. */
+   is NaN); bit masks of a <= b and a < b; x, or +inf where t is 0 (sbl__dinf_at0). */
 #if SBL__VW == 16
 #define SBL__DW 8
 typedef __m512d sbl__dv;
@@ -3717,6 +3717,7 @@ typedef __m512d sbl__dv;
 #define sbl__dmax(a, b) _mm512_max_pd(a, b)
 #define sbl__dle_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ))
 #define sbl__dlt_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ))
+#define sbl__dinf_at0(x, t) _mm512_mask_blend_pd(_mm512_cmp_pd_mask(t, _mm512_setzero_pd(), _CMP_EQ_OQ), x, _mm512_set1_pd(HUGE_VAL))
 #define sbl__dfloor(a) _mm512_roundscale_pd(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
 #define sbl__dstoref(q, a) _mm256_storeu_ps(q, _mm512_cvtpd_ps(a))
 #elif SBL__VW == 8
@@ -3735,6 +3736,7 @@ typedef __m256d sbl__dv;
 #define sbl__dmax(a, b) _mm256_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LE_OQ))
 #define sbl__dlt_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LT_OQ))
+#define sbl__dinf_at0(x, t) _mm256_blendv_pd(x, _mm256_set1_pd(HUGE_VAL), _mm256_cmp_pd(t, _mm256_setzero_pd(), _CMP_EQ_OQ))
 #define sbl__dfloor(a) _mm256_floor_pd(a)
 #define sbl__dstoref(q, a) _mm_storeu_ps(q, _mm256_cvtpd_ps(a))
 #else
@@ -3753,6 +3755,11 @@ typedef __m128d sbl__dv;
 #define sbl__dmax(a, b) _mm_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm_movemask_pd(_mm_cmple_pd(a, b))
 #define sbl__dlt_bits(a, b) _mm_movemask_pd(_mm_cmplt_pd(a, b))
+SBL__INLINE __m128d sbl__dinf_at0(__m128d x, __m128d t)
+{
+    const __m128d m = _mm_cmpeq_pd(t, _mm_setzero_pd());
+    return _mm_or_pd(_mm_and_pd(m, _mm_set1_pd(HUGE_VAL)), _mm_andnot_pd(m, x));
+}
 /* (SSE2 has no floor: truncate, then one less where that rounded up; exact for |a| <
    2^31, the only values it is given) */
 SBL__INLINE __m128d sbl__dfloor(__m128d a)
@@ -6119,19 +6126,20 @@ SBL__INLINE int sbl__cam_lanes(const sbl__cam_map *m, const double *px, const do
 {
     const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
                   half = sbl__dset1(0.5);
-    double zmul[SBL__VW], wl[SBL__VW];
-    int l, j, bits = 0;
-    for (l = 0; l < SBL__VW; ++l) { /* a direction for sky (+inf): scale 1, w = 0 */
-        const int sky = sbl__is_pos_inf(zf[l]);
-        zmul[l] = sky ? 1.0 : SBL__CAST(double, zf[l]);
-        wl[l] = sky ? 0.0 : 1.0;
+    float zmul[SBL__VW + 4], wl[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    int j, bits = 0;
+    {   /* a direction for sky (+inf): scale 1, w = 0 (exact in float, then in double) */
+        const sbl__v z = sbl__load(zf), onef = sbl__set1(1.0f);
+        const sbl__m sky = sbl__posinf(z);
+        sbl__store(zmul, sbl__sel(sky, onef, z));
+        sbl__store(wl, sbl__sel(sky, sbl__set1(0.0f), onef));
     }
     for (j = 0; j < SBL__VW; j += SBL__DW) {
         const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, sbl__dload(px + j)), sbl__dset1(m->width)), one);
         const sbl__dv n1 = sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), sbl__dset1(m->height)));
         const sbl__dv q2 = sbl__cam_row_lanes(m->ray[0], n0, n1), q3 = sbl__cam_row_lanes(m->ray[1], n0, n1);
-        const sbl__dv w = sbl__dload(wl + j);
-        const sbl__dv sc = sbl__ddiv(sbl__dload(zmul + j), sbl__dsub(zero, q2));
+        const sbl__dv w = sbl__dfromf(wl + j);
+        const sbl__dv sc = sbl__ddiv(sbl__dfromf(zmul + j), sbl__dsub(zero, q2));
         const sbl__dv c0 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->clip[0], n0, n1)),
                                      sbl__dmul(sbl__dset1(m->clip_w[0]), w));
         const sbl__dv c1 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->clip[1], n0, n1)),
@@ -6150,12 +6158,9 @@ SBL__INLINE int sbl__cam_lanes(const sbl__cam_map *m, const double *px, const do
                                       sbl__dset1(m->other_width)));
         sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c1, c3)), half),
                                       sbl__dset1(m->other_height)));
-        sbl__dstore(oz + j, sbl__dsub(zero, v2)); /* -v2 (v3 = 0: a direction, below) */
-        sbl__dstore(wl + j, v3);
+        sbl__dstore(oz + j, sbl__dinf_at0(sbl__dsub(zero, v2), v3)); /* -v2; a direction (v3 = 0): +inf */
         bits |= ok << j;
     }
-    for (l = 0; l < SBL__VW; ++l)
-        if (wl[l] == 0.0) oz[l] = HUGE_VAL;
     return bits;
 }
 

@@ -1762,6 +1762,14 @@ static void test_camera_plans_normals(void)
         ty = (sbt_uniform(&rng) - 0.5) * 0.05;
         nid_reproject(&rd, &rng, it, tests, 2);
         nid_scene_make(&sc, &rng, it, w, h, ch, r, 0.001, spread, NULL);
+        if (it % 3 == 0) { /* sky (+inf) in both frames / eyes, on interior rows: directions */
+            const int sx0 = (int)(sbt_uniform(&rng) * (w - 6));
+            for (y = 0; y < h; ++y)
+                for (x = sx0; x < sx0 + 6; ++x) {
+                    *sbt_at(&sc.depth, x, y) = (float)HUGE_VAL;
+                    *sbt_at(&sc.pdepth, x, y) = (float)HUGE_VAL;
+                }
+        }
         kin.fx = kin.fy = (float)(0.8 * w + 3);
         kin.cx = 0.5f * (float)w;
         kin.cy = 0.5f * (float)h;
