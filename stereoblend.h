@@ -3761,7 +3761,7 @@ SBL__INLINE __m128d sbl__dinf_at0(__m128d x, __m128d t)
     return _mm_or_pd(_mm_and_pd(m, _mm_set1_pd(HUGE_VAL)), _mm_andnot_pd(m, x));
 }
 /* (SSE2 has no floor: truncate, then one less where that rounded up; exact for |a| <
-   2^31, the only values it is given) */
+   2^31; larger, NaN or infinite values give a value the callers do not use) */
 SBL__INLINE __m128d sbl__dfloor(__m128d a)
 {
     const __m128d t = _mm_cvtepi32_pd(_mm_cvttpd_epi32(a));
@@ -3769,6 +3769,11 @@ SBL__INLINE __m128d sbl__dfloor(__m128d a)
 }
 #define sbl__dstoref(q, a) _mm_storel_pi(SBL__PCAST(__m64 *, q), _mm_cvtpd_ps(a))
 #endif
+
+/* Each lane's index (x + index: the lanes' columns), as float lanes and as double lanes
+   (SBL__DW <= 8). */
+static const float sbl__lane_f[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+static const double sbl__lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7};
 
 /* sbl__gather_fallback_ch for the source's channel count (the row gather's fallback-only
    lanes). */
@@ -3830,20 +3835,6 @@ SBL__INLINE void sbl__tap_plan_set_nid(const sbl__tap_src *s, sbl__tap_plan *p, 
         p->ii[i] = SBL__CAST(int, SBL__CAST(ptrdiff_t, y0) * s->ids.stride + SBL__CAST(ptrdiff_t, x0) * s->ids.step);
         p->tid[i] = t->id;
     }
-}
-
-/* The normal / id side of sbl__tap_want_init for target pixel (x, y), the same float
-   operations: for the plans that map positions in lanes and set entries one at a time
-   (the cameras). Returns 0 where the pixel resets (a normal whose squared length is not
-   finite). */
-SBL__INLINE int sbl__tap_want_nid(const sbl__target_geo *g, int x, int y, sbl__tap_want *t)
-{
-    t->id = g->ids.p ? *SBL__AT(g->ids, x, y) : 0.0f;
-    t->normal = g->normals.p ? SBL__AT(g->normals, x, y) : NULL;
-    t->normal_len2 = t->normal ? t->normal[0] * t->normal[0] + t->normal[1] * t->normal[1] +
-                                     t->normal[2] * t->normal[2]
-                               : 0.0f;
-    return !t->normal || sbl__finite(t->normal_len2);
 }
 
 /* The target's expectations of plan entry i for the pixel gather's fallback: depth and
@@ -5314,8 +5305,7 @@ SBL__INLINE sbl__m sbl__lanes_want_in(const float *dp, ptrdiff_t ds, int w, int 
         /* an edge column (its missing neighbour read from the previous or next row in
            memory, a valid address on an interior row, then replaced before any test): the
            one-sided difference is the other side's, as sbl__depth_slack takes it */
-        static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-        const sbl__v xl = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane));
+        const sbl__v xl = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(sbl__lane_f));
         dax = sbl__sel(sbl__le(xl, zero), dbx, dax);
         dbx = sbl__sel(sbl__le(sbl__set1(SBL__CAST(float, w - 1)), xl), dax, dbx);
     }
@@ -5517,13 +5507,14 @@ SBL__INLINE void sbl__plan_lanes_store(const sbl__tap_src *src, sbl__tap_plan *p
    bits_keep, and positions outside [0, w) x [0, h), reset (the callers' own test, as
    the reference makes it before sbl__tap_plan_set); footprints with a tap outside the
    image go to the pixel gather; the others are fast, with the reference's double floor
-   of sx - 0.5 and its fraction rounded to float once. In double lanes (the floor
-   exact: inside, |sx| < 2^15), then the lane plan's stores with the expected depth z
-   and its slack. Returns the lanes that are fast or redone (a position inside). */
+   of sx - 0.5 and its fraction rounded to float once. In double lanes (the floor exact:
+   inside, |sx| < 2^15, as the callers' gates allow images up to 2^15 pixels, so the
+   taps' corners are exact as floats), then the lane plan's stores with the expected
+   depth z and its slack. Returns the lanes that are fast or redone (a position
+   inside). */
 SBL__INLINE int sbl__plan_lanes_at(const sbl__tap_src *src, sbl__tap_plan *p, int i, int x, int bits_keep,
                                    const double *sx, const double *sy, sbl__v z, sbl__v slack)
 {
-    static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
     const sbl__dv dzero = sbl__dset1(0.0), half = sbl__dset1(0.5), wd = sbl__dset1(SBL__CAST(double, src->width)),
                   hd = sbl__dset1(SBL__CAST(double, src->height)),
                   w2 = sbl__dset1(SBL__CAST(double, src->width - 2)),
@@ -5545,7 +5536,7 @@ SBL__INLINE int sbl__plan_lanes_at(const sbl__tap_src *src, sbl__tap_plan *p, in
         sbl__dstoref(fys + j, sbl__dsub(by, y0));
         sbl__dstoref(x0s + j, x0);
         sbl__dstoref(y0s + j, y0);
-        sbl__dstoref(fms + j, sbl__dsub(x0, sbl__dadd(sbl__dload(lane_d), sbl__dset1(SBL__CAST(double, x + j)))));
+        sbl__dstoref(fms + j, sbl__dsub(x0, sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(SBL__CAST(double, x + j)))));
         bits_fast |= fast << j;
         bits_in |= in << j;
     }
@@ -5566,10 +5557,9 @@ SBL__INLINE int sbl__plan_lanes_at(const sbl__tap_src *src, sbl__tap_plan *p, in
 SBL__INLINE int sbl__plan_lanes(const sbl__tap_src *src, sbl__tap_plan *p, int i, int x, int y,
                                 sbl__m keep, sbl__v z, sbl__v slack, sbl__v mx, sbl__v my, int flat)
 {
-    static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
     const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f);
     const sbl__v wf = sbl__set1(SBL__CAST(float, src->width)), hf = sbl__set1(SBL__CAST(float, src->height));
-    const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane)), yf = sbl__set1(SBL__CAST(float, y));
+    const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(sbl__lane_f)), yf = sbl__set1(SBL__CAST(float, y));
     sbl__v fmx, fmy, x0f, y0f;
     sbl__m exact, fast;
     int bits_scalar, bits_fast, bits_redo;
@@ -5651,7 +5641,6 @@ SBL__INLINE int sbl__temporal_plan_lanes(const sbl__temporal_rp *s, sbl__tap_pla
 SBL__NOINLINE int sbl__temporal_plan_lanes_scaled(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
                                                   int x, int y, int sky)
 {
-    static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
     const float *mvp = SBL__AT(s->motion, x, y);
     const sbl__dv kx = sbl__dset1(s->motion_kx), ky = sbl__dset1(s->motion_ky);
     const sbl__dv yh = sbl__dset1(y + 0.5);
@@ -5665,7 +5654,7 @@ SBL__NOINLINE int sbl__temporal_plan_lanes_scaled(const sbl__temporal_rp *s, sbl
     sbl__store(mxs, mx);
     sbl__store(mys, my);
     for (j = 0; j < SBL__VW; j += SBL__DW) { /* (x + l) + 0.5 + k m, as the reference */
-        sbl__dstore(sx + j, sbl__dadd(sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(SBL__CAST(double, x + j))),
+        sbl__dstore(sx + j, sbl__dadd(sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(SBL__CAST(double, x + j))),
                                                 sbl__dset1(0.5)),
                                       sbl__dmul(kx, sbl__dfromf(mxs + j))));
         sbl__dstore(sy + j, sbl__dadd(yh, sbl__dmul(ky, sbl__dfromf(mys + j))));
@@ -6101,15 +6090,16 @@ SBL__INLINE int sbl__temporal_plan_uni(const sbl__temporal_rp *s, sbl__block *b,
     return 0;
 }
 
-/* Can sbl__camera_plan_lanes plan row y of this call? The camera source with a moving
-   camera and no listed objects (whose ids choose the map per pixel), an interior row
-   (the depth slack reads both neighbours), target depth packed; the target's normals
-   and ids taken per entry (sbl__tap_want_nid), their taps tested in lanes. */
+/* Can sbl__cam_plan_lanes plan row y of this call? The camera source with a moving
+   camera and no listed objects (whose ids choose the map per pixel), images up to 2^15
+   pixels (sbl__plan_lanes_at: the taps' corners exact in float), an interior row (the
+   depth slack reads both neighbours), target depth packed, target normals and ids in
+   lanes (sbl__lanes_want_nid). */
 SBL__INLINE int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     return s->source == SBL_TEMPORAL_CAMERA && s->history && !s->at_rest &&
-           !s->cam.object_count && sbl__geo_nid_lanes_ok(&s->geo) && y >= 1 &&
-           y + 1 < s->src.height && s->geo.depth.step == 1;
+           !s->cam.object_count && s->src.width <= 32768 && s->src.height <= 32768 &&
+           sbl__geo_nid_lanes_ok(&s->geo) && y >= 1 && y + 1 < s->src.height && s->geo.depth.step == 1;
 }
 
 /* sbl__cam_map_apply for VW positions (px[l], py[l]) at planar depths zf[l] (+inf: a
@@ -6164,25 +6154,35 @@ SBL__INLINE int sbl__cam_lanes(const sbl__cam_map *m, const double *px, const do
     return bits;
 }
 
-/* sbl__temporal_rp_pos (camera source) and sbl__tap_plan_set for the VW pixels
-   x .. x + VW - 1 of row y: the map in double lanes (sbl__cam_lanes), the target's
-   normals and ids in lanes (sbl__lanes_want_nid), the plan from the positions
-   (sbl__plan_lanes_at). */
-SBL__INLINE void sbl__camera_plan_lanes(const sbl__temporal_rp *s, sbl__tap_plan *p, int i,
-                                        int x, int y)
+/* The camera plans (the temporal camera source, the two-camera stereo rigs) for the VW
+   pixels x .. x + VW - 1 of an interior row y: the target's depth, its slack, normals and
+   ids in lanes (sbl__lanes_want, sbl__lanes_want_nid: valid geometry is z > 0 or +inf,
+   as sbl__tap_want_init and sbl__valid_depth take it), the map in double lanes
+   (sbl__cam_lanes), the plan from the positions (sbl__plan_lanes_at) with the mapped
+   depth expected. psx / psy (if not NULL): the matches' positions, 0 where there is
+   none. */
+SBL__INLINE void sbl__cam_plan_lanes(const sbl__target_geo *geo, const sbl__tap_src *src,
+                                     const sbl__cam_map *map, sbl__tap_plan *p, int i, int x, int y,
+                                     double *psx, double *psy)
 {
     float zf[SBL__VW], zo[SBL__VW];
     double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
     sbl__v z, slack;
-    sbl__m want = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
-    int keep, l;
-    if (s->geo.normals.p || s->geo.ids.p) want = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, want);
+    sbl__m want = sbl__lanes_want(&geo->depth, geo->width, x, y, &z, &slack);
+    int keep, l, in;
+    if (geo->normals.p || geo->ids.p) want = sbl__lanes_want_nid(geo, src, p, i, x, y, want);
     keep = sbl__mbits(want);
     sbl__store(zf, z);
     for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
-    keep &= sbl__cam_lanes(&s->cam, px, py, zf, ox, oy, oz);
+    keep &= sbl__cam_lanes(map, px, py, zf, ox, oy, oz);
     for (l = 0; l < SBL__VW; l += SBL__DW) sbl__dstoref(zo + l, sbl__dload(oz + l)); /* the expected depth */
-    sbl__plan_lanes_at(&s->src, p, i, x, keep, ox, oy, sbl__load(zo), slack);
+    in = sbl__plan_lanes_at(src, p, i, x, keep, ox, oy, sbl__load(zo), slack);
+    if (psx)
+        for (l = 0; l < SBL__VW; ++l) {
+            const int m = (in >> l) & 1;
+            psx[l] = m ? ox[l] : 0.0;
+            psy[l] = m ? oy[l] : 0.0;
+        }
 }
 
 /* The temporal row gather's hooks (sbl__row_gather_blocks). Lane modes: 1 motion
@@ -6237,7 +6237,7 @@ SBL__INLINE int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
     const int x = b->x0 + i;
     if (!b->mode || x < 0 || x + SBL__VW > s->src.width) return -1;
     if (b->mode == 2) {
-        sbl__camera_plan_lanes(s, &b->p, i, x, b->y);
+        sbl__cam_plan_lanes(&s->geo, &s->src, &s->cam, &b->p, i, x, b->y, NULL, NULL);
         return 0;
     }
     if (b->mode == 3) /* (out of line: the pixel-unit plan below keeps its registers) */
@@ -10483,33 +10483,6 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
    default SBL_SHORTCUTS (bit 16). */
 #define SBL__FAR_PX (1.0f / 256.0f)
 
-/* The two-camera rigs' plan for the VW pixels x .. x + VW - 1 of an interior row
-   (sbl__stereo_rp_pixel's target tests and map, sbl__tap_plan_set), the map in lanes,
-   the target's normal and id per entry;
-   the matches' positions into psx / psy (0 where there is none). */
-SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__tap_plan *p, int i, int x,
-                                      int y, double *psx, double *psy)
-{
-    float zf[SBL__VW], zo[SBL__VW];
-    double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
-    sbl__v z, slack;
-    /* sbl__tap_want_init and sbl__valid_depth agree: z > 0, or +inf */
-    sbl__m want = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
-    int keep, l, in;
-    if (s->geo.normals.p || s->geo.ids.p) want = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, want);
-    keep = sbl__mbits(want);
-    sbl__store(zf, z);
-    for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
-    keep &= sbl__cam_lanes(&s->to_source, px, py, zf, ox, oy, oz);
-    for (l = 0; l < SBL__VW; l += SBL__DW) sbl__dstoref(zo + l, sbl__dload(oz + l)); /* the expected depth */
-    in = sbl__plan_lanes_at(&s->src, p, i, x, keep, ox, oy, sbl__load(zo), slack);
-    for (l = 0; l < SBL__VW; ++l) { /* the matches' positions (0: none) */
-        const int m = (in >> l) & 1;
-        psx[l] = m ? ox[l] : 0.0;
-        psy[l] = m ? oy[l] : 0.0;
-    }
-}
-
 /* The back-check of the two-camera rigs for the block entries back[0 .. nback) (valid
    matches of columns x0 + entry of row y), VW at a time: from the nearest source pixel,
    at the source's depth there, back into the target, within tol pixels of the start
@@ -10545,15 +10518,15 @@ static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int 
 }
 
 /* The stereo row gather's hooks (sbl__row_gather_blocks): sbl__stereo_rp_pixel with the
-   plan in lanes where the rig allows (mode 1 parallel, 2 two cameras, 3 disparity map),
-   the taps in lanes, the back-check after them (in lanes for the two-camera rigs). */
+   plan in lanes where the rig allows (mode 1 parallel, 4 parallel with a disparity
+   offset, 2 two cameras, 3 disparity map), the taps in lanes, the back-check after them
+   (in lanes for the two-camera rigs and the parallel rig). */
 static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block *b)
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
     const int sw = s->source->color.width, sh = s->source->color.height, y = b->y;
     /* target depth packed and of the source's size, target normals / ids in lanes
-       (sbl__lanes_want_nid; the two-camera plan: sbl__tap_want_nid per entry), an
-       interior row (the depth slack reads both neighbours) */
+       (sbl__lanes_want_nid), an interior row (the depth slack reads both neighbours) */
     const int geo = sbl__geo_nid_lanes_ok(&s->geo) && s->geo.width == sw &&
                     s->geo.height == sh && y >= 1 && y + 1 < sh;
     const int depth = s->geo.depth.p && s->geo.depth.step == 1;
@@ -10563,8 +10536,9 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
         return 0;
     }
     if (s->d.rig == SBL_RIG_PARALLEL)
-        /* without a disparity offset the float lane plan is exact for m = +-f b / z */
-        b->mode = geo && depth && s->offset == 0.0 && sw <= 32768 && sh <= 32768 ? 1 : 0;
+        /* without a disparity offset the float lane plan is exact for m = +-f b / z; with
+           one, the positions in double lanes (4) */
+        b->mode = geo && depth && sw <= 32768 && sh <= 32768 ? (s->offset == 0.0 ? 1 : 4) : 0;
     else if (s->d.rig == SBL_RIG_DISPARITY)
         /* (a target without depth has no slack and no depth test) */
         b->mode = sbl__geo_nid_lanes_ok(&s->geo) && s->geo.width == sw && s->geo.height == sh &&
@@ -10572,8 +10546,8 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
                           (!s->geo.depth.p || (depth && y >= 1 && y + 1 < sh))
                       ? 3
                       : 0;
-    else
-        b->mode = geo && depth ? 2 : 0;
+    else /* (sbl__plan_lanes_at: images up to 2^15 pixels) */
+        b->mode = geo && depth && sw <= 32768 && sh <= 32768 ? 2 : 0;
     b->row_state = b->mode;
     return 0;
 }
@@ -10586,7 +10560,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
     int l, bits;
     if (!b->mode || x < 0 || x + SBL__VW > s->source->color.width) return -1;
     if (b->mode == 2) {
-        sbl__stereo_cam_plan(s, &b->p, i, x, y, b->psx + i, b->psy + i);
+        sbl__cam_plan_lanes(&s->geo, &s->src, &s->to_source, &b->p, i, x, y, b->psx + i, b->psy + i);
         for (l = 0; l < SBL__VW; ++l) b->snapped[i + l] = 0;
         return 0;
     }
@@ -10615,8 +10589,35 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         }
         return bits;
     }
+    if (b->mode == 4) {
+        /* the parallel rig with a disparity offset: sbl__stereo_map_parallel's x + 0.5 +
+           dir (f b / z - offset) in double lanes (f b / z the same float division), the
+           plan from the positions */
+        float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+        double sx[SBL__VW], sy[SBL__VW];
+        sbl__v z, slack, m;
+        sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
+        int in;
+        if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
+        m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
+        keep = sbl__mandnot(keep, sbl__nonfinite(m));
+        sbl__store(fbz, sbl__sel(keep, m, zero));
+        for (l = 0; l < SBL__VW; l += SBL__DW) {
+            sbl__dstore(sx + l, sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(x + l + 0.5)),
+                                          sbl__dmul(sbl__dset1(s->dir[0]),
+                                                    sbl__dsub(sbl__dfromf(fbz + l), sbl__dset1(s->offset)))));
+            sbl__dstore(sy + l, sbl__dset1(y + 0.5));
+        }
+        in = sbl__plan_lanes_at(&s->src, &b->p, i, x, sbl__mbits(keep), sx, sy, z, slack);
+        for (l = 0; l < SBL__VW; ++l) { /* the matches' positions (0: none) */
+            const int mt = (in >> l) & 1;
+            b->psx[i + l] = mt ? sx[l] : 0.0;
+            b->psy[i + l] = mt ? sy[l] : 0.0;
+            b->snapped[i + l] = 0;
+        }
+        return 0;
+    }
     {   /* the parallel rig in lanes: m = dir f b / z */
-        static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
         float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
         sbl__v z, slack, m;
         sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack), far;
@@ -10642,7 +10643,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
             /* x + l + 0.5 + dir (f b / z - offset), as the map: offset is 0 in this lane
                mode and dir = +-1, so dir (f b / z - 0) is the float dir f b / z exactly
                (a zero's sign is moot: x + l + 0.5 > 0) */
-            sbl__dstore(b->psx + i + l, sbl__dadd(sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + l + 0.5)),
+            sbl__dstore(b->psx + i + l, sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(x + l + 0.5)),
                                                   sbl__dfromf(fbz + l)));
             sbl__dstore(b->psy + i + l, sbl__dset1(y + 0.5));
         }
@@ -10737,14 +10738,13 @@ SBL__INLINE void sbl__stereo_after_one(const sbl__stereo_rp *s, sbl__ring_row *r
 
 /* sbl__stereo_map_parallel's back-check (from the nearest source pixel, at the source's
    depth there, within tol of the start) for block entries [i, i + VW) in lanes, on a
-   row in lane mode 1 (no disparity offset: every match lies on the pixel's row, inside
-   the source where it is valid): the same double operations in the same order, the
+   row in lane mode 1 or 4 (every match lies on the pixel's row, inside the source where
+   it is valid): the same double operations in the same order, the
    float division exact. Returns the bits of the lanes whose check fails (meaningful
    where the match is valid; the others read a clamped, valid address). */
 SBL__INLINE int sbl__stereo_back_parallel(const sbl__stereo_rp *s, const sbl__block *b, int i,
                                           double tol)
 {
-    static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
     const sbl__flat *d = &s->depth[1];
     const int x = b->x0 + i;
     const sbl__dv hi = sbl__dset1(SBL__CAST(double, s->source->color.width - 1)), lo = sbl__dset1(0.0);
@@ -10766,7 +10766,7 @@ SBL__INLINE int sbl__stereo_back_parallel(const sbl__stereo_rp *s, const sbl__bl
         const sbl__dv bx = sbl__dadd(sbl__dload(b->psx + i + j),
                                      sbl__dmul(sbl__dset1(s->dir[1]),
                                                sbl__dsub(sbl__dfromf(fbz + j), sbl__dset1(s->offset))));
-        const sbl__dv ex = sbl__dsub(bx, sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5)));
+        const sbl__dv ex = sbl__dsub(bx, sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(x + j + 0.5)));
         /* ey = by - (y + 0.5) is 0 (by = the match's y, which is y + 0.5 on this row),
            and ex ex + 0 0 = ex ex exactly */
         ok |= sbl__dle_bits(sbl__dmul(ex, ex), sbl__dset1(tol * tol)) << j;
@@ -10775,7 +10775,7 @@ SBL__INLINE int sbl__stereo_back_parallel(const sbl__stereo_rp *s, const sbl__bl
 }
 
 /* After the taps, per block: sbl__stereo_after_one on every entry; on a parallel-rig
-   row in lane mode 1, VW entries at a time where none is handed back (redo) or far,
+   row in lane mode 1 or 4, VW entries at a time where none is handed back (redo) or far,
    the back-check in lanes. `rig` is a constant where this is inlined. */
 SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r, sbl__block *b,
                                        sbl_stereo_rig rig)
@@ -10790,7 +10790,7 @@ SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r
         if (any) sbl__stereo_fallback_block(s, r, b);
         i = 0;
     }
-    if (rig == SBL_RIG_PARALLEL && b->mode == 1 && back_check) {
+    if (rig == SBL_RIG_PARALLEL && (b->mode == 1 || b->mode == 4) && back_check) {
         for (; i + SBL__VW <= b->n; i += SBL__VW) {
             uint32_t any = 0, u, v;
             int bits;
@@ -10854,9 +10854,8 @@ SBL__INLINE int sbl__stereo_parallel_ok(const sbl__stereo_rp *s, int y)
 SBL__INLINE int sbl__stereo_parallel_none(const sbl__stereo_rp *s, sbl__ring_row *r, int x,
                                           sbl__m keep, sbl__m exact, sbl__v m, const int ch)
 {
-    static const float lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
     const sbl__v zero = sbl__set1(0.0f), half = sbl__set1(0.5f);
-    const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(lane));
+    const sbl__v xf = sbl__add(sbl__set1(SBL__CAST(float, x)), sbl__load(sbl__lane_f));
     const sbl__m inside = sbl__mand(sbl__le(sbl__sub(zero, sbl__add(xf, half)), m),
                                     sbl__gt(sbl__sub(sbl__sub(sbl__set1(SBL__CAST(float, s->src.width)), xf), half), m));
     if (sbl__mbits(sbl__mandnot(keep, sbl__mandnot(exact, inside))) != 0) return 0;
@@ -10931,7 +10930,6 @@ SBL__INLINE int sbl__parallel_vec_finish(const sbl__stereo_rp *s, const sbl__par
                                          int back_check, double tol, int flag, sbl__v z, sbl__v slack,
                                          sbl__v m, sbl__v fm, int k, const int two, sbl__m up)
 {
-    static const double lane_d[8] = {0, 1, 2, 3, 4, 5, 6, 7}; /* SBL__DW <= 8 */
     const int all = (1 << SBL__VW) - 1;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
     const sbl__v tol_d = sbl__set1(pr->tol);
@@ -11078,7 +11076,7 @@ SBL__INLINE int sbl__parallel_vec_finish(const sbl__stereo_rp *s, const sbl__par
                 sbl__store(mt, m);
                 sbl__store(fs, f);
                 for (j = 0; j < SBL__VW; j += SBL__DW) {
-                    const sbl__dv L = sbl__dadd(sbl__dload(lane_d), sbl__dset1(x + j + 0.5));
+                    const sbl__dv L = sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(x + j + 0.5));
                     const sbl__dv bx = sbl__dadd(sbl__dadd(L, sbl__dfromf(mt + j)),
                                                  sbl__dmul(sbl__dset1(s->dir[1]),
                                                            sbl__dsub(sbl__dfromf(fs + j), sbl__dset1(s->offset))));

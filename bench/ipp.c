@@ -15,6 +15,8 @@
              row hold the same depth bits, unlike the ramp of the other cases)
      uv      the easy case with its motion vectors in UV units (fractions of the width
              and height, as Unity gives them): the plan's positions in double lanes
+     offset  the easy case's stereo blend on a parallel rig with a disparity offset of
+             0.75 px (Middlebury's doffs; a rig whose principal points differ)
      camera  the easy content with camera matrices instead of motion vectors (a pinhole
              camera moved ~(0.37, -0.21) px at depth 2; the temporal camera source) and a
              two-camera stereo rig (SBL_RIG_PINHOLE, baseline 6.5 cm): the camera maps
@@ -149,7 +151,8 @@ static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
 
 int main(int argc, char **argv)
 {
-    static const char *names[8] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv", "camera"};
+    static const char *names[9] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv", "camera",
+                                   "offset"};
     int kind = 0, ev = 0, two = 0, e, i;
     sbl_camera cam[2]; /* case camera: the history's and the frame's */
     sbl_intrinsics kin;
@@ -162,12 +165,12 @@ int main(int argc, char **argv)
         size_t len = strlen(argv[1]);
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
         kind = -1;
-        for (i = 0; i < 8; ++i)
+        for (i = 0; i < 9; ++i)
             if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
                 strlen(names[i]) == (ev ? len - 3 : len))
                 kind = i;
         if (kind < 0) { /* a name not measured must not pass as the easy case */
-            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv camera, "
+            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv camera offset, "
                             "each also with -ev; two-eyes)\n", argv[1]);
             free(scratch);
             return 2;
@@ -229,6 +232,7 @@ int main(int argc, char **argv)
         memset(&sd, 0, sizeof sd); memset(&te, 0, sizeof te); memset(&se, 0, sizeof se);
         sd.focal_px = 800.0f;
         sd.baseline = 0.065f;
+        if (kind == 8) sd.disparity_offset = 0.75f;
         if (kind == 7) { /* the same rig as two pinhole cameras (eye 0 the left) */
             sd.rig = SBL_RIG_PINHOLE;
             sd.pinhole.eye[0] = sd.pinhole.eye[1] = kin;

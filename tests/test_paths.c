@@ -1864,6 +1864,105 @@ static void test_camera_plans_normals(void)
 #endif
 }
 
+/* The folded camera map (sbl__cam_map_apply, session 28: sbl__cam_map_fold's rows) against
+   the matrix chain it replaced (sbl__cam_map_point, view_to_view, sbl__cam_map_project,
+   which listed moving objects still take): the same validity and the same position and
+   depth within rounding (1e-9 of the image size, 1e-9 relative), for random camera pairs
+   (rotated and translated poses, off-axis principal points, unequal focal lengths, a
+   world-to-pixel P with a skew, cameras facing away) at depths from 1e-3 to 1e6 and +inf
+   (a direction); positions relative to the image's size, or to the position itself
+   where it lies far outside. test_paths' row-gather checks compare the lanes with the folded
+   reference; this one checks the fold itself. */
+static void test_cam_map_fold(void)
+{
+    sbt_rng rng = {4242};
+    int it, k, maps = 0, valid = 0, bad_valid = 0, bad_pos = 0, sky = 0;
+    double worst = 0.0;
+    for (it = 0; it < 400; ++it) {
+        const int w = 16 + (int)(sbt_uniform(&rng) * 2000), h = 16 + (int)(sbt_uniform(&rng) * 1200);
+        sbl_camera cam[2];
+        sbl__cam_map m;
+        int e;
+        for (e = 0; e < 2; ++e) {
+            float pose[16];
+            const double ax = (sbt_uniform(&rng) - 0.5) * (it % 7 == 0 ? 6.0 : 0.6),
+                         ay = (sbt_uniform(&rng) - 0.5) * (it % 7 == 0 ? 6.0 : 0.6),
+                         az = (sbt_uniform(&rng) - 0.5) * 0.6;
+            const double cx = cos(ax), sx = sin(ax), cy = cos(ay), sy = sin(ay), cz = cos(az), sz = sin(az);
+            /* R = Rz Ry Rx, t random */
+            const double R[9] = {cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx,
+                                 sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx,
+                                 -sy, cy * sx, cy * cx};
+            int r, c;
+            for (r = 0; r < 3; ++r) {
+                for (c = 0; c < 3; ++c) pose[r * 4 + c] = (float)R[r * 3 + c];
+                pose[r * 4 + 3] = (float)((sbt_uniform(&rng) - 0.5) * 2.0);
+            }
+            pose[12] = pose[13] = pose[14] = 0.0f;
+            pose[15] = 1.0f;
+            if (it % 3 == 2) { /* a world-to-pixel P = K [R | t] with a skew */
+                float P[12];
+                const double fx = 300 + sbt_uniform(&rng) * 900, fy = 300 + sbt_uniform(&rng) * 900,
+                             skew = (sbt_uniform(&rng) - 0.5) * 20.0,
+                             pcx = w * (0.3 + 0.4 * sbt_uniform(&rng)), pcy = h * (0.3 + 0.4 * sbt_uniform(&rng));
+                for (c = 0; c < 4; ++c) {
+                    P[c] = (float)(fx * pose[c] + skew * pose[4 + c] + pcx * pose[8 + c]);
+                    P[4 + c] = (float)(fy * pose[4 + c] + pcy * pose[8 + c]);
+                    P[8 + c] = pose[8 + c];
+                }
+                CHECK_EQ(sbl_camera_from_world_to_pixel(&cam[e], P, it % 2, w, h), SBL_OK);
+            } else {
+                sbl_intrinsics kin;
+                kin.fx = (float)(300 + sbt_uniform(&rng) * 900);
+                kin.fy = (float)(300 + sbt_uniform(&rng) * 900);
+                kin.cx = (float)(w * (0.3 + 0.4 * sbt_uniform(&rng))); /* off-axis */
+                kin.cy = (float)(h * (0.3 + 0.4 * sbt_uniform(&rng)));
+                CHECK_EQ(sbl_camera_from_pinhole(&cam[e], &kin, pose, it % 2 ? SBL_AXES_OPENGL : SBL_AXES_OPENCV,
+                                                 it % 4 == 1, w, h), SBL_OK);
+            }
+        }
+        if (!sbl__cam_map_init(&m, &cam[0], w, h, &cam[1], w, h)) continue;
+        for (k = 0; k < 200; ++k) {
+            const double px = sbt_uniform(&rng) * w, py = sbt_uniform(&rng) * h;
+            const float z = k % 10 == 0 ? (float)HUGE_VAL : (float)pow(10.0, -3.0 + 9.0 * sbt_uniform(&rng));
+            double p4[4], v4[4], ax = 0, ay = 0, az = 0, bx = 0, by = 0, bz = 0;
+            const int a = sbl__cam_map_apply(&m, px, py, z, &ax, &ay, &az);
+            const int b = sbl__cam_map_point(&m, px, py, z, p4) &&
+                          (sbl__mat_apply(v4, m.view_to_view, p4), sbl__cam_map_project(&m, v4, &bx, &by, &bz));
+            ++maps;
+            if (a != b) {
+                if (bad_valid < 3) printf("  fold: map %d: valid %d, the chain %d\n", it, a, b);
+                ++bad_valid;
+                continue;
+            }
+            if (!a) continue;
+            ++valid;
+            sky += sbl__is_pos_inf(z);
+            {
+                /* relative to the image's size, or to the position where it lies far outside */
+                const double scale = fmax(fmax((double)(w > h ? w : h), fabs(bx)), fabs(by));
+                const double rel = (fabs(ax - bx) + fabs(ay - by)) / scale,
+                             ez = az == bz ? 0.0 : fabs(az - bz) / fabs(bz);
+                if (!(rel <= 1e-9 && ez <= 1e-9)) {
+                    if (bad_pos < 3)
+                        printf("  fold: map %d: (%.17g, %.17g, %.17g) against (%.17g, %.17g, %.17g)\n", it, ax, ay,
+                               az, bx, by, bz);
+                    ++bad_pos;
+                }
+                if (rel > worst) worst = rel;
+                if (ez > worst) worst = ez;
+            }
+        }
+    }
+    printf("  folded camera map vs the matrix chain: %d maps, %d valid (%d directions), validity differs %d, "
+           "position / depth beyond 1e-9 %d (worst %.2g relative)\n",
+           maps, valid, sky, bad_valid, bad_pos, worst);
+    CHECK(bad_valid == 0);
+    CHECK(bad_pos == 0);
+    CHECK(valid > maps / 4 && valid < maps);
+    CHECK(sky > 0);
+}
+
 /* (blur, session 16) The resampling blur's noise factor's fit (docs/ESTIMATORS.md 4.13,
    bench/blur_fit.c; the blur's own tests are in test_accuracy, which cannot reach it) against the sum it
    stands for, G(n, v) = (1 / n) sum_{k < n} g(k v), g(s) = (1 / 2 pi) int_{-pi}^{pi}
@@ -2009,6 +2108,7 @@ int main(void)
     test_row_gather_normals();
     test_bands_every_shape();
     test_camera_plans_normals();
+    test_cam_map_fold();
     test_blur_noise_fit();
     return sbt_finish("test_paths");
 }
