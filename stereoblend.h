@@ -10552,6 +10552,39 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
     return 0;
 }
 
+/* The parallel rig's plan for the VW pixels x .. x + VW - 1 of an interior row y with
+   the positions in double lanes: sbl__stereo_map_parallel's x + 0.5 + dir (f b / z -
+   offset) (f b / z the same float division), then sbl__plan_lanes_at. For a disparity
+   offset (lane mode 4), and for the vectors of mode 1 whose disparities the float plan
+   cannot take exactly (0 < |f b / z| < 2^-8: geometry beyond 256 f b). Out of line, so
+   that mode 1's float plan keeps its registers. */
+SBL__NOINLINE int sbl__stereo_plan_parallel_at(const sbl__stereo_rp *s, sbl__block *b, int i, int x, int y)
+{
+    float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    double sx[SBL__VW], sy[SBL__VW];
+    sbl__v z, slack, m;
+    sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
+    int in, l;
+    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
+    m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
+    keep = sbl__mandnot(keep, sbl__nonfinite(m));
+    sbl__store(fbz, sbl__sel(keep, m, sbl__set1(0.0f)));
+    for (l = 0; l < SBL__VW; l += SBL__DW) {
+        sbl__dstore(sx + l, sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(x + l + 0.5)),
+                                      sbl__dmul(sbl__dset1(s->dir[0]),
+                                                sbl__dsub(sbl__dfromf(fbz + l), sbl__dset1(s->offset)))));
+        sbl__dstore(sy + l, sbl__dset1(y + 0.5));
+    }
+    in = sbl__plan_lanes_at(&s->src, &b->p, i, x, sbl__mbits(keep), sx, sy, z, slack);
+    for (l = 0; l < SBL__VW; ++l) { /* the matches' positions (0: none) */
+        const int mt = (in >> l) & 1;
+        b->psx[i + l] = mt ? sx[l] : 0.0;
+        b->psy[i + l] = mt ? sy[l] : 0.0;
+        b->snapped[i + l] = 0;
+    }
+    return 0;
+}
+
 static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
@@ -10589,34 +10622,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         }
         return bits;
     }
-    if (b->mode == 4) {
-        /* the parallel rig with a disparity offset: sbl__stereo_map_parallel's x + 0.5 +
-           dir (f b / z - offset) in double lanes (f b / z the same float division), the
-           plan from the positions */
-        float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
-        double sx[SBL__VW], sy[SBL__VW];
-        sbl__v z, slack, m;
-        sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
-        int in;
-        if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
-        m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
-        keep = sbl__mandnot(keep, sbl__nonfinite(m));
-        sbl__store(fbz, sbl__sel(keep, m, zero));
-        for (l = 0; l < SBL__VW; l += SBL__DW) {
-            sbl__dstore(sx + l, sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(x + l + 0.5)),
-                                          sbl__dmul(sbl__dset1(s->dir[0]),
-                                                    sbl__dsub(sbl__dfromf(fbz + l), sbl__dset1(s->offset)))));
-            sbl__dstore(sy + l, sbl__dset1(y + 0.5));
-        }
-        in = sbl__plan_lanes_at(&s->src, &b->p, i, x, sbl__mbits(keep), sx, sy, z, slack);
-        for (l = 0; l < SBL__VW; ++l) { /* the matches' positions (0: none) */
-            const int mt = (in >> l) & 1;
-            b->psx[i + l] = mt ? sx[l] : 0.0;
-            b->psy[i + l] = mt ? sy[l] : 0.0;
-            b->snapped[i + l] = 0;
-        }
-        return 0;
-    }
+    if (b->mode == 4) return sbl__stereo_plan_parallel_at(s, b, i, x, y);
     {   /* the parallel rig in lanes: m = dir f b / z */
         float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
         sbl__v z, slack, m;
@@ -10639,6 +10645,9 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         far_bits = (SBL_SHORTCUTS & 16) != 0 && s->tiles ? sbl__mbits(far) : 0;
         if (!far_bits) far = sbl__gt(zero, zero);
         bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, sbl__sel(far, zero, m), zero, 1);
+        /* two or more lanes the float plan leaves (far geometry without the far tiles):
+           the vector again in double lanes; a lone one, the scalar plan */
+        if ((bits & (bits - 1)) && !far_bits) return sbl__stereo_plan_parallel_at(s, b, i, x, y);
         for (l = 0; l < SBL__VW; l += SBL__DW) {
             /* x + l + 0.5 + dir (f b / z - offset), as the map: offset is 0 in this lane
                mode and dir = +-1, so dir (f b / z - 0) is the float dir f b / z exactly

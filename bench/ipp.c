@@ -17,6 +17,8 @@
              and height, as Unity gives them): the plan's positions in double lanes
      offset  the easy case's stereo blend on a parallel rig with a disparity offset of
              0.75 px (Middlebury's doffs; a rig whose principal points differ)
+     far     the easy case 10^4 times farther (depth 2e4: disparities ~2.6e-3 px, below
+             the float lane plan's 2^-8, as geometry beyond 256 f b gives them)
      camera  the easy content with camera matrices instead of motion vectors (a pinhole
              camera moved ~(0.37, -0.21) px at depth 2; the temporal camera source) and a
              two-camera stereo rig (SBL_RIG_PINHOLE, baseline 6.5 cm): the camera maps
@@ -88,7 +90,7 @@ static void fill_eye(eye_bufs *b, int eye, int kind, int tex)
                                   (float)(s >> 8) * (1.0f / 16777216.0f) * 0.2f;
             b->hist[i * 3 + c] = 0.5f + 0.3f * sinf(x * 0.05f + c);
         }
-        b->depth[i] = 2.0f + 0.001f * (float)y + (kind == 5 ? 0.0002f * (float)x : 0.0f);
+        b->depth[i] = (2.0f + 0.001f * (float)y + (kind == 5 ? 0.0002f * (float)x : 0.0f)) * (kind == 9 ? 1e4f : 1.0f);
         b->prev_depth[i] = b->depth[i];
         b->motion[i * 2] = 0.37f + 0.1f * sinf(y * 0.01f);
         b->motion[i * 2 + 1] = -0.21f;
@@ -151,8 +153,8 @@ static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
 
 int main(int argc, char **argv)
 {
-    static const char *names[9] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv", "camera",
-                                   "offset"};
+    static const char *names[10] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv", "camera",
+                                    "offset", "far"};
     int kind = 0, ev = 0, two = 0, e, i;
     sbl_camera cam[2]; /* case camera: the history's and the frame's */
     sbl_intrinsics kin;
@@ -165,12 +167,12 @@ int main(int argc, char **argv)
         size_t len = strlen(argv[1]);
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
         kind = -1;
-        for (i = 0; i < 9; ++i)
+        for (i = 0; i < 10; ++i)
             if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
                 strlen(names[i]) == (ev ? len - 3 : len))
                 kind = i;
         if (kind < 0) { /* a name not measured must not pass as the easy case */
-            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv camera offset, "
+            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv camera offset far, "
                             "each also with -ev; two-eyes)\n", argv[1]);
             free(scratch);
             return 2;
