@@ -1728,9 +1728,9 @@ static void test_bands_every_shape(void)
 }
 
 /* The camera plans with normals and ids: the moving-camera temporal plan
-   (sbl__camera_plan_lanes) and the two-camera stereo plan (sbl__stereo_cam_plan, the
-   matrices and pinhole rigs) map positions in lanes and take the target's normal and id
-   per entry; the row gather against the pixel gather, bit for bit, on the scenes of
+   and the two-camera stereo plan (sbl__cam_plan_lanes; the matrices and pinhole rigs)
+   map positions in double lanes (on-axis and, every fifth scene, off-axis with a turned
+   second camera); the row gather against the pixel gather, bit for bit, on the scenes of
    test_row_gather_normals (normals around the threshold's cone, "no normal", NaN / inf /
    overflowing normals, NaN / inf / -0 ids, a moved nearer object), the views packed,
    as channels and bottom-up. Each row is checked to take the lane plan. */
@@ -1773,9 +1773,20 @@ static void test_camera_plans_normals(void)
         kin.fx = kin.fy = (float)(0.8 * w + 3);
         kin.cx = 0.5f * (float)w;
         kin.cy = 0.5f * (float)h;
+        if (it % 5 == 3) { /* off-axis, unequal focal lengths, the second camera turned a little */
+            kin.fy = (float)(0.7 * w + 5);
+            kin.cx = (float)((0.35 + 0.3 * sbt_uniform(&rng)) * w);
+            kin.cy = (float)((0.35 + 0.3 * sbt_uniform(&rng)) * h);
+        }
         for (e = 0; e < 2; ++e) {
             for (i = 0; i < 16; ++i) pose[e][i] = i % 5 == 0 ? 1.0f : 0.0f;
             if (e) { pose[e][3] = (float)tx; pose[e][7] = (float)ty; }
+            if (e && it % 5 == 3) { /* about y by ~0.3 degrees (a few pixels at this focal length) */
+                const float a = (float)(0.005 * (sbt_uniform(&rng) - 0.5));
+                pose[e][0] = pose[e][10] = cosf(a);
+                pose[e][2] = sinf(a);
+                pose[e][8] = -sinf(a);
+            }
             CHECK_EQ(sbl_camera_from_pinhole(&cam[e], &kin, pose[e], SBL_AXES_OPENCV, 0, w, h), SBL_OK);
         }
         BIND_RING_ROWS(ra, rb, planes, unsafe);
@@ -1871,13 +1882,17 @@ static void test_camera_plans_normals(void)
    (rotated and translated poses, off-axis principal points, unequal focal lengths, a
    world-to-pixel P with a skew, cameras facing away) at depths from 1e-3 to 1e6 and +inf
    (a direction); positions relative to the image's size, or to the position itself
-   where it lies far outside. test_paths' row-gather checks compare the lanes with the folded
+   where it lies far outside. And the double lanes (sbl__cam_lanes) against the folded
+   reference, bit for bit (within 1e-9 where the compiler contracts or reorders). test_paths' row-gather checks compare the lanes with the folded
    reference; this one checks the fold itself. */
 static void test_cam_map_fold(void)
 {
     sbt_rng rng = {4242};
-    int it, k, maps = 0, valid = 0, bad_valid = 0, bad_pos = 0, sky = 0;
+    int it, k, maps = 0, valid = 0, bad_valid = 0, bad_pos = 0, sky = 0, lanes = 0, bad_lanes = 0;
     double worst = 0.0;
+#ifdef SBL__ROW_GATHER
+    const int contracts = compiler_contracts();
+#endif
     for (it = 0; it < 400; ++it) {
         const int w = 16 + (int)(sbt_uniform(&rng) * 2000), h = 16 + (int)(sbt_uniform(&rng) * 1200);
         sbl_camera cam[2];
@@ -1922,6 +1937,38 @@ static void test_cam_map_fold(void)
             }
         }
         if (!sbl__cam_map_init(&m, &cam[0], w, h, &cam[1], w, h)) continue;
+#ifdef SBL__ROW_GATHER
+        for (k = 0; k < 8; ++k) { /* the lanes (sbl__cam_lanes) against the reference, bit for bit */
+            double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
+            float zf[SBL__VW];
+            int l, bits;
+            for (l = 0; l < SBL__VW; ++l) {
+                px[l] = (int)(sbt_uniform(&rng) * w) + 0.5;
+                py[l] = (int)(sbt_uniform(&rng) * h) + 0.5;
+                zf[l] = l % 5 == 4 ? (float)HUGE_VAL : (float)pow(10.0, -3.0 + 9.0 * sbt_uniform(&rng));
+            }
+            bits = sbl__cam_lanes(&m, px, py, zf, ox, oy, oz);
+            for (l = 0; l < SBL__VW; ++l) {
+                double rx = 0, ry = 0, rz = 0;
+                const int r = sbl__cam_map_apply(&m, px[l], py[l], zf[l], &rx, &ry, &rz);
+                int bad = r != ((bits >> l) & 1);
+                if (!bad && r) {
+                    if (contracts) /* (fused or reordered: within rounding) */
+                        bad = !(fabs(ox[l] - rx) <= 1e-9 * fmax(1.0, fabs(rx)) &&
+                                fabs(oy[l] - ry) <= 1e-9 * fmax(1.0, fabs(ry)) &&
+                                (oz[l] == rz || fabs(oz[l] - rz) <= 1e-9 * fabs(rz)));
+                    else
+                        bad = memcmp(&ox[l], &rx, sizeof rx) != 0 || memcmp(&oy[l], &ry, sizeof ry) != 0 ||
+                              memcmp(&oz[l], &rz, sizeof rz) != 0;
+                }
+                if (bad && bad_lanes < 3)
+                    printf("  fold: lanes vs reference, map %d: valid %d / %d, (%.17g, %.17g, %.17g) against "
+                           "(%.17g, %.17g, %.17g)\n", it, (bits >> l) & 1, r, ox[l], oy[l], oz[l], rx, ry, rz);
+                bad_lanes += bad;
+                ++lanes;
+            }
+        }
+#endif
         for (k = 0; k < 200; ++k) {
             const double px = sbt_uniform(&rng) * w, py = sbt_uniform(&rng) * h;
             const float z = k % 10 == 0 ? (float)HUGE_VAL : (float)pow(10.0, -3.0 + 9.0 * sbt_uniform(&rng));
@@ -1955,8 +2002,10 @@ static void test_cam_map_fold(void)
         }
     }
     printf("  folded camera map vs the matrix chain: %d maps, %d valid (%d directions), validity differs %d, "
-           "position / depth beyond 1e-9 %d (worst %.2g relative)\n",
-           maps, valid, sky, bad_valid, bad_pos, worst);
+           "position / depth beyond 1e-9 %d (worst %.2g relative); %s lanes vs the folded reference: %d maps, "
+           "%d differ\n",
+           maps, valid, sky, bad_valid, bad_pos, worst, SBL_SIMD_NAME, lanes, bad_lanes);
+    CHECK(bad_lanes == 0);
     CHECK(bad_valid == 0);
     CHECK(bad_pos == 0);
     CHECK(valid > maps / 4 && valid < maps);
