@@ -5260,13 +5260,11 @@ static int sbl__row_gather_ok(const sbl__tap_src *s)
     return 1;
 }
 
-/* Can sbl__temporal_plan_lanes plan row y of this call? Motion vectors in pixels
-   (|k| = 1: the products are exact), images up to 2^15 pixels (positions exact in
-   float), target normals and ids read in lanes (sbl__lanes_want_nid), and an
-   interior row (the depth slack reads both neighbours); motion and target depth packed
-   (pixel steps 2 and 1). */
 /* Can the lane plans take row y of this call at all (sbl__temporal_plan_lanes_scaled, any
-   finite scale of the motion vectors: UV, NDC)? */
+   finite scale of the motion vectors: UV, NDC)? Motion vectors, images up to 2^15
+   pixels (positions exact in float), target normals and ids read in lanes
+   (sbl__lanes_want_nid), and an interior row (the depth slack reads both neighbours);
+   motion and target depth packed (pixel steps 2 and 1). */
 SBL__INLINE int sbl__temporal_plan_scaled_ok(const sbl__temporal_rp *s, int y)
 {
     const int w = s->src.width, h = s->src.height;
@@ -5274,11 +5272,12 @@ SBL__INLINE int sbl__temporal_plan_scaled_ok(const sbl__temporal_rp *s, int y)
            y >= 1 && y + 1 < h && s->motion.step == 2 && (!s->geo.depth.p || s->geo.depth.step == 1);
 }
 
+/* Can sbl__temporal_plan_lanes (float lanes) plan row y? The same, with motion vectors
+   in pixels (|k| = 1: the products are exact). */
 SBL__INLINE int sbl__temporal_plan_lanes_ok(const sbl__temporal_rp *s, int y)
 {
     return fabs(s->motion_kx) == 1.0 && fabs(s->motion_ky) == 1.0 && sbl__temporal_plan_scaled_ok(s, y);
 }
-
 
 /* The target side of sbl__tap_want_init for the VW pixels x .. x + VW - 1 (in [0, w)) of
    an interior row (rows y - 1 and y + 1 exist), when the target has depth (its normals
@@ -10552,22 +10551,31 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
     return 0;
 }
 
+/* The target side of the parallel rig's lane plans for the VW pixels x .. x + VW - 1 of
+   an interior row y: the lanes with valid geometry (and normal / id data) and a finite
+   f b / z (sky: f b / inf = 0), their depth z, its slack and m = f b / z (the map's float
+   division). */
+SBL__INLINE sbl__m sbl__parallel_want_lanes(const sbl__stereo_rp *s, sbl__tap_plan *p, int i, int x, int y,
+                                           sbl__v *z, sbl__v *slack, sbl__v *m)
+{
+    sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, z, slack);
+    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, p, i, x, y, keep);
+    *m = sbl__div_exact(sbl__set1(s->fb), *z);
+    return sbl__mandnot(keep, sbl__nonfinite(*m));
+}
+
 /* The parallel rig's plan for the VW pixels x .. x + VW - 1 of an interior row y with
-   the positions in double lanes: sbl__stereo_map_parallel's x + 0.5 + dir (f b / z -
+   the positions in double lanes, from the target side (sbl__parallel_want_lanes): sbl__stereo_map_parallel's x + 0.5 + dir (f b / z -
    offset) (f b / z the same float division), then sbl__plan_lanes_at. For a disparity
    offset (lane mode 4), and for the vectors of mode 1 whose disparities the float plan
    cannot take exactly (0 < |f b / z| < 2^-8: geometry beyond 256 f b). Out of line, so
    that mode 1's float plan keeps its registers. */
-SBL__NOINLINE int sbl__stereo_plan_parallel_at(const sbl__stereo_rp *s, sbl__block *b, int i, int x, int y)
+SBL__NOINLINE int sbl__stereo_plan_parallel_at(const sbl__stereo_rp *s, sbl__block *b, int i, int x, int y,
+                                               sbl__m keep, sbl__v z, sbl__v slack, sbl__v m)
 {
     float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     double sx[SBL__VW], sy[SBL__VW];
-    sbl__v z, slack, m;
-    sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
     int in, l;
-    if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
-    m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
-    keep = sbl__mandnot(keep, sbl__nonfinite(m));
     sbl__store(fbz, sbl__sel(keep, m, sbl__set1(0.0f)));
     for (l = 0; l < SBL__VW; l += SBL__DW) {
         sbl__dstore(sx + l, sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(x + l + 0.5)),
@@ -10622,16 +10630,13 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         }
         return bits;
     }
-    if (b->mode == 4) return sbl__stereo_plan_parallel_at(s, b, i, x, y);
     {   /* the parallel rig in lanes: m = dir f b / z */
         float fbz[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
-        sbl__v z, slack, m;
-        sbl__m keep = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack), far;
+        sbl__v z, slack, fb_z, m;
+        sbl__m keep = sbl__parallel_want_lanes(s, &b->p, i, x, y, &z, &slack, &fb_z), far;
         int far_bits;
-        if (s->geo.normals.p || s->geo.ids.p) keep = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, keep);
-        m = sbl__div_exact(sbl__set1(s->fb), z); /* sky: f b / inf = 0 */
-        keep = sbl__mandnot(keep, sbl__nonfinite(m));
-        if (s->dir[0] < 0.0) m = sbl__sub(zero, m);
+        if (b->mode == 4) return sbl__stereo_plan_parallel_at(s, b, i, x, y, keep, z, slack, fb_z);
+        m = s->dir[0] < 0.0 ? sbl__sub(zero, fb_z) : fb_z;
         /* dir f b / z: the positions finite in every lane (0 where m is not: such a lane
            has no match): sbl__stereo_back_parallel clamps them with a min and a max, whose
            NaN result -ffast-math leaves to the operand order gcc picks */
@@ -10647,7 +10652,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
         bits = sbl__plan_lanes(&s->src, &b->p, i, x, y, keep, z, slack, sbl__sel(far, zero, m), zero, 1);
         /* two or more lanes the float plan leaves (far geometry without the far tiles):
            the vector again in double lanes; a lone one, the scalar plan */
-        if ((bits & (bits - 1)) && !far_bits) return sbl__stereo_plan_parallel_at(s, b, i, x, y);
+        if ((bits & (bits - 1)) && !far_bits) return sbl__stereo_plan_parallel_at(s, b, i, x, y, keep, z, slack, fb_z);
         for (l = 0; l < SBL__VW; l += SBL__DW) {
             /* x + l + 0.5 + dir (f b / z - offset), as the map: offset is 0 in this lane
                mode and dir = +-1, so dir (f b / z - 0) is the float dir f b / z exactly
