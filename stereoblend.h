@@ -10362,6 +10362,74 @@ static int sbl__pinhole_rig_maps(sbl__stereo_rp *s, const sbl_pinhole_rig *p, in
                                 w, h);
 }
 
+/* Two cameras that form a parallel rig (SBL_RIG_MATRICES or SBL_RIG_PINHOLE whose maps
+   keep every pixel on its row and its depth, and move it by K / z + B): run as
+   SBL_RIG_PARALLEL with f b = dir K and the offset -dir B, whose plans take one float
+   division per pixel and no double map (a VR rig given as two eye cameras is mostly
+   this). Decided on the double maps: K and B fitted at the image's centre (the sky and
+   depth 1), then both maps checked against the parallel rig's own positions on a 3 x 3
+   grid of pixels (corners, edge midpoints, centre) at three inverse depths (0, the sky;
+   and the depths whose disparity is the width plus |B|, and half of it). Why 27 points
+   suffice: in (n0, n1, 1 / z) a static map's position is a ratio whose numerator and
+   denominator have degree at most 1 in each (sbl__cam_map_fold), so the model's residual
+   times the denominator has degree at most 2 in each, and a polynomial of that degree
+   which vanishes on a 3 x 3 x 3 grid vanishes everywhere; the rays' validity is affine
+   in n (checked at the corners). Nearer than the grid's last depth no match of either
+   rig lies in the image. Float matrices rarely give exact zeros, so positions may
+   differ by SBL__RIG_PARALLEL_TOL px plus 1e-5 of the disparity (the depth test's
+   depth by 1e-6 relative): far below what the float depth itself resolves in a
+   render's depth buffer, and the rig is then taken as parallel. A rig that is not
+   (toed-in, a vertical or depth offset, different focal lengths) keeps the cameras. */
+#define SBL__RIG_PARALLEL_TOL 1e-3
+static int sbl__rig_parallel_at(const sbl__cam_map *m, double dir, float fb, double offset,
+                                double px, double py, float z)
+{
+    double ox, oy, oz, d;
+    const int sky = sbl__is_pos_inf(z);
+    float fbz;
+    if (!sbl__cam_map_apply(m, px, py, z, &ox, &oy, &oz)) return 0;
+    fbz = sky ? 0.0f : fb / z; /* as sbl__stereo_map_parallel */
+    d = dir * (SBL__CAST(double, fbz) - offset);
+    if (!(fabs(ox - (px + d)) <= SBL__RIG_PARALLEL_TOL + 1e-5 * fabs(d) &&
+          fabs(oy - py) <= SBL__RIG_PARALLEL_TOL + 1e-5 * fabs(d)))
+        return 0;
+    return sky || fabs(oz - SBL__CAST(double, z)) <= 1e-6 * SBL__CAST(double, z);
+}
+
+static void sbl__rig_as_parallel(sbl__stereo_rp *s, int w, int h)
+{
+    const double cx = 0.5 * w, cy = 0.5 * h, inf = HUGE_VAL;
+    double ox0, oy0, oz0, ox1, oy1, oz1, k, b, off, zn;
+    float fb, z[3];
+    int i, j, e;
+    if (!sbl__cam_map_apply(&s->to_source, cx, cy, SBL__CAST(float, inf), &ox0, &oy0, &oz0) ||
+        !sbl__cam_map_apply(&s->to_source, cx, cy, 1.0f, &ox1, &oy1, &oz1))
+        return;
+    b = ox0 - cx;
+    k = ox1 - ox0; /* (depth 1) */
+    fb = SBL__CAST(float, s->dir[0] * k);
+    off = -s->dir[0] * b;
+    if (!(fb > 0.0f) || !sbl__finite(fb) || !(fabs(off) < 1e9)) return;
+    if (fabs(off) <= 0.25 * SBL__RIG_PARALLEL_TOL) off = 0.0; /* the fused rows' offset */
+    zn = SBL__CAST(double, fb) / (SBL__CAST(double, w) + fabs(off));
+    z[0] = SBL__CAST(float, inf);
+    z[1] = SBL__CAST(float, zn);
+    z[2] = SBL__CAST(float, 2.0 * zn);
+    if (!(z[1] > 0.0f) || !sbl__finite(z[2])) return;
+    for (e = 0; e < 2; ++e)
+        for (j = 0; j < 3; ++j)
+            for (i = 0; i < 9; ++i) {
+                const double px = i % 3 == 0 ? 0.5 : i % 3 == 1 ? cx : w - 0.5;
+                const double py = i / 3 == 0 ? 0.5 : i / 3 == 1 ? cy : h - 0.5;
+                if (!sbl__rig_parallel_at(e ? &s->to_target : &s->to_source, s->dir[e], fb, off,
+                                          px, py, z[j]))
+                    return;
+            }
+    s->d.rig = SBL_RIG_PARALLEL;
+    s->fb = fb;
+    s->offset = off;
+}
+
 static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *desc,
                                       sbl_eye_index target_eye, const sbl_eye *target,
                                       const sbl_eye *source, int target_needs_color)
@@ -10417,6 +10485,7 @@ static sbl_result sbl__stereo_rp_init(sbl__stereo_rp *s, const sbl_stereo_desc *
             return SBL_ERROR_INVALID_PARAM;
         break;
     }
+    if (s->d.rig == SBL_RIG_MATRICES || s->d.rig == SBL_RIG_PINHOLE) sbl__rig_as_parallel(s, w, h);
     return SBL_OK;
 }
 

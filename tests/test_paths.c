@@ -1846,6 +1846,7 @@ static void test_camera_plans_normals(void)
             if (it % 8 == 7) sd.reproject.disabled_tests |= SBL_TEST_BACK_CHECK;
             e = (it / 2) & 1;
             CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)e, &eye[e], &eye[!e], 1), SBL_OK);
+            rp.d.rig = sd.rig; /* the camera maps (most of these rigs are parallel: sbl__rig_as_parallel) */
             rp.tiles = 0; /* (the far tiles, opt-in and within a bound: test_tiles) */
             CHECK(sbl__row_gather_ok(&rp.src));
             for (y = 0; y < h; ++y) {
@@ -2031,6 +2032,181 @@ static double blur_g_exact(double s)
     return acc * (2.0 * pi / q) / 3.0 / (2.0 * pi);
 }
 
+/* sbl__rig_as_parallel: two cameras that form a parallel rig (either eye the target; the
+   pinhole rig and the matrices rig, world poses turned and moved alike, principal points
+   that differ) run as SBL_RIG_PARALLEL with f b and the offset the cameras imply, and
+   find the same matches as the camera maps (every pixel of a scene with sky and depth
+   steps, both run through the per-pixel reference); with f b a float product that the
+   pinhole rig's double maps reproduce exactly, sbl_stereo_blend's output is the parallel
+   rig's bit for bit (the matrices rig's float projection holds fx to an ulp: within
+   1e-5). A
+   rig that is not parallel (toed in by 2e-3 rad, a vertical offset of 1 % of the
+   baseline, a depth offset of 5 %, fy 1 % apart, or the eyes swapped) keeps its
+   cameras. A turn of 1e-9 rad is parallel to far below the tolerance. */
+static void test_rig_as_parallel(void)
+{
+    sbt_rng rng = {8128};
+    int it, routed = 0, kept = 0, wrong_route = 0, bad_fb = 0, blends = 0, blend_differ = 0;
+    long pixels = 0, valid = 0, differ = 0;
+    double worst = 0.0;
+    for (it = 0; it < 180; ++it) {
+        const int kind = it % 9, w = 24 + (int)(sbt_uniform(&rng) * 48), h = 12 + (int)(sbt_uniform(&rng) * 24);
+        const int ch = 3, tgt = (it / 9) & 1, parallel = kind <= 3, matrices = (it / 2) % 2;
+        const float b = 0.125f;
+        sbl_intrinsics kin[2];
+        float rfl[16], pose[2][16];
+        sbt_img col[2], len[2], dep[2];
+        sbl_stereo_desc sd;
+        sbl_eye eye[2];
+        sbl_camera cam[2];
+        sbl__stereo_rp rp, rc;
+        int e, x, y, c, i;
+        kin[0].fx = 500.0f; kin[0].fy = 480.0f;
+        kin[0].cx = (float)(w * (0.35 + 0.3 * sbt_uniform(&rng)));
+        kin[0].cy = (float)(h * (0.35 + 0.3 * sbt_uniform(&rng)));
+        kin[1] = kin[0];
+        if (kind == 1 || kind == 3) kin[1].cx += (float)(4.0 * sbt_uniform(&rng) - 2.0); /* an offset */
+        if (kind == 7) kin[1].fy *= 1.01f;
+        /* right_from_left in OpenCV axes: x_r = R x_l + T, the right eye b to the right */
+        for (i = 0; i < 16; ++i) rfl[i] = i % 5 == 0 ? 1.0f : 0.0f;
+        rfl[3] = -b;
+        if (kind == 2 || kind == 4) { /* turned about the vertical axis */
+            const double a = kind == 2 ? 1e-9 : 2e-3;
+            rfl[0] = rfl[10] = (float)cos(a);
+            rfl[2] = (float)sin(a);
+            rfl[8] = (float)-sin(a);
+        }
+        if (kind == 5) rfl[7] = 0.01f * b;
+        if (kind == 6) rfl[11] = 0.05f * b;
+        if (kind == 8) rfl[3] = b; /* the right eye's camera to the left: swapped */
+        {   /* the same pair as world poses: the left eye turned and moved, the right eye
+               rfl after it (composed in double, stored in float as a renderer would) */
+            const double ax = 0.3 * (sbt_uniform(&rng) - 0.5), ay = 0.3 * (sbt_uniform(&rng) - 0.5);
+            const double R[9] = {cos(ay), sin(ay) * sin(ax), sin(ay) * cos(ax),
+                                 0.0, cos(ax), -sin(ax),
+                                 -sin(ay), cos(ay) * sin(ax), cos(ay) * cos(ax)};
+            double t[3];
+            int r;
+            for (r = 0; r < 3; ++r) t[r] = floor((sbt_uniform(&rng) - 0.5) * 64.0) / 64.0; /* (t - b exact) */
+            for (i = 0; i < 16; ++i) pose[0][i] = pose[1][i] = 0.0f;
+            for (r = 0; r < 3; ++r) {
+                for (c = 0; c < 3; ++c) pose[0][r * 4 + c] = (float)R[r * 3 + c];
+                pose[0][r * 4 + 3] = (float)t[r];
+            }
+            pose[0][15] = pose[1][15] = 1.0f;
+            for (r = 0; r < 3; ++r)
+                for (c = 0; c < 4; ++c) {
+                    double v = c == 3 ? (double)rfl[r * 4 + 3] : 0.0;
+                    int k;
+                    for (k = 0; k < 3; ++k) v += (double)rfl[r * 4 + k] * (double)pose[0][k * 4 + c];
+                    pose[1][r * 4 + c] = (float)v;
+                }
+            if (parallel) /* the same rotation bits in both eyes, as a rig's eye offsets give them */
+                for (r = 0; r < 3; ++r)
+                    for (c = 0; c < 3; ++c) pose[1][r * 4 + c] = pose[0][r * 4 + c];
+        }
+        for (e = 0; e < 2; ++e) {
+            CHECK_EQ(sbl_camera_from_pinhole(&cam[e], &kin[e], pose[e], SBL_AXES_OPENCV, 0, w, h), SBL_OK);
+            col[e] = sbt_img_new(w, h, ch, 1);
+            len[e] = sbt_img_new(w, h, 1, 0);
+            dep[e] = sbt_img_new(w, h, 1, 1);
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x) {
+                    const double u = sbt_uniform(&rng);
+                    for (c = 0; c < ch; ++c) sbt_at(&col[e], x, y)[c] = (float)sbt_uniform(&rng);
+                    *sbt_at(&len[e], x, y) = (float)(1 + sbt_uniform(&rng) * 20);
+                    /* disparities of about 3-8 px; depth by rows (planes facing the rig,
+                       the same in both eyes), a step every 7 rows */
+                    *sbt_at(&dep[e], x, y) = (float)(8.0 + 0.2 * y + (y % 7 < 2 ? 6.0 : 0.0));
+                    if (u < 0.05) *sbt_at(&dep[e], x, y) = (float)HUGE_VAL;
+                }
+            memset(&eye[e], 0, sizeof eye[e]);
+            eye[e].color = sbt_view(&col[e]);
+            eye[e].length = sbt_view(&len[e]);
+            eye[e].gbuffer.depth = sbt_view(&dep[e]);
+            eye[e].camera = &cam[e];
+        }
+        memset(&sd, 0, sizeof sd);
+        if (matrices) {
+            sd.rig = SBL_RIG_MATRICES;
+        } else {
+            sd.rig = SBL_RIG_PINHOLE;
+            sd.pinhole.eye[0] = kin[0];
+            sd.pinhole.eye[1] = kin[1];
+            memcpy(sd.pinhole.right_from_left, rfl, sizeof rfl);
+            sd.pinhole.axes = SBL_AXES_OPENCV;
+        }
+        sd.reproject.back_check_pixels = 0.5f;
+        CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)tgt, &eye[tgt], &eye[!tgt], 1), SBL_OK);
+        if (rp.d.rig != (parallel ? SBL_RIG_PARALLEL : sd.rig)) ++wrong_route;
+        if (rp.d.rig == SBL_RIG_PARALLEL) {
+            ++routed;
+            /* f b = fx b; the offset cx_right - cx_left (the disparity's convention) */
+            if (!(fabs(rp.fb - 62.5f) <= 62.5f * 1e-6f) ||
+                !(fabs(rp.offset - ((double)kin[1].cx - (double)kin[0].cx)) <= 1e-4))
+                ++bad_fb;
+        } else {
+            ++kept;
+        }
+        rc = rp;
+        rc.d.rig = sd.rig; /* the camera maps */
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                float op[4] = {0, 0, 0, 0}, oc[4] = {0, 0, 0, 0};
+                const float np = sbl__stereo_rp_pixel(&rp, x, y, op), nc = sbl__stereo_rp_pixel(&rc, x, y, oc);
+                ++pixels;
+                if ((np > 0.0f) != (nc > 0.0f)) { ++differ; continue; }
+                if (!(np > 0.0f)) continue;
+                ++valid;
+                for (c = 0; c < ch; ++c)
+                    if (fabs((double)op[c] - (double)oc[c]) > worst) worst = fabs((double)op[c] - (double)oc[c]);
+            }
+        if (parallel && kind != 1 && kind != 3) { /* no offset: the public call, bit for bit */
+            sbl_stereo_desc pd;
+            sbt_img o1 = sbt_img_new(w, h, ch, 0), o2 = sbt_img_new(w, h, ch, 0);
+            const size_t bytes = sbl_stereo_scratch_size(w, ch);
+            void *scratch = malloc(bytes);
+            memset(&pd, 0, sizeof pd);
+            pd.rig = SBL_RIG_PARALLEL;
+            pd.focal_px = kin[0].fx;
+            pd.baseline = b;
+            pd.reproject = sd.reproject;
+            CHECK_EQ(sbl_stereo_blend(&sd, (sbl_eye_index)tgt, &eye[tgt], &eye[!tgt], sbt_view(&o1),
+                                      sbl_image_make(NULL, 0, 0, 1), 0, h, scratch, bytes), SBL_OK);
+            CHECK_EQ(sbl_stereo_blend(&pd, (sbl_eye_index)tgt, &eye[tgt], &eye[!tgt], sbt_view(&o2),
+                                      sbl_image_make(NULL, 0, 0, 1), 0, h, scratch, bytes), SBL_OK);
+            ++blends;
+            if (!matrices) { /* the pinhole rig's maps are double: f b is 62.5 exactly */
+                if (memcmp(o1.mem, o2.mem, sizeof(float) * (size_t)(w * ch * h)) != 0) ++blend_differ;
+            } else { /* a float projection matrix holds fx / w to 6e-8: f b within an ulp */
+                for (i = 0; i < w * ch * h; ++i)
+                    if (!(fabs((double)o1.mem[i] - (double)o2.mem[i]) <= 1e-5)) break;
+                if (i < w * ch * h) ++blend_differ;
+            }
+            free(scratch);
+            free(o1.mem);
+            free(o2.mem);
+        }
+        for (e = 0; e < 2; ++e) {
+            free(col[e].mem);
+            free(len[e].mem);
+            free(dep[e].mem);
+        }
+    }
+    printf("  two cameras as a parallel rig: %d routed, %d kept (%d on the wrong side), f b / offset "
+           "off %d; matches against the camera maps: %ld of %ld pixels differ in validity, worst "
+           "colour %.2g over %ld valid; the public blend against SBL_RIG_PARALLEL: %d of %d differ\n",
+           routed, kept, wrong_route, bad_fb, differ, pixels, worst, valid, blend_differ, blends);
+    CHECK_EQ(wrong_route, 0);
+    CHECK_EQ(bad_fb, 0);
+    CHECK(routed == 80 && kept == 100);
+    CHECK(valid > pixels / 2);
+    CHECK(differ * 10000 <= pixels);
+    CHECK(worst <= 1e-4);
+    CHECK_EQ(blend_differ, 0);
+    CHECK(blends == 40);
+}
+
 static void test_blur_noise_fit(void)
 {
     static const double pts[][2] = {{1, 0.25}, {1, 0.0625}, {2, 0.25}, {3, 0.1}, {5, 0.2}, {11, 0.001}, {8, 0.25},
@@ -2158,6 +2334,7 @@ int main(void)
     test_bands_every_shape();
     test_camera_plans_normals();
     test_cam_map_fold();
+    test_rig_as_parallel();
     test_blur_noise_fit();
     return sbt_finish("test_paths");
 }

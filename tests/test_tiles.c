@@ -487,6 +487,7 @@ static void test_stereo_cameras(void)
         sd.reproject.no_fallback = it % 5 == 1;
         if (it % 4 == 3) sd.reproject.disabled_tests = SBL_TEST_BACK_CHECK;
         CHECK_EQ(sbl__stereo_rp_init(&rp, &sd, (sbl_eye_index)tgt, &eye[tgt], &eye[!tgt], 1), SBL_OK);
+        rp.d.rig = sd.rig; /* the camera maps (most of these rigs are parallel: sbl__rig_as_parallel) */
         ring3_init(&g);
         for (y = 0; y < h; ++y) {
             int xa = it % 3 ? 0 : (int)(sbt_uniform(&rng) * w), xb = w;
