@@ -86,6 +86,8 @@
                 Disparity maps: 1 channel (d_x) or 2 (d_x, d_y = v_left - v_right), the
                 same sign in both eyes' maps. Pinhole rig: intrinsics per eye + the right
                 eye's pose relative to the left (x_r = R x_l + T; parallel: T = (-b,0,0)).
+                Two cameras (pinhole or matrices rig) that form a parallel rig, to 1e-3
+                px plus 1e-5 of the disparity, run as the parallel rig (its faster plans).
                 The library cannot know which image is left: a swapped target_eye passes
                 (symmetric rigs give consistent round trips); sbl_stereo_validate warns
                 when the round trips say so. sbl_stereo_desc.fill (take the other eye
@@ -515,7 +517,9 @@ typedef enum sbl_stereo_rig {
     SBL_RIG_DISPARITY,     /* per-eye disparity images: 1 channel (d_x, rows aligned) or 2
                               channels (d_x, d_y), both left minus right, in both eyes'
                               maps; non-finite = no match                               */
-    SBL_RIG_MATRICES,      /* general rig: each eye's sbl_camera (any model) + depth    */
+    SBL_RIG_MATRICES,      /* general rig: each eye's sbl_camera (any model) + depth;
+                              a pair that is a parallel rig runs as one (this and
+                              PINHOLE: sbl__rig_as_parallel)                             */
     SBL_RIG_PINHOLE,       /* calibration: intrinsics per eye + the right eye's pose
                               relative to the left (sbl_pinhole_rig) + depth           */
     SBL_RIG_COUNT

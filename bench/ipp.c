@@ -21,8 +21,10 @@
              the float lane plan's 2^-8, as geometry beyond 256 f b gives them)
      camera  the easy content with camera matrices instead of motion vectors (a pinhole
              camera moved ~(0.37, -0.21) px at depth 2; the temporal camera source) and a
-             two-camera stereo rig (SBL_RIG_PINHOLE, baseline 6.5 cm): the camera maps
-             and their plans in double lanes, and the rig's back-check
+             two-camera stereo rig (SBL_RIG_PINHOLE, baseline 6.5 cm): a parallel pair,
+             which the stereo blend runs as SBL_RIG_PARALLEL (sbl__rig_as_parallel)
+     toed    the camera case with the right eye toed in by 0.5 degrees (a canted rig):
+             the camera maps and their plans in double lanes, and the rig's back-check
      two-eyes the easy case with the stereo blend of both eyes (each eye's temporal
              output blended with the other's, as bench/perf.c's stereo pipeline runs it;
              ipp.sh divides the blend's count by 2 calls)
@@ -153,8 +155,8 @@ static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
 
 int main(int argc, char **argv)
 {
-    static const char *names[10] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv", "camera",
-                                    "offset", "far"};
+    static const char *names[11] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv", "camera",
+                                    "offset", "far", "toed"};
     int kind = 0, ev = 0, two = 0, e, i;
     sbl_camera cam[2]; /* case camera: the history's and the frame's */
     sbl_intrinsics kin;
@@ -167,12 +169,12 @@ int main(int argc, char **argv)
         size_t len = strlen(argv[1]);
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
         kind = -1;
-        for (i = 0; i < 10; ++i)
+        for (i = 0; i < 11; ++i)
             if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
                 strlen(names[i]) == (ev ? len - 3 : len))
                 kind = i;
         if (kind < 0) { /* a name not measured must not pass as the easy case */
-            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv camera offset far, "
+            fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv camera offset far toed, "
                             "each also with -ev; two-eyes)\n", argv[1]);
             free(scratch);
             return 2;
@@ -218,7 +220,7 @@ int main(int argc, char **argv)
            (stereo_shared_bias c; 1 in sbl_stereo_temporal_frame and default-stereo) */
         if (getenv("IPP_SHARED_BIAS")) td.stereo_shared_bias = (float)atof(getenv("IPP_SHARED_BIAS"));
         if (kind == 6) td.reproject.motion.units = SBL_MOTION_UV;
-        if (kind == 7) {
+        if (kind == 7 || kind == 10) {
             td.source = SBL_TEMPORAL_CAMERA;
             f.camera = &cam[1];
             hi.camera = &cam[0];
@@ -235,11 +237,17 @@ int main(int argc, char **argv)
         sd.focal_px = 800.0f;
         sd.baseline = 0.065f;
         if (kind == 8) sd.disparity_offset = 0.75f;
-        if (kind == 7) { /* the same rig as two pinhole cameras (eye 0 the left) */
+        if (kind == 7 || kind == 10) { /* the same rig as two pinhole cameras (eye 0 the left) */
             sd.rig = SBL_RIG_PINHOLE;
             sd.pinhole.eye[0] = sd.pinhole.eye[1] = kin;
             for (i = 0; i < 16; ++i) sd.pinhole.right_from_left[i] = i % 5 == 0 ? 1.0f : 0.0f;
             sd.pinhole.right_from_left[3] = -0.065f;
+            if (kind == 10) { /* toed in: turned 0.5 degrees about the vertical axis */
+                const double a = 0.5 * 3.14159265358979 / 180.0;
+                sd.pinhole.right_from_left[0] = sd.pinhole.right_from_left[10] = (float)cos(a);
+                sd.pinhole.right_from_left[2] = (float)sin(a);
+                sd.pinhole.right_from_left[8] = (float)-sin(a);
+            }
             sd.pinhole.axes = SBL_AXES_OPENCV;
         }
         te.color = sbl_image_make(t->out, W, H, 3);

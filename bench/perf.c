@@ -19,7 +19,10 @@
                       pinhole camera moved ~(0.37, -0.21) px at depth 2; no motion read)
    and the stereo blend of the two eyes on one more rig (1 thread):
      stereo-cameras   a two-camera pinhole rig (SBL_RIG_PINHOLE, the same baseline) in
-                      place of the parallel rig's focal length and baseline
+                      place of the parallel rig's focal length and baseline: a parallel
+                      pair, which the library runs as the parallel rig
+     stereo-cameras-toed  the same rig with the right eye toed in by 0.5 degrees (a
+                      canted rig): the camera maps
    The surface's depth varies along rows too (base_depth), as rendered depth does.
    (compare their ms with the `temporal` row of the same size: the issue asks for
    hard <= 1.5x, tiny <= 1.2x, static <= 1.2x the floor).
@@ -343,17 +346,17 @@ int main(int argc, char **argv)
             if (sbl_camera_from_pinhole(&cam[i], &kin, pose, SBL_AXES_OPENCV, 0, w, h) != SBL_OK) return 1;
         }
         for (eyes = 1; eyes <= 2; ++eyes)
-            for (pk = 0; pk < 9; ++pk) {
+            for (pk = 0; pk < 10; ++pk) {
                 /* the evidence and camera cases right after the easy one: they read the
                    easy content, which the cases 3..5 rewrite */
-                static const int order[9] = {0, 6, 7, 1, 2, 8, 3, 4, 5};
-                static const char *names[9] = {"temporal", "stereo", "combined", "temporal-tiny",
-                                               "temporal-hard", "temporal-static", "temporal-evidence",
-                                               "temporal-camera", "stereo-cameras"};
-                /* the extra contents run temporal, stereo-cameras the stereo blend */
-                const int kind = (pipe = order[pk]) == 8 ? 1 : (pipe >= 3 ? 0 : pipe);
-                if (eyes == 1 && (pipe == 1 || pipe == 2 || pipe == 8)) continue; /* two eyes */
-                if (eyes == 2 && pipe >= 3 && pipe != 8) continue;
+                static const int order[10] = {0, 6, 7, 1, 2, 8, 9, 3, 4, 5};
+                static const char *names[10] = {"temporal", "stereo", "combined", "temporal-tiny",
+                                                "temporal-hard", "temporal-static", "temporal-evidence",
+                                                "temporal-camera", "stereo-cameras", "stereo-cameras-toed"};
+                /* the extra contents run temporal, stereo-cameras(-toed) the stereo blend */
+                const int kind = (pipe = order[pk]) >= 8 ? 1 : (pipe >= 3 ? 0 : pipe);
+                if (eyes == 1 && (pipe == 1 || pipe == 2 || pipe >= 8)) continue; /* two eyes */
+                if (eyes == 2 && pipe >= 3 && pipe < 8) continue;
                 if (only_count) {
                     int k, hit = 0;
                     for (k = 0; k < only_count; ++k) hit |= strcmp(only[k], names[pipe]) == 0;
@@ -410,12 +413,18 @@ int main(int argc, char **argv)
                     pj.sd.baseline = 0.065f;
                     pj.cam = cam;
                     if (pipe == 7) pj.td.source = SBL_TEMPORAL_CAMERA;
-                    if (pipe == 8) { /* the same rig as two pinhole cameras (eye 0 the left) */
+                    if (pipe >= 8) { /* the same rig as two pinhole cameras (eye 0 the left) */
                         int q;
                         pj.sd.rig = SBL_RIG_PINHOLE;
                         pj.sd.pinhole.eye[0] = pj.sd.pinhole.eye[1] = kin;
                         for (q = 0; q < 16; ++q) pj.sd.pinhole.right_from_left[q] = q % 5 == 0 ? 1.0f : 0.0f;
                         pj.sd.pinhole.right_from_left[3] = -0.065f;
+                        if (pipe == 9) { /* toed in 0.5 degrees about the vertical axis */
+                            const double a = 0.5 * 3.14159265358979 / 180.0;
+                            pj.sd.pinhole.right_from_left[0] = pj.sd.pinhole.right_from_left[10] = (float)cos(a);
+                            pj.sd.pinhole.right_from_left[2] = (float)sin(a);
+                            pj.sd.pinhole.right_from_left[8] = (float)-sin(a);
+                        }
                         pj.sd.pinhole.axes = SBL_AXES_OPENCV;
                     }
                     fj = pj;
