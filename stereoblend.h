@@ -87,7 +87,7 @@
                 same sign in both eyes' maps. Pinhole rig: intrinsics per eye + the right
                 eye's pose relative to the left (x_r = R x_l + T; parallel: T = (-b,0,0)).
                 Two cameras (pinhole or matrices rig) that form a parallel rig, to 1e-3
-                px plus 1e-5 of the disparity, run as the parallel rig (its faster plans).
+                px, run as the parallel rig (its faster plans).
                 The library cannot know which image is left: a swapped target_eye passes
                 (symmetric rigs give consistent round trips); sbl_stereo_validate warns
                 when the round trips say so. sbl_stereo_desc.fill (take the other eye
@@ -10370,65 +10370,69 @@ static int sbl__pinhole_rig_maps(sbl__stereo_rp *s, const sbl_pinhole_rig *p, in
    keep every pixel on its row and its depth, and move it by K / z + B): run as
    SBL_RIG_PARALLEL with f b = dir K and the offset -dir B, whose plans take one float
    division per pixel and no double map (a VR rig given as two eye cameras is mostly
-   this). Decided on the double maps: K and B fitted at the image's centre (the sky and
-   depth 1), then both maps checked against the parallel rig's own positions on a 3 x 3
-   grid of pixels (corners, edge midpoints, centre) at three inverse depths (0, the sky;
-   and the depths whose disparity is the width plus |B|, and half of it). Why 27 points
-   suffice: in (n0, n1, 1 / z) a static map's position is a ratio whose numerator and
-   denominator have degree at most 1 in each (sbl__cam_map_fold), so the model's residual
-   times the denominator has degree at most 2 in each, and a polynomial of that degree
-   which vanishes on a 3 x 3 x 3 grid vanishes everywhere; the rays' validity is affine
-   in n (checked at the corners). Nearer than the grid's last depth no match of either
-   rig lies in the image. Float matrices rarely give exact zeros, so positions may
-   differ by SBL__RIG_PARALLEL_TOL px plus 1e-5 of the disparity (the depth test's
-   depth by 1e-6 relative): far below what the float depth itself resolves in a
-   render's depth buffer, and the rig is then taken as parallel. A rig that is not
-   (toed-in, a vertical or depth offset, different focal lengths) keeps the cameras. */
-#define SBL__RIG_PARALLEL_TOL 1e-3
+   this). Decided on the double maps: B at the sky and K at the depth whose disparity is
+   half the width (found from a first fit at depth 1, so that the scene's units do not
+   matter), then both maps checked against the parallel rig's own positions on a 3 x 3
+   grid (the image's corners, edge midpoints and centre, on its outer edges: the
+   back-check maps positions anywhere in [0, w) x [0, h)) at three inverse depths (0, the
+   sky; and the depths whose disparity is the width plus |B|, and half of it). Why 27
+   points suffice: in (n0, n1, 1 / z) a static map's position is a ratio whose numerator
+   and denominator have degree at most 1 in each (sbl__cam_map_fold), so the model's
+   residual times the denominator has degree at most 2 in each, and a polynomial of that
+   degree which vanishes on a 3 x 3 x 3 grid vanishes everywhere; the rays' validity is
+   affine in n, and the clip w positive on the box if at its corners. Nearer than the
+   grid's last depth no match of either rig lies in the image. Float matrices rarely give
+   exact zeros: the nodes pass within SBL__RIG_PARALLEL_TOL px (and the depth within 1e-6
+   relative), and between the nodes a residual of that degree is at most about twice its
+   largest node value, so positions then agree to 1e-3 px. A rig that is not parallel
+   (toed in, a vertical or depth offset, a scaled view, focal lengths that differ) keeps
+   its cameras. */
+#define SBL__RIG_PARALLEL_TOL 5e-4
 static int sbl__rig_parallel_at(const sbl__cam_map *m, double dir, float fb, double offset,
                                 double px, double py, float z)
 {
-    double ox, oy, oz, d;
+    double ox, oy, oz;
     const int sky = sbl__is_pos_inf(z);
     float fbz;
     if (!sbl__cam_map_apply(m, px, py, z, &ox, &oy, &oz)) return 0;
     fbz = sky ? 0.0f : fb / z; /* as sbl__stereo_map_parallel */
-    d = dir * (SBL__CAST(double, fbz) - offset);
-    if (!(fabs(ox - (px + d)) <= SBL__RIG_PARALLEL_TOL + 1e-5 * fabs(d) &&
-          fabs(oy - py) <= SBL__RIG_PARALLEL_TOL + 1e-5 * fabs(d)))
+    if (!(fabs(ox - (px + dir * (SBL__CAST(double, fbz) - offset))) <= SBL__RIG_PARALLEL_TOL &&
+          fabs(oy - py) <= SBL__RIG_PARALLEL_TOL))
         return 0;
     return sky || fabs(oz - SBL__CAST(double, z)) <= 1e-6 * SBL__CAST(double, z);
 }
 
 static void sbl__rig_as_parallel(sbl__stereo_rp *s, int w, int h)
 {
-    const double cx = 0.5 * w, cy = 0.5 * h, inf = HUGE_VAL;
-    double ox0, oy0, oz0, ox1, oy1, oz1, k, b, off, zn;
+    const double cx = 0.5 * w, cy = 0.5 * h;
+    double ox0, ox1, oy, oz, k, b, off, zn;
     float fb, z[3];
     int i, j, e;
-    if (!sbl__cam_map_apply(&s->to_source, cx, cy, SBL__CAST(float, inf), &ox0, &oy0, &oz0) ||
-        !sbl__cam_map_apply(&s->to_source, cx, cy, 1.0f, &ox1, &oy1, &oz1))
+    if (!sbl__cam_map_apply(&s->to_source, cx, cy, SBL__CAST(float, HUGE_VAL), &ox0, &oy, &oz) ||
+        !sbl__cam_map_apply(&s->to_source, cx, cy, 1.0f, &ox1, &oy, &oz))
         return;
     b = ox0 - cx;
-    k = ox1 - ox0; /* (depth 1) */
+    k = ox1 - ox0; /* at depth 1 */
+    z[1] = SBL__CAST(float, fabs(k) / (0.5 * w)); /* disparity w / 2 */
+    if (!(z[1] > 0.0f) || !sbl__finite(z[1]) ||
+        !sbl__cam_map_apply(&s->to_source, cx, cy, z[1], &ox1, &oy, &oz))
+        return;
+    k = (ox1 - ox0) * SBL__CAST(double, z[1]);
     fb = SBL__CAST(float, s->dir[0] * k);
     off = -s->dir[0] * b;
     if (!(fb > 0.0f) || !sbl__finite(fb) || !(fabs(off) < 1e9)) return;
     if (fabs(off) <= 0.25 * SBL__RIG_PARALLEL_TOL) off = 0.0; /* the fused rows' offset */
     zn = SBL__CAST(double, fb) / (SBL__CAST(double, w) + fabs(off));
-    z[0] = SBL__CAST(float, inf);
+    z[0] = SBL__CAST(float, HUGE_VAL);
     z[1] = SBL__CAST(float, zn);
     z[2] = SBL__CAST(float, 2.0 * zn);
     if (!(z[1] > 0.0f) || !sbl__finite(z[2])) return;
     for (e = 0; e < 2; ++e)
         for (j = 0; j < 3; ++j)
-            for (i = 0; i < 9; ++i) {
-                const double px = i % 3 == 0 ? 0.5 : i % 3 == 1 ? cx : w - 0.5;
-                const double py = i / 3 == 0 ? 0.5 : i / 3 == 1 ? cy : h - 0.5;
+            for (i = 0; i < 9; ++i)
                 if (!sbl__rig_parallel_at(e ? &s->to_target : &s->to_source, s->dir[e], fb, off,
-                                          px, py, z[j]))
+                                          0.5 * w * (i % 3), 0.5 * h * (i / 3), z[j]))
                     return;
-            }
     s->d.rig = SBL_RIG_PARALLEL;
     s->fb = fb;
     s->offset = off;

@@ -2041,17 +2041,21 @@ static double blur_g_exact(double s)
    rig's bit for bit (the matrices rig's float projection holds fx to an ulp: within
    1e-5). A
    rig that is not parallel (toed in by 2e-3 rad, a vertical offset of 1 % of the
-   baseline, a depth offset of 5 %, fy 1 % apart, or the eyes swapped) keeps its
-   cameras. A turn of 1e-9 rad is parallel to far below the tolerance. */
+   baseline, a depth offset of 5 %, fy 1 % apart, the eyes swapped, the right view scaled
+   by 1.001 (its depths, so the disparities, 0.1 % apart), cy 0.01 px apart beside an
+   offset, a projection whose rays turn invalid 0.25 px or a quarter of the width inside
+   the image, or a vertical baseline whose 8e-4 px at the nearest checked depth halve at
+   the next) keeps its cameras. A turn of 1e-9 rad is parallel to far below the tolerance. */
 static void test_rig_as_parallel(void)
 {
     sbt_rng rng = {8128};
     int it, routed = 0, kept = 0, wrong_route = 0, bad_fb = 0, blends = 0, blend_differ = 0;
     long pixels = 0, valid = 0, differ = 0;
     double worst = 0.0;
-    for (it = 0; it < 180; ++it) {
-        const int kind = it % 9, w = 24 + (int)(sbt_uniform(&rng) * 48), h = 12 + (int)(sbt_uniform(&rng) * 24);
-        const int ch = 3, tgt = (it / 9) & 1, parallel = kind <= 3, matrices = (it / 2) % 2;
+    for (it = 0; it < 260; ++it) {
+        const int kind = it % 13, w = 24 + (int)(sbt_uniform(&rng) * 48), h = 12 + (int)(sbt_uniform(&rng) * 24);
+        const int ch = 3, tgt = (it / 13) & 1, parallel = kind <= 3,
+                  matrices = kind == 9 || kind == 11 || (it / 2) % 2;
         const float b = 0.125f;
         sbl_intrinsics kin[2];
         float rfl[16], pose[2][16];
@@ -2065,7 +2069,8 @@ static void test_rig_as_parallel(void)
         kin[0].cx = (float)(w * (0.35 + 0.3 * sbt_uniform(&rng)));
         kin[0].cy = (float)(h * (0.35 + 0.3 * sbt_uniform(&rng)));
         kin[1] = kin[0];
-        if (kind == 1 || kind == 3) kin[1].cx += (float)(4.0 * sbt_uniform(&rng) - 2.0); /* an offset */
+        if (kind == 1 || kind == 3 || kind == 10) kin[1].cx += (float)(4.0 * sbt_uniform(&rng) - 2.0); /* an offset */
+        if (kind == 10) kin[1].cy += 0.01f;
         if (kind == 7) kin[1].fy *= 1.01f;
         /* right_from_left in OpenCV axes: x_r = R x_l + T, the right eye b to the right */
         for (i = 0; i < 16; ++i) rfl[i] = i % 5 == 0 ? 1.0f : 0.0f;
@@ -2079,6 +2084,8 @@ static void test_rig_as_parallel(void)
         if (kind == 5) rfl[7] = 0.01f * b;
         if (kind == 6) rfl[11] = 0.05f * b;
         if (kind == 8) rfl[3] = b; /* the right eye's camera to the left: swapped */
+        if (kind == 12) /* 8e-4 px vertically at the disparity w (fb 62.5), 4e-4 at w / 2 */
+            rfl[7] = (float)(8e-4 * 62.5 / ((double)kin[1].fy * w));
         {   /* the same pair as world poses: the left eye turned and moved, the right eye
                rfl after it (composed in double, stored in float as a renderer would) */
             const double ax = 0.3 * (sbt_uniform(&rng) - 0.5), ay = 0.3 * (sbt_uniform(&rng) - 0.5);
@@ -2104,9 +2111,18 @@ static void test_rig_as_parallel(void)
             if (parallel) /* the same rotation bits in both eyes, as a rig's eye offsets give them */
                 for (r = 0; r < 3; ++r)
                     for (c = 0; c < 3; ++c) pose[1][r * 4 + c] = pose[0][r * 4 + c];
+            if (kind == 9)
+                for (r = 0; r < 12; ++r) pose[1][r] *= 1.001f;
+        }
+        for (e = 0; e < 2; ++e)
+            CHECK_EQ(sbl_camera_from_pinhole(&cam[e], &kin[e], pose[e], SBL_AXES_OPENCV, 0, w, h), SBL_OK);
+        if (kind == 11) { /* the right eye's depth row (-1, 0, -u0, 1): rays valid right of u0 only */
+            float *P = cam[1].view_to_clip;
+            const double edge = (it / 26) % 2 ? 0.25 : 0.25 * w, n0 = 2.0 * edge / w - 1.0;
+            const double u0 = (n0 + (double)P[2]) / (double)P[0];
+            P[8] = -1.0f; P[9] = 0.0f; P[10] = (float)-u0; P[11] = 1.0f;
         }
         for (e = 0; e < 2; ++e) {
-            CHECK_EQ(sbl_camera_from_pinhole(&cam[e], &kin[e], pose[e], SBL_AXES_OPENCV, 0, w, h), SBL_OK);
             col[e] = sbt_img_new(w, h, ch, 1);
             len[e] = sbt_img_new(w, h, 1, 0);
             dep[e] = sbt_img_new(w, h, 1, 1);
@@ -2199,7 +2215,7 @@ static void test_rig_as_parallel(void)
            routed, kept, wrong_route, bad_fb, differ, pixels, worst, valid, blend_differ, blends);
     CHECK_EQ(wrong_route, 0);
     CHECK_EQ(bad_fb, 0);
-    CHECK(routed == 80 && kept == 100);
+    CHECK(routed == 80 && kept == 180);
     CHECK(valid > pixels / 2);
     CHECK(differ * 10000 <= pixels);
     CHECK(worst <= 1e-4);
