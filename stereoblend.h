@@ -10411,22 +10411,24 @@ static void sbl__rig_as_parallel(sbl__stereo_rp *s, int w, int h)
     if (!sbl__cam_map_apply(&s->to_source, cx, cy, SBL__CAST(float, HUGE_VAL), &ox0, &oy, &oz) ||
         !sbl__cam_map_apply(&s->to_source, cx, cy, 1.0f, &ox1, &oy, &oz))
         return;
+    /* (every double below is tested inside float's range before its cast: a cast of
+       one outside it is undefined) */
     b = ox0 - cx;
     k = ox1 - ox0; /* at depth 1 */
-    z[1] = SBL__CAST(float, fabs(k) / (0.5 * w)); /* disparity w / 2 */
-    if (!(z[1] > 0.0f) || !sbl__finite(z[1]) ||
-        !sbl__cam_map_apply(&s->to_source, cx, cy, z[1], &ox1, &oy, &oz))
-        return;
-    k = (ox1 - ox0) * SBL__CAST(double, z[1]);
-    fb = SBL__CAST(float, s->dir[0] * k);
+    zn = fabs(k) / (0.5 * w); /* disparity w / 2 */
+    if (!(zn > 1e-30 && zn < 1e30)) return;
+    z[1] = SBL__CAST(float, zn);
+    if (!sbl__cam_map_apply(&s->to_source, cx, cy, z[1], &ox1, &oy, &oz)) return;
+    k = s->dir[0] * (ox1 - ox0) * SBL__CAST(double, z[1]);
     off = -s->dir[0] * b;
-    if (!(fb > 0.0f) || !sbl__finite(fb) || !(fabs(off) < 1e9)) return;
+    if (!(k > 1e-30 && k < 1e30) || !(fabs(off) < 1e9)) return;
+    fb = SBL__CAST(float, k);
     if (fabs(off) <= 0.25 * SBL__RIG_PARALLEL_TOL) off = 0.0; /* the fused rows' offset */
     zn = SBL__CAST(double, fb) / (SBL__CAST(double, w) + fabs(off));
+    if (!(zn > 1e-30)) return;
     z[0] = SBL__CAST(float, HUGE_VAL);
     z[1] = SBL__CAST(float, zn);
     z[2] = SBL__CAST(float, 2.0 * zn);
-    if (!(z[1] > 0.0f) || !sbl__finite(z[2])) return;
     for (e = 0; e < 2; ++e)
         for (j = 0; j < 3; ++j)
             for (i = 0; i < 9; ++i)
