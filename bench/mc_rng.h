@@ -1,4 +1,5 @@
-/* The Monte Carlo programs' random numbers (bench/evidence_null.c, bench/firefly_mc.c):
+/* The Monte Carlo programs' random numbers (bench/evidence_null.c, bench/firefly_mc.c,
+   bench/sparse_bias.c):
    xorshift64, one stream per program, deterministic. */
 #ifndef SBL_BENCH_MC_RNG_H
 #define SBL_BENCH_MC_RNG_H

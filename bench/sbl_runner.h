@@ -114,7 +114,7 @@ typedef struct sbr_synth_scene {
     const char *name; sbl_scene_kind kind; int jitter;
     float spike_rate, spike_gain; /* heavy-tailed samples (sbl_scene_desc), 0 = none */
 } sbr_synth_scene;
-#define SBR_SYNTH_SCENES 5
+#define SBR_SYNTH_SCENES 6
 extern const sbr_synth_scene sbr_synth_scenes[SBR_SYNTH_SCENES];
 /* sbr_bench_scene_desc for one of sbr_synth_scenes (its kind, jitter and spikes). */
 sbl_scene_desc sbr_synth_desc(const sbr_synth_scene *scene, int quick);
@@ -177,6 +177,11 @@ const sbr_synth_scene sbr_synth_scenes[SBR_SYNTH_SCENES] = {
        (unclamped light paths of low probability; the reference is their mean exactly,
        as on the other synthetic scenes, not a render with its own spikes) */
     {"synthetic-firefly", SBL_SCENE_PAN, 0, 0.02f, 25.0f},
+    /* pan with hit-or-miss samples: 1 sample in 10 carries all the energy (ten times the
+       radiance; the others 1e-5 of it), as a small light or a sub-pixel highlight sampled
+       once per pixel. Spikes more frequent than one per history length: there the
+       firefly limit's bias costs more than the variance it saves (docs/ESTIMATORS.md 2.3) */
+    {"synthetic-sparse", SBL_SCENE_PAN, 0, 0.1f, 1e6f},
 };
 
 sbl_scene_desc sbr_bench_scene_desc(sbl_scene_kind kind, int jitter, int quick)
