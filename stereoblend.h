@@ -2624,7 +2624,9 @@ typedef struct sbl__weight_params {
 
 /* Firefly limit of the robust estimator: the new sample may exceed the larger of the
    neighbours' mean and the history by at most this many neighbour standard deviations
-   (summed over channels; see docs/ESTIMATORS.md). */
+   (summed over channels; see docs/ESTIMATORS.md). Where the eight neighbours are equal
+   the bound is that larger value for any setting: on hit-or-miss samples a lone hit is
+   cut to the history (docs/ESTIMATORS.md 2.3, bench/sparse_bias.c). */
 #ifndef SBL_FIREFLY_SIGMAS
 #define SBL_FIREFLY_SIGMAS 6.0
 #endif
