@@ -1,16 +1,22 @@
 /* Hit-or-miss samples: does a temporal filter keep the mean? (docs/ESTIMATORS.md 2.3,
-   session 30.) A static grey image whose every 1-spp sample is mu / p with probability p
-   and 0 otherwise (mean mu = 0.5 in every band): what a renderer returns for a small light
-   sampled once per pixel, a caustic, a sub-pixel highlight. Five vertical bands, p =
-   0.02, 0.05, 0.1, 0.2, 0.5; no motion, so the history's fetch is exact and any bias is
-   the weights'. Each estimator runs 60 frames through sbl_temporal_filter (the pooled
-   default with its evidence plane, as examples/minimal.c and build/sblexr run it);
-   frames 20..59 are scored, away from the band edges:
+   session 30.) A static grey image in vertical bands, every band of mean mu = 0.5:
+     hit p     every 1-spp sample is mu / p with probability p and 0 otherwise: what a
+               renderer returns for a small light sampled once per pixel, a caustic, a
+               sub-pixel highlight (p = 0.02, 0.05, 0.1, 0.2, 0.5);
+     spike r,g the other side of the trade: a body with noise (uniform, +-50 % of it) whose
+               sample is (1 + g) times larger with probability r, scaled by 1 / (1 + r g)
+               (r = 0.02, g = 25 as the bench's synthetic-firefly; r = 0.005, g = 100).
+               Here the firefly limit lowers the error, at the price of a bias.
+   No motion, so the history's fetch is exact and any bias is the weights'. Each estimator
+   runs 60 frames through sbl_temporal_filter (the pooled default with its evidence plane,
+   as examples/minimal.c and build/sblexr run it); frames 20..59 are scored, away from the
+   band edges:
      bias    mean of (output - mu) / mu          (an unbiased filter: about 0)
-     RMSE    against mu                          (progressive averaging: the floor for a
-                                                  per-pixel temporal mean of these frames)
-     a|hit   mean weight of the new sample where it is a hit; a|miss where it is 0. A
-             weight that depends on the sample (larger on misses) biases the mean down.
+     RMSE    against mu                          (hit bands: progressive averaging is the
+                                                  floor for an unbiased per-pixel mean)
+     a|hit   mean weight of the new sample where it is a hit (spike bands: a sample above
+             2 mu); a|miss elsewhere. A weight that depends on the sample (larger on
+             misses) biases the mean down.
      kept    the share of a hit's excess over the history that reaches the output: for a
              default-configuration pixel (exact fetch, no clamp) out = x* + a (y' - x*),
              so y' = x* + (out - x*) / a is the sample the blend used; kept = mean of
@@ -24,8 +30,12 @@
 #include <string.h>
 #include "mc_rng.h"
 
-enum { W = 200, H = 120, CH = 3, FRAMES = 60, SCORED_FROM = 20, BANDS = 5, MARGIN = 3 };
-static const double RATES[BANDS] = {0.02, 0.05, 0.1, 0.2, 0.5};
+enum { W = 280, H = 120, CH = 3, FRAMES = 60, SCORED_FROM = 20, BANDS = 7, MARGIN = 3 };
+typedef struct band_kind {
+    double rate; /* p of a hit, or r of a spike */
+    double gain; /* 0: hit-or-miss; else the spike's g */
+} band_kind;
+static const band_kind BAND[BANDS] = {{0.02, 0}, {0.05, 0}, {0.1, 0}, {0.2, 0}, {0.5, 0}, {0.02, 25}, {0.005, 100}};
 static const double MU = 0.5;
 
 typedef struct method {
@@ -73,8 +83,15 @@ static int run(const method *m, band_stats *bs)
         memset(&prev, 0, sizeof prev);
         memset(&out, 0, sizeof out);
         for (i = 0; i < n; ++i) {
-            const double p = RATES[(i % W) * BANDS / W];
-            const float v = uniform01() < p ? (float)(MU / p) : 0.0f;
+            const band_kind *bd = &BAND[(i % W) * BANDS / W];
+            float v;
+            if (bd->gain == 0.0) {
+                v = uniform01() < bd->rate ? (float)(MU / bd->rate) : 0.0f;
+            } else {
+                const double body = MU * (0.5 + uniform01()); /* mean MU */
+                const double g = uniform01() < bd->rate ? 1.0 + bd->gain : 1.0;
+                v = (float)(body * g / (1.0 + bd->rate * bd->gain));
+            }
             int c;
             for (c = 0; c < CH; ++c) rgb[i * CH + c] = v;
         }
@@ -102,7 +119,7 @@ static int run(const method *m, band_stats *bs)
                 s->err += o - MU;
                 s->err2 += (o - MU) * (o - MU);
                 s->n += 1.0;
-                if (y > 0.0) {
+                if (BAND[band].gain == 0.0 ? y > 0.0 : y > 2.0 * MU) { /* a hit / a spike */
                     s->a_hit += a;
                     s->n_hit += 1.0;
                     if (a > 1e-4 && y - xs > 1e-3) {
@@ -137,14 +154,17 @@ int main(void)
     };
     band_stats bs[BANDS];
     int k, b;
-    printf("hit-or-miss samples (mu / p with probability p, else 0; mu = %.1f), %dx%d, frames %d..%d\n",
+    printf("hit-or-miss and spiky samples of mean mu = %.1f (bench/sparse_bias.c), %dx%d, frames %d..%d\n",
            MU, W, H, SCORED_FROM, FRAMES - 1);
-    printf("%-28s %6s %8s %8s %7s %7s %6s\n", "method", "p", "bias", "RMSE", "a|hit", "a|miss", "kept");
+    printf("%-28s %-15s %8s %8s %7s %7s %6s\n", "method", "samples", "bias", "RMSE", "a|hit", "a|miss", "kept");
     for (k = 0; k < (int)(sizeof methods / sizeof methods[0]); ++k) {
         if (run(&methods[k], bs) != 0) return 1;
         for (b = 0; b < BANDS; ++b) {
             const band_stats *s = &bs[b];
-            printf("%-28s %6.2f %+7.1f%% %8.4f %7.4f %7.4f", b ? "" : methods[k].name, RATES[b],
+            char label[32];
+            if (BAND[b].gain == 0.0) snprintf(label, sizeof label, "hit %.2f", BAND[b].rate);
+            else snprintf(label, sizeof label, "spike %g,%g", BAND[b].rate, BAND[b].gain);
+            printf("%-28s %-15s %+7.1f%% %8.4f %7.4f %7.4f", b ? "" : methods[k].name, label,
                    100.0 * s->err / s->n / MU, sqrt(s->err2 / s->n), s->a_hit / s->n_hit,
                    s->a_miss / s->n_miss);
             if (methods[k].rectify == SBL_RECTIFY_NONE && s->n_kept > 0.0)
