@@ -179,8 +179,8 @@ const sbr_synth_scene sbr_synth_scenes[SBR_SYNTH_SCENES] = {
     {"synthetic-firefly", SBL_SCENE_PAN, 0, 0.02f, 25.0f},
     /* pan with hit-or-miss samples: 1 sample in 10 carries all the energy (ten times the
        radiance; the others 1e-5 of it), as a small light or a sub-pixel highlight sampled
-       once per pixel. Spikes more frequent than one per history length: there the
-       firefly limit's bias costs more than the variance it saves (docs/ESTIMATORS.md 2.3) */
+       once per pixel. The defaults lose the mean here (the firefly limit cuts lone hits,
+       the change tests see too little noise in a window of misses: docs/ESTIMATORS.md 2.3) */
     {"synthetic-sparse", SBL_SCENE_PAN, 0, 0.1f, 1e6f},
 };
 
