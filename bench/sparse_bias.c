@@ -68,8 +68,10 @@ static int run(const method *m, band_stats *bs)
         hist[b] = (float *)malloc(n * CH * sizeof(float));
         len[b] = (float *)malloc(n * sizeof(float));
         evid[b] = (float *)malloc(n * sizeof(float));
+        if (!hist[b] || !len[b] || !evid[b]) rc = (int)SBL_ERROR_OUT_OF_MEMORY;
     }
-    for (i = 0; i < n; ++i) depth[i] = 2.0f;
+    if (!rgb || !alpha || !depth || !motion || !scratch) rc = (int)SBL_ERROR_OUT_OF_MEMORY;
+    for (i = 0; rc == 0 && i < n; ++i) depth[i] = 2.0f;
     memset(&td, 0, sizeof td);
     td.estimator = m->estimator;
     td.rectify = m->rectify;
