@@ -10648,10 +10648,10 @@ SBL__INLINE sbl__m sbl__parallel_want_lanes(const sbl__stereo_rp *s, sbl__tap_pl
 /* The parallel rig's plan for the VW pixels x .. x + VW - 1 of an interior row y with
    the positions in double lanes, from the target side (sbl__parallel_want_lanes):
    sbl__stereo_map_parallel's x + 0.5 + dir (f b / z - offset) (f b / z the same float
-   division), then sbl__plan_lanes_at. For a disparity
-   offset (lane mode 4), and for the vectors of mode 1 whose disparities the float plan
-   cannot take exactly (0 < |f b / z| < 2^-8: geometry beyond 256 f b). Out of line, so
-   that mode 1's float plan keeps its registers. */
+   division), then sbl__plan_lanes_at. For a disparity offset (lane mode 4), and for
+   the vectors of mode 1 whose disparities the float plan cannot take exactly
+   (0 < |f b / z| < 2^-8: geometry beyond 256 f b). Out of line, so that mode 1's float
+   plan keeps its registers. */
 SBL__NOINLINE int sbl__stereo_plan_parallel_at(const sbl__stereo_rp *s, sbl__block *b, int i, int x, int y,
                                                sbl__m keep, sbl__v z, sbl__v slack, sbl__v m)
 {

@@ -87,6 +87,7 @@ static int run(const method *m, band_stats *bs)
         for (i = 0; i < n; ++i) {
             const band_kind *bd = &BAND[(i % W) * BANDS / W];
             float v;
+            int c;
             if (bd->gain == 0.0) {
                 v = uniform01() < bd->rate ? (float)(MU / bd->rate) : 0.0f;
             } else {
@@ -94,7 +95,6 @@ static int run(const method *m, band_stats *bs)
                 const double g = uniform01() < bd->rate ? 1.0 + bd->gain : 1.0;
                 v = (float)(body * g / (1.0 + bd->rate * bd->gain));
             }
-            int c;
             for (c = 0; c < CH; ++c) rgb[i * CH + c] = v;
         }
         cur.color = sbl_image_make(rgb, W, H, CH);
