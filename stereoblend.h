@@ -375,6 +375,14 @@ typedef struct sbl_history {
                                  evidence carried over frames as well as this frame's
                                  (docs/ESTIMATORS.md 3.7): faster under moving lights.
                                  NULL data: one frame's evidence, as before.           */
+    sbl_image tail;           /* optional, 2 channels: last frame's out.tail. The firefly
+                                 limit of the robust and pooled estimators (the default)
+                                 then admits as much of a sample's excess as the rate of
+                                 such samples at the pixel makes worth its variance, and
+                                 the weight counts their variance (docs/ESTIMATORS.md
+                                 2.4): hit-or-miss samples (small lights, caustics,
+                                 sub-pixel highlights) keep their mean. NULL data: every
+                                 excess is cut, as before.                              */
 } sbl_history;
 
 /* Reprojected history only (stage 3 on its own): out_color = x*, out_length = N of x*,
@@ -485,6 +493,11 @@ typedef struct sbl_temporal_output {
                            carried over frames (a ratio, about 1 where nothing changes;
                            1 with the other estimators). Give it to the next frame as
                            sbl_history.evidence, ping-ponged like length.            */
+    sbl_image tail;     /* optional; 2 channels: the rate r at which the new samples
+                           exceeded the firefly limit's bound and the variance T their
+                           excess carried (channel sums), each pixel's average over its
+                           history (0 with the estimators that have no limit). Give it
+                           to the next frame as sbl_history.tail, ping-ponged.        */
 } sbl_temporal_output;
 
 /* The descriptor with every zero replaced by its default. */
@@ -1107,7 +1120,7 @@ static int sbl__overlap(const sbl_image *a, const sbl_image *b)
 /* The planes of a G-buffer, a frame, a history and an eye: the one list of each, for the
    overlap checks and the diagnostic walks (whose names follow this order). Each writes
    the planes' addresses to p (room for SBL__PLANES_MAX) and returns their count. */
-#define SBL__PLANES_MAX 7
+#define SBL__PLANES_MAX 8
 static int sbl__gbuffer_planes(const sbl_gbuffer *g, const sbl_image **p)
 {
     p[0] = &g->depth; p[1] = &g->normals; p[2] = &g->ids; p[3] = &g->motion;
@@ -1118,14 +1131,14 @@ static int sbl__frame_planes(const sbl_frame *f, const sbl_image **p)
     p[0] = &f->color;
     return 1 + sbl__gbuffer_planes(&f->gbuffer, p + 1);
 }
-/* h may be NULL (none); with_evidence 0: all but the evidence plane (the last) */
+/* h may be NULL (none); with_evidence 0: all but the evidence and tail planes (the last) */
 static int sbl__history_planes(const sbl_history *h, const sbl_image **p, int with_evidence)
 {
     int n;
     if (!h) return 0;
     p[0] = &h->color; p[1] = &h->length;
     n = 2 + sbl__gbuffer_planes(&h->gbuffer, p + 2);
-    if (with_evidence) p[n++] = &h->evidence;
+    if (with_evidence) { p[n++] = &h->evidence; p[n++] = &h->tail; }
     return n;
 }
 static int sbl__eye_planes(const sbl_eye *e, const sbl_image **p)
@@ -1135,8 +1148,8 @@ static int sbl__eye_planes(const sbl_eye *e, const sbl_image **p)
 }
 static int sbl__temporal_output_planes(const sbl_temporal_output *o, const sbl_image **p)
 {
-    p[0] = &o->color; p[1] = &o->length; p[2] = &o->alpha; p[3] = &o->evidence;
-    return 4;
+    p[0] = &o->color; p[1] = &o->length; p[2] = &o->alpha; p[3] = &o->evidence; p[4] = &o->tail;
+    return 5;
 }
 
 /* Does view a (or the byte range [m0, m1)) overlap any of the n views p[0 .. n)? */
@@ -2620,6 +2633,14 @@ typedef struct sbl__weight_params {
     double blur_b2, blur_g; /* the reference path's pixel in hand: the blur's predicted
                                bias energy sum_c b_c^2 and its noise factor (B_b^2 =
                                blur_b2 - blur_g var_X, at least 0) */
+    float tail_ch;     /* with tail: the channel count (tail_t is a sum over them) */
+    int tail;          /* temporal, robust or pooled, the history has the tail plane:
+                          Y's variance is floored at the carried tail variance
+                          (docs/ESTIMATORS.md 2.4) */
+    float tail_r, tail_t; /* the reference path's pixel in hand: the pooled rate and
+                             variance (channel sum) of the limit's exceedances */
+    float *tail_e, *tail_d; /* the reference path's pixel in hand: where the limit
+                               records its exceedance and squared excess; NULL: not */
 } sbl__weight_params;
 
 /* Firefly limit of the robust estimator: the new sample may exceed the larger of the
@@ -2774,6 +2795,15 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
            confined to a few pixels), so it asks for more evidence */
         if (p->estimator == SBL_ESTIMATOR_POOLED) k *= SBL_POOLED_LOCAL_SCALE;
         k2 = k * k;
+        if (p->temporal && p->tail) {
+            /* Y's variance is at least the carried variance of the limit's exceedances
+               (2.4): a window of misses shows none of it */
+            const double tv = SBL__CAST(double, p->tail_t);
+            const double pf = tv * (SBL__CAST(double, n_x) + SBL__CAST(double, n_y)) /
+                              (n_x > 1.0f ? SBL__CAST(double, n_x) : 1.0);
+            if (pv < pf) pv = pf;
+            if (s2 < tv) s2 = tv;
+        }
         if (pair_count > 1) {
             var_y = pv * SBL__CAST(double, n_x) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
             var_x = pv - var_y;
@@ -2920,6 +2950,10 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.evid_share = 0.0f;
     p.blur = 0;
     p.blur_b2 = p.blur_g = 0.0;
+    p.tail = 0;
+    p.tail_ch = 1.0f;
+    p.tail_r = p.tail_t = 0.0f;
+    p.tail_e = p.tail_d = NULL;
     return p;
 }
 
@@ -2945,8 +2979,8 @@ static sbl_result sbl__check_weight_params(sbl_estimator e, sbl_rectify r,
    neighbour standard deviations (the window without y, summed over channels). Only the
    sample that enters the blend is limited; the window statistics keep it (with a
    firefly in them they drive the weight towards 1/(N+1), see docs/ESTIMATORS.md). */
-static void sbl__firefly_limit(const sbl__moments *m, const float *y, const float *xs, int ch,
-                               double n_scale, float *ylim)
+static void sbl__firefly_limit(const sbl__weight_params *p, const sbl__moments *m, const float *y,
+                               const float *xs, int ch, double n_scale, float *ylim)
 {
     double sum_y = 0.0, sum_m8 = 0.0, sum_x = 0.0, v8 = 0.0, bound, t = 1.0;
     int k;
@@ -2960,6 +2994,16 @@ static void sbl__firefly_limit(const sbl__moments *m, const float *y, const floa
     /* a relative slack: y equal to x* must stay untouched under any summation order */
     bound += 1e-5 * fabs(bound);
     if (bound < 0.0) bound = 0.0;
+    if (p->tail_e) { /* the exceedance, for the carried tail plane (2.4) */
+        const int ex = sum_y > bound;
+        *p->tail_e = ex ? 1.0f : 0.0f;
+        *p->tail_d = ex ? SBL__CAST(float, (sum_y - sum_x) * (sum_y - sum_x) / ch) : 0.0f;
+    }
+    if (p->tail && sum_y > bound) {
+        /* admit the share f = rho / (1 + rho) of the excess, rho = r (N + 1) (2.4) */
+        const double rho = SBL__CAST(double, p->tail_r) * n_scale;
+        bound += rho / (1.0 + rho) * (sum_y - bound);
+    }
     if (sum_y > bound) t = bound / sum_y;
     for (k = 0; k < ch; ++k) ylim[k] = t < 1.0 ? SBL__CAST(float, SBL__CAST(double, y[k]) * t) : y[k];
 }
@@ -2979,11 +3023,17 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
         /* temporal: the limit bounds the step a sample makes in the output, a (y - x*),
            by the output's own noise (about sigma / sqrt(N + 1) at a = 1 / (N + 1)), so
            its sigmas grow with sqrt(N + 1); 1 for the stereo blend */
-        sbl__firefly_limit(m, y, xs, ch, p->temporal ? SBL__CAST(double, n_x) + 1.0 : 1.0, ylim);
+        sbl__firefly_limit(p, m, y, xs, ch, p->temporal ? SBL__CAST(double, n_x) + 1.0 : 1.0, ylim);
         y = ylim;
     }
     sbl__rectify(p, m, y, xs, ch);
     if (p->mode == SBL_WEIGHT_PER_CHANNEL) {
+        sbl__weight_params pc;
+        if (p->tail) { /* the carried variance is a channel sum: a channel's share */
+            pc = *p;
+            pc.tail_t /= SBL__CAST(float, ch);
+            p = &pc;
+        }
         for (k = 0; k < ch; ++k) {
             double dev = SBL__CAST(double, xs[k]) - m->mean[k];
             double dy = SBL__CAST(double, y[k]) - SBL__CAST(double, xs[k]);
@@ -3432,6 +3482,20 @@ typedef struct sbl__kernel {
        share_at - 1 whose R passes c_R (0: not counted), and for the row in hand ln M,
        the carried R's threshold c_R(M) and its garrote's (c_R(M) - 1)^2 */
     const sbl_image *evid_prev;
+    /* the firefly limit's exceedances carried over frames (sbl_history.tail,
+       docs/ESTIMATORS.md 2.4; temporal, robust and pooled): tail_on, the limit records
+       each pixel's exceedance (tail_e: 1 or 0) and its squared excess over x* per
+       channel (tail_d) for the output plane; tail_use, the history has the plane: its
+       rate and variance, gathered with the colour's taps and pooled over the 3x3
+       (tail_r, tail_t), widen the limit and floor Y's variance. Per column of the row
+       in hand; tail_ring: the gathered rows y - 1 .. y + 1 (x[0] the rate, x[1] the
+       variance). */
+    int tail_on, tail_use;
+    const void *tail_ctx;    /* the plane's gather (sbl__temporal_rp); NULL: none    */
+    sbl__ring_row tail_ring[3];
+    int tail_xa, tail_xb;    /* the columns the ring rows hold                       */
+    float *tail_r, *tail_t, *tail_e, *tail_d;
+    sbl_image out_tail;      /* the output plane (data NULL: not written)            */
     long share_cnt[3];
     int share_at[3];
     double evid_lnm, evid_thr, evid_garrote;
@@ -6961,6 +7025,110 @@ static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
         k->evid_in[x] = k->evid_use ? sbl__evidence_pixel(SBL__PCAST(const sbl__temporal_rp *, k->evid_ctx), x, y) : 1.0f;
 }
 
+/* Row y of the history's tail plane into ring row r over columns [xa, xb), gathered
+   with the colour's taps and tests (the row gather where the colour takes it, else the
+   pixel gather): x[0] the rate, x[1] the variance; 0 where no tap is valid (a reset:
+   nothing seen) and where a value is not one (a rate outside [0, 1], a variance that
+   is negative or not finite). */
+static void sbl__tail_gather_row(sbl__kernel *k, sbl__ring_row *r, int y, int xa, int xb)
+{
+    const sbl__temporal_rp *ts = SBL__PCAST(const sbl__temporal_rp *, k->tail_ctx);
+    int x;
+    r->row = y;
+#ifdef SBL__ROW_GATHER
+    if (k->gather_row && sbl__row_gather_ok(&ts->src)) {
+        memset(r->unsafe + xa, 0, SBL__CAST(size_t, xb - xa));
+        sbl__temporal_rp_row(ts, r, y, xa, xb);
+    } else
+#endif
+    {
+        for (x = xa; x < xb; ++x) {
+            float v[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+            r->v[x] = sbl__temporal_rp_pixel(ts, x, y, v) > 0.0f ? 1.0f : 0.0f;
+            r->x[0][x] = v[0];
+            r->x[1][x] = v[1];
+        }
+    }
+    for (x = xa; x < xb; ++x) {
+        const float rate = r->x[0][x], var = r->x[1][x];
+        const int ok = r->v[x] > 0.0f;
+        r->x[0][x] = ok && rate >= 0.0f && rate <= 1.0f ? rate : 0.0f;
+        r->x[1][x] = ok && var >= 0.0f && var <= FLT_MAX ? var : 0.0f;
+    }
+}
+
+/* The tail plane for row y (k->tail_on): this frame's records cleared over [xa, xb);
+   with the history's plane, rows y - 1 .. y + 1 gathered (each row once per span: the
+   ring keeps them) and their 3x3 means into tail_r / tail_t (the rows and columns
+   inside the image; a reset pixel counts as nothing seen). */
+static void sbl__tail_prepare(sbl__kernel *k, int y, int xa, int xb)
+{
+    const sbl__ring_row *rows[3];
+    int j, x, n = 0;
+    memset(k->tail_e + xa, 0, SBL__CAST(size_t, xb - xa) * sizeof(float));
+    memset(k->tail_d + xa, 0, SBL__CAST(size_t, xb - xa) * sizeof(float));
+    if (!k->tail_use) return;
+    if (xa != k->tail_xa || xb != k->tail_xb) { /* another span: nothing held */
+        for (j = 0; j < 3; ++j) k->tail_ring[j].row = -1;
+        k->tail_xa = xa;
+        k->tail_xb = xb;
+    }
+    for (j = -1; j <= 1; ++j) {
+        const int ry = y + j;
+        int i, have = -1, free_slot = -1;
+        if (ry < 0 || ry >= k->h) continue;
+        for (i = 0; i < 3; ++i) {
+            const int held = k->tail_ring[i].row;
+            if (held == ry) have = i;
+            else if (free_slot < 0 && (held < 0 || held < y - 1 || held > y + 1)) free_slot = i;
+        }
+        if (have < 0) {
+            have = free_slot;
+            sbl__tail_gather_row(k, &k->tail_ring[have], ry, xa, xb);
+        }
+        rows[n++] = &k->tail_ring[have];
+    }
+    for (x = xa; x < xb; ++x) {
+        const int i0 = x > xa ? x - 1 : x, i1 = x + 1 < xb ? x + 1 : x;
+        float sr = 0.0f, st = 0.0f;
+        int i, cnt = 0;
+        for (j = 0; j < n; ++j)
+            for (i = i0; i <= i1; ++i) {
+                sr += rows[j]->x[0][i];
+                st += rows[j]->x[1][i];
+                ++cnt;
+            }
+        k->tail_r[x] = sr / SBL__CAST(float, cnt);
+        k->tail_t[x] = st / SBL__CAST(float, cnt);
+    }
+}
+
+/* Row y's pixels [xa, xb) of the output tail plane: each pixel's running mean of its
+   exceedance and squared excess, over its history's length (the history's own value,
+   gathered, unpooled; 1 / (N + 1) of this frame's record, N the capped length of x*, 0
+   at a reset); 0 with the estimators that have no limit. */
+static void sbl__tail_store(const sbl__kernel *k, int y, int xa, int xb)
+{
+    const sbl__ring_row *own = NULL;
+    int x, j;
+    for (j = 0; j < 3 && k->tail_use; ++j)
+        if (k->tail_ring[j].row == y) own = &k->tail_ring[j];
+    for (x = xa; x < xb; ++x) {
+        float *o = sbl__px(&k->out_tail, x, y);
+        if (!k->tail_on) {
+            o[0] = o[1] = 0.0f;
+        } else {
+            const float n = own ? k->ring[1].n[x] : 0.0f;
+            const float nc = n > 0.0f ? (n < k->n_cap ? n : k->n_cap) : 0.0f;
+            const float a = 1.0f / (nc + 1.0f);
+            const float r0 = own && n > 0.0f ? own->x[0][x] : 0.0f, t0 = own && n > 0.0f ? own->x[1][x] : 0.0f;
+            o[0] = r0 + a * (k->tail_e[x] - r0);
+            o[1] = t0 + a * (k->tail_d[x] - t0);
+            if (!(o[1] <= FLT_MAX)) o[1] = FLT_MAX; /* a finite record of a huge excess */
+        }
+    }
+}
+
 /* Row y's pixels [xa, xb) of the output evidence plane: this frame's R (pooled), else 1
    (no evidence: the other estimators compute none). */
 static void sbl__evidence_store(const sbl__kernel *k, int y, int xa, int xb, int pooled)
@@ -7247,12 +7415,17 @@ SBL__INLINE void sbl__row_pool_ref_ch(sbl__kernel *k, const sbl__ring_row *const
     }
     for (x = xa; x < xb; ++x) {
         double sm2 = 0.0, sse2 = 0.0, r;
-        int b;
+        int b, nb = 0;
         for (b = -SBL__POOL_BLOCKS; b <= SBL__POOL_BLOCKS; ++b) {
             int cx = x + SBL__POOL_STEP * b;
             if (cx < 0 || cx >= w || k->pool_se2[cx] < 0.0) continue;
             sm2 += k->pool_m2[cx];
             sse2 += k->pool_se2[cx];
+            ++nb;
+        }
+        if (k->wp.tail) { /* each block's se^2 at least the tail variance over its 9 pairs (2.4) */
+            const double tf = SBL__CAST(double, k->tail_t[x]) * nb / 9.0;
+            if (sse2 < tf) sse2 = tf;
         }
         /* pooled squared mean over pooled squared standard error, less the threshold;
            no noise at all and a mean: certain change (capped) */
@@ -7618,8 +7791,14 @@ SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *c
         m.pool_r = SBL__CAST(double, sbl__pool_ratio(k, x, y));
         if (k->wp.estimator == SBL_ESTIMATOR_POOLED && !k->temporal) sbl__pair_var_within(&m, R, i0, i1, ch, SBL__CAST(double, sbl__fgate_k2(k)));
         if (n_x > k->n_cap) n_x = k->n_cap;
-        if ((SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) || k->wp.blur) {
+        if ((SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) || k->wp.blur || k->tail_on) {
             sbl__weight_params wp = k->wp;
+            if (k->tail_on) { /* the carried tail at this pixel, and where its record goes (2.4) */
+                wp.tail_r = k->tail_r[x];
+                wp.tail_t = k->tail_t[x];
+                wp.tail_e = k->tail_e + x;
+                wp.tail_d = k->tail_d + x;
+            }
             /* the mix's factor at this pixel (3.11) */
             if (SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y) wp.evid_sh = sbl__evidence_shrink(k, x);
             /* the resampling blur's terms at this pixel (4.12) */
@@ -7690,6 +7869,7 @@ typedef struct sbl__lane_stats {
                               (the lean's neighbour count, sbl__lanes_lean) */
     sbl__v blur_b2, blur_g; /* the resampling blur's terms (sbl__blur_terms; read only
                                where wp.blur) */
+    sbl__v tail_t;  /* the carried tail variance (k->tail_t; read only where wp.tail) */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one
@@ -7993,6 +8173,7 @@ SBL__INLINE void sbl__lanes_moments(const sbl__kernel *k, const sbl__lane_rows *
    sbl__pool_ratio (computed for the row by sbl__row_pool). */
 SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_stats *st)
 {
+    st->tail_t = k->wp.tail ? sbl__load(k->tail_t + x) : sbl__set1(0.0f);
     st->pool_r = (k->wp.estimator == SBL_ESTIMATOR_POOLED && k->pool_row == y)
                    ? sbl__load(k->pool_r + x) : sbl__set1(0.0f);
     st->evid_sh = (SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y)
@@ -8363,6 +8544,9 @@ SBL__INLINE void sbl__pool_lanes_ratio_cfg(sbl__kernel *k, const int ch, int xa,
             sse2 = sbl__add(sse2, sbl__load(ps + i + SBL__POOL_STEP * b));
         }
 #endif
+        if (k->wp.tail) /* as sbl__row_pool_ref_ch (2.4) */
+            sse2 = sbl__max(sse2, sbl__mul(sbl__load(k->tail_t + x),
+                                           sbl__set1(SBL__CAST(float, 2 * SBL__POOL_BLOCKS + 1) / 9.0f)));
         r = sbl__sub(sbl__div(sm2, sbl__max(sse2, tiny)), thr);
         r = sbl__sel(sbl__gt(sse2, zero), r, sbl__sel(sbl__gt(sm2, zero), cap, zero));
         if (evid) r = sbl__evidence_ratio_lanes(k, x, sm2, sse2, r);
@@ -8554,9 +8738,10 @@ static void sbl__row_pool(sbl__kernel *k, const sbl__ring_row *const *R, int xa,
 
 /* The firefly limit's factor t from the channel sums of y, the neighbours' mean m8, x*
    and the neighbours' variance v8 (sbl__firefly_limit; n_xc the capped history length,
-   whose sqrt(N + 1) widens the temporal bound). t <= 1; y t is the limited sample. */
+   whose sqrt(N + 1) widens the temporal bound), at pixels [x, x + VW) of the row in hand
+   (its tail plane's terms: k->tail_on). t <= 1; y t is the limited sample. */
 SBL__INLINE sbl__v sbl__lanes_firefly_t(const sbl__kernel *k, sbl__v sum_y, sbl__v sum_m8, sbl__v sum_x,
-                                        sbl__v sum_v8, sbl__v n_xc)
+                                        sbl__v sum_v8, sbl__v n_xc, int x)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     sbl__v bound;
@@ -8565,11 +8750,23 @@ SBL__INLINE sbl__v sbl__lanes_firefly_t(const sbl__kernel *k, sbl__v sum_y, sbl_
                      sbl__mul(sbl__set1(SBL__CAST(float, SBL_FIREFLY_SIGMAS)), sbl__sqrt(sum_v8)));
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
     bound = sbl__max(bound, zero);
+    if (k->tail_on) { /* as sbl__firefly_limit (2.4); a reset lane (x* invalid: n_xc at its
+                         floor) keeps its sample and records nothing */
+        const sbl__v e = sbl__sel(sbl__gt(sum_y, bound), sbl__sel(sbl__gt(n_xc, sbl__set1(FLT_MIN)), one, zero), zero);
+        const sbl__v dx = sbl__sub(sum_y, sum_x);
+        sbl__store(k->tail_e + x, e);
+        sbl__store(k->tail_d + x, sbl__sel(sbl__gt(e, zero), sbl__mul(sbl__mul(dx, dx), sbl__set1(1.0f / SBL__CAST(float, k->ch))), zero));
+        if (k->tail_use) {
+            const sbl__v rho = sbl__mul(sbl__load(k->tail_r + x), sbl__add(n_xc, one));
+            bound = sbl__add(bound, sbl__mul(sbl__div(rho, sbl__add(one, rho)),
+                                             sbl__max(sbl__sub(sum_y, bound), zero)));
+        }
+    }
     return sbl__sel(sbl__gt(sum_y, bound), sbl__div(bound, sbl__max(sum_y, tiny)), one);
 }
 
 /* Firefly limit of the own sample, as sbl__firefly_limit. */
-SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st, sbl__v n_xc)
+SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st, sbl__v n_xc, int x)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, v8 = zero, t;
@@ -8580,20 +8777,20 @@ SBL__INLINE void sbl__lanes_firefly(const sbl__kernel *k, sbl__lane_stats *st, s
         sum_x = sbl__add(sum_x, st->xr[c]);
         v8 = sbl__add(v8, st->v8[c]);
     }
-    t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, v8, n_xc);
+    t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, v8, n_xc, x);
     for (c = 0; c < ch; ++c) st->yb[c] = sbl__sel(sbl__gt(one, t), sbl__mul(st->yc[c], t), st->yc[c]);
 }
 
 /* Neighbourhood clamp / variance clip of x*, as sbl__rectify (after the firefly limit
    of the robust estimator, as in sbl__blend_pixel). */
-SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st, sbl__v n_xc)
+SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st, sbl__v n_xc, int x)
 {
     const sbl__v one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v gamma = sbl__set1(k->wp.gamma);
     int c, ch = k->ch;
     for (c = 0; c < ch; ++c) st->yb[c] = st->yc[c];
     if (k->wp.estimator == SBL_ESTIMATOR_ROBUST || k->wp.estimator == SBL_ESTIMATOR_POOLED)
-        sbl__lanes_firefly(k, st, n_xc);
+        sbl__lanes_firefly(k, st, n_xc, x);
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
     } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
@@ -8663,24 +8860,30 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
                              ? SBL__CAST(float, SBL__CAST(double, p->bias_threshold) * SBL_POOLED_LOCAL_SCALE)
                              : p->bias_threshold;
         const sbl__v k2e = sbl__set1(SBL__CAST(float, 1.0 + SBL__CAST(double, kb) * SBL__CAST(double, kb) * 0.125));
-        sbl__v vy_s = sbl__mul(s2, st->bessel);
-        sbl__v vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
-        sbl__v vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
-        sbl__v vx_p = sbl__sub(pvs, vy_p);
-        sbl__v vy = sbl__sel(st->two_pairs, vy_p, vy_s);
-        sbl__v vx = sbl__sel(st->two_pairs, vx_p, vx_s);
-        sbl__v se2 = sbl__sel(st->two_pairs, sbl__mul(pvs, st->inv_cnt),
-                              sbl__sel(st->has_pairs, sbl__add(vx_s, vy_s), zero));
-        sbl__v t2 = sbl__div(pd2, sbl__max(se2, tiny));
-        sbl__v rho = sbl__div(k2e, sbl__add(one, sbl__mul(t2, sbl__set1(0.125f))));
-        sbl__v r2 = sbl__mul(rho, rho);
-        sbl__v odds = temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
+        sbl__v vy_s, vx_s, vy_p, vx_p, vy, vx, se2, t2, rho, r2, odds, post, b2, num, den;
+        if (temporal && p->tail) { /* as sbl__weight (2.4): a channel group's share */
+            const sbl__v tv = c1 - c0 == SBL__CAST(int, p->tail_ch) ? st->tail_t
+                              : sbl__mul(st->tail_t, sbl__set1(SBL__CAST(float, c1 - c0) / p->tail_ch));
+            pvs = sbl__max(pvs, sbl__div(sbl__mul(tv, sbl__add(n_xc, n_y)), sbl__max(n_xc, one)));
+            s2 = sbl__max(s2, tv);
+        }
+        vy_s = sbl__mul(s2, st->bessel);
+        vx_s = sbl__div(sbl__mul(vy_s, n_y), n_xc);
+        vy_p = sbl__div(sbl__mul(pvs, n_xc), sbl__add(n_xc, n_y));
+        vx_p = sbl__sub(pvs, vy_p);
+        vy = sbl__sel(st->two_pairs, vy_p, vy_s);
+        vx = sbl__sel(st->two_pairs, vx_p, vx_s);
+        se2 = sbl__sel(st->two_pairs, sbl__mul(pvs, st->inv_cnt),
+                       sbl__sel(st->has_pairs, sbl__add(vx_s, vy_s), zero));
+        t2 = sbl__div(pd2, sbl__max(se2, tiny));
+        rho = sbl__div(k2e, sbl__add(one, sbl__mul(t2, sbl__set1(0.125f))));
+        r2 = sbl__mul(rho, rho);
+        odds = temporal && SBL_HISTORY_PRIOR ? sbl__mul(sbl__set1(0.5f), sbl__add(n_xc, one)) : one;
         if (temporal && SBL_HISTORY_PRIOR && p->region_m > 0.0f && p->region_m != 1.0f) /* 3.10 */
             odds = sbl__mul(sbl__set1(0.5f), sbl__sub(sbl__mul(sbl__add(n_xc, sbl__set1(2.0f)),
                                                                sbl__set1(p->region_m)), one));
-        sbl__v post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
-        sbl__v b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
-        sbl__v num, den;
+        post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
+        b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
         if (est == SBL_ESTIMATOR_POOLED) {
             /* empirical Bayes, as sbl__weight: sh^2 pd2 + sh se2, sh = r / (1 + r) */
             sbl__v sh = sbl__div(st->pool_r, sbl__add(one, st->pool_r));
@@ -8828,7 +9031,7 @@ SBL__INLINE void sbl__lanes_vector(sbl__kernel *k, const sbl__lane_rows *W, cons
     st.lean_s = sbl__set1(8.0f / 7.0f);
     st.inv_n8 = sbl__set1(0.125f);
     sbl__lanes_pool(k, x, y, &st);
-    sbl__lanes_rectify(k, &st, n_xc);
+    sbl__lanes_rectify(k, &st, n_xc, x);
     if (k->wp.mode == SBL_WEIGHT_PER_CHANNEL) {
         for (c = 0; c < ch; ++c) {
             sbl__v sums[4] = {zero, zero, zero, zero};
@@ -8893,7 +9096,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
 #undef SBL__FAST_Y
     /* t <= 1 (bound < max(sum_y, tiny) where divided), so y t is y where t = 1: the
        limited sample is y t in every lane, with no select */
-    t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, sum_v8, n_xc);
+    t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, sum_v8, n_xc, x);
     /* (the copies for the stereo weight's lean are stored in every vector: storing them
        only where the lean runs, a lane of N_Y <= 1, left gcc -Wmaybe-uninitialized
        warnings in the scalar build, which cannot see that the weight tests the same) */
@@ -8907,6 +9110,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
        pooled ratio of this row (sbl__kernel_lanes_pooled computed it: sbl__lanes_pool) */
     st.pool_r = sbl__load(k->pool_r + x);
+    st.tail_t = k->wp.tail ? sbl__load(k->tail_t + x) : sbl__set1(0.0f);
     st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
     st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
     st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
@@ -8986,7 +9190,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, con
     /* the channels' v8 (sbl__lanes_y_channel) */
     sum_v8 = sbl__mul(sum_v8, E ? E->inv_n8 : sbl__set1(0.125f));
     sbl__lanes_lengths(k, n_row, NULL, x, &n_x, &n_y, &n_xc);
-    t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, sum_v8, n_xc);
+    t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, sum_v8, n_xc, x);
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_FT(ch) * SBL__POOL_COLS, t);
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_S2(ch) * SBL__POOL_COLS, s2);
     if (mix) sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_DEV2(ch) * SBL__POOL_COLS, dev2);
@@ -9221,6 +9425,7 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, con
     st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     st.pool_r = sbl__load(k->pool_r + x);
+    st.tail_t = k->wp.tail ? sbl__load(k->tail_t + x) : sbl__set1(0.0f);
     st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
     st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
     st.inv_n8 = E ? E->inv_n8 : sbl__set1(0.125f);
@@ -9989,6 +10194,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                 if (x0 == 0 && !(cu && (cu[0] | cu[1]))) k->edge_ask |= 1;
                 if (x1 == k->w && !(cu && (cu[k->w - 2] | cu[k->w - 1]))) k->edge_ask |= 2;
             }
+            if (k->tail_on) sbl__tail_prepare(k, y, ra, rb);
             if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
             if (pool && k->evid_out) sbl__evidence_share(k, y); /* 3.10 */
             if (pool && lanes_ok) {
@@ -10031,6 +10237,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
                     sbl__interleave(sbl__px(&k->out_a, 0, y), sbl__step_of(&k->out_a), 1,
                                     SBL__PCAST(const float *const *, &k->stage_a), x0, x1);
                 if (k->out_e.data) sbl__evidence_store(k, y, x0, x1, pool);
+                if (k->out_tail.data) sbl__tail_store(k, y, x0, x1);
             }
             {   /* advance the ring: drop row y-1, load row y+2 */
                 sbl__ring_row t = k->ring[0];
@@ -10078,7 +10285,10 @@ SBLDEF size_t sbl_temporal_scratch_size(int width, int channels)
     /* + the evidence plane's rows: evid_in, evid_out, and three more (the ring rows'
        planes where the plane is gathered in the colour's plan, else its own gather's
        x / n / v) (floats) and unsafe (bytes) */
-    return kb ? kb + (5 * sizeof(float) + 1) * sbl__plane_floats(width) + 64 : 0;
+    /* + the tail plane's rows (2.4): three ring rows' x[0] / x[1] / n / v and unsafe,
+       tail_r / tail_t / tail_e / tail_d */
+    return kb ? kb + (5 * sizeof(float) + 1) * sbl__plane_floats(width) + 64 +
+                    (16 * sizeof(float) + 3) * sbl__plane_floats(width) + 64 : 0;
 }
 
 SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
@@ -10087,7 +10297,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                       void *scratch, size_t scratch_bytes)
 {
     sbl_temporal_desc d;
-    sbl__temporal_rp s, es;
+    sbl__temporal_rp s, es, ts;
     sbl__kernel k;
     sbl_result r;
     int w, h, ch;
@@ -10101,8 +10311,10 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     if ((r = sbl__check_image(&out->length, 1)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&out->alpha, 1, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&out->evidence, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&out->tail, 2, w, h)) != SBL_OK) return r;
     if (history && history->color.data &&
-        (r = sbl__check_optional(&history->evidence, 1, w, h)) != SBL_OK)
+        ((r = sbl__check_optional(&history->evidence, 1, w, h)) != SBL_OK ||
+         (r = sbl__check_optional(&history->tail, 2, w, h)) != SBL_OK))
         return r;
     if (out->color.width != w || out->color.height != h || out->length.width != w ||
         out->length.height != h)
@@ -10208,6 +10420,40 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                 }
             }
 #endif
+        }
+    }
+    k.out_tail = out->tail;
+    if ((d.estimator == SBL_ESTIMATOR_ROBUST || d.estimator == SBL_ESTIMATOR_POOLED) &&
+        (k.out_tail.data || (s.history && s.history->tail.data))) {
+        /* the firefly limit's exceedances carried over frames (2.4): the history's
+           plane gathered like the colour (as the evidence plane, in a plan of its own) */
+        const size_t pf = sbl__plane_floats(w);
+        char *e_end = SBL__PCAST(char *, sbl__align64(SBL__PCAST(char *, scratch) + sbl__kernel_scratch_size(w, ch))) +
+                      5 * pf * sizeof(float) + pf; /* past the evidence plane's rows */
+        float *t = SBL__PCAST(float *, sbl__align64(e_end));
+        int j;
+        k.tail_on = 1;
+        for (j = 0; j < 3; ++j) {
+            k.tail_ring[j].x[0] = t + SBL__CAST(size_t, 4 * j) * pf;
+            k.tail_ring[j].x[1] = t + SBL__CAST(size_t, 4 * j + 1) * pf;
+            k.tail_ring[j].n = t + SBL__CAST(size_t, 4 * j + 2) * pf;
+            k.tail_ring[j].v = t + SBL__CAST(size_t, 4 * j + 3) * pf;
+            k.tail_ring[j].unsafe = SBL__PCAST(unsigned char *, t + 16 * pf) + SBL__CAST(size_t, j) * pf;
+            k.tail_ring[j].row = -1;
+        }
+        k.tail_r = t + 12 * pf;
+        k.tail_t = t + 13 * pf;
+        k.tail_e = t + 14 * pf;
+        k.tail_d = t + 15 * pf;
+        k.tail_xa = k.tail_xb = -1;
+        if (s.history && s.history->tail.data) {
+            ts = s;
+            ts.src.color = sbl__flatten(&s.history->tail);
+            ts.src.cubic = 0;
+            k.tail_ctx = &ts;
+            k.tail_use = 1;
+            k.wp.tail = 1;
+            k.wp.tail_ch = SBL__CAST(float, ch);
         }
     }
     sbl__kernel_run(&k, y0, y1);
@@ -11666,6 +11912,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
     sbl__walk_image(&wk, "out->length", &out->length, 1, w, h, 0);
     sbl__walk_image(&wk, "out->alpha", &out->alpha, 1, w, h, 1);
     sbl__walk_image(&wk, "out->evidence", &out->evidence, 1, w, h, 1);
+    sbl__walk_image(&wk, "out->tail", &out->tail, 2, w, h, 1);
     if (r == SBL_ERROR_NULL_POINTER && !wk.found) r = wk.want = SBL_OK; /* the scratch */
     if (out->color.data && out->color.channels != frame->color.channels)
         sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "out->color", ".channels",
@@ -11719,6 +11966,7 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
                            "differs from frame->color.channels");
             sbl__walk_image(&wk, "history->length", &history->length, 1, w, h, 1);
             sbl__walk_image(&wk, "history->evidence", &history->evidence, 1, w, h, 1);
+            sbl__walk_image(&wk, "history->tail", &history->tail, 2, w, h, 1);
             sbl__walk_gbuffer(&wk, "history->gbuffer", &history->gbuffer, w, h);
         }
         if (u.source == SBL_TEMPORAL_MOTION && !frame->gbuffer.motion.data)
@@ -11752,25 +12000,26 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
     }
     {   /* outputs: disjoint from each other and from every input */
         const sbl_image *o[SBL__PLANES_MAX], *in[5 + SBL__PLANES_MAX];
-        const char *on[4] = {"out->color", "out->length", "out->alpha", "out->evidence"};
-        const char *names[12] = {
+        const char *on[5] = {"out->color", "out->length", "out->alpha", "out->evidence", "out->tail"};
+        const char *names[13] = {
             "overlaps frame->color", "overlaps frame->gbuffer.depth",
             "overlaps frame->gbuffer.normals", "overlaps frame->gbuffer.ids",
             "overlaps frame->gbuffer.motion", "overlaps history->color",
             "overlaps history->length", "overlaps history->gbuffer.depth",
             "overlaps history->gbuffer.normals", "overlaps history->gbuffer.ids",
-            "overlaps history->gbuffer.motion", "overlaps history->evidence"};
+            "overlaps history->gbuffer.motion", "overlaps history->evidence",
+            "overlaps history->tail"};
         int i, j, n;
         const sbl_history *hi = history && history->color.data ? history : NULL;
-        /* in the names' order: 4 outputs; the frame's 5 planes, then the history's 7 */
+        /* in the names' order: 5 outputs; the frame's 5 planes, then the history's 8 */
         sbl__temporal_output_planes(out, o);
         n = sbl__frame_planes(frame, in);
         n += sbl__history_planes(hi, in + n, 1);
-        for (i = 0; i < 4; ++i)
-            for (j = i + 1; j < 4; ++j)
+        for (i = 0; i < 5; ++i)
+            for (j = i + 1; j < 5; ++j)
                 if (sbl__overlap_checked(o[i], o[j]))
                     sbl__blame(&wk, SBL_ERROR_OVERLAP, on[j], "", on[i]);
-        for (i = 0; i < 4; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, n);
+        for (i = 0; i < 5; ++i) sbl__walk_overlap(&wk, on[i], o[i], in, names, n);
     }
     if (r != SBL_OK && !wk.found) {
         sbl__diag_copy(diag->field, sizeof diag->field, "(not located)", NULL);

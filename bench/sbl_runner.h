@@ -64,6 +64,8 @@ typedef struct sbr_method {
     int temporal;                  /* 0: no temporal filter */
     int evidence;                  /* 1: the temporal filter carries its evidence plane
                                       (sbl_history.evidence / sbl_temporal_output.evidence) */
+    int tail;                      /* 1: and its tail plane (sbl_history.tail /
+                                      sbl_temporal_output.tail, 2 channels) */
     int oracle;                    /* SBR_ORACLE_* bits: that stage uses oracle weights */
     sbl_temporal_desc temporal_desc;
     sbr_stereo_mode stereo;
@@ -367,7 +369,8 @@ static sbr_method sbr_method_default(const char *name, sbr_stereo_mode st)
     memset(&m, 0, sizeof m);
     snprintf(m.name, sizeof m.name, "%s", name);
     m.temporal = 1;
-    m.evidence = 1; /* the default as a user gets it: with the evidence plane passed on */
+    m.evidence = 1; /* the default as a user gets it: with the evidence and tail planes passed on */
+    m.tail = 1;
     m.stereo = st;
     return m;
 }
@@ -435,6 +438,13 @@ int sbr_standard_methods(sbr_method *m, int max)
     /* a stereo blend follows: the history's bias, which both eyes share, counts double
        (docs/ESTIMATORS.md 4.7) */
     all[n++].temporal_desc.stereo_shared_bias = 1.0f;
+    /* the two defaults without the tail plane (the defaults before session 31): what
+       the plane adds, in accuracy and in time, in the same run (docs/ESTIMATORS.md 2.4) */
+    all[n] = sbr_method_default("default-notail", SBR_STEREO_NONE);
+    all[n++].tail = 0;
+    all[n] = sbr_method_default("default-stereo-notail", SBR_STEREO_ADAPTIVE);
+    all[n].temporal_desc.stereo_shared_bias = 1.0f;
+    all[n++].tail = 0;
     all[n++] = sbr_method_oracle("oracle+stereo-oracle", 1, SBR_STEREO_ADAPTIVE,
                                  SBR_ORACLE_TEMPORAL | SBR_ORACLE_STEREO);
     /* the same with the Catmull-Rom history fetch (sbl_reproject_desc.history_filter),
@@ -627,6 +637,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     float *alpha[2];        /* the temporal weights, for alpha_fn */
     float *carry[2][2] = {{NULL, NULL}, {NULL, NULL}}, *carry3 = NULL, *ocarry3 = NULL, *ocarry = NULL;
     float *tcarry[2][2] = {{NULL, NULL}, {NULL, NULL}}, *otcarry = NULL; /* temporal_blend_carry3 */
+    float *tailp[2][2] = {{NULL, NULL}, {NULL, NULL}}; /* m->tail: the tail planes, per eye, ping-ponged */
     unsigned char *mask;
     double *times, mse_sum = 0, mse1_sum = 0, ssim_sum = 0, eff_sum = 0;
     long traced = 0, traced_total = 0;
@@ -657,6 +668,9 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
         ocarry3 = sbr_alloc(n * 3);
         ocarry = sbr_alloc(n);
     }
+    if (m->tail)
+        for (e = 0; e < 2; ++e)
+            for (i = 0; i < 2; ++i) tailp[e][i] = sbr_alloc(n * 2);
     alpha[0] = alpha_fn ? sbr_alloc(n) : NULL;
     alpha[1] = alpha_fn ? sbr_alloc(n) : NULL;
     onx = sbr_alloc(n);
@@ -701,6 +715,10 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                                   m->evidence ? carry[e][ping[e]] : NULL, hist[e][!ping[e]],
                                   len[e][!ping[e]], m->evidence ? carry[e][!ping[e]] : NULL,
                                   &fr, &hi, &out);
+                if (m->tail) {
+                    if (pv) hi.tail = sbl_image_make(tailp[e][ping[e]], w, h, 2);
+                    out.tail = sbl_image_make(tailp[e][!ping[e]], w, h, 2);
+                }
                 if (alpha[e]) out.alpha = sbl_image_make(alpha[e], w, h, 1);
                 if (m->temporal_blend_carry || m->temporal_blend_carry3) {
                     /* the carried plane rides on the history's reprojection: the same call
@@ -874,7 +892,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     }
     for (e = 0; e < 2; ++e) { free(carry[e][0]); free(carry[e][1]); }
     free(carry3); free(ocarry3); free(ocarry);
-    for (e = 0; e < 2; ++e) { free(tcarry[e][0]); free(tcarry[e][1]); }
+    for (e = 0; e < 2; ++e) { free(tcarry[e][0]); free(tcarry[e][1]); free(tailp[e][0]); free(tailp[e][1]); }
     free(otcarry);
     free(mask); free(tmp_a); free(tmp_b); free(times); free(ox); free(onx); free(onx2); free(alpha[0]); free(alpha[1]);
     return rc;

@@ -8,9 +8,9 @@
                (r = 0.02, g = 25 as the bench's synthetic-firefly; r = 0.005, g = 100).
                Here the firefly limit lowers the error, at the price of a bias.
    No motion, so the history's fetch is exact and any bias is the weights'. Each estimator
-   runs 60 frames through sbl_temporal_filter (the pooled default with its evidence plane,
-   as examples/minimal.c and build/sblexr run it); frames 20..59 are scored, away from the
-   band edges:
+   runs 60 frames through sbl_temporal_filter (the pooled default with its evidence and
+   tail planes, as examples/minimal.c and build/sblexr run it); frames 20..59 are scored,
+   away from the band edges:
      bias    mean of (output - mu) / mu          (an unbiased filter: about 0)
      RMSE    against mu                          (hit bands: progressive averaging is the
                                                   floor for an unbiased per-pixel mean)
@@ -43,6 +43,7 @@ typedef struct method {
     sbl_estimator estimator;
     sbl_rectify rectify;
     int evidence; /* carry the evidence plane (the default's full configuration) */
+    int tail;     /* carry the tail plane (sbl_history.tail; the default's full configuration) */
 } method;
 
 typedef struct band_stats {
@@ -58,7 +59,7 @@ static int run(const method *m, band_stats *bs)
     float *alpha = (float *)malloc(n * sizeof(float));
     float *depth = (float *)malloc(n * sizeof(float));
     float *motion = (float *)calloc(n * 2, sizeof(float));
-    float *hist[2], *len[2], *evid[2];
+    float *hist[2], *len[2], *evid[2], *tail[2];
     const size_t scratch_bytes = sbl_temporal_scratch_size(W, CH);
     void *scratch = malloc(scratch_bytes);
     sbl_temporal_desc td;
@@ -68,7 +69,8 @@ static int run(const method *m, band_stats *bs)
         hist[b] = (float *)malloc(n * CH * sizeof(float));
         len[b] = (float *)malloc(n * sizeof(float));
         evid[b] = (float *)malloc(n * sizeof(float));
-        if (!hist[b] || !len[b] || !evid[b]) rc = (int)SBL_ERROR_OUT_OF_MEMORY;
+        tail[b] = (float *)malloc(n * 2 * sizeof(float));
+        if (!hist[b] || !len[b] || !evid[b] || !tail[b]) rc = (int)SBL_ERROR_OUT_OF_MEMORY;
     }
     if (!rgb || !alpha || !depth || !motion || !scratch) rc = (int)SBL_ERROR_OUT_OF_MEMORY;
     for (i = 0; rc == 0 && i < n; ++i) depth[i] = 2.0f;
@@ -110,6 +112,10 @@ static int run(const method *m, band_stats *bs)
             prev.evidence = sbl_image_make(evid[ping], W, H, 1);
             out.evidence = sbl_image_make(evid[!ping], W, H, 1);
         }
+        if (m->tail) {
+            prev.tail = sbl_image_make(tail[ping], W, H, 2);
+            out.tail = sbl_image_make(tail[!ping], W, H, 2);
+        }
         rc = (int)sbl_temporal_filter(&td, &cur, f ? &prev : NULL, &out, 0, H, scratch, scratch_bytes);
         if (rc == 0 && f >= SCORED_FROM) {
             for (i = 0; i < n; ++i) {
@@ -137,7 +143,7 @@ static int run(const method *m, band_stats *bs)
         ping = !ping;
     }
     if (rc != 0) fprintf(stderr, "%s: %s\n", m->name, sbl_result_string((sbl_result)rc));
-    for (b = 0; b < 2; ++b) { free(hist[b]); free(len[b]); free(evid[b]); }
+    for (b = 0; b < 2; ++b) { free(hist[b]); free(len[b]); free(evid[b]); free(tail[b]); }
     free(rgb); free(alpha); free(depth); free(motion); free(scratch);
     return rc;
 }
@@ -145,20 +151,22 @@ static int run(const method *m, band_stats *bs)
 int main(void)
 {
     static const method methods[] = {
-        {"default (pooled, evidence)", SBL_ESTIMATOR_POOLED, SBL_RECTIFY_NONE, 1},
-        {"pooled, no evidence plane", SBL_ESTIMATOR_POOLED, SBL_RECTIFY_NONE, 0},
-        {"robust", SBL_ESTIMATOR_ROBUST, SBL_RECTIFY_NONE, 0},
-        {"history-aware", SBL_ESTIMATOR_HISTORY_AWARE, SBL_RECTIFY_NONE, 0},
-        {"paper", SBL_ESTIMATOR_PAPER, SBL_RECTIFY_NONE, 0},
-        {"progressive", SBL_ESTIMATOR_PROGRESSIVE, SBL_RECTIFY_NONE, 0},
-        {"constant 0.1", SBL_ESTIMATOR_CONSTANT, SBL_RECTIFY_NONE, 0},
-        {"constant 0.1 + clamp", SBL_ESTIMATOR_CONSTANT, SBL_RECTIFY_CLAMP, 0},
+        {"default (pooled, both planes)", SBL_ESTIMATOR_POOLED, SBL_RECTIFY_NONE, 1, 1},
+        {"pooled, evidence, no tail", SBL_ESTIMATOR_POOLED, SBL_RECTIFY_NONE, 1, 0},
+        {"pooled, no planes", SBL_ESTIMATOR_POOLED, SBL_RECTIFY_NONE, 0, 0},
+        {"robust, tail plane", SBL_ESTIMATOR_ROBUST, SBL_RECTIFY_NONE, 0, 1},
+        {"robust", SBL_ESTIMATOR_ROBUST, SBL_RECTIFY_NONE, 0, 0},
+        {"history-aware", SBL_ESTIMATOR_HISTORY_AWARE, SBL_RECTIFY_NONE, 0, 0},
+        {"paper", SBL_ESTIMATOR_PAPER, SBL_RECTIFY_NONE, 0, 0},
+        {"progressive", SBL_ESTIMATOR_PROGRESSIVE, SBL_RECTIFY_NONE, 0, 0},
+        {"constant 0.1", SBL_ESTIMATOR_CONSTANT, SBL_RECTIFY_NONE, 0, 0},
+        {"constant 0.1 + clamp", SBL_ESTIMATOR_CONSTANT, SBL_RECTIFY_CLAMP, 0, 0},
     };
     band_stats bs[BANDS];
     int k, b;
     printf("hit-or-miss and spiky samples of mean mu = %.1f (bench/sparse_bias.c), %dx%d, frames %d..%d\n",
            MU, W, H, SCORED_FROM, FRAMES - 1);
-    printf("%-28s %-15s %8s %8s %7s %7s %6s\n", "method", "samples", "bias", "RMSE", "a|hit", "a|miss", "kept");
+    printf("%-30s %-15s %8s %8s %7s %7s %6s\n", "method", "samples", "bias", "RMSE", "a|hit", "a|miss", "kept");
     for (k = 0; k < (int)(sizeof methods / sizeof methods[0]); ++k) {
         if (run(&methods[k], bs) != 0) return 1;
         for (b = 0; b < BANDS; ++b) {
@@ -166,7 +174,7 @@ int main(void)
             char label[32];
             if (BAND[b].gain == 0.0) snprintf(label, sizeof label, "hit %.2f", BAND[b].rate);
             else snprintf(label, sizeof label, "spike %g,%g", BAND[b].rate, BAND[b].gain);
-            printf("%-28s %-15s %+7.1f%% %8.4f %7.4f %7.4f", b ? "" : methods[k].name, label,
+            printf("%-30s %-15s %+7.1f%% %8.4f %7.4f %7.4f", b ? "" : methods[k].name, label,
                    100.0 * s->err / s->n / MU, sqrt(s->err2 / s->n), s->a_hit / s->n_hit,
                    s->a_miss / s->n_miss);
             if (methods[k].rectify == SBL_RECTIFY_NONE && s->n_kept > 0.0)

@@ -58,7 +58,7 @@ int main(void)
 {
     const size_t n = (size_t)W * H;
     /* everything the renderer owns, allocated once */
-    float *rgb[2], *ref[2], *depth[2][2], *mv[2], *hist[2][2], *len[2][2], *evid[2][2], *display[2];
+    float *rgb[2], *ref[2], *depth[2][2], *mv[2], *hist[2][2], *len[2][2], *evid[2][2], *tail[2][2], *display[2];
     void *scratch = malloc(sbl_temporal_scratch_size(W, 3));
     size_t scratch_bytes = sbl_temporal_scratch_size(W, 3);
     int e, f, b, ping = 0;
@@ -80,6 +80,7 @@ int main(void)
             hist[e][b] = (float *)malloc(n * 3 * sizeof(float));
             len[e][b] = (float *)malloc(n * sizeof(float));
             evid[e][b] = (float *)malloc(n * sizeof(float));
+            tail[e][b] = (float *)malloc(n * 2 * sizeof(float));
         }
     }
     printf("frame  RMSE 1 spp   temporal   temporal + stereo\n");
@@ -97,10 +98,12 @@ int main(void)
             prev.color = sbl_image_make(hist[e][ping], W, H, 3);
             prev.length = sbl_image_make(len[e][ping], W, H, 1);
             prev.evidence = sbl_image_make(evid[e][ping], W, H, 1); /* optional: change */
+            prev.tail = sbl_image_make(tail[e][ping], W, H, 2);     /* optional: rare bright samples */
             prev.gbuffer.depth = sbl_image_make(depth[e][!ping], W, H, 1);
             out.color = sbl_image_make(hist[e][!ping], W, H, 3);
             out.length = sbl_image_make(len[e][!ping], W, H, 1);
             out.evidence = sbl_image_make(evid[e][!ping], W, H, 1); /* evidence over frames */
+            out.tail = sbl_image_make(tail[e][!ping], W, H, 2);     /* exceedances over frames */
             /* a job system would run these bands on its workers, each with its own
                scratch; here they run one after the other with one scratch */
             for (b = 0; b < BANDS; ++b) {
@@ -133,7 +136,7 @@ int main(void)
     }
     for (e = 0; e < 2; ++e) {
         free(rgb[e]); free(ref[e]); free(mv[e]); free(display[e]);
-        for (b = 0; b < 2; ++b) { free(depth[e][b]); free(hist[e][b]); free(len[e][b]); free(evid[e][b]); }
+        for (b = 0; b < 2; ++b) { free(depth[e][b]); free(hist[e][b]); free(len[e][b]); free(evid[e][b]); free(tail[e][b]); }
     }
     free(scratch);
     return 0;

@@ -10,8 +10,8 @@
    temporal weight, black 0 .. white 1; blue when the method has no temporal filter).
    Colours are clamped to [0, 1] and sRGB-encoded.
    No --method: the library's default temporal filter (every descriptor field zero, with
-   the optional evidence plane carried from frame to frame, as a user gets the default's
-   full accuracy; `pooled`: the same without the plane);
+   the optional evidence and tail planes carried from frame to frame, as a user gets the
+   default's full accuracy; `pooled`: the same without the planes);
    --method default-stereo: the default combined pipeline (temporal per eye, told that a
    stereo blend follows: sbl_temporal_desc.stereo_shared_bias = 1; then the default
    stereo blend for display). These two names stay stable. default-cr and
@@ -135,7 +135,7 @@ static int write_sheet(const char *path, const sbr_seq *seq, const writer *wr, i
 static void usage(void)
 {
     fprintf(stderr, "usage: sblexr SCENE_DIR OUT_DIR [--method NAME] [--frames N] [--sheet FRAME]\n"
-                    "       (no --method: the default temporal filter, its evidence plane carried;\n"
+                    "       (no --method: the default temporal filter, its evidence and tail planes carried;\n"
                     "       default-stereo: the default temporal filter then the default stereo blend)\n"
                     "       sblexr --list        (the method names)\n");
 }

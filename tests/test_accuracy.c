@@ -20,7 +20,11 @@ typedef struct seq1 {
     float *cur, *hist[2], *len[2], *depth, *mv, *alpha;
     int ping;
     float *ev[2]; /* the evidence plane, ping-ponged with the history (g_evidence) */
+    float *tl[2]; /* the tail plane (2 channels), ping-ponged with the history (g_tail) */
 } seq1;
+
+/* 1: seq_step carries the tail plane (sbl_history.tail in, sbl_temporal_output.tail out) */
+static int g_tail;
 
 /* 1: seq_step carries the evidence plane (history in, output out); 2: only writes it
    (no history plane: the estimator must be today's, bit for bit) */
@@ -42,12 +46,15 @@ static void seq_init(seq1 *s, int w, int h, int ch)
     for (i = 0; i < (int)n; ++i) s->depth[i] = 1.0f;
     s->ev[0] = (float *)calloc(n, sizeof(float));
     s->ev[1] = (float *)calloc(n, sizeof(float));
+    s->tl[0] = (float *)calloc(n * 2, sizeof(float));
+    s->tl[1] = (float *)calloc(n * 2, sizeof(float));
 }
 
 static void seq_free(seq1 *s)
 {
     free(s->cur); free(s->hist[0]); free(s->hist[1]); free(s->len[0]); free(s->len[1]);
     free(s->depth); free(s->mv); free(s->alpha); free(s->ev[0]); free(s->ev[1]);
+    free(s->tl[0]); free(s->tl[1]);
 }
 
 /* One temporal step: cur -> hist[!ping]; first = no history. */
@@ -70,6 +77,10 @@ static int seq_step(seq1 *s, const sbl_temporal_desc *d, int first)
     if (g_evidence) {
         if (g_evidence == 1) h.evidence = sbl_image_make(s->ev[s->ping], s->w, s->h, 1);
         o.evidence = sbl_image_make(s->ev[!s->ping], s->w, s->h, 1);
+    }
+    if (g_tail) {
+        h.tail = sbl_image_make(s->tl[s->ping], s->w, s->h, 2);
+        o.tail = sbl_image_make(s->tl[!s->ping], s->w, s->h, 2);
     }
     r = sbl_temporal_filter_frame(d, &f, first ? NULL : &h, &o);
     s->ping = !s->ping;
@@ -1565,8 +1576,89 @@ static void test_shared_bias_floor(void)
     CHECK(flat1 < 0.0113); /* 0.0112 before and after */
 }
 
+/* ---- hit-or-miss samples: the tail plane keeps the mean --------------------------- */
+
+/* A static region whose 1-spp samples are mu / p with probability p = 0.1 and 0
+   otherwise (a small light sampled once per pixel: docs/ESTIMATORS.md 2.3, 2.4;
+   bench/sparse_bias.c). Without the tail plane the default loses about half the mean
+   (the limit cuts lone hits; a window of misses reads a history above it as a bias).
+   With the plane (g_tail) it must stay within a third of the plain mean's error budget:
+   |bias| < 30 % and RMSE below the plain mean of every sample so far (progressive
+   averaging, unbiased). Returns the bias and fills the RMSEs. */
+static double hits_run(int tail, double *rmse, double *rmse_mean)
+{
+    const int w = 64, h = 48, frames = 60, from = 20;
+    const double p = 0.1, mu = 0.5;
+    seq1 s;
+    sbl_temporal_desc d;
+    sbt_rng rng = {4242};
+    double *mean = (double *)calloc((size_t)w * h, sizeof(double));
+    double se = 0.0, se_mean = 0.0, bias = 0.0;
+    long cnt = 0;
+    int i, x, y;
+    memset(&d, 0, sizeof d);
+    seq_init(&s, w, h, 1);
+    g_evidence = 1;
+    g_tail = tail;
+    for (i = 0; i < frames; ++i) {
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                const size_t q = (size_t)y * w + x;
+                const double v = sbt_uniform(&rng) < p ? mu / p : 0.0;
+                s.cur[q] = (float)v;
+                mean[q] += (v - mean[q]) / (i + 1);
+            }
+        CHECK_EQ(seq_step(&s, &d, i == 0), SBL_OK);
+        if (i < from) continue;
+        for (y = 1; y < h - 1; ++y)
+            for (x = 1; x < w - 1; ++x) {
+                const size_t q = (size_t)y * w + x;
+                const double a = seq_out(&s, x, y)[0] - mu;
+                bias += a;
+                se += a * a;
+                se_mean += (mean[q] - mu) * (mean[q] - mu);
+                cnt++;
+            }
+    }
+    g_evidence = g_tail = 0;
+    *rmse = sqrt(se / cnt);
+    *rmse_mean = sqrt(se_mean / cnt);
+    free(mean);
+    seq_free(&s);
+    return bias / cnt / mu;
+}
+
+static void test_tail_hits(void)
+{
+    double r_on, r_off, m_on, m_off;
+    const double b_on = hits_run(1, &r_on, &m_on), b_off = hits_run(0, &r_off, &m_off);
+    printf("  hit-or-miss samples (p = 0.1, frames 20-59): with the tail plane bias %+.1f %% RMSE %.4f; "
+           "without %+.1f %% RMSE %.4f; plain mean RMSE %.4f\n", 100.0 * b_on, r_on, 100.0 * b_off,
+           r_off, m_on);
+    CHECK(fabs(b_on) < 0.3);
+    CHECK(r_on < m_on);
+    CHECK(b_off < -0.4); /* what the plane removes (if this fails, revisit the docs) */
+}
+
+/* The tail plane must not let fireflies in where they are rare: the single firefly and
+   the 2 % spikes of test_firefly and test_firefly_rate, with the plane carried. */
+static void test_tail_fireflies(void)
+{
+    firefly_result po;
+    g_tail = 1;
+    po = firefly_run(SBL_ESTIMATOR_POOLED);
+    printf("  firefly, pooled, tail plane: error %.4f -> %.4f -> %.4f 10 frames later\n",
+           po.err_before, po.err_after, po.err_decay);
+    CHECK(po.err_after < 0.1);
+    CHECK(po.err_decay < 0.05);
+    test_firefly_rate();
+    g_tail = 0;
+}
+
 int main(void)
 {
+    test_tail_hits();
+    test_tail_fireflies();
     test_evidence_params();
     test_evidence_absent();
     test_evidence_static();
