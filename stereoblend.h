@@ -7029,10 +7029,11 @@ static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
    with the colour's taps and tests (the row gather where the colour takes it, else the
    pixel gather): x[0] the rate, x[1] the variance; 0 where no tap is valid (a reset:
    nothing seen) and where a value is not one (a rate outside [0, 1], a variance that
-   is negative or not finite). */
+   is negative or not finite: the comparisons fail for a NaN). */
 static void sbl__tail_gather_row(sbl__kernel *k, sbl__ring_row *r, int y, int xa, int xb)
 {
     const sbl__temporal_rp *ts = SBL__PCAST(const sbl__temporal_rp *, k->tail_ctx);
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), big = sbl__set1(FLT_MAX);
     int x;
     r->row = y;
 #ifdef SBL__ROW_GATHER
@@ -7049,84 +7050,165 @@ static void sbl__tail_gather_row(sbl__kernel *k, sbl__ring_row *r, int y, int xa
             r->x[1][x] = v[1];
         }
     }
-    for (x = xa; x < xb; ++x) {
-        const float rate = r->x[0][x], var = r->x[1][x];
-        const int ok = r->v[x] > 0.0f;
-        r->x[0][x] = ok && rate >= 0.0f && rate <= 1.0f ? rate : 0.0f;
-        r->x[1][x] = ok && var >= 0.0f && var <= FLT_MAX ? var : 0.0f;
-    }
+    x = xa;
+    if (xb - xa >= SBL__VW)
+        for (;;) { /* (selects only: the overlapping last vector sees its own output) */
+            const sbl__m ok = sbl__gt(sbl__load(r->v + x), zero);
+            const sbl__v rate = sbl__load(r->x[0] + x), var = sbl__load(r->x[1] + x);
+            sbl__store(r->x[0] + x, sbl__sel(ok, sbl__sel(sbl__gt(rate, one), zero,
+                                                          sbl__sel(sbl__gt(rate, zero), rate, zero)), zero));
+            sbl__store(r->x[1] + x, sbl__sel(ok, sbl__sel(sbl__gt(var, big), zero,
+                                                          sbl__sel(sbl__gt(var, zero), var, zero)), zero));
+            if (x + SBL__VW >= xb) break;
+            x += SBL__VW;
+            if (x + SBL__VW > xb) x = xb - SBL__VW;
+        }
+    else
+        for (; x < xb; ++x) {
+            const float rate = r->x[0][x], var = r->x[1][x];
+            const int ok = r->v[x] > 0.0f;
+            r->x[0][x] = ok && rate > 0.0f && rate <= 1.0f ? rate : 0.0f;
+            r->x[1][x] = ok && var > 0.0f && var <= FLT_MAX ? var : 0.0f;
+        }
 }
 
 /* The tail plane for row y (k->tail_on): this frame's records cleared over [xa, xb);
    with the history's plane, rows y - 1 .. y + 1 gathered (each row once per span: the
-   ring keeps them) and their 3x3 means into tail_r / tail_t (the rows and columns
-   inside the image; a reset pixel counts as nothing seen). */
+   ring keeps them) and their 3x3 means into tail_r / tail_t (the rows inside the
+   image, the columns inside [xa, xb); a reset pixel counts as nothing seen). The sums
+   are separable: each column's rows (into tail_e / tail_d, cleared after), then three
+   columns. */
 static void sbl__tail_prepare(sbl__kernel *k, int y, int xa, int xb)
 {
     const sbl__ring_row *rows[3];
     int j, x, n = 0;
+    if (k->tail_use && xb > xa) {
+        float inv_n;
+        if (xa != k->tail_xa || xb != k->tail_xb) { /* another span: nothing held */
+            for (j = 0; j < 3; ++j) k->tail_ring[j].row = -1;
+            k->tail_xa = xa;
+            k->tail_xb = xb;
+        }
+        for (j = -1; j <= 1; ++j) {
+            const int ry = y + j;
+            int i, have = -1, free_slot = -1;
+            if (ry < 0 || ry >= k->h) continue;
+            for (i = 0; i < 3; ++i) {
+                const int held = k->tail_ring[i].row;
+                if (held == ry) have = i;
+                else if (free_slot < 0 && (held < 0 || held < y - 1 || held > y + 1)) free_slot = i;
+            }
+            if (have < 0) {
+                have = free_slot;
+                sbl__tail_gather_row(k, &k->tail_ring[have], ry, xa, xb);
+            }
+            rows[n++] = &k->tail_ring[have];
+        }
+        {   /* each column's rows (always added in this order), then three columns; in
+               lanes where the span holds a vector (the last one overlapping: its
+               outputs are not its inputs) */
+            const float *r0 = rows[0]->x[0], *t0 = rows[0]->x[1];
+            const float *r1 = rows[n > 1 ? 1 : 0]->x[0], *t1 = rows[n > 1 ? 1 : 0]->x[1];
+            const float *r2 = rows[n - 1]->x[0], *t2 = rows[n - 1]->x[1];
+            float *ce = k->tail_e, *cd = k->tail_d;
+            const float w1 = n > 1 ? 1.0f : 0.0f, w2 = n > 2 ? 1.0f : 0.0f;
+            inv_n = 1.0f / SBL__CAST(float, 3 * n);
+            if (xb - xa >= SBL__VW + 2) {
+                const sbl__v v1 = sbl__set1(w1), v2 = sbl__set1(w2), vi = sbl__set1(inv_n);
+                for (x = xa;;) {
+                    sbl__store(ce + x, sbl__add(sbl__add(sbl__load(r0 + x), sbl__mul(v1, sbl__load(r1 + x))),
+                                                sbl__mul(v2, sbl__load(r2 + x))));
+                    sbl__store(cd + x, sbl__add(sbl__add(sbl__load(t0 + x), sbl__mul(v1, sbl__load(t1 + x))),
+                                                sbl__mul(v2, sbl__load(t2 + x))));
+                    if (x + SBL__VW >= xb) break;
+                    x += SBL__VW;
+                    if (x + SBL__VW > xb) x = xb - SBL__VW;
+                }
+                for (x = xa + 1;;) {
+                    sbl__store(k->tail_r + x, sbl__mul(sbl__add(sbl__add(sbl__load(ce + x - 1), sbl__load(ce + x)),
+                                                                sbl__load(ce + x + 1)), vi));
+                    sbl__store(k->tail_t + x, sbl__mul(sbl__add(sbl__add(sbl__load(cd + x - 1), sbl__load(cd + x)),
+                                                                sbl__load(cd + x + 1)), vi));
+                    if (x + SBL__VW >= xb - 1) break;
+                    x += SBL__VW;
+                    if (x + SBL__VW > xb - 1) x = xb - 1 - SBL__VW;
+                }
+            } else {
+                for (x = xa; x < xb; ++x) {
+                    ce[x] = r0[x] + w1 * r1[x] + w2 * r2[x];
+                    cd[x] = t0[x] + w1 * t1[x] + w2 * t2[x];
+                }
+                for (x = xa + 1; x + 1 < xb; ++x) {
+                    k->tail_r[x] = (ce[x - 1] + ce[x] + ce[x + 1]) * inv_n;
+                    k->tail_t[x] = (cd[x - 1] + cd[x] + cd[x + 1]) * inv_n;
+                }
+            }
+        }
+        /* the span's end columns: two columns (one if the span has one) */
+        inv_n = 1.0f / SBL__CAST(float, (xb - xa > 1 ? 2 : 1) * n);
+        k->tail_r[xa] = (k->tail_e[xa] + (xb - xa > 1 ? k->tail_e[xa + 1] : 0.0f)) * inv_n;
+        k->tail_t[xa] = (k->tail_d[xa] + (xb - xa > 1 ? k->tail_d[xa + 1] : 0.0f)) * inv_n;
+        if (xb - xa > 1) {
+            k->tail_r[xb - 1] = (k->tail_e[xb - 2] + k->tail_e[xb - 1]) * inv_n;
+            k->tail_t[xb - 1] = (k->tail_d[xb - 2] + k->tail_d[xb - 1]) * inv_n;
+        }
+    }
     memset(k->tail_e + xa, 0, SBL__CAST(size_t, xb - xa) * sizeof(float));
     memset(k->tail_d + xa, 0, SBL__CAST(size_t, xb - xa) * sizeof(float));
-    if (!k->tail_use) return;
-    if (xa != k->tail_xa || xb != k->tail_xb) { /* another span: nothing held */
-        for (j = 0; j < 3; ++j) k->tail_ring[j].row = -1;
-        k->tail_xa = xa;
-        k->tail_xb = xb;
-    }
-    for (j = -1; j <= 1; ++j) {
-        const int ry = y + j;
-        int i, have = -1, free_slot = -1;
-        if (ry < 0 || ry >= k->h) continue;
-        for (i = 0; i < 3; ++i) {
-            const int held = k->tail_ring[i].row;
-            if (held == ry) have = i;
-            else if (free_slot < 0 && (held < 0 || held < y - 1 || held > y + 1)) free_slot = i;
-        }
-        if (have < 0) {
-            have = free_slot;
-            sbl__tail_gather_row(k, &k->tail_ring[have], ry, xa, xb);
-        }
-        rows[n++] = &k->tail_ring[have];
-    }
-    for (x = xa; x < xb; ++x) {
-        const int i0 = x > xa ? x - 1 : x, i1 = x + 1 < xb ? x + 1 : x;
-        float sr = 0.0f, st = 0.0f;
-        int i, cnt = 0;
-        for (j = 0; j < n; ++j)
-            for (i = i0; i <= i1; ++i) {
-                sr += rows[j]->x[0][i];
-                st += rows[j]->x[1][i];
-                ++cnt;
-            }
-        k->tail_r[x] = sr / SBL__CAST(float, cnt);
-        k->tail_t[x] = st / SBL__CAST(float, cnt);
-    }
 }
 
 /* Row y's pixels [xa, xb) of the output tail plane: each pixel's running mean of its
    exceedance and squared excess, over its history's length (the history's own value,
    gathered, unpooled; 1 / (N + 1) of this frame's record, N the capped length of x*, 0
-   at a reset); 0 with the estimators that have no limit. */
-static void sbl__tail_store(const sbl__kernel *k, int y, int xa, int xb)
+   at a reset); 0 with the estimators that have no limit. Formed in tail_r / tail_t,
+   then interleaved. */
+static void sbl__tail_store(sbl__kernel *k, int y, int xa, int xb)
 {
     const sbl__ring_row *own = NULL;
+    const float *planes[2];
     int x, j;
     for (j = 0; j < 3 && k->tail_use; ++j)
         if (k->tail_ring[j].row == y) own = &k->tail_ring[j];
-    for (x = xa; x < xb; ++x) {
-        float *o = sbl__px(&k->out_tail, x, y);
-        if (!k->tail_on) {
+    if (!k->tail_on) {
+        for (x = xa; x < xb; ++x) {
+            float *o = sbl__px(&k->out_tail, x, y);
             o[0] = o[1] = 0.0f;
-        } else {
+        }
+        return;
+    }
+    /* into tail_r / tail_t (the row's kernel is done with them): in lanes where the span
+       holds a vector, the last one overlapping (its outputs are not its inputs) */
+    if (xb - xa >= SBL__VW) {
+        const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), cap = sbl__set1(k->n_cap);
+        const sbl__v big = sbl__set1(FLT_MAX);
+        for (x = xa;;) {
+            const sbl__v n = own ? sbl__load(k->ring[1].n + x) : zero;
+            const sbl__m seen = sbl__gt(n, zero);
+            const sbl__v nc = sbl__sel(seen, sbl__min(n, cap), zero);
+            const sbl__v a = sbl__div(one, sbl__add(nc, one));
+            const sbl__v r0 = own ? sbl__sel(seen, sbl__load(own->x[0] + x), zero) : zero;
+            const sbl__v t0 = own ? sbl__sel(seen, sbl__load(own->x[1] + x), zero) : zero;
+            const sbl__v t1 = sbl__add(t0, sbl__mul(a, sbl__sub(sbl__load(k->tail_d + x), t0)));
+            sbl__store(k->tail_r + x, sbl__add(r0, sbl__mul(a, sbl__sub(sbl__load(k->tail_e + x), r0))));
+            sbl__store(k->tail_t + x, sbl__min(t1, big)); /* a finite record of a huge excess */
+            if (x + SBL__VW >= xb) break;
+            x += SBL__VW;
+            if (x + SBL__VW > xb) x = xb - SBL__VW;
+        }
+    } else {
+        for (x = xa; x < xb; ++x) {
             const float n = own ? k->ring[1].n[x] : 0.0f;
             const float nc = n > 0.0f ? (n < k->n_cap ? n : k->n_cap) : 0.0f;
             const float a = 1.0f / (nc + 1.0f);
-            const float r0 = own && n > 0.0f ? own->x[0][x] : 0.0f, t0 = own && n > 0.0f ? own->x[1][x] : 0.0f;
-            o[0] = r0 + a * (k->tail_e[x] - r0);
-            o[1] = t0 + a * (k->tail_d[x] - t0);
-            if (!(o[1] <= FLT_MAX)) o[1] = FLT_MAX; /* a finite record of a huge excess */
+            const float r0 = nc > 0.0f ? own->x[0][x] : 0.0f, t0 = nc > 0.0f ? own->x[1][x] : 0.0f;
+            const float t1 = t0 + a * (k->tail_d[x] - t0);
+            k->tail_r[x] = r0 + a * (k->tail_e[x] - r0);
+            k->tail_t[x] = t1 <= FLT_MAX ? t1 : FLT_MAX; /* a finite record of a huge excess */
         }
     }
+    planes[0] = k->tail_r;
+    planes[1] = k->tail_t;
+    sbl__interleave(sbl__px(&k->out_tail, 0, y), sbl__step_of(&k->out_tail), 2, planes, xa, xb);
 }
 
 /* Row y's pixels [xa, xb) of the output evidence plane: this frame's R (pooled), else 1
