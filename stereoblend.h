@@ -7025,6 +7025,28 @@ static void sbl__evidence_gather(sbl__kernel *k, int y, int xa, int xb)
         k->evid_in[x] = k->evid_use ? sbl__evidence_pixel(SBL__PCAST(const sbl__temporal_rp *, k->evid_ctx), x, y) : 1.0f;
 }
 
+/* 1 if any value of the image is other than +-0 (a NaN too), 0 if all are zero. */
+static int sbl__plane_nonzero(const sbl_image *im)
+{
+    const ptrdiff_t step = sbl__step_of(im);
+    const size_t row = SBL__CAST(size_t, im->width) * SBL__CAST(size_t, im->channels);
+    int y;
+    for (y = 0; y < im->height; ++y) {
+        const float *p = sbl__px(im, 0, y);
+        int any = 0;
+        size_t i;
+        if (step != im->channels) { /* padded pixels: each pixel's channels */
+            int x, c;
+            for (x = 0; x < im->width; ++x)
+                for (c = 0; c < im->channels; ++c) any |= p[SBL__CAST(ptrdiff_t, x) * step + c] != 0.0f;
+        } else {
+            for (i = 0; i < row; ++i) any |= p[i] != 0.0f;
+        }
+        if (any) return 1;
+    }
+    return 0;
+}
+
 /* Row y of the history's tail plane into ring row r over columns [xa, xb), gathered
    with the colour's taps and tests (the row gather where the colour takes it, else the
    pixel gather): x[0] the rate, x[1] the variance; 0 where no tap is valid (a reset:
@@ -7159,8 +7181,9 @@ static void sbl__tail_prepare(sbl__kernel *k, int y, int xa, int xb)
 
 /* Row y's pixels [xa, xb) of the output tail plane: each pixel's running mean of its
    exceedance and squared excess, over its history's length (the history's own value,
-   gathered, unpooled; 1 / (N + 1) of this frame's record, N the capped length of x*, 0
-   at a reset); 0 with the estimators that have no limit. Formed in tail_r / tail_t,
+   gathered, unpooled, 0 where the history has no plane: nothing seen in its N frames;
+   1 / (N + 1) of this frame's record, N the capped length of x*, 0 at a reset); 0 with
+   the estimators that have no limit. Formed in tail_r / tail_t,
    then interleaved. */
 static void sbl__tail_store(sbl__kernel *k, int y, int xa, int xb)
 {
@@ -7182,7 +7205,7 @@ static void sbl__tail_store(sbl__kernel *k, int y, int xa, int xb)
         const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), cap = sbl__set1(k->n_cap);
         const sbl__v big = sbl__set1(FLT_MAX);
         for (x = xa;;) {
-            const sbl__v n = own ? sbl__load(k->ring[1].n + x) : zero;
+            const sbl__v n = sbl__load(k->ring[1].n + x);
             const sbl__m seen = sbl__gt(n, zero);
             const sbl__v nc = sbl__sel(seen, sbl__min(n, cap), zero);
             const sbl__v a = sbl__div(one, sbl__add(nc, one));
@@ -7197,10 +7220,10 @@ static void sbl__tail_store(sbl__kernel *k, int y, int xa, int xb)
         }
     } else {
         for (x = xa; x < xb; ++x) {
-            const float n = own ? k->ring[1].n[x] : 0.0f;
+            const float n = k->ring[1].n[x];
             const float nc = n > 0.0f ? (n < k->n_cap ? n : k->n_cap) : 0.0f;
             const float a = 1.0f / (nc + 1.0f);
-            const float r0 = nc > 0.0f ? own->x[0][x] : 0.0f, t0 = nc > 0.0f ? own->x[1][x] : 0.0f;
+            const float r0 = own && nc > 0.0f ? own->x[0][x] : 0.0f, t0 = own && nc > 0.0f ? own->x[1][x] : 0.0f;
             const float t1 = t0 + a * (k->tail_d[x] - t0);
             k->tail_r[x] = r0 + a * (k->tail_e[x] - r0);
             k->tail_t[x] = t1 <= FLT_MAX ? t1 : FLT_MAX; /* a finite record of a huge excess */
@@ -10528,7 +10551,11 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
         k.tail_e = t + 14 * pf;
         k.tail_d = t + 15 * pf;
         k.tail_xa = k.tail_xb = -1;
-        if (s.history && s.history->tail.data) {
+        /* a history plane of zeros only (nothing ever exceeded: most content without
+           fireflies) reads as no plane: the gather of zeros gives zeros, the limit's
+           share rho / (1 + rho) is then 0 and the floors are 0, so the outputs are the
+           same; one pass over the plane's bits, with an early exit */
+        if (s.history && s.history->tail.data && sbl__plane_nonzero(&s.history->tail)) {
             ts = s;
             ts.src.color = sbl__flatten(&s.history->tail);
             ts.src.cubic = 0;

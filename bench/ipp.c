@@ -29,8 +29,9 @@
              output blended with the other's, as bench/perf.c's stereo pipeline runs it;
              ipp.sh divides the blend's count by 2 calls)
    Each case with "-ev" appended (easy-ev, hard-ev, ...) passes the optional evidence
-   plane in and out (sbl_history.evidence / sbl_temporal_output.evidence), as the
-   README's recommended setup does.
+   plane in and out (sbl_history.evidence / sbl_temporal_output.evidence); with "-tail"
+   appended (easy-tail, ...) the evidence and the tail planes (sbl_history.tail /
+   sbl_temporal_output.tail), as the README's recommended setup does.
 
    IPP_SHARED_BIAS=c in the environment: the temporal filter as the combined pipeline runs
    it (stereo_shared_bias c), on inputs where the resampling blur's bias (ESTIMATORS 4.12)
@@ -56,6 +57,7 @@
 typedef struct eye_bufs {
     float *color, *depth, *prev_depth, *motion, *hist, *hlen, *out, *olen, *stereo_out;
     float *hev, *oev; /* evidence plane in / out */
+    float *htl, *otl; /* tail plane in / out (2 channels) */
     float *normal, *prev_normal, *id, *prev_id; /* case normals */
 } eye_bufs;
 
@@ -83,6 +85,7 @@ static void fill_eye(eye_bufs *b, int eye, int kind, int tex)
     b->motion = falloc(n * 2); b->hist = falloc(n * 3); b->hlen = falloc(n);
     b->out = falloc(n * 3); b->olen = falloc(n); b->stereo_out = falloc(n * 3);
     b->hev = falloc(n); b->oev = falloc(n);
+    b->htl = falloc(n * 2); b->otl = falloc(n * 2);
     b->normal = falloc(n * 3); b->prev_normal = falloc(n * 3); b->id = falloc(n); b->prev_id = falloc(n);
     for (i = 0; i < n; ++i) {
         int x = (int)(i % W), y = (int)(i / W), c;
@@ -101,6 +104,9 @@ static void fill_eye(eye_bufs *b, int eye, int kind, int tex)
         s = s * 1664525u + 1013904223u;
         b->hev[i] = 0.8f + (float)(s >> 8) * (1.0f / 16777216.0f) * 0.6f +
                     ((s >> 4) % 61u == 0u ? 2.5f : 0.0f);
+        /* a carried tail: mostly nothing seen, a rate of a few % at one pixel in 16 */
+        b->htl[i * 2] = (s >> 12) % 16u == 0u ? 0.03f : 0.0f;
+        b->htl[i * 2 + 1] = b->htl[i * 2] * 2.0f;
         if (kind == 1) {
             /* random sub-pixel motion; a nearer disc of radius 110 moved 50 px since
                the last frame: where it was, history depth is the object's, where it
@@ -157,7 +163,7 @@ int main(int argc, char **argv)
 {
     static const char *names[11] = {"easy", "hard", "tiny", "static", "normals", "slant", "uv", "camera",
                                     "offset", "far", "toed"};
-    int kind = 0, ev = 0, two = 0, e, i;
+    int kind = 0, ev = 0, tail = 0, two = 0, e, i;
     sbl_camera cam[2]; /* case camera: the history's and the frame's */
     sbl_intrinsics kin;
     eye_bufs b[2];
@@ -166,16 +172,18 @@ int main(int argc, char **argv)
     if (argc > 1 && strcmp(argv[1], "two-eyes") == 0) {
         two = 1; /* the easy content */
     } else if (argc > 1) {
-        size_t len = strlen(argv[1]);
+        size_t len = strlen(argv[1]), base;
         ev = len > 3 && strcmp(argv[1] + len - 3, "-ev") == 0;
+        tail = len > 5 && strcmp(argv[1] + len - 5, "-tail") == 0;
+        base = ev ? len - 3 : tail ? len - 5 : len;
+        ev |= tail;
         kind = -1;
         for (i = 0; i < 11; ++i)
-            if (strncmp(argv[1], names[i], ev ? len - 3 : len) == 0 &&
-                strlen(names[i]) == (ev ? len - 3 : len))
+            if (strncmp(argv[1], names[i], base) == 0 && strlen(names[i]) == base)
                 kind = i;
         if (kind < 0) { /* a name not measured must not pass as the easy case */
             fprintf(stderr, "ipp: unknown case '%s' (easy hard tiny static normals slant uv camera offset far toed, "
-                            "each also with -ev; two-eyes)\n", argv[1]);
+                            "each also with -ev or -tail; two-eyes)\n", argv[1]);
             free(scratch);
             return 2;
         }
@@ -209,6 +217,10 @@ int main(int argc, char **argv)
         if (ev) {
             hi.evidence = sbl_image_make(b[e].hev, W, H, 1);
             o.evidence = sbl_image_make(b[e].oev, W, H, 1);
+        }
+        if (tail) {
+            hi.tail = sbl_image_make(b[e].htl, W, H, 2);
+            o.tail = sbl_image_make(b[e].otl, W, H, 2);
         }
         if (kind == 4) {
             f.gbuffer.normals = sbl_image_make(b[e].normal, W, H, 3);
@@ -267,7 +279,7 @@ int main(int argc, char **argv)
             return 1;
     }
     printf("ipp case %s%s%s: %dx%d RGB, %s; pixels per call %d (temporal runs 2 eyes)\n",
-           two ? "two-eyes" : names[kind], ev ? " with the evidence plane" : "",
+           two ? "two-eyes" : names[kind], tail ? " with the evidence and tail planes" : ev ? " with the evidence plane" : "",
            getenv("IPP_SHARED_BIAS") ? ", stereo_shared_bias set" : "", W, H, SBL_SIMD_NAME, W * H);
     if (argc > 2 && strcmp(argv[2], "hash") == 0) {
         unsigned long long h = 14695981039346656037ull;
@@ -276,6 +288,7 @@ int main(int argc, char **argv)
             h = fnv(h, b[e].out, n * 3);
             h = fnv(h, b[e].olen, n);
             if (ev) h = fnv(h, b[e].oev, n);
+            if (tail) h = fnv(h, b[e].otl, n * 2);
         }
         h = fnv(h, b[0].stereo_out, n * 3);
         if (two) h = fnv(h, b[1].stereo_out, n * 3);

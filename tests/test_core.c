@@ -1036,6 +1036,30 @@ static void test_tail_plane(void)
     CHECK(rate_grey < 0.01 * n_grey);
     CHECK(finite);
     CHECK(sbt_canaries_ok(&ta[0]) && sbt_canaries_ok(&ta[1]));
+    {   /* a history plane of zeros reads as none (sbl_temporal_filter skips its gather):
+           check that claim against the full path, which one NaN forces (the gather reads
+           the NaN as nothing seen, so the plane is zeros in effect) */
+        sbl_frame f;
+        sbl_history h;
+        sbl_temporal_output o;
+        sbt_img oc[2], ol[2], ot[2];
+        for (k = 0; k < 2; ++k) {
+            oc[k] = sbt_img_new(W, H, 3, 0); ol[k] = sbt_img_new(W, H, 1, 0); ot[k] = sbt_img_new(W, H, 2, 0);
+            memset(ta[0].mem, 0, sizeof(float) * (size_t)ta[0].stride * H); /* canaries too: rewritten below */
+            for (y = 0; y < H; ++y) sbt_at(&ta[0], W - 1, y)[2] = SBT_CANARY; /* (the 1-float pad) */
+            if (k) sbt_at(&ta[0], 7, 9)[1] = NAN;
+            memset(&f, 0, sizeof f); memset(&h, 0, sizeof h); memset(&o, 0, sizeof o);
+            f.color = view(&a.cur); f.gbuffer.depth = view(&a.depth); f.gbuffer.motion = view(&a.mv);
+            h.color = view(&a.hist[a.ping]); h.length = view(&a.len[a.ping]);
+            h.gbuffer.depth = view(&a.depth); h.tail = view(&ta[0]);
+            o.color = view(&oc[k]); o.length = view(&ol[k]); o.tail = view(&ot[k]);
+            CHECK_EQ(sbl_temporal_filter(&d, &f, &h, &o, 0, H, mem, bytes), SBL_OK);
+        }
+        CHECK_EQ(memcmp(oc[0].mem, oc[1].mem, sizeof(float) * (size_t)W * H * 3), 0);
+        CHECK_EQ(memcmp(ol[0].mem, ol[1].mem, sizeof(float) * (size_t)W * H), 0);
+        CHECK_EQ(memcmp(ot[0].mem, ot[1].mem, sizeof(float) * (size_t)W * H * 2), 0);
+        for (k = 0; k < 2; ++k) { free(oc[k].mem); free(ol[k].mem); free(ot[k].mem); }
+    }
     for (i = 0; i < 2; ++i) { free(ta[i].mem); free(tb[i].mem); }
     free(mem);
     tf_free(&a);
