@@ -48,6 +48,14 @@
          prev.evidence = sbl_image_make(hist_ev, w, h, 1);   // last frame's out.evidence
          out.evidence  = sbl_image_make(out_ev, w, h, 1);
 
+     Optional: the tail plane (2 floats per pixel), ping-ponged the same way. The firefly
+     limit then admits as much of a bright sample as the rate of such samples at the
+     pixel makes worth its variance: small lights, caustics and highlights hit now and
+     then keep their mean, lone fireflies are still cut (docs/ESTIMATORS.md 2.4). It
+     costs about half the temporal filter's time again (its own gather).
+         prev.tail = sbl_image_make(hist_tail, w, h, 2);     // last frame's out.tail
+         out.tail  = sbl_image_make(out_tail, w, h, 2);
+
      Stereo: if the display is the stereo blend of the two filtered eyes (sbl_stereo_blend
      after sbl_temporal_filter per eye), set desc.stereo_shared_bias = 1: the blend halves
      each eye's own noise but keeps a bias both eyes share (a light that moved), so the
