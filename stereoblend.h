@@ -7528,16 +7528,18 @@ SBL__INLINE void sbl__row_pool_ref_ch(sbl__kernel *k, const sbl__ring_row *const
     }
     for (x = xa; x < xb; ++x) {
         double sm2 = 0.0, sse2 = 0.0, r;
-        int b, nb = 0;
+        int b;
         for (b = -SBL__POOL_BLOCKS; b <= SBL__POOL_BLOCKS; ++b) {
             int cx = x + SBL__POOL_STEP * b;
             if (cx < 0 || cx >= w || k->pool_se2[cx] < 0.0) continue;
             sm2 += k->pool_m2[cx];
             sse2 += k->pool_se2[cx];
-            ++nb;
         }
-        if (k->wp.tail) { /* each block's se^2 at least the tail variance over its 9 pairs (2.4) */
-            const double tf = SBL__CAST(double, k->tail_t[x]) * nb / 9.0;
+        if (k->wp.tail) {
+            /* each of the five blocks' se^2 at least the tail variance over its 9 pairs
+               (2.4): counted as the lanes count them, the blocks outside the image or
+               without pairs too (their terms are 0 there) */
+            const double tf = SBL__CAST(double, k->tail_t[x]) * (2 * SBL__POOL_BLOCKS + 1) / 9.0;
             if (sse2 < tf) sse2 = tf;
         }
         /* pooled squared mean over pooled squared standard error, less the threshold;
@@ -7864,6 +7866,9 @@ SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *c
         xs[c] = R[1]->x[c][x];
         finite &= sbl__finite(yc[c]);
     }
+    /* the tail plane's record of this pixel: none unless the limit below runs (a lane
+       vector that covered it, e.g. with a non-finite sample, may have left one) */
+    if (k->tail_on) k->tail_e[x] = k->tail_d[x] = 0.0f;
     if (!finite) {
         /* no new sample: keep x* if there is one, else black with N = 0 */
         for (c = 0; c < ch; ++c) out[c] = n_x > 0.0f ? xs[c] : 0.0f;

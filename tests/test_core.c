@@ -1066,8 +1066,48 @@ static void test_tail_plane(void)
     tf_free(&b);
 }
 
+/* A non-finite sample keeps x* and must record no exceedance in the tail plane, on
+   every SIMD build (review, session 31: a lane vector covering the pixel recorded one,
+   T = FLT_MAX, on AVX2 only). 24 x 8, the history 0.5 with N = 8, one +inf sample. */
+static void test_tail_nonfinite(void)
+{
+    enum { W = 24, H = 8 };
+    tf t;
+    sbt_img tl[2];
+    sbl_temporal_desc d;
+    sbl_frame f;
+    sbl_history h;
+    sbl_temporal_output o;
+    sbt_rng rng = {31};
+    int x, y, c, i;
+    tf_init(&t, W, H, 3);
+    for (i = 0; i < 2; ++i) tl[i] = sbt_img_new(W, H, 2, 0);
+    memset(&d, 0, sizeof d);
+    for (y = 0; y < H; ++y)
+        for (x = 0; x < W; ++x) {
+            for (c = 0; c < 3; ++c) {
+                sbt_at(&t.cur, x, y)[c] = (float)(0.4 + 0.2 * sbt_uniform(&rng));
+                sbt_at(&t.hist[0], x, y)[c] = 0.5f;
+            }
+            *sbt_at(&t.len[0], x, y) = 8.0f;
+            sbt_at(&tl[0], x, y)[0] = x == 0 && y == 0 ? 0.01f : 0.0f; /* not all zero: the full path */
+        }
+    sbt_at(&t.cur, 8, 4)[0] = INFINITY;
+    memset(&f, 0, sizeof f); memset(&h, 0, sizeof h); memset(&o, 0, sizeof o);
+    f.color = view(&t.cur); f.gbuffer.depth = view(&t.depth); f.gbuffer.motion = view(&t.mv);
+    h.color = view(&t.hist[0]); h.length = view(&t.len[0]); h.gbuffer.depth = view(&t.depth);
+    h.tail = view(&tl[0]);
+    o.color = view(&t.hist[1]); o.length = view(&t.len[1]); o.tail = view(&tl[1]);
+    CHECK_EQ(sbl_temporal_filter_frame(&d, &f, &h, &o), SBL_OK);
+    CHECK(sbt_at(&tl[1], 8, 4)[0] == 0.0f);
+    CHECK(sbt_at(&tl[1], 8, 4)[1] == 0.0f);
+    for (i = 0; i < 2; ++i) free(tl[i].mem);
+    tf_free(&t);
+}
+
 int main(void)
 {
+    test_tail_nonfinite();
     test_tail_plane();
     test_weights();
     test_depth();
