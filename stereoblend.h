@@ -6035,10 +6035,11 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     const float *hp = src->use_depth ? SBL__AT(src->depth, x0, y) : NULL;
     const float *np = src->length.p ? SBL__AT(src->length, x0, y) : NULL;
     const float *cp = SBL__AT(src->color, x0, y);
-    /* ev: the evidence plane (laid out as N, which is present) at the pixel itself, with
-       the colour's tests: its value where they pass and it is finite; the tail plane's
-       two (laid out as N with offsets doubled) likewise, each pixel's pair read at once */
-    const int use_e = ev && r->e, use_t = ev && r->tl[0];
+    /* ev 1: the evidence plane (laid out as N, which is present) at the pixel itself,
+       with the colour's tests: its value where they pass and it is finite; ev 2: the tail
+       plane's two values (laid out as N with offsets doubled) likewise, each pixel's pair
+       read at once, and the evidence plane where r->e is set */
+    const int use_e = ev == 1 || (ev == 2 && r->e), use_t = ev == 2;
     const float *ep = use_e ? SBL__AT(r->e_rp->src.color, x0, y) : NULL;
     const float *tp = use_t ? SBL__AT(r->tl_rp->src.color, x0, y) : NULL;
     const ptrdiff_t cs = src->color.step;
@@ -6157,6 +6158,17 @@ SBL__NOINLINE void sbl__rest_tile_ev(const sbl__temporal_rp *s, sbl__ring_row *r
     case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2, 1); break;
     case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3, 1); break;
     default: sbl__rest_tile_ch(s, r, y, x0, n, 4, 1); break;
+    }
+}
+
+/* sbl__rest_tile with the tail plane (r->tl), and the evidence plane where r->e is set */
+SBL__NOINLINE void sbl__rest_tile_tl(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
+{
+    switch (s->src.color.ch) {
+    case 1: sbl__rest_tile_ch(s, r, y, x0, n, 1, 2); break;
+    case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2, 2); break;
+    case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3, 2); break;
+    default: sbl__rest_tile_ch(s, r, y, x0, n, 4, 2); break;
     }
 }
 
@@ -6437,7 +6449,9 @@ SBL__INLINE int sbl__temporal_block_start_in(const void *ctx, sbl__ring_row *r, 
             return 1;
         }
         if (kind == SBL__TILE_REST) {
-            if (ev) sbl__rest_tile_ev(s, r, b->y, b->x0, b->n);
+            /* (ev 1: the evidence plane alone; the tail plane's instance when r->tl is set) */
+            if (ev && r->tl[0]) sbl__rest_tile_tl(s, r, b->y, b->x0, b->n);
+            else if (ev) sbl__rest_tile_ev(s, r, b->y, b->x0, b->n);
             else sbl__rest_tile(s, r, b->y, b->x0, b->n);
             return 1;
         }
