@@ -6085,7 +6085,7 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
            safe (the common case) the finiteness tests drop out and nothing is flagged */
         for (l = 0; l < ch; ++l) vals[l] = v[l];
         vals[ch] = nv;
-        if (use_e) vals[ch + 1] = ve; /* (finite too: then its tests are the colour's) */
+        vals[ch + 1] = ve; /* (finite too: then its tests are the colour's; read where use_e) */
         if (sbl__all_safe(vals, ch + 1 + use_e)) {
             if (np) valid = sbl__mand(valid, sbl__gt(nv, zero));
             valid_e = valid_t = valid;
