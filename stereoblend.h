@@ -52,7 +52,9 @@
      limit then admits as much of a bright sample as the rate of such samples at the
      pixel makes worth its variance: small lights, caustics and highlights hit now and
      then keep their mean, lone fireflies are still cut (docs/ESTIMATORS.md 2.4). It
-     costs about half the temporal filter's time again (its own gather).
+     costs a fifth to a quarter of the temporal filter's instructions again, gathered
+     in the colour's plan when laid out as length with offsets doubled (both packed, as
+     here).
          prev.tail = sbl_image_make(hist_tail, w, h, 2);     // last frame's out.tail
          out.tail  = sbl_image_make(out_tail, w, h, 2);
 
@@ -3430,6 +3432,12 @@ typedef struct sbl__ring_row {
        the lanes the colour's plan does not settle. */
     float *e, *e_plane;
     const sbl__temporal_rp *e_rp;
+    /* the tail plane (2.4) gathered in the colour's plan the same way (one plane per
+       channel, the rate and the variance, as sbl__tail_pixel stores them), read with N's
+       tap indices doubled (sbl__tail_fused_ok): tl, where this load writes it (NULL:
+       not wanted); tl_plane, this row's planes; tl_rp, the plane's reprojection */
+    float *tl[2], *tl_plane[2];
+    const sbl__temporal_rp *tl_rp;
 } sbl__ring_row;
 
 typedef struct sbl__kernel {
@@ -3499,6 +3507,9 @@ typedef struct sbl__kernel {
        in hand; tail_ring: the gathered rows y - 1 .. y + 1 (x[0] the rate, x[1] the
        variance). */
     int tail_on, tail_use;
+    /* 1: the ring rows carry the plane, gathered in the colour's plan (ring[j].tl, every
+       row as evid_fused's), and tail_ring is not used */
+    int tail_fused;
     const void *tail_ctx;    /* the plane's gather (sbl__temporal_rp); NULL: none    */
     sbl__ring_row tail_ring[3];
     int tail_xa, tail_xb;    /* the columns the ring rows hold                       */
@@ -3653,6 +3664,18 @@ SBL__NOINLINE float sbl__evidence_pixel(const sbl__temporal_rp *es, int x, int y
 }
 
 #ifdef SBL__ROW_GATHER
+/* The tail plane's values at target pixel (x, y) by the pixel gather (r->tl_rp: the
+   reprojection whose colour is the plane) into ring column x of r->tl: the gathered rate
+   and variance, 0 where no tap is valid (a reset: nothing seen) or a value is not one
+   (sbl__tail_gather_row's test). */
+SBL__NOINLINE void sbl__tail_pixel(sbl__ring_row *r, int x, int y)
+{
+    float v[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const int ok = sbl__temporal_rp_pixel(r->tl_rp, x, y, v) > 0.0f;
+    r->tl[0][x] = ok && v[0] > 0.0f && v[0] <= 1.0f ? v[0] : 0.0f;
+    r->tl[1][x] = ok && v[1] > 0.0f && v[1] <= FLT_MAX ? v[1] : 0.0f;
+}
+
 /* 1 if every lane of the vectors v[0 .. cnt) holds a safe value (sbl__lane_value_ok)
    other than 0, in one test for them all: the largest |bits| below those of 2^50 and the
    smallest at least those of 2^-40 (a NaN's or an inf's bits lie above every finite
@@ -4169,6 +4192,25 @@ SBL__INLINE void sbl__gather_pairs(const float *base, const int *idx, sbl__v *ou
 }
 #endif
 
+/* VW consecutive packed 2-channel pixels (2 VW floats at p) to one vector per channel */
+SBL__INLINE void sbl__lanes2(const float *p, sbl__v *a, sbl__v *b)
+{
+#if SBL__VW == 4
+    const __m128 u = _mm_loadu_ps(p), v = _mm_loadu_ps(p + 4);
+    *a = _mm_shuffle_ps(u, v, _MM_SHUFFLE(2, 0, 2, 0));
+    *b = _mm_shuffle_ps(u, v, _MM_SHUFFLE(3, 1, 3, 1));
+#elif SBL__VW == 8
+    const __m256 u = _mm256_loadu_ps(p), v = _mm256_loadu_ps(p + 8);
+    const __m256 lo = _mm256_permute2f128_ps(u, v, 0x20), hi = _mm256_permute2f128_ps(u, v, 0x31);
+    *a = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0));
+    *b = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+#else
+    const __m512 u = _mm512_loadu_ps(p), v = _mm512_loadu_ps(p + 16);
+    *a = _mm512_permutex2var_ps(u, _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30), v);
+    *b = _mm512_permutex2var_ps(u, _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31), v);
+#endif
+}
+
 /* NaN lanes, on the bits (-ffast-math may fold a float self-compare): |a| above the
    bits of +inf, compared as signed ints (both non-negative) */
 SBL__INLINE sbl__m sbl__lanes_nan(sbl__v a)
@@ -4560,6 +4602,80 @@ SBL__INLINE int sbl__lanes_taps_evidence(const sbl__tap_src *s, sbl__tap_plan *p
     return any; /* (the lanes marked) */
 }
 
+/* The tail plane of plan entries [i, i + VW) into r->tl[0] / r->tl[1] + x, in the
+   colour's taps, as sbl__lanes_taps_evidence takes the evidence plane: the plane's own
+   gather (a 2-channel colour) has the same taps, tests, weights and validity wherever its
+   sums are finite, each channel's sum the same terms in the same order, so its values;
+   then sbl__tail_gather_row's test (0 where not valid or not a rate / a variance). The
+   plane is laid out as N with every offset doubled (sbl__tail_fused_ok): tap indices
+   2 li, contiguous lanes two floats apart, pairs of taps 4 floats in a run. Lanes the
+   colour keeps whose tail sums are not finite are marked for the pixel gather (redo 3,
+   as the evidence plane's). Returns the mask of the lanes it marked, 0 if none. */
+SBL__INLINE int sbl__lanes_taps_tail(const sbl__tap_src *s, sbl__tap_plan *p, int i,
+                                     sbl__ring_row *r, int x, sbl__v w0, sbl__v w1, sbl__v w2,
+                                     sbl__v w3, sbl__m ok0, sbl__m ok1, sbl__m ok2, sbl__m ok3,
+                                     int skip_x, int skip_y, sbl__v inv, sbl__m valid,
+                                     sbl__m redo, sbl__m fast, int contiguous, int pair)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), fmax = sbl__set1(FLT_MAX);
+    const float *tbase = r->tl_rp->src.color.p;
+    const int *lidx = p->li + i;
+    const ptrdiff_t ls = s->length.stride, lx = s->length.step;
+    const int masked = sbl__mbits(sbl__mand(sbl__mand(ok0, ok1), sbl__mand(ok2, ok3))) != (1 << SBL__VW) - 1;
+    sbl__v acc0 = zero, acc1 = zero, q[4][2], g[4], rate, var;
+    sbl__m keep_r, keep_v;
+    int tidx[SBL__VW], c, bits, any;
+    SBL__PREFETCH(tbase + 2 * SBL__CAST(ptrdiff_t, lidx[0]), 4 * ls);
+    if (!contiguous) /* (a contiguous vector's entries past i hold no indices) */
+        for (c = 0; c < SBL__VW; ++c) tidx[c] = 2 * lidx[c];
+    q[1][0] = q[1][1] = q[2][0] = q[2][1] = q[3][0] = q[3][1] = zero; /* (skipped: not read) */
+    if (pair) { /* taps 0, 1 (row y0) and 2, 3 (row y0 + 1): one run of 4 floats each */
+        sbl__gather_pairs(tbase, tidx, g, 2);
+        q[0][0] = g[0]; q[0][1] = g[1]; q[1][0] = g[2]; q[1][1] = g[3];
+        if (!skip_y) {
+            sbl__gather_pairs(tbase + 2 * ls, tidx, g, 2);
+            q[2][0] = g[0]; q[2][1] = g[1]; q[3][0] = g[2]; q[3][1] = g[3];
+        }
+    } else {
+#define SBL__TL_READ(t) \
+    { \
+        const ptrdiff_t o = 2 * ((t >> 1) * ls + (t & 1) * lx); \
+        if (contiguous) { \
+            sbl__lanes2(tbase + o + 2 * SBL__CAST(ptrdiff_t, lidx[0]), &q[t][0], &q[t][1]); \
+        } else { \
+            q[t][0] = sbl__gatheri(tbase + o, tidx); \
+            q[t][1] = sbl__gatheri(tbase + o + 1, tidx); \
+        } \
+    }
+        SBL__TL_READ(0);
+        if (!skip_x) SBL__TL_READ(1);
+        if (!skip_y) {
+            SBL__TL_READ(2);
+            if (!skip_x) SBL__TL_READ(3);
+        }
+#undef SBL__TL_READ
+    }
+#define SBL__TAP_TL(t, m) \
+    { \
+        const sbl__v a_ = sbl__mul(w##t, q[t][0]), b_ = sbl__mul(w##t, q[t][1]); \
+        acc0 = sbl__add(acc0, m ? sbl__sel(ok##t, a_, zero) : a_); \
+        acc1 = sbl__add(acc1, m ? sbl__sel(ok##t, b_, zero) : b_); \
+    }
+    if (!masked) SBL__EACH_TAP(SBL__TAP_TL, 0);
+    else SBL__EACH_TAP(SBL__TAP_TL, 1);
+#undef SBL__TAP_TL
+    rate = sbl__min(sbl__max(sbl__mul(acc0, inv), sbl__sub(zero, fmax)), fmax);
+    var = sbl__min(sbl__max(sbl__mul(acc1, inv), sbl__sub(zero, fmax)), fmax);
+    keep_r = sbl__mandnot(sbl__mand(valid, sbl__gt(rate, zero)), sbl__gt(rate, one));
+    keep_v = sbl__mand(valid, sbl__gt(var, zero)); /* (saturated: var <= FLT_MAX) */
+    sbl__store(r->tl[0] + x, sbl__sel(keep_r, rate, zero));
+    sbl__store(r->tl[1] + x, sbl__sel(keep_v, var, zero));
+    bits = any = sbl__mbits(sbl__mandnot(sbl__mand(fast, sbl__mor(sbl__nonfinite(acc0), sbl__nonfinite(acc1))), redo));
+    for (c = 0; bits; ++c, bits >>= 1)
+        if (bits & 1) p->redo[i + c] = 3;
+    return any;
+}
+
 /* The fast path of sbl__gather_ch (sbl__gather_fast, the check of the sums, the
    renormalisation and saturation) for plan entries [i, i + VW), into ring columns
    [x, x + VW): the same float operations in the same order per lane (a skipped tap
@@ -4875,8 +4991,11 @@ SBL__INLINE int sbl__lanes_taps_in(const sbl__tap_src *s, sbl__tap_plan *p, int 
         for (c = 0; bits; ++c, bits >>= 1)
             if (bits & 1) p->redo[i + c] = SBL__CAST(unsigned char, ((only >> c) & 1) + 1);
     }
-    if (ev) any |= sbl__lanes_taps_evidence(s, p, i, r, x, w0, w1, w2, w3, ok0, ok1, ok2, ok3, skip_x, skip_y,
-                                            inv, valid, redo, fast, contiguous, pair);
+    /* (ev: the ring row carries the evidence plane, the tail plane or both) */
+    if (ev && r->e) any |= sbl__lanes_taps_evidence(s, p, i, r, x, w0, w1, w2, w3, ok0, ok1, ok2, ok3, skip_x, skip_y,
+                                                    inv, valid, redo, fast, contiguous, pair);
+    if (ev && r->tl[0]) any |= sbl__lanes_taps_tail(s, p, i, r, x, w0, w1, w2, w3, ok0, ok1, ok2, ok3, skip_x, skip_y,
+                                                    inv, valid, redo, fast, contiguous, pair);
     return any;
 }
 
@@ -5143,7 +5262,8 @@ static SBL__RARE void sbl__fallback_put(const sbl__tap_src *s, sbl__ring_row *r,
    Where the colour's taps weigh below 1e-3 the plane's own gather reaches its fallback
    too, at the same position with the same expected depth: with the same tests its
    weights are the same, and a non-finite plane value only drops more taps (a sum of
-   fewer non-negative weights is no larger). */
+   fewer non-negative weights is no larger). The tail plane (r->tl) likewise, into its
+   rate and variance (sbl__tail_pixel's test). */
 static SBL__RARE void sbl__fallback_put_evidence(sbl__ring_row *r, int x, double sx, double sy,
                                                  float ze, float sl, const sbl__tap_plan *p,
                                                  int entry)
@@ -5153,9 +5273,18 @@ static SBL__RARE void sbl__fallback_put_evidence(sbl__ring_row *r, int x, double
     float n;
     t.depth = ze;
     t.depth_slack = sl;
-    sbl__tap_plan_want(&r->e_rp->src, p, entry, &t, nbuf); /* the colour's normal and id */
-    n = sbl__gather_fallback(&r->e_rp->src, &t, sx, sy, tmp);
-    r->e[x] = n > 0.0f && tmp[0] > 0.0f && tmp[0] <= SBL__CAST(float, SBL__POOL_RATIO_CAP) ? tmp[0] : 1.0f;
+    if (r->e) {
+        sbl__tap_plan_want(&r->e_rp->src, p, entry, &t, nbuf); /* the colour's normal and id */
+        n = sbl__gather_fallback(&r->e_rp->src, &t, sx, sy, tmp);
+        r->e[x] = n > 0.0f && tmp[0] > 0.0f && tmp[0] <= SBL__CAST(float, SBL__POOL_RATIO_CAP) ? tmp[0] : 1.0f;
+    }
+    if (r->tl[0]) {
+        float v[4] = {0, 0, 0, 0};
+        sbl__tap_plan_want(&r->tl_rp->src, p, entry, &t, nbuf);
+        n = sbl__gather_fallback(&r->tl_rp->src, &t, sx, sy, v);
+        r->tl[0][x] = n > 0.0f && v[0] > 0.0f && v[0] <= 1.0f ? v[0] : 0.0f;
+        r->tl[1][x] = n > 0.0f && v[1] > 0.0f && v[1] <= FLT_MAX ? v[1] : 0.0f;
+    }
 }
 
 /* The 3x3 fallback for ring columns x0 + e[k] (k < n) at source positions (sx[k], sy[k])
@@ -5196,7 +5325,9 @@ SBL__INLINE void sbl__fallback_lanes_in(const sbl__tap_src *s, sbl__ring_row *r,
             const int j = lane[l];
             if ((none >> l) & 1) {
                 sbl__ring_put(r, x0 + e[j], 0.0f, NULL, ch);
-                if (ev) r->e[x0 + e[j]] = 1.0f; /* (the plane's window fails the same tests) */
+                /* (the planes' windows fail the same tests) */
+                if (ev && r->e) r->e[x0 + e[j]] = 1.0f;
+                if (ev && r->tl[0]) r->tl[0][x0 + e[j]] = r->tl[1][x0 + e[j]] = 0.0f;
             } else {
                 sbl__fallback_put(s, r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], flag, p, e[j]);
                 if (ev) sbl__fallback_put_evidence(r, x0 + e[j], sx[j], sy[j], ze[e[j]], sl[e[j]], p, e[j]);
@@ -5264,7 +5395,8 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                 float tmp[4] = {0, 0, 0, 0};
                 if (flag) sbl__ring_put_flag(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
                 else sbl__ring_put(r, b.x0 + i, pixel(ctx, b.x0 + i, y, tmp), tmp, ch);
-                if (ev) r->e[b.x0 + i] = sbl__evidence_pixel(r->e_rp, b.x0 + i, y);
+                if (ev && r->e) r->e[b.x0 + i] = sbl__evidence_pixel(r->e_rp, b.x0 + i, y);
+                if (ev && r->tl[0]) sbl__tail_pixel(r, b.x0 + i, y);
             }
             continue;
         }
@@ -5306,14 +5438,16 @@ SBL__INLINE void sbl__row_gather_blocks(const void *ctx, sbl__ring_row *r, int y
                 if (!any) { i += 7; continue; }
             }
             if (b.p.redo[i]) {
-                /* (3: only the evidence plane's pixel gather, see sbl__lanes_taps) */
+                /* (3: only the evidence and tail planes' pixel gathers, see
+                   sbl__lanes_taps; a plane whose lanes were finite gets the same bits) */
                 if (!ev || b.p.redo[i] != 3) {
                     float tmp[4] = {0, 0, 0, 0};
                     const float nx = pixel(ctx, b.x0 + i, y, tmp);
                     if (flag) sbl__ring_put_flag(r, b.x0 + i, nx, tmp, ch);
                     else sbl__ring_put(r, b.x0 + i, nx, tmp, ch);
                 }
-                if (ev) r->e[b.x0 + i] = sbl__evidence_pixel(r->e_rp, b.x0 + i, y);
+                if (ev && r->e) r->e[b.x0 + i] = sbl__evidence_pixel(r->e_rp, b.x0 + i, y);
+                if (ev && r->tl[0]) sbl__tail_pixel(r, b.x0 + i, y);
             }
         }
     }
@@ -5903,16 +6037,20 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
     const float *hp = src->use_depth ? SBL__AT(src->depth, x0, y) : NULL;
     const float *np = src->length.p ? SBL__AT(src->length, x0, y) : NULL;
     const float *cp = SBL__AT(src->color, x0, y);
-    /* ev: the evidence plane (laid out as N, which is present) at the pixel itself, with
-       the colour's tests: its value where they pass and it is finite */
-    const float *ep = ev ? SBL__AT(r->e_rp->src.color, x0, y) : NULL;
+    /* ev 1: the evidence plane (laid out as N, which is present) at the pixel itself,
+       with the colour's tests: its value where they pass and it is finite; ev 2: the tail
+       plane's two values (laid out as N with offsets doubled) likewise, each pixel's pair
+       read at once, and the evidence plane where r->e is set */
+    const int use_e = ev == 1 || (ev == 2 && r->e), use_t = ev == 2;
+    const float *ep = use_e ? SBL__AT(r->e_rp->src.color, x0, y) : NULL;
+    const float *tp = use_t ? SBL__AT(r->tl_rp->src.color, x0, y) : NULL;
     const ptrdiff_t cs = src->color.step;
     int i = 0, l, idx[SBL__VW];
     for (l = 0; l < SBL__VW; ++l) idx[l] = l * SBL__CAST(int, cs); /* |cs| < INT_MAX / VW: sbl__row_gather_ok */
     for (;;) {
         int x, bits, flag;
-        sbl__m keep, valid, ok, valid_e = sbl__gt(zero, zero);
-        sbl__v nv = one, v[4], vals[6], ve = zero;
+        sbl__m keep, valid, ok, valid_e = sbl__gt(zero, zero), valid_t = valid_e;
+        sbl__v nv = one, v[4], vals[6], ve = zero, tr = zero, tv = zero;
         if (i + SBL__VW > n) i = n - SBL__VW; /* the last vector overlaps the one before */
         x = x0 + i;
         /* the history colour, one channel per vector (the channels written out: gcc -O2
@@ -5940,20 +6078,22 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
         }
         if (s->geo.normals.p || s->geo.ids.p) valid = sbl__mand(valid, sbl__rest_nid_ok(s, x, y));
         if (np) nv = sbl__load(np + i);
-        if (ev) ve = sbl__load(ep + i);
+        if (use_e) ve = sbl__load(ep + i);
+        if (use_t) sbl__lanes2(tp + 2 * SBL__CAST(ptrdiff_t, i), &tr, &tv);
         /* the unsafe-value check of sbl__ring_gather on the values a valid lane takes (v +
            0 is unsafe exactly when v is); a safe value is finite, so where every value is
            safe (the common case) the finiteness tests drop out and nothing is flagged */
         for (l = 0; l < ch; ++l) vals[l] = v[l];
         vals[ch] = nv;
-        if (ev) vals[ch + 1] = ve; /* (finite too: then its tests are the colour's) */
-        if (sbl__all_safe(vals, ch + 1 + ev)) {
+        vals[ch + 1] = ve; /* (finite too: then its tests are the colour's; read where use_e) */
+        if (sbl__all_safe(vals, ch + 1 + use_e)) {
             if (np) valid = sbl__mand(valid, sbl__gt(nv, zero));
-            valid_e = valid;
+            valid_e = valid_t = valid;
             flag = 0;
         } else {
             if (np) valid = sbl__mand(valid, sbl__mandnot(sbl__gt(nv, zero), sbl__nonfinite(nv)));
-            if (ev) valid_e = sbl__mandnot(valid, sbl__nonfinite(ve));
+            if (use_e) valid_e = sbl__mandnot(valid, sbl__nonfinite(ve));
+            valid_t = valid;
             valid = sbl__mandnot(valid, sbl__nonfinite(v[0]));
             if (ch > 1) valid = sbl__mandnot(valid, sbl__nonfinite(v[1]));
             if (ch > 2) valid = sbl__mandnot(valid, sbl__nonfinite(v[2]));
@@ -5979,13 +6119,23 @@ SBL__INLINE void sbl__rest_tile_ch(const sbl__temporal_rp *s, sbl__ring_row *r, 
                 float tmp[4] = {0, 0, 0, 0};
                 sbl__ring_put_flag(r, x + l, sbl__temporal_rp_pixel(s, x + l, y, tmp), tmp, ch);
             }
-        if (ev) { /* the ratio (v > 0: v + 0 = v) or 1; the lanes not settled: its pixel gather */
+        if (use_e) { /* the ratio (v > 0: v + 0 = v) or 1; the lanes not settled: its pixel gather */
             const sbl__m use = sbl__mandnot(sbl__mand(valid_e, sbl__gt(ve, zero)),
                                             sbl__gt(ve, sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP))));
             sbl__store(r->e + x, sbl__sel(use, ve, one));
             bits = sbl__mbits(sbl__mandnot(keep, valid_e));
             for (l = 0; bits; ++l, bits >>= 1)
                 if (bits & 1) r->e[x + l] = sbl__evidence_pixel(r->e_rp, x + l, y);
+        }
+        if (use_t) { /* valid where the colour's tests pass and both values are finite;
+                        then sbl__tail_pixel's test; the lanes not settled: its pixel gather */
+            valid_t = sbl__mandnot(valid_t, sbl__mor(sbl__nonfinite(tr), sbl__nonfinite(tv)));
+            sbl__store(r->tl[0] + x, sbl__sel(sbl__mandnot(sbl__mand(valid_t, sbl__gt(tr, zero)), sbl__gt(tr, one)),
+                                              tr, zero));
+            sbl__store(r->tl[1] + x, sbl__sel(sbl__mand(valid_t, sbl__gt(tv, zero)), tv, zero));
+            bits = sbl__mbits(sbl__mandnot(keep, valid_t));
+            for (l = 0; bits; ++l, bits >>= 1)
+                if (bits & 1) sbl__tail_pixel(r, x + l, y);
         }
         if (i + SBL__VW >= n) break;
         i += SBL__VW;
@@ -6010,6 +6160,17 @@ SBL__NOINLINE void sbl__rest_tile_ev(const sbl__temporal_rp *s, sbl__ring_row *r
     case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2, 1); break;
     case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3, 1); break;
     default: sbl__rest_tile_ch(s, r, y, x0, n, 4, 1); break;
+    }
+}
+
+/* sbl__rest_tile with the tail plane (r->tl), and the evidence plane where r->e is set */
+SBL__NOINLINE void sbl__rest_tile_tl(const sbl__temporal_rp *s, sbl__ring_row *r, int y, int x0, int n)
+{
+    switch (s->src.color.ch) {
+    case 1: sbl__rest_tile_ch(s, r, y, x0, n, 1, 2); break;
+    case 2: sbl__rest_tile_ch(s, r, y, x0, n, 2, 2); break;
+    case 3: sbl__rest_tile_ch(s, r, y, x0, n, 3, 2); break;
+    default: sbl__rest_tile_ch(s, r, y, x0, n, 4, 2); break;
     }
 }
 
@@ -6279,14 +6440,20 @@ SBL__INLINE int sbl__temporal_block_start_in(const void *ctx, sbl__ring_row *r, 
         if (kind && !(SBL_SHORTCUTS & (1 << (kind - 1)))) kind = SBL__TILE_GENERAL;
         if (kind == SBL__TILE_VOID) {
             sbl__void_tile(&s->src, r, b->x0, b->n);
-            if (ev) { /* no evidence either way */
+            if (ev && r->e) { /* no evidence either way */
                 int i;
                 for (i = 0; i < b->n; ++i) r->e[b->x0 + i] = 1.0f;
+            }
+            if (ev && r->tl[0]) { /* nothing seen */
+                memset(r->tl[0] + b->x0, 0, SBL__CAST(size_t, b->n) * sizeof(float));
+                memset(r->tl[1] + b->x0, 0, SBL__CAST(size_t, b->n) * sizeof(float));
             }
             return 1;
         }
         if (kind == SBL__TILE_REST) {
-            if (ev) sbl__rest_tile_ev(s, r, b->y, b->x0, b->n);
+            /* (ev 1: the evidence plane alone; the tail plane's instance when r->tl is set) */
+            if (ev && r->tl[0]) sbl__rest_tile_tl(s, r, b->y, b->x0, b->n);
+            else if (ev) sbl__rest_tile_ev(s, r, b->y, b->x0, b->n);
             else sbl__rest_tile(s, r, b->y, b->x0, b->n);
             return 1;
         }
@@ -6468,6 +6635,16 @@ SBL__INLINE int sbl__temporal_uniform_run(const void *ctx, sbl__ring_row *r, sbl
     }
 }
 
+/* Can the temporal row gather take the tail plane (source t: the colour's whose colour is
+   the plane) in the colour's plan (source s)? It reads the plane with N's tap indices
+   doubled: N present, the plane's 2 channels laid out as N's pixels with every offset
+   doubled (packed N, packed plane: the common case). */
+static int sbl__tail_fused_ok(const sbl__tap_src *s, const sbl__tap_src *t)
+{
+    return s->length.p && t->color.ch == 2 && t->color.stride == 2 * s->length.stride &&
+           t->color.step == 2 * s->length.step;
+}
+
 /* Can the temporal row gather take the evidence plane (source e: the colour's whose
    colour is the plane) in the colour's plan (source s)? It reads the plane with N's tap
    indices: N present, the plane laid out as N. */
@@ -6498,7 +6675,7 @@ static void sbl__temporal_rp_row_ev(const void *ctx, struct sbl__ring_row *r, in
                                     int xb)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    if (!r->e) {
+    if (!r->e && !r->tl[0]) {
         sbl__temporal_rp_row(ctx, r, y, xa, xb);
         return;
     }
@@ -6876,6 +7053,8 @@ static int sbl__ring_gather(const sbl__kernel *k, sbl__ring_row *r, int row, int
     r->gather_flags = 0;
     /* the evidence plane in the colour's plan (on halo rows too: see evid_y0) */
     r->e = k->evid_fused && row >= k->evid_y0 && row < k->evid_y1 ? r->e_plane : NULL;
+    r->tl[0] = k->tail_fused ? r->tl_plane[0] : NULL; /* (every row: as evid_y0 says) */
+    r->tl[1] = k->tail_fused ? r->tl_plane[1] : NULL;
     if (k->gather_row) {
         k->gather_row(k->gather_ctx, r, row, xa, xb);
         if (r->gather_flags) return r->gather_unsafe;
@@ -7107,10 +7286,11 @@ static void sbl__tail_gather_row(sbl__kernel *k, sbl__ring_row *r, int y, int xa
    ring keeps them) and their 3x3 means into tail_r / tail_t (the rows inside the
    image, the columns inside [xa, xb); a reset pixel counts as nothing seen). The sums
    are separable: each column's rows (into tail_e / tail_d, cleared after), then three
-   columns. */
+   columns. k->tail_fused: the colour's ring rows hold the rows, gathered with the colour
+   (sbl__ring_gather, over the same columns). */
 static void sbl__tail_prepare(sbl__kernel *k, int y, int xa, int xb)
 {
-    const sbl__ring_row *rows[3];
+    const float *rr[3], *tt[3];
     int j, x, n = 0;
     if (k->tail_use && xb > xa) {
         float inv_n;
@@ -7123,6 +7303,11 @@ static void sbl__tail_prepare(sbl__kernel *k, int y, int xa, int xb)
             const int ry = y + j;
             int i, have = -1, free_slot = -1;
             if (ry < 0 || ry >= k->h) continue;
+            if (k->tail_fused) { /* (ring[j + 1] holds row ry) */
+                rr[n] = k->ring[j + 1].tl[0];
+                tt[n++] = k->ring[j + 1].tl[1];
+                continue;
+            }
             for (i = 0; i < 3; ++i) {
                 const int held = k->tail_ring[i].row;
                 if (held == ry) have = i;
@@ -7132,14 +7317,15 @@ static void sbl__tail_prepare(sbl__kernel *k, int y, int xa, int xb)
                 have = free_slot;
                 sbl__tail_gather_row(k, &k->tail_ring[have], ry, xa, xb);
             }
-            rows[n++] = &k->tail_ring[have];
+            rr[n] = k->tail_ring[have].x[0];
+            tt[n++] = k->tail_ring[have].x[1];
         }
         {   /* each column's rows (always added in this order), then three columns; in
                lanes where the span holds a vector (the last one overlapping: its
                outputs are not its inputs) */
-            const float *r0 = rows[0]->x[0], *t0 = rows[0]->x[1];
-            const float *r1 = rows[n > 1 ? 1 : 0]->x[0], *t1 = rows[n > 1 ? 1 : 0]->x[1];
-            const float *r2 = rows[n - 1]->x[0], *t2 = rows[n - 1]->x[1];
+            const float *r0 = rr[0], *t0 = tt[0];
+            const float *r1 = rr[n > 1 ? 1 : 0], *t1 = tt[n > 1 ? 1 : 0];
+            const float *r2 = rr[n - 1], *t2 = tt[n - 1];
             float *ce = k->tail_e, *cd = k->tail_d;
             const float w1 = n > 1 ? 1.0f : 0.0f, w2 = n > 2 ? 1.0f : 0.0f;
             inv_n = 1.0f / SBL__CAST(float, 3 * n);
@@ -7195,11 +7381,18 @@ static void sbl__tail_prepare(sbl__kernel *k, int y, int xa, int xb)
    then interleaved. */
 static void sbl__tail_store(sbl__kernel *k, int y, int xa, int xb)
 {
-    const sbl__ring_row *own = NULL;
+    const float *own = NULL, *own_t = NULL; /* the history's rate and variance at row y */
     const float *planes[2];
     int x, j;
-    for (j = 0; j < 3 && k->tail_use; ++j)
-        if (k->tail_ring[j].row == y) own = &k->tail_ring[j];
+    for (j = 0; j < 3 && k->tail_use && !k->tail_fused; ++j)
+        if (k->tail_ring[j].row == y) {
+            own = k->tail_ring[j].x[0];
+            own_t = k->tail_ring[j].x[1];
+        }
+    if (k->tail_fused) { /* (the ring's row y, not yet advanced) */
+        own = k->ring[1].tl[0];
+        own_t = k->ring[1].tl[1];
+    }
     if (!k->tail_on) {
         for (x = xa; x < xb; ++x) {
             float *o = sbl__px(&k->out_tail, x, y);
@@ -7217,8 +7410,8 @@ static void sbl__tail_store(sbl__kernel *k, int y, int xa, int xb)
             const sbl__m seen = sbl__gt(n, zero);
             const sbl__v nc = sbl__sel(seen, sbl__min(n, cap), zero);
             const sbl__v a = sbl__div(one, sbl__add(nc, one));
-            const sbl__v r0 = own ? sbl__sel(seen, sbl__load(own->x[0] + x), zero) : zero;
-            const sbl__v t0 = own ? sbl__sel(seen, sbl__load(own->x[1] + x), zero) : zero;
+            const sbl__v r0 = own ? sbl__sel(seen, sbl__load(own + x), zero) : zero;
+            const sbl__v t0 = own ? sbl__sel(seen, sbl__load(own_t + x), zero) : zero;
             const sbl__v t1 = sbl__add(t0, sbl__mul(a, sbl__sub(sbl__load(k->tail_d + x), t0)));
             sbl__store(k->tail_r + x, sbl__add(r0, sbl__mul(a, sbl__sub(sbl__load(k->tail_e + x), r0))));
             sbl__store(k->tail_t + x, sbl__min(t1, big)); /* a finite record of a huge excess */
@@ -7231,7 +7424,7 @@ static void sbl__tail_store(sbl__kernel *k, int y, int xa, int xb)
             const float n = k->ring[1].n[x];
             const float nc = n > 0.0f ? (n < k->n_cap ? n : k->n_cap) : 0.0f;
             const float a = 1.0f / (nc + 1.0f);
-            const float r0 = own && nc > 0.0f ? own->x[0][x] : 0.0f, t0 = own && nc > 0.0f ? own->x[1][x] : 0.0f;
+            const float r0 = own && nc > 0.0f ? own[x] : 0.0f, t0 = own && nc > 0.0f ? own_t[x] : 0.0f;
             const float t1 = t0 + a * (k->tail_d[x] - t0);
             k->tail_r[x] = r0 + a * (k->tail_e[x] - r0);
             k->tail_t[x] = t1 <= FLT_MAX ? t1 : FLT_MAX; /* a finite record of a huge excess */
@@ -10576,6 +10769,20 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
             k.tail_use = 1;
             k.wp.tail = 1;
             k.wp.tail_ch = SBL__CAST(float, ch);
+#ifdef SBL__ROW_GATHER
+            /* in the colour's plan, as the evidence plane: the ring rows carry the plane
+               (tail_ring's rate and variance planes serve as theirs), on every row the
+               ring loads; else (laid out otherwise) sbl__tail_gather_row's own gather */
+            if (k.gather_row && sbl__row_gather_ok(&ts.src) && sbl__tail_fused_ok(&s.src, &ts.src)) {
+                k.tail_fused = 1;
+                k.gather_row = sbl__temporal_rp_row_ev;
+                for (j = 0; j < 3; ++j) {
+                    k.ring[j].tl_plane[0] = k.tail_ring[j].x[0];
+                    k.ring[j].tl_plane[1] = k.tail_ring[j].x[1];
+                    k.ring[j].tl_rp = &ts;
+                }
+            }
+#endif
         }
     }
     sbl__kernel_run(&k, y0, y1);

@@ -1,7 +1,8 @@
 #!/bin/sh
 # make bench-ipp: instructions per pixel (callgrind, counted inside the public call
 # only) for each ipp binary given, for each case. usage: ipp.sh BIN... [-- CASES...]
-# Prints one line per (binary, case, function).
+# Prints one line per (binary, case, function); IPP_FUNCTIONS (default both public calls)
+# names the functions to count.
 set -e
 bins=""
 cases="easy"
@@ -17,7 +18,7 @@ pixels=$((640 * 360))
 printf '%-22s %-7s %-20s %8s\n' binary case function ipp
 for b in $bins; do
   for c in $cases; do
-    for fn in sbl_temporal_filter sbl_stereo_blend; do
+    for fn in ${IPP_FUNCTIONS:-sbl_temporal_filter sbl_stereo_blend}; do
       out="$tmp/cg.out"
       valgrind --tool=callgrind --toggle-collect="$fn" --callgrind-out-file="$out" \
         "$b" "$c" >/dev/null 2>"$tmp/log" || { cat "$tmp/log"; exit 1; }

@@ -17,10 +17,17 @@ fi
 cases=$(awk '!/^#/ && NF == 3 && !seen[$1]++ { printf "%s ", $1 }' "$budgets")
 [ -n "$cases" ] || { echo "FAIL  ipp watch: no budget lines in $budgets"; exit 1; }
 tmp=$(mktemp)
-trap 'rm -f "$tmp"' EXIT
-if ! sh "$here/ipp.sh" "$bin" -- $cases >"$tmp" 2>&1; then
-  cat "$tmp"; echo "FAIL  ipp watch: bench/ipp.sh failed"; exit 1
-fi
+out=$(mktemp)
+trap 'rm -f "$tmp" "$out"' EXIT
+# each function on the cases that budget it (a callgrind run per case and function)
+for fn in sbl_temporal_filter sbl_stereo_blend; do
+  fcases=$(awk -v f="$fn" '!/^#/ && NF == 3 && $2 == f { printf "%s ", $1 }' "$budgets")
+  [ -n "$fcases" ] || continue
+  if ! IPP_FUNCTIONS=$fn sh "$here/ipp.sh" "$bin" -- $fcases >"$out" 2>&1; then
+    cat "$out"; echo "FAIL  ipp watch: bench/ipp.sh failed"; exit 1
+  fi
+  cat "$out" >>"$tmp"
+done
 status=0
 # every budget line against its measured figure (ipp.sh prints: binary case function ipp)
 while read -r c fn budget; do

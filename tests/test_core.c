@@ -1066,6 +1066,114 @@ static void test_tail_plane(void)
     tf_free(&b);
 }
 
+/* The tail plane laid out as N with offsets doubled (packed, N packed) is gathered in the
+   colour's plan (sbl__tail_fused_ok); laid out otherwise (rows padded) it takes a gather
+   of its own. Both give the same bits, whole or in bands of rows, with and without the
+   evidence plane, on content that reaches every path of the row gather: a camera at rest
+   (rest tiles), one motion vector per row (uniform blocks), random motion (scattered
+   vectors), a moved disc (disocclusions: the 3x3 fallback), a block narrower than a
+   vector at each row's end, invalid N, non-finite history colours and tail values that
+   are not a rate or a variance (inf and NaN: the pixel gather). */
+static void test_tail_fused(void)
+{
+    enum { W = 61, H = 23, RUNS = 3 };
+    sbt_img cur = sbt_img_new(W, H, 3, 0), depth = sbt_img_new(W, H, 1, 0), pdepth = sbt_img_new(W, H, 1, 0);
+    sbt_img mv = sbt_img_new(W, H, 2, 0), hist = sbt_img_new(W, H, 3, 0), len = sbt_img_new(W, H, 1, 0);
+    sbt_img evin = sbt_img_new(W, H, 1, 0), tin[2], oc[RUNS], ol[RUNS], oe[RUNS], ot[RUNS];
+    const size_t bytes = sbl_temporal_scratch_size(W, 3);
+    void *mem = malloc(bytes);
+    sbl_temporal_desc d;
+    sbt_rng rng = {77};
+    int x, y, k, ev, run;
+    tin[0] = sbt_img_new(W, H, 2, 0); /* packed: in the colour's plan */
+    tin[1] = sbt_img_new(W, H, 2, 5); /* rows padded: its own gather */
+    for (run = 0; run < RUNS; ++run) {
+        oc[run] = sbt_img_new(W, H, 3, 0); ol[run] = sbt_img_new(W, H, 1, 0);
+        oe[run] = sbt_img_new(W, H, 1, 0); ot[run] = sbt_img_new(W, H, 2, 0);
+    }
+    memset(&d, 0, sizeof d);
+    for (y = 0; y < H; ++y)
+        for (x = 0; x < W; ++x) {
+            const int in_now = (x - 40) * (x - 40) + (y - 11) * (y - 11) < 25;
+            const int in_was = (x - 46) * (x - 46) + (y - 11) * (y - 11) < 25;
+            const double u = sbt_uniform(&rng);
+            float rate;
+            for (k = 0; k < 3; ++k) {
+                sbt_at(&cur, x, y)[k] = (float)(0.4 + 0.3 * sbt_uniform(&rng));
+                sbt_at(&hist, x, y)[k] = (float)(0.3 + 0.4 * sbt_uniform(&rng));
+            }
+            *sbt_at(&depth, x, y) = in_now ? 1.0f : 2.0f + 0.01f * (float)y;
+            *sbt_at(&pdepth, x, y) = in_was ? 1.0f : 2.0f + 0.01f * (float)y;
+            /* at rest on the left and on the last rows, one vector per row above, random
+               below */
+            if (x < 16 || y >= 17) {
+                sbt_at(&mv, x, y)[0] = sbt_at(&mv, x, y)[1] = 0.0f;
+            } else if (y < 8) {
+                sbt_at(&mv, x, y)[0] = 0.37f;
+                sbt_at(&mv, x, y)[1] = -0.21f;
+            } else {
+                sbt_at(&mv, x, y)[0] = (float)(1.8 * (sbt_uniform(&rng) - 0.5));
+                sbt_at(&mv, x, y)[1] = (float)(1.8 * (sbt_uniform(&rng) - 0.5));
+            }
+            *sbt_at(&len, x, y) = u < 0.03 ? 0.0f : 8.0f;
+            *sbt_at(&evin, x, y) = (float)(0.8 + 0.6 * sbt_uniform(&rng));
+            rate = u > 0.6 ? (float)(0.1 * sbt_uniform(&rng)) : 0.0f;
+            sbt_at(&tin[0], x, y)[0] = rate;
+            sbt_at(&tin[0], x, y)[1] = 3.0f * rate;
+        }
+    sbt_at(&hist, 20, 5)[1] = INFINITY;
+    sbt_at(&hist, 45, 14)[0] = NAN;
+    sbt_at(&hist, 5, 20)[2] = INFINITY; /* (at rest) */
+    sbt_at(&tin[0], 24, 3)[1] = INFINITY; /* (uniform rows) */
+    sbt_at(&tin[0], 30, 6)[0] = NAN;
+    sbt_at(&tin[0], 50, 12)[1] = INFINITY; /* (random rows) */
+    sbt_at(&tin[0], 36, 10)[0] = 2.0f;
+    sbt_at(&tin[0], 8, 19)[1] = INFINITY; /* (at rest) */
+    sbt_at(&tin[0], 9, 19)[0] = -1.0f;
+    sbt_at(&tin[0], 12, 4)[1] = FLT_MAX;
+    sbt_at(&tin[0], W - 1, 9)[1] = INFINITY; /* (the row's end) */
+    for (y = 0; y < H; ++y)
+        for (x = 0; x < W; ++x) memcpy(sbt_at(&tin[1], x, y), sbt_at(&tin[0], x, y), 2 * sizeof(float));
+    for (ev = 0; ev < 2; ++ev) {
+        for (run = 0; run < RUNS; ++run) { /* 0: fused, whole; 1: its own gather; 2: fused, bands */
+            sbl_frame f;
+            sbl_history h;
+            sbl_temporal_output o;
+            memset(&f, 0, sizeof f); memset(&h, 0, sizeof h); memset(&o, 0, sizeof o);
+            f.color = view(&cur); f.gbuffer.depth = view(&depth); f.gbuffer.motion = view(&mv);
+            h.color = view(&hist); h.length = view(&len); h.gbuffer.depth = view(&pdepth);
+            h.tail = view(&tin[run == 1]);
+            o.color = view(&oc[run]); o.length = view(&ol[run]); o.tail = view(&ot[run]);
+            if (ev) { h.evidence = view(&evin); o.evidence = view(&oe[run]); }
+            if (run < 2)
+                CHECK_EQ(sbl_temporal_filter(&d, &f, &h, &o, 0, H, mem, bytes), SBL_OK);
+            else
+                for (y = 0; y < H; y += 4)
+                    CHECK_EQ(sbl_temporal_filter(&d, &f, &h, &o, y, y + 4 > H ? H : y + 4, mem, bytes), SBL_OK);
+        }
+        for (run = 1; run < RUNS; ++run) {
+            CHECK(memcmp(oc[0].mem, oc[run].mem, sizeof(float) * (size_t)W * H * 3) == 0);
+            CHECK(memcmp(ol[0].mem, ol[run].mem, sizeof(float) * (size_t)W * H) == 0);
+            CHECK(memcmp(ot[0].mem, ot[run].mem, sizeof(float) * (size_t)W * H * 2) == 0);
+            if (ev) CHECK(memcmp(oe[0].mem, oe[run].mem, sizeof(float) * (size_t)W * H) == 0);
+        }
+        {   /* the plane was read: some rate carried, every value a rate and a variance */
+            int some = 0, ok = 1;
+            for (k = 0; k < W * H; ++k) {
+                const float *t = ot[0].mem + 2 * k;
+                some |= t[0] > 0.0f;
+                ok &= t[0] >= 0.0f && t[0] <= 1.0f && t[1] >= 0.0f && t[1] <= FLT_MAX;
+            }
+            CHECK(some);
+            CHECK(ok);
+        }
+    }
+    free(cur.mem); free(depth.mem); free(pdepth.mem); free(mv.mem); free(hist.mem); free(len.mem);
+    free(evin.mem); free(tin[0].mem); free(tin[1].mem);
+    for (run = 0; run < RUNS; ++run) { free(oc[run].mem); free(ol[run].mem); free(oe[run].mem); free(ot[run].mem); }
+    free(mem);
+}
+
 /* A non-finite sample keeps x* and must record no exceedance in the tail plane, on
    every SIMD build (review, session 31: a lane vector covering the pixel recorded one,
    T = FLT_MAX, on AVX2 only). 24 x 8, the history 0.5 with N = 8, one +inf sample. */
@@ -1109,6 +1217,7 @@ int main(void)
 {
     test_tail_nonfinite();
     test_tail_plane();
+    test_tail_fused();
     test_weights();
     test_depth();
     test_reproject_integer_and_bilinear();
