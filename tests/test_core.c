@@ -1070,13 +1070,14 @@ static void test_tail_plane(void)
    colour's plan (sbl__tail_fused_ok); laid out otherwise (rows padded) it takes a gather
    of its own. Both give the same bits, whole or in bands of rows, with and without the
    evidence plane, on content that reaches every path of the row gather: a camera at rest
-   (rest tiles), one motion vector per row (uniform blocks), random motion (scattered
-   vectors), a moved disc (disocclusions: the 3x3 fallback), a block narrower than a
-   vector at each row's end, invalid N, non-finite history colours and tail values that
+   (rest tiles), one motion vector for whole rows (uniform blocks), random motion
+   (scattered vectors), a moved disc (disocclusions: the 3x3 fallback), a block narrower
+   than any vector at each row's end (checked with counters in a scratch copy: the
+   uniform run's tail taps and the narrow blocks' pixel gathers are reached), invalid N, non-finite history colours and tail values that
    are not a rate or a variance (inf and NaN: the pixel gather). */
 static void test_tail_fused(void)
 {
-    enum { W = 61, H = 23, RUNS = 3 };
+    enum { W = 67, H = 23, RUNS = 3 }; /* (67 = a 64-column block and 3 columns: narrower than any vector) */
     sbt_img cur = sbt_img_new(W, H, 3, 0), depth = sbt_img_new(W, H, 1, 0), pdepth = sbt_img_new(W, H, 1, 0);
     sbt_img mv = sbt_img_new(W, H, 2, 0), hist = sbt_img_new(W, H, 3, 0), len = sbt_img_new(W, H, 1, 0);
     sbt_img evin = sbt_img_new(W, H, 1, 0), tin[2], oc[RUNS], ol[RUNS], oe[RUNS], ot[RUNS];
@@ -1104,9 +1105,9 @@ static void test_tail_fused(void)
             }
             *sbt_at(&depth, x, y) = in_now ? 1.0f : 2.0f + 0.01f * (float)y;
             *sbt_at(&pdepth, x, y) = in_was ? 1.0f : 2.0f + 0.01f * (float)y;
-            /* at rest on the left and on the last rows, one vector per row above, random
-               below */
-            if (x < 16 || y >= 17) {
+            /* one vector for the whole of each row above (uniform blocks), then at rest on
+               the left and on the last rows, random elsewhere */
+            if ((x < 16 && y >= 8) || y >= 17) {
                 sbt_at(&mv, x, y)[0] = sbt_at(&mv, x, y)[1] = 0.0f;
             } else if (y < 8) {
                 sbt_at(&mv, x, y)[0] = 0.37f;
