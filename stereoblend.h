@@ -52,7 +52,7 @@
      limit then admits as much of a bright sample as the rate of such samples at the
      pixel makes worth its variance: small lights, caustics and highlights hit now and
      then keep their mean, lone fireflies are still cut (docs/ESTIMATORS.md 2.4). It
-     costs a fifth to a quarter of the temporal filter's instructions again, gathered
+     costs a sixth to a quarter of the temporal filter's instructions again, gathered
      in the colour's plan when laid out as length with offsets doubled (both packed, as
      here).
          prev.tail = sbl_image_make(hist_tail, w, h, 2);     // last frame's out.tail
