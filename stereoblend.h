@@ -3663,6 +3663,15 @@ SBL__NOINLINE float sbl__evidence_pixel(const sbl__temporal_rp *es, int x, int y
                : 1.0f;
 }
 
+/* A gathered tail-plane pixel into *rate / *var: its values where a tap was valid (ok)
+   and they are a rate in (0, 1] and a finite variance > 0, else 0 (nothing seen; the
+   comparisons fail for a NaN). The scalar form of every tail gather's test. */
+SBL__INLINE void sbl__tail_put(float *rate, float *var, int ok, float r, float t)
+{
+    *rate = ok && r > 0.0f && r <= 1.0f ? r : 0.0f;
+    *var = ok && t > 0.0f && t <= FLT_MAX ? t : 0.0f;
+}
+
 #ifdef SBL__ROW_GATHER
 /* The tail plane's values at target pixel (x, y) by the pixel gather (r->tl_rp: the
    reprojection whose colour is the plane) into ring column x of r->tl: the gathered rate
@@ -3672,8 +3681,7 @@ SBL__NOINLINE void sbl__tail_pixel(sbl__ring_row *r, int x, int y)
 {
     float v[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const int ok = sbl__temporal_rp_pixel(r->tl_rp, x, y, v) > 0.0f;
-    r->tl[0][x] = ok && v[0] > 0.0f && v[0] <= 1.0f ? v[0] : 0.0f;
-    r->tl[1][x] = ok && v[1] > 0.0f && v[1] <= FLT_MAX ? v[1] : 0.0f;
+    sbl__tail_put(r->tl[0] + x, r->tl[1] + x, ok, v[0], v[1]);
 }
 
 /* 1 if every lane of the vectors v[0 .. cnt) holds a safe value (sbl__lane_value_ok)
@@ -5282,8 +5290,7 @@ static SBL__RARE void sbl__fallback_put_evidence(sbl__ring_row *r, int x, double
         float v[4] = {0, 0, 0, 0};
         sbl__tap_plan_want(&r->tl_rp->src, p, entry, &t, nbuf);
         n = sbl__gather_fallback(&r->tl_rp->src, &t, sx, sy, v);
-        r->tl[0][x] = n > 0.0f && v[0] > 0.0f && v[0] <= 1.0f ? v[0] : 0.0f;
-        r->tl[1][x] = n > 0.0f && v[1] > 0.0f && v[1] <= FLT_MAX ? v[1] : 0.0f;
+        sbl__tail_put(r->tl[0] + x, r->tl[1] + x, n > 0.0f, v[0], v[1]);
     }
 }
 
@@ -7273,12 +7280,7 @@ static void sbl__tail_gather_row(sbl__kernel *k, sbl__ring_row *r, int y, int xa
             if (x + SBL__VW > xb) x = xb - SBL__VW;
         }
     else
-        for (; x < xb; ++x) {
-            const float rate = r->x[0][x], var = r->x[1][x];
-            const int ok = r->v[x] > 0.0f;
-            r->x[0][x] = ok && rate > 0.0f && rate <= 1.0f ? rate : 0.0f;
-            r->x[1][x] = ok && var > 0.0f && var <= FLT_MAX ? var : 0.0f;
-        }
+        for (; x < xb; ++x) sbl__tail_put(r->x[0] + x, r->x[1] + x, r->v[x] > 0.0f, r->x[0][x], r->x[1][x]);
 }
 
 /* The tail plane for row y (k->tail_on): this frame's records cleared over [xa, xb);
