@@ -1,8 +1,11 @@
 /* make bench / make bench-quick: error against time for every method of the standard
    table, on the synthetic scenes and on the rendered sequences in ../shared/data.
    Prints one table per scene, writes the rows to bench/out/bench.csv (quick.csv) with
-   the header scene,method,ms,rmse,ssim,eff_spp,indep_spp,oracle_pct,traced_pct
-   (oracle_pct: eff spp as a percentage of the oracle of the same pipeline), and plots
+   the header scene,method,ms,rmse,ssim,eff_spp,indep_spp,oracle_pct,traced_pct,rmse_dim,
+   bright_mse_pct (oracle_pct: eff spp as a percentage of the oracle of the same pipeline;
+   rmse_dim: RMSE over the pixels whose reference is not bright, i.e. at most 10 times the
+   image's mean, and bright_mse_pct the bright pixels' share of the MSE: sbl_runner.h
+   sbr_split_mse), and plots
    effective spp against ms per frame, one panel per scene (bench/out/bench.svg, written
    here; plus bench.png through gnuplot when present).
 
@@ -87,9 +90,9 @@ static void bench_scene(const sbr_seq *seq, int reps)
         memcpy(rows[row_count].method, m[i].name, sizeof rows[row_count].method);
         rows[row_count++].r = first;
     }
-    printf("| %-24s | %8s | %8s | %7s | %8s | %9s | %8s | %8s |\n", "method", "ms", "RMSE", "SSIM",
-           "eff spp", "indep spp", "% oracle", "traced %");
-    printf("|--------------------------|---------:|---------:|--------:|---------:|----------:|---------:|---------:|\n");
+    printf("| %-24s | %8s | %8s | %7s | %8s | %9s | %8s | %8s | %8s | %8s |\n", "method", "ms", "RMSE", "SSIM",
+           "eff spp", "indep spp", "% oracle", "traced %", "RMSE dim", "bright %");
+    printf("|--------------------------|---------:|---------:|--------:|---------:|----------:|---------:|---------:|---------:|---------:|\n");
     for (i = first_row; i < row_count; ++i) {
         const sbr_result *r = &rows[i].r;
         const char *o = oracle_of(&m[i - first_row]);
@@ -98,8 +101,9 @@ static void bench_scene(const sbr_seq *seq, int reps)
         for (j = first_row; j < row_count; ++j)
             if (strcmp(rows[j].method, o) == 0 && rows[j].r.eff_spp > 0)
                 rows[i].oracle_pct = 100.0 * r->eff_spp / rows[j].r.eff_spp;
-        printf("| %-24s | %8.3f | %8.5f | %7.4f | %8.2f | %9.2f | %8.1f | %8.2f |\n", rows[i].method,
-               r->ms, r->rmse, r->ssim, r->eff_spp, r->indep_spp, rows[i].oracle_pct, r->traced_pct);
+        printf("| %-24s | %8.3f | %8.5f | %7.4f | %8.2f | %9.2f | %8.1f | %8.2f | %8.5f | %8.1f |\n", rows[i].method,
+               r->ms, r->rmse, r->ssim, r->eff_spp, r->indep_spp, rows[i].oracle_pct, r->traced_pct,
+               r->rmse_dim, r->bright_mse_pct);
     }
     fflush(stdout);
 }
@@ -109,11 +113,11 @@ static void write_csv(const char *path)
     FILE *f = fopen(path, "w");
     int i;
     if (!f) { perror(path); return; }
-    fprintf(f, "scene,method,ms,rmse,ssim,eff_spp,indep_spp,oracle_pct,traced_pct\n");
+    fprintf(f, "scene,method,ms,rmse,ssim,eff_spp,indep_spp,oracle_pct,traced_pct,rmse_dim,bright_mse_pct\n");
     for (i = 0; i < row_count; ++i)
-        fprintf(f, "%s,%s,%.4f,%.6f,%.5f,%.3f,%.3f,%.1f,%.3f\n", rows[i].scene, rows[i].method,
+        fprintf(f, "%s,%s,%.4f,%.6f,%.5f,%.3f,%.3f,%.1f,%.3f,%.6f,%.2f\n", rows[i].scene, rows[i].method,
                 rows[i].r.ms, rows[i].r.rmse, rows[i].r.ssim, rows[i].r.eff_spp, rows[i].r.indep_spp,
-                rows[i].oracle_pct, rows[i].r.traced_pct);
+                rows[i].oracle_pct, rows[i].r.traced_pct, rows[i].r.rmse_dim, rows[i].r.bright_mse_pct);
     fclose(f);
     printf("\nwrote %s\n", path);
 }

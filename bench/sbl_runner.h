@@ -100,6 +100,9 @@ typedef struct sbr_result {
     double eff_spp;     /* against the ladder (mean over ladder frames and eyes); 0 if none */
     double indep_spp;   /* mse(1 spp) / mse(result): count of independent 1-spp samples */
     double traced_pct;  /* right-eye pixels that still needed a ray (fill), else 100 */
+    /* the squared error split by the reference (sbr_split_mse): RMSE over the dim pixels,
+       and the bright pixels' share of the MSE (%) and of the pixels (%) */
+    double rmse_dim, bright_mse_pct, bright_px_pct;
     int eval_frames;
 } sbr_result;
 
@@ -622,6 +625,33 @@ static int sbr_stereo_masked(const sbl_stereo_desc *sd, float threshold, const s
     return rc;
 }
 
+
+/* Bright pixels: the reference's largest channel above SBR_BRIGHT times the image's mean
+   reference value (sub-pixel highlights and their reflections). On content with unclamped
+   direct light a few dozen of them hold nearly all of the squared error, so RMSE and
+   effective spp there say how a method treats those pixels and little else; the RMSE over
+   the dim rest says how it treats the image (and its ghosts: a dim pixel shown bright). */
+#define SBR_BRIGHT 10.0
+static void sbr_split_mse(const float *out, const float *ref, int w, int h, double *sse_bright,
+                          double *sse_dim, long *n_bright, double *thr_out)
+{
+    const long n = (long)w * h;
+    double mean = 0, thr;
+    long p;
+    for (p = 0; p < n * 3; ++p) mean += ref[p];
+    thr = SBR_BRIGHT * mean / (double)(n * 3);
+    *sse_bright = *sse_dim = 0;
+    *n_bright = 0;
+    for (p = 0; p < n; ++p) {
+        const float *o = out + p * 3, *r = ref + p * 3;
+        const double d0 = (double)o[0] - r[0], d1 = (double)o[1] - r[1], d2 = (double)o[2] - r[2];
+        const double se = d0 * d0 + d1 * d1 + d2 * d2;
+        if (r[0] > thr || r[1] > thr || r[2] > thr) { *sse_bright += se; ++*n_bright; }
+        else *sse_dim += se;
+    }
+    if (thr_out) *thr_out = thr;
+}
+
 int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx)
 {
     return sbr_run_alpha(s, m, res, fn, NULL, ctx);
@@ -640,6 +670,9 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     float *tailp[2][2] = {{NULL, NULL}, {NULL, NULL}}; /* m->tail: the tail planes, per eye, ping-ponged */
     unsigned char *mask;
     double *times, mse_sum = 0, mse1_sum = 0, ssim_sum = 0, eff_sum = 0;
+    double sse_bright_sum = 0, sse_dim_sum = 0;
+    long bright_px = 0;
+    const int frame_debug = getenv("SBR_FRAME_DEBUG") != NULL;
     long traced = 0, traced_total = 0;
     int ping[2] = {0, 0}, f, e, i, eval = 0, eff_n = 0, skip = s->frames / 4, rc = 0;
     sbl_stereo_desc sd = m->stereo_desc;
@@ -671,8 +704,8 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     if (m->tail)
         for (e = 0; e < 2; ++e)
             for (i = 0; i < 2; ++i) tailp[e][i] = sbr_alloc(n * 2);
-    alpha[0] = alpha_fn ? sbr_alloc(n) : NULL;
-    alpha[1] = alpha_fn ? sbr_alloc(n) : NULL;
+    alpha[0] = alpha_fn || frame_debug ? sbr_alloc(n) : NULL;
+    alpha[1] = alpha_fn || frame_debug ? sbr_alloc(n) : NULL;
     onx = sbr_alloc(n);
     onx2 = sbr_alloc(n);
     times = (double *)calloc((size_t)s->frames, sizeof(double));
@@ -844,7 +877,30 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
             for (e = 0; e < 2; ++e) alpha_fn(ctx, f, e, alpha[e], w, h);
         if (f >= skip && v[0]->ref) {
             for (e = 0; e < 2; ++e) {
+                double sb, sd, thr;
+                long nb;
                 mse_sum += sbl_metric_mse(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3);
+                sbr_split_mse(disp[e], v[e]->ref, w, h, &sb, &sd, &nb, &thr);
+                sse_bright_sum += sb;
+                sse_dim_sum += sd;
+                bright_px += nb;
+                if (frame_debug) {
+                    /* SBR_FRAME_DEBUG=1: each frame-eye's split, and its dim pixels shown
+                       bright (an error above the bright threshold: ghosts, fireflies) */
+                    long p;
+                    fprintf(stderr, "frame %s %d %d rmse %.5f rmse_dim %.5f bright_px %ld bright_mse_pct %.1f\n",
+                            m->name, f, e, sqrt((sb + sd) / (3.0 * n)), sqrt(sd / (3.0 * (double)(n - nb))), nb,
+                            sb + sd > 0 ? 100.0 * sb / (sb + sd) : 0.0);
+                    for (p = 0; p < (long)n; ++p) {
+                        const float *o = disp[e] + p * 3, *r = v[e]->ref + p * 3;
+                        if (r[0] > thr || r[1] > thr || r[2] > thr) continue;
+                        if (fabs((double)o[0] - r[0]) > thr || fabs((double)o[1] - r[1]) > thr ||
+                            fabs((double)o[2] - r[2]) > thr)
+                            fprintf(stderr, "dimshownbright %s %d %d x %ld y %ld out %.3f ref %.3f in %.3f alpha %.4f N %.2f\n",
+                                    m->name, f, e, p % w, p / w, o[0], r[0], v[e]->color[p * 3],
+                                    alpha[e] ? alpha[e][p] : -1.0f, m->temporal ? len[e][ping[e]][p] : -1.0f);
+                    }
+                }
                 mse1_sum += sbl_metric_mse(v[e]->color, w * 3, v[e]->ref, w * 3, w, h, 3);
                 ssim_sum += sbr_ssim_clamped(disp[e], v[e]->ref, w, h, tmp_a, tmp_b);
             }
@@ -880,6 +936,10 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
             res->rmse = sqrt(mse_sum / (2.0 * eval));
             res->ssim = ssim_sum / (2.0 * eval);
             res->indep_spp = mse_sum > 0 ? mse1_sum / mse_sum : 0;
+            res->rmse_dim = sqrt(sse_dim_sum / (3.0 * ((double)n * 2.0 * eval - (double)bright_px)));
+            res->bright_mse_pct = sse_bright_sum + sse_dim_sum > 0
+                                      ? 100.0 * sse_bright_sum / (sse_bright_sum + sse_dim_sum) : 0.0;
+            res->bright_px_pct = 100.0 * (double)bright_px / ((double)n * 2.0 * eval);
         }
         res->eff_spp = eff_n ? eff_sum / eff_n : 0;
         res->traced_pct = traced_total ? 100.0 * (double)traced / (double)traced_total : 100.0;

@@ -39,12 +39,15 @@ scenes = load(path)
 
 for scene, rows in scenes.items():
     print(f"### {scene}\n")
-    print("| method | RMSE | SSIM | eff spp | indep spp | % oracle | traced % |")
-    print("|---|---:|---:|---:|---:|---:|---:|")
+    dim = "rmse_dim" in rows[0]  # (CSVs before session 33 have no split)
+    print("| method | RMSE | SSIM | eff spp | indep spp | % oracle | traced % |"
+          + (" RMSE dim | bright % of MSE |" if dim else ""))
+    print("|---|---:|---:|---:|---:|---:|---:|" + ("---:|---:|" if dim else ""))
     for r in rows:
         print(f"| {r['method']} | {fnum(r, 'rmse'):.5f} | {fnum(r, 'ssim'):.4f} | "
               f"{fnum(r, 'eff_spp'):.2f} | {fnum(r, 'indep_spp'):.2f} | "
-              f"{fnum(r, 'oracle_pct'):.1f} | {fnum(r, 'traced_pct'):.2f} |")
+              f"{fnum(r, 'oracle_pct'):.1f} | {fnum(r, 'traced_pct'):.2f} |"
+              + (f" {fnum(r, 'rmse_dim'):.5f} | {fnum(r, 'bright_mse_pct'):.1f} |" if dim else ""))
     print()
 
 names = list(scenes)
