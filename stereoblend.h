@@ -9064,7 +9064,9 @@ SBL__INLINE sbl__v sbl__lanes_firefly_t(const sbl__kernel *k, sbl__v sum_y, sbl_
     bound = sbl__add(bound, sbl__mul(sbl__set1(1e-5f), sbl__abs(bound)));
     bound = sbl__max(bound, zero);
     if (k->tail_on) { /* as sbl__firefly_limit (2.4); a reset lane (x* invalid: n_xc at its
-                         floor) keeps its sample and records nothing */
+                         floor) keeps its sample and records nothing. The lanes see N = 0 or
+                         N >= 2^-40 (a lane-safe N, sbl__lane_value_ok), so n_xc > FLT_MIN is
+                         the reference path's n_x > 0 in every lane they process */
         const sbl__v e = sbl__sel(sbl__gt(sum_y, bound), sbl__sel(sbl__gt(n_xc, sbl__set1(FLT_MIN)), one, zero), zero);
         const sbl__v dx = sbl__sub(sum_y, sum_x);
         sbl__store(k->tail_e + x, e);

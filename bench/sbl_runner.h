@@ -893,7 +893,12 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                             sb + sd > 0 ? 100.0 * sb / (sb + sd) : 0.0);
                     for (p = 0; p < (long)n; ++p) {
                         const float *o = disp[e] + p * 3, *r = v[e]->ref + p * 3;
-                        if (r[0] > thr || r[1] > thr || r[2] > thr) continue;
+                        if (r[0] > thr || r[1] > thr || r[2] > thr) {
+                            fprintf(stderr, "brightpx %s %d %d x %ld y %ld out %.3f ref %.3f in %.3f alpha %.4f N %.2f\n",
+                                    m->name, f, e, p % w, p / w, o[0], r[0], v[e]->color[p * 3],
+                                    alpha[e] ? alpha[e][p] : -1.0f, m->temporal ? len[e][ping[e]][p] : -1.0f);
+                            continue;
+                        }
                         if (fabs((double)o[0] - r[0]) > thr || fabs((double)o[1] - r[1]) > thr ||
                             fabs((double)o[2] - r[2]) > thr)
                             fprintf(stderr, "dimshownbright %s %d %d x %ld y %ld out %.3f ref %.3f in %.3f alpha %.4f N %.2f\n",
