@@ -4,8 +4,8 @@
    the header scene,method,ms,rmse,ssim,eff_spp,indep_spp,oracle_pct,traced_pct,rmse_dim,
    bright_mse_pct (oracle_pct: eff spp as a percentage of the oracle of the same pipeline;
    rmse_dim: RMSE over the pixels whose reference is not bright, i.e. at most 10 times the
-   image's mean, and bright_mse_pct the bright pixels' share of the MSE: sbl_runner.h
-   sbr_split_mse), and plots
+   image's mean, and bright_mse_pct the bright pixels' share of the MSE:
+   sbl_metric_bright_split in tools/sbl_metrics.h), and plots
    effective spp against ms per frame, one panel per scene (bench/out/bench.svg, written
    here; plus bench.png through gnuplot when present).
 

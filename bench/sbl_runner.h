@@ -94,14 +94,21 @@ typedef struct sbr_method {
     float *fetch_xy;
 } sbr_method;
 
+/* Bright pixels: a reference channel above SBR_BRIGHT times the image's mean reference
+   value (sub-pixel highlights and their reflections). On content with unclamped direct
+   light a few dozen of them hold nearly all of the squared error, so RMSE and effective
+   spp there say how a method treats those pixels; the RMSE over the dim rest says how it
+   treats the image, and its trails (a dim pixel shown bright). */
+#define SBR_BRIGHT 10.0
+
 typedef struct sbr_result {
     double ms;          /* median ms per stereo frame (both eyes), library calls only */
     double rmse, ssim;
     double eff_spp;     /* against the ladder (mean over ladder frames and eyes); 0 if none */
     double indep_spp;   /* mse(1 spp) / mse(result): count of independent 1-spp samples */
     double traced_pct;  /* right-eye pixels that still needed a ray (fill), else 100 */
-    /* the squared error split by the reference (sbr_split_mse): RMSE over the dim pixels,
-       and the bright pixels' share of the MSE (%) and of the pixels (%) */
+    /* the squared error split by the reference (sbl_metric_bright_split, SBR_BRIGHT): RMSE
+       over the dim pixels, and the bright pixels' share of the MSE (%) and of the pixels (%) */
     double rmse_dim, bright_mse_pct, bright_px_pct;
     int eval_frames;
 } sbr_result;
@@ -626,31 +633,6 @@ static int sbr_stereo_masked(const sbl_stereo_desc *sd, float threshold, const s
 }
 
 
-/* Bright pixels: the reference's largest channel above SBR_BRIGHT times the image's mean
-   reference value (sub-pixel highlights and their reflections). On content with unclamped
-   direct light a few dozen of them hold nearly all of the squared error, so RMSE and
-   effective spp there say how a method treats those pixels and little else; the RMSE over
-   the dim rest says how it treats the image (and its ghosts: a dim pixel shown bright). */
-#define SBR_BRIGHT 10.0
-static void sbr_split_mse(const float *out, const float *ref, int w, int h, double *sse_bright,
-                          double *sse_dim, long *n_bright, double *thr_out)
-{
-    const long n = (long)w * h;
-    double mean = 0, thr;
-    long p;
-    for (p = 0; p < n * 3; ++p) mean += ref[p];
-    thr = SBR_BRIGHT * mean / (double)(n * 3);
-    *sse_bright = *sse_dim = 0;
-    *n_bright = 0;
-    for (p = 0; p < n; ++p) {
-        const float *o = out + p * 3, *r = ref + p * 3;
-        const double d0 = (double)o[0] - r[0], d1 = (double)o[1] - r[1], d2 = (double)o[2] - r[2];
-        const double se = d0 * d0 + d1 * d1 + d2 * d2;
-        if (r[0] > thr || r[1] > thr || r[2] > thr) { *sse_bright += se; ++*n_bright; }
-        else *sse_dim += se;
-    }
-    if (thr_out) *thr_out = thr;
-}
 
 int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx)
 {
@@ -880,7 +862,8 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 double sb, sd, thr;
                 long nb;
                 mse_sum += sbl_metric_mse(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3);
-                sbr_split_mse(disp[e], v[e]->ref, w, h, &sb, &sd, &nb, &thr);
+                thr = sbl_metric_bright_split(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3, SBR_BRIGHT,
+                                              &sb, &sd, &nb);
                 sse_bright_sum += sb;
                 sse_dim_sum += sd;
                 bright_px += nb;

@@ -195,6 +195,10 @@ int main(int argc, char **argv)
         printf(", RMSE %.5f, SSIM %.4f, effective spp %.2f (ladder), %.2f (independent 1-spp samples)",
                r.rmse, r.ssim, r.eff_spp, r.indep_spp);
     if (m.stereo == SBR_STEREO_FILL) printf(", right-eye pixels traced %.2f%%", r.traced_pct);
+    if (r.eval_frames)
+        printf("\nbright pixels (a reference channel above %g x the image mean): %.3f %% of the pixels, "
+               "%.1f %% of the MSE; RMSE over the other pixels %.5f",
+               SBR_BRIGHT, r.bright_px_pct, r.bright_mse_pct, r.rmse_dim);
     printf("\nwrote %s/{L,R}/0000.exr .. %04d.exr\n", out, seq.frames - 1);
     if (sheet >= 0) {
         snprintf(dir, sizeof dir, "%s/sheet_%04d.png", out, sheet);

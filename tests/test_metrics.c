@@ -294,9 +294,36 @@ static void test_weber(void)
     }
 }
 
+/* The bright / dim split: which pixels count as bright, the two sums, bad args. */
+static void test_bright_split(void)
+{
+    /* 3 x 2, 2 channels. Reference mean = 24 / 12 = 2, so factor 2 puts the threshold at
+       4: pixel 1 (channel 1 = 9) and pixel 4 (channel 0 = 5) are bright. */
+    const float ref[12] = { 1, 1,  0, 9,  1, 1,
+                            1, 1,  5, 0,  1, 3 };
+    const float out[12] = { 2, 1,  0, 6,  1, 1,
+                            1, 0,  1, 0,  1, 3 };
+    double sb = -1, sd = -1;
+    long nb = -1;
+    const double thr = sbl_metric_bright_split(out, 6, ref, 6, 3, 2, 2, 2.0, &sb, &sd, &nb);
+    check_eq("bright split threshold 2 x mean", thr, 4.0);
+    check(nb == 2, "bright split: two bright pixels", (double)nb, 2.0);
+    check_eq("bright split: bright sum 9 + 16", sb, 25.0);
+    check_eq("bright split: dim sum 1 + 1", sd, 2.0);
+    check_eq("bright split: the two sums are the MSE's", (sb + sd) / 12.0, sbl_metric_mse(out, 6, ref, 6, 3, 2, 2));
+    /* factor 4.5: the threshold is 9, and a value equal to it (pixel 1) is dim */
+    sbl_metric_bright_split(out, 6, ref, 6, 3, 2, 2, 4.5, &sb, &sd, &nb);
+    check(nb == 0, "bright split: a value equal to the threshold is dim", (double)nb, 0.0);
+    check_eq("bright split: all dim", sd, 27.0);
+    check_eq("bright split bad factor", sbl_metric_bright_split(out, 6, ref, 6, 3, 2, 2, 0.0, &sb, &sd, &nb), -1.0);
+    check(sb == 0.0 && sd == 0.0 && nb == 0, "bright split bad args clear the outputs", sb + sd + (double)nb, 0.0);
+    check_eq("bright split bad stride", sbl_metric_bright_split(out, 5, ref, 6, 3, 2, 2, 2.0, NULL, NULL, NULL), -1.0);
+}
+
 int main(void)
 {
     test_basic();
+    test_bright_split();
     test_ssim();
     test_ssim_properties();
     test_effective_spp();

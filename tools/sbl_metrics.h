@@ -52,6 +52,17 @@ SBL_METRICS_DEF double sbl_metric_mse_masked(const float *a, int stride_a, const
                                              const unsigned char *valid, int w, int h, int channels,
                                              long *out_count);
 
+/* The squared error split by the reference b: "bright" pixels, where a channel of b
+ * exceeds factor times b's mean over all its values (sub-pixel highlights, light
+ * sources), and the dim rest. *sse_bright and *sse_dim receive the sums of (a - b)^2 over
+ * every channel of each set, *n_bright the bright pixels' count (any may be NULL).
+ * Returns the threshold (factor times the mean), -1 on bad args (factor <= 0 too;
+ * the outputs are then 0). On renders with unclamped direct light a few dozen bright
+ * pixels can hold nearly all of an image's squared error (docs/ESTIMATORS.md 2.6). */
+SBL_METRICS_DEF double sbl_metric_bright_split(const float *a, int stride_a, const float *b, int stride_b,
+                                               int w, int h, int channels, double factor,
+                                               double *sse_bright, double *sse_dim, long *n_bright);
+
 /* SSIM (Wang et al. 2004): 11x11 Gaussian window, sigma 1.5, weights normalised to sum 1,
  * K1 = 0.01, K2 = 0.03, C1 = (K1 L)^2, C2 = (K2 L)^2 with L = dynamic_range given by the
  * caller (the values are used as given: no rescaling, no colour conversion). Local
@@ -207,6 +218,44 @@ SBL_METRICS_DEF double sbl_metric_mse_masked(const float *a, int stride_a, const
     }
     if (out_count) *out_count = count;
     return count ? sum / ((double)count * (double)channels) : 0.0;
+}
+
+SBL_METRICS_DEF double sbl_metric_bright_split(const float *a, int stride_a, const float *b, int stride_b,
+                                               int w, int h, int channels, double factor,
+                                               double *sse_bright, double *sse_dim, long *n_bright)
+{
+    double mean = 0.0, thr, sb = 0.0, sd = 0.0;
+    long nb = 0;
+    int x, y, c;
+    if (sse_bright) *sse_bright = 0.0;
+    if (sse_dim) *sse_dim = 0.0;
+    if (n_bright) *n_bright = 0;
+    if (!sbl__metric_args_ok(a, stride_a, b, stride_b, w, h, channels) || !(factor > 0.0))
+        return SBL_METRIC_BAD_ARGS;
+    for (y = 0; y < h; ++y) {
+        const float *rb = b + (size_t)y * (size_t)stride_b;
+        for (x = 0; x < w * channels; ++x) mean += (double)rb[x];
+    }
+    thr = factor * mean / ((double)w * (double)h * (double)channels);
+    for (y = 0; y < h; ++y) {
+        const float *ra = a + (size_t)y * (size_t)stride_a;
+        const float *rb = b + (size_t)y * (size_t)stride_b;
+        for (x = 0; x < w; ++x) {
+            double se = 0.0;
+            int bright = 0;
+            for (c = 0; c < channels; ++c) {
+                const double d = (double)ra[x * channels + c] - (double)rb[x * channels + c];
+                se += d * d;
+                if ((double)rb[x * channels + c] > thr) bright = 1;
+            }
+            if (bright) { sb += se; ++nb; }
+            else sd += se;
+        }
+    }
+    if (sse_bright) *sse_bright = sb;
+    if (sse_dim) *sse_dim = sd;
+    if (n_bright) *n_bright = nb;
+    return thr;
 }
 
 /* ---- SSIM ---------------------------------------------------------------------------- */
