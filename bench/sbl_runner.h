@@ -655,6 +655,8 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     double sse_bright_sum = 0, sse_dim_sum = 0;
     long bright_px = 0;
     const int frame_debug = getenv("SBR_FRAME_DEBUG") != NULL;
+    /* the debug lines' alpha: only the library's temporal weights write it (-1 otherwise) */
+    const int alpha_known = m->temporal && !(m->oracle & SBR_ORACLE_TEMPORAL);
     long traced = 0, traced_total = 0;
     int ping[2] = {0, 0}, f, e, i, eval = 0, eff_n = 0, skip = s->frames / 4, rc = 0;
     sbl_stereo_desc sd = m->stereo_desc;
@@ -859,34 +861,34 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
             for (e = 0; e < 2; ++e) alpha_fn(ctx, f, e, alpha[e], w, h);
         if (f >= skip && v[0]->ref) {
             for (e = 0; e < 2; ++e) {
-                double sb, sd, thr;
+                double sse_b, sse_d, thr;
                 long nb;
                 mse_sum += sbl_metric_mse(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3);
                 thr = sbl_metric_bright_split(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3, SBR_BRIGHT,
-                                              &sb, &sd, &nb);
-                sse_bright_sum += sb;
-                sse_dim_sum += sd;
+                                              &sse_b, &sse_d, &nb);
+                sse_bright_sum += sse_b;
+                sse_dim_sum += sse_d;
                 bright_px += nb;
                 if (frame_debug) {
                     /* SBR_FRAME_DEBUG=1: each frame-eye's split, and its dim pixels shown
                        bright (an error above the bright threshold: ghosts, fireflies) */
                     long p;
                     fprintf(stderr, "frame %s %d %d rmse %.5f rmse_dim %.5f bright_px %ld bright_mse_pct %.1f\n",
-                            m->name, f, e, sqrt((sb + sd) / (3.0 * n)), sqrt(sd / (3.0 * (double)(n - nb))), nb,
-                            sb + sd > 0 ? 100.0 * sb / (sb + sd) : 0.0);
+                            m->name, f, e, sqrt((sse_b + sse_d) / (3.0 * n)), sqrt(sse_d / (3.0 * (double)(n - nb))), nb,
+                            sse_b + sse_d > 0 ? 100.0 * sse_b / (sse_b + sse_d) : 0.0);
                     for (p = 0; p < (long)n; ++p) {
                         const float *o = disp[e] + p * 3, *r = v[e]->ref + p * 3;
                         if (r[0] > thr || r[1] > thr || r[2] > thr) {
                             fprintf(stderr, "brightpx %s %d %d x %ld y %ld out %.3f ref %.3f in %.3f alpha %.4f N %.2f\n",
                                     m->name, f, e, p % w, p / w, o[0], r[0], v[e]->color[p * 3],
-                                    alpha[e] ? alpha[e][p] : -1.0f, m->temporal ? len[e][ping[e]][p] : -1.0f);
+                                    alpha_known ? alpha[e][p] : -1.0f, m->temporal ? len[e][ping[e]][p] : -1.0f);
                             continue;
                         }
                         if (fabs((double)o[0] - r[0]) > thr || fabs((double)o[1] - r[1]) > thr ||
                             fabs((double)o[2] - r[2]) > thr)
                             fprintf(stderr, "dimshownbright %s %d %d x %ld y %ld out %.3f ref %.3f in %.3f alpha %.4f N %.2f\n",
                                     m->name, f, e, p % w, p / w, o[0], r[0], v[e]->color[p * 3],
-                                    alpha[e] ? alpha[e][p] : -1.0f, m->temporal ? len[e][ping[e]][p] : -1.0f);
+                                    alpha_known ? alpha[e][p] : -1.0f, m->temporal ? len[e][ping[e]][p] : -1.0f);
                     }
                 }
                 mse1_sum += sbl_metric_mse(v[e]->color, w * 3, v[e]->ref, w * 3, w, h, 3);

@@ -318,6 +318,22 @@ static void test_bright_split(void)
     check_eq("bright split bad factor", sbl_metric_bright_split(out, 6, ref, 6, 3, 2, 2, 0.0, &sb, &sd, &nb), -1.0);
     check(sb == 0.0 && sd == 0.0 && nb == 0, "bright split bad args clear the outputs", sb + sd + (double)nb, 0.0);
     check_eq("bright split bad stride", sbl_metric_bright_split(out, 5, ref, 6, 3, 2, 2, 2.0, NULL, NULL, NULL), -1.0);
+    {   /* the same images in padded rows (strides 8 and 10) with NaN in the padding: the
+           padding is never read (a NaN there would turn a sum or the mean into NaN) */
+        float pref[20], pout[16];
+        int x, y;
+        for (x = 0; x < 20; ++x) pref[x] = (float)NAN;
+        for (x = 0; x < 16; ++x) pout[x] = (float)NAN;
+        for (y = 0; y < 2; ++y)
+            for (x = 0; x < 6; ++x) {
+                pref[y * 10 + x] = ref[y * 6 + x];
+                pout[y * 8 + x] = out[y * 6 + x];
+            }
+        check_eq("bright split padded: threshold", sbl_metric_bright_split(pout, 8, pref, 10, 3, 2, 2, 2.0, &sb, &sd, &nb), 4.0);
+        check(nb == 2, "bright split padded: two bright pixels", (double)nb, 2.0);
+        check_eq("bright split padded: bright sum", sb, 25.0);
+        check_eq("bright split padded: dim sum", sd, 2.0);
+    }
 }
 
 int main(void)

@@ -4,7 +4,8 @@
 usage: python3 tools/bench_tables.py [bench/out/bench.csv] [--before BEFORE.csv]
 
 Prints one table per scene (RMSE, SSIM, effective spp, independent 1-spp samples,
-% of the oracle of the same pipeline, traced %), then two summary tables (effective
+% of the oracle of the same pipeline, traced %, and where the CSV has them the RMSE over
+the dim pixels and the bright pixels' share of the MSE), then two summary tables (effective
 spp, and % of the oracle, of every method per scene), then the summary of the defaults
 against the best baseline and the oracle. With --before, that summary also shows the
 defaults of BEFORE.csv (a run of an earlier version).
