@@ -632,7 +632,28 @@ static int sbr_stereo_masked(const sbl_stereo_desc *sd, float threshold, const s
     return rc;
 }
 
-
+/* SBR_FRAME_DEBUG=1: one frame-eye's split (sbl_metric_bright_split's sums and threshold),
+   then its bright pixels and its dim pixels shown bright (an error above the threshold:
+   trails, fireflies), with the weight (-1 where no temporal weight wrote it) and N */
+static void sbr_debug_frame(const char *name, int f, int e, const float *out, const float *ref,
+                            const float *in, const float *alpha, const float *len, int w, int h,
+                            double sse_b, double sse_d, long nb, double thr)
+{
+    const long n = (long)w * h;
+    long p;
+    fprintf(stderr, "frame %s %d %d rmse %.5f rmse_dim %.5f bright_px %ld bright_mse_pct %.1f\n", name, f, e,
+            sqrt((sse_b + sse_d) / (3.0 * (double)n)), sqrt(sse_d / (3.0 * (double)(n - nb))), nb,
+            sse_b + sse_d > 0 ? 100.0 * sse_b / (sse_b + sse_d) : 0.0);
+    for (p = 0; p < n; ++p) {
+        const float *o = out + p * 3, *r = ref + p * 3;
+        const int bright = r[0] > thr || r[1] > thr || r[2] > thr;
+        if (bright || fabs((double)o[0] - r[0]) > thr || fabs((double)o[1] - r[1]) > thr ||
+            fabs((double)o[2] - r[2]) > thr)
+            fprintf(stderr, "%s %s %d %d x %ld y %ld out %.3f ref %.3f in %.3f alpha %.4f N %.2f\n",
+                    bright ? "brightpx" : "dimshownbright", name, f, e, p % w, p / w, o[0], r[0], in[p * 3],
+                    alpha ? alpha[p] : -1.0f, len ? len[p] : -1.0f);
+    }
+}
 
 int sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx)
 {
@@ -863,34 +884,17 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
             for (e = 0; e < 2; ++e) {
                 double sse_b, sse_d, thr;
                 long nb;
-                mse_sum += sbl_metric_mse(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3);
+                /* one pass: the split's two sums are the frame-eye's squared error */
                 thr = sbl_metric_bright_split(disp[e], w * 3, v[e]->ref, w * 3, w, h, 3, SBR_BRIGHT,
                                               &sse_b, &sse_d, &nb);
+                mse_sum += (sse_b + sse_d) / (3.0 * (double)n);
                 sse_bright_sum += sse_b;
                 sse_dim_sum += sse_d;
                 bright_px += nb;
-                if (frame_debug) {
-                    /* SBR_FRAME_DEBUG=1: each frame-eye's split, and its dim pixels shown
-                       bright (an error above the bright threshold: ghosts, fireflies) */
-                    long p;
-                    fprintf(stderr, "frame %s %d %d rmse %.5f rmse_dim %.5f bright_px %ld bright_mse_pct %.1f\n",
-                            m->name, f, e, sqrt((sse_b + sse_d) / (3.0 * n)), sqrt(sse_d / (3.0 * (double)(n - nb))), nb,
-                            sse_b + sse_d > 0 ? 100.0 * sse_b / (sse_b + sse_d) : 0.0);
-                    for (p = 0; p < (long)n; ++p) {
-                        const float *o = disp[e] + p * 3, *r = v[e]->ref + p * 3;
-                        if (r[0] > thr || r[1] > thr || r[2] > thr) {
-                            fprintf(stderr, "brightpx %s %d %d x %ld y %ld out %.3f ref %.3f in %.3f alpha %.4f N %.2f\n",
-                                    m->name, f, e, p % w, p / w, o[0], r[0], v[e]->color[p * 3],
-                                    alpha_known ? alpha[e][p] : -1.0f, m->temporal ? len[e][ping[e]][p] : -1.0f);
-                            continue;
-                        }
-                        if (fabs((double)o[0] - r[0]) > thr || fabs((double)o[1] - r[1]) > thr ||
-                            fabs((double)o[2] - r[2]) > thr)
-                            fprintf(stderr, "dimshownbright %s %d %d x %ld y %ld out %.3f ref %.3f in %.3f alpha %.4f N %.2f\n",
-                                    m->name, f, e, p % w, p / w, o[0], r[0], v[e]->color[p * 3],
-                                    alpha_known ? alpha[e][p] : -1.0f, m->temporal ? len[e][ping[e]][p] : -1.0f);
-                    }
-                }
+                if (frame_debug)
+                    sbr_debug_frame(m->name, f, e, disp[e], v[e]->ref, v[e]->color,
+                                    alpha_known ? alpha[e] : NULL, m->temporal ? len[e][ping[e]] : NULL,
+                                    w, h, sse_b, sse_d, nb, thr);
                 mse1_sum += sbl_metric_mse(v[e]->color, w * 3, v[e]->ref, w * 3, w, h, 3);
                 ssim_sum += sbr_ssim_clamped(disp[e], v[e]->ref, w, h, tmp_a, tmp_b);
             }
