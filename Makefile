@@ -39,7 +39,7 @@ FLAGS_scalar = -DSBL_NO_SIMD
 FLAGS_avx2   = -mavx2 -mfma
 FLAGS_avx512 = -mavx512f -mavx2 -mfma
 
-.PHONY: all check demo bench bench-quick bench-perf bench-ipp bench-gather ipp-watch bench-adaptive bench-shortcuts bench-shortcuts-ipp ao clean tests
+.PHONY: all check demo bench bench-quick bench-ceiling ceiling-check bench-perf bench-ipp bench-gather ipp-watch bench-adaptive bench-shortcuts bench-shortcuts-ipp ao clean tests
 all: tests $(BUILD)/demo $(BUILD)/minimal $(BUILD)/sblexr $(BUILD)/bench
 
 # make check / make tests / make check-robust: the configurations and the quiet runner
@@ -164,6 +164,19 @@ ipp-watch: $(BUILD)/ipp-sse2
 # the same in under a minute (CI smoke run; never asserts timings)
 bench-quick: $(BUILD)/bench
 	./$(BUILD)/bench --quick --out bench/out
+
+# the statistics oracle (bench/ceiling.c, docs/ESTIMATORS.md 6): what exact per-pixel
+# statistics reach against the oracle and the defaults. `make bench-ceiling`: every
+# synthetic scene (about 30 minutes); `make ceiling-check`: its self-check (CI)
+$(BUILD)/ceiling: bench/ceiling.c $(HEADERS) $(RUNNER)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_STRICT) -O2 -Ibench -Itools $< -o $@ $(LDLIBS)
+
+bench-ceiling: $(BUILD)/ceiling
+	./$(BUILD)/ceiling
+
+ceiling-check: $(BUILD)/ceiling
+	./$(BUILD)/ceiling --check --var-spp 256
 
 clean:
 	rm -rf $(BUILD)

@@ -41,6 +41,14 @@ typedef struct sbr_seq {
     sbr_view *views;               /* [frame * 2 + eye] */
     int ladder_count;
     sbr_ladder ladder[SBR_MAX_LADDER];
+    /* the statistics oracle's inputs (synthetic scenes only, sbr_seq_add_replicas):
+       replica[view] holds 1 + replicas images of W*H*3, the r-th at r * W*H*3: a
+       reference of its own (r = 0, the mean of var_spp samples), then that reference plus
+       independent zero-mean noise of each pixel's 1-spp variance (noise_var[view],
+       W*H*3, from the same samples); NULL if none */
+    int replicas;
+    float **replica;
+    float **noise_var;
 } sbr_seq;
 
 typedef enum sbr_stereo_mode {
@@ -56,8 +64,19 @@ typedef enum sbr_stereo_mode {
 
 /* Oracle weights (bench only): the library's reprojection stage, then
    a = E_X / (E_X + E_Y), E_X and E_Y the 3x3-averaged squared errors of x* and of the
-   own sample against the reference: what the blend could reach with the reference known. */
-enum { SBR_ORACLE_TEMPORAL = 1, SBR_ORACLE_STEREO = 2 };
+   own sample against the reference: what the blend could reach with the reference known.
+   The *statistics* oracle (SBR_ORACLE_STAT_*, needs sbr_seq_add_replicas): the same
+   formula with E_X and E_Y each pixel's expected squared errors, bias^2 + variance. The
+   weights never see the evaluated image's noise, so they are the same for every noise
+   realisation, and the filter is linear in the samples: its expectation is the filter run
+   on the references (replica 0, which gives the bias exactly), and its variance is that of
+   the filter run on any zero-mean noise with each sample's variance (replicas 1..R,
+   Rademacher signs: a low-noise estimate where the renderer's own heavy-tailed noise would
+   need thousands of replicas). So this is what exact per-pixel statistics reach, where
+   the oracle above also picks, per window, whichever of x* and y happened to land nearer
+   the reference. docs/ESTIMATORS.md 6. */
+enum { SBR_ORACLE_TEMPORAL = 1, SBR_ORACLE_STEREO = 2, SBR_ORACLE_STAT_TEMPORAL = 4,
+       SBR_ORACLE_STAT_STEREO = 8 };
 
 typedef struct sbr_method {
     char name[48];
@@ -131,6 +150,10 @@ extern const sbr_synth_scene sbr_synth_scenes[SBR_SYNTH_SCENES];
 /* sbr_bench_scene_desc for one of sbr_synth_scenes (its kind, jitter and spikes). */
 sbl_scene_desc sbr_synth_desc(const sbr_synth_scene *scene, int quick);
 int  sbr_seq_dataset(sbr_seq *s, const char *dir, int max_frames, char *err, int err_size);
+/* The statistics oracle's inputs for a synthetic sequence made from desc: each pixel's
+   1-spp mean and variance from var_spp >= 2 samples (sbl_scene_render_variance), and count
+   noise replicas around that mean, for every view (sbr_seq.replica). */
+int  sbr_seq_add_replicas(sbr_seq *s, const sbl_scene_desc *desc, int count, int var_spp);
 void sbr_seq_free(sbr_seq *s);
 
 /* The standard method table; returns the count written (at most max). */
@@ -140,7 +163,8 @@ int  sbr_find_method(const char *name, sbr_method *out);
 
 int  sbr_run(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn, void *ctx);
 /* The same, and alpha_fn (if not NULL) gets each eye's temporal weight per frame (W*H, one
-   channel; only for methods whose temporal stage is the library's filter). */
+   channel; only for methods whose temporal stage is the library's filter or the
+   statistics oracle). */
 int  sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_frame_fn fn,
                    sbr_frame_fn alpha_fn, void *ctx);
 void sbr_luminance(const float *rgb, float *lum, size_t n);
@@ -332,9 +356,54 @@ int sbr_seq_dataset(sbr_seq *s, const char *dir, int max_frames, char *err, int 
 }
 #endif
 
+int sbr_seq_add_replicas(sbr_seq *s, const sbl_scene_desc *desc_in, int count, int var_spp)
+{
+    sbl_scene_desc d = *desc_in;
+    const size_t n = (size_t)s->width * (size_t)s->height;
+    int v, r;
+    size_t q;
+    sbl_scene_defaults(&d);
+    if (count < 1 || var_spp < 2 || s->replica || d.width != s->width || d.height != s->height ||
+        d.frames != s->frames)
+        return 1;
+    s->replica = (float **)calloc((size_t)s->frames * 2, sizeof(float *));
+    s->noise_var = (float **)calloc((size_t)s->frames * 2, sizeof(float *));
+    if (!s->replica || !s->noise_var) return 1;
+    s->replicas = count;
+    for (v = 0; v < s->frames * 2; ++v) {
+        float *rep = s->replica[v] = sbr_alloc(n * 3 * (size_t)(count + 1));
+        /* the bias is measured against this mean: a var_spp-sample one, because the
+           bench's reference noise, filtered over frames, would read as a bias of about
+           the history's own variance over ref_spp */
+        const float *ref = rep, *var;
+        s->noise_var[v] = sbr_alloc(n * 3);
+        var = s->noise_var[v];
+        if (sbl_scene_render_variance(&d, v / 2, v % 2, var_spp, rep, s->noise_var[v], 0, d.height) != 0)
+            return 1;
+        for (r = 1; r <= count; ++r)
+            for (q = 0; q < n * 3; ++q) {
+                /* a counter hash (splitmix64's finaliser) of (view, replica, value): one
+                   sign per sample, independent of everything else */
+                unsigned long long z = ((unsigned long long)v * 1000003ull + (unsigned long long)r) *
+                                           0x9E3779B97F4A7C15ull + (unsigned long long)q;
+                z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+                z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+                z ^= z >> 31;
+                rep[(size_t)r * n * 3 + q] = ref[q] + ((z >> 63) ? 1.0f : -1.0f) * sqrtf(var[q]);
+            }
+    }
+    return 0;
+}
+
 void sbr_seq_free(sbr_seq *s)
 {
     int i, e, k;
+    if (s->replica)
+        for (i = 0; i < s->frames * 2; ++i) free(s->replica[i]);
+    free(s->replica);
+    if (s->noise_var)
+        for (i = 0; i < s->frames * 2; ++i) free(s->noise_var[i]);
+    free(s->noise_var);
     if (s->views)
         for (i = 0; i < s->frames * 2; ++i) {
             sbr_view *v = &s->views[i];
@@ -582,6 +651,60 @@ static void sbr_oracle_blend(int w, int h, const float *y, const float *ny, cons
         }
 }
 
+/* The statistics oracle's blend (SBR_ORACLE_STAT_*). ys / xss: 1 + R images of W*H*3 (the
+   r-th at r * W*H*3), the own estimate and x* of the replicas (sbr_seq.replica): r = 0
+   the expectation, r >= 1 zero-mean noise around it; ref: the frame's replica 0 (the
+   pixel's mean). E = (r0 - ref)^2 + the replicas'
+   mean square about r0, summed over the channels (or for the own estimate, yvar's sum if
+   not NULL: a raw sample's variance, known). The one weight a = E_X / (E_X + E_Y) goes to
+   the evaluated estimate (y, xs -> out), to every replica (-> outs, unless NULL), and to
+   aout if not NULL.
+   Validity (nx) comes from the G-buffers, so it is the replicas' too (the caller checks). */
+static void sbr_stat_oracle_blend(int w, int h, int R, const float *y, const float *ys,
+                                  const float *yvar, const float *ny, const float *xs, const float *xss,
+                                  const float *nx, const float *ref, float cap, int temporal,
+                                  float *out, float *outs, float *nout, float *aout)
+{
+    const size_t n = (size_t)w * (size_t)h;
+    size_t p, o;
+    int r, c;
+    for (p = 0; p < n; ++p) {
+        double ex = 0.0, ey = 0.0, vx = 0.0, vy = 0.0, a = 1.0;
+        float n_y = ny ? ny[p] : 1.0f, n_x = nx[p];
+        if (!(n_y > 0.0f)) n_y = 1.0f;
+        if (n_x > 0.0f) {
+            for (c = 0; c < 3; ++c) {
+                const size_t p0 = p * 3 + (size_t)c;
+                ex += ((double)xss[p0] - ref[p0]) * ((double)xss[p0] - ref[p0]);
+                ey += ((double)ys[p0] - ref[p0]) * ((double)ys[p0] - ref[p0]);
+                for (r = 1; r <= R; ++r) {
+                    o = (size_t)r * n * 3 + p0;
+                    vx += ((double)xss[o] - xss[p0]) * ((double)xss[o] - xss[p0]);
+                    vy += ((double)ys[o] - ys[p0]) * ((double)ys[o] - ys[p0]);
+                }
+            }
+            ex += vx / R;
+            ey = yvar ? (double)yvar[p * 3] + yvar[p * 3 + 1] + yvar[p * 3 + 2] : ey + vy / R;
+            a = ex + ey > 0.0 ? ex / (ex + ey) : 0.5;
+        }
+        if (aout) aout[p] = (float)a;
+        for (c = 0; c < 3; ++c) {
+            out[p * 3 + c] = (float)((1.0 - a) * xs[p * 3 + c] + a * y[p * 3 + c]);
+            for (r = 0; outs && r <= R; ++r) {
+                o = (size_t)r * n * 3 + p * 3 + (size_t)c;
+                outs[o] = (float)((1.0 - a) * xss[o] + a * ys[o]);
+            }
+        }
+        if (!(n_x > 0.0f)) {
+            nout[p] = temporal ? 1.0f : n_y;
+            continue;
+        }
+        if (n_x > cap) n_x = cap;
+        nout[p] = sbl_blend_sample_count((float)a, n_x, n_y);
+        if (nout[p] > cap) nout[p] = cap;
+    }
+}
+
 /* Rec. 709 luminance of an RGB image (the quantity Weber's law is about). */
 void sbr_luminance(const float *rgb, float *lum, size_t n)
 {
@@ -671,12 +794,18 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     float *carry[2][2] = {{NULL, NULL}, {NULL, NULL}}, *carry3 = NULL, *ocarry3 = NULL, *ocarry = NULL;
     float *tcarry[2][2] = {{NULL, NULL}, {NULL, NULL}}, *otcarry = NULL; /* temporal_blend_carry3 */
     float *tailp[2][2] = {{NULL, NULL}, {NULL, NULL}}; /* m->tail: the tail planes, per eye, ping-ponged */
+    /* the statistics oracle: the replicas' histories (per eye, ping-ponged), their x*, and
+       the replicas each eye shows the stereo stage */
+    float *rhist[2][2] = {{NULL, NULL}, {NULL, NULL}}, *rxs = NULL;
+    const float *rtout[2] = {NULL, NULL};
+    const int R = s->replicas;
     unsigned char *mask;
     double *times, mse_sum = 0, mse1_sum = 0, ssim_sum = 0, eff_sum = 0;
     double sse_bright_sum = 0, sse_dim_sum = 0;
     long bright_px = 0;
     const int frame_debug = getenv("SBR_FRAME_DEBUG") != NULL;
-    /* the debug lines' alpha: only the library's temporal weights write it (-1 otherwise) */
+    /* the debug lines' alpha: only the library's temporal weights and the statistics oracle
+       write it (-1 otherwise) */
     const int alpha_known = m->temporal && !(m->oracle & SBR_ORACLE_TEMPORAL);
     long traced = 0, traced_total = 0;
     int ping[2] = {0, 0}, f, e, i, eval = 0, eff_n = 0, skip = s->frames / 4, rc = 0;
@@ -718,6 +847,19 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     if (m->oracle && !s->views[0].ref) {
         fprintf(stderr, "%s: needs the reference images\n", m->name);
         rc = SBL_ERROR_MISSING_INPUT;
+    }
+    if ((m->oracle & (SBR_ORACLE_STAT_TEMPORAL | SBR_ORACLE_STAT_STEREO)) &&
+        (R < 1 || m->stereo == SBR_STEREO_FILL ||
+         ((m->oracle & SBR_ORACLE_STAT_STEREO) && m->temporal && !(m->oracle & SBR_ORACLE_STAT_TEMPORAL)))) {
+        /* the replicas must go through the same weights at every stage */
+        fprintf(stderr, "%s: needs sbr_seq_add_replicas, and statistics weights at every stage\n",
+                m->name);
+        rc = SBL_ERROR_MISSING_INPUT;
+    } else if (m->oracle & (SBR_ORACLE_STAT_TEMPORAL | SBR_ORACLE_STAT_STEREO)) {
+        for (e = 0; e < 2; ++e)
+            for (i = 0; i < 2 && (m->oracle & SBR_ORACLE_STAT_TEMPORAL); ++i)
+                rhist[e][i] = sbr_alloc(n * 3 * (size_t)(R + 1));
+        rxs = sbr_alloc(n * 3 * (size_t)(R + 1));
     }
 
     for (f = 0; f < s->frames && rc == 0; ++f) {
@@ -821,6 +963,28 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                     if (rc == 0)
                         m->temporal_blend(m->temporal_blend_ctx, w, h, input[e], ox, onx,
                                           td.max_history, hist[e][!ping[e]], len[e][!ping[e]]);
+                } else if (m->oracle & SBR_ORACLE_STAT_TEMPORAL) {
+                    sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
+                    int r;
+                    rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
+                                                sbl_image_make(ox, w, h, 3),
+                                                sbl_image_make(onx, w, h, 1), 0, h);
+                    for (r = 0; r <= R && rc == 0; ++r) {
+                        sbl_history hr = hi;
+                        hr.color = sbl_image_make(rhist[e][ping[e]] + (size_t)r * n * 3, w, h, 3);
+                        rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hr : NULL,
+                                                    sbl_image_make(rxs + (size_t)r * n * 3, w, h, 3),
+                                                    sbl_image_make(onx2, w, h, 1), 0, h);
+                        if (rc == 0 && memcmp(onx, onx2, n * sizeof(float)) != 0) {
+                            fprintf(stderr, "%s: a replica's reprojection differs in validity\n", m->name);
+                            rc = SBL_ERROR_INVALID_PARAM;
+                        }
+                    }
+                    if (rc == 0)
+                        sbr_stat_oracle_blend(w, h, R, input[e], s->replica[f * 2 + e],
+                                              s->noise_var[f * 2 + e], NULL, ox, rxs, onx,
+                                              s->replica[f * 2 + e], td.max_history, 1, hist[e][!ping[e]],
+                                              rhist[e][!ping[e]], len[e][!ping[e]], alpha[e]);
                 } else if (m->oracle & SBR_ORACLE_TEMPORAL) {
                     sbl_temporal_desc td = sbl_temporal_defaults(&m->temporal_desc);
                     rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hi : NULL,
@@ -834,8 +998,10 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 }
                 ping[e] = !ping[e];
                 tout[e] = hist[e][ping[e]];
+                rtout[e] = rhist[e][ping[e]];
             } else {
                 tout[e] = input[e];
+                rtout[e] = R ? s->replica[f * 2 + e] : NULL;
             }
         }
         if (rc == 0 && (m->stereo == SBR_STEREO_FIXED || m->stereo == SBR_STEREO_ADAPTIVE)) {
@@ -847,7 +1013,33 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 eye[e].gbuffer = sbr_gbuffer(v[e], w, h, 0);
             }
             if (m->stereo == SBR_STEREO_FIXED) sd.estimator = SBL_ESTIMATOR_CONSTANT;
-            if (m->oracle & SBR_ORACLE_STEREO) {
+            if (m->oracle & SBR_ORACLE_STAT_STEREO) {
+                for (e = 0; e < 2 && rc == 0; ++e) {
+                    int r;
+                    rc = sbl_reproject_stereo(&sd, (sbl_eye_index)e, &eye[e], &eye[!e],
+                                              sbl_image_make(ox, w, h, 3),
+                                              sbl_image_make(onx, w, h, 1), 0, h);
+                    for (r = 0; r <= R && rc == 0; ++r) {
+                        sbl_eye er[2];
+                        er[0] = eye[0];
+                        er[1] = eye[1];
+                        er[0].color = sbl_image_make(rtout[0] + (size_t)r * n * 3, w, h, 3);
+                        er[1].color = sbl_image_make(rtout[1] + (size_t)r * n * 3, w, h, 3);
+                        rc = sbl_reproject_stereo(&sd, (sbl_eye_index)e, &er[e], &er[!e],
+                                                  sbl_image_make(rxs + (size_t)r * n * 3, w, h, 3),
+                                                  sbl_image_make(onx2, w, h, 1), 0, h);
+                        if (rc == 0 && memcmp(onx, onx2, n * sizeof(float)) != 0) {
+                            fprintf(stderr, "%s: a replica's reprojection differs in validity\n", m->name);
+                            rc = SBL_ERROR_INVALID_PARAM;
+                        }
+                    }
+                    if (rc == 0)
+                        sbr_stat_oracle_blend(w, h, R, tout[e], rtout[e],
+                                              m->temporal ? NULL : s->noise_var[f * 2 + e],
+                                              m->temporal ? len[e][ping[e]] : NULL, ox, rxs, onx,
+                                              s->replica[f * 2 + e], FLT_MAX, 0, disp[e], NULL, onx2, NULL);
+                }
+            } else if (m->oracle & SBR_ORACLE_STEREO) {
                 for (e = 0; e < 2 && rc == 0; ++e) {
                     rc = sbl_reproject_stereo(&sd, (sbl_eye_index)e, &eye[e], &eye[!e],
                                               sbl_image_make(ox, w, h, 3),
@@ -948,6 +1140,8 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     free(carry3); free(ocarry3); free(ocarry);
     for (e = 0; e < 2; ++e) { free(tcarry[e][0]); free(tcarry[e][1]); free(tailp[e][0]); free(tailp[e][1]); }
     free(otcarry);
+    for (e = 0; e < 2; ++e) { free(rhist[e][0]); free(rhist[e][1]); }
+    free(rxs);
     free(mask); free(tmp_a); free(tmp_b); free(times); free(ox); free(onx); free(onx2); free(alpha[0]); free(alpha[1]);
     return rc;
 }

@@ -99,6 +99,13 @@ int sbl_scene_render(const sbl_scene_desc *d, int frame, int eye, sbl_scene_view
 /* Mean of spp samples with a seed independent of color/reference and of other spp values
  * (for effective-spp ladders): w*h*3, rows [y0,y1). */
 int sbl_scene_render_spp(const sbl_scene_desc *d, int frame, int eye, int spp, float *color, int y0, int y1);
+/* Per-pixel statistics of one 1-spp colour sample (spikes included, as in the colour
+ * stream) from spp >= 2 samples of a stream of their own: their mean (if mean is not NULL;
+ * a reference independent of the others) and their unbiased sample variance, each w*h*3,
+ * rows [y0,y1). The variance is what a renderer would call the pixel's noise level; the
+ * bench's statistics oracle uses both. */
+int sbl_scene_render_variance(const sbl_scene_desc *d, int frame, int eye, int spp, float *mean,
+                              float *variance, int y0, int y1);
 /* Object ids are 1..sbl_scene_object_count(); names for reports ("floor", "ball", "post03"...). */
 int sbl_scene_object_count(void);
 const char *sbl_scene_object_name(int id);   /* NULL for unknown ids */
@@ -749,11 +756,24 @@ static void sbl_scene__sample(const sbl_scene__world *w, int x, int y, uint32_t 
     if (m > SBL_SCENE__CLAMP) { m = SBL_SCENE__CLAMP / m; L[0] *= m; L[1] *= m; L[2] *= m; }
 }
 
-/* streams keep colour, reference and each ladder level independent */
-enum { SBL_SCENE__S_COLOR = 1, SBL_SCENE__S_REF = 2, SBL_SCENE__S_LADDER = 3 };
+/* streams keep colour, reference, each ladder level and the variance independent */
+enum { SBL_SCENE__S_COLOR = 1, SBL_SCENE__S_REF = 2, SBL_SCENE__S_LADDER = 3, SBL_SCENE__S_VAR = 4 };
+
+/* dst (if not NULL): the mean of spp samples; var (if not NULL, spp >= 2): their unbiased
+   variance */
+static void sbl_scene__shade_rows_var(const sbl_scene__world *w, const sbl_scene_desc *d, int frame,
+                                      int eye, uint32_t stream, int spp, float *dst, float *var,
+                                      int y0, int y1);
 
 static void sbl_scene__shade_rows(const sbl_scene__world *w, const sbl_scene_desc *d, int frame, int eye,
                                   uint32_t stream, int spp, float *dst, int y0, int y1)
+{
+    sbl_scene__shade_rows_var(w, d, frame, eye, stream, spp, dst, NULL, y0, y1);
+}
+
+static void sbl_scene__shade_rows_var(const sbl_scene__world *w, const sbl_scene_desc *d, int frame,
+                                      int eye, uint32_t stream, int spp, float *dst, float *var,
+                                      int y0, int y1)
 {
     uint32_t kb = sbl_scene__key(sbl_scene__key(sbl_scene__key(sbl_scene__mix(d->seed), stream),
                                                 (uint32_t)frame), (uint32_t)eye);
@@ -767,8 +787,10 @@ static void sbl_scene__shade_rows(const sbl_scene__world *w, const sbl_scene_des
         uint32_t ky = sbl_scene__key(kb, (uint32_t)y);
         for (x = 0; x < w->w; ++x) {
             uint32_t kp = sbl_scene__key(ky, (uint32_t)x);
-            double acc[3] = { 0.0, 0.0, 0.0 }, L[3];
-            float *px = dst + ((size_t)y * (size_t)w->w + (size_t)x) * 3;
+            double acc[3] = { 0.0, 0.0, 0.0 }, sq[3] = { 0.0, 0.0, 0.0 }, L[3];
+            const size_t i = (size_t)y * (size_t)w->w + (size_t)x;
+            float *px = dst ? dst + i * 3 : NULL;
+            int c;
             for (s = 0; s < spp; ++s) {
                 const uint32_t ks = sbl_scene__key(kp, (uint32_t)s);
                 sbl_scene__sample(w, x, y, ks, L);
@@ -777,8 +799,13 @@ static void sbl_scene__shade_rows(const sbl_scene__world *w, const sbl_scene_des
                     L[0] *= g; L[1] *= g; L[2] *= g;
                 }
                 acc[0] += L[0]; acc[1] += L[1]; acc[2] += L[2];
+                if (var) { sq[0] += L[0] * L[0]; sq[1] += L[1] * L[1]; sq[2] += L[2] * L[2]; }
             }
-            px[0] = (float)(acc[0] * inv); px[1] = (float)(acc[1] * inv); px[2] = (float)(acc[2] * inv);
+            if (px) { px[0] = (float)(acc[0] * inv); px[1] = (float)(acc[1] * inv); px[2] = (float)(acc[2] * inv); }
+            for (c = 0; var && c < 3; ++c) {
+                const double v = (sq[c] - acc[c] * acc[c] * inv) / (spp - 1);
+                var[i * 3 + c] = (float)(v > 0.0 ? v : 0.0);
+            }
         }
     }
 }
@@ -908,6 +935,17 @@ int sbl_scene_render_spp(const sbl_scene_desc *desc, int frame, int eye, int spp
     if (!color || spp < 1 || !sbl_scene__check(desc, &d, frame, eye, y0, y1)) return SBL_SCENE_EBADARG;
     sbl_scene__build(&d, frame, eye, &w);
     sbl_scene__shade_rows(&w, &d, frame, eye, sbl_scene__key(SBL_SCENE__S_LADDER, (uint32_t)spp), spp, color, y0, y1);
+    return SBL_SCENE_OK;
+}
+
+int sbl_scene_render_variance(const sbl_scene_desc *desc, int frame, int eye, int spp, float *mean,
+                              float *variance, int y0, int y1)
+{
+    sbl_scene_desc d;
+    sbl_scene__world w;
+    if (!variance || spp < 2 || !sbl_scene__check(desc, &d, frame, eye, y0, y1)) return SBL_SCENE_EBADARG;
+    sbl_scene__build(&d, frame, eye, &w);
+    sbl_scene__shade_rows_var(&w, &d, frame, eye, SBL_SCENE__S_VAR, spp, mean, variance, y0, y1);
     return SBL_SCENE_OK;
 }
 
