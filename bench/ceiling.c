@@ -68,8 +68,10 @@ static const double split_edge[SPLIT_BINS + 1] = {0.0, 0.05, 0.15, 0.4, 0.8, 1.0
 typedef struct split_ctx {
     const sbr_seq *s;
     float *stat_out, *stat_a; /* [frame * 2 + eye] * W*H(*3) */
+    float *def_a;             /* the default's weight of the frame-eye being scored */
     int pass;                 /* 0: recording the oracle, 1: scoring the default */
-    double sse_stat[SPLIT_BINS], sse_def[SPLIT_BINS];
+    double sse_stat[SPLIT_BINS], sse_def[SPLIT_BINS], sum_as[SPLIT_BINS], sum_ad[SPLIT_BINS];
+    double excess_low[SPLIT_BINS]; /* the default's excess where its a is below the oracle's */
     long px[SPLIT_BINS];
 } split_ctx;
 
@@ -77,14 +79,22 @@ static void split_frame(void *vctx, int f, int e, const float *rgb, int w, int h
 {
     split_ctx *c = (split_ctx *)vctx;
     const size_t n = (size_t)w * (size_t)h, v = (size_t)f * 2 + (size_t)e;
-    const float *ref = c->s->views[v].ref;
-    size_t p;
-    int k, b;
     if (c->pass == 0) {
         memcpy(c->stat_out + v * n * 3, rgb, n * 3 * sizeof(float));
         return;
     }
     if (f < c->s->frames / 4) return;
+    /* the runner calls this before the frame's alpha (split_alpha): the weights come from
+       that call, which scores the frame-eye then (pass 1); here only the images are kept */
+    memcpy(c->stat_out + v * n * 3 + (size_t)c->s->frames * 2 * n * 3, rgb, n * 3 * sizeof(float));
+}
+
+static void split_score(split_ctx *c, int f, int e, const float *rgb, const float *ad, int w, int h)
+{
+    const size_t n = (size_t)w * (size_t)h, v = (size_t)f * 2 + (size_t)e;
+    const float *ref = c->s->views[v].ref;
+    size_t p;
+    int k, b;
     for (p = 0; p < n; ++p) {
         double d0 = 0, d1 = 0;
         const double a = c->stat_a[v * n + p];
@@ -97,6 +107,9 @@ static void split_frame(void *vctx, int f, int e, const float *rgb, int w, int h
         }
         c->sse_stat[b] += d0;
         c->sse_def[b] += d1;
+        c->sum_as[b] += a;
+        c->sum_ad[b] += ad[p];
+        if (ad[p] < a) c->excess_low[b] += d1 - d0;
         c->px[b]++;
     }
 }
@@ -104,8 +117,10 @@ static void split_frame(void *vctx, int f, int e, const float *rgb, int w, int h
 static void split_alpha(void *vctx, int f, int e, const float *a, int w, int h)
 {
     split_ctx *c = (split_ctx *)vctx;
-    const size_t n = (size_t)w * (size_t)h;
-    if (c->pass == 0) memcpy(c->stat_a + ((size_t)f * 2 + (size_t)e) * n, a, n * sizeof(float));
+    const size_t n = (size_t)w * (size_t)h, v = (size_t)f * 2 + (size_t)e;
+    if (c->pass == 0) memcpy(c->stat_a + v * n, a, n * sizeof(float));
+    else if (f >= c->s->frames / 4)
+        split_score(c, f, e, c->stat_out + v * n * 3 + (size_t)c->s->frames * 2 * n * 3, a, w, h);
 }
 
 static void split_report(const sbr_seq *s, const sbr_method *stat)
@@ -118,7 +133,7 @@ static void split_report(const sbr_seq *s, const sbr_method *stat)
     int b;
     memset(&c, 0, sizeof c);
     c.s = s;
-    c.stat_out = (float *)malloc(n * 3 * sizeof(float) * (size_t)s->frames * 2);
+    c.stat_out = (float *)malloc(n * 3 * sizeof(float) * (size_t)s->frames * 4); /* + the default's */
     c.stat_a = (float *)malloc(n * sizeof(float) * (size_t)s->frames * 2);
     if (!c.stat_out || !c.stat_a || sbr_run_alpha(s, stat, &r, split_frame, split_alpha, &c) != 0) exit(1);
     c.pass = 1;
@@ -127,17 +142,20 @@ static void split_report(const sbr_seq *s, const sbr_method *stat)
     for (b = 0; b < SPLIT_BINS; ++b) { tot_s += c.sse_stat[b]; tot_d += c.sse_def[b]; }
     printf("\n%s, temporal: the squared error by the statistics oracle's weight a (frames %d-%d, both eyes)\n\n",
            s->name, s->frames / 4, s->frames - 1);
-    printf("| a | pixels | stat's SSE share | default's SSE share | default / stat | share of the excess |\n");
-    printf("|---|---:|---:|---:|---:|---:|\n");
+    printf("| a | pixels | mean a: stat / default | stat's SSE share | default's SSE share | default / stat "
+           "| share of the excess | of it where the default's a is lower |\n");
+    printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (b = 0; b < SPLIT_BINS; ++b) {
         long np = 0;
         int k;
         for (k = 0; k < SPLIT_BINS; ++k) np += c.px[k];
-        printf("| %.2f-%.2f | %.1f %% | %.1f %% | %.1f %% | %.2f | %.1f %% |\n", split_edge[b],
-               split_edge[b + 1] > 1 ? 1.0 : split_edge[b + 1], 100.0 * c.px[b] / (double)np,
+        printf("| %.2f-%.2f | %.1f %% | %.3f / %.3f | %.1f %% | %.1f %% | %.2f | %.1f %% | %.1f %% |\n",
+               split_edge[b], split_edge[b + 1] > 1 ? 1.0 : split_edge[b + 1], 100.0 * c.px[b] / (double)np,
+               c.px[b] ? c.sum_as[b] / c.px[b] : 0.0, c.px[b] ? c.sum_ad[b] / c.px[b] : 0.0,
                100.0 * c.sse_stat[b] / tot_s, 100.0 * c.sse_def[b] / tot_d,
                c.sse_stat[b] > 0 ? c.sse_def[b] / c.sse_stat[b] : 0.0,
-               100.0 * (c.sse_def[b] - c.sse_stat[b]) / (tot_d - tot_s));
+               100.0 * (c.sse_def[b] - c.sse_stat[b]) / (tot_d - tot_s),
+               c.sse_def[b] != c.sse_stat[b] ? 100.0 * c.excess_low[b] / (c.sse_def[b] - c.sse_stat[b]) : 0.0);
     }
     free(c.stat_out);
     free(c.stat_a);
