@@ -850,9 +850,12 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     }
     if ((m->oracle & (SBR_ORACLE_STAT_TEMPORAL | SBR_ORACLE_STAT_STEREO)) &&
         (R < 1 || m->stereo == SBR_STEREO_FILL ||
+         /* the replicas' variance is the evaluated image's only through a linear filter:
+            the Catmull-Rom fetch's overshoot clamp is not one */
+         m->temporal_desc.reproject.history_filter != SBL_HISTORY_BILINEAR ||
          ((m->oracle & SBR_ORACLE_STAT_STEREO) && m->temporal && !(m->oracle & SBR_ORACLE_STAT_TEMPORAL)))) {
         /* the replicas must go through the same weights at every stage */
-        fprintf(stderr, "%s: needs sbr_seq_add_replicas, and statistics weights at every stage\n",
+        fprintf(stderr, "%s: needs sbr_seq_add_replicas, the bilinear fetch and statistics weights at every stage\n",
                 m->name);
         rc = SBL_ERROR_MISSING_INPUT;
     } else if (m->oracle & (SBR_ORACLE_STAT_TEMPORAL | SBR_ORACLE_STAT_STEREO)) {
