@@ -5196,10 +5196,23 @@ SBL__NOINLINE void sbl__row_taps_flag_ev(const sbl__tap_src *s, sbl__tap_plan *p
     }
 }
 
+/* A camera map's constants for sbl__cam_lanes_k, in double lanes (sbl__cam_k_init, from
+   an sbl__cam_map): its images' sizes and its folded rows (sbl__cam_map_fold) r[0 .. 1]
+   the ray's q2, q3, r[2 .. 4] the other clip's c0, c1, c3, r[5 .. 6] the other view's
+   v2, v3, each over (ndc x, ndc y, 1), and w[0 .. 4] the columns for w = 1 of r[2 .. 6].
+   For the positions of one row (py = y + 0.5 in every lane, sbl__cam_k_row): each row's
+   product r[1] n1 (t), formed once per row by the reference's own operations. */
+typedef struct sbl__cam_k {
+    sbl__dv width, height, other_width, other_height;
+    sbl__dv r[7][3], w[5], t[7];
+} sbl__cam_k;
+
 /* One block of a row gather: its plan, and what the stereo rigs keep of each match. */
 typedef struct sbl__block {
     sbl__tap_plan p;
     double psx[SBL__BLOCK], psy[SBL__BLOCK]; /* stereo: each match's position            */
+    sbl__cam_k cam[2]; /* stereo, two cameras: the maps to the source (for this row in
+                          lane mode 2) and back to the target (sbl__stereo_block_start) */
     unsigned char snapped[SBL__BLOCK];       /* stereo: a far lane (see SBL__FAR_PX)     */
     int x0, n, y;                            /* columns [x0, x0 + n) of row y            */
     int sky;                                 /* every planned entry expects sky          */
@@ -6347,9 +6360,88 @@ SBL__INLINE int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
            sbl__geo_nid_lanes_ok(&s->geo) && y >= 1 && y + 1 < s->src.height && s->geo.depth.step == 1;
 }
 
+/* sbl__cam_lanes_k's constants from the map (sbl__cam_k). */
+SBL__INLINE void sbl__cam_k_init(sbl__cam_k *k, const sbl__cam_map *m)
+{
+    const double *rows[7];
+    int a, c;
+    rows[0] = m->ray[0]; rows[1] = m->ray[1];
+    rows[2] = m->clip[0]; rows[3] = m->clip[1]; rows[4] = m->clip[2];
+    rows[5] = m->view[0]; rows[6] = m->view[1];
+    k->width = sbl__dset1(m->width);
+    k->height = sbl__dset1(m->height);
+    k->other_width = sbl__dset1(m->other_width);
+    k->other_height = sbl__dset1(m->other_height);
+    for (a = 0; a < 7; ++a)
+        for (c = 0; c < 3; ++c) k->r[a][c] = sbl__dset1(rows[a][c]);
+    for (a = 0; a < 3; ++a) k->w[a] = sbl__dset1(m->clip_w[a]);
+    k->w[3] = sbl__dset1(m->view_w[0]);
+    k->w[4] = sbl__dset1(m->view_w[1]);
+}
+
+/* The row terms of sbl__cam_k for the positions of row y (py = y + 0.5): n1 and each
+   row's r[1] n1, by the operations sbl__cam_lanes_k takes for them per lane. */
+SBL__INLINE void sbl__cam_k_row(sbl__cam_k *k, int y)
+{
+    const sbl__dv n1 = sbl__dsub(sbl__dset1(1.0), sbl__ddiv(sbl__dmul(sbl__dset1(2.0), sbl__dset1(y + 0.5)), k->height));
+    int a;
+    for (a = 0; a < 7; ++a) k->t[a] = sbl__dmul(k->r[a][1], n1);
+}
+
+/* Row a of the folded map at (n0, n1): r0 n0 + r1 n1 + r2, as sbl__cam_row sums it; row
+   (a constant where inlined): r1 n1 is the row's term t[a]. */
+SBL__INLINE sbl__dv sbl__cam_row_k(const sbl__cam_k *k, int a, sbl__dv n0, sbl__dv n1, int row)
+{
+    return sbl__dadd(sbl__dadd(sbl__dmul(k->r[a][0], n0), row ? k->t[a] : sbl__dmul(k->r[a][1], n1)),
+                     k->r[a][2]);
+}
+
 /* sbl__cam_map_apply for VW positions (px[l], py[l]) at planar depths zf[l] (+inf: a
    direction): (ox, oy, oz)[l]; bit l of the result is set where the map gives a
-   position. The same operations in the same order as the reference. */
+   position. The same operations in the same order as the reference. row (a constant
+   where inlined): the positions are the pixels x .. x + VW - 1 of the row whose terms k
+   holds (sbl__cam_k_row), px and py unused. */
+SBL__INLINE int sbl__cam_lanes_k(const sbl__cam_k *k, int row, int x, const double *px, const double *py,
+                                 const float *zf, double *ox, double *oy, double *oz)
+{
+    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
+                  half = sbl__dset1(0.5);
+    float zmul[SBL__VW + 4], wl[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    int j, bits = 0;
+    {   /* a direction for sky (+inf): scale 1, w = 0 (exact in float, then in double) */
+        const sbl__v z = sbl__load(zf), onef = sbl__set1(1.0f);
+        const sbl__m sky = sbl__posinf(z);
+        sbl__store(zmul, sbl__sel(sky, onef, z));
+        sbl__store(wl, sbl__sel(sky, sbl__set1(0.0f), onef));
+    }
+    for (j = 0; j < SBL__VW; j += SBL__DW) {
+        /* (a row's px: (x + l) + 0.5, exact as the reference's x + l + 0.5) */
+        const sbl__dv pxv = row ? sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(SBL__CAST(double, x + j))), half)
+                                : sbl__dload(px + j);
+        const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, pxv), k->width), one);
+        const sbl__dv n1 = row ? zero : sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), k->height));
+        const sbl__dv q2 = sbl__cam_row_k(k, 0, n0, n1, row), q3 = sbl__cam_row_k(k, 1, n0, n1, row);
+        const sbl__dv w = sbl__dfromf(wl + j);
+        const sbl__dv sc = sbl__ddiv(sbl__dfromf(zmul + j), sbl__dsub(zero, q2));
+        const sbl__dv c0 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 2, n0, n1, row)), sbl__dmul(k->w[0], w));
+        const sbl__dv c1 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 3, n0, n1, row)), sbl__dmul(k->w[1], w));
+        const sbl__dv c3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 4, n0, n1, row)), sbl__dmul(k->w[2], w));
+        const sbl__dv v2 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 5, n0, n1, row)), sbl__dmul(k->w[3], w));
+        const sbl__dv v3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 6, n0, n1, row)), sbl__dmul(k->w[4], w));
+        /* (q2 < 0 and q3 > 0) or (q2 > 0 and q3 < 0), and c3 > 0 */
+        const int ok = ((sbl__dlt_bits(q2, zero) & sbl__dlt_bits(zero, q3)) |
+                        (sbl__dlt_bits(zero, q2) & sbl__dlt_bits(q3, zero))) &
+                       sbl__dlt_bits(zero, c3);
+        sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c0, c3), one), half), k->other_width));
+        sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c1, c3)), half), k->other_height));
+        sbl__dstore(oz + j, sbl__dinf_at0(sbl__dsub(zero, v2), v3)); /* -v2; a direction (v3 = 0): +inf */
+        bits |= ok << j;
+    }
+    return bits;
+}
+
+/* sbl__cam_lanes_k with the constants read from the map (the temporal camera source's
+   plans; the same operations in the same order). */
 SBL__INLINE sbl__dv sbl__cam_row_lanes(const double *r, sbl__dv n0, sbl__dv n1)
 {
     return sbl__dadd(sbl__dadd(sbl__dmul(sbl__dset1(r[0]), n0), sbl__dmul(sbl__dset1(r[1]), n1)),
@@ -11146,8 +11238,8 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
    matches of columns x0 + entry of row y), VW at a time: from the nearest source pixel,
    at the source's depth there, back into the target, within tol pixels of the start
    (sbl__stereo_rp_pixel's test); a failed one clears its ring column. */
-static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int y, int x0,
-                                 const double *psx, const double *psy, const int *back,
+static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, const sbl__cam_k *k, int y,
+                                 int x0, const double *psx, const double *psy, const int *back,
                                  int nback, double tol)
 {
     const int ch = s->src.color.ch;
@@ -11166,7 +11258,7 @@ static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int 
             sbl__dstorei(iy + j, sbl__dfloor(sbl__dload(py + j)));
         }
         for (l = 0; l < SBL__VW; ++l) zf[l] = sbl__valid_depth(&s->depth[1], ix[l], iy[l]);
-        ok = sbl__cam_lanes(&s->to_target, px, py, zf, bx, by, bz);
+        ok = sbl__cam_lanes_k(k, 0, 0, px, py, zf, bx, by, bz);
         for (l = 0; l < SBL__VW && b + l < nback; ++l) {
             const int x = x0 + back[b + l];
             const double ex = bx[l] - (x + 0.5), ey = by[l] - (y + 0.5);
@@ -11174,6 +11266,35 @@ static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int 
                 sbl__ring_put(r, x, 0.0f, NULL, ch);
         }
     }
+}
+
+/* sbl__stereo_cam_back for the block entries [i, i + VW) in place, on a row in lane mode
+   2 (each entry's psx, psy a match inside the source or 0): the bits of the lanes whose
+   check fails (meaningful where the match is valid), the test in double lanes with the
+   reference's operations (bx - (x + 0.5), by - (y + 0.5), ex ex + ey ey <= tol tol). */
+SBL__INLINE int sbl__stereo_cam_back_vec(const sbl__stereo_rp *s, const sbl__block *b, int i, double tol)
+{
+    const double *px = b->psx + i, *py = b->psy + i;
+    const sbl__dv half = sbl__dset1(0.5), tt = sbl__dset1(tol * tol), ey0 = sbl__dset1(b->y + 0.5);
+    float zf[SBL__VW];
+    double bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
+    int ix[SBL__VW], iy[SBL__VW], ok, pass = 0, j, l;
+    for (j = 0; j < SBL__VW; j += SBL__DW) { /* the nearest source pixel (in the image) */
+        sbl__dstorei(ix + j, sbl__dfloor(sbl__dload(px + j)));
+        sbl__dstorei(iy + j, sbl__dfloor(sbl__dload(py + j)));
+    }
+    for (l = 0; l < SBL__VW; ++l) zf[l] = sbl__valid_depth(&s->depth[1], ix[l], iy[l]);
+    ok = sbl__cam_lanes_k(&b->cam[1], 0, 0, px, py, zf, bx, by, bz);
+    for (j = 0; j < SBL__VW; j += SBL__DW) {
+        /* (x + l) + 0.5 is the reference's x + 0.5 exactly */
+        const sbl__dv ex = sbl__dsub(sbl__dload(bx + j),
+                                     sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(SBL__CAST(double, b->x0 + i + j))),
+                                               half));
+        const sbl__dv ey = sbl__dsub(sbl__dload(by + j), ey0);
+        pass |= sbl__dle_bits(sbl__dadd(sbl__dmul(ex, ex), sbl__dmul(ey, ey)), tt) << j;
+    }
+    /* (a valid depth is > 0 or +inf, else 0) */
+    return ~(ok & pass & sbl__mbits(sbl__gt(sbl__load(zf), sbl__set1(0.0f))));
 }
 
 /* The stereo row gather's hooks (sbl__row_gather_blocks): sbl__stereo_rp_pixel with the
@@ -11205,8 +11326,16 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
                           (!s->geo.depth.p || (depth && y >= 1 && y + 1 < sh))
                       ? 3
                       : 0;
-    else /* (sbl__plan_lanes_at: images up to 2^15 pixels) */
+    else { /* (sbl__plan_lanes_at: images up to 2^15 pixels) */
         b->mode = geo && depth && sw <= 32768 && sh <= 32768 ? 2 : 0;
+        /* the maps' constants for this row: back to the target (every back-check in
+           lanes), to the source with the row's terms (the plans in lanes) */
+        sbl__cam_k_init(&b->cam[1], &s->to_target);
+        if (b->mode == 2) {
+            sbl__cam_k_init(&b->cam[0], &s->to_source);
+            sbl__cam_k_row(&b->cam[0], y);
+        }
+    }
     b->row_state = b->mode;
     return 0;
 }
@@ -11254,6 +11383,26 @@ SBL__NOINLINE int sbl__stereo_plan_parallel_at(const sbl__stereo_rp *s, sbl__blo
     return 0;
 }
 
+/* sbl__cam_plan_lanes for the two-camera rigs (lane mode 2): the map to the source with
+   the block's constants for row y (sbl__stereo_block_start), its positions written to
+   the block's psx, psy (0 where there is no match). */
+SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__block *b, int i, int x, int y)
+{
+    float zf[SBL__VW], zo[SBL__VW];
+    double oz[SBL__VW], *ox = b->psx + i, *oy = b->psy + i;
+    sbl__v z, slack;
+    sbl__m want = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
+    int keep, l, out;
+    if (s->geo.normals.p || s->geo.ids.p) want = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, want);
+    keep = sbl__mbits(want);
+    sbl__store(zf, z);
+    keep &= sbl__cam_lanes_k(&b->cam[0], 1, x, NULL, NULL, zf, ox, oy, oz);
+    for (l = 0; l < SBL__VW; l += SBL__DW) sbl__dstoref(zo + l, sbl__dload(oz + l)); /* the expected depth */
+    out = ~sbl__plan_lanes_at(&s->src, &b->p, i, x, keep, ox, oy, sbl__load(zo), slack) & ((1 << SBL__VW) - 1);
+    for (l = 0; out; ++l, out >>= 1)
+        if (out & 1) ox[l] = oy[l] = 0.0;
+}
+
 static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
@@ -11262,7 +11411,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
     int l, bits;
     if (!b->mode || x < 0 || x + SBL__VW > s->source->color.width) return -1;
     if (b->mode == 2) {
-        sbl__cam_plan_lanes(&s->geo, &s->src, &s->to_source, &b->p, i, x, y, b->psx + i, b->psy + i);
+        sbl__stereo_cam_plan(s, b, i, x, y);
         for (l = 0; l < SBL__VW; ++l) b->snapped[i + l] = 0;
         return 0;
     }
@@ -11486,8 +11635,30 @@ SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r
                 if (bits & 1) sbl__ring_put(r, b->x0 + i + l, 0.0f, NULL, s->src.color.ch);
         }
     }
+    if (rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY && b->mode == 2 && back_check) {
+        /* the two cameras: VW entries at a time in place where none is handed back (redo;
+           none is far in this mode), the others gathered for sbl__stereo_cam_back */
+        for (; i + SBL__VW <= b->n; i += SBL__VW) {
+            uint32_t any = 0, u;
+            int bits;
+            for (l = 0; l < SBL__VW; l += 4) {
+                memcpy(&u, b->p.redo + i + l, 4);
+                any |= u;
+            }
+            if (any) {
+                for (l = 0; l < SBL__VW; ++l)
+                    sbl__stereo_after_one(s, r, b, i + l, rig, back_check, tol, back, &nback);
+                continue;
+            }
+            bits = sbl__mbits(sbl__gt(sbl__load(r->v + b->x0 + i), sbl__set1(0.0f)));
+            if (!bits) continue;
+            bits &= sbl__stereo_cam_back_vec(s, b, i, tol);
+            for (l = 0; bits; ++l, bits >>= 1)
+                if (bits & 1) sbl__ring_put(r, b->x0 + i + l, 0.0f, NULL, s->src.color.ch);
+        }
+    }
     for (; i < b->n; ++i) sbl__stereo_after_one(s, r, b, i, rig, back_check, tol, back, &nback);
-    if (nback) sbl__stereo_cam_back(s, r, b->y, b->x0, b->psx, b->psy, back, nback, tol);
+    if (nback) sbl__stereo_cam_back(s, r, &b->cam[1], b->y, b->x0, b->psx, b->psy, back, nback, tol);
 }
 
 static void sbl__stereo_block_after(const void *ctx, sbl__ring_row *r, sbl__block *b)
