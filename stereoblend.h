@@ -6397,23 +6397,19 @@ SBL__INLINE sbl__dv sbl__cam_row_k(const sbl__cam_k *k, int a, sbl__dv n0, sbl__
 }
 
 /* sbl__cam_map_apply for VW positions (px[l], py[l]) at planar depths zf[l] (+inf: a
-   direction): (ox, oy, oz)[l]; bit l of the result is set where the map gives a
-   position. The same operations in the same order as the reference. row (a constant
-   where inlined): the positions are the pixels x .. x + VW - 1 of the row whose terms k
-   holds (sbl__cam_k_row), px and py unused. */
-SBL__INLINE int sbl__cam_lanes_k(const sbl__cam_k *k, int row, int x, const double *px, const double *py,
-                                 const float *zf, double *ox, double *oy, double *oz)
+   direction; zf readable to VW + 4): (ox, oy, oz)[l]; bit l of the result is set where
+   the map gives a position. The same operations in the same order as the reference.
+   row (a constant where inlined): the positions are the pixels x .. x + VW - 1 of the
+   row whose terms k holds (sbl__cam_k_row), px and py unused. sky (a constant where
+   inlined): some lane is +inf, whose scale is 1 (zmul) and w 0 (wl); else every w is 1,
+   and w_a 1 is w_a exactly (the reference's product, without the multiplication). */
+SBL__INLINE int sbl__cam_lanes_in(const sbl__cam_k *k, int row, int sky, int x, const double *px,
+                                  const double *py, const float *zmul, const float *wl, double *ox,
+                                  double *oy, double *oz)
 {
     const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
                   half = sbl__dset1(0.5);
-    float zmul[SBL__VW + 4], wl[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
     int j, bits = 0;
-    {   /* a direction for sky (+inf): scale 1, w = 0 (exact in float, then in double) */
-        const sbl__v z = sbl__load(zf), onef = sbl__set1(1.0f);
-        const sbl__m sky = sbl__posinf(z);
-        sbl__store(zmul, sbl__sel(sky, onef, z));
-        sbl__store(wl, sbl__sel(sky, sbl__set1(0.0f), onef));
-    }
     for (j = 0; j < SBL__VW; j += SBL__DW) {
         /* (a row's px: (x + l) + 0.5, exact as the reference's x + l + 0.5) */
         const sbl__dv pxv = row ? sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(SBL__CAST(double, x + j))), half)
@@ -6421,13 +6417,13 @@ SBL__INLINE int sbl__cam_lanes_k(const sbl__cam_k *k, int row, int x, const doub
         const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, pxv), k->width), one);
         const sbl__dv n1 = row ? zero : sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), k->height));
         const sbl__dv q2 = sbl__cam_row_k(k, 0, n0, n1, row), q3 = sbl__cam_row_k(k, 1, n0, n1, row);
-        const sbl__dv w = sbl__dfromf(wl + j);
+        const sbl__dv w = sky ? sbl__dfromf(wl + j) : one;
         const sbl__dv sc = sbl__ddiv(sbl__dfromf(zmul + j), sbl__dsub(zero, q2));
-        const sbl__dv c0 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 2, n0, n1, row)), sbl__dmul(k->w[0], w));
-        const sbl__dv c1 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 3, n0, n1, row)), sbl__dmul(k->w[1], w));
-        const sbl__dv c3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 4, n0, n1, row)), sbl__dmul(k->w[2], w));
-        const sbl__dv v2 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 5, n0, n1, row)), sbl__dmul(k->w[3], w));
-        const sbl__dv v3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 6, n0, n1, row)), sbl__dmul(k->w[4], w));
+        const sbl__dv c0 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 2, n0, n1, row)), sky ? sbl__dmul(k->w[0], w) : k->w[0]);
+        const sbl__dv c1 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 3, n0, n1, row)), sky ? sbl__dmul(k->w[1], w) : k->w[1]);
+        const sbl__dv c3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 4, n0, n1, row)), sky ? sbl__dmul(k->w[2], w) : k->w[2]);
+        const sbl__dv v2 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 5, n0, n1, row)), sky ? sbl__dmul(k->w[3], w) : k->w[3]);
+        const sbl__dv v3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 6, n0, n1, row)), sky ? sbl__dmul(k->w[4], w) : k->w[4]);
         /* (q2 < 0 and q3 > 0) or (q2 > 0 and q3 < 0), and c3 > 0 */
         const int ok = ((sbl__dlt_bits(q2, zero) & sbl__dlt_bits(zero, q3)) |
                         (sbl__dlt_bits(zero, q2) & sbl__dlt_bits(q3, zero))) &
@@ -6437,7 +6433,21 @@ SBL__INLINE int sbl__cam_lanes_k(const sbl__cam_k *k, int row, int x, const doub
         sbl__dstore(oz + j, sbl__dinf_at0(sbl__dsub(zero, v2), v3)); /* -v2; a direction (v3 = 0): +inf */
         bits |= ok << j;
     }
+    (void)wl;
     return bits;
+}
+
+SBL__INLINE int sbl__cam_lanes_k(const sbl__cam_k *k, int row, int x, const double *px, const double *py,
+                                 const float *zf, double *ox, double *oy, double *oz)
+{
+    float zmul[SBL__VW + 4], wl[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    const sbl__v z = sbl__load(zf), onef = sbl__set1(1.0f);
+    const sbl__m sky = sbl__posinf(z);
+    if (!sbl__mbits(sky)) return sbl__cam_lanes_in(k, row, 0, x, px, py, zf, NULL, ox, oy, oz);
+    /* a direction for sky (+inf): scale 1, w = 0 (exact in float, then in double) */
+    sbl__store(zmul, sbl__sel(sky, onef, z));
+    sbl__store(wl, sbl__sel(sky, sbl__set1(0.0f), onef));
+    return sbl__cam_lanes_in(k, row, 1, x, px, py, zmul, wl, ox, oy, oz);
 }
 
 /* sbl__cam_lanes_k with the constants read from the map (the temporal camera source's
@@ -11245,7 +11255,7 @@ static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, cons
     const int ch = s->src.color.ch;
     int b, l;
     for (b = 0; b < nback; b += SBL__VW) {
-        float zf[SBL__VW];
+        float zf[SBL__VW + 4]; /* (sbl__cam_lanes_k reads VW + 4) */
         double px[SBL__VW], py[SBL__VW], bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
         int ix[SBL__VW], iy[SBL__VW], ok, j;
         for (l = 0; l < SBL__VW; ++l) {
@@ -11276,14 +11286,19 @@ SBL__INLINE int sbl__stereo_cam_back_vec(const sbl__stereo_rp *s, const sbl__blo
 {
     const double *px = b->psx + i, *py = b->psy + i;
     const sbl__dv half = sbl__dset1(0.5), tt = sbl__dset1(tol * tol), ey0 = sbl__dset1(b->y + 0.5);
-    float zf[SBL__VW];
+    float zf[SBL__VW + 4]; /* (sbl__cam_lanes_k reads VW + 4) */
     double bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
     int ix[SBL__VW], iy[SBL__VW], ok, pass = 0, j, l;
+    sbl__v z;
     for (j = 0; j < SBL__VW; j += SBL__DW) { /* the nearest source pixel (in the image) */
         sbl__dstorei(ix + j, sbl__dfloor(sbl__dload(px + j)));
         sbl__dstorei(iy + j, sbl__dfloor(sbl__dload(py + j)));
     }
-    for (l = 0; l < SBL__VW; ++l) zf[l] = sbl__valid_depth(&s->depth[1], ix[l], iy[l]);
+    /* sbl__valid_depth in lanes: geometry (> 0 or +inf, sbl__depth_is_geometry) is > 0 */
+    for (l = 0; l < SBL__VW; ++l) zf[l] = *SBL__AT(s->depth[1], ix[l], iy[l]);
+    z = sbl__load(zf);
+    z = sbl__sel(sbl__gt(z, sbl__set1(0.0f)), z, sbl__set1(0.0f));
+    sbl__store(zf, z);
     ok = sbl__cam_lanes_k(&b->cam[1], 0, 0, px, py, zf, bx, by, bz);
     for (j = 0; j < SBL__VW; j += SBL__DW) {
         /* (x + l) + 0.5 is the reference's x + 0.5 exactly */
@@ -11293,8 +11308,7 @@ SBL__INLINE int sbl__stereo_cam_back_vec(const sbl__stereo_rp *s, const sbl__blo
         const sbl__dv ey = sbl__dsub(sbl__dload(by + j), ey0);
         pass |= sbl__dle_bits(sbl__dadd(sbl__dmul(ex, ex), sbl__dmul(ey, ey)), tt) << j;
     }
-    /* (a valid depth is > 0 or +inf, else 0) */
-    return ~(ok & pass & sbl__mbits(sbl__gt(sbl__load(zf), sbl__set1(0.0f))));
+    return ~(ok & pass & sbl__mbits(sbl__gt(z, sbl__set1(0.0f))));
 }
 
 /* The stereo row gather's hooks (sbl__row_gather_blocks): sbl__stereo_rp_pixel with the
@@ -11388,7 +11402,7 @@ SBL__NOINLINE int sbl__stereo_plan_parallel_at(const sbl__stereo_rp *s, sbl__blo
    the block's psx, psy (0 where there is no match). */
 SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__block *b, int i, int x, int y)
 {
-    float zf[SBL__VW], zo[SBL__VW];
+    float zf[SBL__VW + 4], zo[SBL__VW]; /* (sbl__cam_lanes_k reads VW + 4) */
     double oz[SBL__VW], *ox = b->psx + i, *oy = b->psy + i;
     sbl__v z, slack;
     sbl__m want = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
