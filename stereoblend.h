@@ -3879,6 +3879,9 @@ SBL__INLINE __m128d sbl__dfloor(__m128d a)
 #define sbl__dstoref(q, a) _mm_storel_pi(SBL__PCAST(__m64 *, q), _mm_cvtpd_ps(a))
 #endif
 
+/* (every path's float vector is two double vectors: sbl__cam_lanes_in) */
+typedef char sbl__vw_is_two_dw[SBL__VW == 2 * SBL__DW ? 1 : -1];
+
 /* Each lane's index (x + index: the lanes' columns), as float lanes and as double lanes
    (SBL__DW <= 8). */
 static const float sbl__lane_f[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
@@ -6403,38 +6406,42 @@ SBL__INLINE sbl__dv sbl__cam_row_k(const sbl__cam_k *k, int a, sbl__dv n0, sbl__
    row whose terms k holds (sbl__cam_k_row), px and py unused. sky (a constant where
    inlined): some lane is +inf, whose scale is 1 (zmul) and w 0 (wl); else every w is 1,
    and w_a 1 is w_a exactly (the reference's product, without the multiplication). */
+SBL__INLINE int sbl__cam_lanes_half(const sbl__cam_k *k, int row, int sky, int x, int j, const double *px,
+                                    const double *py, const float *zmul, const float *wl, double *ox,
+                                    double *oy, double *oz)
+{
+    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
+                  half = sbl__dset1(0.5);
+    /* (a row's px: (x + l) + 0.5, exact as the reference's x + l + 0.5) */
+    const sbl__dv pxv = row ? sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(SBL__CAST(double, x + j))), half)
+                            : sbl__dload(px + j);
+    const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, pxv), k->width), one);
+    const sbl__dv n1 = row ? zero : sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), k->height));
+    const sbl__dv q2 = sbl__cam_row_k(k, 0, n0, n1, row), q3 = sbl__cam_row_k(k, 1, n0, n1, row);
+    const sbl__dv w = sky ? sbl__dfromf(wl + j) : one;
+    const sbl__dv sc = sbl__ddiv(sbl__dfromf(zmul + j), sbl__dsub(zero, q2));
+    const sbl__dv c0 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 2, n0, n1, row)), sky ? sbl__dmul(k->w[0], w) : k->w[0]);
+    const sbl__dv c1 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 3, n0, n1, row)), sky ? sbl__dmul(k->w[1], w) : k->w[1]);
+    const sbl__dv c3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 4, n0, n1, row)), sky ? sbl__dmul(k->w[2], w) : k->w[2]);
+    const sbl__dv v2 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 5, n0, n1, row)), sky ? sbl__dmul(k->w[3], w) : k->w[3]);
+    const sbl__dv v3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 6, n0, n1, row)), sky ? sbl__dmul(k->w[4], w) : k->w[4]);
+    sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c0, c3), one), half), k->other_width));
+    sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c1, c3)), half), k->other_height));
+    sbl__dstore(oz + j, sbl__dinf_at0(sbl__dsub(zero, v2), v3)); /* -v2; a direction (v3 = 0): +inf */
+    (void)wl;
+    /* (q2 < 0 and q3 > 0) or (q2 > 0 and q3 < 0), and c3 > 0 */
+    return ((sbl__dlt_bits(q2, zero) & sbl__dlt_bits(zero, q3)) | (sbl__dlt_bits(zero, q2) & sbl__dlt_bits(q3, zero))) &
+           sbl__dlt_bits(zero, c3);
+}
+
+/* (VW is 2 DW on every path: the two halves in straight code, the constants read where
+   they are used) */
 SBL__INLINE int sbl__cam_lanes_in(const sbl__cam_k *k, int row, int sky, int x, const double *px,
                                   const double *py, const float *zmul, const float *wl, double *ox,
                                   double *oy, double *oz)
 {
-    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
-                  half = sbl__dset1(0.5);
-    int j, bits = 0;
-    for (j = 0; j < SBL__VW; j += SBL__DW) {
-        /* (a row's px: (x + l) + 0.5, exact as the reference's x + l + 0.5) */
-        const sbl__dv pxv = row ? sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(SBL__CAST(double, x + j))), half)
-                                : sbl__dload(px + j);
-        const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, pxv), k->width), one);
-        const sbl__dv n1 = row ? zero : sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), k->height));
-        const sbl__dv q2 = sbl__cam_row_k(k, 0, n0, n1, row), q3 = sbl__cam_row_k(k, 1, n0, n1, row);
-        const sbl__dv w = sky ? sbl__dfromf(wl + j) : one;
-        const sbl__dv sc = sbl__ddiv(sbl__dfromf(zmul + j), sbl__dsub(zero, q2));
-        const sbl__dv c0 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 2, n0, n1, row)), sky ? sbl__dmul(k->w[0], w) : k->w[0]);
-        const sbl__dv c1 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 3, n0, n1, row)), sky ? sbl__dmul(k->w[1], w) : k->w[1]);
-        const sbl__dv c3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 4, n0, n1, row)), sky ? sbl__dmul(k->w[2], w) : k->w[2]);
-        const sbl__dv v2 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 5, n0, n1, row)), sky ? sbl__dmul(k->w[3], w) : k->w[3]);
-        const sbl__dv v3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 6, n0, n1, row)), sky ? sbl__dmul(k->w[4], w) : k->w[4]);
-        /* (q2 < 0 and q3 > 0) or (q2 > 0 and q3 < 0), and c3 > 0 */
-        const int ok = ((sbl__dlt_bits(q2, zero) & sbl__dlt_bits(zero, q3)) |
-                        (sbl__dlt_bits(zero, q2) & sbl__dlt_bits(q3, zero))) &
-                       sbl__dlt_bits(zero, c3);
-        sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c0, c3), one), half), k->other_width));
-        sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c1, c3)), half), k->other_height));
-        sbl__dstore(oz + j, sbl__dinf_at0(sbl__dsub(zero, v2), v3)); /* -v2; a direction (v3 = 0): +inf */
-        bits |= ok << j;
-    }
-    (void)wl;
-    return bits;
+    return sbl__cam_lanes_half(k, row, sky, x, 0, px, py, zmul, wl, ox, oy, oz) |
+           sbl__cam_lanes_half(k, row, sky, x, SBL__DW, px, py, zmul, wl, ox, oy, oz) << SBL__DW;
 }
 
 SBL__INLINE int sbl__cam_lanes_k(const sbl__cam_k *k, int row, int x, const double *px, const double *py,
