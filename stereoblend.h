@@ -3809,7 +3809,9 @@ SBL__INLINE void sbl__motion_packed_lanes(const float *mvp, sbl__v *mx, sbl__v *
    mul, div; SBL__DW floats in (sbl__dfromf: from VW + 4 readable floats), SBL__DW ints
    out (sbl__dstorei, truncating; the values are integers), SBL__DW floats out
    (sbl__dstoref, rounded as a cast); floor; min / max (x86: the second operand where one
-   is NaN); bit masks of a <= b and a < b; x, or +inf where t is 0 (sbl__dinf_at0). */
+   is NaN); bit masks of a <= b and a < b; x, or +inf where t is 0 (sbl__dinf_at0). And
+   the comparisons as lane masks (sbl__dm: a <= b, a < b; and, or, a and not b), made
+   bits once (sbl__dm_bits). */
 #if SBL__VW == 16
 #define SBL__DW 8
 typedef __m512d sbl__dv;
@@ -3826,6 +3828,13 @@ typedef __m512d sbl__dv;
 #define sbl__dmax(a, b) _mm512_max_pd(a, b)
 #define sbl__dle_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ))
 #define sbl__dlt_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ))
+typedef __mmask8 sbl__dm;
+#define sbl__dle_m(a, b) _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ)
+#define sbl__dlt_m(a, b) _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ)
+#define sbl__dm_and(a, b) SBL__CAST(__mmask8, (a) & (b))
+#define sbl__dm_or(a, b) SBL__CAST(__mmask8, (a) | (b))
+#define sbl__dm_andnot(a, b) SBL__CAST(__mmask8, (a) & ~(b))
+#define sbl__dm_bits(m) SBL__CAST(int, m)
 #define sbl__dinf_at0(x, t) _mm512_mask_blend_pd(_mm512_cmp_pd_mask(t, _mm512_setzero_pd(), _CMP_EQ_OQ), x, _mm512_set1_pd(HUGE_VAL))
 #define sbl__dfloor(a) _mm512_roundscale_pd(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
 #define sbl__dstoref(q, a) _mm256_storeu_ps(q, _mm512_cvtpd_ps(a))
@@ -3845,6 +3854,13 @@ typedef __m256d sbl__dv;
 #define sbl__dmax(a, b) _mm256_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LE_OQ))
 #define sbl__dlt_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LT_OQ))
+typedef __m256d sbl__dm;
+#define sbl__dle_m(a, b) _mm256_cmp_pd(a, b, _CMP_LE_OQ)
+#define sbl__dlt_m(a, b) _mm256_cmp_pd(a, b, _CMP_LT_OQ)
+#define sbl__dm_and(a, b) _mm256_and_pd(a, b)
+#define sbl__dm_or(a, b) _mm256_or_pd(a, b)
+#define sbl__dm_andnot(a, b) _mm256_andnot_pd(b, a)
+#define sbl__dm_bits(m) _mm256_movemask_pd(m)
 #define sbl__dinf_at0(x, t) _mm256_blendv_pd(x, _mm256_set1_pd(HUGE_VAL), _mm256_cmp_pd(t, _mm256_setzero_pd(), _CMP_EQ_OQ))
 #define sbl__dfloor(a) _mm256_floor_pd(a)
 #define sbl__dstoref(q, a) _mm_storeu_ps(q, _mm256_cvtpd_ps(a))
@@ -3864,6 +3880,13 @@ typedef __m128d sbl__dv;
 #define sbl__dmax(a, b) _mm_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm_movemask_pd(_mm_cmple_pd(a, b))
 #define sbl__dlt_bits(a, b) _mm_movemask_pd(_mm_cmplt_pd(a, b))
+typedef __m128d sbl__dm;
+#define sbl__dle_m(a, b) _mm_cmple_pd(a, b)
+#define sbl__dlt_m(a, b) _mm_cmplt_pd(a, b)
+#define sbl__dm_and(a, b) _mm_and_pd(a, b)
+#define sbl__dm_or(a, b) _mm_or_pd(a, b)
+#define sbl__dm_andnot(a, b) _mm_andnot_pd(b, a)
+#define sbl__dm_bits(m) _mm_movemask_pd(m)
 SBL__INLINE __m128d sbl__dinf_at0(__m128d x, __m128d t)
 {
     const __m128d m = _mm_cmpeq_pd(t, _mm_setzero_pd());
@@ -5760,12 +5783,14 @@ SBL__INLINE int sbl__plan_lanes_at(const sbl__tap_src *src, sbl__tap_plan *p, in
         const sbl__dv sxv = sbl__dload(sx + j), syv = sbl__dload(sy + j);
         const sbl__dv bx = sbl__dsub(sxv, half), by = sbl__dsub(syv, half);
         /* 0 <= s < w: a NaN fails the first test (and so needs no second) */
-        const int in = (bits_keep >> j) & dmask & sbl__dle_bits(dzero, sxv) & sbl__dle_bits(dzero, syv) &
-                       ~sbl__dle_bits(wd, sxv) & ~sbl__dle_bits(hd, syv);
+        const sbl__dm inm = sbl__dm_andnot(sbl__dm_andnot(sbl__dm_and(sbl__dle_m(dzero, sxv), sbl__dle_m(dzero, syv)),
+                                                          sbl__dle_m(wd, sxv)),
+                                           sbl__dle_m(hd, syv));
+        const int in = (bits_keep >> j) & dmask & sbl__dm_bits(inm);
         /* (lanes not inside are not used: their floor may be anything) */
         const sbl__dv x0 = sbl__dfloor(bx), y0 = sbl__dfloor(by);
-        const int fast = in & sbl__dle_bits(dzero, x0) & sbl__dle_bits(dzero, y0) & sbl__dle_bits(x0, w2) &
-                         sbl__dle_bits(y0, h2);
+        const int fast = in & sbl__dm_bits(sbl__dm_and(sbl__dm_and(sbl__dle_m(dzero, x0), sbl__dle_m(dzero, y0)),
+                                                       sbl__dm_and(sbl__dle_m(x0, w2), sbl__dle_m(y0, h2))));
         sbl__dstoref(fxs + j, sbl__dsub(bx, x0));
         sbl__dstoref(fys + j, sbl__dsub(by, y0));
         sbl__dstoref(x0s + j, x0);
@@ -6430,8 +6455,9 @@ SBL__INLINE int sbl__cam_lanes_half(const sbl__cam_k *k, int row, int sky, int x
     sbl__dstore(oz + j, sbl__dinf_at0(sbl__dsub(zero, v2), v3)); /* -v2; a direction (v3 = 0): +inf */
     (void)wl;
     /* (q2 < 0 and q3 > 0) or (q2 > 0 and q3 < 0), and c3 > 0 */
-    return ((sbl__dlt_bits(q2, zero) & sbl__dlt_bits(zero, q3)) | (sbl__dlt_bits(zero, q2) & sbl__dlt_bits(q3, zero))) &
-           sbl__dlt_bits(zero, c3);
+    return sbl__dm_bits(sbl__dm_and(sbl__dm_or(sbl__dm_and(sbl__dlt_m(q2, zero), sbl__dlt_m(zero, q3)),
+                                               sbl__dm_and(sbl__dlt_m(zero, q2), sbl__dlt_m(q3, zero))),
+                                    sbl__dlt_m(zero, c3)));
 }
 
 /* (VW is 2 DW on every path: the two halves in straight code, the constants read where
