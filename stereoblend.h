@@ -11319,17 +11319,19 @@ SBL__INLINE int sbl__stereo_cam_back_vec(const sbl__stereo_rp *s, const sbl__blo
 {
     const double *px = b->psx + i, *py = b->psy + i;
     const sbl__dv half = sbl__dset1(0.5), tt = sbl__dset1(tol * tol), ey0 = sbl__dset1(b->y + 0.5);
+    const sbl__flat *d = &s->depth[1]; /* (the source's depth: s->src.depth) */
+    const sbl__dv stride = sbl__dset1(SBL__CAST(double, d->stride)), step = sbl__dset1(SBL__CAST(double, d->step));
     float zf[SBL__VW + 4]; /* (sbl__cam_lanes_k reads VW + 4) */
     double bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
-    int ix[SBL__VW], iy[SBL__VW], ok, pass = 0, j, l;
+    int idx[SBL__VW], ok, pass = 0, j;
     sbl__v z;
-    for (j = 0; j < SBL__VW; j += SBL__DW) { /* the nearest source pixel (in the image) */
-        sbl__dstorei(ix + j, sbl__dfloor(sbl__dload(px + j)));
-        sbl__dstorei(iy + j, sbl__dfloor(sbl__dload(py + j)));
-    }
-    /* sbl__valid_depth in lanes: geometry (> 0 or +inf, sbl__depth_is_geometry) is > 0 */
-    for (l = 0; l < SBL__VW; ++l) zf[l] = *SBL__AT(s->depth[1], ix[l], iy[l]);
-    z = sbl__load(zf);
+    /* the nearest source pixel (in the image): its depth's index floor(sy) stride +
+       floor(sx) step, exact in double and below INT_MAX / 2 (sbl__row_gather_ok); then
+       sbl__valid_depth in lanes: geometry (> 0 or +inf, sbl__depth_is_geometry) is > 0 */
+    for (j = 0; j < SBL__VW; j += SBL__DW)
+        sbl__dstorei(idx + j, sbl__dadd(sbl__dmul(sbl__dfloor(sbl__dload(py + j)), stride),
+                                        sbl__dmul(sbl__dfloor(sbl__dload(px + j)), step)));
+    z = sbl__gatheri(d->p, idx);
     z = sbl__sel(sbl__gt(z, sbl__set1(0.0f)), z, sbl__set1(0.0f));
     sbl__store(zf, z);
     ok = sbl__cam_lanes_k(&b->cam[1], 0, 0, px, py, zf, bx, by, bz);
