@@ -3809,7 +3809,9 @@ SBL__INLINE void sbl__motion_packed_lanes(const float *mvp, sbl__v *mx, sbl__v *
    mul, div; SBL__DW floats in (sbl__dfromf: from VW + 4 readable floats), SBL__DW ints
    out (sbl__dstorei, truncating; the values are integers), SBL__DW floats out
    (sbl__dstoref, rounded as a cast); floor; min / max (x86: the second operand where one
-   is NaN); bit masks of a <= b and a < b; x, or +inf where t is 0 (sbl__dinf_at0). */
+   is NaN); bit masks of a <= b and a < b; x, or +inf where t is 0 (sbl__dinf_at0). And
+   the comparisons as lane masks (sbl__dm: a <= b, a < b; and, or, a and not b), made
+   bits once (sbl__dm_bits). */
 #if SBL__VW == 16
 #define SBL__DW 8
 typedef __m512d sbl__dv;
@@ -3826,6 +3828,13 @@ typedef __m512d sbl__dv;
 #define sbl__dmax(a, b) _mm512_max_pd(a, b)
 #define sbl__dle_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ))
 #define sbl__dlt_bits(a, b) SBL__CAST(int, _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ))
+typedef __mmask8 sbl__dm;
+#define sbl__dle_m(a, b) _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ)
+#define sbl__dlt_m(a, b) _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ)
+#define sbl__dm_and(a, b) SBL__CAST(__mmask8, (a) & (b))
+#define sbl__dm_or(a, b) SBL__CAST(__mmask8, (a) | (b))
+#define sbl__dm_andnot(a, b) SBL__CAST(__mmask8, (a) & ~(b))
+#define sbl__dm_bits(m) SBL__CAST(int, m)
 #define sbl__dinf_at0(x, t) _mm512_mask_blend_pd(_mm512_cmp_pd_mask(t, _mm512_setzero_pd(), _CMP_EQ_OQ), x, _mm512_set1_pd(HUGE_VAL))
 #define sbl__dfloor(a) _mm512_roundscale_pd(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
 #define sbl__dstoref(q, a) _mm256_storeu_ps(q, _mm512_cvtpd_ps(a))
@@ -3845,6 +3854,13 @@ typedef __m256d sbl__dv;
 #define sbl__dmax(a, b) _mm256_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LE_OQ))
 #define sbl__dlt_bits(a, b) _mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LT_OQ))
+typedef __m256d sbl__dm;
+#define sbl__dle_m(a, b) _mm256_cmp_pd(a, b, _CMP_LE_OQ)
+#define sbl__dlt_m(a, b) _mm256_cmp_pd(a, b, _CMP_LT_OQ)
+#define sbl__dm_and(a, b) _mm256_and_pd(a, b)
+#define sbl__dm_or(a, b) _mm256_or_pd(a, b)
+#define sbl__dm_andnot(a, b) _mm256_andnot_pd(b, a)
+#define sbl__dm_bits(m) _mm256_movemask_pd(m)
 #define sbl__dinf_at0(x, t) _mm256_blendv_pd(x, _mm256_set1_pd(HUGE_VAL), _mm256_cmp_pd(t, _mm256_setzero_pd(), _CMP_EQ_OQ))
 #define sbl__dfloor(a) _mm256_floor_pd(a)
 #define sbl__dstoref(q, a) _mm_storeu_ps(q, _mm256_cvtpd_ps(a))
@@ -3864,6 +3880,13 @@ typedef __m128d sbl__dv;
 #define sbl__dmax(a, b) _mm_max_pd(a, b)
 #define sbl__dle_bits(a, b) _mm_movemask_pd(_mm_cmple_pd(a, b))
 #define sbl__dlt_bits(a, b) _mm_movemask_pd(_mm_cmplt_pd(a, b))
+typedef __m128d sbl__dm;
+#define sbl__dle_m(a, b) _mm_cmple_pd(a, b)
+#define sbl__dlt_m(a, b) _mm_cmplt_pd(a, b)
+#define sbl__dm_and(a, b) _mm_and_pd(a, b)
+#define sbl__dm_or(a, b) _mm_or_pd(a, b)
+#define sbl__dm_andnot(a, b) _mm_andnot_pd(b, a)
+#define sbl__dm_bits(m) _mm_movemask_pd(m)
 SBL__INLINE __m128d sbl__dinf_at0(__m128d x, __m128d t)
 {
     const __m128d m = _mm_cmpeq_pd(t, _mm_setzero_pd());
@@ -3878,6 +3901,9 @@ SBL__INLINE __m128d sbl__dfloor(__m128d a)
 }
 #define sbl__dstoref(q, a) _mm_storel_pi(SBL__PCAST(__m64 *, q), _mm_cvtpd_ps(a))
 #endif
+
+/* (every path's float vector is two double vectors: sbl__cam_lanes_in) */
+typedef char sbl__vw_is_two_dw[SBL__VW == 2 * SBL__DW ? 1 : -1];
 
 /* Each lane's index (x + index: the lanes' columns), as float lanes and as double lanes
    (SBL__DW <= 8). */
@@ -5196,10 +5222,23 @@ SBL__NOINLINE void sbl__row_taps_flag_ev(const sbl__tap_src *s, sbl__tap_plan *p
     }
 }
 
+/* A camera map's constants for sbl__cam_lanes_k, in double lanes (sbl__cam_k_init, from
+   an sbl__cam_map): its images' sizes and its folded rows (sbl__cam_map_fold) r[0 .. 1]
+   the ray's q2, q3, r[2 .. 4] the other clip's c0, c1, c3, r[5 .. 6] the other view's
+   v2, v3, each over (ndc x, ndc y, 1), and w[0 .. 4] the columns for w = 1 of r[2 .. 6].
+   For the positions of one row (py = y + 0.5 in every lane, sbl__cam_k_row): each row's
+   product r[1] n1 (t), formed once per row by the reference's own operations. */
+typedef struct sbl__cam_k {
+    sbl__dv width, height, other_width, other_height;
+    sbl__dv r[7][3], w[5], t[7];
+} sbl__cam_k;
+
 /* One block of a row gather: its plan, and what the stereo rigs keep of each match. */
 typedef struct sbl__block {
     sbl__tap_plan p;
     double psx[SBL__BLOCK], psy[SBL__BLOCK]; /* stereo: each match's position            */
+    sbl__cam_k cam[2]; /* stereo, two cameras: the maps to the source (for this row in
+                          lane mode 2) and back to the target (sbl__stereo_block_start) */
     unsigned char snapped[SBL__BLOCK];       /* stereo: a far lane (see SBL__FAR_PX)     */
     int x0, n, y;                            /* columns [x0, x0 + n) of row y            */
     int sky;                                 /* every planned entry expects sky          */
@@ -5744,12 +5783,14 @@ SBL__INLINE int sbl__plan_lanes_at(const sbl__tap_src *src, sbl__tap_plan *p, in
         const sbl__dv sxv = sbl__dload(sx + j), syv = sbl__dload(sy + j);
         const sbl__dv bx = sbl__dsub(sxv, half), by = sbl__dsub(syv, half);
         /* 0 <= s < w: a NaN fails the first test (and so needs no second) */
-        const int in = (bits_keep >> j) & dmask & sbl__dle_bits(dzero, sxv) & sbl__dle_bits(dzero, syv) &
-                       ~sbl__dle_bits(wd, sxv) & ~sbl__dle_bits(hd, syv);
+        const sbl__dm inm = sbl__dm_andnot(sbl__dm_andnot(sbl__dm_and(sbl__dle_m(dzero, sxv), sbl__dle_m(dzero, syv)),
+                                                          sbl__dle_m(wd, sxv)),
+                                           sbl__dle_m(hd, syv));
+        const int in = (bits_keep >> j) & dmask & sbl__dm_bits(inm);
         /* (lanes not inside are not used: their floor may be anything) */
         const sbl__dv x0 = sbl__dfloor(bx), y0 = sbl__dfloor(by);
-        const int fast = in & sbl__dle_bits(dzero, x0) & sbl__dle_bits(dzero, y0) & sbl__dle_bits(x0, w2) &
-                         sbl__dle_bits(y0, h2);
+        const int fast = in & sbl__dm_bits(sbl__dm_and(sbl__dm_and(sbl__dle_m(dzero, x0), sbl__dle_m(dzero, y0)),
+                                                       sbl__dm_and(sbl__dle_m(x0, w2), sbl__dle_m(y0, h2))));
         sbl__dstoref(fxs + j, sbl__dsub(bx, x0));
         sbl__dstoref(fys + j, sbl__dsub(by, y0));
         sbl__dstoref(x0s + j, x0);
@@ -6347,9 +6388,103 @@ SBL__INLINE int sbl__camera_plan_lanes_ok(const sbl__temporal_rp *s, int y)
            sbl__geo_nid_lanes_ok(&s->geo) && y >= 1 && y + 1 < s->src.height && s->geo.depth.step == 1;
 }
 
+/* sbl__cam_lanes_k's constants from the map (sbl__cam_k). */
+SBL__INLINE void sbl__cam_k_init(sbl__cam_k *k, const sbl__cam_map *m)
+{
+    const double *rows[7];
+    int a, c;
+    rows[0] = m->ray[0]; rows[1] = m->ray[1];
+    rows[2] = m->clip[0]; rows[3] = m->clip[1]; rows[4] = m->clip[2];
+    rows[5] = m->view[0]; rows[6] = m->view[1];
+    k->width = sbl__dset1(m->width);
+    k->height = sbl__dset1(m->height);
+    k->other_width = sbl__dset1(m->other_width);
+    k->other_height = sbl__dset1(m->other_height);
+    for (a = 0; a < 7; ++a)
+        for (c = 0; c < 3; ++c) k->r[a][c] = sbl__dset1(rows[a][c]);
+    for (a = 0; a < 3; ++a) k->w[a] = sbl__dset1(m->clip_w[a]);
+    k->w[3] = sbl__dset1(m->view_w[0]);
+    k->w[4] = sbl__dset1(m->view_w[1]);
+}
+
+/* The row terms of sbl__cam_k for the positions of row y (py = y + 0.5): n1 and each
+   row's r[1] n1, by the operations sbl__cam_lanes_k takes for them per lane. */
+SBL__INLINE void sbl__cam_k_row(sbl__cam_k *k, int y)
+{
+    const sbl__dv n1 = sbl__dsub(sbl__dset1(1.0), sbl__ddiv(sbl__dmul(sbl__dset1(2.0), sbl__dset1(y + 0.5)), k->height));
+    int a;
+    for (a = 0; a < 7; ++a) k->t[a] = sbl__dmul(k->r[a][1], n1);
+}
+
+/* Row a of the folded map at (n0, n1): r0 n0 + r1 n1 + r2, as sbl__cam_row sums it; row
+   (a constant where inlined): r1 n1 is the row's term t[a]. */
+SBL__INLINE sbl__dv sbl__cam_row_k(const sbl__cam_k *k, int a, sbl__dv n0, sbl__dv n1, int row)
+{
+    return sbl__dadd(sbl__dadd(sbl__dmul(k->r[a][0], n0), row ? k->t[a] : sbl__dmul(k->r[a][1], n1)),
+                     k->r[a][2]);
+}
+
 /* sbl__cam_map_apply for VW positions (px[l], py[l]) at planar depths zf[l] (+inf: a
-   direction): (ox, oy, oz)[l]; bit l of the result is set where the map gives a
-   position. The same operations in the same order as the reference. */
+   direction; zf readable to VW + 4): (ox, oy, oz)[l]; bit l of the result is set where
+   the map gives a position. The same operations in the same order as the reference.
+   row (a constant where inlined): the positions are the pixels x .. x + VW - 1 of the
+   row whose terms k holds (sbl__cam_k_row), px and py unused. sky (a constant where
+   inlined): some lane is +inf, whose scale is 1 (zmul) and w 0 (wl); else every w is 1,
+   and w_a 1 is w_a exactly (the reference's product, without the multiplication). */
+SBL__INLINE int sbl__cam_lanes_half(const sbl__cam_k *k, int row, int sky, int x, int j, const double *px,
+                                    const double *py, const float *zmul, const float *wl, double *ox,
+                                    double *oy, double *oz)
+{
+    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
+                  half = sbl__dset1(0.5);
+    /* (a row's px: (x + l) + 0.5, exact as the reference's x + l + 0.5) */
+    const sbl__dv pxv = row ? sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(SBL__CAST(double, x + j))), half)
+                            : sbl__dload(px + j);
+    const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, pxv), k->width), one);
+    const sbl__dv n1 = row ? zero : sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), k->height));
+    const sbl__dv q2 = sbl__cam_row_k(k, 0, n0, n1, row), q3 = sbl__cam_row_k(k, 1, n0, n1, row);
+    const sbl__dv w = sky ? sbl__dfromf(wl + j) : one;
+    const sbl__dv sc = sbl__ddiv(sbl__dfromf(zmul + j), sbl__dsub(zero, q2));
+    const sbl__dv c0 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 2, n0, n1, row)), sky ? sbl__dmul(k->w[0], w) : k->w[0]);
+    const sbl__dv c1 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 3, n0, n1, row)), sky ? sbl__dmul(k->w[1], w) : k->w[1]);
+    const sbl__dv c3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 4, n0, n1, row)), sky ? sbl__dmul(k->w[2], w) : k->w[2]);
+    const sbl__dv v2 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 5, n0, n1, row)), sky ? sbl__dmul(k->w[3], w) : k->w[3]);
+    const sbl__dv v3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_k(k, 6, n0, n1, row)), sky ? sbl__dmul(k->w[4], w) : k->w[4]);
+    sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c0, c3), one), half), k->other_width));
+    sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c1, c3)), half), k->other_height));
+    sbl__dstore(oz + j, sbl__dinf_at0(sbl__dsub(zero, v2), v3)); /* -v2; a direction (v3 = 0): +inf */
+    (void)wl;
+    /* (q2 < 0 and q3 > 0) or (q2 > 0 and q3 < 0), and c3 > 0 */
+    return sbl__dm_bits(sbl__dm_and(sbl__dm_or(sbl__dm_and(sbl__dlt_m(q2, zero), sbl__dlt_m(zero, q3)),
+                                               sbl__dm_and(sbl__dlt_m(zero, q2), sbl__dlt_m(q3, zero))),
+                                    sbl__dlt_m(zero, c3)));
+}
+
+/* (VW is 2 DW on every path: the two halves in straight code, the constants read where
+   they are used) */
+SBL__INLINE int sbl__cam_lanes_in(const sbl__cam_k *k, int row, int sky, int x, const double *px,
+                                  const double *py, const float *zmul, const float *wl, double *ox,
+                                  double *oy, double *oz)
+{
+    return sbl__cam_lanes_half(k, row, sky, x, 0, px, py, zmul, wl, ox, oy, oz) |
+           sbl__cam_lanes_half(k, row, sky, x, SBL__DW, px, py, zmul, wl, ox, oy, oz) << SBL__DW;
+}
+
+SBL__INLINE int sbl__cam_lanes_k(const sbl__cam_k *k, int row, int x, const double *px, const double *py,
+                                 const float *zf, double *ox, double *oy, double *oz)
+{
+    float zmul[SBL__VW + 4], wl[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
+    const sbl__v z = sbl__load(zf), onef = sbl__set1(1.0f);
+    const sbl__m sky = sbl__posinf(z);
+    if (!sbl__mbits(sky)) return sbl__cam_lanes_in(k, row, 0, x, px, py, zf, NULL, ox, oy, oz);
+    /* a direction for sky (+inf): scale 1, w = 0 (exact in float, then in double) */
+    sbl__store(zmul, sbl__sel(sky, onef, z));
+    sbl__store(wl, sbl__sel(sky, sbl__set1(0.0f), onef));
+    return sbl__cam_lanes_in(k, row, 1, x, px, py, zmul, wl, ox, oy, oz);
+}
+
+/* sbl__cam_lanes_k with the constants read from the map (the temporal camera source's
+   plans; the same operations in the same order). */
 SBL__INLINE sbl__dv sbl__cam_row_lanes(const double *r, sbl__dv n0, sbl__dv n1)
 {
     return sbl__dadd(sbl__dadd(sbl__dmul(sbl__dset1(r[0]), n0), sbl__dmul(sbl__dset1(r[1]), n1)),
@@ -11146,14 +11281,14 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
    matches of columns x0 + entry of row y), VW at a time: from the nearest source pixel,
    at the source's depth there, back into the target, within tol pixels of the start
    (sbl__stereo_rp_pixel's test); a failed one clears its ring column. */
-static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int y, int x0,
-                                 const double *psx, const double *psy, const int *back,
+static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, const sbl__cam_k *k, int y,
+                                 int x0, const double *psx, const double *psy, const int *back,
                                  int nback, double tol)
 {
     const int ch = s->src.color.ch;
     int b, l;
     for (b = 0; b < nback; b += SBL__VW) {
-        float zf[SBL__VW];
+        float zf[SBL__VW + 4]; /* (sbl__cam_lanes_k reads VW + 4) */
         double px[SBL__VW], py[SBL__VW], bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
         int ix[SBL__VW], iy[SBL__VW], ok, j;
         for (l = 0; l < SBL__VW; ++l) {
@@ -11166,7 +11301,7 @@ static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int 
             sbl__dstorei(iy + j, sbl__dfloor(sbl__dload(py + j)));
         }
         for (l = 0; l < SBL__VW; ++l) zf[l] = sbl__valid_depth(&s->depth[1], ix[l], iy[l]);
-        ok = sbl__cam_lanes(&s->to_target, px, py, zf, bx, by, bz);
+        ok = sbl__cam_lanes_k(k, 0, 0, px, py, zf, bx, by, bz);
         for (l = 0; l < SBL__VW && b + l < nback; ++l) {
             const int x = x0 + back[b + l];
             const double ex = bx[l] - (x + 0.5), ey = by[l] - (y + 0.5);
@@ -11174,6 +11309,41 @@ static void sbl__stereo_cam_back(const sbl__stereo_rp *s, sbl__ring_row *r, int 
                 sbl__ring_put(r, x, 0.0f, NULL, ch);
         }
     }
+}
+
+/* sbl__stereo_cam_back for the block entries [i, i + VW) in place, on a row in lane mode
+   2 (each entry's psx, psy a match inside the source or 0): the bits of the lanes whose
+   check fails (meaningful where the match is valid), the test in double lanes with the
+   reference's operations (bx - (x + 0.5), by - (y + 0.5), ex ex + ey ey <= tol tol). */
+SBL__INLINE int sbl__stereo_cam_back_vec(const sbl__stereo_rp *s, const sbl__block *b, int i, double tol)
+{
+    const double *px = b->psx + i, *py = b->psy + i;
+    const sbl__dv half = sbl__dset1(0.5), tt = sbl__dset1(tol * tol), ey0 = sbl__dset1(b->y + 0.5);
+    const sbl__flat *d = &s->depth[1]; /* (the source's depth: s->src.depth) */
+    const sbl__dv stride = sbl__dset1(SBL__CAST(double, d->stride)), step = sbl__dset1(SBL__CAST(double, d->step));
+    float zf[SBL__VW + 4]; /* (sbl__cam_lanes_k reads VW + 4) */
+    double bx[SBL__VW], by[SBL__VW], bz[SBL__VW];
+    int idx[SBL__VW], ok, pass = 0, j;
+    sbl__v z;
+    /* the nearest source pixel (in the image): its depth's index floor(sy) stride +
+       floor(sx) step, exact in double and below INT_MAX / 2 (sbl__row_gather_ok); then
+       sbl__valid_depth in lanes: geometry (> 0 or +inf, sbl__depth_is_geometry) is > 0 */
+    for (j = 0; j < SBL__VW; j += SBL__DW)
+        sbl__dstorei(idx + j, sbl__dadd(sbl__dmul(sbl__dfloor(sbl__dload(py + j)), stride),
+                                        sbl__dmul(sbl__dfloor(sbl__dload(px + j)), step)));
+    z = sbl__gatheri(d->p, idx);
+    z = sbl__sel(sbl__gt(z, sbl__set1(0.0f)), z, sbl__set1(0.0f));
+    sbl__store(zf, z);
+    ok = sbl__cam_lanes_k(&b->cam[1], 0, 0, px, py, zf, bx, by, bz);
+    for (j = 0; j < SBL__VW; j += SBL__DW) {
+        /* (x + l) + 0.5 is the reference's x + 0.5 exactly */
+        const sbl__dv ex = sbl__dsub(sbl__dload(bx + j),
+                                     sbl__dadd(sbl__dadd(sbl__dload(sbl__lane_d), sbl__dset1(SBL__CAST(double, b->x0 + i + j))),
+                                               half));
+        const sbl__dv ey = sbl__dsub(sbl__dload(by + j), ey0);
+        pass |= sbl__dle_bits(sbl__dadd(sbl__dmul(ex, ex), sbl__dmul(ey, ey)), tt) << j;
+    }
+    return ~(ok & pass & sbl__mbits(sbl__gt(z, sbl__set1(0.0f))));
 }
 
 /* The stereo row gather's hooks (sbl__row_gather_blocks): sbl__stereo_rp_pixel with the
@@ -11205,8 +11375,16 @@ static int sbl__stereo_block_start(const void *ctx, sbl__ring_row *r, sbl__block
                           (!s->geo.depth.p || (depth && y >= 1 && y + 1 < sh))
                       ? 3
                       : 0;
-    else /* (sbl__plan_lanes_at: images up to 2^15 pixels) */
+    else { /* (sbl__plan_lanes_at: images up to 2^15 pixels) */
         b->mode = geo && depth && sw <= 32768 && sh <= 32768 ? 2 : 0;
+        /* the maps' constants for this row: back to the target (every back-check in
+           lanes), to the source with the row's terms (the plans in lanes) */
+        sbl__cam_k_init(&b->cam[1], &s->to_target);
+        if (b->mode == 2) {
+            sbl__cam_k_init(&b->cam[0], &s->to_source);
+            sbl__cam_k_row(&b->cam[0], y);
+        }
+    }
     b->row_state = b->mode;
     return 0;
 }
@@ -11254,6 +11432,26 @@ SBL__NOINLINE int sbl__stereo_plan_parallel_at(const sbl__stereo_rp *s, sbl__blo
     return 0;
 }
 
+/* sbl__cam_plan_lanes for the two-camera rigs (lane mode 2): the map to the source with
+   the block's constants for row y (sbl__stereo_block_start), its positions written to
+   the block's psx, psy (0 where there is no match). */
+SBL__INLINE void sbl__stereo_cam_plan(const sbl__stereo_rp *s, sbl__block *b, int i, int x, int y)
+{
+    float zf[SBL__VW + 4], zo[SBL__VW]; /* (sbl__cam_lanes_k reads VW + 4) */
+    double oz[SBL__VW], *ox = b->psx + i, *oy = b->psy + i;
+    sbl__v z, slack;
+    sbl__m want = sbl__lanes_want(&s->geo.depth, s->geo.width, x, y, &z, &slack);
+    int keep, l, out;
+    if (s->geo.normals.p || s->geo.ids.p) want = sbl__lanes_want_nid(&s->geo, &s->src, &b->p, i, x, y, want);
+    keep = sbl__mbits(want);
+    sbl__store(zf, z);
+    keep &= sbl__cam_lanes_k(&b->cam[0], 1, x, NULL, NULL, zf, ox, oy, oz);
+    for (l = 0; l < SBL__VW; l += SBL__DW) sbl__dstoref(zo + l, sbl__dload(oz + l)); /* the expected depth */
+    out = ~sbl__plan_lanes_at(&s->src, &b->p, i, x, keep, ox, oy, sbl__load(zo), slack) & ((1 << SBL__VW) - 1);
+    for (l = 0; out; ++l, out >>= 1)
+        if (out & 1) ox[l] = oy[l] = 0.0;
+}
+
 static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
 {
     const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, ctx);
@@ -11262,7 +11460,7 @@ static int sbl__stereo_plan_vec(const void *ctx, sbl__block *b, int i)
     int l, bits;
     if (!b->mode || x < 0 || x + SBL__VW > s->source->color.width) return -1;
     if (b->mode == 2) {
-        sbl__cam_plan_lanes(&s->geo, &s->src, &s->to_source, &b->p, i, x, y, b->psx + i, b->psy + i);
+        sbl__stereo_cam_plan(s, b, i, x, y);
         for (l = 0; l < SBL__VW; ++l) b->snapped[i + l] = 0;
         return 0;
     }
@@ -11486,8 +11684,30 @@ SBL__INLINE void sbl__stereo_after_rig(const sbl__stereo_rp *s, sbl__ring_row *r
                 if (bits & 1) sbl__ring_put(r, b->x0 + i + l, 0.0f, NULL, s->src.color.ch);
         }
     }
+    if (rig != SBL_RIG_PARALLEL && rig != SBL_RIG_DISPARITY && b->mode == 2 && back_check) {
+        /* the two cameras: VW entries at a time in place where none is handed back (redo;
+           none is far in this mode), the others gathered for sbl__stereo_cam_back */
+        for (; i + SBL__VW <= b->n; i += SBL__VW) {
+            uint32_t any = 0, u;
+            int bits;
+            for (l = 0; l < SBL__VW; l += 4) {
+                memcpy(&u, b->p.redo + i + l, 4);
+                any |= u;
+            }
+            if (any) {
+                for (l = 0; l < SBL__VW; ++l)
+                    sbl__stereo_after_one(s, r, b, i + l, rig, back_check, tol, back, &nback);
+                continue;
+            }
+            bits = sbl__mbits(sbl__gt(sbl__load(r->v + b->x0 + i), sbl__set1(0.0f)));
+            if (!bits) continue;
+            bits &= sbl__stereo_cam_back_vec(s, b, i, tol);
+            for (l = 0; bits; ++l, bits >>= 1)
+                if (bits & 1) sbl__ring_put(r, b->x0 + i + l, 0.0f, NULL, s->src.color.ch);
+        }
+    }
     for (; i < b->n; ++i) sbl__stereo_after_one(s, r, b, i, rig, back_check, tol, back, &nback);
-    if (nback) sbl__stereo_cam_back(s, r, b->y, b->x0, b->psx, b->psy, back, nback, tol);
+    if (nback) sbl__stereo_cam_back(s, r, &b->cam[1], b->y, b->x0, b->psx, b->psy, back, nback, tol);
 }
 
 static void sbl__stereo_block_after(const void *ctx, sbl__ring_row *r, sbl__block *b)
