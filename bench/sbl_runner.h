@@ -705,6 +705,15 @@ static void sbr_stat_oracle_blend(int w, int h, int R, const float *y, const flo
     }
 }
 
+/* The statistics oracle's replicas share the evaluated image's weights only if each
+   reprojection keeps the same taps: its validity / N output must be the same bits. */
+static int sbr_same_validity(const char *name, const float *nx, const float *nx_replica, size_t n)
+{
+    if (memcmp(nx, nx_replica, n * sizeof(float)) == 0) return 0;
+    fprintf(stderr, "%s: a replica's reprojection differs in validity\n", name);
+    return SBL_ERROR_INVALID_PARAM;
+}
+
 /* Rec. 709 luminance of an RGB image (the quantity Weber's law is about). */
 void sbr_luminance(const float *rgb, float *lum, size_t n)
 {
@@ -978,10 +987,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                         rc = sbl_reproject_temporal(&td.reproject, td.source, &fr, pv ? &hr : NULL,
                                                     sbl_image_make(rxs + (size_t)r * n * 3, w, h, 3),
                                                     sbl_image_make(onx2, w, h, 1), 0, h);
-                        if (rc == 0 && memcmp(onx, onx2, n * sizeof(float)) != 0) {
-                            fprintf(stderr, "%s: a replica's reprojection differs in validity\n", m->name);
-                            rc = SBL_ERROR_INVALID_PARAM;
-                        }
+                        if (rc == 0) rc = sbr_same_validity(m->name, onx, onx2, n);
                     }
                     if (rc == 0)
                         sbr_stat_oracle_blend(w, h, R, input[e], s->replica[f * 2 + e],
@@ -1031,10 +1037,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                         rc = sbl_reproject_stereo(&sd, (sbl_eye_index)e, &er[e], &er[!e],
                                                   sbl_image_make(rxs + (size_t)r * n * 3, w, h, 3),
                                                   sbl_image_make(onx2, w, h, 1), 0, h);
-                        if (rc == 0 && memcmp(onx, onx2, n * sizeof(float)) != 0) {
-                            fprintf(stderr, "%s: a replica's reprojection differs in validity\n", m->name);
-                            rc = SBL_ERROR_INVALID_PARAM;
-                        }
+                        if (rc == 0) rc = sbr_same_validity(m->name, onx, onx2, n);
                     }
                     if (rc == 0)
                         sbr_stat_oracle_blend(w, h, R, tout[e], rtout[e],
