@@ -6519,6 +6519,14 @@ SBL__INLINE void sbl__cam_plan_lanes(const sbl__target_geo *geo, const sbl__tap_
     (void)sbl__plan_lanes_at(src, p, i, x, keep, ox, oy, sbl__load(zo), slack);
 }
 
+/* The camera's map constants for the block's row (lane mode 2; out of line: once per
+   row, and the hooks inlined into the gather keep their registers). */
+SBL__NOINLINE void sbl__temporal_cam_row(const sbl__temporal_rp *s, sbl__block *b)
+{
+    sbl__cam_k_init(&b->cam[0], &s->cam);
+    sbl__cam_k_row(&b->cam[0], b->y);
+}
+
 /* The temporal row gather's hooks (sbl__row_gather_blocks). Lane modes: 1 motion
    vectors in pixels, 2 the camera, 3 motion vectors in UV / NDC units; bit 0 of the row
    state: the row's tiles may take the shortcuts. */
@@ -6531,10 +6539,7 @@ SBL__INLINE int sbl__temporal_block_start_in(const void *ctx, sbl__ring_row *r, 
                        (sbl__temporal_plan_lanes_ok(s, b->y)
                             ? 2
                             : (sbl__camera_plan_lanes_ok(s, b->y) ? 4 : (sbl__temporal_plan_scaled_ok(s, b->y) ? 6 : 0)));
-        if ((b->row_state >> 1) == 2) { /* the camera: the map's constants for this row */
-            sbl__cam_k_init(&b->cam[0], &s->cam);
-            sbl__cam_k_row(&b->cam[0], b->y);
-        }
+        if ((b->row_state >> 1) == 2) sbl__temporal_cam_row(s, b);
     }
     if (b->row_state & 1) {
         int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
