@@ -1577,7 +1577,7 @@ static void sbl__mat_apply(double *out, const double *m, const double *p)
    (a direction: q / -q2, w = 0), so each clip or view term is s r(n) + w r_w, with s =
    z / -q2 and r(n) a row over (n, 1): the same map as sbl__cam_map_point, then
    view_to_view, then sbl__cam_map_project, in about half the operations (the lanes:
-   sbl__cam_lanes, the same operations in the same order). */
+   sbl__cam_lanes_k, the same operations in the same order). */
 static double sbl__cam_row(const double *r, double n0, double n1)
 {
     return r[0] * n0 + r[1] * n1 + r[2];
@@ -5238,7 +5238,8 @@ typedef struct sbl__block {
     sbl__tap_plan p;
     double psx[SBL__BLOCK], psy[SBL__BLOCK]; /* stereo: each match's position            */
     sbl__cam_k cam[2]; /* stereo, two cameras: the maps to the source (for this row in
-                          lane mode 2) and back to the target (sbl__stereo_block_start) */
+                          lane mode 2) and back to the target (sbl__stereo_block_start);
+                          temporal, the camera: cam[0] its map for this row */
     unsigned char snapped[SBL__BLOCK];       /* stereo: a far lane (see SBL__FAR_PX)     */
     int x0, n, y;                            /* columns [x0, x0 + n) of row y            */
     int sky;                                 /* every planned entry expects sky          */
@@ -6483,86 +6484,47 @@ SBL__INLINE int sbl__cam_lanes_k(const sbl__cam_k *k, int row, int x, const doub
     return sbl__cam_lanes_in(k, row, 1, x, px, py, zmul, wl, ox, oy, oz);
 }
 
-/* sbl__cam_lanes_k with the constants read from the map (the temporal camera source's
-   plans; the same operations in the same order). */
-SBL__INLINE sbl__dv sbl__cam_row_lanes(const double *r, sbl__dv n0, sbl__dv n1)
-{
-    return sbl__dadd(sbl__dadd(sbl__dmul(sbl__dset1(r[0]), n0), sbl__dmul(sbl__dset1(r[1]), n1)),
-                     sbl__dset1(r[2]));
-}
-
+/* sbl__cam_lanes_k for any VW positions, the constants taken from the map (the tests:
+   the lanes against the reference; zf readable to VW). */
 SBL__INLINE int sbl__cam_lanes(const sbl__cam_map *m, const double *px, const double *py,
                                const float *zf, double *ox, double *oy, double *oz)
 {
-    const sbl__dv zero = sbl__dset1(0.0), one = sbl__dset1(1.0), two = sbl__dset1(2.0),
-                  half = sbl__dset1(0.5);
-    float zmul[SBL__VW + 4], wl[SBL__VW + 4]; /* (sbl__dfromf reads VW + 4) */
-    int j, bits = 0;
-    {   /* a direction for sky (+inf): scale 1, w = 0 (exact in float, then in double) */
-        const sbl__v z = sbl__load(zf), onef = sbl__set1(1.0f);
-        const sbl__m sky = sbl__posinf(z);
-        sbl__store(zmul, sbl__sel(sky, onef, z));
-        sbl__store(wl, sbl__sel(sky, sbl__set1(0.0f), onef));
-    }
-    for (j = 0; j < SBL__VW; j += SBL__DW) {
-        const sbl__dv n0 = sbl__dsub(sbl__ddiv(sbl__dmul(two, sbl__dload(px + j)), sbl__dset1(m->width)), one);
-        const sbl__dv n1 = sbl__dsub(one, sbl__ddiv(sbl__dmul(two, sbl__dload(py + j)), sbl__dset1(m->height)));
-        const sbl__dv q2 = sbl__cam_row_lanes(m->ray[0], n0, n1), q3 = sbl__cam_row_lanes(m->ray[1], n0, n1);
-        const sbl__dv w = sbl__dfromf(wl + j);
-        const sbl__dv sc = sbl__ddiv(sbl__dfromf(zmul + j), sbl__dsub(zero, q2));
-        const sbl__dv c0 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->clip[0], n0, n1)),
-                                     sbl__dmul(sbl__dset1(m->clip_w[0]), w));
-        const sbl__dv c1 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->clip[1], n0, n1)),
-                                     sbl__dmul(sbl__dset1(m->clip_w[1]), w));
-        const sbl__dv c3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->clip[2], n0, n1)),
-                                     sbl__dmul(sbl__dset1(m->clip_w[2]), w));
-        const sbl__dv v2 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->view[0], n0, n1)),
-                                     sbl__dmul(sbl__dset1(m->view_w[0]), w));
-        const sbl__dv v3 = sbl__dadd(sbl__dmul(sc, sbl__cam_row_lanes(m->view[1], n0, n1)),
-                                     sbl__dmul(sbl__dset1(m->view_w[1]), w));
-        /* (q2 < 0 and q3 > 0) or (q2 > 0 and q3 < 0), and c3 > 0 */
-        const int ok = ((sbl__dlt_bits(q2, zero) & sbl__dlt_bits(zero, q3)) |
-                        (sbl__dlt_bits(zero, q2) & sbl__dlt_bits(q3, zero))) &
-                       sbl__dlt_bits(zero, c3);
-        sbl__dstore(ox + j, sbl__dmul(sbl__dmul(sbl__dadd(sbl__ddiv(c0, c3), one), half),
-                                      sbl__dset1(m->other_width)));
-        sbl__dstore(oy + j, sbl__dmul(sbl__dmul(sbl__dsub(one, sbl__ddiv(c1, c3)), half),
-                                      sbl__dset1(m->other_height)));
-        sbl__dstore(oz + j, sbl__dinf_at0(sbl__dsub(zero, v2), v3)); /* -v2; a direction (v3 = 0): +inf */
-        bits |= ok << j;
-    }
-    return bits;
+    sbl__cam_k k;
+    float z[SBL__VW + 4]; /* (sbl__cam_lanes_k reads VW + 4) */
+    int l;
+    for (l = 0; l < SBL__VW + 4; ++l) z[l] = l < SBL__VW ? zf[l] : 0.0f;
+    sbl__cam_k_init(&k, m);
+    return sbl__cam_lanes_k(&k, 0, 0, px, py, z, ox, oy, oz);
 }
 
-/* The camera plans (the temporal camera source, the two-camera stereo rigs) for the VW
-   pixels x .. x + VW - 1 of an interior row y: the target's depth, its slack, normals and
-   ids in lanes (sbl__lanes_want, sbl__lanes_want_nid: valid geometry is z > 0 or +inf,
-   as sbl__tap_want_init and sbl__valid_depth take it), the map in double lanes
-   (sbl__cam_lanes), the plan from the positions (sbl__plan_lanes_at) with the mapped
-   depth expected. psx / psy (if not NULL): the matches' positions, 0 where there is
-   none. */
+/* The temporal camera source's plans for the VW pixels x .. x + VW - 1 of an interior
+   row y: the target's depth, its slack, normals and ids in lanes (sbl__lanes_want,
+   sbl__lanes_want_nid: valid geometry is z > 0 or +inf, as sbl__tap_want_init and
+   sbl__valid_depth take it), the map in double lanes with the constants of row y (k:
+   sbl__cam_k_init, sbl__cam_k_row), the plan from the positions (sbl__plan_lanes_at)
+   with the mapped depth expected. (The two-camera stereo rigs: sbl__stereo_cam_plan.) */
 SBL__INLINE void sbl__cam_plan_lanes(const sbl__target_geo *geo, const sbl__tap_src *src,
-                                     const sbl__cam_map *map, sbl__tap_plan *p, int i, int x, int y,
-                                     double *psx, double *psy)
+                                     const sbl__cam_k *k, sbl__tap_plan *p, int i, int x, int y)
 {
-    float zf[SBL__VW], zo[SBL__VW];
-    double px[SBL__VW], py[SBL__VW], ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
+    float zf[SBL__VW + 4], zo[SBL__VW]; /* (sbl__cam_lanes_k reads VW + 4) */
+    double ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
     sbl__v z, slack;
     sbl__m want = sbl__lanes_want(&geo->depth, geo->width, x, y, &z, &slack);
-    int keep, l, in;
+    int keep, l;
     if (geo->normals.p || geo->ids.p) want = sbl__lanes_want_nid(geo, src, p, i, x, y, want);
     keep = sbl__mbits(want);
     sbl__store(zf, z);
-    for (l = 0; l < SBL__VW; ++l) { px[l] = x + l + 0.5; py[l] = y + 0.5; }
-    keep &= sbl__cam_lanes(map, px, py, zf, ox, oy, oz);
+    keep &= sbl__cam_lanes_k(k, 1, x, NULL, NULL, zf, ox, oy, oz);
     for (l = 0; l < SBL__VW; l += SBL__DW) sbl__dstoref(zo + l, sbl__dload(oz + l)); /* the expected depth */
-    in = sbl__plan_lanes_at(src, p, i, x, keep, ox, oy, sbl__load(zo), slack);
-    if (psx)
-        for (l = 0; l < SBL__VW; ++l) {
-            const int m = (in >> l) & 1;
-            psx[l] = m ? ox[l] : 0.0;
-            psy[l] = m ? oy[l] : 0.0;
-        }
+    (void)sbl__plan_lanes_at(src, p, i, x, keep, ox, oy, sbl__load(zo), slack);
+}
+
+/* The camera's map constants for the block's row (lane mode 2; out of line: once per
+   row, and the hooks inlined into the gather keep their registers). */
+SBL__NOINLINE void sbl__temporal_cam_row(const sbl__temporal_rp *s, sbl__block *b)
+{
+    sbl__cam_k_init(&b->cam[0], &s->cam);
+    sbl__cam_k_row(&b->cam[0], b->y);
 }
 
 /* The temporal row gather's hooks (sbl__row_gather_blocks). Lane modes: 1 motion
@@ -6572,11 +6534,13 @@ SBL__INLINE int sbl__temporal_block_start_in(const void *ctx, sbl__ring_row *r, 
                                              int ev)
 {
     const sbl__temporal_rp *s = SBL__PCAST(const sbl__temporal_rp *, ctx);
-    if (b->row_state < 0) /* once per row: the tiles allowed (bit 0), the lane mode */
+    if (b->row_state < 0) { /* once per row: the tiles allowed (bit 0), the lane mode */
         b->row_state = sbl__temporal_tiles_ok(s) |
                        (sbl__temporal_plan_lanes_ok(s, b->y)
                             ? 2
                             : (sbl__camera_plan_lanes_ok(s, b->y) ? 4 : (sbl__temporal_plan_scaled_ok(s, b->y) ? 6 : 0)));
+        if ((b->row_state >> 1) == 2) sbl__temporal_cam_row(s, b);
+    }
     if (b->row_state & 1) {
         int kind = sbl__temporal_tile_class(s, b->y, b->x0, b->n);
         if (kind && !(SBL_SHORTCUTS & (1 << (kind - 1)))) kind = SBL__TILE_GENERAL;
@@ -6623,7 +6587,7 @@ SBL__INLINE int sbl__temporal_plan_vec(const void *ctx, sbl__block *b, int i)
     const int x = b->x0 + i;
     if (!b->mode || x < 0 || x + SBL__VW > s->src.width) return -1;
     if (b->mode == 2) {
-        sbl__cam_plan_lanes(&s->geo, &s->src, &s->cam, &b->p, i, x, b->y, NULL, NULL);
+        sbl__cam_plan_lanes(&s->geo, &s->src, &b->cam[0], &b->p, i, x, b->y);
         return 0;
     }
     if (b->mode == 3) /* (out of line: the pixel-unit plan below keeps its registers) */
