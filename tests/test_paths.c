@@ -1728,8 +1728,8 @@ static void test_bands_every_shape(void)
 }
 
 /* The camera plans with normals and ids: the moving-camera temporal plan
-   and the two-camera stereo plan (sbl__cam_plan_lanes; the matrices and pinhole rigs)
-   map positions in double lanes (on-axis and, every fifth scene, off-axis with a turned
+   (sbl__cam_plan_lanes) and the two-camera stereo plan (the matrices and pinhole rigs),
+   both through sbl__cam_lanes_k with a row's constants, map positions in double lanes (on-axis and, every fifth scene, off-axis with a turned
    second camera); the row gather against the pixel gather, bit for bit, on the scenes of
    test_row_gather_normals (normals around the threshold's cone, "no normal", NaN / inf /
    overflowing normals, NaN / inf / -0 ids, a moved nearer object), the views packed,
