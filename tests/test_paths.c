@@ -1969,6 +1969,42 @@ static void test_cam_map_fold(void)
                 ++lanes;
             }
         }
+        for (k = 0; k < 8; ++k) { /* the row mode (sbl__cam_k_row: a row's constants, the
+                                     temporal camera plans and the two-camera rigs), at the
+                                     image's first and last rows and columns too */
+            sbl__cam_k ck;
+            double ox[SBL__VW], oy[SBL__VW], oz[SBL__VW];
+            float zf[SBL__VW + 4];
+            const int y = k == 0 ? 0 : k == 1 ? h - 1 : (int)(sbt_uniform(&rng) * h);
+            const int x = k == 2 ? 0 : k == 3 ? w - SBL__VW : (int)(sbt_uniform(&rng) * (w - SBL__VW + 1));
+            int l, bits;
+            for (l = 0; l < SBL__VW + 4; ++l)
+                zf[l] = l >= SBL__VW ? 0.0f : (l + k) % 5 == 4 ? (float)HUGE_VAL
+                                                          : (float)pow(10.0, -3.0 + 9.0 * sbt_uniform(&rng));
+            sbl__cam_k_init(&ck, &m);
+            sbl__cam_k_row(&ck, y);
+            bits = sbl__cam_lanes_k(&ck, 1, x, NULL, NULL, zf, ox, oy, oz);
+            for (l = 0; l < SBL__VW; ++l) {
+                double rx = 0, ry = 0, rz = 0;
+                const int r = sbl__cam_map_apply(&m, x + l + 0.5, y + 0.5, zf[l], &rx, &ry, &rz);
+                int bad = r != ((bits >> l) & 1);
+                if (!bad && r) {
+                    if (contracts)
+                        bad = !(fabs(ox[l] - rx) <= 1e-9 * fmax(1.0, fabs(rx)) &&
+                                fabs(oy[l] - ry) <= 1e-9 * fmax(1.0, fabs(ry)) &&
+                                (oz[l] == rz || fabs(oz[l] - rz) <= 1e-9 * fabs(rz)));
+                    else
+                        bad = memcmp(&ox[l], &rx, sizeof rx) != 0 || memcmp(&oy[l], &ry, sizeof ry) != 0 ||
+                              memcmp(&oz[l], &rz, sizeof rz) != 0;
+                }
+                if (bad && bad_lanes < 3)
+                    printf("  fold: row lanes vs reference, map %d, row %d, x %d: valid %d / %d, (%.17g, %.17g, "
+                           "%.17g) against (%.17g, %.17g, %.17g)\n", it, y, x + l, (bits >> l) & 1, r, ox[l], oy[l],
+                           oz[l], rx, ry, rz);
+                bad_lanes += bad;
+                ++lanes;
+            }
+        }
 #endif
         for (k = 0; k < 200; ++k) {
             const double px = sbt_uniform(&rng) * w, py = sbt_uniform(&rng) * h;
