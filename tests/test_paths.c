@@ -1886,6 +1886,22 @@ static void test_camera_plans_normals(void)
    where it lies far outside. And the double lanes (sbl__cam_lanes) against the folded
    reference, bit for bit (within 1e-9 where the compiler contracts or reorders). test_paths' row-gather checks compare the lanes with the folded
    reference; this one checks the fold itself. */
+#ifdef SBL__ROW_GATHER
+/* 1 if a camera-map lane (valid bit lane_ok, position o) differs from the reference (r,
+   position ref): bit for bit, or within rounding where the compiler contracts (fused or
+   reordered) */
+static int cam_lane_differs(int contracts, int r, int lane_ok, double ox, double oy, double oz,
+                            double rx, double ry, double rz)
+{
+    if (r != lane_ok) return 1;
+    if (!r) return 0;
+    if (contracts)
+        return !(fabs(ox - rx) <= 1e-9 * fmax(1.0, fabs(rx)) && fabs(oy - ry) <= 1e-9 * fmax(1.0, fabs(ry)) &&
+                 (oz == rz || fabs(oz - rz) <= 1e-9 * fabs(rz)));
+    return memcmp(&ox, &rx, sizeof rx) != 0 || memcmp(&oy, &ry, sizeof ry) != 0 || memcmp(&oz, &rz, sizeof rz) != 0;
+}
+
+#endif
 static void test_cam_map_fold(void)
 {
     sbt_rng rng = {4242};
@@ -1952,16 +1968,7 @@ static void test_cam_map_fold(void)
             for (l = 0; l < SBL__VW; ++l) {
                 double rx = 0, ry = 0, rz = 0;
                 const int r = sbl__cam_map_apply(&m, px[l], py[l], zf[l], &rx, &ry, &rz);
-                int bad = r != ((bits >> l) & 1);
-                if (!bad && r) {
-                    if (contracts) /* (fused or reordered: within rounding) */
-                        bad = !(fabs(ox[l] - rx) <= 1e-9 * fmax(1.0, fabs(rx)) &&
-                                fabs(oy[l] - ry) <= 1e-9 * fmax(1.0, fabs(ry)) &&
-                                (oz[l] == rz || fabs(oz[l] - rz) <= 1e-9 * fabs(rz)));
-                    else
-                        bad = memcmp(&ox[l], &rx, sizeof rx) != 0 || memcmp(&oy[l], &ry, sizeof ry) != 0 ||
-                              memcmp(&oz[l], &rz, sizeof rz) != 0;
-                }
+                const int bad = cam_lane_differs(contracts, r, (bits >> l) & 1, ox[l], oy[l], oz[l], rx, ry, rz);
                 if (bad && bad_lanes < 3)
                     printf("  fold: lanes vs reference, map %d: valid %d / %d, (%.17g, %.17g, %.17g) against "
                            "(%.17g, %.17g, %.17g)\n", it, (bits >> l) & 1, r, ox[l], oy[l], oz[l], rx, ry, rz);
@@ -1987,16 +1994,7 @@ static void test_cam_map_fold(void)
             for (l = 0; l < SBL__VW; ++l) {
                 double rx = 0, ry = 0, rz = 0;
                 const int r = sbl__cam_map_apply(&m, x + l + 0.5, y + 0.5, zf[l], &rx, &ry, &rz);
-                int bad = r != ((bits >> l) & 1);
-                if (!bad && r) {
-                    if (contracts)
-                        bad = !(fabs(ox[l] - rx) <= 1e-9 * fmax(1.0, fabs(rx)) &&
-                                fabs(oy[l] - ry) <= 1e-9 * fmax(1.0, fabs(ry)) &&
-                                (oz[l] == rz || fabs(oz[l] - rz) <= 1e-9 * fabs(rz)));
-                    else
-                        bad = memcmp(&ox[l], &rx, sizeof rx) != 0 || memcmp(&oy[l], &ry, sizeof ry) != 0 ||
-                              memcmp(&oz[l], &rz, sizeof rz) != 0;
-                }
+                const int bad = cam_lane_differs(contracts, r, (bits >> l) & 1, ox[l], oy[l], oz[l], rx, ry, rz);
                 if (bad && bad_lanes < 3)
                     printf("  fold: row lanes vs reference, map %d, row %d, x %d: valid %d / %d, (%.17g, %.17g, "
                            "%.17g) against (%.17g, %.17g, %.17g)\n", it, y, x + l, (bits >> l) & 1, r, ox[l], oy[l],
