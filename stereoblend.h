@@ -2670,6 +2670,17 @@ typedef struct sbl__weight_params {
 #ifndef SBL_POOLED_BLOCK_SE2
 #define SBL_POOLED_BLOCK_SE2 3.5
 #endif
+/* The blocks' threshold where the region's prior raises it by ln M (the temporal filter
+   with the history's evidence plane, SBL_EVIDENCE_REGION & 2; docs/ESTIMATORS.md 3.10,
+   6.2). 3.5 was chosen (3.2) before that prior existed, as the smallest c at which static
+   content lost nothing; with the prior a quiet region asks c + ln M (static: M ~ 40,
+   +3.7), so c itself need not carry that protection. Measured on the bench's eight
+   scenes: 2.5 gains the moving-light scenes and loses on none; 2.0 costs the firefly
+   scene and static. The stereo blend, and the temporal filter without the plane, have
+   no region prior and keep SBL_POOLED_BLOCK_SE2. */
+#ifndef SBL_POOLED_BLOCK_SE2_REGION
+#define SBL_POOLED_BLOCK_SE2_REGION 2.5
+#endif
 #ifndef SBL_POOLED_LOCAL_SCALE
 #define SBL_POOLED_LOCAL_SCALE (4.0 / 3.0)
 #endif
@@ -7244,7 +7255,10 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
    (R - 1) - (c_R - 1)^2 / (R - 1) (docs/ESTIMATORS.md 3.8): 0 at c_R, continuous, and
    tending to the unbiased R - 1 where R - c_R would stay c_R - 1 short of it. lambda = 1/3:
    a shadow edge moving a pixel per frame crosses a 3x3 block in three frames, and older
-   evidence is about other pixels. */
+   evidence is about other pixels. c_R keeps the 3.5 of SBL_POOLED_BLOCK_SE2 where the
+   blocks now ask 2.5 (SBL_POOLED_BLOCK_SE2_REGION): beyond c_R the paper's weight comes in
+   (the mix, 3.11), a larger step than the blocks' shrink, and c_R from 2.5 cost static
+   and pan 3-4 % (docs/ESTIMATORS.md 6.2). */
 #ifndef SBL_EVIDENCE_LAMBDA
 #define SBL_EVIDENCE_LAMBDA (1.0 / 3.0)
 #endif
@@ -7259,14 +7273,18 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
     (1.0 + (SBL_POOLED_BLOCK_SE2 - 1.0) * sqrt(SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA)))
 #define SBL__EVIDENCE_GARROTE ((SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0))
 /* The most one frame may raise the carried R by: c - 1, the one-frame threshold's distance
-   from the no-change mean (q's innovation clipped at (c - 1) / lambda, a Huber step). A
-   change the one-frame test sees (q >= SBL_POOLED_BLOCK_SE2) is handled in that frame by
-   r = q - c; R is for evidence that one frame cannot give. Unclipped, one noise-free
-   jump (q at the cap, 1e6) held R near 3e5, and a large q on low-noise content held it
-   for tens of frames (found in review, session 8); clipped, a single strong frame leaves
-   R at most c = 3.5, beyond c_R for two frames, and R still grows under a lasting
-   change. */
-#define SBL__EVIDENCE_STEP (SBL_POOLED_BLOCK_SE2 - 1.0)
+   from the no-change mean (q's innovation clipped at (c - 1) / lambda, a Huber step), c
+   the blocks' threshold where the plane is (SBL_POOLED_BLOCK_SE2_REGION). A change the
+   one-frame test sees (q >= c) is handled in that frame by r = q - c; R is for evidence
+   that one frame cannot give. Unclipped, one noise-free jump (q at the cap, 1e6) held R
+   near 3e5, and a large q on low-noise content held it for tens of frames (found in
+   review, session 8); clipped, a single strong frame leaves R at most c = 2.5, beyond
+   c_R for a frame or two, and R still grows under a lasting change. */
+#define SBL__EVIDENCE_STEP (SBL_POOLED_BLOCK_SE2_REGION - 1.0)
+/* The blocks' one-frame threshold c of kernel k: lower where the region's prior adds
+   ln M to it (SBL_POOLED_BLOCK_SE2_REGION). */
+#define SBL__POOL_THR(k) \
+    ((k)->evid_use && (SBL_EVIDENCE_REGION & 2) ? SBL_POOLED_BLOCK_SE2_REGION : SBL_POOLED_BLOCK_SE2)
 
 /* The history's evidence plane at pixels [xa, xb) of row y into evid_in, gathered with
    the taps, weights, tests and fallback of the colour, bilinear: 1 where no tap is valid
@@ -7609,10 +7627,11 @@ static long sbl__evidence_row_count(const sbl_image *plane, int y)
 
 /* P(R > c_R) where nothing changes, under the blocks' own null model (q ~ Exp(1), the
    tail e^-q their threshold c + ln M assumes; R its carried average with lambda = 1/3 and
-   the bounded step): 0.0230 (Monte Carlo, bench/evidence_null.c; the Gaussian tail of R's
+   the bounded step, (SBL_POOLED_BLOCK_SE2_REGION - 1) / lambda): 0.0208 (Monte Carlo,
+   bench/evidence_null.c; 0.0230 with session 8's step of 2.5 / lambda; the Gaussian tail of R's
    spread, 0.0062, leaves static content a floor of half its false-alarm share). The
    combined pipeline's share floor is the region's share net of it (docs/ESTIMATORS.md 4.14). */
-#define SBL__EVIDENCE_FALSE_ALARM 0.0230
+#define SBL__EVIDENCE_FALSE_ALARM 0.0208
 /* Row y's M (k->wp.region_m), ln M and the carried R's threshold and garrote. */
 static void sbl__evidence_share(sbl__kernel *k, int y)
 {
@@ -7838,7 +7857,7 @@ SBL__INLINE void sbl__row_pool_ref_ch(sbl__kernel *k, const sbl__ring_row *const
         }
         /* pooled squared mean over pooled squared standard error, less the threshold;
            no noise at all and a mean: certain change (capped) */
-        r = sse2 > 0.0 ? sm2 / sse2 - SBL_POOLED_BLOCK_SE2 : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
+        r = sse2 > 0.0 ? sm2 / sse2 - SBL__POOL_THR(k) : (sm2 > 0.0 ? SBL__POOL_RATIO_CAP : 0.0);
         if (k->evid_out) r = sbl__evidence_ratio_ref(k, x, sm2, sse2, r);
         if (r > SBL__POOL_RATIO_CAP) r = SBL__POOL_RATIO_CAP;
         k->pool_r[x] = r > 0.0 ? SBL__CAST(float, r) : 0.0f;
@@ -8937,7 +8956,7 @@ SBL__INLINE void sbl__pool_lanes_ratio_cfg(sbl__kernel *k, const int ch, int xa,
 {
     const sbl__v zero = sbl__set1(0.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v cap = sbl__set1(SBL__CAST(float, SBL__POOL_RATIO_CAP));
-    const sbl__v thr = sbl__set1(SBL__CAST(float, SBL_POOLED_BLOCK_SE2));
+    const sbl__v thr = sbl__set1(SBL__CAST(float, SBL__POOL_THR(k)));
     const float *pm = SBL__POOL_PLANE(k, SBL__POOL_M2(ch)), *ps = SBL__POOL_PLANE(k, SBL__POOL_SE2(ch));
     int x = xa, b;
     for (;;) {

@@ -889,6 +889,82 @@ static void test_pool_dim(void)
 }
 
 
+/* The blocks' threshold where the region's prior applies (the temporal filter with the
+   history's evidence plane): SBL_POOLED_BLOCK_SE2_REGION, against SBL_POOLED_BLOCK_SE2
+   without the plane (docs/ESTIMATORS.md 6.2). A row whose right half is biased (q ~ 13):
+   with a plane of R* = 1 (its garrote at most 0.67 after one frame, ln M = 0), the ratio
+   there is the one without the plane raised by the difference of the two thresholds, in
+   the reference and in the lanes. */
+static void test_pool_region_threshold(void)
+{
+    static float own[PH * PW * 4], evid_in[PW + 64], evid_out[PW + 64];
+    static paths_gather G;
+    sbt_rng rng = {616};
+    const double lift = SBL_POOLED_BLOCK_SE2 - SBL_POOLED_BLOCK_SE2_REGION;
+    double worst = 0;
+    int it, compared = 0;
+    for (it = 0; it < 40; ++it) {
+        sbl__kernel k;
+        sbl_image im;
+        void *scratch;
+        const sbl__ring_row *R[3];
+        float without[PW], with_ref[PW], with_lanes[PW];
+        const int ch = 1 + it % 4;
+        int x, y, c, i;
+        for (y = 0; y < PH; ++y)
+            for (x = 0; x < PW; ++x) {
+                for (c = 0; c < 4; ++c) {
+                    own[(y * PW + x) * 4 + c] = (float)(0.3 + 0.4 * sbt_uniform(&rng));
+                    G.x[y][x][c] = (float)(0.3 + 0.4 * sbt_uniform(&rng) + (x > PW / 2 ? 0.2 : 0.0));
+                }
+                G.n[y][x] = 8.0f;
+            }
+        memset(&k, 0, sizeof k);
+        im = sbl_image_make(own, PW, PH, ch);
+        k.w = PW; k.h = PH; k.ch = ch;
+        k.wp.estimator = SBL_ESTIMATOR_POOLED;
+        k.n_cap = 64.0f;
+        k.temporal = 1;
+        k.own = &im;
+        k.gather = paths_gather_fn;
+        k.gather_ctx = &G;
+        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
+        sbl__kernel_bind(&k, scratch);
+        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
+        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        sbl__row_pool_ref(&k, R, 0, PW);
+        memcpy(without, k.pool_r, sizeof without);
+        for (x = 0; x < PW + 64; ++x) evid_in[x] = 1.0f;
+        k.evid_use = 1;
+        k.evid_in = evid_in;
+        k.evid_out = evid_out;
+        k.evid_thr = SBL__EVIDENCE_THR;
+        k.evid_garrote = SBL__EVIDENCE_GARROTE;
+        k.evid_lnm = 0.0;
+        sbl__row_pool_ref(&k, R, 0, PW);
+        memcpy(with_ref, k.pool_r, sizeof with_ref);
+        sbl__row_pool(&k, R, 0, PW);
+        memcpy(with_lanes, k.pool_r, sizeof with_lanes);
+        for (x = 0; x < PW; ++x) {
+            double e1, e2;
+            if (!(without[x] > 1.0f)) continue; /* beyond the plane's garrote: q - c decides */
+            e1 = fabs(with_ref[x] - (without[x] + lift)) / (1.0 + without[x]);
+            e2 = fabs(with_lanes[x] - (without[x] + lift)) / (1.0 + without[x]);
+            CHECK(e1 <= 1e-6);
+            CHECK(e2 <= 4e-6);
+            if (e1 > worst) worst = e1;
+            if (e2 > worst) worst = e2;
+            ++compared;
+        }
+        free(scratch);
+    }
+    printf("  %s pooled blocks' threshold with the evidence plane: %d biased pixels %.2f above the "
+           "ratio without it, worst relative error %.3g\n",
+           SBL_SIMD_NAME, compared, lift, worst);
+    CHECK(compared > 40 * PW / 4);
+}
+
+
 /* The default configurations' lanes (pooled estimator, no rectification, one weight;
    temporal and stereo) on windows holding dim values (normal floats below the lane
    range's 2^-40): where sbl__lane_window_dim_ok admits the window, the lanes must agree
@@ -2371,6 +2447,7 @@ int main(void)
     test_spans();
     test_moments_precision();
     test_pool_dim();
+    test_pool_region_threshold();
     test_lanes_dim();
     test_row_gather();
     test_row_gather_uniform();
