@@ -2664,7 +2664,8 @@ typedef struct sbl__weight_params {
 
 /* Pooled estimator (docs/ESTIMATORS.md section 3): a block's squared mean paired
    difference counts as bias energy only beyond SBL_POOLED_BLOCK_SE2 of its squared
-   standard errors, and the pixel's own 3x3 test asks for SBL_POOLED_LOCAL_SCALE times
+   standard errors (SBL_POOLED_BLOCK_SE2_REGION where the region's prior applies, below),
+   and the pixel's own 3x3 test asks for SBL_POOLED_LOCAL_SCALE times
    bias_threshold standard errors. Blocks: 3x3 windows centred SBL__POOL_STEP apart on
    the pixel's row, SBL__POOL_BLOCKS each side. */
 #ifndef SBL_POOLED_BLOCK_SE2
@@ -2674,7 +2675,8 @@ typedef struct sbl__weight_params {
    with the history's evidence plane, SBL_EVIDENCE_REGION & 2; docs/ESTIMATORS.md 3.10,
    6.2). 3.5 was chosen (3.2) before that prior existed, as the smallest c at which static
    content lost nothing; with the prior a quiet region asks c + ln M (static: M ~ 40,
-   +3.7), so c itself need not carry that protection. Measured on the bench's eight
+   +3.7; a busy region, where more than half the rows' pixels passed c_R, has M < 1 and
+   asks down to c - ln 2), so c itself need not carry that protection. Measured on the bench's eight
    scenes: 2.5 gains on the moving-light scenes (combined dynamic +1.5 %, shadow +1.2 %)
    and costs no scene more than 0.3 %; 2.0 costs the firefly scene 0.4 %. The stereo
    blend, and the temporal filter without the plane, have no region prior and keep
@@ -7279,8 +7281,11 @@ SBL__INLINE void sbl__pool_column(const sbl__kernel *k, const sbl__ring_row *con
    one-frame test sees (q >= c) is handled in that frame by r = q - c; R is for evidence
    that one frame cannot give. Unclipped, one noise-free jump (q at the cap, 1e6) held R
    near 3e5, and a large q on low-noise content held it for tens of frames (found in
-   review, session 8); clipped, a single strong frame leaves R at most c = 2.5, beyond
-   c_R for a frame or two, and R still grows under a lasting change. */
+   review, session 8); clipped, a single strong frame leaves R at most c = 2.5 (beyond
+   the unraised c_R = 2.118 for a frame or two; in a quiet region, M > 5.6, c_R(M) is
+   above 2.5 and one frame cannot pass it), and R still grows under a lasting change. The
+   step stays 1.5 in builds whose region prior leaves the blocks out (SBL_EVIDENCE_REGION
+   without 2), where the blocks keep 3.5; SBL__EVIDENCE_FALSE_ALARM assumes 1.5. */
 #define SBL__EVIDENCE_STEP (SBL_POOLED_BLOCK_SE2_REGION - 1.0)
 /* The blocks' one-frame threshold c of kernel k: lower where the region's prior adds
    ln M to it (SBL_POOLED_BLOCK_SE2_REGION). */
@@ -7797,7 +7802,7 @@ SBL__INLINE sbl__v sbl__evidence_shrink_lanes(const sbl__kernel *k, int x)
    and finite values, at least 3) gives its squared mean m2 = sum_c mean_c^2 and the
    squared standard error of that mean se2 = sum_c var_c / n (var_c the sample
    variance); over the blocks centred at x + SBL__POOL_STEP b, |b| <= SBL__POOL_BLOCKS,
-   r = max(0, sum m2 / sum se2 - SBL_POOLED_BLOCK_SE2): the blocks' bias energy beyond
+   r = max(0, sum m2 / sum se2 - SBL__POOL_THR(k)): the blocks' bias energy beyond
    the threshold, in units of the noise of their means. A ratio: independent of the
    scale of the values (HDR). Reads the ring's columns [xa - SBL__POOL_REACH,
    xb + SBL__POOL_REACH) (clamped to the image). Scalar, in double, in a fixed order:
