@@ -791,6 +791,30 @@ static void test_moments_precision(void)
 }
 
 
+/* A temporal pooled kernel over the PW x PH rows of `own` (ch channels, 4 floats a pixel)
+   and the gathered history G, its three ring rows loaded: what the prepass tests below
+   run sbl__row_pool / sbl__row_pool_ref on. Returns the scratch to free. */
+static void *pool_kernel_setup(sbl__kernel *k, sbl_image *im, float *own, paths_gather *G, int ch,
+                               const sbl__ring_row *R[3])
+{
+    void *scratch;
+    int i;
+    memset(k, 0, sizeof *k);
+    *im = sbl_image_make(own, PW, PH, ch);
+    k->w = PW; k->h = PH; k->ch = ch;
+    k->wp.estimator = SBL_ESTIMATOR_POOLED;
+    k->n_cap = 64.0f;
+    k->temporal = 1;
+    k->own = im;
+    k->gather = paths_gather_fn;
+    k->gather_ctx = G;
+    scratch = malloc(sbl__kernel_scratch_size(PW, ch));
+    sbl__kernel_bind(k, scratch);
+    for (i = 0; i < 3; ++i) sbl__ring_load(k, &k->ring[i], i, 0, PW);
+    R[0] = &k->ring[0]; R[1] = &k->ring[1]; R[2] = &k->ring[2];
+    return scratch;
+}
+
 /* The pooled prepass (sbl__row_pool) against its double reference (sbl__row_pool_ref)
    on rows with dim values: a dim y next to a bright valid x* (d = x* - y stays in the
    lane range) keeps the lanes, within float rounding of the reference; a dim pair
@@ -811,7 +835,7 @@ static void test_pool_dim(void)
         float lanes[PW];
         int unsafe_col[PW];
         const int ch = 1 + it % 4;
-        int x, y, c, i, t;
+        int x, y, c, t;
         for (y = 0; y < PH; ++y)
             for (x = 0; x < PW; ++x) {
                 for (c = 0; c < 4; ++c) {
@@ -850,19 +874,7 @@ static void test_pool_dim(void)
                         (G.n[y][x] > 0.0f && dd != 0.0f && !(fabsf(dd) >= 0x1p-40f)))
                         unsafe_col[x] = 1;
                 }
-        memset(&k, 0, sizeof k);
-        im = sbl_image_make(own, PW, PH, ch);
-        k.w = PW; k.h = PH; k.ch = ch;
-        k.wp.estimator = SBL_ESTIMATOR_POOLED;
-        k.n_cap = 64.0f;
-        k.temporal = 1;
-        k.own = &im;
-        k.gather = paths_gather_fn;
-        k.gather_ctx = &G;
-        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
-        sbl__kernel_bind(&k, scratch);
-        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
-        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        scratch = pool_kernel_setup(&k, &im, own, &G, ch, R);
         sbl__row_pool(&k, R, 0, PW);
         memcpy(lanes, k.pool_r, sizeof lanes);
         sbl__row_pool_ref(&k, R, 0, PW);
@@ -910,7 +922,7 @@ static void test_pool_region_threshold(void)
         const sbl__ring_row *R[3];
         float without[PW], with_ref[PW], with_lanes[PW];
         const int ch = 1 + it % 4;
-        int x, y, c, i;
+        int x, y, c;
         for (y = 0; y < PH; ++y)
             for (x = 0; x < PW; ++x) {
                 for (c = 0; c < 4; ++c) {
@@ -919,19 +931,7 @@ static void test_pool_region_threshold(void)
                 }
                 G.n[y][x] = 8.0f;
             }
-        memset(&k, 0, sizeof k);
-        im = sbl_image_make(own, PW, PH, ch);
-        k.w = PW; k.h = PH; k.ch = ch;
-        k.wp.estimator = SBL_ESTIMATOR_POOLED;
-        k.n_cap = 64.0f;
-        k.temporal = 1;
-        k.own = &im;
-        k.gather = paths_gather_fn;
-        k.gather_ctx = &G;
-        scratch = malloc(sbl__kernel_scratch_size(PW, ch));
-        sbl__kernel_bind(&k, scratch);
-        for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
-        R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
+        scratch = pool_kernel_setup(&k, &im, own, &G, ch, R);
         sbl__row_pool_ref(&k, R, 0, PW);
         memcpy(without, k.pool_r, sizeof without);
         for (x = 0; x < PW + 64; ++x) evid_in[x] = 1.0f;
