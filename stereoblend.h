@@ -2676,11 +2676,11 @@ typedef struct sbl__weight_params {
    6.2). 3.5 was chosen (3.2) before that prior existed, as the smallest c at which static
    content lost nothing; with the prior a quiet region asks c + ln M (static: M ~ 40,
    +3.7; a busy region, where more than half the rows' pixels passed c_R, has M < 1 and
-   asks down to c - ln 2), so c itself need not carry that protection. Measured on the bench's eight
-   scenes: 2.5 gains on the moving-light scenes (combined dynamic +1.5 %, shadow +1.2 %)
-   and costs no scene more than 0.3 %; 2.0 costs the firefly scene 0.4 %. The stereo
-   blend, and the temporal filter without the plane, have no region prior and keep
-   SBL_POOLED_BLOCK_SE2. */
+   asks down to c - ln 2), so c itself need not carry that protection. Measured on the
+   bench's eight scenes: 2.5 gains on the moving-light scenes (combined dynamic +1.5 %,
+   shadow +1.2 %) and costs no scene more than 0.3 %; 2.0 costs the firefly scene 0.4 %.
+   The stereo blend, and the temporal filter without the plane, have no region prior and
+   keep SBL_POOLED_BLOCK_SE2. */
 #ifndef SBL_POOLED_BLOCK_SE2_REGION
 #define SBL_POOLED_BLOCK_SE2_REGION 2.5
 #endif

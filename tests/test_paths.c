@@ -914,7 +914,8 @@ static void test_pool_region_threshold(void)
     sbt_rng rng = {616};
     const double lift = SBL_POOLED_BLOCK_SE2 - SBL_POOLED_BLOCK_SE2_REGION;
     double worst = 0;
-    int it, compared = 0;
+    int it, compared = 0, e;
+    for (e = 0; e < PW + 64; ++e) evid_in[e] = 1.0f; /* R* = 1: no evidence either way */
     for (it = 0; it < 40; ++it) {
         sbl__kernel k;
         sbl_image im;
@@ -934,7 +935,6 @@ static void test_pool_region_threshold(void)
         scratch = pool_kernel_setup(&k, &im, own, &G, ch, R);
         sbl__row_pool_ref(&k, R, 0, PW);
         memcpy(without, k.pool_r, sizeof without);
-        for (x = 0; x < PW + 64; ++x) evid_in[x] = 1.0f;
         k.evid_use = 1;
         k.evid_in = evid_in;
         k.evid_out = evid_out;
