@@ -3604,10 +3604,10 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
 #define SBL__CHUNK_COLS 144
 
 /* sbl__row_pool's lanes: pixels per chunk, and floats per plane (the chunk and the
-   SBL__POOL_REACH columns each side, padded); per channel three planes, then nineteen */
+   SBL__POOL_REACH columns each side, padded); per channel three planes, then twenty */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 19)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 20)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -8354,8 +8354,10 @@ typedef struct sbl__lane_stats {
                                where wp.blur) */
     sbl__v tail_t;  /* the carried tail variance (k->tail_t; read only where wp.tail) */
     sbl__v rl_e, rl_d, rl_v8, rl_xt; /* the restart lean's E, D, the neighbours' variance
-                                        and the history's texture (sbl__lanes_stage_y; read
-                                        only where wp.lean_restart) */
+                                        and the history's texture (sbl__lanes_lean_inputs;
+                                        read only where wp.lean_restart) */
+    sbl__v rl_w, rl_vy; /* the weight before the restart lean and V_Y, */
+    sbl__m rl_off;      /* and where it does not apply (sbl__lanes_weight sets them) */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one
@@ -8704,14 +8706,12 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_SW(ch) (3 * (ch) + 11) /* pooled stereo: a column's within sum of squares (4.16) */
 #define SBL__POOL_VMX(ch) (3 * (ch) + 12) /* pooled stereo: a column's sbl__fgate_column terms */
 #define SBL__POOL_VMN(ch) (3 * (ch) + 13)
-/* staged lanes with the restart lean (wp.lean_restart only; sbl__lanes_stage_y): its E and
-   D, the neighbours' variance summed over the channels, the history's texture; the weight
+/* staged lanes with the restart lean (wp.lean_restart only; sbl__lanes_stage_y): the
+   neighbours' mean of channel c, their variance summed over the channels; the weight
    before the lean (Eq. 5's, sbl__lanes_stage_weight) */
-#define SBL__POOL_LE(ch) (3 * (ch) + 14)
-#define SBL__POOL_LD(ch) (3 * (ch) + 15)
-#define SBL__POOL_LV8(ch) (3 * (ch) + 16)
-#define SBL__POOL_LXT(ch) (3 * (ch) + 17)
-#define SBL__POOL_A2(ch) (3 * (ch) + 18)
+#define SBL__POOL_LM8(ch, c) (3 * (ch) + 14 + (c))
+#define SBL__POOL_LV8(ch) (3 * (ch) + 18)
+#define SBL__POOL_A2(ch) (3 * (ch) + 19)
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -9441,16 +9441,16 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         }
         if (fast == 1 && p->lean_restart) {
             /* the restart lean, as sbl__weight (6.3): where w >= SBL_LEAN_RESTART_WEIGHT
-               and w - N_Y / (N_X + N_Y) >= SBL_LEAN_RESTART_EXCESS; Eq. 5 counts the
-               weight before it */
+               and w - N_Y / (N_X + N_Y) >= SBL_LEAN_RESTART_EXCESS. Its inputs are formed
+               only in the vectors where some lane passes (few, on converged content), so
+               sbl__lanes_stage_weight applies it; the weight returned is the one before
+               it (Eq. 5's) */
             const sbl__v thr = sbl__set1(SBL__CAST(float, SBL_LEAN_RESTART_WEIGHT));
             const sbl__v exc = sbl__set1(SBL__CAST(float, SBL_LEAN_RESTART_EXCESS));
             /* (a - b > 0 exactly where a > b: one mask for both tests) */
-            const sbl__m off = sbl__gt(sbl__max(sbl__sub(thr, w), sbl__sub(exc, sbl__sub(w, prog))), zero);
-            w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
-            for (c = c0; c < c1; ++c) st->a2[c] = w2;
-            if (!sbl__all(off)) w = sbl__sel(off, w, sbl__lanes_lean_restart(st, w, vy));
-            return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
+            st->rl_off = sbl__gt(sbl__max(sbl__sub(thr, w), sbl__sub(exc, sbl__sub(w, prog))), zero);
+            st->rl_w = w;
+            st->rl_vy = vy;
         }
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
@@ -9704,9 +9704,8 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, con
     const sbl__v zero = sbl__set1(0.0f);
     const int i = x - base;
     sbl__v mean, var, m8, v8, yc, s2 = zero, t, n_x, n_y, n_xc;
-    /* lean (a constant: the restart lean, wp.lean_restart; 2: a full chunk, every x* valid;
-       3: the image's first or last row, k->edge_row): the channels' m8, y, x* kept */
-    sbl__v m8c[4], ycc[4], xcc[4];
+    /* lean (a constant: the restart lean, wp.lean_restart): the channels' m8 kept */
+    sbl__v m8c[4];
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
     /* |x* - mean|^2, for the mix towards the paper's weight (3.11); mix: a constant,
        k->wp.evid_mix (sbl__kernel_lanes_pooled_ch's instances) */
@@ -9714,7 +9713,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, con
 #define SBL__STAGE_Y(c) \
     do { \
         sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1, E); \
-        if (lean) { m8c[c] = m8; ycc[c] = yc; xcc[c] = sbl__load(W->x[1][c] + x); } \
+        if (lean) m8c[c] = m8; \
         if (mix) { \
             const sbl__v e_ = sbl__sub(sbl__load(W->x[1][c] + x), mean); \
             dev2 = (c) ? sbl__add(dev2, sbl__mul(e_, e_)) : sbl__mul(e_, e_); \
@@ -9736,43 +9735,61 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, con
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_FT(ch) * SBL__POOL_COLS, t);
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_S2(ch) * SBL__POOL_COLS, s2);
     if (mix) sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_DEV2(ch) * SBL__POOL_COLS, dev2);
-    if (lean) {
-        /* the restart lean's inputs, as sbl__blend_pixel and sbl__moments_core form them:
-           E = sum_c (m8 - x*)(y t - x*), D = sum_c (y t - x*)^2, the neighbours'
-           population variance (sum_v8), and the history's texture sum_c (x*_c - mean of
-           the valid neighbours' x*)^2, summed about the centre's x* (differences of
-           lane-safe values, no sum of large values): (sum_i (x*_i - x*_c))^2 / n^2, n the
-           valid neighbours (the window's pairs but the centre's; 0 terms where n = 0) */
+    if (lean) { /* the restart lean's (sbl__lanes_lean_inputs) */
         float *const q = k->col[0] + i + SBL__CHUNK_POOL(ch);
-        const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch);
-        const sbl__v one = sbl__set1(1.0f);
-        /* the rows of the window (lean 3: the missing one is a copy, left out) */
-        const int r0 = lean != 3 || k->edge_row != 1, r2 = lean != 3 || k->edge_row != 2;
-        sbl__m ok0l, ok0m, ok0r, ok1l, ok1r, ok2l, ok2m, ok2r;
-        sbl__v le = zero, ld = zero, xt = zero, rn;
-        if (lean == 2) {
-            ok0l = ok0m = ok0r = ok1l = ok1r = ok2l = ok2m = ok2r = sbl__true;
-            rn = sbl__set1(0.125f);
-        } else {
-            const float *const v0 = W->v[0] + x, *const v1 = W->v[1] + x, *const v2 = W->v[2] + x;
-            ok0l = sbl__gt(sbl__load(v0 - 1), zero);
-            ok0m = sbl__gt(sbl__load(v0), zero);
-            ok0r = sbl__gt(sbl__load(v0 + 1), zero);
-            ok1l = sbl__gt(sbl__load(v1 - 1), zero);
-            ok1r = sbl__gt(sbl__load(v1 + 1), zero);
-            ok2l = sbl__gt(sbl__load(v2 - 1), zero);
-            ok2m = sbl__gt(sbl__load(v2), zero);
-            ok2r = sbl__gt(sbl__load(v2 + 1), zero);
-            /* the pairs per column (a column outside the image: 0; lean 3: the copy's
-               left out, sbl__lanes_columns_cfg) less the centre's */
-            rn = sbl__div(one, sbl__max(sbl__sub(sbl__add(sbl__add(sbl__load(qn - 1), sbl__load(qn)),
-                                                          sbl__load(qn + 1)), one), one));
-        }
+#define SBL__LEAN_M8(c) sbl__store(q + SBL__POOL_LM8(ch, c) * SBL__POOL_COLS, m8c[c])
+        SBL__LANES_CH(SBL__LEAN_M8);
+#undef SBL__LEAN_M8
+        sbl__store(q + SBL__POOL_LV8(ch) * SBL__POOL_COLS, sum_v8);
+    }
+}
+
+/* The restart lean's inputs of pixels [x, x + VW) (sbl__lanes_stage_weight, in the
+   vectors where it applies), as sbl__blend_pixel and sbl__moments_core form them: E =
+   sum_c (m8 - x*)(y t - x*), D = sum_c (y t - x*)^2, the neighbours' population variance
+   (sbl__lanes_stage_y's planes), and the history's texture sum_c (x*_c - mean of the
+   valid neighbours' x*)^2, summed about the centre's x* (differences of lane-safe values,
+   no sum of large values): (sum_i (x*_i - x*_c))^2 / n^2, n the valid neighbours (the
+   window's pairs but the centre's; 0 terms where n = 0). lean (a constant): 2 a full
+   chunk, every x* valid; 3 the image's first or last row (k->edge_row: the missing row
+   is a copy, left out); E as sbl__lanes_y_channel. */
+SBL__INLINE void sbl__lanes_lean_inputs(const sbl__kernel *k, const sbl__lane_rows *W, int x,
+                                        int base, const int ch, const sbl__lane_edge *E,
+                                        const int lean, sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const int i = x - base;
+    const float *const q = k->col[0] + i + SBL__CHUNK_POOL(ch);
+    const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch);
+    const sbl__v t = sbl__load(q + SBL__POOL_FT(ch) * SBL__POOL_COLS);
+    const int r0 = lean != 3 || k->edge_row != 1, r2 = lean != 3 || k->edge_row != 2;
+    sbl__m ok0l, ok0m, ok0r, ok1l, ok1r, ok2l, ok2m, ok2r;
+    sbl__v le = zero, ld = zero, xt = zero, rn;
+    if (lean == 2) {
+        ok0l = ok0m = ok0r = ok1l = ok1r = ok2l = ok2m = ok2r = sbl__true;
+        rn = sbl__set1(0.125f);
+    } else {
+        const float *const v0 = W->v[0] + x, *const v1 = W->v[1] + x, *const v2 = W->v[2] + x;
+        ok0l = sbl__gt(sbl__load(v0 - 1), zero);
+        ok0m = sbl__gt(sbl__load(v0), zero);
+        ok0r = sbl__gt(sbl__load(v0 + 1), zero);
+        ok1l = sbl__gt(sbl__load(v1 - 1), zero);
+        ok1r = sbl__gt(sbl__load(v1 + 1), zero);
+        ok2l = sbl__gt(sbl__load(v2 - 1), zero);
+        ok2m = sbl__gt(sbl__load(v2), zero);
+        ok2r = sbl__gt(sbl__load(v2 + 1), zero);
+        /* the pairs per column (a column outside the image: 0; lean 3: the copy's left
+           out, sbl__lanes_columns_cfg) less the centre's */
+        rn = sbl__div(one, sbl__max(sbl__sub(sbl__add(sbl__add(sbl__load(qn - 1), sbl__load(qn)),
+                                                      sbl__load(qn + 1)), one), one));
+    }
 #define SBL__LEAN_IN(c) \
     do { \
-        const sbl__v xc = xcc[c], dy = sbl__sub(sbl__mul(ycc[c], t), xc); \
+        const sbl__v xc = sbl__load(W->x[1][c] + x); \
+        const sbl__v dy = sbl__sub(sbl__mul(sbl__load(W->y[1][c] + x), t), xc); \
+        const sbl__v m8 = sbl__load(q + SBL__POOL_LM8(ch, c) * SBL__POOL_COLS); \
         sbl__v dl = zero, dm = zero, dr = zero, d; \
-        le = (c) ? sbl__add(le, sbl__mul(sbl__sub(m8c[c], xc), dy)) : sbl__mul(sbl__sub(m8c[c], xc), dy); \
+        le = (c) ? sbl__add(le, sbl__mul(sbl__sub(m8, xc), dy)) : sbl__mul(sbl__sub(m8, xc), dy); \
         ld = (c) ? sbl__add(ld, sbl__mul(dy, dy)) : sbl__mul(dy, dy); \
         if (r0) SBL__XT_ROW(c, 0, ok0l, ok0m, ok0r); \
         SBL__XT_ROW(c, 1, ok1l, ok1l, ok1r); \
@@ -9784,13 +9801,12 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, con
         d = sbl__add(sbl__add(dl, dm), dr); \
         xt = (c) ? sbl__add(xt, sbl__mul(d, d)) : sbl__mul(d, d); \
     } while (0)
-        SBL__LANES_CH(SBL__LEAN_IN);
+    SBL__LANES_CH(SBL__LEAN_IN);
 #undef SBL__LEAN_IN
-        sbl__store(q + SBL__POOL_LE(ch) * SBL__POOL_COLS, le);
-        sbl__store(q + SBL__POOL_LD(ch) * SBL__POOL_COLS, ld);
-        sbl__store(q + SBL__POOL_LV8(ch) * SBL__POOL_COLS, sum_v8);
-        sbl__store(q + SBL__POOL_LXT(ch) * SBL__POOL_COLS, sbl__mul(xt, sbl__mul(rn, rn)));
-    }
+    st->rl_e = le;
+    st->rl_d = ld;
+    st->rl_v8 = sbl__load(q + SBL__POOL_LV8(ch) * SBL__POOL_COLS);
+    st->rl_xt = sbl__mul(xt, sbl__mul(rn, rn));
 }
 #undef SBL__XT_ROW
 
@@ -10004,16 +10020,18 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
 /* The weight of the staged lanes (sbl__lanes_weight), into the chunk's plane W: a stage
    of its own, as its chain of divisions and a square root (t2, rho, the posterior, the
    weight) is long; in a loop of its own more vectors' chains overlap. */
-SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, const float *nyrow,
-                                         int x, int base, const int ch, const int full,
-                                         const sbl__lane_edge *E)
+SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                         const float *nyrow, int x, int base, const int ch,
+                                         const int full, const sbl__lane_edge *E, const int lean)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
     const int mix = SBL_EVIDENCE_MIX && k->wp.evid_mix; /* 3.11: |x* - m|^2 and sh_R */
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w;
+    (void)W;
+    (void)lean;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     nl = full ? sbl__set1(3.0f) : sbl__load(qn - 1);
     nr = full ? sbl__set1(3.0f) : sbl__load(qn + 1);
@@ -10032,19 +10050,21 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, con
         st.blur_b2 = sbl__load(q + SBL__POOL_BB(ch) * SBL__POOL_COLS);
         st.blur_g = sbl__load(q + SBL__POOL_BG(ch) * SBL__POOL_COLS);
     }
+    w = sbl__lanes_weight(&k->wp, &st, mix ? sbl__load(q + SBL__POOL_DEV2(ch) * SBL__POOL_COLS) : zero,
+                          sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
+                          sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
+                          sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
     if (k->wp.lean_restart) { /* (a constant of the instance) */
-        st.rl_e = sbl__load(q + SBL__POOL_LE(ch) * SBL__POOL_COLS);
-        st.rl_d = sbl__load(q + SBL__POOL_LD(ch) * SBL__POOL_COLS);
-        st.rl_v8 = sbl__load(q + SBL__POOL_LV8(ch) * SBL__POOL_COLS);
-        st.rl_xt = sbl__load(q + SBL__POOL_LXT(ch) * SBL__POOL_COLS);
+        /* the weight before the restart lean, for Eq. 5; the lean where some lane takes
+           it (sbl__lanes_weight), then clamped as there */
+        sbl__store(q + SBL__POOL_A2(ch) * SBL__POOL_COLS, w);
+        if (!sbl__all(st.rl_off)) {
+            sbl__lanes_lean_inputs(k, W, x, base, ch, E, lean, &st);
+            w = sbl__sel(st.rl_off, st.rl_w, sbl__lanes_lean_restart(&st, st.rl_w, st.rl_vy));
+            w = sbl__min(sbl__max(sbl__max(w, sbl__set1(k->wp.alpha_min)), zero), one);
+        }
     }
-    sbl__store(q + SBL__POOL_W(ch) * SBL__POOL_COLS,
-               sbl__lanes_weight(&k->wp, &st, mix ? sbl__load(q + SBL__POOL_DEV2(ch) * SBL__POOL_COLS) : zero,
-                                 sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
-                                 sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
-                                 sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1));
-    /* the weight before the restart lean, for Eq. 5 (every channel's) */
-    if (k->wp.lean_restart) sbl__store(q + SBL__POOL_A2(ch) * SBL__POOL_COLS, st.a2[0]);
+    sbl__store(q + SBL__POOL_W(ch) * SBL__POOL_COLS, w);
 }
 
 /* The blend and Eq. 5 of the staged lanes, with the weight of sbl__lanes_stage_weight
@@ -10139,7 +10159,7 @@ SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const 
     E.lean_s = sbl__load(lean_s);
     if (fast == 1) {
         sbl__lanes_stage_y(k, W, n_row, x, base, ch, &E, mix, lean);
-        sbl__lanes_stage_weight(k, n_row, nyrow, x, base, ch, 0, &E);
+        sbl__lanes_stage_weight(k, W, n_row, nyrow, x, base, ch, 0, &E, lean);
         sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0);
     } else {
         (void)mix;
@@ -10288,8 +10308,8 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     const int fast = cfg == 3 || cfg >= 5 ? 1 : cfg == 4 ? 2 : cfg;
     const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6 || cfg == 9 || cfg == 10 || cfg == 13 || cfg == 14);
     const int blur = cfg >= 7 && cfg <= 10;
-    /* the restart lean's inputs in sbl__lanes_stage_y: 3 on the image's first or last row,
-       2 in a full chunk (below), else 1 */
+    /* the restart lean (sbl__lanes_lean_inputs): 3 on the image's first or last row, 2 in a
+       full chunk (below), else 1 */
     const int lean = cfg >= 11 ? (erow ? 3 : 1) : 0;
     /* the stereo default, per vector in a chunk that is not full: a vector whose blocks
        or windows hold only valid pairs takes the full chunk's operations (the same
@@ -10447,14 +10467,13 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
             }
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
-                if (lean && full) SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, n_row, p, base, ch, Er, mix, 2));
-                else SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, n_row, p, base, ch, Er, mix, lean));
+                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, n_row, p, base, ch, Er, mix, lean));
                 if (blur) SBL__RUN_VECTORS(sbl__lanes_stage_blur(k_in, R, p, base, ch));
                 if (full) {
-                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 1, Er));
+                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, &W, n_row, nyrow, p, base, ch, 1, Er, lean ? 2 : 0));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
                 } else {
-                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 0, Er));
+                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, &W, n_row, nyrow, p, base, ch, 0, Er, lean));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
                 }
             } else {
