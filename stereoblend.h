@@ -2485,6 +2485,10 @@ typedef struct sbl__moments {
     int count, pair_count;
     double pool_r;              /* pooled estimator: prior bias-to-noise ratio tau^2 / se^2
                                    from the blocks along the row (sbl__row_pool); 0 if none */
+    double xdev2;               /* sum_c (x*_centre - mean of the neighbours' valid x*)^2:
+                                   the history's texture at the pixel (the restart lean);
+                                   -1 where undefined (no valid centre x*, or no valid
+                                   neighbour x*) */
 } sbl__moments;
 
 /* vals[i][c]: the n finite neighbours (centre included, at index `centre`, or -1);
@@ -2503,6 +2507,17 @@ static void sbl__moments_core(sbl__moments *m, const float (*vals)[4],
     if (xvalid)
         for (i = 0; i < n; ++i) np += xvalid[i] != 0;
     m->pair_count = np;
+    m->xdev2 = -1.0;
+    if (xvalid && centre >= 0 && xvalid[centre] && np >= 2) {
+        m->xdev2 = 0.0;
+        for (k = 0; k < ch; ++k) {
+            double sx = 0.0, d;
+            for (i = 0; i < n; ++i)
+                if (i != centre && xvalid[i]) sx += SBL__CAST(double, xvals[i][k]);
+            d = SBL__CAST(double, xvals[centre][k]) - sx / (np - 1);
+            m->xdev2 += d * d;
+        }
+    }
     for (k = 0; k < ch; ++k) {
         /* first pass: the values in double, their sum, the sum without the centre (the
            window without its centre, centred on its own mean: a firefly at the centre
@@ -2640,6 +2655,9 @@ typedef struct sbl__weight_params {
     int blur;          /* temporal, pooled, default configuration, shared_bias > 0, bilinear
                           fetch: the resampling blur's bias enters the bias energy
                           (docs/ESTIMATORS.md 4.10, 4.12; sbl__blur_terms) */
+    int lean_restart;  /* temporal default configuration without a stereo blend behind
+                          (stereo_shared_bias 0): the spatial lean where the history is
+                          mostly dropped (SBL_LEAN_RESTART_WEIGHT; docs/ESTIMATORS.md 6.3) */
     double blur_b2, blur_g; /* the reference path's pixel in hand: the blur's predicted
                                bias energy sum_c b_c^2 and its noise factor (B_b^2 =
                                blur_b2 - blur_g var_X, at least 0) */
@@ -2783,14 +2801,31 @@ static double sbl__lean(double a0, double var_y, double v8u, double n8, double n
 #ifndef SBL_LEAN_TEMPORAL
 #define SBL_LEAN_TEMPORAL 0
 #endif
+/* The restart lean (docs/ESTIMATORS.md 6.3): the lean in the temporal default only where
+   the history is mostly being dropped, the weight a of the new sample at least
+   SBL_LEAN_RESTART_WEIGHT and at least SBL_LEAN_RESTART_EXCESS above the progressive
+   N_Y / (N_X + N_Y). There the output is about one noisy sample, and the neighbours'
+   mean is the better estimate where the texture is small; elsewhere the history would
+   keep the neighbours' texture bias frame after frame (4.5). Measured: 0.3 gains the
+   moving-light scenes 6-8 %; 0.2 costs static and pan three times as much; the excess
+   keeps the lean off young histories whose weight is high by their length alone.
+   SBL_LEAN_RESTART_WEIGHT <= 0: off. */
+#ifndef SBL_LEAN_RESTART_WEIGHT
+#define SBL_LEAN_RESTART_WEIGHT 0.3
+#endif
+#ifndef SBL_LEAN_RESTART_EXCESS
+#define SBL_LEAN_RESTART_EXCESS 0.15
+#endif
 /* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
    variance of the paired differences x*_i - y_i; v8 = population variance of Y
-   without the centre, lean_e / lean_d as sbl__lean (the pooled estimator). *a_two:
-   the weight of the two-estimate blend, before the lean (what Eq. 5 counts). */
+   without the centre, lean_e / lean_d as sbl__lean (the pooled estimator); x_tex the
+   history's texture (sbl__moments.xdev2; < 0: none). *a_two: the weight of the
+   two-estimate blend, before the lean (what Eq. 5 counts). */
 static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, double pd2,
                          double pv, int count, int pair_count, float n_x, float n_y,
-                         double pool_r, double v8, double lean_e, double lean_d, float *a_two)
+                         double pool_r, double v8, double lean_e, double lean_d, double x_tex,
+                         float *a_two)
 {
     double a, a2 = -1.0;
     double progressive = SBL__CAST(double, n_y) / (SBL__CAST(double, n_x) + SBL__CAST(double, n_y));
@@ -2886,6 +2921,16 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             a2 = a;
             a = sbl__lean(a, var_y, v8 * (count - 1) / (count - 2), count - 1.0,
                           SBL__CAST(double, n_x), lean_e, lean_d);
+        } else if (p->lean_restart && count > 2 && a >= SBL_LEAN_RESTART_WEIGHT &&
+                   a - progressive >= SBL_LEAN_RESTART_EXCESS) {
+            /* the restart lean (6.3): q is not divided by N_X (the history it would be
+               counted against is being dropped). The texture is also the history's own
+               x*'s deviation from its neighbours' where larger: the raw neighbours see
+               no texture below one sample's noise */
+            double v8u = v8 * (count - 1) / (count - 2);
+            if (x_tex >= 0.0 && x_tex > v8u - var_y) v8u = var_y + x_tex;
+            a2 = a;
+            a = sbl__lean(a, var_y, v8u, count - 1.0, 1.0, lean_e, lean_d);
         }
         break;
     }
@@ -2973,6 +3018,7 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.evid_sh = 0.0f;
     p.evid_share = 0.0f;
     p.blur = 0;
+    p.lean_restart = 0;
     p.blur_b2 = p.blur_g = 0.0;
     p.tail = 0;
     p.tail_ch = 1.0f;
@@ -3064,7 +3110,7 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
             a[k] = sbl__weight(p, dev * dev, m->var[k], m->pair_diff[k] * m->pair_diff[k],
                                m->pair_var[k], m->count, m->pair_count, n_x, n_y,
                                m->pool_r, m->var8[k], (m->mean8[k] - SBL__CAST(double, xs[k])) * dy,
-                               dy * dy, &a2[k]);
+                               dy * dy, -1.0, &a2[k]);
             a_mean += a[k];
             a2_mean += a2[k];
         }
@@ -3084,7 +3130,7 @@ static float sbl__blend_pixel(const sbl__weight_params *p, const sbl__moments *m
             ld += dy * dy;
         }
         a_mean = sbl__weight(p, dev2, s2, pd2, pv, m->count, m->pair_count, n_x, n_y, m->pool_r,
-                             v8, le, ld, &a2_mean);
+                             v8, le, ld, m->xdev2, &a2_mean);
         for (k = 0; k < ch; ++k) a[k] = a_mean;
     }
     for (k = 0; k < ch; ++k) {
@@ -3558,10 +3604,10 @@ enum { SBL__COL_A, SBL__COL_B, SBL__COL_T, SBL__COL_DA, SBL__COL_DB, SBL__COL_LO
 #define SBL__CHUNK_COLS 144
 
 /* sbl__row_pool's lanes: pixels per chunk, and floats per plane (the chunk and the
-   SBL__POOL_REACH columns each side, padded); per channel three planes, then fourteen */
+   SBL__POOL_REACH columns each side, padded); per channel three planes, then twenty */
 #define SBL__POOL_CHUNK 128
 #define SBL__POOL_COLS 144
-#define SBL__POOL_PLANES(ch) (3 * (ch) + 14)
+#define SBL__POOL_PLANES(ch) (3 * (ch) + 20)
 
 /* planes per ring row: 2 * channels + 2 float planes and one byte plane; staging:
    channels + 2 float planes and two byte planes; each plane padded to 64 bytes; the
@@ -8307,6 +8353,11 @@ typedef struct sbl__lane_stats {
     sbl__v blur_b2, blur_g; /* the resampling blur's terms (sbl__blur_terms; read only
                                where wp.blur) */
     sbl__v tail_t;  /* the carried tail variance (k->tail_t; read only where wp.tail) */
+    sbl__v rl_e, rl_d, rl_v8, rl_xt; /* the restart lean's E, D, the neighbours' variance
+                                        and the history's texture (sbl__lanes_lean_inputs;
+                                        read only where wp.lean_restart) */
+    sbl__v rl_w, rl_vy; /* the weight before the restart lean and V_Y, */
+    sbl__m rl_off;      /* and where it does not apply (sbl__lanes_weight sets them) */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one
@@ -8655,6 +8706,12 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
 #define SBL__POOL_SW(ch) (3 * (ch) + 11) /* pooled stereo: a column's within sum of squares (4.16) */
 #define SBL__POOL_VMX(ch) (3 * (ch) + 12) /* pooled stereo: a column's sbl__fgate_column terms */
 #define SBL__POOL_VMN(ch) (3 * (ch) + 13)
+/* staged lanes with the restart lean (wp.lean_restart only; sbl__lanes_stage_y): the
+   neighbours' mean of channel c, their variance summed over the channels; the weight
+   before the lean (Eq. 5's, sbl__lanes_stage_weight) */
+#define SBL__POOL_LM8(ch, c) (3 * (ch) + 14 + (c))
+#define SBL__POOL_LV8(ch) (3 * (ch) + 18)
+#define SBL__POOL_A2(ch) (3 * (ch) + 19)
 #define SBL__POOL_PLANE(k, plane) ((k)->pool_col + (plane) * SBL__POOL_COLS)
 
 /* The ring rows that exist (the image's first and last rows have fewer than three) */
@@ -9272,6 +9329,22 @@ SBL__INLINE sbl__v sbl__lanes_lean(const sbl__lane_stats *st, sbl__v a0, sbl__v 
                     sbl__div(sbl__add(sbl__mul(a0, d), sbl__mul(q, e)), sbl__max(den, tiny)), a0);
 }
 
+/* The restart lean (sbl__weight, docs/ESTIMATORS.md 6.3) of the staged temporal lanes:
+   as sbl__lanes_lean with q not divided by N_X, the texture the larger of the
+   neighbours' beyond noise and the history's own (st->rl_xt; 0 where undefined) */
+SBL__INLINE sbl__v sbl__lanes_lean_restart(const sbl__lane_stats *st, sbl__v a0, sbl__v var_y)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
+    const sbl__v tex = sbl__max(sbl__max(sbl__sub(sbl__mul(st->rl_v8, st->lean_s), var_y), zero),
+                                st->rl_xt);
+    const sbl__v vm = sbl__add(tex, sbl__mul(var_y, st->inv_n8));
+    const sbl__v q = sbl__sel(sbl__gt(vm, zero), sbl__div(sbl__mul(a0, var_y), sbl__max(vm, tiny)), zero);
+    const sbl__v den = sbl__mul(sbl__add(one, q), st->rl_d);
+    return sbl__sel(sbl__gt(den, zero),
+                    sbl__div(sbl__add(sbl__mul(a0, st->rl_d), sbl__mul(q, st->rl_e)), sbl__max(den, tiny)),
+                    a0);
+}
+
 /* Weight of Y from the squares summed over channels [c0, c1), as sbl__weight:
    dev2 = (x* - mean)^2, s2 = variance of Y, pd2 = (mean paired difference)^2, pvs =
    variance of the paired differences; n_xc = capped N_X, n_y = N_Y. Sets st->a2 of
@@ -9365,6 +9438,19 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             if (!sbl__all(sbl__gt(n_y, one)))
                 w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
             return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
+        }
+        if (fast == 1 && p->lean_restart) {
+            /* the restart lean, as sbl__weight (6.3): where w >= SBL_LEAN_RESTART_WEIGHT
+               and w - N_Y / (N_X + N_Y) >= SBL_LEAN_RESTART_EXCESS. Its inputs are formed
+               only in the vectors where some lane passes (few, on converged content), so
+               sbl__lanes_stage_weight applies it; the weight returned is the one before
+               it (Eq. 5's) */
+            const sbl__v thr = sbl__set1(SBL__CAST(float, SBL_LEAN_RESTART_WEIGHT));
+            const sbl__v exc = sbl__set1(SBL__CAST(float, SBL_LEAN_RESTART_EXCESS));
+            /* (a - b > 0 exactly where a > b: one mask for both tests) */
+            st->rl_off = sbl__gt(sbl__max(sbl__sub(thr, w), sbl__sub(exc, sbl__sub(w, prog))), zero);
+            st->rl_w = w;
+            st->rl_vy = vy;
         }
     } else {
         /* pair statistics with two or more pairs, the 3x3 variance of Y otherwise */
@@ -9597,14 +9683,29 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
    sbl__lanes_stage_y, Y's moments and the firefly limit's factor t, the summed variance
    s2 into two planes of the chunk (index column - base); sbl__lanes_stage_weight, the
    weight into a third; then sbl__lanes_stage_blend, Eq. 5 and the blend. The same
-   operations in the same order as sbl__lanes_vector_fast (bit for bit). */
+   operations in the same order as sbl__lanes_vector_fast (bit for bit), but for the
+   restart lean (wp.lean_restart, 6.3), which only the stages have: the temporal default
+   never reaches sbl__lanes_vector_fast with fast = 1 (sbl__kernel_lanes_pooled_ch and
+   sbl__lanes_edge run the stages for it). */
+/* The history's texture term of channel c at the restart lean (sbl__lanes_stage_y): the
+   sum of x*_i - xc over the valid neighbours of row J, columns -1 (into dl), 0 (dm, not
+   on the centre row) and +1 (dr); ok*: their masks */
+#define SBL__XT_ROW(C, J, okl, okm, okr) \
+    do { \
+        const float *xr_ = W->x[J][C] + x; \
+        dl = sbl__add(dl, sbl__sel(okl, sbl__sub(sbl__load(xr_ - 1), xc), zero)); \
+        if ((J) != 1) dm = sbl__add(dm, sbl__sel(okm, sbl__sub(sbl__load(xr_), xc), zero)); \
+        dr = sbl__add(dr, sbl__sel(okr, sbl__sub(sbl__load(xr_ + 1), xc), zero)); \
+    } while (0)
 SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                     int x, int base, const int ch, const sbl__lane_edge *E,
-                                    const int mix)
+                                    const int mix, const int lean)
 {
     const sbl__v zero = sbl__set1(0.0f);
     const int i = x - base;
     sbl__v mean, var, m8, v8, yc, s2 = zero, t, n_x, n_y, n_xc;
+    /* lean (a constant: the restart lean, wp.lean_restart): the channels' m8 kept */
+    sbl__v m8c[4];
     sbl__v sum_y = zero, sum_m8 = zero, sum_x = zero, sum_v8 = zero; /* (set by channel 0) */
     /* |x* - mean|^2, for the mix towards the paper's weight (3.11); mix: a constant,
        k->wp.evid_mix (sbl__kernel_lanes_pooled_ch's instances) */
@@ -9612,6 +9713,7 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, con
 #define SBL__STAGE_Y(c) \
     do { \
         sbl__lanes_y_channel(k, W, x, i, c, &mean, &var, &m8, &v8, &yc, 1, E); \
+        if (lean) m8c[c] = m8; \
         if (mix) { \
             const sbl__v e_ = sbl__sub(sbl__load(W->x[1][c] + x), mean); \
             dev2 = (c) ? sbl__add(dev2, sbl__mul(e_, e_)) : sbl__mul(e_, e_); \
@@ -9633,7 +9735,80 @@ SBL__INLINE void sbl__lanes_stage_y(sbl__kernel *k, const sbl__lane_rows *W, con
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_FT(ch) * SBL__POOL_COLS, t);
     sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_S2(ch) * SBL__POOL_COLS, s2);
     if (mix) sbl__store(k->col[0] + i + SBL__CHUNK_POOL(ch) + SBL__POOL_DEV2(ch) * SBL__POOL_COLS, dev2);
+    if (lean) { /* the restart lean's (sbl__lanes_lean_inputs) */
+        float *const q = k->col[0] + i + SBL__CHUNK_POOL(ch);
+#define SBL__LEAN_M8(c) sbl__store(q + SBL__POOL_LM8(ch, c) * SBL__POOL_COLS, m8c[c])
+        SBL__LANES_CH(SBL__LEAN_M8);
+#undef SBL__LEAN_M8
+        sbl__store(q + SBL__POOL_LV8(ch) * SBL__POOL_COLS, sum_v8);
+    }
 }
+
+/* The restart lean's inputs of pixels [x, x + VW) (sbl__lanes_stage_weight, in the
+   vectors where it applies), as sbl__blend_pixel and sbl__moments_core form them: E =
+   sum_c (m8 - x*)(y t - x*), D = sum_c (y t - x*)^2, the neighbours' population variance
+   (sbl__lanes_stage_y's planes), and the history's texture sum_c (x*_c - mean of the
+   valid neighbours' x*)^2, summed about the centre's x* (differences of lane-safe values,
+   no sum of large values): (sum_i (x*_i - x*_c))^2 / n^2, n the valid neighbours (the
+   window's pairs but the centre's; 0 terms where n = 0). lean (a constant): 2 a full
+   chunk, every x* valid; 3 the image's first or last row (k->edge_row: the missing row
+   is a copy, left out); E as sbl__lanes_y_channel. */
+SBL__INLINE void sbl__lanes_lean_inputs(const sbl__kernel *k, const sbl__lane_rows *W, int x,
+                                        int base, const int ch, const sbl__lane_edge *E,
+                                        const int lean, sbl__lane_stats *st)
+{
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    const int i = x - base;
+    const float *const q = k->col[0] + i + SBL__CHUNK_POOL(ch);
+    const float *const qn = k->col[0] + i + SBL__CHUNK_COLN(ch);
+    const sbl__v t = sbl__load(q + SBL__POOL_FT(ch) * SBL__POOL_COLS);
+    const int r0 = lean != 3 || k->edge_row != 1, r2 = lean != 3 || k->edge_row != 2;
+    sbl__m ok0l, ok0m, ok0r, ok1l, ok1r, ok2l, ok2m, ok2r;
+    sbl__v le = zero, ld = zero, xt = zero, rn;
+    if (lean == 2) {
+        ok0l = ok0m = ok0r = ok1l = ok1r = ok2l = ok2m = ok2r = sbl__true;
+        rn = sbl__set1(0.125f);
+    } else {
+        const float *const v0 = W->v[0] + x, *const v1 = W->v[1] + x, *const v2 = W->v[2] + x;
+        ok0l = sbl__gt(sbl__load(v0 - 1), zero);
+        ok0m = sbl__gt(sbl__load(v0), zero);
+        ok0r = sbl__gt(sbl__load(v0 + 1), zero);
+        ok1l = sbl__gt(sbl__load(v1 - 1), zero);
+        ok1r = sbl__gt(sbl__load(v1 + 1), zero);
+        ok2l = sbl__gt(sbl__load(v2 - 1), zero);
+        ok2m = sbl__gt(sbl__load(v2), zero);
+        ok2r = sbl__gt(sbl__load(v2 + 1), zero);
+        /* the pairs per column (a column outside the image: 0; lean 3: the copy's left
+           out, sbl__lanes_columns_cfg) less the centre's */
+        rn = sbl__div(one, sbl__max(sbl__sub(sbl__add(sbl__add(sbl__load(qn - 1), sbl__load(qn)),
+                                                      sbl__load(qn + 1)), one), one));
+    }
+#define SBL__LEAN_IN(c) \
+    do { \
+        const sbl__v xc = sbl__load(W->x[1][c] + x); \
+        const sbl__v dy = sbl__sub(sbl__mul(sbl__load(W->y[1][c] + x), t), xc); \
+        const sbl__v m8 = sbl__load(q + SBL__POOL_LM8(ch, c) * SBL__POOL_COLS); \
+        sbl__v dl = zero, dm = zero, dr = zero, d; \
+        le = (c) ? sbl__add(le, sbl__mul(sbl__sub(m8, xc), dy)) : sbl__mul(sbl__sub(m8, xc), dy); \
+        ld = (c) ? sbl__add(ld, sbl__mul(dy, dy)) : sbl__mul(dy, dy); \
+        if (r0) SBL__XT_ROW(c, 0, ok0l, ok0m, ok0r); \
+        SBL__XT_ROW(c, 1, ok1l, ok1l, ok1r); \
+        if (r2) SBL__XT_ROW(c, 2, ok2l, ok2m, ok2r); \
+        if (E) { /* the border lane's column outside the image */ \
+            dl = sbl__sel(E->keep_l, dl, zero); \
+            dr = sbl__sel(E->keep_r, dr, zero); \
+        } \
+        d = sbl__add(sbl__add(dl, dm), dr); \
+        xt = (c) ? sbl__add(xt, sbl__mul(d, d)) : sbl__mul(d, d); \
+    } while (0)
+    SBL__LANES_CH(SBL__LEAN_IN);
+#undef SBL__LEAN_IN
+    st->rl_e = le;
+    st->rl_d = ld;
+    st->rl_v8 = sbl__load(q + SBL__POOL_LV8(ch) * SBL__POOL_COLS);
+    st->rl_xt = sbl__mul(xt, sbl__mul(rn, rn));
+}
+#undef SBL__XT_ROW
 
 SBL__INLINE int sbl__rows_valid_in(const sbl__ring_row *const *R, int ca, int cb); /* (below) */
 
@@ -9845,16 +10020,18 @@ SBL__INLINE void sbl__lanes_stage_blur(const sbl__kernel *k, const sbl__ring_row
 /* The weight of the staged lanes (sbl__lanes_weight), into the chunk's plane W: a stage
    of its own, as its chain of divisions and a square root (t2, rho, the posterior, the
    weight) is long; in a loop of its own more vectors' chains overlap. */
-SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, const float *nyrow,
-                                         int x, int base, const int ch, const int full,
-                                         const sbl__lane_edge *E)
+SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
+                                         const float *nyrow, int x, int base, const int ch,
+                                         const int full, const sbl__lane_edge *E, const int lean)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     float *const q = k->col[0] + (x - base) + SBL__CHUNK_POOL(ch); /* pool planes */
     const float *const qn = k->col[0] + (x - base) + SBL__CHUNK_COLN(ch); /* pairs per column */
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
     const int mix = SBL_EVIDENCE_MIX && k->wp.evid_mix; /* 3.11: |x* - m|^2 and sh_R */
-    sbl__v n_x, n_y, n_xc, nl, nr, cnt;
+    sbl__v n_x, n_y, n_xc, nl, nr, cnt, w;
+    (void)W;
+    (void)lean;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     nl = full ? sbl__set1(3.0f) : sbl__load(qn - 1);
     nr = full ? sbl__set1(3.0f) : sbl__load(qn + 1);
@@ -9873,16 +10050,26 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const float *n_row, con
         st.blur_b2 = sbl__load(q + SBL__POOL_BB(ch) * SBL__POOL_COLS);
         st.blur_g = sbl__load(q + SBL__POOL_BG(ch) * SBL__POOL_COLS);
     }
-    sbl__store(q + SBL__POOL_W(ch) * SBL__POOL_COLS,
-               sbl__lanes_weight(&k->wp, &st, mix ? sbl__load(q + SBL__POOL_DEV2(ch) * SBL__POOL_COLS) : zero,
-                                 sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
-                                 sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
-                                 sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1));
+    w = sbl__lanes_weight(&k->wp, &st, mix ? sbl__load(q + SBL__POOL_DEV2(ch) * SBL__POOL_COLS) : zero,
+                          sbl__load(q + SBL__POOL_S2(ch) * SBL__POOL_COLS),
+                          sbl__load(q + SBL__POOL_PD2(ch) * SBL__POOL_COLS),
+                          sbl__load(q + SBL__POOL_PV(ch) * SBL__POOL_COLS), n_xc, n_y, 0, ch, 1);
+    if (k->wp.lean_restart) { /* (a constant of the instance) */
+        /* the weight before the restart lean, for Eq. 5; the lean where some lane takes
+           it (sbl__lanes_weight), then clamped as there */
+        sbl__store(q + SBL__POOL_A2(ch) * SBL__POOL_COLS, w);
+        if (!sbl__all(st.rl_off)) {
+            sbl__lanes_lean_inputs(k, W, x, base, ch, E, lean, &st);
+            w = sbl__sel(st.rl_off, st.rl_w, sbl__lanes_lean_restart(&st, st.rl_w, st.rl_vy));
+            w = sbl__min(sbl__max(sbl__max(w, sbl__set1(k->wp.alpha_min)), zero), one);
+        }
+    }
+    sbl__store(q + SBL__POOL_W(ch) * SBL__POOL_COLS, w);
 }
 
 /* The blend and Eq. 5 of the staged lanes, with the weight of sbl__lanes_stage_weight
-   (one for every channel: the temporal pooled weight has no lean, so its a2 is the
-   weight itself) */
+   (one for every channel). Eq. 5 counts the weight before the restart lean (plane A2)
+   where that runs (wp.lean_restart); elsewhere that is the weight itself */
 SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
                                         const float *n_row, const float *nyrow, int x, int base,
                                         const int ch, const int full)
@@ -9896,7 +10083,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
     /* full: every x* of the chunk valid (v = 1 exactly where N > 0): no reset lane */
     valid = full ? sbl__true : sbl__gt(n_x, zero);
     w = sbl__load(q + SBL__POOL_W(ch) * SBL__POOL_COLS);
-    w2 = w; /* every channel's */
+    w2 = k->wp.lean_restart ? sbl__load(q + SBL__POOL_A2(ch) * SBL__POOL_COLS) : w; /* every channel's */
     /* Eq. 5 first (its values then leave the registers), then the blend */
     /* one weight for every channel: its mean is the weight itself (sbl__lanes_vector_fast) */
     a2_mean = w2;
@@ -9943,7 +10130,7 @@ SBL__INLINE void sbl__lanes_stage_blend(sbl__kernel *k, const sbl__lane_rows *W,
    runs the same lanes, one wide). */
 SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const float *n_row,
                                  const float *nyrow, int x, int base, int y, const int ch, int side,
-                                 const int rows, const int fast, const int mix)
+                                 const int rows, const int fast, const int mix, const int lean)
 {
     /* rows: the window's rows (2 on the image's first and last rows: a corner's window
        holds 4 samples) */
@@ -9971,11 +10158,12 @@ SBL__INLINE void sbl__lanes_edge(sbl__kernel *k, const sbl__lane_rows *W, const 
     E.bessel = sbl__load(bessel);
     E.lean_s = sbl__load(lean_s);
     if (fast == 1) {
-        sbl__lanes_stage_y(k, W, n_row, x, base, ch, &E, mix);
-        sbl__lanes_stage_weight(k, n_row, nyrow, x, base, ch, 0, &E);
+        sbl__lanes_stage_y(k, W, n_row, x, base, ch, &E, mix, lean);
+        sbl__lanes_stage_weight(k, W, n_row, nyrow, x, base, ch, 0, &E, lean);
         sbl__lanes_stage_blend(k, W, n_row, nyrow, x, base, ch, 0);
     } else {
         (void)mix;
+        (void)lean;
         sbl__lanes_vector_fast(k, W, n_row, nyrow, x, base, y, ch, fast, 0, &E);
     }
 }
@@ -10114,11 +10302,15 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     /* cfg: fast (0, 1, 2), or 3 / 4: the temporal / stereo default (fast 1 / 2) on the
        image's first or last row (k->edge_row; R[0] or R[2] NULL); 5 / 6: 1 / 3 with the
        mix towards the paper's weight (k->wp.evid_mix, 3.11), which the others lack;
-       7 .. 10: 1, 3, 5, 6 with the resampling blur's bias (k->wp.blur, 4.12) */
-    const int erow = cfg == 3 || cfg == 4 || cfg == 6 || cfg == 8 || cfg == 10;
+       7 .. 10: 1, 3, 5, 6 with the resampling blur's bias (k->wp.blur, 4.12); 11 .. 14:
+       1, 3, 5, 6 with the restart lean (k->wp.lean_restart, 6.3) */
+    const int erow = cfg == 3 || cfg == 4 || cfg == 6 || cfg == 8 || cfg == 10 || cfg == 12 || cfg == 14;
     const int fast = cfg == 3 || cfg >= 5 ? 1 : cfg == 4 ? 2 : cfg;
-    const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6 || cfg == 9 || cfg == 10);
-    const int blur = cfg >= 7;
+    const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6 || cfg == 9 || cfg == 10 || cfg == 13 || cfg == 14);
+    const int blur = cfg >= 7 && cfg <= 10;
+    /* the restart lean (sbl__lanes_lean_inputs): 3 on the image's first or last row, 2 in a
+       full chunk (below), else 1 */
+    const int lean = cfg >= 11 ? (erow ? 3 : 1) : 0;
     /* the stereo default, per vector in a chunk that is not full: a vector whose blocks
        or windows hold only valid pairs takes the full chunk's operations (the same
        values). Not the column sums: under -ffast-math gcc reorders the full column's
@@ -10171,6 +10363,7 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     if (fast == 1) k_ch.wp.evid_mix = mix; /* (the other instances test it at run time) */
     if (fast) k_ch.temporal = fast == 1; /* (sbl__kernel_lanes_pooled: as k->wp.temporal) */
     k_ch.wp.blur = blur; /* (only the default configuration sets it: sbl_temporal_filter) */
+    k_ch.wp.lean_restart = lean != 0; /* (likewise) */
     if (erow) {
         /* the missing row: the first row's window takes row 1 as its row 0 too, the
            last row's takes row 0 as its row 2 too; every sum then adds 0 for it (the
@@ -10274,13 +10467,13 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
             }
             if (fast == 1) {
                 /* two stages over the run's vectors (sbl__lanes_stage_y) */
-                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, n_row, p, base, ch, Er, mix));
+                SBL__RUN_VECTORS(sbl__lanes_stage_y(k, &W, n_row, p, base, ch, Er, mix, lean));
                 if (blur) SBL__RUN_VECTORS(sbl__lanes_stage_blur(k_in, R, p, base, ch));
                 if (full) {
-                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 1, Er));
+                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, &W, n_row, nyrow, p, base, ch, 1, Er, lean ? 2 : 0));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 1));
                 } else {
-                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, n_row, nyrow, p, base, ch, 0, Er));
+                    SBL__RUN_VECTORS(sbl__lanes_stage_weight(k, &W, n_row, nyrow, p, base, ch, 0, Er, lean));
                     SBL__RUN_VECTORS(sbl__lanes_stage_blend(k, &W, n_row, nyrow, p, base, ch, 0));
                 }
             } else {
@@ -10291,11 +10484,11 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
         /* the image's border columns (sbl__kernel_run_span asked: their windows are safe) */
         if (fast && (k->edge_ask & 1) && x == 0) {
             if (blur) sbl__lanes_stage_blur(k_in, R, 0, base, ch);
-            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, y, ch, 1, erow ? 2 : 3, fast, mix);
+            sbl__lanes_edge(k, &W, n_row, nyrow, 0, base, y, ch, 1, erow ? 2 : 3, fast, mix, lean);
         }
         if (fast && (k->edge_ask & 2) && e == w) {
             if (blur) sbl__lanes_stage_blur(k_in, R, w - SBL__VW, base, ch);
-            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, y, ch, 2, erow ? 2 : 3, fast, mix);
+            sbl__lanes_edge(k, &W, n_row, nyrow, w - SBL__VW, base, y, ch, 2, erow ? 2 : 3, fast, mix, lean);
         }
         x = e;
     }
@@ -10425,6 +10618,13 @@ SBL__POOLED_INSTANCE(1, 10) SBL__POOLED_INSTANCE(2, 10) SBL__POOLED_INSTANCE(3, 
 /* the resampling blur's bias (4.12): the temporal default behind a stereo blend */
 SBL__POOLED_INSTANCE(1, 7) SBL__POOLED_INSTANCE(2, 7) SBL__POOLED_INSTANCE(3, 7) SBL__POOLED_INSTANCE(4, 7)
 SBL__POOLED_INSTANCE(1, 8) SBL__POOLED_INSTANCE(2, 8) SBL__POOLED_INSTANCE(3, 8) SBL__POOLED_INSTANCE(4, 8)
+/* the restart lean (6.3): the temporal default without a stereo blend behind */
+SBL__POOLED_INSTANCE(1, 11) SBL__POOLED_INSTANCE(2, 11) SBL__POOLED_INSTANCE(3, 11) SBL__POOLED_INSTANCE(4, 11)
+SBL__POOLED_INSTANCE(1, 12) SBL__POOLED_INSTANCE(2, 12) SBL__POOLED_INSTANCE(3, 12) SBL__POOLED_INSTANCE(4, 12)
+#if SBL_EVIDENCE_MIX
+SBL__POOLED_INSTANCE(1, 13) SBL__POOLED_INSTANCE(2, 13) SBL__POOLED_INSTANCE(3, 13) SBL__POOLED_INSTANCE(4, 13)
+SBL__POOLED_INSTANCE(1, 14) SBL__POOLED_INSTANCE(2, 14) SBL__POOLED_INSTANCE(3, 14) SBL__POOLED_INSTANCE(4, 14)
+#endif
 #undef SBL__POOLED_INSTANCE
 
 static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const *R, int pa,
@@ -10456,6 +10656,29 @@ static void sbl__kernel_lanes_pooled(sbl__kernel *k, const sbl__ring_row *const 
         case 64 + 10: sbl__kernel_lanes_pooled_4_10(k, R, pa, pb, xa, xb, win); break;
 #endif
         default: sbl__kernel_lanes_pooled_4_7(k, R, pa, pb, xa, xb, win); break;
+        }
+    } else if (fast && k->wp.temporal && k->wp.lean_restart) {
+        /* the restart lean's instances (as the blur's) */
+        const int cfg = (k->edge_row ? 12 : 11) + (SBL_EVIDENCE_MIX && k->wp.evid_mix ? 2 : 0);
+        switch (k->ch * 16 + cfg) {
+        case 16 + 11: sbl__kernel_lanes_pooled_1_11(k, R, pa, pb, xa, xb, win); break;
+        case 32 + 11: sbl__kernel_lanes_pooled_2_11(k, R, pa, pb, xa, xb, win); break;
+        case 48 + 11: sbl__kernel_lanes_pooled_3_11(k, R, pa, pb, xa, xb, win); break;
+        case 16 + 12: sbl__kernel_lanes_pooled_1_12(k, R, pa, pb, xa, xb, win); break;
+        case 32 + 12: sbl__kernel_lanes_pooled_2_12(k, R, pa, pb, xa, xb, win); break;
+        case 48 + 12: sbl__kernel_lanes_pooled_3_12(k, R, pa, pb, xa, xb, win); break;
+        case 64 + 12: sbl__kernel_lanes_pooled_4_12(k, R, pa, pb, xa, xb, win); break;
+#if SBL_EVIDENCE_MIX
+        case 16 + 13: sbl__kernel_lanes_pooled_1_13(k, R, pa, pb, xa, xb, win); break;
+        case 32 + 13: sbl__kernel_lanes_pooled_2_13(k, R, pa, pb, xa, xb, win); break;
+        case 48 + 13: sbl__kernel_lanes_pooled_3_13(k, R, pa, pb, xa, xb, win); break;
+        case 64 + 13: sbl__kernel_lanes_pooled_4_13(k, R, pa, pb, xa, xb, win); break;
+        case 16 + 14: sbl__kernel_lanes_pooled_1_14(k, R, pa, pb, xa, xb, win); break;
+        case 32 + 14: sbl__kernel_lanes_pooled_2_14(k, R, pa, pb, xa, xb, win); break;
+        case 48 + 14: sbl__kernel_lanes_pooled_3_14(k, R, pa, pb, xa, xb, win); break;
+        case 64 + 14: sbl__kernel_lanes_pooled_4_14(k, R, pa, pb, xa, xb, win); break;
+#endif
+        default: sbl__kernel_lanes_pooled_4_11(k, R, pa, pb, xa, xb, win); break;
         }
     } else if (k->edge_row && !k->wp.temporal) {
         /* the image's first or last row (only the default configurations come here) */
@@ -10791,6 +11014,12 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                    d.alpha_min, d.clip_gamma, d.bias_threshold);
     k.wp.temporal = 1;
     k.wp.shared_bias = d.stereo_shared_bias;
+    /* the restart lean (docs/ESTIMATORS.md 6.3): the default configuration alone, and
+       not behind a stereo blend (both eyes would lean to the same neighbours: the
+       texture bias it brings would be shared, measured to lose) */
+    k.wp.lean_restart = SBL_LEAN_RESTART_WEIGHT > 0.0 && d.stereo_shared_bias == 0.0f &&
+                        d.estimator == SBL_ESTIMATOR_POOLED && d.rectify == SBL_RECTIFY_NONE &&
+                        d.weight_mode == SBL_WEIGHT_SCALAR && s.history && !s.src.cubic;
     /* the resampling blur's bias (docs/ESTIMATORS.md 4.12): behind a stereo blend, in
        the default configuration (its lanes: sbl__kernel_lanes_pooled's blur instances),
        for the bilinear fetch (Catmull-Rom reproduces quadratics: no second-order blur) */

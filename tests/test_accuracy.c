@@ -1657,6 +1657,59 @@ static void test_tail_fireflies(void)
     g_tail = 0;
 }
 
+/* The restart lean (docs/ESTIMATORS.md 6.3): a converged flat history of 0.2, then the
+   whole region jumps to 0.8 with noise 0.05. The weight of the new sample is then about 1
+   (the history is dropped), so without the lean the first output is about the noisy
+   input; with it the neighbours' mean comes in and the output's RMSE against 0.8 falls
+   below the input's. Behind a stereo blend (stereo_shared_bias 1) the lean is off: the
+   output stays about the input. One channel: the blend moves the output along the
+   segment x* .. y only, so in colour the noise across a grey jump's direction (2/3 of
+   it) would stay whatever the weight. */
+static void restart_jump_rmse(float c, int evidence, double *out_rmse, double *in_rmse)
+{
+    const int w = 48, h = 24, frames = 21;
+    seq1 s;
+    sbl_temporal_desc d;
+    sbt_rng rng = {29};
+    double se = 0, si = 0;
+    int i, k, x, y, n = 0;
+    memset(&d, 0, sizeof d);
+    d.stereo_shared_bias = c;
+    g_evidence = evidence;
+    seq_init(&s, w, h, 1);
+    for (i = 0; i < frames; ++i) {
+        fill_flat(&s, &rng, i + 1 < frames ? 0.2 : 0.8, 0.05);
+        CHECK_EQ(seq_step(&s, &d, i == 0), SBL_OK);
+    }
+    /* the interior (away from the image's border rows and columns) */
+    for (y = 2; y < h - 2; ++y)
+        for (x = 2; x < w - 2; ++x)
+            for (k = 0; k < 1; ++k) {
+                const double o = seq_out(&s, x, y)[k] - 0.8, v = s.cur[(size_t)y * w + x] - 0.8;
+                se += o * o;
+                si += v * v;
+                ++n;
+            }
+    g_evidence = 0;
+    seq_free(&s);
+    *out_rmse = sqrt(se / n);
+    *in_rmse = sqrt(si / n);
+}
+
+static void test_restart_lean(void)
+{
+    double o0, i0, o1, i1, oe, ie;
+    restart_jump_rmse(0.0f, 0, &o0, &i0);
+    restart_jump_rmse(0.0f, 1, &oe, &ie);
+    restart_jump_rmse(1.0f, 0, &o1, &i1);
+    printf("  restart lean, a converged 0.2 jumping to 0.8 (noise 0.05): first output's RMSE "
+           "%.4f (%.4f with the evidence plane; input %.4f), %.4f behind a stereo blend "
+           "(input %.4f)\n", o0, oe, i0, o1, i1);
+    CHECK(o0 < 0.85 * i0); /* measured 0.78 (1.00 without the lean) */
+    CHECK(oe < 0.85 * ie);
+    CHECK(o1 > 0.9 * i1); /* stereo_shared_bias 1: no lean */
+}
+
 int main(void)
 {
     test_tail_hits();
@@ -1683,5 +1736,6 @@ int main(void)
     test_stereo_shared_bias();
     test_blur_bias();
     test_shared_bias_floor();
+    test_restart_lean();
     return sbt_finish("test_accuracy");
 }

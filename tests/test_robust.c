@@ -1090,6 +1090,8 @@ static void test_constant_images(void)
 
 typedef struct refp {
     int est, rect, mode, no_fallback;
+    int lean; /* the restart lean (docs/ESTIMATORS.md 6.3, 6.4): the default configuration
+                 (pooled, no rectification, one weight) with stereo_shared_bias 0 */
     double constant, alpha_min, max_history, gamma, bias_thr, depth_tol, normal_thr;
     sbl_motion_convention mc;
 } refp;
@@ -1115,6 +1117,9 @@ static refp ref_params(const sbl_temporal_desc *d)
     p.depth_tol = d->reproject.depth_tolerance == 0.0f ? 0.05 : (double)d->reproject.depth_tolerance;
     p.normal_thr = d->reproject.normal_threshold == 0.0f ? 0.9 : (double)d->reproject.normal_threshold;
     p.mc = d->reproject.motion;
+    p.lean = d->estimator == SBL_ESTIMATOR_POOLED && d->rectify == SBL_RECTIFY_NONE &&
+             d->weight_mode == SBL_WEIGHT_SCALAR && d->stereo_shared_bias == 0.0f &&
+             d->reproject.history_filter != SBL_HISTORY_CATMULL_ROM;
     return p;
 }
 
@@ -1284,6 +1289,30 @@ static double ref_weight(const refp *p, double dev2, double s2, double pd2, doub
     return a;
 }
 
+/* The restart lean (docs/ESTIMATORS.md 6.3, 6.4; the library's thresholds 0.3 and 0.15,
+   written as numbers): where the weight a (before the floor alpha_min, which is below
+   0.3 here) is >= 0.3 and >= 0.15 above the progressive 1 / (N + 1), the spatial lean
+   of 4.2 with q not divided by N: a = (a + q e) / (1 + q), q = a V_Y / V_M, e = E / D,
+   V_M = the texture + V_Y / n8, the texture the larger of the neighbours' sample variance
+   beyond V_Y (v8u = v8 n8 / (n8 - 1)) and the history's sum_c (x*_c - the valid
+   neighbours' mean x*_c)^2 (xt < 0: none) */
+static double ref_restart_lean(const refp *p, double a, double vy, double v8, double le,
+                               double ld, double xt, int count, double nx)
+{
+    double v8u = v8 * (count - 1) / (count - 2), tex, vm, q;
+    if (!p->lean || count <= 2 || a < 0.3 || a - 1.0 / (nx + 1.0) < 0.15) return a;
+    tex = xt >= 0 && xt > v8u - vy ? xt : v8u - vy;
+    if (tex < 0) tex = 0;
+    vm = tex + vy / (count - 1);
+    if (!(vm > 0)) return a;
+    q = a * vy / vm;
+    a = (1 + q) * ld > 0 ? (a * ld + q * le) / ((1 + q) * ld) : a;
+    if (a < p->alpha_min) a = p->alpha_min;
+    if (a < 0) a = 0;
+    if (a > 1) a = 1;
+    return a;
+}
+
 static double ref_eq5(double a, double nx, double ny)
 {
     double den = (1 - a) * (1 - a) * ny + a * a * nx;
@@ -1363,7 +1392,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                 for (k = 0; k < c; ++k) o[k] = yv[k];
                 nout = 1;
             } else {
-                double mean[4], var[4], lo[4], hi[4], pd[4], pv[4], x1[4], ak[4], yl[4];
+                double mean[4], var[4], lo[4], hi[4], pd[4], pv[4], x1[4], ak[4], yl[4], a2;
                 int cnt = 0, pairs = 0, idx[9][2], ispair[9], centre = 0, pass;
                 for (j = y - 1; j <= y + 1; ++j)
                     for (i = x - 1; i <= x + 1; ++i) {
@@ -1463,8 +1492,43 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     a = ref_weight(p, dev2, s2, pd2, pvs, cnt, pairs, nx, 1.0, pool[y * w + x]);
                     for (k = 0; k < c; ++k) ak[k] = a;
                 }
+                a2 = a;
+                if (p->lean && cnt > 2) {
+                    /* the restart lean's inputs: the neighbours' (raw Y without the
+                       centre) mean and population variance, E, D, the history's texture */
+                    double v8 = 0, le = 0, ld = 0, xt = -1, vy;
+                    int n;
+                    if (pairs > 1) xt = 0;
+                    for (k = 0; k < c; ++k) {
+                        double m8 = 0, s8 = 0, sx = 0;
+                        for (n = 0; n < cnt; ++n)
+                            if (n != centre) m8 += px(in->cur, idx[n][0], idx[n][1])[k];
+                        m8 /= cnt - 1;
+                        for (n = 0; n < cnt; ++n)
+                            if (n != centre) {
+                                double e = px(in->cur, idx[n][0], idx[n][1])[k] - m8;
+                                s8 += e * e;
+                                if (ispair[n]) sx += xs[(idx[n][1] * w + idx[n][0]) * c + k];
+                            }
+                        v8 += s8 / (cnt - 1);
+                        le += (m8 - x1[k]) * (yl[k] - x1[k]);
+                        ld += (yl[k] - x1[k]) * (yl[k] - x1[k]);
+                        if (pairs > 1) xt += (x1[k] - sx / (pairs - 1)) * (x1[k] - sx / (pairs - 1));
+                    }
+                    if (pairs > 1) {
+                        double pvs = 0;
+                        for (k = 0; k < c; ++k) pvs += pv[k];
+                        vy = pvs * nx / (nx + 1.0);
+                    } else {
+                        double s2 = 0;
+                        for (k = 0; k < c; ++k) s2 += var[k];
+                        vy = s2 * cnt / (cnt - 1);
+                    }
+                    a = ref_restart_lean(p, a, vy, v8, le, ld, xt, cnt, nx);
+                    for (k = 0; k < c; ++k) ak[k] = a;
+                }
                 for (k = 0; k < c; ++k) o[k] = x1[k] + ak[k] * (yl[k] - x1[k]);
-                nout = ref_eq5(a, nx, 1.0);
+                nout = ref_eq5(a2, nx, 1.0); /* the weight before the lean */
             }
             if (!(nout <= p->max_history)) nout = p->max_history;
             on[y * w + x] = nout;
