@@ -421,10 +421,12 @@ typedef enum sbl_estimator {
     SBL_ESTIMATOR_POOLED = 0,        /* default: robust (below), plus bias evidence pooled
                                         along the row (empirical Bayes over five 3x3
                                         blocks, 15 px): catches small changes that cover
-                                        a region. Stereo beta on a raw own eye (N <= 1):
-                                        also leans towards its neighbours' mean where
-                                        they are flat (a third estimate); see
-                                        docs/ESTIMATORS.md                               */
+                                        a region. Stereo beta on a raw own eye (N <= 1),
+                                        and the temporal weight where the history is
+                                        dropped for its bias (c = 0 only): also leans
+                                        towards the neighbours' mean where they are
+                                        flat (a third estimate); see docs/ESTIMATORS.md
+                                        4.2, 6.4                                         */
     SBL_ESTIMATOR_HISTORY_AWARE,     /* var_X from tracked N, bias from paired 3x3
                                         differences beyond their noise level (the
                                         default before the pooled estimator)            */
@@ -485,7 +487,9 @@ typedef struct sbl_temporal_desc {
                                the bias counts 1 + c times (docs/ESTIMATORS.md 4.7).
                                c > 0 with the default estimator and a bilinear fetch:
                                the blur of the sub-pixel history fetch counts as a
-                               bias too (4.12; a fixed camera has none).
+                               bias too (4.12; a fixed camera has none), and the
+                               lean at a restart is off (6.4: its texture bias would
+                               be both eyes').
                                0 -> the call's default: per-eye weights (c = 0) in
                                sbl_temporal_filter, c = 1 (the derived value) in
                                sbl_stereo_temporal_frame, whose output is the blend;
@@ -9442,9 +9446,9 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         if (fast == 1 && p->lean_restart) {
             /* the restart lean, as sbl__weight (6.3): where w >= SBL_LEAN_RESTART_WEIGHT
                and w - N_Y / (N_X + N_Y) >= SBL_LEAN_RESTART_EXCESS. Its inputs are formed
-               only in the vectors where some lane passes (few, on converged content), so
-               sbl__lanes_stage_weight applies it; the weight returned is the one before
-               it (Eq. 5's) */
+               only in the vectors where some lane passes (on converged content few; in
+               bench/ipp.c's noisy cases most: 6.4), so sbl__lanes_stage_weight applies
+               it; the weight returned is the one before it (Eq. 5's) */
             const sbl__v thr = sbl__set1(SBL__CAST(float, SBL_LEAN_RESTART_WEIGHT));
             const sbl__v exc = sbl__set1(SBL__CAST(float, SBL_LEAN_RESTART_EXCESS));
             /* (a - b > 0 exactly where a > b: one mask for both tests) */
@@ -10030,8 +10034,6 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const sbl__lane_rows *W
     sbl__lane_stats st; /* the fields sbl__lanes_weight reads */
     const int mix = SBL_EVIDENCE_MIX && k->wp.evid_mix; /* 3.11: |x* - m|^2 and sh_R */
     sbl__v n_x, n_y, n_xc, nl, nr, cnt, w;
-    (void)W;
-    (void)lean;
     sbl__lanes_lengths(k, n_row, nyrow, x, &n_x, &n_y, &n_xc);
     nl = full ? sbl__set1(3.0f) : sbl__load(qn - 1);
     nr = full ? sbl__set1(3.0f) : sbl__load(qn + 1);
@@ -11014,10 +11016,12 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
                                    d.alpha_min, d.clip_gamma, d.bias_threshold);
     k.wp.temporal = 1;
     k.wp.shared_bias = d.stereo_shared_bias;
-    /* the restart lean (docs/ESTIMATORS.md 6.3): the default configuration alone, and
-       not behind a stereo blend (both eyes would lean to the same neighbours: the
-       texture bias it brings would be shared, measured to lose) */
-    k.wp.lean_restart = SBL_LEAN_RESTART_WEIGHT > 0.0 && d.stereo_shared_bias == 0.0f &&
+    /* the restart lean (docs/ESTIMATORS.md 6.3, 6.4): the default configuration alone,
+       with the bilinear fetch it was measured with, and not behind a stereo blend (both
+       eyes would lean to the same neighbours: the texture bias it brings would be
+       shared, measured to lose). Not with SBL_LEAN_TEMPORAL, whose lean everywhere
+       returns before the restart lean's lane terms are set. */
+    k.wp.lean_restart = !SBL_LEAN_TEMPORAL && SBL_LEAN_RESTART_WEIGHT > 0.0 && d.stereo_shared_bias == 0.0f &&
                         d.estimator == SBL_ESTIMATOR_POOLED && d.rectify == SBL_RECTIFY_NONE &&
                         d.weight_mode == SBL_WEIGHT_SCALAR && s.history && !s.src.cubic;
     /* the resampling blur's bias (docs/ESTIMATORS.md 4.12): behind a stereo blend, in
