@@ -2765,6 +2765,16 @@ static double sbl__change_posterior(double pd2, double se2, double k2, double pr
    between equal ages, none when X has just restarted and Y is old (the old eye is the
    one that lags). The ages are bounded (SBL__LAG_AGE_MAX) so that no square overflows
    a float. */
+/* The stereo blend's spatial lean (docs/ESTIMATORS.md 4.2) acts where the own eye holds
+   at most this many samples (N_Y): a raw eye, or a temporal output whose history just
+   restarted, whose noise is mostly this frame's samples and so independent of its
+   neighbours'. Beyond it the neighbours share the eye's history through the bilinear
+   reprojection, their mean follows y's noise and the lean pulls towards the own eye
+   (measured on the combined pipeline, 6.5: 3 gains on every scene, 4 and more lose
+   synthetic-pan and gallery's RMSE). */
+#ifndef SBL_STEREO_LEAN_MAX_N
+#define SBL_STEREO_LEAN_MAX_N 3.0
+#endif
 #ifndef SBL_STEREO_LAG_SHARE
 #define SBL_STEREO_LAG_SHARE 1 /* 0: all of the bias is X's, the rule before */
 #endif
@@ -2786,8 +2796,10 @@ static double sbl__lag_share(double n_x, double n_y)
    nearest the posterior mean of the pixel given x*, y and the prior N(m8, V_M),
    V_M = max(0, v8u - V_Y) + V_Y / n8 (the neighbours' spread beyond noise, plus the
    noise of their mean): a = (a0 + q e) / (1 + q), q = a0 V_Y / (V_M max(N_X, 1)) <= n8,
-   e = E / D. The prior counts once per history: a history of N_X samples took it in
-   N_X times, with the same texture bias each time (1 for a raw other eye). */
+   e = E / D. In the temporal blend (SBL_LEAN_TEMPORAL) the prior counts once per
+   history: a history of N_X samples took it in N_X times, with the same texture bias
+   each time; the stereo blend and the restart lean pass N_X = 1 (their output is
+   displayed, or the history it would be counted against is being dropped). */
 static double sbl__lean(double a0, double var_y, double v8u, double n8, double n_x,
                         double lean_e, double lean_d)
 {
@@ -2917,14 +2929,16 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             if (ap > a) a += SBL__CAST(double, p->evid_sh) * (ap - a);
         }
         /* stereo: the neighbours of Y as a third estimate, where they agree (flat).
-           Only for a raw own eye (N_Y <= 1): the prior assumes the neighbours' noise
-           independent of each other and of y, which a temporally filtered eye's is
-           not (its pixels share history through the bilinear reprojection) */
+           Only for an own eye of at most SBL_STEREO_LEAN_MAX_N samples: the prior
+           assumes the neighbours' noise independent of each other and of y, which a
+           longer filtered eye's is not (its pixels share history through the bilinear
+           reprojection). q is divided by N_X only in the temporal blend, whose output
+           is the next history; the stereo blend's is displayed, not accumulated */
         if (p->estimator == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !p->temporal) &&
-            count > 2 && n_y <= 1.0f) {
+            count > 2 && SBL__CAST(double, n_y) <= SBL_STEREO_LEAN_MAX_N) {
             a2 = a;
             a = sbl__lean(a, var_y, v8 * (count - 1) / (count - 2), count - 1.0,
-                          SBL__CAST(double, n_x), lean_e, lean_d);
+                          p->temporal ? SBL__CAST(double, n_x) : 1.0, lean_e, lean_d);
         } else if (p->lean_restart && count > 2 && a >= SBL_LEAN_RESTART_WEIGHT &&
                    a - progressive >= SBL_LEAN_RESTART_EXCESS) {
             /* the restart lean (6.3): q is not divided by N_X (the history it would be
@@ -9437,10 +9451,13 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
             for (c = c0; c < c1; ++c) st->a2[c] = w2;
-            /* the lean only where N_Y <= 1 (kernel helper: a stereo target is mostly a
-               temporal output, N_Y > 1 in every lane, whose lean the select drops) */
-            if (!sbl__all(sbl__gt(n_y, one)))
-                w = sbl__sel(sbl__gt(n_y, one), w, sbl__lanes_lean(st, w, vy, n_xc, c0, c1));
+            /* the lean only where N_Y <= SBL_STEREO_LEAN_MAX_N (kernel helper: a stereo
+               target is mostly a converged temporal output, N_Y above it in every lane,
+               whose lean the select drops); q / N_X in the temporal blend only */
+            const sbl__v lean_n = sbl__set1(SBL__CAST(float, SBL_STEREO_LEAN_MAX_N));
+            if (!sbl__all(sbl__gt(n_y, lean_n)))
+                w = sbl__sel(sbl__gt(n_y, lean_n), w,
+                             sbl__lanes_lean(st, w, vy, temporal ? n_xc : one, c0, c1));
             return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
         }
         if (fast == 1 && p->lean_restart) {
@@ -9627,7 +9644,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
        limited sample is y t in every lane, with no select */
     t = sbl__lanes_firefly_t(k, sum_y, sum_m8, sum_x, sum_v8, n_xc, x);
     /* (the copies for the stereo weight's lean are stored in every vector: storing them
-       only where the lean runs, a lane of N_Y <= 1, left gcc -Wmaybe-uninitialized
+       only where the lean runs, a lane of N_Y <= SBL_STEREO_LEAN_MAX_N, left gcc -Wmaybe-uninitialized
        warnings in the scalar build, which cannot see that the weight tests the same) */
 #define SBL__FAST_YB(c) \
     do { \

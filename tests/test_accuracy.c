@@ -541,8 +541,10 @@ static void test_stereo_edge_and_flat(void)
    difference of the two eyes is the old eye's lag, not the match's: the pooled beta
    takes the left eye towards the fresh right one, and keeps the right eye on its own
    (docs/ESTIMATORS.md section 4.6; with SBL_STEREO_LAG_SHARE 0, the rule before it, the
-   left eye keeps its lag: RMSE 0.09). Returns the RMSE of each eye's output. */
-static void stereo_lag_measure(int n_left, int n_right, double *rmse_left, double *rmse_right)
+   left eye keeps its lag: RMSE 0.09). Returns the RMSE of each eye's output. The left
+   eye's value is left_value (0.5: the lag; 0.6: the eyes agree). */
+static void stereo_lag_measure(int n_left, int n_right, double left_value, double *rmse_left,
+                               double *rmse_right)
 {
     enum { W = 48, H = 32 };
     static float col[2][W * H * 3], depth[W * H], len[2][W * H], out[2][W * H * 3];
@@ -557,7 +559,7 @@ static void stereo_lag_measure(int n_left, int n_right, double *rmse_left, doubl
         for (y = 0; y < H; ++y)
             for (x = 0; x < W; ++x) {
                 int nn = ey ? n_right : n_left;
-                double v = ey ? truth : 0.5; /* the left eye lags */
+                double v = ey ? truth : left_value;
                 depth[y * W + x] = 4.0f;
                 len[ey][y * W + x] = (float)nn;
                 for (c = 0; c < 3; ++c)
@@ -589,13 +591,29 @@ static void stereo_lag_measure(int n_left, int n_right, double *rmse_left, doubl
 static void test_stereo_lag(void)
 {
     double l, r;
-    stereo_lag_measure(20, 1, &l, &r);
+    stereo_lag_measure(20, 1, 0.5, &l, &r);
     printf("  stereo, old lagging left eye (N 20, off by 0.1) against a fresh right eye (N 1, "
            "noise 0.05): RMSE left %.4f, right %.4f (input 0.1000, 0.0500)\n", l, r);
     /* the lag is not kept: the old eye moves most of the way to the fresh one */
     CHECK(l < 0.06);
     /* and the fresh eye is not pulled towards the old one's lag */
     CHECK(r < 0.05);
+}
+
+/* Two young filtered eyes that agree (both N 2: their histories just restarted, flat,
+   noise 0.05 / sqrt 2 per eye): the best blend of the two alone has RMSE 0.025; the
+   spatial lean (docs/ESTIMATORS.md 4.2) adds the neighbours as a third estimate where
+   N_Y <= SBL_STEREO_LEAN_MAX_N and goes below it. Two converged eyes (N 8) are blended
+   without it: the neighbours of a longer filtered eye share its history (6.5). */
+static void test_stereo_lean_young(void)
+{
+    double l2, r2, l8, r8;
+    stereo_lag_measure(2, 2, 0.6, &l2, &r2);
+    stereo_lag_measure(8, 8, 0.6, &l8, &r8);
+    printf("  stereo, two young eyes (N 2, noise 0.05): RMSE %.4f, %.4f (the two-sample blend "
+           "0.0250); two eyes of N 8: %.4f, %.4f (0.0125)\n", l2, r2, l8, r8);
+    CHECK(l2 < 0.9 * 0.025 && r2 < 0.9 * 0.025);
+    CHECK(l8 > 0.95 * 0.0125 && r8 > 0.95 * 0.0125);
 }
 
 /* ---- history resampling: Catmull-Rom against bilinear --------------------------- */
@@ -1729,6 +1747,7 @@ int main(void)
     test_moving_light();
     test_stereo_edge_and_flat();
     test_stereo_lag();
+    test_stereo_lean_young();
     test_history_catmull_rom();
     test_history_sharpness();
     test_history_filter_params();

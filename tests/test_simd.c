@@ -227,6 +227,7 @@ int main(void)
             memset(&r, 0, sizeof r);
             l.color = view(&cur); l.gbuffer.depth = view(&depth); l.length = view(&len);
             r.color = view(&hist); r.gbuffer.depth = view(&depth);
+            if (iter & 1) r.length = view(&len); /* N_X > 1: the lean's q is not divided */
             stereo_both_paths(&sd, &l, &r, pad, scale, contracts);
         }
         for (i = 0; i < 2; ++i) { free(oc[i].mem); free(on[i].mem); free(oa[i].mem); }
