@@ -421,12 +421,12 @@ typedef enum sbl_estimator {
     SBL_ESTIMATOR_POOLED = 0,        /* default: robust (below), plus bias evidence pooled
                                         along the row (empirical Bayes over five 3x3
                                         blocks, 15 px): catches small changes that cover
-                                        a region. Stereo beta on a raw own eye (N <= 1),
+                                        a region. Stereo beta on an own eye of N <= 3,
                                         and the temporal weight where the history is
                                         dropped for its bias (c = 0 only): also leans
                                         towards the neighbours' mean where they are
                                         flat (a third estimate); see docs/ESTIMATORS.md
-                                        4.2, 6.4                                         */
+                                        4.2, 6.4 - 6.6                                   */
     SBL_ESTIMATOR_HISTORY_AWARE,     /* var_X from tracked N, bias from paired 3x3
                                         differences beyond their noise level (the
                                         default before the pooled estimator)            */
@@ -2817,21 +2817,44 @@ static double sbl__lean(double a0, double var_y, double v8u, double n8, double n
 #ifndef SBL_LEAN_TEMPORAL
 #define SBL_LEAN_TEMPORAL 0
 #endif
-/* The restart lean (docs/ESTIMATORS.md 6.3): the lean in the temporal default only where
-   the history is mostly being dropped, the weight a of the new sample at least
-   SBL_LEAN_RESTART_WEIGHT and at least SBL_LEAN_RESTART_EXCESS above the progressive
-   N_Y / (N_X + N_Y). There the output is about one noisy sample, and the neighbours'
-   mean is the better estimate where the texture is small; elsewhere the history would
-   keep the neighbours' texture bias frame after frame (4.5). Measured: 0.3 gains the
-   moving-light scenes 6-8 %; 0.2 costs static and pan three times as much; the excess
-   keeps the lean off young histories whose weight is high by their length alone.
-   SBL_LEAN_RESTART_WEIGHT <= 0: off. */
+/* The restart lean (docs/ESTIMATORS.md 6.3, 6.6): the lean in the temporal default only
+   where the history is mostly being dropped: the weight a of the new sample above
+   SBL_LEAN_RESTART_WEIGHT and above the progressive N_Y / (N_X + N_Y) by more than
+   SBL_LEAN_RESTART_EXCESS. There the output is about one noisy sample, and the
+   neighbours' mean is the better estimate where the texture is small; elsewhere the
+   history would keep the neighbours' texture bias frame after frame (4.5). The lean's
+   share rises linearly from 0 at those two thresholds to 1 at SBL_LEAN_RESTART_WEIGHT_FULL
+   and SBL_LEAN_RESTART_EXCESS_FULL (the product of the two ramps), so the weight has no
+   step. Measured (6.6): the ramps 0.15 .. 0.35 and 0.05 .. 0.2 gain the moving-light
+   scenes more than the step at 0.3 / 0.15 did, with no scene worse by 0.1 %; the
+   excess keeps the lean off young histories, whose weight is high by their length alone.
+   SBL_LEAN_RESTART_WEIGHT <= 0: off. A _FULL at or below its threshold: a step. */
 #ifndef SBL_LEAN_RESTART_WEIGHT
-#define SBL_LEAN_RESTART_WEIGHT 0.3
+#define SBL_LEAN_RESTART_WEIGHT 0.15
+#endif
+#ifndef SBL_LEAN_RESTART_WEIGHT_FULL
+#define SBL_LEAN_RESTART_WEIGHT_FULL 0.35
 #endif
 #ifndef SBL_LEAN_RESTART_EXCESS
-#define SBL_LEAN_RESTART_EXCESS 0.15
+#define SBL_LEAN_RESTART_EXCESS 0.05
 #endif
+#ifndef SBL_LEAN_RESTART_EXCESS_FULL
+#define SBL_LEAN_RESTART_EXCESS_FULL 0.2
+#endif
+/* the ramps' slopes (a step: 1e6 per unit, full within 1e-6 of its threshold) */
+#define SBL__LEAN_RESTART_WSLOPE \
+    (SBL_LEAN_RESTART_WEIGHT_FULL - SBL_LEAN_RESTART_WEIGHT > 1e-6 ? 1.0 / (SBL_LEAN_RESTART_WEIGHT_FULL - SBL_LEAN_RESTART_WEIGHT) : 1e6)
+#define SBL__LEAN_RESTART_ESLOPE \
+    (SBL_LEAN_RESTART_EXCESS_FULL - SBL_LEAN_RESTART_EXCESS > 1e-6 ? 1.0 / (SBL_LEAN_RESTART_EXCESS_FULL - SBL_LEAN_RESTART_EXCESS) : 1e6)
+/* the restart lean's share (0 .. 1) at the weight a with the progressive weight prog */
+static double sbl__restart_share(double a, double prog)
+{
+    double fw = (a - SBL_LEAN_RESTART_WEIGHT) * SBL__LEAN_RESTART_WSLOPE;
+    double fe = (a - prog - SBL_LEAN_RESTART_EXCESS) * SBL__LEAN_RESTART_ESLOPE;
+    fw = fw < 0.0 ? 0.0 : fw > 1.0 ? 1.0 : fw;
+    fe = fe < 0.0 ? 0.0 : fe > 1.0 ? 1.0 : fe;
+    return fw * fe;
+}
 /* Weight of Y from squares summed over the channels in use. x_dev2 = (x* - mean)^2,
    s2 = population variance of Y, pd2 = (mean paired difference)^2, pv = sample
    variance of the paired differences x*_i - y_i; v8 = population variance of Y
@@ -2935,12 +2958,11 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
            reprojection). q is divided by N_X only in the temporal blend, whose output
            is the next history; the stereo blend's is displayed, not accumulated */
         if (p->estimator == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !p->temporal) &&
-            count > 2 && SBL__CAST(double, n_y) <= SBL_STEREO_LEAN_MAX_N) {
+            count > 2 && n_y <= SBL__CAST(float, SBL_STEREO_LEAN_MAX_N)) {
             a2 = a;
             a = sbl__lean(a, var_y, v8 * (count - 1) / (count - 2), count - 1.0,
                           p->temporal ? SBL__CAST(double, n_x) : 1.0, lean_e, lean_d);
-        } else if (p->lean_restart && count > 2 && a >= SBL_LEAN_RESTART_WEIGHT &&
-                   a - progressive >= SBL_LEAN_RESTART_EXCESS) {
+        } else if (p->lean_restart && count > 2 && sbl__restart_share(a, progressive) > 0.0) {
             /* the restart lean (6.3): q is not divided by N_X (the history it would be
                counted against is being dropped). The texture is also the history's own
                x*'s deviation from its neighbours' where larger: the raw neighbours see
@@ -2948,7 +2970,8 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             double v8u = v8 * (count - 1) / (count - 2);
             if (x_tex >= 0.0 && x_tex > v8u - var_y) v8u = var_y + x_tex;
             a2 = a;
-            a = sbl__lean(a, var_y, v8u, count - 1.0, 1.0, lean_e, lean_d);
+            a = a2 + sbl__restart_share(a2, progressive) *
+                         (sbl__lean(a2, var_y, v8u, count - 1.0, 1.0, lean_e, lean_d) - a2);
         }
         break;
     }
@@ -8374,7 +8397,8 @@ typedef struct sbl__lane_stats {
     sbl__v rl_e, rl_d, rl_v8, rl_xt; /* the restart lean's E, D, the neighbours' variance
                                         and the history's texture (sbl__lanes_lean_inputs;
                                         read only where wp.lean_restart) */
-    sbl__v rl_w, rl_vy; /* the weight before the restart lean and V_Y, */
+    sbl__v rl_w, rl_vy; /* the weight before the restart lean and V_Y, its share, */
+    sbl__v rl_f;
     sbl__m rl_off;      /* and where it does not apply (sbl__lanes_weight sets them) */
 } sbl__lane_stats;
 
@@ -9451,9 +9475,10 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
             for (c = c0; c < c1; ++c) st->a2[c] = w2;
-            /* the lean only where N_Y <= SBL_STEREO_LEAN_MAX_N (kernel helper: a stereo
-               target is mostly a converged temporal output, N_Y above it in every lane,
-               whose lean the select drops); q / N_X in the temporal blend only */
+            /* the lean only where N_Y <= SBL_STEREO_LEAN_MAX_N (in float, as the
+               reference compares), skipped in vectors whose every lane is above it (on
+               converged content most; in bench/ipp.c's noisy cases few: 6.5); q / N_X
+               in the temporal blend only */
             const sbl__v lean_n = sbl__set1(SBL__CAST(float, SBL_STEREO_LEAN_MAX_N));
             if (!sbl__all(sbl__gt(n_y, lean_n)))
                 w = sbl__sel(sbl__gt(n_y, lean_n), w,
@@ -9461,15 +9486,20 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             return sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
         }
         if (fast == 1 && p->lean_restart) {
-            /* the restart lean, as sbl__weight (6.3): where w >= SBL_LEAN_RESTART_WEIGHT
-               and w - N_Y / (N_X + N_Y) >= SBL_LEAN_RESTART_EXCESS. Its inputs are formed
-               only in the vectors where some lane passes (on converged content few; in
-               bench/ipp.c's noisy cases most: 6.4), so sbl__lanes_stage_weight applies
-               it; the weight returned is the one before it (Eq. 5's) */
+            /* the restart lean, as sbl__weight (6.3, 6.6): its share the product of the
+               ramps in w and in w - N_Y / (N_X + N_Y) (sbl__restart_share). Its inputs
+               are formed only in the vectors where some lane's share is above 0 (on
+               converged content few; in bench/ipp.c's noisy cases most: 6.4), so
+               sbl__lanes_stage_weight applies it; the weight returned is the one before
+               it (Eq. 5's) */
             const sbl__v thr = sbl__set1(SBL__CAST(float, SBL_LEAN_RESTART_WEIGHT));
             const sbl__v exc = sbl__set1(SBL__CAST(float, SBL_LEAN_RESTART_EXCESS));
-            /* (a - b > 0 exactly where a > b: one mask for both tests) */
-            st->rl_off = sbl__gt(sbl__max(sbl__sub(thr, w), sbl__sub(exc, sbl__sub(w, prog))), zero);
+            const sbl__v ws = sbl__set1(SBL__CAST(float, SBL__LEAN_RESTART_WSLOPE));
+            const sbl__v es = sbl__set1(SBL__CAST(float, SBL__LEAN_RESTART_ESLOPE));
+            const sbl__v fw = sbl__min(sbl__max(sbl__mul(sbl__sub(w, thr), ws), zero), one);
+            const sbl__v fe = sbl__min(sbl__max(sbl__mul(sbl__sub(sbl__sub(w, prog), exc), es), zero), one);
+            st->rl_f = sbl__mul(fw, fe);
+            st->rl_off = sbl__gt(sbl__set1(FLT_MIN), st->rl_f); /* (a share is 0 or above 1e-16) */
             st->rl_w = w;
             st->rl_vy = vy;
         }
@@ -10079,7 +10109,9 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const sbl__lane_rows *W
         sbl__store(q + SBL__POOL_A2(ch) * SBL__POOL_COLS, w);
         if (!sbl__all(st.rl_off)) {
             sbl__lanes_lean_inputs(k, W, x, base, ch, E, lean, &st);
-            w = sbl__sel(st.rl_off, st.rl_w, sbl__lanes_lean_restart(&st, st.rl_w, st.rl_vy));
+            w = sbl__sel(st.rl_off, st.rl_w,
+                         sbl__add(st.rl_w, sbl__mul(st.rl_f, sbl__sub(sbl__lanes_lean_restart(&st, st.rl_w, st.rl_vy),
+                                                                     st.rl_w))));
             w = sbl__min(sbl__max(sbl__max(w, sbl__set1(k->wp.alpha_min)), zero), one);
         }
     }

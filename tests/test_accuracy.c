@@ -603,16 +603,24 @@ static void test_stereo_lag(void)
 /* Two young filtered eyes that agree (both N 2: their histories just restarted, flat,
    noise 0.05 / sqrt 2 per eye): the best blend of the two alone has RMSE 0.025; the
    spatial lean (docs/ESTIMATORS.md 4.2) adds the neighbours as a third estimate where
-   N_Y <= SBL_STEREO_LEAN_MAX_N and goes below it. Two converged eyes (N 8) are blended
-   without it: the neighbours of a longer filtered eye share its history (6.5). */
+   N_Y <= SBL_STEREO_LEAN_MAX_N and goes below it. A young eye against an old one (N 2
+   against N 16: the blend of the two alone 0.05 / sqrt 18 = 0.0118) leans too: the
+   stereo lean's q is not divided by the other eye's N_X (6.5; divided, it is about 0).
+   Two eyes of N 8 are blended without it. This test's noise is independent from pixel
+   to pixel, so the lean would help there as well (0.0108 without the gate): the check
+   says the gate is in place; its reason, the neighbours of a longer filtered eye
+   sharing its history, is measured on the bench's scenes (6.5), not here. */
 static void test_stereo_lean_young(void)
 {
-    double l2, r2, l8, r8;
+    double l2, r2, l8, r8, lo, ro;
     stereo_lag_measure(2, 2, 0.6, &l2, &r2);
     stereo_lag_measure(8, 8, 0.6, &l8, &r8);
+    stereo_lag_measure(2, 16, 0.6, &lo, &ro);
     printf("  stereo, two young eyes (N 2, noise 0.05): RMSE %.4f, %.4f (the two-sample blend "
-           "0.0250); two eyes of N 8: %.4f, %.4f (0.0125)\n", l2, r2, l8, r8);
+           "0.0250); N 2 against N 16: %.5f (0.01179); two eyes of N 8: %.4f, %.4f (0.0125)\n",
+           l2, r2, lo, l8, r8);
     CHECK(l2 < 0.9 * 0.025 && r2 < 0.9 * 0.025);
+    CHECK(lo < 0.94 * 0.05 / sqrt(18.0)); /* measured 0.0108; 0.0114 dividing q by N_X */
     CHECK(l8 > 0.95 * 0.0125 && r8 > 0.95 * 0.0125);
 }
 

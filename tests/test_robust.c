@@ -1289,24 +1289,29 @@ static double ref_weight(const refp *p, double dev2, double s2, double pd2, doub
     return a;
 }
 
-/* The restart lean (docs/ESTIMATORS.md 6.3, 6.4; the library's thresholds 0.3 and 0.15,
-   written as numbers): where the weight a (before the floor alpha_min, which is below
-   0.3 here) is >= 0.3 and >= 0.15 above the progressive 1 / (N + 1), the spatial lean
-   of 4.2 with q not divided by N: a = (a + q e) / (1 + q), q = a V_Y / V_M, e = E / D,
-   V_M = the texture + V_Y / n8, the texture the larger of the neighbours' sample variance
-   beyond V_Y (v8u = v8 n8 / (n8 - 1)) and the history's sum_c (x*_c - the valid
-   neighbours' mean x*_c)^2 (xt < 0: none) */
+/* The restart lean (docs/ESTIMATORS.md 6.3, 6.4, 6.6; the library's ramps 0.15 .. 0.35
+   and 0.05 .. 0.2, written as numbers), then the floor alpha_min: where the weight a
+   (before the floor) is above 0.15 and above the progressive 1 / (N + 1) by more
+   than 0.05, the spatial lean of 4.2 with q not divided by N, a_l = (a + q e) / (1 + q),
+   q = a V_Y / V_M, e = E / D, V_M = the texture + V_Y / n8, the texture the larger of the
+   neighbours' sample variance beyond V_Y (v8u = v8 n8 / (n8 - 1)) and the history's
+   sum_c (x*_c - the valid neighbours' mean x*_c)^2 (xt < 0: none); the output weight is
+   a + f (a_l - a), f the product of the two ramps' shares */
 static double ref_restart_lean(const refp *p, double a, double vy, double v8, double le,
                                double ld, double xt, int count, double nx)
 {
-    double v8u = v8 * (count - 1) / (count - 2), tex, vm, q;
-    if (!p->lean || count <= 2 || a < 0.3 || a - 1.0 / (nx + 1.0) < 0.15) return a;
+    double v8u = v8 * (count - 1) / (count - 2), tex, vm, q, al;
+    double fw = (a - 0.15) / 0.2, fe = (a - 1.0 / (nx + 1.0) - 0.05) / 0.15;
+    fw = fw < 0 ? 0 : fw > 1 ? 1 : fw;
+    fe = fe < 0 ? 0 : fe > 1 ? 1 : fe;
     tex = xt >= 0 && xt > v8u - vy ? xt : v8u - vy;
     if (tex < 0) tex = 0;
     vm = tex + vy / (count - 1);
-    if (!(vm > 0)) return a;
-    q = a * vy / vm;
-    a = (1 + q) * ld > 0 ? (a * ld + q * le) / ((1 + q) * ld) : a;
+    if (p->lean && count > 2 && fw * fe > 0 && vm > 0) {
+        q = a * vy / vm;
+        al = (1 + q) * ld > 0 ? (a * ld + q * le) / ((1 + q) * ld) : a;
+        a += fw * fe * (al - a);
+    }
     if (a < p->alpha_min) a = p->alpha_min;
     if (a < 0) a = 0;
     if (a > 1) a = 1;
@@ -1392,7 +1397,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                 for (k = 0; k < c; ++k) o[k] = yv[k];
                 nout = 1;
             } else {
-                double mean[4], var[4], lo[4], hi[4], pd[4], pv[4], x1[4], ak[4], yl[4], a2;
+                double mean[4], var[4], lo[4], hi[4], pd[4], pv[4], x1[4], ak[4], yl[4], a2, a_raw = 0;
                 int cnt = 0, pairs = 0, idx[9][2], ispair[9], centre = 0, pass;
                 for (j = y - 1; j <= y + 1; ++j)
                     for (i = x - 1; i <= x + 1; ++i) {
@@ -1491,6 +1496,11 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                     }
                     a = ref_weight(p, dev2, s2, pd2, pvs, cnt, pairs, nx, 1.0, pool[y * w + x]);
                     for (k = 0; k < c; ++k) ak[k] = a;
+                    if (p->lean) { /* the restart lean reads the weight before the floor */
+                        refp p0 = *p;
+                        p0.alpha_min = 0;
+                        a_raw = ref_weight(&p0, dev2, s2, pd2, pvs, cnt, pairs, nx, 1.0, pool[y * w + x]);
+                    }
                 }
                 a2 = a;
                 if (p->lean && cnt > 2) {
@@ -1524,7 +1534,7 @@ static void ref_temporal(const refin *in, const refp *p, double *oc, double *on,
                         for (k = 0; k < c; ++k) s2 += var[k];
                         vy = s2 * cnt / (cnt - 1);
                     }
-                    a = ref_restart_lean(p, a, vy, v8, le, ld, xt, cnt, nx);
+                    a = ref_restart_lean(p, a_raw, vy, v8, le, ld, xt, cnt, nx);
                     for (k = 0; k < c; ++k) ak[k] = a;
                 }
                 for (k = 0; k < c; ++k) o[k] = x1[k] + ak[k] * (yl[k] - x1[k]);
