@@ -2888,7 +2888,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
            (bias_threshold). Soft, and polynomial rather than exponential in t^2, so
            heavy-tailed noise cannot make a near-certain change out of one sample. */
         double k = SBL__CAST(double, p->bias_threshold), k2;
-        double var_x, var_y, se2, bias2 = 0.0;
+        double var_x, var_y, se2, bias2 = 0.0, share; /* (share: the restart lean's) */
         /* pooled: the local test only has to catch what the blocks cannot (a change
            confined to a few pixels), so it asks for more evidence */
         if (p->estimator == SBL_ESTIMATOR_POOLED) k *= SBL_POOLED_LOCAL_SCALE;
@@ -2962,7 +2962,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             a2 = a;
             a = sbl__lean(a, var_y, v8 * (count - 1) / (count - 2), count - 1.0,
                           p->temporal ? SBL__CAST(double, n_x) : 1.0, lean_e, lean_d);
-        } else if (p->lean_restart && count > 2 && sbl__restart_share(a, progressive) > 0.0) {
+        } else if (p->lean_restart && count > 2 && (share = sbl__restart_share(a, progressive)) > 0.0) {
             /* the restart lean (6.3): q is not divided by N_X (the history it would be
                counted against is being dropped). The texture is also the history's own
                x*'s deviation from its neighbours' where larger: the raw neighbours see
@@ -2970,8 +2970,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             double v8u = v8 * (count - 1) / (count - 2);
             if (x_tex >= 0.0 && x_tex > v8u - var_y) v8u = var_y + x_tex;
             a2 = a;
-            a = a2 + sbl__restart_share(a2, progressive) *
-                         (sbl__lean(a2, var_y, v8u, count - 1.0, 1.0, lean_e, lean_d) - a2);
+            a = a2 + share * (sbl__lean(a2, var_y, v8u, count - 1.0, 1.0, lean_e, lean_d) - a2);
         }
         break;
     }
@@ -8397,9 +8396,9 @@ typedef struct sbl__lane_stats {
     sbl__v rl_e, rl_d, rl_v8, rl_xt; /* the restart lean's E, D, the neighbours' variance
                                         and the history's texture (sbl__lanes_lean_inputs;
                                         read only where wp.lean_restart) */
-    sbl__v rl_w, rl_vy; /* the weight before the restart lean and V_Y, its share, */
-    sbl__v rl_f;
-    sbl__m rl_off;      /* and where it does not apply (sbl__lanes_weight sets them) */
+    sbl__v rl_w, rl_vy, rl_f; /* the weight before the restart lean, V_Y, the lean's
+                                 share (sbl__restart_share), */
+    sbl__m rl_off;            /* and where the share is 0 (sbl__lanes_weight sets them) */
 } sbl__lane_stats;
 
 /* The planes of the three window rows, gathered once per call of the lane kernel (one

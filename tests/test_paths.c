@@ -14,7 +14,11 @@
 
 #define PW 40
 #define PH 3
-typedef struct paths_gather { float x[PH][PW][4]; float n[PH][PW]; } paths_gather;
+/* a gather callback's image (the history's x* and N), room for the largest of the tests'
+   images: PW x PH, and test_restart_lean_paths' 45 x 5 */
+#define PGW 45
+#define PGH 5
+typedef struct paths_gather { float x[PGH][PGW][4]; float n[PGH][PGW]; } paths_gather;
 
 static float paths_gather_fn(const void *ctx, int x, int y, float *out)
 {
@@ -2341,14 +2345,6 @@ static void test_rig_as_parallel(void)
    ramps, 6.6), so no pixel is skipped. */
 #define LPW 45
 #define LPH 5
-typedef struct lean_gather { float x[LPH][LPW][4]; float n[LPH][LPW]; } lean_gather;
-static float lean_gather_fn(const void *ctx, int x, int y, float *out)
-{
-    const lean_gather *g = (const lean_gather *)ctx;
-    int c;
-    for (c = 0; c < 4; ++c) out[c] = g->x[y][x][c];
-    return g->n[y][x];
-}
 
 /* one row y of the kernel, lanes or the reference, with the lean on or off */
 static void lean_row(sbl__kernel *k, int y, int lean, int lanes, float (*oc)[4], float *on,
@@ -2387,7 +2383,7 @@ static void lean_row(sbl__kernel *k, int y, int lean, int lanes, float (*oc)[4],
 static void test_restart_lean_paths(void)
 {
     static float own[LPH * LPW * 4];
-    static lean_gather G;
+    static paths_gather G; /* (LPW x LPH fits: PGW x PGH) */
     sbt_rng rng = {4242};
     long compared = 0, leaned_ref = 0, leaned_lanes = 0, full_rows = 0;
     double worst = 0.0;
@@ -2427,7 +2423,7 @@ static void test_restart_lean_paths(void)
         k.n_cap = 64.0f;
         k.temporal = 1;
         k.own = &im;
-        k.gather = lean_gather_fn;
+        k.gather = paths_gather_fn;
         k.gather_ctx = &G;
         scratch = malloc(sbl__kernel_scratch_size(LPW, ch));
         sbl__kernel_bind(&k, scratch);
