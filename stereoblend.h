@@ -2825,15 +2825,15 @@ static double sbl__lean(double a0, double var_y, double v8u, double n8, double n
    history would keep the neighbours' texture bias frame after frame (4.5). The lean's
    share rises linearly from 0 at those two thresholds to 1 at SBL_LEAN_RESTART_WEIGHT_FULL
    and SBL_LEAN_RESTART_EXCESS_FULL (the product of the two ramps), so the weight has no
-   step. Measured (6.6): the ramps 0.15 .. 0.35 and 0.05 .. 0.2 gain the moving-light
-   scenes more than the step at 0.3 / 0.15 did, with no scene worse by 0.1 %; the
+   step. Measured (6.6, 6.7): the ramps 0.1 .. 0.3 and 0.05 .. 0.2 gain the moving-light
+   scenes more than the step at 0.3 / 0.15 did, with no scene worse by 0.2 %; the
    excess keeps the lean off young histories, whose weight is high by their length alone.
    SBL_LEAN_RESTART_WEIGHT <= 0: off. A _FULL at or below its threshold: a step. */
 #ifndef SBL_LEAN_RESTART_WEIGHT
-#define SBL_LEAN_RESTART_WEIGHT 0.15
+#define SBL_LEAN_RESTART_WEIGHT 0.1
 #endif
 #ifndef SBL_LEAN_RESTART_WEIGHT_FULL
-#define SBL_LEAN_RESTART_WEIGHT_FULL 0.35
+#define SBL_LEAN_RESTART_WEIGHT_FULL 0.3
 #endif
 #ifndef SBL_LEAN_RESTART_EXCESS
 #define SBL_LEAN_RESTART_EXCESS 0.05

@@ -1289,9 +1289,9 @@ static double ref_weight(const refp *p, double dev2, double s2, double pd2, doub
     return a;
 }
 
-/* The restart lean (docs/ESTIMATORS.md 6.3, 6.4, 6.6; the library's ramps 0.15 .. 0.35
+/* The restart lean (docs/ESTIMATORS.md 6.3, 6.4, 6.6; the library's ramps 0.1 .. 0.3
    and 0.05 .. 0.2, written as numbers), then the floor alpha_min: where the weight a
-   (before the floor) is above 0.15 and above the progressive 1 / (N + 1) by more
+   (before the floor) is above 0.1 and above the progressive 1 / (N + 1) by more
    than 0.05, the spatial lean of 4.2 with q not divided by N, a_l = (a + q e) / (1 + q),
    q = a V_Y / V_M, e = E / D, V_M = the texture + V_Y / n8, the texture the larger of the
    neighbours' sample variance beyond V_Y (v8u = v8 n8 / (n8 - 1)) and the history's
@@ -1301,7 +1301,7 @@ static double ref_restart_lean(const refp *p, double a, double vy, double v8, do
                                double ld, double xt, int count, double nx)
 {
     double v8u = v8 * (count - 1) / (count - 2), tex, vm, q, al;
-    double fw = (a - 0.15) / 0.2, fe = (a - 1.0 / (nx + 1.0) - 0.05) / 0.15;
+    double fw = (a - 0.1) / 0.2, fe = (a - 1.0 / (nx + 1.0) - 0.05) / 0.15;
     fw = fw < 0 ? 0 : fw > 1 ? 1 : fw;
     fe = fe < 0 ? 0 : fe > 1 ? 1 : fe;
     tex = xt >= 0 && xt > v8u - vy ? xt : v8u - vy;
