@@ -58,6 +58,15 @@
          prev.tail = sbl_image_make(hist_tail, w, h, 2);     // last frame's out.tail
          out.tail  = sbl_image_make(out_tail, w, h, 2);
 
+     Recommended when nothing else follows (no stereo blend): the display (1 image, same
+     size as out.color). Where a history was just dropped or is new (N <= 3) the output
+     is about this frame's few samples; the display leans those pixels towards their
+     neighbours, where the neighbours agree beyond their noise (not across edges or
+     texture). out.color stays the history (docs/ESTIMATORS.md 6.7). Show out.display.
+         out.display = sbl_image_make(show_rgb, w, h, 3);
+     sbl_temporal_filter_frame writes it; with row bands, call
+     sbl_temporal_display(NULL, &cur, &out, display, y0, y1) once every band is filtered.
+
      Stereo: if the display is the stereo blend of the two filtered eyes (sbl_stereo_blend
      after sbl_temporal_filter per eye), set desc.stereo_shared_bias = 1: the blend halves
      each eye's own noise but keeps a bias both eyes share (a light that moved), so the
@@ -512,6 +521,12 @@ typedef struct sbl_temporal_output {
                            excess carried (channel sums), each pixel's average over its
                            history (0 with the estimators that have no limit). Give it
                            to the next frame as sbl_history.tail, ping-ponged.        */
+    sbl_image display;  /* optional; same size and channels as color: the image to show
+                           when no stereo blend follows (sbl_temporal_display). Written
+                           by sbl_temporal_filter_frame only: with row ranges, call
+                           sbl_temporal_display once every row is filtered (it reads
+                           the rows above and below); sbl_temporal_filter rejects it
+                           (SBL_ERROR_INVALID_PARAM). Keep color as the history.      */
 } sbl_temporal_output;
 
 /* The descriptor with every zero replaced by its default. */
@@ -530,6 +545,27 @@ SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
                                             const sbl_frame *frame,
                                             const sbl_history *history,
                                             const sbl_temporal_output *out);
+
+/* The display of a temporal output (docs/ESTIMATORS.md 6.7). Where a pixel's history
+   was just dropped or is new (the output's N at most max_length), its value is about
+   this frame's few samples: there the displayed value leans towards its eight
+   neighbours' mean by the posterior weight V / (V + V_M), V the output's noise (the
+   samples' noise, from the differences of adjacent samples along the 3x3 window's
+   smoothest direction, over N) and V_M the neighbours' spread beyond their noise plus
+   their mean's noise (texture and edges: no lean). Elsewhere display = color.
+   The history (filtered->color) is not changed: a lean written into it would carry
+   the neighbours' texture bias frame after frame. Not for an output that a stereo
+   blend takes next: the stereo blend leans on its own (sbl_stereo_desc). Rows
+   [y0, y1) of display; reads rows y0 - 1 .. y1 of filtered->color / length and of
+   frame->color, so with row bands call it after every band's sbl_temporal_filter.
+   desc may be NULL (defaults). display may not overlap an input. */
+typedef struct sbl_display_desc {
+    float max_length;  /* lean where N <= this; 0: SBL_DISPLAY_LEAN_MAX_N (3); < 0: off */
+} sbl_display_desc;
+
+SBLDEF sbl_result sbl_temporal_display(const sbl_display_desc *desc, const sbl_frame *frame,
+                                       const sbl_temporal_output *filtered, sbl_image display,
+                                       int y0, int y1);
 
 /* ======================================================================== */
 /* 8. Stereo                                                                */
@@ -11024,6 +11060,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     if ((r = sbl__check_optional(&out->alpha, 1, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&out->evidence, 1, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&out->tail, 2, w, h)) != SBL_OK) return r;
+    /* the display needs every row filtered first: sbl_temporal_filter_frame, or
+       sbl_temporal_display after the bands */
+    if (out->display.data) return SBL_ERROR_INVALID_PARAM;
     if (history && history->color.data &&
         ((r = sbl__check_optional(&history->evidence, 1, w, h)) != SBL_OK ||
          (r = sbl__check_optional(&history->tail, 2, w, h)) != SBL_OK))
@@ -11198,6 +11237,158 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     return SBL_OK;
 }
 
+/* The display lean (docs/ESTIMATORS.md 6.7). */
+#ifndef SBL_DISPLAY_LEAN_MAX_N
+#define SBL_DISPLAY_LEAN_MAX_N 3.0
+#endif
+
+/* The checks of sbl_temporal_display (before sbl_temporal_filter_frame filters) */
+static sbl_result sbl__display_check(const sbl_frame *frame, const sbl_temporal_output *filtered,
+                                     const sbl_image *display)
+{
+    sbl_result r;
+    int w, h;
+    if (!frame || !filtered) return SBL_ERROR_NULL_POINTER;
+    if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
+    if ((r = sbl__check_image(&filtered->color, 0)) != SBL_OK) return r;
+    if ((r = sbl__check_image(&filtered->length, 1)) != SBL_OK) return r;
+    if ((r = sbl__check_image(display, 0)) != SBL_OK) return r;
+    w = frame->color.width;
+    h = frame->color.height;
+    if (filtered->color.width != w || filtered->color.height != h || filtered->length.width != w ||
+        filtered->length.height != h || display->width != w || display->height != h)
+        return SBL_ERROR_SIZE_MISMATCH;
+    if (filtered->color.channels != frame->color.channels ||
+        display->channels != frame->color.channels)
+        return SBL_ERROR_CHANNEL_MISMATCH;
+    if (sbl__overlap(display, &frame->color) || sbl__overlap(display, &filtered->color) ||
+        sbl__overlap(display, &filtered->length) ||
+        (filtered->alpha.data && sbl__overlap(display, &filtered->alpha)) ||
+        (filtered->evidence.data && sbl__overlap(display, &filtered->evidence)) ||
+        (filtered->tail.data && sbl__overlap(display, &filtered->tail)))
+        return SBL_ERROR_OVERLAP;
+    return SBL_OK;
+}
+
+/* The noise variance of one sample, summed over the channels, from the differences of
+   adjacent samples in a 3x3 window: half their mean square along each of four
+   directions (rows, columns, both diagonals), the smallest of the four. A straight edge
+   or ramp through the window leaves the differences along it clean, so the edge is not
+   read as noise (the window's plain variance is, and the lean would then cross the
+   edge: tests/test_accuracy.c test_display_lean). Under pure noise the smallest of the
+   four is 0.537 of the variance (Gaussian, 4e5 windows): SBL__DISPLAY_NOISE_SCALE undoes
+   it. v: the window's samples, row-major, ch channels each; ok: which are values. */
+#define SBL__DISPLAY_NOISE_SCALE (1.0 / 0.537)
+static double sbl__display_noise(const double *v, const unsigned char *ok, int ch)
+{
+    /* the window's adjacent pairs: 6 along rows, 6 along columns, 4 + 4 diagonal */
+    static const unsigned char pa[20] = {0, 1, 3, 4, 6, 7, 0, 1, 2, 3, 4, 5, 0, 1, 3, 4, 1, 2, 4, 5};
+    static const unsigned char pb[20] = {1, 2, 4, 5, 7, 8, 3, 4, 5, 6, 7, 8, 4, 5, 7, 8, 3, 4, 6, 7};
+    static const unsigned char first[5] = {0, 6, 12, 16, 20};
+    double sum = 0.0;
+    int c, k, q;
+    for (c = 0; c < ch; ++c) {
+        double best = -1.0;
+        for (k = 0; k < 4; ++k) {
+            double s2 = 0.0;
+            int n = 0;
+            for (q = first[k]; q < first[k + 1]; ++q)
+                if (ok[pa[q]] && ok[pb[q]]) {
+                    const double dv = v[pb[q] * ch + c] - v[pa[q] * ch + c];
+                    s2 += dv * dv;
+                    ++n;
+                }
+            if (n > 0 && (best < 0.0 || s2 < best * 2.0 * n)) best = s2 / (2.0 * n);
+        }
+        if (best > 0.0) sum += best;
+    }
+    return sum * SBL__DISPLAY_NOISE_SCALE;
+}
+
+SBLDEF sbl_result sbl_temporal_display(const sbl_display_desc *desc, const sbl_frame *frame,
+                                       const sbl_temporal_output *filtered, sbl_image display,
+                                       int y0, int y1)
+{
+    sbl_result r;
+    double nmax = SBL_DISPLAY_LEAN_MAX_N;
+    int x, y, c, i, j, w, h, ch;
+    if (desc) {
+        if (!sbl__finite(desc->max_length)) return SBL_ERROR_INVALID_PARAM;
+        if (desc->max_length != 0.0f) nmax = SBL__CAST(double, desc->max_length);
+    }
+    if ((r = sbl__display_check(frame, filtered, &display)) != SBL_OK) return r;
+    w = frame->color.width;
+    h = frame->color.height;
+    ch = frame->color.channels;
+    if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    for (y = y0; y < y1; ++y) {
+        /* row pointers: most pixels are old and only copied */
+        const float *trow = sbl__px(&filtered->color, 0, y), *nrow = sbl__px(&filtered->length, 0, y);
+        float *drow = sbl__px(&display, 0, y);
+        const int ts = sbl__step_of(&filtered->color), ds = sbl__step_of(&display);
+        const int ns = sbl__step_of(&filtered->length);
+        for (x = 0; x < w; ++x) {
+            const float *t = trow + SBL__CAST(ptrdiff_t, x) * ts;
+            float *d = drow + SBL__CAST(ptrdiff_t, x) * ds;
+            const float nf = nrow[SBL__CAST(ptrdiff_t, x) * ns];
+            double sv[36], m8[4] = {0.0, 0.0, 0.0, 0.0}, q8[4] = {0.0, 0.0, 0.0, 0.0};
+            double n, v, vs, inv_nb = 0.0, vnb, v8u = 0.0, vm, a;
+            unsigned char ok[9];
+            int n8 = 0;
+            for (c = 0; c < ch; ++c) d[c] = t[c];
+            /* an old history (or none: N not > 0), or an output that is not a value */
+            if (!(nf > 0.0f) || !(SBL__CAST(double, nf) <= nmax) || sbl__any_nonfinite(t, ch))
+                continue;
+            n = SBL__CAST(double, nf);
+            /* the window: the samples (for the noise), the neighbours' outputs and N */
+            for (j = 0; j < 3; ++j)
+                for (i = 0; i < 3; ++i) {
+                    const int xi = x + i - 1, yj = y + j - 1, q = 3 * j + i;
+                    const float *sp, *tn;
+                    float nn;
+                    ok[q] = 0;
+                    if (xi < 0 || yj < 0 || xi >= w || yj >= h) continue;
+                    sp = sbl__px(&frame->color, xi, yj);
+                    if (!sbl__any_nonfinite(sp, ch)) {
+                        ok[q] = 1;
+                        for (c = 0; c < ch; ++c) sv[q * ch + c] = SBL__CAST(double, sp[c]);
+                    }
+                    if (q == 4) continue;
+                    tn = sbl__px(&filtered->color, xi, yj);
+                    nn = *sbl__px(&filtered->length, xi, yj);
+                    if (sbl__any_nonfinite(tn, ch) || !sbl__finite(nn) || !(nn > 0.0f)) continue;
+                    for (c = 0; c < ch; ++c) {
+                        m8[c] += SBL__CAST(double, tn[c]);
+                        q8[c] += SBL__CAST(double, tn[c]) * SBL__CAST(double, tn[c]);
+                    }
+                    inv_nb += nn > 1.0f ? 1.0 / SBL__CAST(double, nn) : 1.0;
+                    ++n8;
+                }
+            if (n8 < 3) continue;
+            /* the samples' noise; the output's is that over its N, a neighbour's over its
+               own N (the centre's window stands for theirs) */
+            vs = sbl__display_noise(sv, ok, ch);
+            v = vs / (n > 1.0 ? n : 1.0);
+            vnb = vs * inv_nb / n8;
+            for (c = 0; c < ch; ++c) {
+                /* the neighbours' sample variance (n8 - 1) */
+                double dv;
+                m8[c] /= n8;
+                dv = (q8[c] - n8 * m8[c] * m8[c]) / (n8 - 1);
+                if (dv > 0.0) v8u += dv;
+            }
+            /* V_M: the texture (the neighbours' spread beyond their noise) and the noise
+               of their mean */
+            vm = (v8u > vnb ? v8u - vnb : 0.0) + vnb / n8;
+            if (!(v + vm > 0.0)) continue; /* (finite: sums of squares of floats) */
+            a = v / (v + vm);
+            for (c = 0; c < ch; ++c)
+                d[c] = SBL__CAST(float, SBL__CAST(double, t[c]) + a * (m8[c] - SBL__CAST(double, t[c])));
+        }
+    }
+    return SBL_OK;
+}
+
 SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
                                             const sbl_frame *frame,
                                             const sbl_history *history,
@@ -11212,7 +11403,17 @@ SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
     if (bytes == 0) return SBL_ERROR_INVALID_SIZE;
     scratch = SBL_MALLOC(bytes, desc->alloc_context);
     if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
-    r = sbl_temporal_filter(desc, frame, history, out, 0, frame->color.height, scratch, bytes);
+    if (out->display.data) {
+        /* the display reads the rows above and below: after every row is filtered */
+        sbl_temporal_output o = *out;
+        o.display.data = NULL;
+        if ((r = sbl__display_check(frame, out, &out->display)) == SBL_OK &&
+            (r = sbl_temporal_filter(desc, frame, history, &o, 0, frame->color.height, scratch,
+                                     bytes)) == SBL_OK)
+            r = sbl_temporal_display(NULL, frame, out, out->display, 0, frame->color.height);
+    } else {
+        r = sbl_temporal_filter(desc, frame, history, out, 0, frame->color.height, scratch, bytes);
+    }
     SBL_FREE(scratch, desc->alloc_context);
     return r;
 }
@@ -12736,6 +12937,9 @@ SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl
     sbl__walk_image(&wk, "out->alpha", &out->alpha, 1, w, h, 1);
     sbl__walk_image(&wk, "out->evidence", &out->evidence, 1, w, h, 1);
     sbl__walk_image(&wk, "out->tail", &out->tail, 2, w, h, 1);
+    if (out->display.data)
+        sbl__blame(&wk, SBL_ERROR_INVALID_PARAM, "out->display", ".data",
+                   "is written by sbl_temporal_filter_frame or sbl_temporal_display, not by row calls");
     if (r == SBL_ERROR_NULL_POINTER && !wk.found) r = wk.want = SBL_OK; /* the scratch */
     if (out->color.data && out->color.channels != frame->color.channels)
         sbl__blame(&wk, SBL_ERROR_CHANNEL_MISMATCH, "out->color", ".channels",

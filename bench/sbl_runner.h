@@ -86,6 +86,9 @@ typedef struct sbr_method {
     int tail;                      /* 1: and its tail plane (sbl_history.tail /
                                       sbl_temporal_output.tail, 2 channels) */
     int oracle;                    /* SBR_ORACLE_* bits: that stage uses oracle weights */
+    int display;                   /* 1: a temporal-only method shows the filter's display
+                                      (sbl_temporal_output.display, sbl_temporal_display),
+                                      not its history colour */
     sbl_temporal_desc temporal_desc;
     sbr_stereo_mode stereo;
     sbl_stereo_desc stereo_desc;   /* rig / focal / baseline filled in by the runner */
@@ -451,6 +454,7 @@ static sbr_method sbr_method_default(const char *name, sbr_stereo_mode st)
     m.evidence = 1; /* the default as a user gets it: with the evidence and tail planes passed on */
     m.tail = 1;
     m.stereo = st;
+    m.display = st == SBR_STEREO_NONE; /* the temporal filter alone shows its display */
     return m;
 }
 
@@ -521,6 +525,10 @@ int sbr_standard_methods(sbr_method *m, int max)
        the plane adds, in accuracy and in time, in the same run (docs/ESTIMATORS.md 2.4) */
     all[n] = sbr_method_default("default-notail", SBR_STEREO_NONE);
     all[n++].tail = 0;
+    /* the temporal default showing its history colour, not its display (the default
+       before session 39: docs/ESTIMATORS.md 6.7) */
+    all[n] = sbr_method_default("default-nodisplay", SBR_STEREO_NONE);
+    all[n++].display = 0;
     all[n] = sbr_method_default("default-stereo-notail", SBR_STEREO_ADAPTIVE);
     all[n].temporal_desc.stereo_shared_bias = 1.0f;
     all[n++].tail = 0;
@@ -1003,6 +1011,8 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                         sbr_oracle_blend(w, h, input[e], NULL, ox, onx, v[e]->ref, td.max_history,
                                          1, hist[e][!ping[e]], len[e][!ping[e]]);
                 } else {
+                    if (m->display && m->stereo == SBR_STEREO_NONE)
+                        out.display = sbl_image_make(disp[e], w, h, 3);
                     rc = sbl_temporal_filter_frame(&m->temporal_desc, &fr, pv ? &hi : NULL, &out);
                 }
                 ping[e] = !ping[e];
@@ -1068,7 +1078,8 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
             }
             rc = sbr_stereo_masked(&sd, m->weber_threshold, eye, disp, tmp_a, mask, w, h,
                                    m->stereo == SBR_STEREO_ONE_PASS);
-        } else if (rc == 0) {
+        } else if (rc == 0 && !(m->display && m->temporal && !m->oracle && !m->temporal_blend &&
+                                !m->temporal_blend_carry && !m->temporal_blend_carry3)) {
             for (e = 0; e < 2; ++e) memcpy(disp[e], tout[e], n * 3 * sizeof(float));
         }
         t1 = sbr_now_ms();

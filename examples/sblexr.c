@@ -11,7 +11,9 @@
    Colours are clamped to [0, 1] and sRGB-encoded.
    No --method: the library's default temporal filter (every descriptor field zero, with
    the optional evidence and tail planes carried from frame to frame, as a user gets the
-   default's full accuracy; `pooled`: the same without the planes);
+   default's full accuracy; `pooled`: the same without the planes); the frames written
+   are its display (sbl_temporal_output.display; `default-nodisplay`: its history
+   colour, as before session 39);
    --method default-stereo: the default combined pipeline (temporal per eye, told that a
    stereo blend follows: sbl_temporal_desc.stereo_shared_bias = 1; then the default
    stereo blend for display). These two names stay stable. default-cr and
@@ -135,7 +137,8 @@ static int write_sheet(const char *path, const sbr_seq *seq, const writer *wr, i
 static void usage(void)
 {
     fprintf(stderr, "usage: sblexr SCENE_DIR OUT_DIR [--method NAME] [--frames N] [--sheet FRAME]\n"
-                    "       (no --method: the default temporal filter, its evidence and tail planes carried;\n"
+                    "       (no --method: the default temporal filter, its evidence and tail planes carried,\n"
+                    "       its display written;\n"
                     "       default-stereo: the default temporal filter then the default stereo blend)\n"
                     "       sblexr --list        (the method names)\n");
 }

@@ -26,6 +26,9 @@ typedef struct seq1 {
 /* 1: seq_step carries the tail plane (sbl_history.tail in, sbl_temporal_output.tail out) */
 static int g_tail;
 
+/* set: seq_step asks for the display (sbl_temporal_output.display) into this buffer */
+static float *g_display;
+
 /* 1: seq_step carries the evidence plane (history in, output out); 2: only writes it
    (no history plane: the estimator must be today's, bit for bit) */
 static int g_evidence;
@@ -82,6 +85,7 @@ static int seq_step(seq1 *s, const sbl_temporal_desc *d, int first)
         h.tail = sbl_image_make(s->tl[s->ping], s->w, s->h, 2);
         o.tail = sbl_image_make(s->tl[!s->ping], s->w, s->h, 2);
     }
+    if (g_display) o.display = sbl_image_make(g_display, s->w, s->h, s->ch);
     r = sbl_temporal_filter_frame(d, &f, first ? NULL : &h, &o);
     s->ping = !s->ping;
     return r;
@@ -1736,6 +1740,163 @@ static void test_restart_lean(void)
     CHECK(o1 > 0.9 * i1); /* stereo_shared_bias 1: no lean */
 }
 
+/* ---- the display of a temporal output (docs/ESTIMATORS.md 6.7) --------------------- */
+
+/* RMSE against truth(x) over columns [x0, x1) and rows [2, h - 2) of an image */
+static double display_rmse(const float *im, int w, int h, int ch, int x0, int x1, double (*truth)(int))
+{
+    double se = 0;
+    int x, y, k, n = 0;
+    for (y = 2; y < h - 2; ++y)
+        for (x = x0; x < x1; ++x)
+            for (k = 0; k < ch; ++k) {
+                const double e = im[((size_t)y * w + x) * ch + k] - truth(x);
+                se += e * e;
+                ++n;
+            }
+    return sqrt(se / n);
+}
+/* a finite test on the bits (-ffast-math builds may fold x - x == 0) */
+static int display_finite(float v)
+{
+    unsigned int b;
+    memcpy(&b, &v, sizeof b);
+    return (b & 0x7f800000u) != 0x7f800000u;
+}
+static double truth_flat(int x) { (void)x; return 0.5; }
+static double truth_edge(int x) { return x < 24 ? 0.2 : 0.8; }
+
+static void test_display_lean(void)
+{
+    const int w = 48, h = 24, ch = 3;
+    const size_t n = (size_t)w * h * ch;
+    float *disp = (float *)calloc(n, sizeof(float)), *copy = (float *)calloc(n, sizeof(float));
+    sbl_temporal_desc d;
+    seq1 s;
+    sbt_rng rng = {31};
+    double flat_o, flat_d, edge_o, edge_d, in_o, in_d;
+    size_t i;
+    int f, x, y;
+    memset(&d, 0, sizeof d);
+    g_display = disp;
+    /* a first frame (N = 1 everywhere): flat 0.5 with noise 0.1 */
+    seq_init(&s, w, h, ch);
+    for (i = 0; i < n; ++i) s.cur[i] = (float)(0.5 + 0.1 * sbt_gauss(&rng));
+    CHECK_EQ(seq_step(&s, &d, 1), SBL_OK);
+    flat_o = display_rmse(seq_out(&s, 0, 0), w, h, ch, 2, w - 2, truth_flat);
+    flat_d = display_rmse(disp, w, h, ch, 2, w - 2, truth_flat);
+    /* an edge (0.2 | 0.8 at column 24), noise 0.02: the neighbours' spread is texture */
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x)
+            for (f = 0; f < ch; ++f)
+                s.cur[((size_t)y * w + x) * ch + f] = (float)(truth_edge(x) + 0.02 * sbt_gauss(&rng));
+    CHECK_EQ(seq_step(&s, &d, 1), SBL_OK);
+    edge_o = display_rmse(seq_out(&s, 0, 0), w, h, ch, 23, 25, truth_edge);
+    edge_d = display_rmse(disp, w, h, ch, 23, 25, truth_edge);
+    in_o = display_rmse(seq_out(&s, 0, 0), w, h, ch, 2, 20, truth_edge);
+    in_d = display_rmse(disp, w, h, ch, 2, 20, truth_edge);
+    printf("  display lean, a first frame: flat noise 0.1 RMSE %.4f -> %.4f; an edge, noise 0.02: "
+           "its two columns %.4f -> %.4f, the flat side %.4f -> %.4f\n",
+           flat_o, flat_d, edge_o, edge_d, in_o, in_d);
+    /* a diagonal edge (0.2 where x - y < 12), noise 0.02: the pixels next to it */
+    {
+        double so = 0, sd = 0;
+        int cnt = 0;
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x)
+                for (f = 0; f < ch; ++f)
+                    s.cur[((size_t)y * w + x) * ch + f] = (float)((x - y < 12 ? 0.2 : 0.8) + 0.02 * sbt_gauss(&rng));
+        CHECK_EQ(seq_step(&s, &d, 1), SBL_OK);
+        for (y = 2; y < h - 2; ++y)
+            for (x = 2; x < w - 2; ++x)
+                if (x - y >= 10 && x - y <= 13)
+                    for (f = 0; f < ch; ++f) {
+                        const size_t q = ((size_t)y * w + x) * ch + f;
+                        const double tr = x - y < 12 ? 0.2 : 0.8, eo = seq_out(&s, 0, 0)[q] - tr, ed = disp[q] - tr;
+                        so += eo * eo;
+                        sd += ed * ed;
+                        ++cnt;
+                    }
+        printf("  display lean, a diagonal edge, noise 0.02: the pixels next to it %.4f -> %.4f\n",
+               sqrt(so / cnt), sqrt(sd / cnt));
+        CHECK(sd < 1.1 * 1.1 * so);
+    }
+    CHECK(flat_d < 0.5 * flat_o);   /* the neighbours' mean: about a third */
+    CHECK(edge_d < 1.1 * edge_o);   /* no lean across the edge */
+    CHECK(in_d < 0.6 * in_o);
+    /* a converged history (N > 3): the display is the history colour, bit for bit */
+    for (f = 0; f < 12; ++f) {
+        for (i = 0; i < n; ++i) s.cur[i] = (float)(0.5 + 0.1 * sbt_gauss(&rng));
+        CHECK_EQ(seq_step(&s, &d, f == 0), SBL_OK);
+    }
+    CHECK(seq_n(&s, w / 2, h / 2) > 3.0f);
+    CHECK(memcmp(disp, seq_out(&s, 0, 0), n * sizeof(float)) == 0);
+    /* the last first-frame again, through sbl_temporal_display: off (max_length < 0) is a
+       copy; bands of rows equal one call */
+    for (i = 0; i < n; ++i) s.cur[i] = (float)(0.5 + 0.1 * sbt_gauss(&rng));
+    CHECK_EQ(seq_step(&s, &d, 1), SBL_OK);
+    {
+        sbl_frame fr;
+        sbl_temporal_output o;
+        sbl_display_desc dd;
+        sbl_image dv = sbl_image_make(copy, w, h, ch);
+        memset(&fr, 0, sizeof fr);
+        memset(&o, 0, sizeof o);
+        memset(&dd, 0, sizeof dd);
+        fr.color = sbl_image_make(s.cur, w, h, ch);
+        o.color = sbl_image_make(seq_out(&s, 0, 0), w, h, ch);
+        o.length = sbl_image_make(s.len[s.ping], w, h, 1);
+        CHECK_EQ(sbl_temporal_display(NULL, &fr, &o, dv, 0, 5), SBL_OK);
+        CHECK_EQ(sbl_temporal_display(&dd, &fr, &o, dv, 5, 13), SBL_OK);
+        CHECK_EQ(sbl_temporal_display(NULL, &fr, &o, dv, 13, h), SBL_OK);
+        CHECK(memcmp(disp, copy, n * sizeof(float)) == 0);
+        CHECK(memcmp(disp, seq_out(&s, 0, 0), n * sizeof(float)) != 0);
+        dd.max_length = -1.0f;
+        CHECK_EQ(sbl_temporal_display(&dd, &fr, &o, dv, 0, h), SBL_OK);
+        CHECK(memcmp(copy, seq_out(&s, 0, 0), n * sizeof(float)) == 0);
+        /* bad input */
+        dd.max_length = NAN;
+        CHECK_EQ(sbl_temporal_display(&dd, &fr, &o, dv, 0, h), SBL_ERROR_INVALID_PARAM);
+        CHECK_EQ(sbl_temporal_display(NULL, NULL, &o, dv, 0, h), SBL_ERROR_NULL_POINTER);
+        CHECK_EQ(sbl_temporal_display(NULL, &fr, &o, dv, 0, h + 1), SBL_ERROR_INVALID_ROWS);
+        CHECK_EQ(sbl_temporal_display(NULL, &fr, &o, sbl_image_make(copy, w - 1, h, ch), 0, h),
+                 SBL_ERROR_SIZE_MISMATCH);
+        CHECK_EQ(sbl_temporal_display(NULL, &fr, &o, sbl_image_make(copy, w, h, 1), 0, h),
+                 SBL_ERROR_CHANNEL_MISMATCH);
+        CHECK_EQ(sbl_temporal_display(NULL, &fr, &o, o.color, 0, h), SBL_ERROR_OVERLAP);
+        CHECK_EQ(sbl_temporal_display(NULL, &fr, &o, fr.color, 0, h), SBL_ERROR_OVERLAP);
+        /* the row call does not write a display: it says so */
+        {
+            sbl_temporal_output o2 = o;
+            float *tmp_c = (float *)calloc(n, sizeof(float)), *tmp_n = (float *)calloc(n, sizeof(float));
+            size_t bytes = sbl_temporal_scratch_size(w, ch);
+            void *scratch = malloc(bytes);
+            o2.color = sbl_image_make(tmp_c, w, h, ch);
+            o2.length = sbl_image_make(tmp_n, w, h, 1);
+            o2.display = dv;
+            CHECK_EQ(sbl_temporal_filter(&d, &fr, NULL, &o2, 0, h, scratch, bytes), SBL_ERROR_INVALID_PARAM);
+            CHECK_EQ(sbl_temporal_validate(&d, &fr, NULL, &o2, NULL), SBL_ERROR_INVALID_PARAM);
+            free(scratch);
+            free(tmp_c);
+            free(tmp_n);
+        }
+    }
+    /* samples that are not values (NaN, inf) near young pixels: a finite display */
+    s.cur[((size_t)5 * w + 7) * ch] = NAN;
+    s.cur[((size_t)9 * w + 30) * ch + 1] = INFINITY;
+    CHECK_EQ(seq_step(&s, &d, 1), SBL_OK);
+    {
+        int finite = 1;
+        for (i = 0; i < n; ++i)
+            if (display_finite(seq_out(&s, 0, 0)[i]) && !display_finite(disp[i])) finite = 0;
+        CHECK(finite);
+    }
+    g_display = NULL;
+    seq_free(&s);
+    free(disp);
+    free(copy);
+}
+
 int main(void)
 {
     test_tail_hits();
@@ -1764,5 +1925,6 @@ int main(void)
     test_blur_bias();
     test_shared_bias_floor();
     test_restart_lean();
+    test_display_lean();
     return sbt_finish("test_accuracy");
 }
