@@ -65,7 +65,8 @@
      texture). out.color stays the history (docs/ESTIMATORS.md 6.7). Show out.display.
          out.display = sbl_image_make(show_rgb, w, h, 3);
      sbl_temporal_filter_frame writes it; with row bands, call
-     sbl_temporal_display(NULL, &cur, &out, display, y0, y1) once every band is filtered.
+     sbl_temporal_display(NULL, &cur, &out, display, y0, y1) only after every band is
+     filtered (a barrier: it reads the rows above and below its own).
 
      Stereo: if the display is the stereo blend of the two filtered eyes (sbl_stereo_blend
      after sbl_temporal_filter per eye), set desc.stereo_shared_bias = 1: the blend halves
@@ -557,8 +558,10 @@ SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
    the neighbours' texture bias frame after frame. Not for an output that a stereo
    blend takes next: the stereo blend leans on its own (sbl_stereo_desc). Rows
    [y0, y1) of display; reads rows y0 - 1 .. y1 of filtered->color / length and of
-   frame->color, so with row bands call it after every band's sbl_temporal_filter.
-   desc may be NULL (defaults). display may not overlap an input. */
+   frame->color, which belong to the neighbouring bands: with row bands, call it only
+   once every band's sbl_temporal_filter has finished (a barrier), never right after
+   its own band's. desc may be NULL (defaults). display may not overlap an input
+   (sbl_temporal_filter_frame: nor the frame's or the history's planes). */
 typedef struct sbl_display_desc {
     float max_length;  /* lean where N <= this; 0: SBL_DISPLAY_LEAN_MAX_N (3); < 0: off */
 } sbl_display_desc;
@@ -670,7 +673,8 @@ SBLDEF sbl_result sbl_stereo_blend_frame(const sbl_stereo_desc *desc,
 typedef struct sbl_stereo_temporal_io {
     sbl_frame frame[2];               /* this frame, left and right                     */
     const sbl_history *history[2];    /* last frame's temporal outputs (NULL: reset)    */
-    sbl_temporal_output temporal[2];  /* the new history (colour and length required)   */
+    sbl_temporal_output temporal[2];  /* the new history (colour and length required;
+                                         display NULL: the stereo blend is the display) */
     sbl_image disparity[2];           /* SBL_RIG_DISPARITY only                         */
     sbl_image display[2];             /* the stereo blend, for display                  */
 } sbl_stereo_temporal_io;
@@ -700,7 +704,9 @@ typedef struct sbl_diag {
 } sbl_diag;
 
 /* The checks of sbl_temporal_filter (any row range, scratch given) without writing any
-   output. diag may be NULL (then this is a plain validation). */
+   output. diag may be NULL (then this is a plain validation). A row call writes no
+   display, so out->display set is an error here (SBL_ERROR_INVALID_PARAM) even where
+   sbl_temporal_filter_frame would accept it: validate with display NULL. */
 SBLDEF sbl_result sbl_temporal_validate(const sbl_temporal_desc *desc, const sbl_frame *frame,
                                         const sbl_history *history,
                                         const sbl_temporal_output *out, sbl_diag *diag);
@@ -11060,9 +11066,6 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     if ((r = sbl__check_optional(&out->alpha, 1, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&out->evidence, 1, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&out->tail, 2, w, h)) != SBL_OK) return r;
-    /* the display needs every row filtered first: sbl_temporal_filter_frame, or
-       sbl_temporal_display after the bands */
-    if (out->display.data) return SBL_ERROR_INVALID_PARAM;
     if (history && history->color.data &&
         ((r = sbl__check_optional(&history->evidence, 1, w, h)) != SBL_OK ||
          (r = sbl__check_optional(&history->tail, 2, w, h)) != SBL_OK))
@@ -11071,6 +11074,9 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
         out->length.height != h)
         return SBL_ERROR_SIZE_MISMATCH;
     if (out->color.channels != ch) return SBL_ERROR_CHANNEL_MISMATCH;
+    /* the display needs every row filtered first: sbl_temporal_filter_frame, or
+       sbl_temporal_display once every band is done */
+    if (out->display.data) return SBL_ERROR_INVALID_PARAM;
     if ((r = sbl__check_weight_params(d.estimator, d.rectify, d.weight_mode,
                                       d.constant_alpha, d.alpha_min, d.clip_gamma,
                                       d.bias_threshold)) != SBL_OK)
@@ -11407,7 +11413,11 @@ SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
         /* the display reads the rows above and below: after every row is filtered */
         sbl_temporal_output o = *out;
         o.display.data = NULL;
-        if ((r = sbl__display_check(frame, out, &out->display)) == SBL_OK &&
+        r = sbl__display_check(frame, out, &out->display);
+        /* the G-buffer and the history are the next frame's inputs: not written over */
+        if (r == SBL_OK && sbl__overlaps_temporal_inputs(&out->display, frame, history, 1))
+            r = SBL_ERROR_OVERLAP;
+        if (r == SBL_OK &&
             (r = sbl_temporal_filter(desc, frame, history, &o, 0, frame->color.height, scratch,
                                      bytes)) == SBL_OK)
             r = sbl_temporal_display(NULL, frame, out, out->display, 0, frame->color.height);

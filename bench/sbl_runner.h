@@ -821,6 +821,12 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
     double sse_bright_sum = 0, sse_dim_sum = 0;
     long bright_px = 0;
     const int frame_debug = getenv("SBR_FRAME_DEBUG") != NULL;
+    /* the method shows the library filter's display: the one condition for writing it
+       (sbl_temporal_filter_frame's branch) and for not copying the history over it */
+    const int shows_display = m->display && m->temporal && m->stereo == SBR_STEREO_NONE &&
+                              !(m->oracle & (SBR_ORACLE_TEMPORAL | SBR_ORACLE_STAT_TEMPORAL)) &&
+                              !m->temporal_blend && !m->temporal_blend_carry &&
+                              !m->temporal_blend_carry3;
     /* the debug lines' alpha: only the library's temporal weights and the statistics oracle
        write it (-1 otherwise) */
     const int alpha_known = m->temporal && !(m->oracle & SBR_ORACLE_TEMPORAL);
@@ -1011,8 +1017,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                         sbr_oracle_blend(w, h, input[e], NULL, ox, onx, v[e]->ref, td.max_history,
                                          1, hist[e][!ping[e]], len[e][!ping[e]]);
                 } else {
-                    if (m->display && m->stereo == SBR_STEREO_NONE)
-                        out.display = sbl_image_make(disp[e], w, h, 3);
+                    if (shows_display) out.display = sbl_image_make(disp[e], w, h, 3);
                     rc = sbl_temporal_filter_frame(&m->temporal_desc, &fr, pv ? &hi : NULL, &out);
                 }
                 ping[e] = !ping[e];
@@ -1078,8 +1083,7 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
             }
             rc = sbr_stereo_masked(&sd, m->weber_threshold, eye, disp, tmp_a, mask, w, h,
                                    m->stereo == SBR_STEREO_ONE_PASS);
-        } else if (rc == 0 && !(m->display && m->temporal && !m->oracle && !m->temporal_blend &&
-                                !m->temporal_blend_carry && !m->temporal_blend_carry3)) {
+        } else if (rc == 0 && !shows_display) {
             for (e = 0; e < 2; ++e) memcpy(disp[e], tout[e], n * 3 * sizeof(float));
         }
         t1 = sbr_now_ms();

@@ -1756,6 +1756,19 @@ static double display_rmse(const float *im, int w, int h, int ch, int x0, int x1
             }
     return sqrt(se / n);
 }
+/* edges for test_display_lean: 0 along the rows (0.2 above row 12), 1 the diagonal
+   (0.2 where x - y < 12), 2 the anti-diagonal (0.2 where x + y < 36); near: the two
+   pixels either side */
+static double edge_value(int kind, int x, int y)
+{
+    const int below = kind == 0 ? y < 12 : kind == 1 ? x - y < 12 : x + y < 36;
+    return below ? 0.2 : 0.8;
+}
+static int edge_near(int kind, int x, int y)
+{
+    const int v = kind == 0 ? y - 12 : kind == 1 ? x - y - 12 : x + y - 36;
+    return v >= -2 && v <= 1;
+}
 /* a finite test on the bits (-ffast-math builds may fold x - x == 0) */
 static int display_finite(float v)
 {
@@ -1798,32 +1811,52 @@ static void test_display_lean(void)
     printf("  display lean, a first frame: flat noise 0.1 RMSE %.4f -> %.4f; an edge, noise 0.02: "
            "its two columns %.4f -> %.4f, the flat side %.4f -> %.4f\n",
            flat_o, flat_d, edge_o, edge_d, in_o, in_d);
-    /* a diagonal edge (0.2 where x - y < 12), noise 0.02: the pixels next to it */
+    /* edges along rows, the diagonal and the anti-diagonal, noise 0.02: the pixels
+       next to each (each direction's pairs must be the ones along it) */
     {
-        double so = 0, sd = 0;
-        int cnt = 0;
-        for (y = 0; y < h; ++y)
-            for (x = 0; x < w; ++x)
-                for (f = 0; f < ch; ++f)
-                    s.cur[((size_t)y * w + x) * ch + f] = (float)((x - y < 12 ? 0.2 : 0.8) + 0.02 * sbt_gauss(&rng));
-        CHECK_EQ(seq_step(&s, &d, 1), SBL_OK);
-        for (y = 2; y < h - 2; ++y)
-            for (x = 2; x < w - 2; ++x)
-                if (x - y >= 10 && x - y <= 13)
-                    for (f = 0; f < ch; ++f) {
-                        const size_t q = ((size_t)y * w + x) * ch + f;
-                        const double tr = x - y < 12 ? 0.2 : 0.8, eo = seq_out(&s, 0, 0)[q] - tr, ed = disp[q] - tr;
-                        so += eo * eo;
-                        sd += ed * ed;
-                        ++cnt;
-                    }
-        printf("  display lean, a diagonal edge, noise 0.02: the pixels next to it %.4f -> %.4f\n",
-               sqrt(so / cnt), sqrt(sd / cnt));
-        CHECK(sd < 1.1 * 1.1 * so);
+        int kind;
+        for (kind = 0; kind < 3; ++kind) {
+            double so = 0, sd = 0;
+            int cnt = 0;
+            for (y = 0; y < h; ++y)
+                for (x = 0; x < w; ++x)
+                    for (f = 0; f < ch; ++f)
+                        s.cur[((size_t)y * w + x) * ch + f] =
+                            (float)(edge_value(kind, x, y) + 0.02 * sbt_gauss(&rng));
+            CHECK_EQ(seq_step(&s, &d, 1), SBL_OK);
+            for (y = 2; y < h - 2; ++y)
+                for (x = 2; x < w - 2; ++x)
+                    if (edge_near(kind, x, y))
+                        for (f = 0; f < ch; ++f) {
+                            const size_t q = ((size_t)y * w + x) * ch + f;
+                            const double tr = edge_value(kind, x, y), eo = seq_out(&s, 0, 0)[q] - tr,
+                                         ed = disp[q] - tr;
+                            so += eo * eo;
+                            sd += ed * ed;
+                            ++cnt;
+                        }
+            printf("  display lean, an edge along %s, noise 0.02: the pixels next to it %.4f -> %.4f\n",
+                   kind == 0 ? "the rows" : kind == 1 ? "the diagonal" : "the anti-diagonal",
+                   sqrt(so / cnt), sqrt(sd / cnt));
+            CHECK(sd < 1.1 * 1.1 * so);
+        }
     }
     CHECK(flat_d < 0.5 * flat_o);   /* the neighbours' mean: about a third */
     CHECK(edge_d < 1.1 * edge_o);   /* no lean across the edge */
     CHECK(in_d < 0.6 * in_o);
+    /* a second frame of flat noise (N about 2): still young, the display still leans */
+    for (f = 0; f < 2; ++f) {
+        for (i = 0; i < n; ++i) s.cur[i] = (float)(0.5 + 0.1 * sbt_gauss(&rng));
+        CHECK_EQ(seq_step(&s, &d, f == 0), SBL_OK);
+    }
+    {
+        const float n2 = seq_n(&s, w / 2, h / 2);
+        const double o2 = display_rmse(seq_out(&s, 0, 0), w, h, ch, 2, w - 2, truth_flat),
+                     d2 = display_rmse(disp, w, h, ch, 2, w - 2, truth_flat);
+        printf("  display lean, a second frame (N %.2f): flat RMSE %.4f -> %.4f\n", n2, o2, d2);
+        CHECK(n2 > 1.5f && n2 <= 3.0f);
+        CHECK(d2 < 0.7 * o2);
+    }
     /* a converged history (N > 3): the display is the history colour, bit for bit */
     for (f = 0; f < 12; ++f) {
         for (i = 0; i < n; ++i) s.cur[i] = (float)(0.5 + 0.1 * sbt_gauss(&rng));
@@ -1865,6 +1898,27 @@ static void test_display_lean(void)
                  SBL_ERROR_CHANNEL_MISMATCH);
         CHECK_EQ(sbl_temporal_display(NULL, &fr, &o, o.color, 0, h), SBL_ERROR_OVERLAP);
         CHECK_EQ(sbl_temporal_display(NULL, &fr, &o, fr.color, 0, h), SBL_ERROR_OVERLAP);
+        /* sbl_temporal_filter_frame: the display may not be the history's colour */
+        {
+            sbl_frame f2 = fr;
+            sbl_history hh;
+            sbl_temporal_output o3 = o;
+            float *tmp_c = (float *)calloc(n, sizeof(float)), *tmp_n = (float *)calloc(n, sizeof(float));
+            memset(&hh, 0, sizeof hh);
+            hh.color = o.color;
+            hh.length = o.length;
+            f2.gbuffer.depth = sbl_image_make(s.depth, w, h, 1);
+            f2.gbuffer.motion = sbl_image_make(s.mv, w, h, 2);
+            hh.gbuffer.depth = f2.gbuffer.depth;
+            o3.color = sbl_image_make(tmp_c, w, h, ch);
+            o3.length = sbl_image_make(tmp_n, w, h, 1);
+            o3.display = hh.color;
+            CHECK_EQ(sbl_temporal_filter_frame(&d, &f2, &hh, &o3), SBL_ERROR_OVERLAP);
+            o3.display = dv;
+            CHECK_EQ(sbl_temporal_filter_frame(&d, &f2, &hh, &o3), SBL_OK);
+            free(tmp_c);
+            free(tmp_n);
+        }
         /* the row call does not write a display: it says so */
         {
             sbl_temporal_output o2 = o;
