@@ -11311,13 +11311,216 @@ static double sbl__display_noise(const double *v, const unsigned char *ok, int c
     return sum * SBL__DISPLAY_NOISE_SCALE;
 }
 
+/* Rows y - 1, y, y + 1 of the samples, the outputs and their N (NULL outside the image) */
+typedef struct sbl__display_rows {
+    const float *sample[3], *out[3], *length[3];
+    int sample_step, out_step, length_step, width, channels;
+} sbl__display_rows;
+
+/* The reference display of one young pixel x (N = n, output t finite) into d, which
+   holds t already (double; every window: borders, values that are not) */
+static void sbl__display_pixel(const sbl__display_rows *r, int x, double n, const float *t,
+                               float *d)
+{
+    const int ch = r->channels;
+    double sv[36], m8[4] = {0.0, 0.0, 0.0, 0.0}, q8[4] = {0.0, 0.0, 0.0, 0.0};
+    double v, vs, inv_nb = 0.0, vnb, v8u = 0.0, vm, a;
+    unsigned char ok[9];
+    int n8 = 0, c, i, j;
+    /* the window: the samples (for the noise), the neighbours' outputs and N */
+    for (j = 0; j < 3; ++j)
+        for (i = 0; i < 3; ++i) {
+            const int xi = x + i - 1, q = 3 * j + i;
+            const float *sp, *tn;
+            float nn;
+            ok[q] = 0;
+            if (!r->sample[j] || xi < 0 || xi >= r->width) continue;
+            sp = r->sample[j] + SBL__CAST(ptrdiff_t, xi) * r->sample_step;
+            if (!sbl__any_nonfinite(sp, ch)) {
+                ok[q] = 1;
+                for (c = 0; c < ch; ++c) sv[q * ch + c] = SBL__CAST(double, sp[c]);
+            }
+            if (q == 4) continue;
+            tn = r->out[j] + SBL__CAST(ptrdiff_t, xi) * r->out_step;
+            nn = r->length[j][SBL__CAST(ptrdiff_t, xi) * r->length_step];
+            if (sbl__any_nonfinite(tn, ch) || !sbl__finite(nn) || !(nn > 0.0f)) continue;
+            for (c = 0; c < ch; ++c) {
+                m8[c] += SBL__CAST(double, tn[c]);
+                q8[c] += SBL__CAST(double, tn[c]) * SBL__CAST(double, tn[c]);
+            }
+            inv_nb += nn > 1.0f ? 1.0 / SBL__CAST(double, nn) : 1.0;
+            ++n8;
+        }
+    if (n8 < 3) return;
+    /* the samples' noise; the output's is that over its N, a neighbour's over its own N
+       (the centre's window stands for theirs) */
+    vs = sbl__display_noise(sv, ok, ch);
+    v = vs / (n > 1.0 ? n : 1.0);
+    vnb = vs * inv_nb / n8;
+    for (c = 0; c < ch; ++c) {
+        /* the neighbours' sample variance (n8 - 1) */
+        double dv;
+        m8[c] /= n8;
+        dv = (q8[c] - n8 * m8[c] * m8[c]) / (n8 - 1);
+        if (dv > 0.0) v8u += dv;
+    }
+    /* V_M: the texture (the neighbours' spread beyond their noise) and the noise of
+       their mean */
+    vm = (v8u > vnb ? v8u - vnb : 0.0) + vnb / n8;
+    if (!(v + vm > 0.0)) return; /* (finite: sums of squares of floats) */
+    a = v / (v + vm);
+    for (c = 0; c < ch; ++c)
+        d[c] = SBL__CAST(float, SBL__CAST(double, t[c]) + a * (m8[c] - SBL__CAST(double, t[c])));
+}
+
+/* The lanes: the windows of up to SBL__VW young pixels inside the image, copied lane
+   by lane (value k of lane l at [k * SBL__VW + l]), then the display of all of them in
+   float over the SIMD layer: the reference's formula, the variance in two passes. A
+   lane whose sums are not finite (a value that is not, or so large that a square
+   overflows) or that has a neighbour without N > 0 takes the reference instead, so the
+   lanes and the reference differ by float rounding only. (Values so small that their
+   squares leave the normal floats, below about 1e-19, lose precision in the noise:
+   their lean is weaker or none.) */
+typedef struct sbl__display_lanes {
+    float sample[36 * SBL__VW]; /* value (3 j + i) * 4 + c: channel c at (x + i - 1, y + j - 1) */
+    float out[36 * SBL__VW];    /* the outputs, the same layout (q = 4: the pixel's own) */
+    float length[9 * SBL__VW];  /* their N */
+    float shown[4 * SBL__VW];   /* the display, channel c at [c * SBL__VW + l] */
+    float full[SBL__VW];        /* 1: the lane's sums are finite, every neighbour has N > 0 */
+    float *dst[SBL__VW];
+    int x[SBL__VW], count;
+} sbl__display_lanes;
+
+/* One pixel's window into the next lane (x inside: 0 < x < width - 1, rows present);
+   ch a constant where it is inlined */
+SBL__INLINE void sbl__display_lane_put(sbl__display_lanes *l, const sbl__display_rows *r, int x,
+                                       float *d, int ch)
+{
+    const int lane = l->count++;
+    int i, j, q4 = 0;
+    for (j = 0; j < 3; ++j) {
+        const float *sp = r->sample[j] + SBL__CAST(ptrdiff_t, x - 1) * r->sample_step;
+        const float *tn = r->out[j] + SBL__CAST(ptrdiff_t, x - 1) * r->out_step;
+        const float *nn = r->length[j] + SBL__CAST(ptrdiff_t, x - 1) * r->length_step;
+        for (i = 0; i < 3; ++i) {
+            float *ls = l->sample + q4 * SBL__VW + lane, *lo = l->out + q4 * SBL__VW + lane;
+            /* (the channels spelt out: -O2 does not unroll a loop that grows the code) */
+            ls[0] = sp[0];
+            lo[0] = tn[0];
+            if (ch > 1) { ls[SBL__VW] = sp[1]; lo[SBL__VW] = tn[1]; }
+            if (ch > 2) { ls[2 * SBL__VW] = sp[2]; lo[2 * SBL__VW] = tn[2]; }
+            if (ch > 3) { ls[3 * SBL__VW] = sp[3]; lo[3 * SBL__VW] = tn[3]; }
+            l->length[q4 / 4 * SBL__VW + lane] = *nn;
+            q4 += 4;
+            sp += r->sample_step;
+            tn += r->out_step;
+            nn += r->length_step;
+        }
+    }
+    l->x[lane] = x;
+    l->dst[lane] = d;
+}
+
+/* 1 per lane where v is finite, else 0, min-accumulated into ok */
+SBL__INLINE sbl__v sbl__display_finite(sbl__v ok, sbl__v v)
+{
+    return sbl__min(ok, sbl__sel(sbl__gt(sbl__set1(HUGE_VALF), sbl__abs(v)), sbl__set1(1.0f),
+                                 sbl__set1(0.0f)));
+}
+
+/* The display of the lanes' pixels (l->count of them), written to their dst */
+static void sbl__display_lanes_run(sbl__display_lanes *l, const sbl__display_rows *r)
+{
+    const int ch = r->channels, vw = SBL__VW;
+    const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
+    sbl__v ok = one, vs = zero, all = zero, v8u = zero, inv_nb = zero, nsum = zero, m8[4];
+    sbl__v n, v, vnb, vm, den, a;
+    int c, k, q;
+    /* unused lanes repeat lane 0 (values, so that no lane reads memory not written) */
+    for (k = l->count; k < vw; ++k) {
+        for (q = 0; q < 36; ++q) {
+            l->sample[q * vw + k] = l->sample[q * vw];
+            l->out[q * vw + k] = l->out[q * vw];
+        }
+        for (q = 0; q < 9; ++q) l->length[q * vw + k] = l->length[q * vw];
+    }
+    for (q = 0; q < 9; ++q)
+        if (q != 4) {
+            /* a neighbour's N: > 0 (else the reference leaves it out), finite (nsum) */
+            const sbl__v nq = sbl__load(l->length + q * vw);
+            ok = sbl__min(ok, sbl__sel(sbl__gt(nq, zero), one, zero));
+            nsum = sbl__add(nsum, nq);
+            inv_nb = sbl__add(inv_nb, sbl__div(one, sbl__max(nq, one)));
+        }
+    for (c = 0; c < ch; ++c) {
+        sbl__v s[9], t[9], dv, rs, cs, ds, as, sum, sq;
+        for (q = 0; q < 9; ++q) {
+            s[q] = sbl__load(l->sample + (q * 4 + c) * vw);
+            t[q] = sbl__load(l->out + (q * 4 + c) * vw);
+        }
+#define SBL__DSQ(acc, p, q0) (dv = sbl__sub(s[p], s[q0]), acc = sbl__add(acc, sbl__mul(dv, dv)))
+        /* the adjacent pairs: the rows, the columns, the diagonal, the anti-diagonal */
+        rs = cs = ds = as = zero;
+        SBL__DSQ(rs, 1, 0); SBL__DSQ(rs, 2, 1); SBL__DSQ(rs, 4, 3);
+        SBL__DSQ(rs, 5, 4); SBL__DSQ(rs, 7, 6); SBL__DSQ(rs, 8, 7);
+        SBL__DSQ(cs, 3, 0); SBL__DSQ(cs, 4, 1); SBL__DSQ(cs, 5, 2);
+        SBL__DSQ(cs, 6, 3); SBL__DSQ(cs, 7, 4); SBL__DSQ(cs, 8, 5);
+        SBL__DSQ(ds, 4, 0); SBL__DSQ(ds, 5, 1); SBL__DSQ(ds, 7, 3); SBL__DSQ(ds, 8, 4);
+        SBL__DSQ(as, 3, 1); SBL__DSQ(as, 4, 2); SBL__DSQ(as, 6, 4); SBL__DSQ(as, 7, 5);
+#undef SBL__DSQ
+        /* (a min can drop a NaN: the sum of all four keeps it, for the test below) */
+        all = sbl__add(all, sbl__add(sbl__add(rs, cs), sbl__add(ds, as)));
+        /* half the mean square: 12 row or column pairs, 8 diagonal ones */
+        vs = sbl__add(vs, sbl__min(sbl__mul(sbl__min(rs, cs), sbl__set1(1.0f / 12.0f)),
+                                   sbl__mul(sbl__min(ds, as), sbl__set1(1.0f / 8.0f))));
+        /* the neighbours' mean and sample variance (two passes: no cancellation) */
+        sum = sbl__add(sbl__add(sbl__add(t[0], t[1]), sbl__add(t[2], t[3])),
+                       sbl__add(sbl__add(t[5], t[6]), sbl__add(t[7], t[8])));
+        m8[c] = sbl__mul(sum, sbl__set1(0.125f));
+        sq = zero;
+        for (q = 0; q < 9; ++q)
+            if (q != 4) {
+                dv = sbl__sub(t[q], m8[c]);
+                sq = sbl__add(sq, sbl__mul(dv, dv));
+            }
+        v8u = sbl__add(v8u, sbl__mul(sq, sbl__set1(1.0f / 7.0f)));
+    }
+    vs = sbl__mul(vs, sbl__set1(SBL__CAST(float, SBL__DISPLAY_NOISE_SCALE)));
+    n = sbl__load(l->length + 4 * vw);
+    v = sbl__div(vs, sbl__max(n, one));
+    vnb = sbl__mul(sbl__mul(vs, inv_nb), sbl__set1(0.125f));
+    vm = sbl__add(sbl__max(sbl__sub(v8u, vnb), zero), sbl__mul(vnb, sbl__set1(0.125f)));
+    den = sbl__add(v, vm);
+    a = sbl__sel(sbl__gt(den, zero), sbl__div(v, sbl__max(den, sbl__set1(FLT_MIN))), zero);
+    ok = sbl__display_finite(ok, sbl__add(sbl__add(all, v8u), sbl__add(nsum, den)));
+    for (c = 0; c < ch; ++c) {
+        const sbl__v t = sbl__load(l->out + (16 + c) * vw), shown = sbl__add(t, sbl__mul(a, sbl__sub(m8[c], t)));
+        ok = sbl__display_finite(ok, shown);
+        sbl__store(l->shown + c * vw, shown);
+    }
+    sbl__store(l->full, ok);
+    for (k = 0; k < l->count; ++k) {
+        float *d = l->dst[k];
+        if (l->full[k] == 1.0f) {
+            for (c = 0; c < ch; ++c) d[c] = l->shown[c * vw + k];
+        } else {
+            float t[4];
+            for (c = 0; c < ch; ++c) t[c] = l->out[(16 + c) * vw + k];
+            sbl__display_pixel(r, l->x[k], SBL__CAST(double, l->length[4 * vw + k]), t, d);
+        }
+    }
+    l->count = 0;
+}
+
 SBLDEF sbl_result sbl_temporal_display(const sbl_display_desc *desc, const sbl_frame *frame,
                                        const sbl_temporal_output *filtered, sbl_image display,
                                        int y0, int y1)
 {
     sbl_result r;
+    sbl__display_rows rows;
+    sbl__display_lanes lanes;
     double nmax = SBL_DISPLAY_LEAN_MAX_N;
-    int x, y, c, i, j, w, h, ch;
+    int x, y, c, j, w, h, ch, ts, ds;
     if (desc) {
         if (!sbl__finite(desc->max_length)) return SBL_ERROR_INVALID_PARAM;
         if (desc->max_length != 0.0f) nmax = SBL__CAST(double, desc->max_length);
@@ -11327,70 +11530,53 @@ SBLDEF sbl_result sbl_temporal_display(const sbl_display_desc *desc, const sbl_f
     h = frame->color.height;
     ch = frame->color.channels;
     if ((r = sbl__check_rows(y0, y1, h)) != SBL_OK) return r;
+    rows.sample_step = sbl__step_of(&frame->color);
+    rows.out_step = ts = sbl__step_of(&filtered->color);
+    rows.length_step = sbl__step_of(&filtered->length);
+    rows.width = w;
+    rows.channels = ch;
+    ds = sbl__step_of(&display);
+    lanes.count = 0;
     for (y = y0; y < y1; ++y) {
-        /* row pointers: most pixels are old and only copied */
-        const float *trow = sbl__px(&filtered->color, 0, y), *nrow = sbl__px(&filtered->length, 0, y);
+        const float *trow = sbl__px(&filtered->color, 0, y), *nrow;
         float *drow = sbl__px(&display, 0, y);
-        const int ts = sbl__step_of(&filtered->color), ds = sbl__step_of(&display);
-        const int ns = sbl__step_of(&filtered->length);
+        int inside;
+        for (j = 0; j < 3; ++j) {
+            const int yj = y + j - 1, in = yj >= 0 && yj < h;
+            rows.sample[j] = in ? sbl__px(&frame->color, 0, yj) : NULL;
+            rows.out[j] = in ? sbl__px(&filtered->color, 0, yj) : NULL;
+            rows.length[j] = in ? sbl__px(&filtered->length, 0, yj) : NULL;
+        }
+        nrow = rows.length[1];
+        inside = rows.sample[0] && rows.sample[2];
+        /* most pixels are old: the row is copied, then its young pixels lean */
+        if (ts == ch && ds == ch) {
+            memcpy(drow, trow, SBL__CAST(size_t, w) * SBL__CAST(size_t, ch) * sizeof(float));
+        } else {
+            for (x = 0; x < w; ++x)
+                for (c = 0; c < ch; ++c)
+                    drow[SBL__CAST(ptrdiff_t, x) * ds + c] = trow[SBL__CAST(ptrdiff_t, x) * ts + c];
+        }
         for (x = 0; x < w; ++x) {
+            const float nf = nrow[SBL__CAST(ptrdiff_t, x) * rows.length_step];
             const float *t = trow + SBL__CAST(ptrdiff_t, x) * ts;
             float *d = drow + SBL__CAST(ptrdiff_t, x) * ds;
-            const float nf = nrow[SBL__CAST(ptrdiff_t, x) * ns];
-            double sv[36], m8[4] = {0.0, 0.0, 0.0, 0.0}, q8[4] = {0.0, 0.0, 0.0, 0.0};
-            double n, v, vs, inv_nb = 0.0, vnb, v8u = 0.0, vm, a;
-            unsigned char ok[9];
-            int n8 = 0;
-            for (c = 0; c < ch; ++c) d[c] = t[c];
             /* an old history (or none: N not > 0), or an output that is not a value */
             if (!(nf > 0.0f) || !(SBL__CAST(double, nf) <= nmax) || sbl__any_nonfinite(t, ch))
                 continue;
-            n = SBL__CAST(double, nf);
-            /* the window: the samples (for the noise), the neighbours' outputs and N */
-            for (j = 0; j < 3; ++j)
-                for (i = 0; i < 3; ++i) {
-                    const int xi = x + i - 1, yj = y + j - 1, q = 3 * j + i;
-                    const float *sp, *tn;
-                    float nn;
-                    ok[q] = 0;
-                    if (xi < 0 || yj < 0 || xi >= w || yj >= h) continue;
-                    sp = sbl__px(&frame->color, xi, yj);
-                    if (!sbl__any_nonfinite(sp, ch)) {
-                        ok[q] = 1;
-                        for (c = 0; c < ch; ++c) sv[q * ch + c] = SBL__CAST(double, sp[c]);
-                    }
-                    if (q == 4) continue;
-                    tn = sbl__px(&filtered->color, xi, yj);
-                    nn = *sbl__px(&filtered->length, xi, yj);
-                    if (sbl__any_nonfinite(tn, ch) || !sbl__finite(nn) || !(nn > 0.0f)) continue;
-                    for (c = 0; c < ch; ++c) {
-                        m8[c] += SBL__CAST(double, tn[c]);
-                        q8[c] += SBL__CAST(double, tn[c]) * SBL__CAST(double, tn[c]);
-                    }
-                    inv_nb += nn > 1.0f ? 1.0 / SBL__CAST(double, nn) : 1.0;
-                    ++n8;
-                }
-            if (n8 < 3) continue;
-            /* the samples' noise; the output's is that over its N, a neighbour's over its
-               own N (the centre's window stands for theirs) */
-            vs = sbl__display_noise(sv, ok, ch);
-            v = vs / (n > 1.0 ? n : 1.0);
-            vnb = vs * inv_nb / n8;
-            for (c = 0; c < ch; ++c) {
-                /* the neighbours' sample variance (n8 - 1) */
-                double dv;
-                m8[c] /= n8;
-                dv = (q8[c] - n8 * m8[c] * m8[c]) / (n8 - 1);
-                if (dv > 0.0) v8u += dv;
+            if (!inside || x == 0 || x == w - 1) {
+                sbl__display_pixel(&rows, x, SBL__CAST(double, nf), t, d);
+                continue;
             }
-            /* V_M: the texture (the neighbours' spread beyond their noise) and the noise
-               of their mean */
-            vm = (v8u > vnb ? v8u - vnb : 0.0) + vnb / n8;
-            if (!(v + vm > 0.0)) continue; /* (finite: sums of squares of floats) */
-            a = v / (v + vm);
-            for (c = 0; c < ch; ++c)
-                d[c] = SBL__CAST(float, SBL__CAST(double, t[c]) + a * (m8[c] - SBL__CAST(double, t[c])));
+            switch (ch) { /* one copy per channel count, its loops unrolled */
+            case 1: sbl__display_lane_put(&lanes, &rows, x, d, 1); break;
+            case 2: sbl__display_lane_put(&lanes, &rows, x, d, 2); break;
+            case 3: sbl__display_lane_put(&lanes, &rows, x, d, 3); break;
+            default: sbl__display_lane_put(&lanes, &rows, x, d, 4); break;
+            }
+            if (lanes.count == SBL__VW) sbl__display_lanes_run(&lanes, &rows);
         }
+        if (lanes.count) sbl__display_lanes_run(&lanes, &rows); /* (rows: this row's) */
     }
     return SBL_OK;
 }
@@ -11407,18 +11593,21 @@ SBLDEF sbl_result sbl_temporal_filter_frame(const sbl_temporal_desc *desc,
     if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
     bytes = sbl_temporal_scratch_size(frame->color.width, frame->color.channels);
     if (bytes == 0) return SBL_ERROR_INVALID_SIZE;
+    if (out->display.data) {
+        /* (checked before the scratch is allocated) */
+        r = sbl__display_check(frame, out, &out->display);
+        /* the G-buffer and the history are the next frame's inputs: not written over */
+        if (r == SBL_OK && sbl__overlaps_temporal_inputs(&out->display, frame, history, 1))
+            r = SBL_ERROR_OVERLAP;
+        if (r != SBL_OK) return r;
+    }
     scratch = SBL_MALLOC(bytes, desc->alloc_context);
     if (!scratch) return SBL_ERROR_OUT_OF_MEMORY;
     if (out->display.data) {
         /* the display reads the rows above and below: after every row is filtered */
         sbl_temporal_output o = *out;
         o.display.data = NULL;
-        r = sbl__display_check(frame, out, &out->display);
-        /* the G-buffer and the history are the next frame's inputs: not written over */
-        if (r == SBL_OK && sbl__overlaps_temporal_inputs(&out->display, frame, history, 1))
-            r = SBL_ERROR_OVERLAP;
-        if (r == SBL_OK &&
-            (r = sbl_temporal_filter(desc, frame, history, &o, 0, frame->color.height, scratch,
+        if ((r = sbl_temporal_filter(desc, frame, history, &o, 0, frame->color.height, scratch,
                                      bytes)) == SBL_OK)
             r = sbl_temporal_display(NULL, frame, out, out->display, 0, frame->color.height);
     } else {

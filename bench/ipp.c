@@ -1,4 +1,5 @@
-/* make bench-ipp: instructions per pixel of sbl_temporal_filter and sbl_stereo_blend,
+/* make bench-ipp: instructions per pixel of sbl_temporal_filter, sbl_temporal_display and
+   sbl_stereo_blend,
    counted by callgrind inside the public call only (--toggle-collect). Instruction
    counts do not drift with machine load, so this is the figure to steer by (and the one
    CI may watch with a generous margin).
@@ -42,8 +43,15 @@
    the lanes of easy-ev and ~64 % of hard-ev, and its 3x3 bound binds on ~47 % / ~31 % of
    the channels (session 17, a debug count); on the smooth sine alone it never wins.
 
+   sbl_temporal_display runs after each eye's temporal filter (counted when IPP_FUNCTIONS
+   names it): in every case above but with IPP_SHARED_BIAS nearly every output is young
+   (N <= 3: the history sits 0.1 from the frame's mean, a change the filter resets on),
+   so its count is that of the lean at every pixel, the worst case; with IPP_SHARED_BIAS
+   the outputs are old but for hard's disoccluded ~9 %.
+
    usage: ipp CASE [hash]   (runs each call once: meant for callgrind; hash: also print
-   an FNV-1a hash of every output, to compare builds and code changes bit for bit) */
+   an FNV-1a hash of every output, to compare builds and code changes bit for bit; and one
+   of the displays, on a line of its own) */
 #define STEREOBLEND_IMPLEMENTATION
 #include "../stereoblend.h"
 #include <stdio.h>
@@ -59,6 +67,7 @@ typedef struct eye_bufs {
     float *hev, *oev; /* evidence plane in / out */
     float *htl, *otl; /* tail plane in / out (2 channels) */
     float *normal, *prev_normal, *id, *prev_id; /* case normals */
+    float *display; /* the temporal output's display (sbl_temporal_display) */
 } eye_bufs;
 
 static float *falloc(size_t n)
@@ -87,6 +96,7 @@ static void fill_eye(eye_bufs *b, int eye, int kind, int tex)
     b->hev = falloc(n); b->oev = falloc(n);
     b->htl = falloc(n * 2); b->otl = falloc(n * 2);
     b->normal = falloc(n * 3); b->prev_normal = falloc(n * 3); b->id = falloc(n); b->prev_id = falloc(n);
+    b->display = falloc(n * 3);
     for (i = 0; i < n; ++i) {
         int x = (int)(i % W), y = (int)(i / W), c;
         for (c = 0; c < 3; ++c) {
@@ -149,6 +159,9 @@ static sbl_result (*volatile temporal_fn)(const sbl_temporal_desc *, const sbl_f
 static sbl_result (*volatile stereo_fn)(const sbl_stereo_desc *, sbl_eye_index, const sbl_eye *,
                                         const sbl_eye *, sbl_image, sbl_image, int, int, void *,
                                         size_t) = sbl_stereo_blend;
+static sbl_result (*volatile display_fn)(const sbl_display_desc *, const sbl_frame *,
+                                         const sbl_temporal_output *, sbl_image, int,
+                                         int) = sbl_temporal_display;
 
 /* FNV-1a over the bytes of n floats */
 static unsigned long long fnv(unsigned long long h, const float *p, size_t n)
@@ -238,6 +251,9 @@ int main(int argc, char **argv)
             hi.camera = &cam[0];
         }
         if (temporal_fn(&td, &f, &hi, &o, 0, H, scratch, bytes) != SBL_OK) return 1;
+        /* the display of the output (pixels whose N <= 3 lean on their neighbours: in
+           case hard the disoccluded ~9 %, elsewhere none) */
+        if (display_fn(NULL, &f, &o, sbl_image_make(b[e].display, W, H, 3), 0, H) != SBL_OK) return 1;
     }
     for (e = 0; e < (two ? 2 : 1); ++e) {
         /* eye e's stereo blend of the two temporal outputs (the left eye's alone but in
@@ -293,6 +309,9 @@ int main(int argc, char **argv)
         h = fnv(h, b[0].stereo_out, n * 3);
         if (two) h = fnv(h, b[1].stereo_out, n * 3);
         printf("hash %016llx\n", h);
+        h = 14695981039346656037ull;
+        for (e = 0; e < 2; ++e) h = fnv(h, b[e].display, n * 3);
+        printf("display-hash %016llx\n", h);
     }
     free(scratch);
     return 0;

@@ -24,7 +24,7 @@ for b in $bins; do
         "$b" "$c" >/dev/null 2>"$tmp/log" || { cat "$tmp/log"; exit 1; }
       ir=$(sed -n 's/^totals: *\([0-9]*\).*/\1/p' "$out")
       [ -n "$ir" ] || ir=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$out")
-      calls=1; [ "$fn" = sbl_temporal_filter ] && calls=2
+      calls=1; [ "$fn" = sbl_temporal_filter ] || [ "$fn" = sbl_temporal_display ] && calls=2
       [ "$c" = two-eyes ] && calls=2 # (both eyes' blends)
       printf '%-22s %-7s %-20s %8.1f\n' "$b" "$c" "$fn" "$(echo "$ir / ($pixels * $calls)" | bc -l)"
     done

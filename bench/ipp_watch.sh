@@ -20,7 +20,7 @@ tmp=$(mktemp)
 out=$(mktemp)
 trap 'rm -f "$tmp" "$out"' EXIT
 # each function on the cases that budget it (a callgrind run per case and function)
-for fn in sbl_temporal_filter sbl_stereo_blend; do
+for fn in sbl_temporal_filter sbl_temporal_display sbl_stereo_blend; do
   fcases=$(awk -v f="$fn" '!/^#/ && NF == 3 && $2 == f { printf "%s ", $1 }' "$budgets")
   [ -n "$fcases" ] || continue
   if ! IPP_FUNCTIONS=$fn sh "$here/ipp.sh" "$bin" -- $fcases >"$out" 2>&1; then

@@ -2468,6 +2468,110 @@ static void test_restart_lean_paths(void)
 #undef LPW
 #undef LPH
 
+/* sbl_temporal_display: its lanes (float, SIMD layer) against the reference per pixel
+   (sbl__display_pixel, double), on random windows: 1-4 channels, padded pixels, young
+   and old N, N <= 0 or NaN neighbours, non-finite and huge samples and outputs (which the
+   lanes hand to the reference), scales from 1e-9 to 3e13 */
+#define DPW 37
+#define DPH 9
+static void test_display_paths(void)
+{
+    static float smp[DPH * DPW * 5], out[DPH * DPW * 5], len[DPH * DPW], disp[DPH * DPW * 6];
+    sbt_rng rng = {777};
+    long compared = 0, leaned = 0, differ = 0;
+    double worst = 0.0;
+    int it;
+    for (it = 0; it < 600; ++it) {
+        /* (the difference is relative to the scale and the values: a huge output
+           leaned in float differs from the double one by its rounding) */
+        const int ch = 1 + it % 4, step = ch + (it % 5 == 1), dstep = ch + 2 * (it % 7 == 3);
+        const double scale = it % 10 == 9 ? 3e13 : it % 10 == 8 ? 1e-9 : 1.0;
+        const double amp = 0.3 * sbt_uniform(&rng), sigma = 0.01 + 0.2 * sbt_uniform(&rng);
+        const int odd = it % 4 == 2; /* a few values that are not, or too large for a lane */
+        sbl_frame f;
+        sbl_temporal_output o;
+        sbl__display_rows rows;
+        int x, y, c, j;
+        for (y = 0; y < DPH; ++y)
+            for (x = 0; x < DPW; ++x) {
+                const double t = 0.5 + amp * sin(0.7 * x + 1.1 * y);
+                const double u = sbt_uniform(&rng);
+                len[y * DPW + x] = u < 0.6 ? (float)(1 + (int)(3 * sbt_uniform(&rng)))
+                                   : u < 0.9 ? (float)(4 + 30 * sbt_uniform(&rng))
+                                   : u < 0.95 ? 0.0f : u < 0.97 ? 0.5f : -1.0f;
+                for (c = 0; c < step; ++c) {
+                    smp[(y * DPW + x) * step + c] = (float)(scale * (t + 0.05 * c + sigma * sbt_gauss(&rng)));
+                    out[(y * DPW + x) * step + c] = (float)(scale * (t + 0.05 * c + 0.3 * sigma * sbt_gauss(&rng)));
+                }
+                if (odd && sbt_uniform(&rng) < 0.03) {
+                    const double v = sbt_uniform(&rng);
+                    float *p = sbt_uniform(&rng) < 0.5 ? smp : out;
+                    p[(y * DPW + x) * step + (int)(sbt_uniform(&rng) * ch)] =
+                        v < 0.3 ? NAN : v < 0.5 ? INFINITY : v < 0.8 ? 3e37f : -2e38f;
+                    if (sbt_uniform(&rng) < 0.3) len[y * DPW + x] = v < 0.5 ? NAN : INFINITY;
+                }
+            }
+        memset(&f, 0, sizeof f);
+        memset(&o, 0, sizeof o);
+        f.color = sbl_image_make(smp, DPW, DPH, ch);
+        f.color.pixel_bytes = step * (int)sizeof(float);
+        f.color.stride_bytes = DPW * step * (int)sizeof(float);
+        o.color = f.color;
+        o.color.data = out;
+        o.length = sbl_image_make(len, DPW, DPH, 1);
+        {
+            sbl_image d = sbl_image_make(disp, DPW, DPH, ch);
+            d.pixel_bytes = dstep * (int)sizeof(float);
+            d.stride_bytes = DPW * dstep * (int)sizeof(float);
+            CHECK_EQ(sbl_temporal_display(NULL, &f, &o, d, 0, DPH), SBL_OK);
+        }
+        rows.sample_step = rows.out_step = step;
+        rows.length_step = 1;
+        rows.width = DPW;
+        rows.channels = ch;
+        for (y = 0; y < DPH; ++y) {
+            for (j = 0; j < 3; ++j) {
+                const int yj = y + j - 1, in = yj >= 0 && yj < DPH;
+                rows.sample[j] = in ? smp + yj * DPW * step : NULL;
+                rows.out[j] = in ? out + yj * DPW * step : NULL;
+                rows.length[j] = in ? len + yj * DPW : NULL;
+            }
+            for (x = 0; x < DPW; ++x) {
+                const float *t = out + (y * DPW + x) * step, n = len[y * DPW + x];
+                const float *dl = disp + (y * DPW + x) * dstep;
+                float ref[4];
+                double e = 0.0;
+                for (c = 0; c < ch; ++c) ref[c] = t[c];
+                if (n > 0.0f && n <= 3.0f && !sbl__any_nonfinite(t, ch))
+                    sbl__display_pixel(&rows, x, (double)n, t, ref);
+                for (c = 0; c < ch; ++c) {
+                    const double ec = memcmp(&dl[c], &ref[c], sizeof(float)) == 0
+                                          ? 0.0 /* (an inf output copied: inf - inf) */
+                                          : fabs((double)dl[c] - (double)ref[c]) /
+                                                (scale + fabs((double)t[c]) + fabs((double)ref[c]));
+                    if (!(ec <= e)) e = ec;
+                    differ += memcmp(&dl[c], &ref[c], sizeof(float)) != 0;
+                    leaned += ref[c] != t[c];
+                    CHECK(sbl__finite(dl[c]) || !sbl__finite(t[c]));
+                }
+                if (!(e <= 2e-5))
+                    printf("  display case %d ch %d y %d x %d: lanes %.7g, reference %.7g (output %.7g, N %g)\n",
+                           it, ch, y, x, dl[0], ref[0], t[0], n);
+                CHECK(e <= 2e-5);
+                if (e > worst) worst = e;
+                ++compared;
+            }
+        }
+    }
+    printf("  %s display, lanes vs reference: %ld pixels, %ld channel values leaned, %ld differ in bits, "
+           "worst difference %.3g\n", SBL_SIMD_NAME, compared, leaned, differ, worst);
+    /* the lean acts, and the lanes (float) computed some of it */
+    CHECK(leaned > compared / 4);
+    CHECK(differ > 0);
+}
+#undef DPW
+#undef DPH
+
 static void test_blur_noise_fit(void)
 {
     static const double pts[][2] = {{1, 0.25}, {1, 0.0625}, {2, 0.25}, {3, 0.1}, {5, 0.2}, {11, 0.001}, {8, 0.25},
@@ -2599,5 +2703,6 @@ int main(void)
     test_rig_as_parallel();
     test_blur_noise_fit();
     test_restart_lean_paths();
+    test_display_paths();
     return sbt_finish("test_paths");
 }
