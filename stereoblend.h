@@ -11386,7 +11386,8 @@ typedef struct sbl__display_lanes {
     float out[36 * SBL__VW];    /* the outputs, the same layout (q = 4: the pixel's own) */
     float length[9 * SBL__VW];  /* their N */
     float shown[4 * SBL__VW];   /* the display, channel c at [c * SBL__VW + l] */
-    float full[SBL__VW];        /* 1: the lane's sums are finite, every neighbour has N > 0 */
+    float full[SBL__VW];        /* 1: every neighbour has N > 0 */
+    float check[SBL__VW];       /* a sum of the lane's sums: finite if they all are */
     float *dst[SBL__VW];
     int x[SBL__VW], count;
 } sbl__display_lanes;
@@ -11419,13 +11420,6 @@ SBL__INLINE void sbl__display_lane_put(sbl__display_lanes *l, const sbl__display
     }
     l->x[lane] = x;
     l->dst[lane] = d;
-}
-
-/* 1 per lane where v is finite, else 0, min-accumulated into ok */
-SBL__INLINE sbl__v sbl__display_finite(sbl__v ok, sbl__v v)
-{
-    return sbl__min(ok, sbl__sel(sbl__gt(sbl__set1(HUGE_VALF), sbl__abs(v)), sbl__set1(1.0f),
-                                 sbl__set1(0.0f)));
 }
 
 /* The display of the lanes' pixels (l->count of them), written to their dst */
@@ -11492,16 +11486,18 @@ static void sbl__display_lanes_run(sbl__display_lanes *l, const sbl__display_row
     vm = sbl__add(sbl__max(sbl__sub(v8u, vnb), zero), sbl__mul(vnb, sbl__set1(0.125f)));
     den = sbl__add(v, vm);
     a = sbl__sel(sbl__gt(den, zero), sbl__div(v, sbl__max(den, sbl__set1(FLT_MIN))), zero);
-    ok = sbl__display_finite(ok, sbl__add(sbl__add(all, v8u), sbl__add(nsum, den)));
+    sbl__store(l->check, sbl__add(sbl__add(all, v8u), sbl__add(nsum, den)));
     for (c = 0; c < ch; ++c) {
-        const sbl__v t = sbl__load(l->out + (16 + c) * vw), shown = sbl__add(t, sbl__mul(a, sbl__sub(m8[c], t)));
-        ok = sbl__display_finite(ok, shown);
-        sbl__store(l->shown + c * vw, shown);
+        const sbl__v t = sbl__load(l->out + (16 + c) * vw);
+        sbl__store(l->shown + c * vw, sbl__add(t, sbl__mul(a, sbl__sub(m8[c], t))));
     }
     sbl__store(l->full, ok);
     for (k = 0; k < l->count; ++k) {
+        /* finite on the bits (immune to -ffast-math) */
         float *d = l->dst[k];
-        if (l->full[k] == 1.0f) {
+        int good = l->full[k] == 1.0f && sbl__finite(l->check[k]);
+        for (c = 0; c < ch; ++c) good &= sbl__finite(l->shown[c * vw + k]);
+        if (good) {
             for (c = 0; c < ch; ++c) d[c] = l->shown[c * vw + k];
         } else {
             float t[4];
@@ -11561,8 +11557,10 @@ SBLDEF sbl_result sbl_temporal_display(const sbl_display_desc *desc, const sbl_f
             const float nf = nrow[SBL__CAST(ptrdiff_t, x) * rows.length_step];
             const float *t = trow + SBL__CAST(ptrdiff_t, x) * ts;
             float *d = drow + SBL__CAST(ptrdiff_t, x) * ds;
-            /* an old history (or none: N not > 0), or an output that is not a value */
-            if (!(nf > 0.0f) || !(SBL__CAST(double, nf) <= nmax) || sbl__any_nonfinite(t, ch))
+            /* an old history (or none: N not > 0), or an output that is not a value (N's
+               finiteness on the bits: the comparisons alone fold under -ffast-math) */
+            if (!sbl__finite(nf) || !(nf > 0.0f) || !(SBL__CAST(double, nf) <= nmax) ||
+                sbl__any_nonfinite(t, ch))
                 continue;
             if (!inside || x == 0 || x == w - 1) {
                 sbl__display_pixel(&rows, x, SBL__CAST(double, nf), t, d);

@@ -2542,7 +2542,7 @@ static void test_display_paths(void)
                 float ref[4];
                 double e = 0.0;
                 for (c = 0; c < ch; ++c) ref[c] = t[c];
-                if (n > 0.0f && n <= 3.0f && !sbl__any_nonfinite(t, ch))
+                if (sbl__finite(n) && n > 0.0f && n <= 3.0f && !sbl__any_nonfinite(t, ch))
                     sbl__display_pixel(&rows, x, (double)n, t, ref);
                 for (c = 0; c < ch; ++c) {
                     const double ec = memcmp(&dl[c], &ref[c], sizeof(float)) == 0
