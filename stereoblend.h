@@ -11377,10 +11377,10 @@ static void sbl__display_pixel(const sbl__display_rows *r, int x, double n, cons
    by lane (value k of lane l at [k * SBL__VW + l]), then the display of all of them in
    float over the SIMD layer: the reference's formula, the variance in two passes. A
    lane whose sums are not finite (a value that is not, or so large that a square
-   overflows) or that has a neighbour without N > 0 takes the reference instead, so the
-   lanes and the reference differ by float rounding only. (Values so small that their
-   squares leave the normal floats, below about 1e-19, lose precision in the noise:
-   their lean is weaker or none.) */
+   overflows) or that has a neighbour without N > 0 takes the reference instead, so at
+   the magnitudes of any render the lanes and the reference differ by float rounding
+   only. (Differences so small that their squares near the smallest normal float, below
+   about 1e-16, lose precision in the lanes' noise: the lean is weaker or none there.) */
 typedef struct sbl__display_lanes {
     float sample[36 * SBL__VW]; /* value (3 j + i) * 4 + c: channel c at (x + i - 1, y + j - 1) */
     float out[36 * SBL__VW];    /* the outputs, the same layout (q = 4: the pixel's own) */

@@ -474,8 +474,17 @@ static sbl_result fuzz_temporal(rd *r, ctx *cx, int w, int h, int c, int op)
     check_rc(rc);
     /* validation OK: only the row range, the scratch or its size can still fail (or,
        with a display, the display's own checks) */
-    if (!(o.display.data && rc != SBL_OK)) { /* (a display's own error comes first) */
-        if (cx->expect != SBL_OK) REQUIRE(rc == cx->expect);
+    {
+        /* a display's own error comes first: its checks (rows [0, 0) write nothing) and
+           the frame call's overlap with the next frame's inputs */
+        sbl_result de = SBL_OK;
+        if (o.display.data) {
+            de = sbl_temporal_display(NULL, &f, &o, o.display, 0, 0);
+            if (de == SBL_OK && sbl__overlaps_temporal_inputs(&o.display, &f, hp, 1))
+                de = SBL_ERROR_OVERLAP;
+        }
+        if (de != SBL_OK) REQUIRE(rc == de);
+        else if (cx->expect != SBL_OK) REQUIRE(rc == cx->expect);
         else REQUIRE(rc == SBL_OK || rc == SBL_ERROR_INVALID_ROWS || rc == SBL_ERROR_NULL_POINTER ||
                      rc == SBL_ERROR_SCRATCH_TOO_SMALL || rc == SBL_ERROR_INVALID_SIZE ||
                      rc == SBL_ERROR_OUT_OF_MEMORY);
