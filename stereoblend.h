@@ -11373,24 +11373,41 @@ static void sbl__display_pixel(const sbl__display_rows *r, int x, double n, cons
         d[c] = SBL__CAST(float, SBL__CAST(double, t[c]) + a * (m8[c] - SBL__CAST(double, t[c])));
 }
 
-/* The lanes: the windows of up to SBL__VW young pixels inside the image, copied lane
-   by lane (value k of lane l at [k * SBL__VW + l]), then the display of all of them in
-   float over the SIMD layer: the reference's formula, the variance in two passes. A
-   lane whose sums are not finite (a value that is not, or so large that a square
-   overflows) or that has a neighbour without N > 0 takes the reference instead, so at
-   the magnitudes of any render the lanes and the reference differ by float rounding
-   only. (Differences so small that their squares near the smallest normal float, below
-   about 1e-16, lose precision in the lanes' noise: the lean is weaker or none there.) */
+/* The lanes: the windows of up to SBL__VW young pixels inside the image, then the
+   display of all of them in float over the SIMD layer: the reference's formula, the
+   variance in two passes. A lane whose sums are not finite (a value that is not, or so
+   large that a square overflows) or that has a neighbour without N > 0 takes the
+   reference instead, so at the magnitudes of any render the lanes and the reference
+   differ by float rounding only. (Differences so small that their squares near the
+   smallest normal float, below about 1e-16, lose precision in the lanes' noise: the lean
+   is weaker or none there.)
+   The windows reach the lanes two ways. Young pixels here and there are copied lane by
+   lane (sbl__display_lane_put). A run of SBL__VW young pixels side by side (a
+   disocclusion, a first frame) shares most of its windows' values: the run's three rows
+   are deinterleaved once (sbl__display_run_put) and each window value is then one
+   unaligned load at an offset, about a third of the copies. */
 typedef struct sbl__display_lanes {
     float sample[36 * SBL__VW]; /* value (3 j + i) * 4 + c: channel c at (x + i - 1, y + j - 1) */
     float out[36 * SBL__VW];    /* the outputs, the same layout (q = 4: the pixel's own) */
     float length[9 * SBL__VW];  /* their N */
-    float shown[4 * SBL__VW];   /* the display, channel c at [c * SBL__VW + l] */
-    float full[SBL__VW];        /* 1: every neighbour has N > 0 */
-    float check[SBL__VW];       /* a sum of the lane's sums: finite if they all are */
     float *dst[SBL__VW];
     int x[SBL__VW], count;
 } sbl__display_lanes;
+
+/* Where the lanes' window values are: value (j, i, c) of lane 0 at s[j * vj + c * vc + i *
+   vi] (samples), the same offsets in t (outputs), N at n[j * nj + i * ni]; lane l at + l */
+typedef struct sbl__display_win {
+    const float *s, *t, *n;
+    int vj, vc, vi, nj, ni;
+} sbl__display_win;
+
+/* A run's rows deinterleaved: channel c of row j, pixels x - 1 .. x + SBL__VW */
+#define SBL__DISPLAY_RUN (SBL__VW + 2)
+typedef struct sbl__display_run {
+    float sample[12 * SBL__DISPLAY_RUN], out[12 * SBL__DISPLAY_RUN], length[3 * SBL__DISPLAY_RUN];
+    float *dst[SBL__VW];
+    int x[SBL__VW];
+} sbl__display_run;
 
 /* One pixel's window into the next lane (x inside: 0 < x < width - 1, rows present);
    ch a constant where it is inlined */
@@ -11422,26 +11439,55 @@ SBL__INLINE void sbl__display_lane_put(sbl__display_lanes *l, const sbl__display
     l->dst[lane] = d;
 }
 
-/* The display of the lanes' pixels (l->count of them), written to their dst */
-static void sbl__display_lanes_run(sbl__display_lanes *l, const sbl__display_rows *r)
+/* The rows of the run of SBL__VW young pixels x .. x + SBL__VW - 1 (all inside),
+   deinterleaved; d: the first one's display, ds its pixel step */
+SBL__INLINE void sbl__display_run_put(sbl__display_run *u, const sbl__display_rows *r, int x,
+                                      float *d, int ds, int ch)
+{
+    int i, j;
+    for (j = 0; j < 3; ++j) {
+        const float *sp = r->sample[j] + SBL__CAST(ptrdiff_t, x - 1) * r->sample_step;
+        const float *tn = r->out[j] + SBL__CAST(ptrdiff_t, x - 1) * r->out_step;
+        const float *nn = r->length[j] + SBL__CAST(ptrdiff_t, x - 1) * r->length_step;
+        float *us = u->sample + 4 * j * SBL__DISPLAY_RUN, *uo = u->out + 4 * j * SBL__DISPLAY_RUN;
+        float *un = u->length + j * SBL__DISPLAY_RUN;
+        for (i = 0; i < SBL__DISPLAY_RUN; ++i) {
+            us[i] = sp[0];
+            uo[i] = tn[0];
+            if (ch > 1) { us[SBL__DISPLAY_RUN + i] = sp[1]; uo[SBL__DISPLAY_RUN + i] = tn[1]; }
+            if (ch > 2) { us[2 * SBL__DISPLAY_RUN + i] = sp[2]; uo[2 * SBL__DISPLAY_RUN + i] = tn[2]; }
+            if (ch > 3) { us[3 * SBL__DISPLAY_RUN + i] = sp[3]; uo[3 * SBL__DISPLAY_RUN + i] = tn[3]; }
+            un[i] = *nn;
+            sp += r->sample_step;
+            tn += r->out_step;
+            nn += r->length_step;
+        }
+    }
+    for (i = 0; i < SBL__VW; ++i) {
+        u->x[i] = x + i;
+        u->dst[i] = d + SBL__CAST(ptrdiff_t, i) * ds;
+    }
+}
+
+/* The display of `count` lanes' pixels (windows where w says), written to dst[] */
+static void sbl__display_lanes_run(const sbl__display_win *w, int count, float *const *dst,
+                                   const int *xs, const sbl__display_rows *r)
 {
     const int ch = r->channels, vw = SBL__VW;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
     sbl__v ok = one, vs = zero, all = zero, v8u = zero, inv_nb = zero, nsum = zero, m8[4];
     sbl__v n, v, vnb, vm, den, a;
+    float shown[4 * SBL__VW]; /* the display, channel c at [c * SBL__VW + l] */
+    float full[SBL__VW];      /* 1: every neighbour has N > 0 */
+    float check[SBL__VW];     /* a sum of the lane's sums: finite if they all are */
     int c, k, q;
-    /* unused lanes repeat lane 0 (values, so that no lane reads memory not written) */
-    for (k = l->count; k < vw; ++k) {
-        for (q = 0; q < 36; ++q) {
-            l->sample[q * vw + k] = l->sample[q * vw];
-            l->out[q * vw + k] = l->out[q * vw];
-        }
-        for (q = 0; q < 9; ++q) l->length[q * vw + k] = l->length[q * vw];
-    }
+#define SBL__DWS(q, c) (w->s + (q) / 3 * w->vj + (c) * w->vc + (q) % 3 * w->vi)
+#define SBL__DWT(q, c) (w->t + (q) / 3 * w->vj + (c) * w->vc + (q) % 3 * w->vi)
+#define SBL__DWN(q) (w->n + (q) / 3 * w->nj + (q) % 3 * w->ni)
     for (q = 0; q < 9; ++q)
         if (q != 4) {
             /* a neighbour's N: > 0 (else the reference leaves it out), finite (nsum) */
-            const sbl__v nq = sbl__load(l->length + q * vw);
+            const sbl__v nq = sbl__load(SBL__DWN(q));
             ok = sbl__min(ok, sbl__sel(sbl__gt(nq, zero), one, zero));
             nsum = sbl__add(nsum, nq);
             inv_nb = sbl__add(inv_nb, sbl__div(one, sbl__max(nq, one)));
@@ -11449,8 +11495,8 @@ static void sbl__display_lanes_run(sbl__display_lanes *l, const sbl__display_row
     for (c = 0; c < ch; ++c) {
         sbl__v s[9], t[9], dv, rs, cs, ds, as, sum, sq;
         for (q = 0; q < 9; ++q) {
-            s[q] = sbl__load(l->sample + (q * 4 + c) * vw);
-            t[q] = sbl__load(l->out + (q * 4 + c) * vw);
+            s[q] = sbl__load(SBL__DWS(q, c));
+            t[q] = sbl__load(SBL__DWT(q, c));
         }
 #define SBL__DSQ(acc, p, q0) (dv = sbl__sub(s[p], s[q0]), acc = sbl__add(acc, sbl__mul(dv, dv)))
         /* the adjacent pairs: the rows, the columns, the diagonal, the anti-diagonal */
@@ -11480,32 +11526,76 @@ static void sbl__display_lanes_run(sbl__display_lanes *l, const sbl__display_row
         v8u = sbl__add(v8u, sbl__mul(sq, sbl__set1(1.0f / 7.0f)));
     }
     vs = sbl__mul(vs, sbl__set1(SBL__CAST(float, SBL__DISPLAY_NOISE_SCALE)));
-    n = sbl__load(l->length + 4 * vw);
+    n = sbl__load(SBL__DWN(4));
     v = sbl__div(vs, sbl__max(n, one));
     vnb = sbl__mul(sbl__mul(vs, inv_nb), sbl__set1(0.125f));
     vm = sbl__add(sbl__max(sbl__sub(v8u, vnb), zero), sbl__mul(vnb, sbl__set1(0.125f)));
     den = sbl__add(v, vm);
     a = sbl__sel(sbl__gt(den, zero), sbl__div(v, sbl__max(den, sbl__set1(FLT_MIN))), zero);
-    sbl__store(l->check, sbl__add(sbl__add(all, v8u), sbl__add(nsum, den)));
+    sbl__store(check, sbl__add(sbl__add(all, v8u), sbl__add(nsum, den)));
     for (c = 0; c < ch; ++c) {
-        const sbl__v t = sbl__load(l->out + (16 + c) * vw);
-        sbl__store(l->shown + c * vw, sbl__add(t, sbl__mul(a, sbl__sub(m8[c], t))));
+        const sbl__v t = sbl__load(SBL__DWT(4, c));
+        sbl__store(shown + c * vw, sbl__add(t, sbl__mul(a, sbl__sub(m8[c], t))));
     }
-    sbl__store(l->full, ok);
-    for (k = 0; k < l->count; ++k) {
+    sbl__store(full, ok);
+    for (k = 0; k < count; ++k) {
         /* finite on the bits (immune to -ffast-math) */
-        float *d = l->dst[k];
-        int good = l->full[k] == 1.0f && sbl__finite(l->check[k]);
-        for (c = 0; c < ch; ++c) good &= sbl__finite(l->shown[c * vw + k]);
+        float *d = dst[k];
+        int good = full[k] == 1.0f && sbl__finite(check[k]);
+        for (c = 0; c < ch; ++c) good &= sbl__finite(shown[c * vw + k]);
         if (good) {
-            for (c = 0; c < ch; ++c) d[c] = l->shown[c * vw + k];
+            for (c = 0; c < ch; ++c) d[c] = shown[c * vw + k];
         } else {
             float t[4];
-            for (c = 0; c < ch; ++c) t[c] = l->out[(16 + c) * vw + k];
-            sbl__display_pixel(r, l->x[k], SBL__CAST(double, l->length[4 * vw + k]), t, d);
+            for (c = 0; c < ch; ++c) t[c] = SBL__DWT(4, c)[k];
+            sbl__display_pixel(r, xs[k], SBL__CAST(double, SBL__DWN(4)[k]), t, d);
         }
     }
+#undef SBL__DWS
+#undef SBL__DWT
+#undef SBL__DWN
+}
+
+/* The lanes' copied windows (l->count of them) through sbl__display_lanes_run */
+static void sbl__display_lanes_flush(sbl__display_lanes *l, const sbl__display_rows *r)
+{
+    const int vw = SBL__VW;
+    sbl__display_win w;
+    int k, q;
+    /* unused lanes repeat lane 0 (values, so that no lane reads memory not written) */
+    for (k = l->count; k < vw; ++k) {
+        for (q = 0; q < 36; ++q) {
+            l->sample[q * vw + k] = l->sample[q * vw];
+            l->out[q * vw + k] = l->out[q * vw];
+        }
+        for (q = 0; q < 9; ++q) l->length[q * vw + k] = l->length[q * vw];
+    }
+    w.s = l->sample;
+    w.t = l->out;
+    w.n = l->length;
+    w.vj = 12 * vw; w.vc = vw; w.vi = 4 * vw;
+    w.nj = 3 * vw; w.ni = vw;
+    sbl__display_lanes_run(&w, l->count, l->dst, l->x, r);
     l->count = 0;
+}
+
+/* A deinterleaved run through sbl__display_lanes_run: lane l's window starts at offset l */
+static void sbl__display_run_flush(const sbl__display_run *u, const sbl__display_rows *r)
+{
+    sbl__display_win w;
+    w.s = u->sample;
+    w.t = u->out;
+    w.n = u->length;
+    w.vj = 4 * SBL__DISPLAY_RUN; w.vc = SBL__DISPLAY_RUN; w.vi = 1;
+    w.nj = SBL__DISPLAY_RUN; w.ni = 1;
+    sbl__display_lanes_run(&w, SBL__VW, u->dst, u->x, r);
+}
+
+/* A pixel the display leans: a young history (0 < N <= nmax; N's finiteness on the bits,
+   since the comparisons alone fold under -ffast-math) with an output that is a value */
+SBL__INLINE int sbl__display_young(float n, const float *t, int ch, double nmax)
+{
+    return sbl__finite(n) && n > 0.0f && SBL__CAST(double, n) <= nmax && !sbl__any_nonfinite(t, ch);
 }
 
 SBLDEF sbl_result sbl_temporal_display(const sbl_display_desc *desc, const sbl_frame *frame,
@@ -11515,13 +11605,16 @@ SBLDEF sbl_result sbl_temporal_display(const sbl_display_desc *desc, const sbl_f
     sbl_result r;
     sbl__display_rows rows;
     sbl__display_lanes lanes;
+    sbl__display_run run;
     double nmax = SBL_DISPLAY_LEAN_MAX_N;
-    int x, y, c, j, w, h, ch, ts, ds;
+    float nmax_f;
+    int x, y, c, j, w, h, ch, ts, ds, young_end;
     if (desc) {
         if (!sbl__finite(desc->max_length)) return SBL_ERROR_INVALID_PARAM;
         if (desc->max_length != 0.0f) nmax = SBL__CAST(double, desc->max_length);
     }
     if ((r = sbl__display_check(frame, filtered, &display)) != SBL_OK) return r;
+    nmax_f = SBL__CAST(float, nmax); /* (exact: nmax is a float's value) */
     w = frame->color.width;
     h = frame->color.height;
     ch = frame->color.channels;
@@ -11553,28 +11646,48 @@ SBLDEF sbl_result sbl_temporal_display(const sbl_display_desc *desc, const sbl_f
                 for (c = 0; c < ch; ++c)
                     drow[SBL__CAST(ptrdiff_t, x) * ds + c] = trow[SBL__CAST(ptrdiff_t, x) * ts + c];
         }
+        young_end = 0; /* pixels [x, young_end) are known young */
         for (x = 0; x < w; ++x) {
             const float nf = nrow[SBL__CAST(ptrdiff_t, x) * rows.length_step];
-            const float *t = trow + SBL__CAST(ptrdiff_t, x) * ts;
-            float *d = drow + SBL__CAST(ptrdiff_t, x) * ds;
-            /* an old history (or none: N not > 0), or an output that is not a value (N's
-               finiteness on the bits: the comparisons alone fold under -ffast-math) */
-            if (!sbl__finite(nf) || !(nf > 0.0f) || !(SBL__CAST(double, nf) <= nmax) ||
-                sbl__any_nonfinite(t, ch))
-                continue;
-            if (!inside || x == 0 || x == w - 1) {
-                sbl__display_pixel(&rows, x, SBL__CAST(double, nf), t, d);
-                continue;
+            const float *t;
+            float *d;
+            /* most pixels are old: one quick test of N first (the full test below reads
+               N's bits, which -ffast-math cannot fold) */
+            if (x >= young_end && !(nf > 0.0f && nf <= nmax_f)) continue;
+            t = trow + SBL__CAST(ptrdiff_t, x) * ts;
+            d = drow + SBL__CAST(ptrdiff_t, x) * ds;
+            if (x >= young_end) {
+                if (!sbl__display_young(nf, t, ch, nmax)) continue;
+                if (!inside || x == 0 || x == w - 1) {
+                    sbl__display_pixel(&rows, x, SBL__CAST(double, nf), t, d);
+                    continue;
+                }
+                /* how far the young pixels reach (at most a run, inside the image) */
+                for (young_end = x + 1; young_end < x + SBL__VW && young_end < w - 1; ++young_end)
+                    if (!sbl__display_young(nrow[SBL__CAST(ptrdiff_t, young_end) * rows.length_step],
+                                            trow + SBL__CAST(ptrdiff_t, young_end) * ts, ch, nmax))
+                        break;
+                if (young_end - x == SBL__VW && SBL__VW > 1) {
+                    switch (ch) { /* one copy per channel count, its loops unrolled */
+                    case 1: sbl__display_run_put(&run, &rows, x, d, ds, 1); break;
+                    case 2: sbl__display_run_put(&run, &rows, x, d, ds, 2); break;
+                    case 3: sbl__display_run_put(&run, &rows, x, d, ds, 3); break;
+                    default: sbl__display_run_put(&run, &rows, x, d, ds, 4); break;
+                    }
+                    sbl__display_run_flush(&run, &rows);
+                    x = young_end - 1;
+                    continue;
+                }
             }
-            switch (ch) { /* one copy per channel count, its loops unrolled */
+            switch (ch) {
             case 1: sbl__display_lane_put(&lanes, &rows, x, d, 1); break;
             case 2: sbl__display_lane_put(&lanes, &rows, x, d, 2); break;
             case 3: sbl__display_lane_put(&lanes, &rows, x, d, 3); break;
             default: sbl__display_lane_put(&lanes, &rows, x, d, 4); break;
             }
-            if (lanes.count == SBL__VW) sbl__display_lanes_run(&lanes, &rows);
+            if (lanes.count == SBL__VW) sbl__display_lanes_flush(&lanes, &rows);
         }
-        if (lanes.count) sbl__display_lanes_run(&lanes, &rows); /* (rows: this row's) */
+        if (lanes.count) sbl__display_lanes_flush(&lanes, &rows); /* (rows: this row's) */
     }
     return SBL_OK;
 }

@@ -2476,7 +2476,8 @@ static void test_restart_lean_paths(void)
 #define DPH 9
 static void test_display_paths(void)
 {
-    static float smp[DPH * DPW * 5], out[DPH * DPW * 5], len[DPH * DPW], disp[DPH * DPW * 6];
+    static float smp[DPH * DPW * 5], out[DPH * DPW * 6], len[DPH * DPW], disp[DPH * DPW * 6],
+        disp2[DPH * DPW * 6];
     sbt_rng rng = {777};
     long compared = 0, leaned = 0, differ = 0;
     double worst = 0.0;
@@ -2485,28 +2486,35 @@ static void test_display_paths(void)
         /* (the difference is relative to the scale and the values: a huge output
            leaned in float differs from the double one by its rounding) */
         const int ch = 1 + it % 4, step = ch + (it % 5 == 1), dstep = ch + 2 * (it % 7 == 3);
+        const int ostep = step + (it % 3 == 2); /* the outputs' pixel step, not the samples' */
+        /* runs of young pixels side by side (sbl__display_run_put) in a third of the cases;
+           a longer young history (sbl_display_desc.max_length) in a sixth */
+        const double pyoung = it % 3 == 0 ? 0.97 : 0.6;
+        const float max_n = it % 6 == 5 ? 6.0f : 0.0f, lean_n = max_n > 0.0f ? max_n : 3.0f;
         const double scale = it % 10 == 9 ? 3e13 : it % 10 == 8 ? 1e-9 : 1.0;
         const double amp = 0.3 * sbt_uniform(&rng), sigma = 0.01 + 0.2 * sbt_uniform(&rng);
         const int odd = it % 4 == 2; /* a few values that are not, or too large for a lane */
         sbl_frame f;
         sbl_temporal_output o;
+        sbl_display_desc dd;
         sbl__display_rows rows;
         int x, y, c, j;
         for (y = 0; y < DPH; ++y)
             for (x = 0; x < DPW; ++x) {
                 const double t = 0.5 + amp * sin(0.7 * x + 1.1 * y);
-                const double u = sbt_uniform(&rng);
-                len[y * DPW + x] = u < 0.6 ? (float)(1 + (int)(3 * sbt_uniform(&rng)))
-                                   : u < 0.9 ? (float)(4 + 30 * sbt_uniform(&rng))
-                                   : u < 0.95 ? 0.0f : u < 0.97 ? 0.5f : -1.0f;
-                for (c = 0; c < step; ++c) {
+                const double u = sbt_uniform(&rng), u2 = (u - pyoung) / (1.0 - pyoung);
+                len[y * DPW + x] = u < pyoung ? (float)(1 + (int)(3 * sbt_uniform(&rng)))
+                                   : u2 < 0.75 ? (float)(4 + 30 * sbt_uniform(&rng))
+                                   : u2 < 0.875 ? 0.0f : u2 < 0.925 ? 0.5f : -1.0f;
+                for (c = 0; c < step; ++c)
                     smp[(y * DPW + x) * step + c] = (float)(scale * (t + 0.05 * c + sigma * sbt_gauss(&rng)));
-                    out[(y * DPW + x) * step + c] = (float)(scale * (t + 0.05 * c + 0.3 * sigma * sbt_gauss(&rng)));
-                }
+                for (c = 0; c < ostep; ++c)
+                    out[(y * DPW + x) * ostep + c] = (float)(scale * (t + 0.05 * c + 0.3 * sigma * sbt_gauss(&rng)));
                 if (odd && sbt_uniform(&rng) < 0.03) {
                     const double v = sbt_uniform(&rng);
-                    float *p = sbt_uniform(&rng) < 0.5 ? smp : out;
-                    p[(y * DPW + x) * step + (int)(sbt_uniform(&rng) * ch)] =
+                    const int in_out = sbt_uniform(&rng) < 0.5;
+                    float *p = in_out ? out : smp;
+                    p[(y * DPW + x) * (in_out ? ostep : step) + (int)(sbt_uniform(&rng) * ch)] =
                         v < 0.3 ? NAN : v < 0.5 ? INFINITY : v < 0.8 ? 3e37f : -2e38f;
                     if (sbt_uniform(&rng) < 0.3) len[y * DPW + x] = v < 0.5 ? NAN : INFINITY;
                 }
@@ -2516,16 +2524,34 @@ static void test_display_paths(void)
         f.color = sbl_image_make(smp, DPW, DPH, ch);
         f.color.pixel_bytes = step * (int)sizeof(float);
         f.color.stride_bytes = DPW * step * (int)sizeof(float);
-        o.color = f.color;
-        o.color.data = out;
+        o.color = sbl_image_make(out, DPW, DPH, ch);
+        o.color.pixel_bytes = ostep * (int)sizeof(float);
+        o.color.stride_bytes = DPW * ostep * (int)sizeof(float);
         o.length = sbl_image_make(len, DPW, DPH, 1);
+        memset(&dd, 0, sizeof dd);
+        dd.max_length = max_n;
         {
             sbl_image d = sbl_image_make(disp, DPW, DPH, ch);
             d.pixel_bytes = dstep * (int)sizeof(float);
             d.stride_bytes = DPW * dstep * (int)sizeof(float);
-            CHECK_EQ(sbl_temporal_display(NULL, &f, &o, d, 0, DPH), SBL_OK);
+            CHECK_EQ(sbl_temporal_display(&dd, &f, &o, d, 0, DPH), SBL_OK);
+            if (it % 5 == 4) { /* row bands (one row, then random heights) equal one call */
+                int y0 = 0, y1 = 1;
+                d.data = disp2;
+                while (y0 < DPH) {
+                    CHECK_EQ(sbl_temporal_display(&dd, &f, &o, d, y0, y1), SBL_OK);
+                    y0 = y1;
+                    y1 = y0 + 1 + (int)(7 * sbt_uniform(&rng));
+                    if (y1 > DPH) y1 = DPH;
+                }
+                for (y = 0; y < DPH; ++y)
+                    for (x = 0; x < DPW; ++x)
+                        CHECK(memcmp(disp + (y * DPW + x) * dstep, disp2 + (y * DPW + x) * dstep,
+                                     (size_t)ch * sizeof(float)) == 0);
+            }
         }
-        rows.sample_step = rows.out_step = step;
+        rows.sample_step = step;
+        rows.out_step = ostep;
         rows.length_step = 1;
         rows.width = DPW;
         rows.channels = ch;
@@ -2533,16 +2559,16 @@ static void test_display_paths(void)
             for (j = 0; j < 3; ++j) {
                 const int yj = y + j - 1, in = yj >= 0 && yj < DPH;
                 rows.sample[j] = in ? smp + yj * DPW * step : NULL;
-                rows.out[j] = in ? out + yj * DPW * step : NULL;
+                rows.out[j] = in ? out + yj * DPW * ostep : NULL;
                 rows.length[j] = in ? len + yj * DPW : NULL;
             }
             for (x = 0; x < DPW; ++x) {
-                const float *t = out + (y * DPW + x) * step, n = len[y * DPW + x];
+                const float *t = out + (y * DPW + x) * ostep, n = len[y * DPW + x];
                 const float *dl = disp + (y * DPW + x) * dstep;
                 float ref[4];
                 double e = 0.0;
                 for (c = 0; c < ch; ++c) ref[c] = t[c];
-                if (sbl__finite(n) && n > 0.0f && n <= 3.0f && !sbl__any_nonfinite(t, ch))
+                if (sbl__finite(n) && n > 0.0f && n <= lean_n && !sbl__any_nonfinite(t, ch))
                     sbl__display_pixel(&rows, x, (double)n, t, ref);
                 for (c = 0; c < ch; ++c) {
                     const double ec = memcmp(&dl[c], &ref[c], sizeof(float)) == 0
