@@ -11385,7 +11385,8 @@ static void sbl__display_pixel(const sbl__display_rows *r, int x, double n, cons
    lane (sbl__display_lane_put). A run of SBL__VW young pixels side by side (a
    disocclusion, a first frame) shares most of its windows' values: the run's three rows
    are deinterleaved once (sbl__display_run_put) and each window value is then one
-   unaligned load at an offset, about a third of the copies. */
+   unaligned load at an offset: 3 (SBL__VW + 2) copies per value and channel where lane
+   by lane takes 9 SBL__VW (a half with four lanes, three eighths with sixteen). */
 typedef struct sbl__display_lanes {
     float sample[36 * SBL__VW]; /* value (3 j + i) * 4 + c: channel c at (x + i - 1, y + j - 1) */
     float out[36 * SBL__VW];    /* the outputs, the same layout (q = 4: the pixel's own) */
@@ -11614,7 +11615,9 @@ SBLDEF sbl_result sbl_temporal_display(const sbl_display_desc *desc, const sbl_f
         if (desc->max_length != 0.0f) nmax = SBL__CAST(double, desc->max_length);
     }
     if ((r = sbl__display_check(frame, filtered, &display)) != SBL_OK) return r;
-    nmax_f = SBL__CAST(float, nmax); /* (exact: nmax is a float's value) */
+    /* (rounding keeps the order, so the quick test in float never turns away a pixel
+       the full test in double takes) */
+    nmax_f = SBL__CAST(float, nmax);
     w = frame->color.width;
     h = frame->color.height;
     ch = frame->color.channels;

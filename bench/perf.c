@@ -17,6 +17,9 @@
                       written: the setup whose accuracy docs/RESULTS.md reports)
      temporal-camera  the easy frame with camera matrices instead of motion vectors (a
                       pinhole camera moved ~(0.37, -0.21) px at depth 2; no motion read)
+     temporal-display the easy frame, then its display (sbl_temporal_display, after every
+                      band's filter: a barrier between), as a renderer without a stereo
+                      blend shows it; the floor adds the display's write (1 and 2 threads)
    and the stereo blend of the two eyes on one more rig (1 thread):
      stereo-cameras   a two-camera pinhole rig (SBL_RIG_PINHOLE, the same baseline) in
                       place of the parallel rig's focal length and baseline: a parallel
@@ -66,10 +69,11 @@ static float *falloc(size_t n)
 typedef struct eye_bufs {
     float *color, *depth, *prev_depth, *motion, *hist, *hlen, *out, *olen, *stereo_out;
     float *hev, *oev; /* evidence plane in / out */
+    float *disp;      /* the temporal output's display */
 } eye_bufs;
 
 typedef struct job {
-    int kind;            /* 0 temporal, 1 stereo, 2 floor */
+    int kind;            /* 0 temporal, 1 stereo, 2 floor, 3 display */
     int evidence;        /* temporal: pass the evidence planes */
     int eye, y0, y1, w, h;
     eye_bufs *e[2];
@@ -87,7 +91,8 @@ typedef struct job {
     int result;
 } job;
 
-static void run_temporal(job *j)
+/* The temporal call's frame, history and outputs of the job's eye */
+static void bind_temporal(job *j, sbl_frame *fp, sbl_history *hp, sbl_temporal_output *op)
 {
     eye_bufs *b = j->e[j->eye];
     sbl_frame f;
@@ -111,7 +116,26 @@ static void run_temporal(job *j)
         hi.evidence = sbl_image_make(b->hev, j->w, j->h, 1);
         o.evidence = sbl_image_make(b->oev, j->w, j->h, 1);
     }
+    *fp = f; *hp = hi; *op = o;
+}
+
+static void run_temporal(job *j)
+{
+    sbl_frame f;
+    sbl_history hi;
+    sbl_temporal_output o;
+    bind_temporal(j, &f, &hi, &o);
     j->result = sbl_temporal_filter(&j->td, &f, &hi, &o, j->y0, j->y1, j->scratch, j->scratch_bytes);
+}
+
+static void run_display(job *j)
+{
+    sbl_frame f;
+    sbl_history hi;
+    sbl_temporal_output o;
+    bind_temporal(j, &f, &hi, &o);
+    j->result = sbl_temporal_display(NULL, &f, &o, sbl_image_make(j->e[j->eye]->disp, j->w, j->h, 3),
+                                     j->y0, j->y1);
 }
 
 static void run_stereo(job *j)
@@ -174,6 +198,7 @@ static void *job_main(void *arg)
     job *j = (job *)arg;
     if (j->kind == 0) run_temporal(j);
     else if (j->kind == 1) run_stereo(j);
+    else if (j->kind == 3) run_display(j);
     else run_floor(j);
     return NULL;
 }
@@ -219,7 +244,7 @@ static void fill_eye(eye_bufs *b, int w, int h, int eye)
     b->motion = falloc(n * 2);
     b->hist = falloc(n * 3); b->hlen = falloc(n); b->out = falloc(n * 3); b->olen = falloc(n);
     b->stereo_out = falloc(n * 3);
-    b->hev = falloc(n); b->oev = falloc(n);
+    b->hev = falloc(n); b->oev = falloc(n); b->disp = falloc(n * 3);
     for (i = 0; i < n; ++i) {
         int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), c;
         for (c = 0; c < 3; ++c) {
@@ -281,7 +306,7 @@ static void make_case(eye_bufs *b, int w, int h, int kase)
 static void free_eye(eye_bufs *b)
 {
     free(b->color); free(b->depth); free(b->prev_depth); free(b->motion); free(b->hist); free(b->hlen);
-    free(b->out); free(b->olen); free(b->stereo_out); free(b->hev); free(b->oev);
+    free(b->out); free(b->olen); free(b->stereo_out); free(b->hev); free(b->oev); free(b->disp);
 }
 
 int main(int argc, char **argv)
@@ -346,17 +371,19 @@ int main(int argc, char **argv)
             if (sbl_camera_from_pinhole(&cam[i], &kin, pose, SBL_AXES_OPENCV, 0, w, h) != SBL_OK) return 1;
         }
         for (eyes = 1; eyes <= 2; ++eyes)
-            for (pk = 0; pk < 10; ++pk) {
-                /* the evidence and camera cases right after the easy one: they read the
-                   easy content, which the cases 3..5 rewrite */
-                static const int order[10] = {0, 6, 7, 1, 2, 8, 9, 3, 4, 5};
-                static const char *names[10] = {"temporal", "stereo", "combined", "temporal-tiny",
+            for (pk = 0; pk < 11; ++pk) {
+                /* the evidence, camera and display cases right after the easy one: they
+                   read the easy content, which the cases 3..5 rewrite */
+                static const int order[11] = {0, 6, 7, 10, 1, 2, 8, 9, 3, 4, 5};
+                static const char *names[11] = {"temporal", "stereo", "combined", "temporal-tiny",
                                                 "temporal-hard", "temporal-static", "temporal-evidence",
-                                                "temporal-camera", "stereo-cameras", "stereo-cameras-toed"};
-                /* the extra contents run temporal, stereo-cameras(-toed) the stereo blend */
-                const int kind = (pipe = order[pk]) >= 8 ? 1 : (pipe >= 3 ? 0 : pipe);
-                if (eyes == 1 && (pipe == 1 || pipe == 2 || pipe >= 8)) continue; /* two eyes */
-                if (eyes == 2 && pipe >= 3 && pipe < 8) continue;
+                                                "temporal-camera", "stereo-cameras", "stereo-cameras-toed",
+                                                "temporal-display"};
+                /* the extra contents run temporal (the display case: then its display),
+                   stereo-cameras(-toed) the stereo blend */
+                const int kind = (pipe = order[pk]) == 10 ? 0 : (pipe >= 8 ? 1 : (pipe >= 3 ? 0 : pipe));
+                if (eyes == 1 && (pipe == 1 || pipe == 2 || pipe == 8 || pipe == 9)) continue; /* two eyes */
+                if (eyes == 2 && ((pipe >= 3 && pipe < 8) || pipe == 10)) continue;
                 if (only_count) {
                     int k, hit = 0;
                     for (k = 0; k < only_count; ++k) hit |= strcmp(only[k], names[pipe]) == 0;
@@ -373,7 +400,7 @@ int main(int argc, char **argv)
                     make_case(&e[0], w, h, pipe == 3 ? 4 : (pipe == 4 ? 3 : 5));
                     eye0_rewritten = 1;
                 }
-                for (threads = 1; threads <= (pipe >= 3 ? 1 : 2); ++threads) {
+                for (threads = 1; threads <= (pipe >= 3 && pipe != 10 ? 1 : 2); ++threads) {
                     double t_lib[64], t_floor[64], t_cv[64], ms, fms, cvms = -1.0;
                     /* byte plan for the floor, matching the pipeline's reads / writes */
                     const float *inp[32];
@@ -394,6 +421,7 @@ int main(int argc, char **argv)
                                 inp[ni] = e[ev].hev; in_ch[ni++] = 1;
                                 outp[no] = e[ev].oev; out_ch[no++] = 1;
                             }
+                            if (pipe == 10) { outp[no] = e[ev].disp; out_ch[no++] = 3; }
                         }
                         if (kind == 1 || kind == 2) {
                             inp[ni] = e[ev].out; in_ch[ni++] = 3;     /* own colour    */
@@ -447,6 +475,11 @@ int main(int argc, char **argv)
                             for (ev = 0; ev < eyes; ++ev) {
                                 pj.kind = 0; pj.eye = ev;
                                 if (run_bands(&pj, threads, scratch) != 0) { fprintf(stderr, "temporal failed\n"); return 1; }
+                            }
+                        if (pipe == 10) /* every band filtered (run_bands joined): the display */
+                            for (ev = 0; ev < eyes; ++ev) {
+                                pj.kind = 3; pj.eye = ev;
+                                if (run_bands(&pj, threads, scratch) != 0) { fprintf(stderr, "display failed\n"); return 1; }
                             }
                         if (kind == 1 || kind == 2)
                             for (ev = 0; ev < eyes; ++ev) {
