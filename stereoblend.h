@@ -11470,9 +11470,10 @@ SBL__INLINE void sbl__display_run_put(sbl__display_run *u, const sbl__display_ro
     }
 }
 
-/* The display of `count` lanes' pixels (windows where w says), written to dst[] */
-static void sbl__display_lanes_run(const sbl__display_win *w, int count, float *const *dst,
-                                   const int *xs, const sbl__display_rows *r)
+/* The display of `count` lanes' pixels (windows where w says), written to dst[].
+   Inlined into its two callers so that each layout's window offsets are constants. */
+SBL__INLINE void sbl__display_lanes_run(const sbl__display_win *w, int count, float *const *dst,
+                                        const int *xs, const sbl__display_rows *r)
 {
     const int ch = r->channels, vw = SBL__VW;
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f);
