@@ -499,7 +499,9 @@ typedef struct sbl_temporal_desc {
                                the blur of the sub-pixel history fetch counts as a
                                bias too (4.12; a fixed camera has none), and the
                                lean at a restart is off (6.4: its texture bias would
-                               be both eyes').
+                               be both eyes'). With the tail plane, the firefly
+                               limit admits a larger share of repeated excesses
+                               (its cut is a bias too: 6.9).
                                0 -> the call's default: per-eye weights (c = 0) in
                                sbl_temporal_filter, c = 1 (the derived value) in
                                sbl_stereo_temporal_frame, whose output is the blend;
@@ -3152,8 +3154,10 @@ static void sbl__firefly_limit(const sbl__weight_params *p, const sbl__moments *
         *p->tail_d = ex ? SBL__CAST(float, (sum_y - sum_x) * (sum_y - sum_x) / ch) : 0.0f;
     }
     if (p->tail && sum_y > bound) {
-        /* admit the share f = rho / (1 + rho) of the excess, rho = r (N + 1) (2.4) */
-        const double rho = SBL__CAST(double, p->tail_r) * n_scale;
+        /* admit the share f = rho / (1 + rho) of the excess, rho = r (N + 1) (2.4);
+           behind a stereo blend the eyes' cuts are one bias and their admitted excesses
+           two noises, so rho counts the bias 1 + c times, as the weight does (6.9) */
+        const double rho = SBL__CAST(double, p->tail_r) * n_scale * (1.0 + SBL__CAST(double, p->shared_bias));
         bound += rho / (1.0 + rho) * (sum_y - bound);
     }
     if (sum_y > bound) t = bound / sum_y;
@@ -9336,7 +9340,8 @@ SBL__INLINE sbl__v sbl__lanes_firefly_t(const sbl__kernel *k, sbl__v sum_y, sbl_
         sbl__store(k->tail_e + x, e);
         sbl__store(k->tail_d + x, sbl__sel(sbl__gt(e, zero), sbl__mul(sbl__mul(dx, dx), sbl__set1(1.0f / SBL__CAST(float, k->ch))), zero));
         if (k->tail_use) {
-            const sbl__v rho = sbl__mul(sbl__load(k->tail_r + x), sbl__add(n_xc, one));
+            const sbl__v rho = sbl__mul(sbl__mul(sbl__load(k->tail_r + x), sbl__add(n_xc, one)),
+                                        sbl__set1(1.0f + k->wp.shared_bias)); /* 6.9 */
             bound = sbl__add(bound, sbl__mul(sbl__div(rho, sbl__add(one, rho)),
                                              sbl__max(sbl__sub(sum_y, bound), zero)));
         }
