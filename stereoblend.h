@@ -71,8 +71,9 @@
      Stereo: if the display is the stereo blend of the two filtered eyes (sbl_stereo_blend
      after sbl_temporal_filter per eye), set desc.stereo_shared_bias = 1: the blend halves
      each eye's own noise but keeps a bias both eyes share (a light that moved), so the
-     temporal weight counts that bias twice (docs/ESTIMATORS.md 4.7). The one-call
-     pipeline sbl_stereo_temporal_frame does this by itself.
+     temporal weight counts that bias twice (docs/ESTIMATORS.md 4.7), and so does the
+     firefly limit's cut of repeated excesses (6.9). The one-call pipeline
+     sbl_stereo_temporal_frame does this by itself.
 
    CONVENTIONS (see also README.md)
      Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
