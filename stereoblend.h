@@ -2704,9 +2704,9 @@ typedef struct sbl__weight_params {
     int blur;          /* temporal, pooled, default configuration, shared_bias > 0, bilinear
                           fetch: the resampling blur's bias enters the bias energy
                           (docs/ESTIMATORS.md 4.10, 4.12; sbl__blur_terms) */
-    int lean_restart;  /* temporal default configuration without a stereo blend behind
-                          (stereo_shared_bias 0): the spatial lean where the history is
-                          mostly dropped (SBL_LEAN_RESTART_WEIGHT; docs/ESTIMATORS.md 6.3) */
+    int lean_restart;  /* temporal default configuration: the spatial lean where the
+                          history is mostly dropped for a change (SBL_LEAN_RESTART_WEIGHT;
+                          docs/ESTIMATORS.md 6.3; behind a stereo blend 6.10) */
     double blur_b2, blur_g; /* the reference path's pixel in hand: the blur's predicted
                                bias energy sum_c b_c^2 and its noise factor (B_b^2 =
                                blur_b2 - blur_g var_X, at least 0) */
@@ -2886,6 +2886,8 @@ static double sbl__lean(double a0, double var_y, double v8u, double n8, double n
 #ifndef SBL_LEAN_RESTART_EXCESS_FULL
 #define SBL_LEAN_RESTART_EXCESS_FULL 0.2
 #endif
+/* the restart lean is built in (its instances: sbl__kernel_lanes_pooled_ch) */
+#define SBL__LEAN_RESTART_ON (!SBL_LEAN_TEMPORAL && SBL_LEAN_RESTART_WEIGHT > 0.0)
 /* the ramps' slopes (a step: 1e6 per unit, full within 1e-6 of its threshold) */
 #define SBL__LEAN_RESTART_WSLOPE \
     (SBL_LEAN_RESTART_WEIGHT_FULL - SBL_LEAN_RESTART_WEIGHT > 1e-6 ? 1.0 / (SBL_LEAN_RESTART_WEIGHT_FULL - SBL_LEAN_RESTART_WEIGHT) : 1e6)
@@ -2934,6 +2936,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
            heavy-tailed noise cannot make a near-certain change out of one sample. */
         double k = SBL__CAST(double, p->bias_threshold), k2;
         double var_x, var_y, se2, bias2 = 0.0, share; /* (share: the restart lean's) */
+        double bias2_c = 0.0, a_c; /* the change's bias alone, its weight (the lean's gate) */
         /* pooled: the local test only has to catch what the blocks cannot (a change
            confined to a few pixels), so it asks for more evidence */
         if (p->estimator == SBL_ESTIMATOR_POOLED) k *= SBL_POOLED_LOCAL_SCALE;
@@ -2976,6 +2979,7 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
         /* a stereo blend follows: a bias both eyes share counts 1 + c times (4.7) */
         if (p->temporal && p->shared_bias != 0.0f)
             bias2 *= 1.0 + SBL__CAST(double, p->shared_bias);
+        bias2_c = bias2;
         if (p->blur && p->temporal) {
             /* the resampling blur's bias (4.12), shared by both eyes as the change's is;
                the change's mean paired difference holds the blur already where the tests
@@ -2990,11 +2994,19 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             a = (bias2 + var_x + var_y > 0.0) ? (fx * bias2 + var_x) / (bias2 + var_x + var_y)
                                               : progressive;
         }
+        /* the restart lean's gate reads the weight of the change's bias alone (6.10): the
+           blur's term drops a history for its texture's curvature, which the neighbours'
+           mean blurs the more */
+        a_c = a;
+        if (p->blur && p->temporal && bias2_c != bias2)
+            a_c = (bias2_c + var_x + var_y > 0.0) ? (bias2_c + var_x) / (bias2_c + var_x + var_y)
+                                                  : progressive;
         /* towards the paper's weight by the carried evidence's shrink (3.11) */
         if (SBL_EVIDENCE_MIX && p->evid_mix && p->temporal && p->estimator == SBL_ESTIMATOR_POOLED &&
             pair_count > 1 && p->evid_sh > 0.0f) {
             const double ap = (x_dev2 + s2 > 0.0) ? x_dev2 / (x_dev2 + s2) : progressive;
             if (ap > a) a += SBL__CAST(double, p->evid_sh) * (ap - a);
+            if (ap > a_c) a_c += SBL__CAST(double, p->evid_sh) * (ap - a_c);
         }
         /* stereo: the neighbours of Y as a third estimate, where they agree (flat).
            Only for an own eye of at most SBL_STEREO_LEAN_MAX_N samples: the prior
@@ -3007,13 +3019,16 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
             a2 = a;
             a = sbl__lean(a, var_y, v8 * (count - 1) / (count - 2), count - 1.0,
                           p->temporal ? SBL__CAST(double, n_x) : 1.0, lean_e, lean_d);
-        } else if (p->lean_restart && count > 2 && (share = sbl__restart_share(a, progressive)) > 0.0) {
+        } else if (p->lean_restart && count > 2 && (share = sbl__restart_share(a_c, progressive)) > 0.0) {
             /* the restart lean (6.3): q is not divided by N_X (the history it would be
                counted against is being dropped). The texture is also the history's own
                x*'s deviation from its neighbours' where larger: the raw neighbours see
-               no texture below one sample's noise */
+               no texture below one sample's noise. Behind a stereo blend the texture, a
+               bias both eyes' leans share, counts 1 + c times (6.10, 4.7's rule) */
             double v8u = v8 * (count - 1) / (count - 2);
             if (x_tex >= 0.0 && x_tex > v8u - var_y) v8u = var_y + x_tex;
+            if (p->shared_bias != 0.0f && v8u > var_y)
+                v8u = var_y + (1.0 + SBL__CAST(double, p->shared_bias)) * (v8u - var_y);
             a2 = a;
             a = a2 + share * (sbl__lean(a2, var_y, v8u, count - 1.0, 1.0, lean_e, lean_d) - a2);
         }
@@ -9420,13 +9435,15 @@ SBL__INLINE sbl__v sbl__lanes_lean(const sbl__lane_stats *st, sbl__v a0, sbl__v 
 
 /* The restart lean (sbl__weight, docs/ESTIMATORS.md 6.3) of the staged temporal lanes:
    as sbl__lanes_lean with q not divided by N_X, the texture the larger of the
-   neighbours' beyond noise and the history's own (st->rl_xt; 0 where undefined) */
-SBL__INLINE sbl__v sbl__lanes_lean_restart(const sbl__lane_stats *st, sbl__v a0, sbl__v var_y)
+   neighbours' beyond noise and the history's own (st->rl_xt; 0 where undefined), times
+   texk (1 + c) behind a stereo blend (shared: a constant of the instance, 6.10) */
+SBL__INLINE sbl__v sbl__lanes_lean_restart(const sbl__lane_stats *st, sbl__v a0, sbl__v var_y,
+                                           const int shared, float texk)
 {
     const sbl__v zero = sbl__set1(0.0f), one = sbl__set1(1.0f), tiny = sbl__set1(FLT_MIN);
     const sbl__v tex = sbl__max(sbl__max(sbl__sub(sbl__mul(st->rl_v8, st->lean_s), var_y), zero),
                                 st->rl_xt);
-    const sbl__v vm = sbl__add(tex, sbl__mul(var_y, st->inv_n8));
+    const sbl__v vm = sbl__add(shared ? sbl__mul(tex, sbl__set1(texk)) : tex, sbl__mul(var_y, st->inv_n8));
     const sbl__v q = sbl__sel(sbl__gt(vm, zero), sbl__div(sbl__mul(a0, var_y), sbl__max(vm, tiny)), zero);
     const sbl__v den = sbl__mul(sbl__add(one, q), st->rl_d);
     return sbl__sel(sbl__gt(den, zero),
@@ -9446,7 +9463,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
     const int est = fast ? SBL_ESTIMATOR_POOLED : SBL__CAST(int, p->estimator);
     const int temporal = fast ? fast == 1 : p->temporal; /* fast: 1 temporal, 2 stereo */
-    sbl__v w, w2;
+    sbl__v w, w2, wc; /* wc: the weight of the change's bias alone (the restart lean's gate) */
     int c;
     if (est == SBL_ESTIMATOR_PAPER) {
         sbl__v den = sbl__add(dev2, s2);
@@ -9494,7 +9511,9 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         if (temporal && p->shared_bias != 0.0f) /* 4.7; stereo: always 0 */
             b2 = sbl__mul(b2, sbl__set1(1.0f + p->shared_bias));
         /* the resampling blur's bias, as sbl__weight (4.12): only the temporal default's
-           staged lanes (fast 1) hold its terms (wp.blur is set for no other) */
+           staged lanes (fast 1) hold its terms (wp.blur is set for no other). wc: the
+           weight without it, for the restart lean's gate (6.10) */
+        wc = b2;
         if (fast == 1 && p->blur)
             b2 = sbl__max(b2, sbl__mul(sbl__sub(st->blur_b2, sbl__mul(st->blur_g, vx)),
                                        sbl__set1(1.0f + p->shared_bias)));
@@ -9513,11 +9532,21 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             den = sbl__add(num, vy);
         }
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
+        if (fast == 1 && p->blur && p->lean_restart) {
+            const sbl__v nc = sbl__add(wc, vx), dc = sbl__add(nc, vy);
+            wc = sbl__sel(sbl__gt(dc, zero), sbl__div(nc, sbl__max(dc, tiny)), prog);
+        } else {
+            wc = w;
+        }
         if (SBL_EVIDENCE_MIX && est == SBL_ESTIMATOR_POOLED && temporal && p->evid_mix) {
             /* towards the paper's weight by the carried evidence's shrink (3.11) */
             const sbl__v dd = sbl__add(dev2, s2);
             const sbl__v ap = sbl__sel(sbl__gt(dd, zero), sbl__div(dev2, sbl__max(dd, tiny)), prog);
             w = sbl__sel(st->two_pairs, sbl__add(w, sbl__mul(st->evid_sh, sbl__max(sbl__sub(ap, w), zero))), w);
+            if (fast == 1 && p->blur && p->lean_restart)
+                wc = sbl__sel(st->two_pairs, sbl__add(wc, sbl__mul(st->evid_sh, sbl__max(sbl__sub(ap, wc), zero))), wc);
+            else
+                wc = w;
         }
         if (est == SBL_ESTIMATOR_POOLED && (SBL_LEAN_TEMPORAL || !temporal)) {
             w2 = sbl__min(sbl__max(sbl__max(w, sbl__set1(p->alpha_min)), zero), one);
@@ -9543,8 +9572,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             const sbl__v exc = sbl__set1(SBL__CAST(float, SBL_LEAN_RESTART_EXCESS));
             const sbl__v ws = sbl__set1(SBL__CAST(float, SBL__LEAN_RESTART_WSLOPE));
             const sbl__v es = sbl__set1(SBL__CAST(float, SBL__LEAN_RESTART_ESLOPE));
-            const sbl__v fw = sbl__min(sbl__max(sbl__mul(sbl__sub(w, thr), ws), zero), one);
-            const sbl__v fe = sbl__min(sbl__max(sbl__mul(sbl__sub(sbl__sub(w, prog), exc), es), zero), one);
+            const sbl__v fw = sbl__min(sbl__max(sbl__mul(sbl__sub(wc, thr), ws), zero), one);
+            const sbl__v fe = sbl__min(sbl__max(sbl__mul(sbl__sub(sbl__sub(wc, prog), exc), es), zero), one);
             st->rl_f = sbl__mul(fw, fe);
             st->rl_off = sbl__gt(sbl__set1(FLT_MIN), st->rl_f); /* (a share is 0 or above 1e-16) */
             st->rl_w = w;
@@ -10155,10 +10184,12 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const sbl__lane_rows *W
            it (sbl__lanes_weight), then clamped as there */
         sbl__store(q + SBL__POOL_A2(ch) * SBL__POOL_COLS, w);
         if (!sbl__all(st.rl_off)) {
+            sbl__v lw;
             sbl__lanes_lean_inputs(k, W, x, base, ch, E, lean, &st);
-            w = sbl__sel(st.rl_off, st.rl_w,
-                         sbl__add(st.rl_w, sbl__mul(st.rl_f, sbl__sub(sbl__lanes_lean_restart(&st, st.rl_w, st.rl_vy),
-                                                                     st.rl_w))));
+            /* the blur's instances are the ones behind a stereo blend (c > 0): there the
+               texture counts 1 + c times (6.10) */
+            lw = sbl__lanes_lean_restart(&st, st.rl_w, st.rl_vy, k->wp.blur, 1.0f + k->wp.shared_bias);
+            w = sbl__sel(st.rl_off, st.rl_w, sbl__add(st.rl_w, sbl__mul(st.rl_f, sbl__sub(lw, st.rl_w))));
             w = sbl__min(sbl__max(sbl__max(w, sbl__set1(k->wp.alpha_min)), zero), one);
         }
     }
@@ -10400,15 +10431,16 @@ SBL__INLINE void sbl__kernel_lanes_pooled_ch(sbl__kernel *k_in, const sbl__ring_
     /* cfg: fast (0, 1, 2), or 3 / 4: the temporal / stereo default (fast 1 / 2) on the
        image's first or last row (k->edge_row; R[0] or R[2] NULL); 5 / 6: 1 / 3 with the
        mix towards the paper's weight (k->wp.evid_mix, 3.11), which the others lack;
-       7 .. 10: 1, 3, 5, 6 with the resampling blur's bias (k->wp.blur, 4.12); 11 .. 14:
-       1, 3, 5, 6 with the restart lean (k->wp.lean_restart, 6.3) */
+       7 .. 10: 1, 3, 5, 6 with the resampling blur's bias (k->wp.blur, 4.12) and the
+       restart lean (behind a stereo blend, 6.10); 11 .. 14: 1, 3, 5, 6 with the restart
+       lean alone (k->wp.lean_restart, 6.3) */
     const int erow = cfg == 3 || cfg == 4 || cfg == 6 || cfg == 8 || cfg == 10 || cfg == 12 || cfg == 14;
     const int fast = cfg == 3 || cfg >= 5 ? 1 : cfg == 4 ? 2 : cfg;
     const int mix = SBL_EVIDENCE_MIX && (cfg == 5 || cfg == 6 || cfg == 9 || cfg == 10 || cfg == 13 || cfg == 14);
     const int blur = cfg >= 7 && cfg <= 10;
     /* the restart lean (sbl__lanes_lean_inputs): 3 on the image's first or last row, 2 in a
        full chunk (below), else 1 */
-    const int lean = cfg >= 11 ? (erow ? 3 : 1) : 0;
+    const int lean = cfg >= 11 || (blur && SBL__LEAN_RESTART_ON) ? (erow ? 3 : 1) : 0;
     /* the stereo default, per vector in a chunk that is not full: a vector whose blocks
        or windows hold only valid pairs takes the full chunk's operations (the same
        values). Not the column sums: under -ffast-math gcc reorders the full column's
@@ -10713,10 +10745,11 @@ SBL__POOLED_INSTANCE(1, 6) SBL__POOLED_INSTANCE(2, 6) SBL__POOLED_INSTANCE(3, 6)
 SBL__POOLED_INSTANCE(1, 9) SBL__POOLED_INSTANCE(2, 9) SBL__POOLED_INSTANCE(3, 9) SBL__POOLED_INSTANCE(4, 9)
 SBL__POOLED_INSTANCE(1, 10) SBL__POOLED_INSTANCE(2, 10) SBL__POOLED_INSTANCE(3, 10) SBL__POOLED_INSTANCE(4, 10)
 #endif
-/* the resampling blur's bias (4.12): the temporal default behind a stereo blend */
+/* the resampling blur's bias (4.12) and the restart lean (6.10): the temporal default
+   behind a stereo blend */
 SBL__POOLED_INSTANCE(1, 7) SBL__POOLED_INSTANCE(2, 7) SBL__POOLED_INSTANCE(3, 7) SBL__POOLED_INSTANCE(4, 7)
 SBL__POOLED_INSTANCE(1, 8) SBL__POOLED_INSTANCE(2, 8) SBL__POOLED_INSTANCE(3, 8) SBL__POOLED_INSTANCE(4, 8)
-/* the restart lean (6.3): the temporal default without a stereo blend behind */
+/* the restart lean alone (6.3): the temporal default without a stereo blend behind */
 SBL__POOLED_INSTANCE(1, 11) SBL__POOLED_INSTANCE(2, 11) SBL__POOLED_INSTANCE(3, 11) SBL__POOLED_INSTANCE(4, 11)
 SBL__POOLED_INSTANCE(1, 12) SBL__POOLED_INSTANCE(2, 12) SBL__POOLED_INSTANCE(3, 12) SBL__POOLED_INSTANCE(4, 12)
 #if SBL_EVIDENCE_MIX
@@ -11116,11 +11149,12 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     k.wp.temporal = 1;
     k.wp.shared_bias = d.stereo_shared_bias;
     /* the restart lean (docs/ESTIMATORS.md 6.3, 6.4): the default configuration alone,
-       with the bilinear fetch it was measured with, and not behind a stereo blend (both
-       eyes would lean to the same neighbours: the texture bias it brings would be
-       shared, measured to lose). Not with SBL_LEAN_TEMPORAL, whose lean everywhere
-       returns before the restart lean's lane terms are set. */
-    k.wp.lean_restart = !SBL_LEAN_TEMPORAL && SBL_LEAN_RESTART_WEIGHT > 0.0 && d.stereo_shared_bias == 0.0f &&
+       with the bilinear fetch it was measured with; behind a stereo blend too (6.10: its
+       gate then reads the weight without the blur's term, and the texture, a bias both
+       eyes' leans share, counts 1 + c times), where the blur's instances hold it. Not
+       with SBL_LEAN_TEMPORAL, whose lean everywhere returns before the restart lean's
+       lane terms are set. */
+    k.wp.lean_restart = SBL__LEAN_RESTART_ON &&
                         d.estimator == SBL_ESTIMATOR_POOLED && d.rectify == SBL_RECTIFY_NONE &&
                         d.weight_mode == SBL_WEIGHT_SCALAR && s.history && !s.src.cubic;
     /* the resampling blur's bias (docs/ESTIMATORS.md 4.12): behind a stereo blend, in
