@@ -499,8 +499,9 @@ typedef struct sbl_temporal_desc {
                                c > 0 with the default estimator and a bilinear fetch:
                                the blur of the sub-pixel history fetch counts as a
                                bias too (4.12; a fixed camera has none), and the
-                               lean at a restart is off (6.4: its texture bias would
-                               be both eyes'). With the tail plane, the firefly
+                               lean at a restart (6.4) counts its texture, which
+                               both eyes' leans share, 1 + c times and ignores the
+                               blur's term in its gate (6.10). With the tail plane, the firefly
                                limit admits a larger share of repeated excesses
                                (its cut is a bias too: 6.9).
                                0 -> the call's default: per-eye weights (c = 0) in
