@@ -11094,7 +11094,7 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     sbl__temporal_rp s, es, ts;
     sbl__kernel k;
     sbl_result r;
-    int w, h, ch;
+    int w, h, ch, default_cfg; /* the default configuration (the restart lean, the blur) */
     if (!user_desc || !frame || !out) return SBL_ERROR_NULL_POINTER;
     d = sbl_temporal_defaults(user_desc);
     if ((r = sbl__check_image(&frame->color, 0)) != SBL_OK) return r;
@@ -11155,15 +11155,16 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
        eyes' leans share, counts 1 + c times), where the blur's instances hold it. Not
        with SBL_LEAN_TEMPORAL, whose lean everywhere returns before the restart lean's
        lane terms are set. */
-    k.wp.lean_restart = SBL__LEAN_RESTART_ON &&
-                        d.estimator == SBL_ESTIMATOR_POOLED && d.rectify == SBL_RECTIFY_NONE &&
-                        d.weight_mode == SBL_WEIGHT_SCALAR && s.history && !s.src.cubic;
+    default_cfg = d.estimator == SBL_ESTIMATOR_POOLED && d.rectify == SBL_RECTIFY_NONE &&
+                  d.weight_mode == SBL_WEIGHT_SCALAR && s.history && !s.src.cubic;
+    k.wp.lean_restart = SBL__LEAN_RESTART_ON && default_cfg;
     /* the resampling blur's bias (docs/ESTIMATORS.md 4.12): behind a stereo blend, in
        the default configuration (its lanes: sbl__kernel_lanes_pooled's blur instances),
-       for the bilinear fetch (Catmull-Rom reproduces quadratics: no second-order blur) */
-    if (d.stereo_shared_bias > 0.0f && d.estimator == SBL_ESTIMATOR_POOLED &&
-        d.rectify == SBL_RECTIFY_NONE && d.weight_mode == SBL_WEIGHT_SCALAR && s.history &&
-        !s.src.cubic) {
+       for the bilinear fetch (Catmull-Rom reproduces quadratics: no second-order blur).
+       The same condition as the lean's plus c > 0, which the lanes rely on: the blur's
+       instances hold the lean and count its texture 1 + c times (wp.blur), where the
+       reference path reads lean_restart and shared_bias */
+    if (d.stereo_shared_bias > 0.0f && default_cfg) {
         k.wp.blur = 1;
         k.blur_rp = &s;
     }

@@ -2342,7 +2342,10 @@ static void test_rig_as_parallel(void)
    both border columns, full chunks and chunks with invalid x*), a history that jumps
    over a random run of columns so that the weight passes the lean's gate there, at
    value scales 1, 3e13 and 1e-9. The lean's share is continuous in the weight (two
-   ramps, 6.6), so no pixel is skipped. */
+   ramps, 6.6), so no pixel is skipped. The last 600 cases run behind a stereo blend
+   (stereo_shared_bias 1 or 0.35, 6.10): the blur's instances, whose lean gates on the
+   change's weight and counts the texture 1 + c times, with per-pixel fractional motion
+   (some integer: no blur) and the carried evidence's mix (3.11) on. */
 #define LPW 45
 #define LPH 5
 
@@ -2382,13 +2385,15 @@ static void lean_row(sbl__kernel *k, int y, int lean, int lanes, float (*oc)[4],
 
 static void test_restart_lean_paths(void)
 {
-    static float own[LPH * LPW * 4];
+    static float own[LPH * LPW * 4], motion[LPH * LPW * 2], evid_in[LPW + 64], evid_out[LPW + 64];
     static paths_gather G; /* (LPW x LPH fits: PGW x PGH) */
     sbt_rng rng = {4242};
-    long compared = 0, leaned_ref = 0, leaned_lanes = 0, full_rows = 0;
+    long compared = 0, leaned_ref = 0, leaned_lanes = 0, full_rows = 0, behind_leaned = 0, blurred = 0, behind_compared = 0;
     double worst = 0.0;
     int it;
-    for (it = 0; it < 1500; ++it) {
+    for (it = 0; it < 2100; ++it) {
+        const int behind = it >= 1500; /* behind a stereo blend (c > 0) */
+        sbl__temporal_rp brp;
         sbl__kernel k;
         sbl_image im;
         void *scratch;
@@ -2425,6 +2430,36 @@ static void test_restart_lean_paths(void)
         k.own = &im;
         k.gather = paths_gather_fn;
         k.gather_ctx = &G;
+        if (behind) {
+            /* as sbl_temporal_filter at c > 0: the blur's term from the fetch's fractions
+               (motion vectors, a third of them whole pixels) and the evidence's mix */
+            for (y = 0; y < LPH; ++y)
+                for (x = 0; x < LPW; ++x) {
+                    const int whole = sbt_uniform(&rng) < 0.33;
+                    for (c = 0; c < 2; ++c) {
+                        const double m = 4.0 * sbt_uniform(&rng) - 2.0;
+                        motion[(y * LPW + x) * 2 + c] = (float)(whole ? floor(m) : m);
+                    }
+                }
+            for (x = 0; x < LPW + 64; ++x) evid_in[x] = (float)(0.5 + 8.0 * sbt_uniform(&rng));
+            memset(&brp, 0, sizeof brp);
+            brp.source = SBL_TEMPORAL_MOTION;
+            brp.motion.p = motion;
+            brp.motion.stride = LPW * 2;
+            brp.motion.step = 2;
+            brp.motion.ch = 2;
+            brp.motion_kx = brp.motion_ky = 1.0;
+            k.blur_rp = &brp;
+            k.wp.blur = 1;
+            k.wp.shared_bias = it & 1 ? 1.0f : 0.35f;
+            k.evid_use = 1;
+            k.evid_in = evid_in;
+            k.evid_out = evid_out;
+            k.evid_thr = SBL__EVIDENCE_THR;
+            k.evid_garrote = SBL__EVIDENCE_GARROTE;
+            k.wp.evid_mix = 1;
+            k.wp.evid_share = it % 3 == 0 ? 0.0f : 0.2f;
+        }
         scratch = malloc(sbl__kernel_scratch_size(LPW, ch));
         sbl__kernel_bind(&k, scratch);
         for (y = 0; y < LPH; ++y) {
@@ -2436,6 +2471,14 @@ static void test_restart_lean_paths(void)
             lean_row(&k, y, 0, 1, l0c, l0n, l0a, NULL);
             lean_row(&k, y, 1, 0, rc, rn, ra, NULL);
             lean_row(&k, y, 0, 0, r0c, r0n, r0a, NULL);
+            if (behind) { /* the reference without the blur's term: does it act? */
+                float bc[LPW][4], bn[LPW], ba[LPW];
+                k.wp.blur = 0;
+                lean_row(&k, y, 1, 0, bc, bn, ba, NULL);
+                k.wp.blur = 1;
+                for (x = 0; x < LPW; ++x) blurred += ba[x] != ra[x];
+                behind_compared += LPW;
+            }
             for (x = 0; x < LPW; ++x) {
                 double e = fabs(la[x] - ra[x]), en = fabs(ln[x] - rn[x]) / (fabs(rn[x]) + 1.0);
                 if (en > e) e = en;
@@ -2444,8 +2487,11 @@ static void test_restart_lean_paths(void)
                     if (!(ec <= e)) e = ec;
                     CHECK(sbl__finite(lc[x][c]) && sbl__finite(rc[x][c]));
                 }
-                leaned_ref += ra[x] != r0a[x];
-                leaned_lanes += la[x] != l0a[x];
+                /* (behind a stereo blend the lanes' lean is the blur's instances' own: it
+                   does not read lean_restart, so "lanes, lean off" is not off there) */
+                leaned_ref += !behind && ra[x] != r0a[x];
+                leaned_lanes += !behind && la[x] != l0a[x];
+                behind_leaned += behind && ra[x] != r0a[x];
                 ++compared;
                 if (!(e <= 1e-4))
                     printf("  restart lean case %d ch %d y %d x %d: lanes a %.6f n %g, reference a %.6f n %g\n",
@@ -2457,13 +2503,17 @@ static void test_restart_lean_paths(void)
         free(scratch);
     }
     printf("  %s restart lean, lanes vs reference: %ld pixels, the lean moved %ld (reference) / %ld "
-           "(lanes), %ld full rows, worst difference %.3g\n",
-           SBL_SIMD_NAME, compared, leaned_ref, leaned_lanes, full_rows, worst);
+           "(lanes), %ld full rows, worst difference %.3g; behind a stereo blend %ld pixels, the "
+           "lean moved %ld, the blur's term %ld\n",
+           SBL_SIMD_NAME, compared, leaned_ref, leaned_lanes, full_rows, worst, behind_compared,
+           behind_leaned, blurred);
     /* the lean acts in both paths (the test compares something), and the full chunks
        were taken */
     CHECK(leaned_ref > compared / 20);
     CHECK(leaned_lanes > compared / 20);
     CHECK(full_rows > 0);
+    CHECK(behind_leaned > behind_compared / 20);
+    CHECK(blurred > behind_compared / 20);
 }
 #undef LPW
 #undef LPH
