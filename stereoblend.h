@@ -9465,6 +9465,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
     const int est = fast ? SBL_ESTIMATOR_POOLED : SBL__CAST(int, p->estimator);
     const int temporal = fast ? fast == 1 : p->temporal; /* fast: 1 temporal, 2 stereo */
     sbl__v w, w2, wc; /* wc: the weight of the change's bias alone (the restart lean's gate) */
+    sbl__v b2c; /* the change's bias energy alone (wc's) */
     int c;
     if (est == SBL_ESTIMATOR_PAPER) {
         sbl__v den = sbl__add(dev2, s2);
@@ -9514,7 +9515,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         /* the resampling blur's bias, as sbl__weight (4.12): only the temporal default's
            staged lanes (fast 1) hold its terms (wp.blur is set for no other). wc: the
            weight without it, for the restart lean's gate (6.10) */
-        wc = b2;
+        b2c = b2;
         if (fast == 1 && p->blur)
             b2 = sbl__max(b2, sbl__mul(sbl__sub(st->blur_b2, sbl__mul(st->blur_g, vx)),
                                        sbl__set1(1.0f + p->shared_bias)));
@@ -9534,7 +9535,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
         }
         w = sbl__sel(sbl__gt(den, zero), sbl__div(num, sbl__max(den, tiny)), prog);
         if (fast == 1 && p->blur && p->lean_restart) {
-            const sbl__v nc = sbl__add(wc, vx), dc = sbl__add(nc, vy);
+            const sbl__v nc = sbl__add(b2c, vx), dc = sbl__add(nc, vy);
             wc = sbl__sel(sbl__gt(dc, zero), sbl__div(nc, sbl__max(dc, tiny)), prog);
         } else {
             wc = w;
