@@ -11162,9 +11162,10 @@ SBLDEF sbl_result sbl_temporal_filter(const sbl_temporal_desc *user_desc,
     /* the resampling blur's bias (docs/ESTIMATORS.md 4.12): behind a stereo blend, in
        the default configuration (its lanes: sbl__kernel_lanes_pooled's blur instances),
        for the bilinear fetch (Catmull-Rom reproduces quadratics: no second-order blur).
-       The same condition as the lean's plus c > 0, which the lanes rely on: the blur's
-       instances hold the lean and count its texture 1 + c times (wp.blur), where the
-       reference path reads lean_restart and shared_bias */
+       The lean's condition (less SBL__LEAN_RESTART_ON) plus c > 0, which the lanes
+       rely on: the blur's instances hold the lean where SBL__LEAN_RESTART_ON and count
+       its texture 1 + c times (wp.blur), where the reference path reads lean_restart
+       and shared_bias */
     if (d.stereo_shared_bias > 0.0f && default_cfg) {
         k.wp.blur = 1;
         k.blur_rp = &s;

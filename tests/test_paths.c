@@ -2451,14 +2451,24 @@ static void test_restart_lean_paths(void)
             brp.motion_kx = brp.motion_ky = 1.0;
             k.blur_rp = &brp;
             k.wp.blur = 1;
-            k.wp.shared_bias = it & 1 ? 1.0f : 0.35f;
-            k.evid_use = 1;
-            k.evid_in = evid_in;
-            k.evid_out = evid_out;
-            k.evid_thr = SBL__EVIDENCE_THR;
-            k.evid_garrote = SBL__EVIDENCE_GARROTE;
-            k.wp.evid_mix = 1;
-            k.wp.evid_share = it % 3 == 0 ? 0.0f : 0.2f;
+            k.wp.shared_bias = (it >> 2) & 1 ? 1.0f : 0.35f; /* (not tied to ch = 1 + it % 4) */
+            if ((it >> 3) % 3 != 0) { /* a history with the evidence plane: the mix (cfg 9, 10) */
+                k.evid_use = 1;
+                k.evid_in = evid_in;
+                k.evid_out = evid_out;
+                k.evid_thr = SBL__EVIDENCE_THR;
+                k.evid_garrote = SBL__EVIDENCE_GARROTE;
+                k.wp.evid_mix = 1;
+                k.wp.evid_share = (it >> 5) & 1 ? 0.0f : 0.2f;
+                if ((it >> 6) & 1) { /* the region's M (3.10), as sbl__evidence_share sets it */
+                    const double m = 0.5 + 1.7 * (it % 7), kap = SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA);
+                    const double v = (SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0) + 2.0 * kap * log(m);
+                    k.wp.region_m = (float)m;
+                    k.evid_lnm = log(m);
+                    k.evid_thr = 1.0 + sqrt(v > 0.0 ? v : 0.0);
+                    k.evid_garrote = (k.evid_thr - 1.0) * (k.evid_thr - 1.0);
+                }
+            } /* else none (cfg 7, 8): evid_use, evid_out and the mix 0, as sbl_temporal_filter */
         }
         scratch = malloc(sbl__kernel_scratch_size(LPW, ch));
         sbl__kernel_bind(&k, scratch);
@@ -2471,7 +2481,11 @@ static void test_restart_lean_paths(void)
             lean_row(&k, y, 0, 1, l0c, l0n, l0a, NULL);
             lean_row(&k, y, 1, 0, rc, rn, ra, NULL);
             lean_row(&k, y, 0, 0, r0c, r0n, r0a, NULL);
-            if (behind) { /* the reference without the blur's term: does it act? */
+            if (behind) {
+                /* the reference without the blur's term: does it act? (blur off with the
+                   lean on at c > 0, like "lean off" above behind the blend, is a state
+                   sbl_temporal_filter never makes: these runs feed the counts, never a
+                   comparison) */
                 float bc[LPW][4], bn[LPW], ba[LPW];
                 k.wp.blur = 0;
                 lean_row(&k, y, 1, 0, bc, bn, ba, NULL);
