@@ -2345,7 +2345,8 @@ static void test_rig_as_parallel(void)
    ramps, 6.6), so no pixel is skipped. The last 600 cases run behind a stereo blend
    (stereo_shared_bias 1 or 0.35, 6.10): the blur's instances, whose lean gates on the
    change's weight and counts the texture 1 + c times, with per-pixel fractional motion
-   (some integer: no blur) and the carried evidence's mix (3.11) on. */
+   (some integer: no blur); two thirds of them with the carried evidence's mix (3.11),
+   some of those with the region's M (3.10), the rest without the evidence plane. */
 #define LPW 45
 #define LPH 5
 
