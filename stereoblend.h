@@ -7787,18 +7787,37 @@ static long sbl__evidence_row_count(const sbl_image *plane, int y)
    spread, 0.0062, leaves static content a floor of half its false-alarm share). The
    combined pipeline's share floor is the region's share net of it (docs/ESTIMATORS.md 4.14). */
 #define SBL__EVIDENCE_FALSE_ALARM 0.0208
+/* The region's prior M (docs/ESTIMATORS.md 3.10) into the kernel's per-row terms: the history
+   prior's M (wp.region_m), the blocks' ratio moved by ln M (evid_lnm) and the carried
+   evidence's threshold and garrote moved with it; M = 1 leaves the defaults. */
+static void sbl__evidence_region(sbl__kernel *k, float m)
+{
+    const double kap = SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA);
+    double lm, v;
+    k->wp.region_m = 1.0f;
+    k->evid_lnm = 0.0;
+    k->evid_thr = SBL__EVIDENCE_THR;
+    k->evid_garrote = SBL__EVIDENCE_GARROTE;
+    if (m == 1.0f) return;
+    lm = log(SBL__CAST(double, m));
+    v = (SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0) + 2.0 * kap * lm;
+    if (SBL_EVIDENCE_REGION & 1) k->wp.region_m = m;
+    if (SBL_EVIDENCE_REGION & 2) k->evid_lnm = lm;
+    if (SBL_EVIDENCE_REGION & 4) {
+        k->evid_thr = 1.0 + sqrt(v > 0.0 ? v : 0.0);
+        k->evid_garrote = (k->evid_thr - 1.0) * (k->evid_thr - 1.0);
+    }
+}
+
 /* Row y's M (k->wp.region_m), ln M and the carried R's threshold and garrote. */
 static void sbl__evidence_share(sbl__kernel *k, int y)
 {
     long cnt = 0, n = 0;
     int j, i;
-    k->wp.region_m = 1.0f;
+    sbl__evidence_region(k, 1.0f);
     k->wp.evid_share = 0.0f;
     k->wp.evid_mix = SBL_EVIDENCE_MIX && k->evid_use && k->wp.temporal &&
                      k->wp.estimator == SBL_ESTIMATOR_POOLED; /* 3.11 */
-    k->evid_lnm = 0.0;
-    k->evid_thr = SBL__EVIDENCE_THR;
-    k->evid_garrote = SBL__EVIDENCE_GARROTE;
     if (!SBL_EVIDENCE_REGION || !k->evid_use || !k->evid_prev || !k->evid_prev->data) return;
     for (j = y - 1; j <= y + 1; ++j) {
         long c = -1;
@@ -7815,9 +7834,7 @@ static void sbl__evidence_share(sbl__kernel *k, int y)
         n += k->w;
     }
     {
-        const double kap = SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA);
         const float m = SBL__CAST(float, SBL__CAST(double, n + 2) / (2.0 * SBL__CAST(double, cnt + 1)));
-        double lm, v;
         /* the share itself, s = 1 / (2 M): the prior probability that a pixel of the
            region changed, below which the mix towards the paper's weight does not go */
         if (SBL_EVIDENCE_MIX >= 2 && k->wp.evid_mix) {
@@ -7833,15 +7850,7 @@ static void sbl__evidence_share(sbl__kernel *k, int y)
                          : 0.0;
             k->wp.evid_share = SBL__CAST(float, sh);
         }
-        if (m == 1.0f) return;
-        lm = log(SBL__CAST(double, m));
-        v = (SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0) + 2.0 * kap * lm;
-        if (SBL_EVIDENCE_REGION & 1) k->wp.region_m = m;
-        if (SBL_EVIDENCE_REGION & 2) k->evid_lnm = lm;
-        if (SBL_EVIDENCE_REGION & 4) {
-            k->evid_thr = 1.0 + sqrt(v > 0.0 ? v : 0.0);
-            k->evid_garrote = (k->evid_thr - 1.0) * (k->evid_thr - 1.0);
-        }
+        sbl__evidence_region(k, m);
     }
 }
 

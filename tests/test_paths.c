@@ -2345,8 +2345,9 @@ static void test_rig_as_parallel(void)
    ramps, 6.6), so no pixel is skipped. The last 600 cases run behind a stereo blend
    (stereo_shared_bias 1 or 0.35, 6.10): the blur's instances, whose lean gates on the
    change's weight and counts the texture 1 + c times, with per-pixel fractional motion
-   (some integer: no blur); two thirds of them with the carried evidence's mix (3.11),
-   some of those with the region's M (3.10), the rest without the evidence plane. */
+   (some integer: no blur), a fifth of them with the camera source's positions instead;
+   two thirds of them with the carried evidence's mix (3.11), some of those with the
+   region's M (3.10, sbl__evidence_region), the rest without the evidence plane. */
 #define LPW 45
 #define LPH 5
 
@@ -2390,6 +2391,7 @@ static void test_restart_lean_paths(void)
     static paths_gather G; /* (LPW x LPH fits: PGW x PGH) */
     sbt_rng rng = {4242};
     long compared = 0, leaned_ref = 0, leaned_lanes = 0, full_rows = 0, behind_leaned = 0, blurred = 0, behind_compared = 0;
+    long blurred_cam = 0, cam_compared = 0;
     double worst = 0.0;
     int it;
     for (it = 0; it < 2100; ++it) {
@@ -2450,6 +2452,46 @@ static void test_restart_lean_paths(void)
             brp.motion.step = 2;
             brp.motion.ch = 2;
             brp.motion_kx = brp.motion_ky = 1.0;
+            if (it % 5 == 3) {
+                /* the camera source (the lanes take each lane's fraction from
+                   sbl__blur_fraction at its own pixel): a camera moved sideways and
+                   forward over a depth that varies per pixel, so the fractions do; some
+                   pixels without depth (no position: no blur) */
+                static float depth[LPH * LPW];
+                static sbl_camera cam[2];
+                static sbl_frame bf;
+                static sbl_history bh;
+                sbl_reproject_desc rd;
+                sbl_intrinsics kin;
+                int e, q;
+                for (y = 0; y < LPH; ++y)
+                    for (x = 0; x < LPW; ++x)
+                        depth[y * LPW + x] = (x + 3 * y + it) % 11 == 0 ? 0.0f : (float)(3.0 + 1.5 * sin(0.7 * x + 0.4 * y + it));
+                kin.fx = kin.fy = 39.0f;
+                kin.cx = 0.5f * LPW;
+                kin.cy = 0.5f * LPH;
+                for (e = 0; e < 2; ++e) {
+                    float pose[16];
+                    for (q = 0; q < 16; ++q) pose[q] = q % 5 == 0 ? 1.0f : 0.0f;
+                    if (e) {
+                        pose[3] = 0.011f * (float)(1 + it % 7);
+                        pose[7] = 0.004f * (float)(it % 3);
+                        pose[11] = 0.03f;
+                    }
+                    CHECK_EQ(sbl_camera_from_pinhole(&cam[e], &kin, pose, SBL_AXES_OPENCV, 0, LPW, LPH), SBL_OK);
+                }
+                memset(&bf, 0, sizeof bf);
+                memset(&bh, 0, sizeof bh);
+                memset(&rd, 0, sizeof rd);
+                bf.color = im;
+                bf.gbuffer.depth = sbl_image_make(depth, LPW, LPH, 1);
+                bf.camera = &cam[1];
+                bh.color = im;
+                bh.gbuffer.depth = bf.gbuffer.depth;
+                bh.camera = &cam[0];
+                CHECK_EQ(sbl__temporal_rp_init(&brp, &rd, SBL_TEMPORAL_CAMERA, &bf, &bh), SBL_OK);
+                CHECK(!brp.at_rest);
+            }
             k.blur_rp = &brp;
             k.wp.blur = 1;
             k.wp.shared_bias = (it >> 2) & 1 ? 1.0f : 0.35f; /* (not tied to ch = 1 + it % 4) */
@@ -2457,18 +2499,11 @@ static void test_restart_lean_paths(void)
                 k.evid_use = 1;
                 k.evid_in = evid_in;
                 k.evid_out = evid_out;
-                k.evid_thr = SBL__EVIDENCE_THR;
-                k.evid_garrote = SBL__EVIDENCE_GARROTE;
                 k.wp.evid_mix = 1;
                 k.wp.evid_share = (it >> 5) & 1 ? 0.0f : 0.2f;
-                if ((it >> 6) & 1) { /* the region's M (3.10), as sbl__evidence_share sets it */
-                    const double m = 0.5 + 1.7 * (it % 7), kap = SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA);
-                    const double v = (SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0) + 2.0 * kap * log(m);
-                    k.wp.region_m = (float)m;
-                    k.evid_lnm = log(m);
-                    k.evid_thr = 1.0 + sqrt(v > 0.0 ? v : 0.0);
-                    k.evid_garrote = (k.evid_thr - 1.0) * (k.evid_thr - 1.0);
-                }
+                /* the region's M (3.10) in some, through the function sbl__evidence_share
+                   calls per row; M = 1 (the defaults) in the rest */
+                sbl__evidence_region(&k, (it >> 6) & 1 ? (float)(0.5 + 1.7 * (it % 7)) : 1.0f);
             } /* else none (cfg 7, 8): evid_use, evid_out and the mix 0, as sbl_temporal_filter */
         }
         scratch = malloc(sbl__kernel_scratch_size(LPW, ch));
@@ -2479,7 +2514,9 @@ static void test_restart_lean_paths(void)
             int full = 0;
             lean_row(&k, y, 1, 1, lc, ln, la, &full);
             full_rows += full;
-            lean_row(&k, y, 0, 1, l0c, l0n, l0a, NULL);
+            /* "lanes, lean off" only where it is off: the blur's instances (behind a
+               stereo blend) do not read lean_restart */
+            if (!behind) lean_row(&k, y, 0, 1, l0c, l0n, l0a, NULL);
             lean_row(&k, y, 1, 0, rc, rn, ra, NULL);
             lean_row(&k, y, 0, 0, r0c, r0n, r0a, NULL);
             if (behind) {
@@ -2491,8 +2528,12 @@ static void test_restart_lean_paths(void)
                 k.wp.blur = 0;
                 lean_row(&k, y, 1, 0, bc, bn, ba, NULL);
                 k.wp.blur = 1;
-                for (x = 0; x < LPW; ++x) blurred += ba[x] != ra[x];
+                for (x = 0; x < LPW; ++x) {
+                    blurred += ba[x] != ra[x];
+                    blurred_cam += it % 5 == 3 && ba[x] != ra[x];
+                }
                 behind_compared += LPW;
+                cam_compared += it % 5 == 3 ? LPW : 0;
             }
             for (x = 0; x < LPW; ++x) {
                 double e = fabs(la[x] - ra[x]), en = fabs(ln[x] - rn[x]) / (fabs(rn[x]) + 1.0);
@@ -2519,9 +2560,9 @@ static void test_restart_lean_paths(void)
     }
     printf("  %s restart lean, lanes vs reference: %ld pixels, the lean moved %ld (reference) / %ld "
            "(lanes), %ld full rows, worst difference %.3g; behind a stereo blend %ld pixels, the "
-           "lean moved %ld, the blur's term %ld\n",
+           "lean moved %ld, the blur's term %ld (camera source: %ld of %ld)\n",
            SBL_SIMD_NAME, compared, leaned_ref, leaned_lanes, full_rows, worst, behind_compared,
-           behind_leaned, blurred);
+           behind_leaned, blurred, blurred_cam, cam_compared);
     /* the lean acts in both paths (the test compares something), and the full chunks
        were taken */
     CHECK(leaned_ref > compared / 20);
@@ -2529,6 +2570,7 @@ static void test_restart_lean_paths(void)
     CHECK(full_rows > 0);
     CHECK(behind_leaned > behind_compared / 20);
     CHECK(blurred > behind_compared / 20);
+    CHECK(blurred_cam > cam_compared / 20);
 }
 #undef LPW
 #undef LPH
