@@ -9473,8 +9473,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
     const sbl__v prog = sbl__div(n_y, sbl__add(n_xc, n_y));
     const int est = fast ? SBL_ESTIMATOR_POOLED : SBL__CAST(int, p->estimator);
     const int temporal = fast ? fast == 1 : p->temporal; /* fast: 1 temporal, 2 stereo */
-    sbl__v w, w2, wc; /* wc: the weight of the change's bias alone (the restart lean's gate) */
-    sbl__v b2c; /* the change's bias energy alone (wc's) */
+    sbl__v w;
     int c;
     if (est == SBL_ESTIMATOR_PAPER) {
         sbl__v den = sbl__add(dev2, s2);
@@ -9489,7 +9488,8 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
                              ? SBL__CAST(float, SBL__CAST(double, p->bias_threshold) * SBL_POOLED_LOCAL_SCALE)
                              : p->bias_threshold;
         const sbl__v k2e = sbl__set1(SBL__CAST(float, 1.0 + SBL__CAST(double, kb) * SBL__CAST(double, kb) * 0.125));
-        sbl__v vy_s, vx_s, vy_p, vx_p, vy, vx, se2, t2, rho, r2, odds, post, b2, num, den;
+        sbl__v vy_s, vx_s, vy_p, vx_p, vy, vx, se2, t2, rho, r2, odds, post, b2, num, den, w2;
+        sbl__v b2c, wc; /* the change's bias energy alone, its weight (the restart lean's gate) */
         if (temporal && p->tail) { /* as sbl__weight (2.4): a channel group's share */
             const sbl__v tv = c1 - c0 == SBL__CAST(int, p->tail_ch) ? st->tail_t
                               : sbl__mul(st->tail_t, sbl__set1(SBL__CAST(float, c1 - c0) / p->tail_ch));
