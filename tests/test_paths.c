@@ -2575,6 +2575,53 @@ static void test_restart_lean_paths(void)
 #undef LPW
 #undef LPH
 
+/* sbl__evidence_region against what the region's prior M means (docs/ESTIMATORS.md 3.10),
+   not against its own expressions: the blocks' ratio moves by ln M; the carried R,
+   Gaussian about 1 with variance kappa under no change, gets the threshold at which its
+   density is 1 / M of the density at the default threshold (where that lies above R's
+   null mean 1; else 1), and the garrote of that threshold; M = 1 the defaults. The
+   restart-lean test above compares lanes with the reference, which read the same terms,
+   so it cannot see a wrong formula here. */
+static void test_evidence_region(void)
+{
+    const double kap = SBL_EVIDENCE_LAMBDA / (2.0 - SBL_EVIDENCE_LAMBDA);
+    const double d0 = exp(-(SBL__EVIDENCE_THR - 1.0) * (SBL__EVIDENCE_THR - 1.0) / (2.0 * kap));
+    static const float ms[] = {1.0f, 1.1f, 2.2f, 8.5f, 40.0f, 300.0f, 0.9f, 0.5f, 0.3f, 0.05f, 1e-3f};
+    int i, below = 0;
+    for (i = 0; i < (int)(sizeof ms / sizeof ms[0]); ++i) {
+        sbl__kernel k;
+        const double m = (double)ms[i];
+        memset(&k, 0, sizeof k);
+        k.wp.region_m = -7.0f; /* (overwritten in every case) */
+        k.evid_lnm = k.evid_thr = k.evid_garrote = -7.0;
+        sbl__evidence_region(&k, ms[i]);
+        if (ms[i] == 1.0f) {
+            CHECK(k.wp.region_m == 1.0f && k.evid_lnm == 0.0);
+            CHECK(k.evid_thr == SBL__EVIDENCE_THR && k.evid_garrote == SBL__EVIDENCE_GARROTE);
+            continue;
+        }
+        CHECK(k.wp.region_m == ((SBL_EVIDENCE_REGION & 1) ? ms[i] : 1.0f));
+        CHECK(fabs(k.evid_lnm - ((SBL_EVIDENCE_REGION & 2) ? log(m) : 0.0)) <= 1e-12);
+        if (!(SBL_EVIDENCE_REGION & 4)) {
+            CHECK(k.evid_thr == SBL__EVIDENCE_THR && k.evid_garrote == SBL__EVIDENCE_GARROTE);
+            continue;
+        }
+        CHECK(k.evid_thr >= 1.0);
+        CHECK(fabs(k.evid_garrote - (k.evid_thr - 1.0) * (k.evid_thr - 1.0)) <= 1e-12 * (1.0 + k.evid_garrote));
+        if (d0 / m < 1.0) { /* the threshold lies above R's null mean */
+            const double d = exp(-(k.evid_thr - 1.0) * (k.evid_thr - 1.0) / (2.0 * kap));
+            CHECK(fabs(d * m / d0 - 1.0) <= 1e-9);
+            CHECK(m > 1.0 ? k.evid_thr > SBL__EVIDENCE_THR : k.evid_thr < SBL__EVIDENCE_THR);
+        } else {
+            CHECK(k.evid_thr == 1.0);
+            ++below;
+        }
+    }
+    CHECK(below > 0); /* both cases met (M = 1e-3 puts the threshold at the null mean) */
+    printf("  region prior M: %d values checked, %d with the threshold at R's null mean\n",
+           (int)(sizeof ms / sizeof ms[0]), below);
+}
+
 /* sbl_temporal_display: its lanes (float, SIMD layer) against the reference per pixel
    (sbl__display_pixel, double), on random windows: 1-4 channels, padded pixels, young
    and old N, N <= 0 or NaN neighbours, non-finite and huge samples and outputs (which the
@@ -2836,6 +2883,7 @@ int main(void)
     test_rig_as_parallel();
     test_blur_noise_fit();
     test_restart_lean_paths();
+    test_evidence_region();
     test_display_paths();
     return sbt_finish("test_paths");
 }
