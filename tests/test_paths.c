@@ -2396,6 +2396,7 @@ static void test_restart_lean_paths(void)
     int it;
     for (it = 0; it < 2100; ++it) {
         const int behind = it >= 1500; /* behind a stereo blend (c > 0) */
+        const int camera = behind && it % 5 == 3; /* the blur's fractions from the camera source */
         sbl__temporal_rp brp;
         sbl__kernel k;
         sbl_image im;
@@ -2452,7 +2453,7 @@ static void test_restart_lean_paths(void)
             brp.motion.step = 2;
             brp.motion.ch = 2;
             brp.motion_kx = brp.motion_ky = 1.0;
-            if (it % 5 == 3) {
+            if (camera) {
                 /* the camera source (the lanes take each lane's fraction from
                    sbl__blur_fraction at its own pixel): a camera moved sideways and
                    forward over a depth that varies per pixel, so the fractions do; some
@@ -2521,7 +2522,7 @@ static void test_restart_lean_paths(void)
             lean_row(&k, y, 0, 0, r0c, r0n, r0a, NULL);
             if (behind) {
                 /* the reference without the blur's term: does it act? (blur off with the
-                   lean on at c > 0, like "lean off" above behind the blend, is a state
+                   lean on at c > 0, like the reference's "lean off" behind the blend, is a state
                    sbl_temporal_filter never makes: these runs feed the counts, never a
                    comparison) */
                 float bc[LPW][4], bn[LPW], ba[LPW];
@@ -2530,10 +2531,10 @@ static void test_restart_lean_paths(void)
                 k.wp.blur = 1;
                 for (x = 0; x < LPW; ++x) {
                     blurred += ba[x] != ra[x];
-                    blurred_cam += it % 5 == 3 && ba[x] != ra[x];
+                    blurred_cam += camera && ba[x] != ra[x];
                 }
                 behind_compared += LPW;
-                cam_compared += it % 5 == 3 ? LPW : 0;
+                cam_compared += camera ? LPW : 0;
             }
             for (x = 0; x < LPW; ++x) {
                 double e = fabs(la[x] - ra[x]), en = fabs(ln[x] - rn[x]) / (fabs(rn[x]) + 1.0);
