@@ -2391,12 +2391,17 @@ static void test_restart_lean_paths(void)
     static paths_gather G; /* (LPW x LPH fits: PGW x PGH) */
     sbt_rng rng = {4242};
     long compared = 0, leaned_ref = 0, leaned_lanes = 0, full_rows = 0, behind_leaned = 0, blurred = 0, behind_compared = 0;
-    long blurred_cam = 0, cam_compared = 0;
+    long blurred_cam = 0, cam_compared = 0, blurred_obj = 0, blurred_still = 0, obj_compared = 0;
+    static float ids[LPH * LPW];
     double worst = 0.0;
     int it;
     for (it = 0; it < 2100; ++it) {
         const int behind = it >= 1500; /* behind a stereo blend (c > 0) */
-        const int camera = behind && it % 5 == 3; /* the blur's fractions from the camera source */
+        /* the blur's fractions from the camera source (at each scale: it % 10 is 3, 8, 9);
+           in some the camera at rest with one object moving (the object's pixels alone
+           at fractional positions) */
+        const int camera = behind && (it % 5 == 3 || it % 20 == 9);
+        const int rest = camera && it % 20 == 13;
         sbl__temporal_rp brp;
         sbl__kernel k;
         sbl_image im;
@@ -2462,6 +2467,7 @@ static void test_restart_lean_paths(void)
                 static sbl_camera cam[2];
                 static sbl_frame bf;
                 static sbl_history bh;
+                static sbl_object_motion obj;
                 sbl_reproject_desc rd;
                 sbl_intrinsics kin;
                 int e, q;
@@ -2474,7 +2480,7 @@ static void test_restart_lean_paths(void)
                 for (e = 0; e < 2; ++e) {
                     float pose[16];
                     for (q = 0; q < 16; ++q) pose[q] = q % 5 == 0 ? 1.0f : 0.0f;
-                    if (e) {
+                    if (e && !rest) {
                         pose[3] = 0.011f * (float)(1 + it % 7);
                         pose[7] = 0.004f * (float)(it % 3);
                         pose[11] = 0.03f;
@@ -2490,8 +2496,23 @@ static void test_restart_lean_paths(void)
                 bh.color = im;
                 bh.gbuffer.depth = bf.gbuffer.depth;
                 bh.camera = &cam[0];
+                if (rest) {
+                    /* id 2 (columns 9-28) moved sideways and up since the history's
+                       frame; id 1 (the rest) still */
+                    for (y = 0; y < LPH; ++y)
+                        for (x = 0; x < LPW; ++x) ids[y * LPW + x] = x >= 9 && x < 29 ? 2.0f : 1.0f;
+                    memset(&obj, 0, sizeof obj);
+                    obj.id = 2.0f;
+                    for (q = 0; q < 16; ++q)
+                        obj.object_to_world[q] = obj.prev_object_to_world[q] = q % 5 == 0 ? 1.0f : 0.0f;
+                    obj.object_to_world[3] = 0.013f * (float)(1 + it % 6);
+                    obj.object_to_world[7] = -0.005f;
+                    bf.gbuffer.ids = bh.gbuffer.ids = sbl_image_make(ids, LPW, LPH, 1);
+                    bf.objects = &obj;
+                    bf.object_count = 1;
+                }
                 CHECK_EQ(sbl__temporal_rp_init(&brp, &rd, SBL_TEMPORAL_CAMERA, &bf, &bh), SBL_OK);
-                CHECK(!brp.at_rest);
+                CHECK(brp.at_rest == rest);
             }
             k.blur_rp = &brp;
             k.wp.blur = 1;
@@ -2532,6 +2553,11 @@ static void test_restart_lean_paths(void)
                 for (x = 0; x < LPW; ++x) {
                     blurred += ba[x] != ra[x];
                     blurred_cam += camera && ba[x] != ra[x];
+                    /* at rest only the moving object's pixels are fetched at a fraction:
+                       the term must move them and no other (its S is the pixel's own) */
+                    blurred_obj += rest && ids[y * LPW + x] == 2.0f && ba[x] != ra[x];
+                    blurred_still += rest && ids[y * LPW + x] != 2.0f && ba[x] != ra[x];
+                    obj_compared += rest && ids[y * LPW + x] == 2.0f;
                 }
                 behind_compared += LPW;
                 cam_compared += camera ? LPW : 0;
@@ -2561,9 +2587,10 @@ static void test_restart_lean_paths(void)
     }
     printf("  %s restart lean, lanes vs reference: %ld pixels, the lean moved %ld (reference) / %ld "
            "(lanes), %ld full rows, worst difference %.3g; behind a stereo blend %ld pixels, the "
-           "lean moved %ld, the blur's term %ld (camera source: %ld of %ld)\n",
+           "lean moved %ld, the blur's term %ld (camera source: %ld of %ld; at rest: %ld of %ld "
+           "on the moving object, %ld elsewhere)\n",
            SBL_SIMD_NAME, compared, leaned_ref, leaned_lanes, full_rows, worst, behind_compared,
-           behind_leaned, blurred, blurred_cam, cam_compared);
+           behind_leaned, blurred, blurred_cam, cam_compared, blurred_obj, obj_compared, blurred_still);
     /* the lean acts in both paths (the test compares something), and the full chunks
        were taken */
     CHECK(leaned_ref > compared / 20);
@@ -2572,6 +2599,8 @@ static void test_restart_lean_paths(void)
     CHECK(behind_leaned > behind_compared / 20);
     CHECK(blurred > behind_compared / 20);
     CHECK(blurred_cam > cam_compared / 20);
+    CHECK(blurred_obj > obj_compared / 20);
+    CHECK_EQ(blurred_still, 0);
 }
 #undef LPW
 #undef LPH
