@@ -2345,7 +2345,9 @@ static void test_rig_as_parallel(void)
    ramps, 6.6), so no pixel is skipped. The last 600 cases run behind a stereo blend
    (stereo_shared_bias 1 or 0.35, 6.10): the blur's instances, whose lean gates on the
    change's weight and counts the texture 1 + c times, with per-pixel fractional motion
-   (some integer: no blur), a fifth of them with the camera source's positions instead;
+   (some integer: no blur), a quarter of them with the camera source's positions instead
+   (at every scale; a fifth of those with the camera at rest and one moving object, where
+   only the object's pixels may be fetched at a fraction and blurred);
    two thirds of them with the carried evidence's mix (3.11), some of those with the
    region's M (3.10, sbl__evidence_region), the rest without the evidence plane. */
 #define LPW 45
@@ -2513,6 +2515,19 @@ static void test_restart_lean_paths(void)
                 }
                 CHECK_EQ(sbl__temporal_rp_init(&brp, &rd, SBL_TEMPORAL_CAMERA, &bf, &bh), SBL_OK);
                 CHECK(brp.at_rest == rest);
+                if (rest) {
+                    /* the still pixels' fetch is exactly at the pixel (no rounding of the
+                       camera map), so their fraction is 0, not merely small */
+                    long still_frac = 0;
+                    for (y = 0; y < LPH; ++y)
+                        for (x = 0; x < LPW; ++x) {
+                            float fvx, fvy;
+                            if (ids[y * LPW + x] == 2.0f) continue;
+                            sbl__blur_fraction(&brp, x, y, &fvx, &fvy);
+                            still_frac += fvx != 0.0f || fvy != 0.0f;
+                        }
+                    CHECK_EQ(still_frac, 0);
+                }
             }
             k.blur_rp = &brp;
             k.wp.blur = 1;
