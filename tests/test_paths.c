@@ -2397,6 +2397,8 @@ static void test_restart_lean_paths(void)
     static float ids[LPH * LPW];
     double worst = 0.0;
     int it;
+    /* the at-rest cases' ids: 2 (columns 9-28) the moving object, 1 the still rest */
+    for (it = 0; it < LPH * LPW; ++it) ids[it] = it % LPW >= 9 && it % LPW < 29 ? 2.0f : 1.0f;
     for (it = 0; it < 2100; ++it) {
         const int behind = it >= 1500; /* behind a stereo blend (c > 0) */
         /* the blur's fractions from the camera source (at each scale: it % 10 is 3, 8, 9);
@@ -2499,10 +2501,7 @@ static void test_restart_lean_paths(void)
                 bh.gbuffer.depth = bf.gbuffer.depth;
                 bh.camera = &cam[0];
                 if (rest) {
-                    /* id 2 (columns 9-28) moved sideways and up since the history's
-                       frame; id 1 (the rest) still */
-                    for (y = 0; y < LPH; ++y)
-                        for (x = 0; x < LPW; ++x) ids[y * LPW + x] = x >= 9 && x < 29 ? 2.0f : 1.0f;
+                    /* id 2 moved sideways and up since the history's frame; id 1 still */
                     memset(&obj, 0, sizeof obj);
                     obj.id = 2.0f;
                     for (q = 0; q < 16; ++q)
@@ -2566,13 +2565,14 @@ static void test_restart_lean_paths(void)
                 lean_row(&k, y, 1, 0, bc, bn, ba, NULL);
                 k.wp.blur = 1;
                 for (x = 0; x < LPW; ++x) {
-                    blurred += ba[x] != ra[x];
-                    blurred_cam += camera && ba[x] != ra[x];
+                    const int moved = ba[x] != ra[x], on_obj = ids[y * LPW + x] == 2.0f;
+                    blurred += moved;
+                    blurred_cam += camera && moved;
                     /* at rest only the moving object's pixels are fetched at a fraction:
                        the term must move them and no other (its S is the pixel's own) */
-                    blurred_obj += rest && ids[y * LPW + x] == 2.0f && ba[x] != ra[x];
-                    blurred_still += rest && ids[y * LPW + x] != 2.0f && ba[x] != ra[x];
-                    obj_compared += rest && ids[y * LPW + x] == 2.0f;
+                    blurred_obj += rest && on_obj && moved;
+                    blurred_still += rest && !on_obj && moved;
+                    obj_compared += rest && on_obj;
                 }
                 behind_compared += LPW;
                 cam_compared += camera ? LPW : 0;
