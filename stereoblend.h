@@ -613,6 +613,13 @@ typedef struct sbl_eye {
     sbl_gbuffer gbuffer;      /* depth (parallel, matrices, pinhole), normals, ids    */
     sbl_image disparity;      /* SBL_RIG_DISPARITY: 1 (d_x) or 2 (d_x, d_y) channels  */
     const sbl_camera *camera; /* SBL_RIG_MATRICES                                     */
+    sbl_image evidence;       /* optional, 1 channel: this eye's sbl_temporal_output.
+                                 evidence of this frame. The pooled stereo beta (the
+                                 default) then takes a change that either eye's carried
+                                 evidence shows (here at the pixel, the other eye's at
+                                 its match) as certain, so that the eye whose history
+                                 lags it is not trusted by its length (docs/ESTIMATORS.md
+                                 6.15). NULL data: the stereo pair's own test alone.   */
 } sbl_eye;
 
 typedef struct sbl_stereo_desc {
@@ -1203,8 +1210,8 @@ static int sbl__history_planes(const sbl_history *h, const sbl_image **p, int wi
 }
 static int sbl__eye_planes(const sbl_eye *e, const sbl_image **p)
 {
-    p[0] = &e->color; p[1] = &e->length; p[2] = &e->disparity;
-    return 3 + sbl__gbuffer_planes(&e->gbuffer, p + 3);
+    p[0] = &e->color; p[1] = &e->length; p[2] = &e->disparity; p[3] = &e->evidence;
+    return 4 + sbl__gbuffer_planes(&e->gbuffer, p + 4);
 }
 static int sbl__temporal_output_planes(const sbl_temporal_output *o, const sbl_image **p)
 {
@@ -2688,6 +2695,9 @@ typedef struct sbl__weight_params {
     sbl_weight_mode mode;
     float constant, alpha_min, gamma, bias_threshold;
     int temporal; /* X is a history (its N is a time since the last change) */
+    int stereo_ev; /* stereo, pooled: the kernel has the eyes' change flags (k->sev);
+                      the lanes read them (sbl__lane_stats.sev) */
+    int stereo_change; /* the reference path's pixel in hand: 1 where flagged */
     float shared_bias; /* temporal: sbl_temporal_desc.stereo_shared_bias c (the bias
                           counts 1 + c times); 0 otherwise */
     float region_m;    /* temporal, pooled, with the evidence plane: the factor M by which
@@ -2968,7 +2978,10 @@ static float sbl__weight(const sbl__weight_params *p, double x_dev2, double s2, 
                 odds = p->region_m > 0.0f && p->region_m != 1.0f
                            ? 0.5 * ((SBL__CAST(double, n_x) + 2.0) * SBL__CAST(double, p->region_m) - 1.0)
                            : 0.5 * (SBL__CAST(double, n_x) + 1.0);
-            bias2 = sbl__change_posterior(pd2, se2, k2, odds) * pd2;
+            /* stereo, where either eye's carried evidence shows a change (6.15): the
+               eyes then differ by their lags (4.6), which one window's test mostly
+               misses; the change is taken as certain, all of pd^2 is bias */
+            bias2 = p->stereo_change ? pd2 : sbl__change_posterior(pd2, se2, k2, odds) * pd2;
         }
         if (pair_count > 1 && pool_r > 0.0) {
             /* empirical Bayes: with B ~ N(0, tau^2) and pd = B + noise(se2), the
@@ -3113,6 +3126,7 @@ static sbl__weight_params sbl__weight_params_make(sbl_estimator e, sbl_rectify r
     p.gamma = gamma;
     p.bias_threshold = bias;
     p.temporal = 0;
+    p.stereo_ev = p.stereo_change = 0;
     p.shared_bias = 0.0f;
     p.region_m = 1.0f;
     p.evid_mix = 0;
@@ -3684,6 +3698,13 @@ typedef struct sbl__kernel {
     /* the temporal reprojection whose fetch positions give the resampling blur's
        fractions (wp.blur; sbl__blur_terms) */
     const sbl__temporal_rp *blur_rp;
+    /* the stereo blend's change evidence (pooled; sbl_eye.evidence, docs/ESTIMATORS.md
+       6.15): per column of the row in hand, 1 where either eye's plane shows a change
+       (sbl__stereo_evidence_row), else 0; NULL: neither eye gave a plane. sev_rp: the
+       stereo reprojection, whose map finds the other eye's pixel */
+    float *sev;
+    const sbl_image *sev_own, *sev_other;
+    const void *sev_rp;
 } sbl__kernel;
 
 /* the planes of a channel's column block, SBL__CHUNK_COLS floats each:
@@ -8399,6 +8420,10 @@ SBL__INLINE void sbl__kernel_pixel_ref_ch(sbl__kernel *k, const sbl__ring_row *c
             /* the resampling blur's terms at this pixel (4.12) */
             if (k->wp.blur) sbl__blur_terms(k, R, x, ch, &wp.blur_b2, &wp.blur_g);
             n_out = sbl__blend_pixel(&wp, &m, yc, xs, n_x, n_y, ch, out, &a);
+        } else if (k->wp.stereo_ev && k->sev[x] > 0.0f) { /* 6.15 */
+            sbl__weight_params wp = k->wp;
+            wp.stereo_change = 1;
+            n_out = sbl__blend_pixel(&wp, &m, yc, xs, n_x, n_y, ch, out, &a);
         } else {
             n_out = sbl__blend_pixel(&k->wp, &m, yc, xs, n_x, n_y, ch, out, &a);
         }
@@ -8457,6 +8482,7 @@ typedef struct sbl__lane_stats {
     sbl__m has_pairs, two_pairs;
     sbl__v pool_r;  /* pooled estimator: prior bias-to-noise ratio (sbl__row_pool)     */
     sbl__v evid_sh; /* the carried evidence's shrink (SBL_EVIDENCE_MIX; read only then) */
+    sbl__v sev;     /* stereo: the eyes' change flags (k->sev; read only where wp.stereo_ev) */
     sbl__v a2[4];   /* weight of the two-estimate blend (before the pooled lean): Eq. 5 */
     sbl__v bessel;  /* n / (n - 1), n Y's samples in the window: 9 / 8 inside the image
                        (sbl__lane_edge) */
@@ -8779,6 +8805,7 @@ SBL__INLINE void sbl__lanes_pool(const sbl__kernel *k, int x, int y, sbl__lane_s
                    ? sbl__load(k->pool_r + x) : sbl__set1(0.0f);
     st->evid_sh = (SBL_EVIDENCE_MIX && k->wp.evid_mix && k->pool_row == y)
                     ? sbl__evidence_shrink_lanes(k, x) : sbl__set1(0.0f);
+    st->sev = k->wp.stereo_ev ? sbl__load(k->sev + x) : sbl__set1(0.0f);
 }
 
 /* ---- the pooled estimator's prepass in lanes (sbl__row_pool) -----------------
@@ -9512,6 +9539,7 @@ SBL__INLINE sbl__v sbl__lanes_weight(const sbl__weight_params *p, sbl__lane_stat
             odds = sbl__mul(sbl__set1(0.5f), sbl__sub(sbl__mul(sbl__add(n_xc, sbl__set1(2.0f)),
                                                                sbl__set1(p->region_m)), one));
         post = sbl__div(one, sbl__add(one, sbl__mul(odds, sbl__mul(sbl__mul(r2, r2), sbl__sqrt(rho)))));
+        if (!temporal && p->stereo_ev) post = sbl__sel(sbl__gt(st->sev, zero), one, post); /* 6.15 */
         b2 = sbl__sel(st->has_pairs, sbl__mul(post, pd2), zero);
         if (est == SBL_ESTIMATOR_POOLED) {
             /* empirical Bayes, as sbl__weight: sh^2 pd2 + sh se2, sh = r / (1 + r) */
@@ -9773,6 +9801,7 @@ SBL__INLINE void sbl__lanes_vector_fast(sbl__kernel *k, const sbl__lane_rows *W,
     /* the weight: Y's variance summed over the channels, the blocks' pair terms; the
        pooled ratio of this row (sbl__kernel_lanes_pooled computed it: sbl__lanes_pool) */
     st.pool_r = sbl__load(k->pool_r + x);
+    st.sev = k->wp.stereo_ev ? sbl__load(k->sev + x) : sbl__set1(0.0f);
     st.tail_t = k->wp.tail ? sbl__load(k->tail_t + x) : sbl__set1(0.0f);
     st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
     st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
@@ -10177,6 +10206,7 @@ SBL__INLINE void sbl__lanes_stage_weight(sbl__kernel *k, const sbl__lane_rows *W
     st.two_pairs = full ? sbl__true : sbl__gt(cnt, one);
     st.inv_cnt = sbl__div(one, sbl__max(cnt, one));
     st.pool_r = sbl__load(k->pool_r + x);
+    st.sev = k->wp.stereo_ev ? sbl__load(k->sev + x) : sbl__set1(0.0f);
     st.tail_t = k->wp.tail ? sbl__load(k->tail_t + x) : sbl__set1(0.0f);
     st.bessel = E ? E->bessel : sbl__set1(9.0f / 8.0f);
     st.lean_s = E ? E->lean_s : sbl__set1(8.0f / 7.0f);
@@ -10923,6 +10953,9 @@ static void sbl__prefetch_row_w(const sbl_image *im, int y, int x0, int x1)
     }
 }
 
+static void sbl__stereo_evidence_row(sbl__kernel *k, const sbl__ring_row *r, int y, int x0,
+                                     int x1); /* (with the stereo reprojection, below) */
+
 static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
 {
     /* rows narrower than the widest vector (plus the two border pixels) take the
@@ -11001,6 +11034,7 @@ static void sbl__kernel_run_span(sbl__kernel *k, int y0, int y1, int x0, int x1)
             if (k->tail_on) sbl__tail_prepare(k, y, ra, rb);
             if (pool && k->evid_out) sbl__evidence_gather(k, y, pa, pb);
             if (pool && k->evid_out) sbl__evidence_share(k, y); /* 3.10 */
+            if (k->sev) sbl__stereo_evidence_row(k, R[1], y, x0, x1); /* 6.15 */
             if (pool && lanes_ok) {
                 /* an interior row: prepass and lanes share their column sums */
                 k->rows_valid = R[0]->all_valid & R[1]->all_valid & R[2]->all_valid;
@@ -11836,6 +11870,7 @@ static sbl_result sbl__check_eye(const sbl_eye *e, sbl_stereo_rig rig, int need_
     }
     if ((r = sbl__check_gbuffer(&e->gbuffer, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&e->length, 1, w, h)) != SBL_OK) return r;
+    if ((r = sbl__check_optional(&e->evidence, 1, w, h)) != SBL_OK) return r;
     if ((r = sbl__check_optional(&e->disparity, 0, w, h)) != SBL_OK) return r;
     if (e->disparity.data && e->disparity.channels > 2) return SBL_ERROR_INVALID_CHANNELS;
     if (rig == SBL_RIG_PARALLEL && !e->gbuffer.depth.data) return SBL_ERROR_MISSING_INPUT;
@@ -12100,6 +12135,40 @@ static float sbl__stereo_rp_pixel(const void *ctx, int x, int y, float *out)
         if (!(ex * ex + ey * ey <= tol * tol)) return 0.0f;
     }
     return n;
+}
+
+/* The stereo blend's change flags of row y, columns [x0, x1), into k->sev
+   (docs/ESTIMATORS.md 6.15): 1 where this eye's evidence plane at the pixel, or the other
+   eye's at the pixel nearest the match, is above the carried evidence's threshold c_R
+   (SBL__EVIDENCE_THR), else 0. The other eye's plane is read only where the colour's
+   match is valid (r->n > 0: its taps and the back-check passed), at the position its
+   gather started from; the nearest pixel, not bilinear: the plane is a statistic of
+   3 x 15 blocks, smooth at the scale of a pixel, and a threshold reads it. A value that is
+   not a ratio in (0, SBL__POOL_RATIO_CAP] (sbl__evidence_pixel's test; NaN) shows no
+   change. The same flags for the lanes and the reference path. */
+static void sbl__stereo_evidence_row(sbl__kernel *k, const sbl__ring_row *r, int y, int x0,
+                                     int x1)
+{
+    const sbl__stereo_rp *s = SBL__PCAST(const sbl__stereo_rp *, k->sev_rp);
+    const float thr = SBL__CAST(float, SBL__EVIDENCE_THR), cap = SBL__CAST(float, SBL__POOL_RATIO_CAP);
+    const int sw = s->source->color.width, sh = s->source->color.height;
+    int x;
+    for (x = x0; x < x1; ++x) {
+        int f = 0;
+        if (k->sev_own) {
+            const float v = *sbl__px(k->sev_own, x, y);
+            f = v > thr && v <= cap;
+        }
+        if (!f && k->sev_other && r->n[x] > 0.0f) {
+            double sx, sy, sz;
+            if (sbl__stereo_map(s, 0, x, y, x + 0.5, y + 0.5, &sx, &sy, &sz) &&
+                sx >= 0.0 && sx < SBL__CAST(double, sw) && sy >= 0.0 && sy < SBL__CAST(double, sh)) {
+                const float v = *sbl__px(k->sev_other, SBL__CAST(int, sx), SBL__CAST(int, sy));
+                f = v > thr && v <= cap;
+            }
+        }
+        k->sev[x] = f ? 1.0f : 0.0f;
+    }
 }
 
 #ifdef SBL__ROW_GATHER
@@ -13015,7 +13084,9 @@ SBLDEF sbl_result sbl_reproject_stereo(const sbl_stereo_desc *desc, sbl_eye_inde
 
 SBLDEF size_t sbl_stereo_scratch_size(int width, int channels)
 {
-    return sbl__kernel_scratch_size(width, channels);
+    const size_t kb = sbl__kernel_scratch_size(width, channels);
+    /* + the row of the eyes' change flags (sbl_eye.evidence, 6.15) */
+    return kb ? kb + sizeof(float) * sbl__plane_floats(width) + 64 : 0;
 }
 
 /* All validation of a stereo blend with its outputs, without writing anything. */
@@ -13085,6 +13156,16 @@ static void sbl__stereo_kernel_setup(sbl__kernel *k, const sbl__stereo_rp *s,
     k->out_n = *length;
     if (beta) k->out_a = *beta;
     sbl__kernel_bind(k, scratch);
+    if (s->d.estimator == SBL_ESTIMATOR_POOLED && !s->d.fill &&
+        (target->evidence.data || s->source->evidence.data)) {
+        /* the eyes' change evidence (6.15): one row of flags after the kernel's scratch */
+        k->sev = SBL__PCAST(float *, sbl__align64(SBL__PCAST(char *, scratch) +
+                                                  sbl__kernel_scratch_size(k->w, k->ch)));
+        k->sev_own = target->evidence.data ? &target->evidence : NULL;
+        k->sev_other = s->source->evidence.data ? &s->source->evidence : NULL;
+        k->sev_rp = s;
+        k->wp.stereo_ev = 1;
+    }
 }
 
 SBLDEF sbl_result sbl_stereo_filter(const sbl_stereo_desc *desc, sbl_eye_index target_eye,
@@ -13498,6 +13579,8 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
         sbl__walk_gbuffer(&wk, f, &eye->gbuffer, w, h);
         sbl__diag_copy(f, sizeof f, nm, "->length");
         sbl__walk_image(&wk, f, &eye->length, 1, w, h, 1);
+        sbl__diag_copy(f, sizeof f, nm, "->evidence");
+        sbl__walk_image(&wk, f, &eye->evidence, 1, w, h, 1);
         sbl__diag_copy(f, sizeof f, nm, "->disparity");
         sbl__walk_image(&wk, f, &eye->disparity, 0, w, h, 1);
         if (eye->disparity.data && eye->disparity.channels > 2)
@@ -13607,15 +13690,17 @@ SBLDEF sbl_result sbl_stereo_validate(const sbl_stereo_desc *desc, sbl_eye_index
     if (out) {
         const sbl_image *o[3], *in[2 * SBL__PLANES_MAX];
         const char *on[3] = {"out->color", "out->length", "out->beta"};
-        const char *names[14] = {
+        const char *names[16] = {
             "overlaps target->color", "overlaps target->length", "overlaps target->disparity",
+            "overlaps target->evidence",
             "overlaps target->gbuffer.depth", "overlaps target->gbuffer.normals",
             "overlaps target->gbuffer.ids", "overlaps target->gbuffer.motion",
             "overlaps source->color", "overlaps source->length", "overlaps source->disparity",
+            "overlaps source->evidence",
             "overlaps source->gbuffer.depth", "overlaps source->gbuffer.normals",
             "overlaps source->gbuffer.ids", "overlaps source->gbuffer.motion"};
         int i, j, n;
-        n = sbl__eye_planes(target, in); /* in the names' order: 7 planes an eye */
+        n = sbl__eye_planes(target, in); /* in the names' order: 8 planes an eye */
         n += sbl__eye_planes(source, in + n);
         o[0] = &out->color; o[1] = &out->length; o[2] = &out->beta;
         for (i = 0; i < 3; ++i)
@@ -13694,6 +13779,7 @@ static sbl_eye sbl__eye_from_temporal(const sbl_stereo_temporal_io *io, int e)
     memset(&eye, 0, sizeof eye);
     eye.color = io->temporal[e].color;
     eye.length = io->temporal[e].length;
+    eye.evidence = io->temporal[e].evidence; /* (optional: NULL data is none) */
     eye.gbuffer = io->frame[e].gbuffer;
     eye.gbuffer.motion.data = NULL; /* not a stereo input */
     eye.disparity = io->disparity[e];

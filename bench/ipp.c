@@ -284,6 +284,10 @@ int main(int argc, char **argv)
         se.color = sbl_image_make(o->out, W, H, 3);
         se.length = sbl_image_make(o->olen, W, H, 1);
         se.gbuffer.depth = sbl_image_make(o->depth, W, H, 1);
+        if (ev) { /* each eye's evidence, as the README's setup passes it (6.15) */
+            te.evidence = sbl_image_make(t->oev, W, H, 1);
+            se.evidence = sbl_image_make(o->oev, W, H, 1);
+        }
         if (kind == 4) {
             te.gbuffer.normals = sbl_image_make(t->normal, W, H, 3);
             te.gbuffer.ids = sbl_image_make(t->id, W, H, 1);

@@ -1034,6 +1034,9 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 memset(&eye[e], 0, sizeof eye[e]);
                 eye[e].color = sbl_image_make(tout[e], w, h, 3);
                 if (m->temporal) eye[e].length = sbl_image_make(len[e][ping[e]], w, h, 1);
+                /* this frame's carried evidence (the temporal output's plane) */
+                if (m->temporal && m->evidence && carry[e][ping[e]])
+                    eye[e].evidence = sbl_image_make(carry[e][ping[e]], w, h, 1);
                 eye[e].gbuffer = sbr_gbuffer(v[e], w, h, 0);
             }
             if (m->stereo == SBR_STEREO_FIXED) sd.estimator = SBL_ESTIMATOR_CONSTANT;
@@ -1079,6 +1082,9 @@ int sbr_run_alpha(const sbr_seq *s, const sbr_method *m, sbr_result *res, sbr_fr
                 memset(&eye[e], 0, sizeof eye[e]);
                 eye[e].color = sbl_image_make(tout[e], w, h, 3);
                 if (m->temporal) eye[e].length = sbl_image_make(len[e][ping[e]], w, h, 1);
+                /* this frame's carried evidence (the temporal output's plane) */
+                if (m->temporal && m->evidence && carry[e][ping[e]])
+                    eye[e].evidence = sbl_image_make(carry[e][ping[e]], w, h, 1);
                 eye[e].gbuffer = sbr_gbuffer(v[e], w, h, 0);
             }
             rc = sbr_stereo_masked(&sd, m->weber_threshold, eye, disp, tmp_a, mask, w, h,

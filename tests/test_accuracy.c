@@ -551,11 +551,21 @@ static void test_stereo_edge_and_flat(void)
    (docs/ESTIMATORS.md section 4.6; with SBL_STEREO_LAG_SHARE 0, the rule before it, the
    left eye keeps its lag: RMSE 0.09). Returns the RMSE of each eye's output. The left
    eye's value is left_value (0.5: the lag; 0.6: the eyes agree). */
+static void stereo_lag_measure_ev(int n_left, int n_right, double left_value, double ev_left,
+                                  double ev_right, double *rmse_left, double *rmse_right);
 static void stereo_lag_measure(int n_left, int n_right, double left_value, double *rmse_left,
                                double *rmse_right)
 {
+    stereo_lag_measure_ev(n_left, n_right, left_value, 0.0, 0.0, rmse_left, rmse_right);
+}
+/* ev_left / ev_right > 0: that eye's evidence plane (sbl_eye.evidence), that value
+   everywhere; 0: none */
+static void stereo_lag_measure_ev(int n_left, int n_right, double left_value, double ev_left,
+                                  double ev_right, double *rmse_left, double *rmse_right)
+{
     enum { W = 48, H = 32 };
-    static float col[2][W * H * 3], depth[W * H], len[2][W * H], out[2][W * H * 3];
+    static float col[2][W * H * 3], depth[W * H], len[2][W * H], out[2][W * H * 3], ev[2][W * H];
+    const double evv[2] = {ev_left, ev_right};
     sbl_stereo_desc d;
     sbl_eye eye[2];
     sbt_rng rng;
@@ -567,9 +577,13 @@ static void stereo_lag_measure(int n_left, int n_right, double left_value, doubl
         for (y = 0; y < H; ++y)
             for (x = 0; x < W; ++x) {
                 int nn = ey ? n_right : n_left;
-                double v = ey ? truth : left_value;
+                /* left_value < 0: the left eye lags by -left_value, its sign
+                   alternating every 4 columns (a change whose blocks' mean cancels) */
+                double v = ey ? truth : left_value >= 0.0 ? left_value
+                                      : truth + (((x / 4) & 1) ? left_value : -left_value);
                 depth[y * W + x] = 4.0f;
                 len[ey][y * W + x] = (float)nn;
+                ev[ey][y * W + x] = (float)evv[ey];
                 for (c = 0; c < 3; ++c)
                     col[ey][(y * W + x) * 3 + c] = (float)(v + sigma / sqrt((double)nn) * sbt_gauss(&rng));
             }
@@ -582,6 +596,7 @@ static void stereo_lag_measure(int n_left, int n_right, double left_value, doubl
         eye[ey].color = sbl_image_make(col[ey], W, H, 3);
         eye[ey].length = sbl_image_make(len[ey], W, H, 1);
         eye[ey].gbuffer.depth = sbl_image_make(depth, W, H, 1);
+        if (evv[ey] > 0.0) eye[ey].evidence = sbl_image_make(ev[ey], W, H, 1);
     }
     CHECK_EQ(sbl_stereo_blend_frame(&d, &eye[0], &eye[1], sbl_image_make(out[0], W, H, 3),
                                     sbl_image_make(out[1], W, H, 3)), SBL_OK);
@@ -606,6 +621,31 @@ static void test_stereo_lag(void)
     CHECK(l < 0.06);
     /* and the fresh eye is not pulled towards the old one's lag */
     CHECK(r < 0.05);
+}
+
+/* The eyes' change evidence in the stereo blend (sbl_eye.evidence, docs/ESTIMATORS.md
+   6.15). The left eye's history is old (N 16) and lags a change by 0.04, its sign
+   alternating every 4 columns (a moving shadow's edges: the blocks' means cancel, so
+   only the 3x3 test could see it); the right eye restarted on the change (N 2, noise
+   0.05 / sqrt 2). The right eye's carried evidence shows the change (R 4), the left
+   eye's does not (R 1.2, below c_R = 2.118): read at the match, it makes the left eye's
+   blend take the difference as bias, and the left eye moves towards the fresh one.
+   Where the eyes agree, the same flag on both costs little (all of pd^2 taken as bias
+   is then the window's noise). A blend that ignored the other eye's plane would keep
+   the left eye's RMSE as it is without the planes. */
+static void test_stereo_change_evidence(void)
+{
+    double l0, r0, l1, r1, la, ra, lb, rb;
+    stereo_lag_measure_ev(16, 2, -0.04, 0.0, 0.0, &l0, &r0);
+    stereo_lag_measure_ev(16, 2, -0.04, 1.2, 4.0, &l1, &r1);
+    stereo_lag_measure_ev(16, 2, 0.6, 0.0, 0.0, &la, &ra);
+    stereo_lag_measure_ev(16, 2, 0.6, 4.0, 4.0, &lb, &rb);
+    printf("  stereo, old left eye (N 16) lagging a change by +-0.04 that the fresh right eye's "
+           "evidence shows: RMSE left %.5f -> %.5f, right %.5f -> %.5f with the planes; eyes "
+           "that agree, both flagged: %.5f -> %.5f, %.5f -> %.5f\n", l0, l1, r0, r1, la, lb, ra, rb);
+    CHECK(l1 < 0.96 * l0); /* measured 0.937 */
+    CHECK(r1 <= r0);
+    CHECK(lb < 1.08 * la && rb < 1.08 * ra); /* measured +5.0 %, +2.3 % */
 }
 
 /* Two young filtered eyes that agree (both N 2: their histories just restarted, flat,
@@ -2030,6 +2070,7 @@ int main(void)
     test_moving_light();
     test_stereo_edge_and_flat();
     test_stereo_lag();
+    test_stereo_change_evidence();
     test_stereo_lean_young();
     test_history_catmull_rom();
     test_history_sharpness();

@@ -883,6 +883,75 @@ static void test_row_bands(void)
     st_free(&s);
 }
 
+/* The eyes' evidence planes (sbl_eye.evidence, docs/ESTIMATORS.md 6.15) in row bands:
+   the flags are formed per row from the target's plane at the pixel and the source's at
+   its match, so bands must reproduce the whole image bit for bit, with either plane or
+   both, on every rig that maps differently (parallel, disparity, matrices). The planes
+   hold ratios on both sides of c_R = 2.118 and values that are not ratios (NaN, inf,
+   negative, 0, above the cap), which read as no change: a plane of only those gives the
+   blend without planes, bit for bit. And the flags do move the blend. */
+static void test_evidence_bands(void)
+{
+    stereo s;
+    sbt_rng rng = {4711};
+    sbt_img ev[2], junk[2];
+    sbt_img wc = sbt_img_new(40, 14, 3, 2), bc = sbt_img_new(40, 14, 3, 2), nc = sbt_img_new(40, 14, 3, 2);
+    static const int cuts[] = {0, 2, 3, 7, 8, 13, 14};
+    static const int rigs[] = {SBL_RIG_PARALLEL, SBL_RIG_DISPARITY, SBL_RIG_MATRICES};
+    size_t bytes;
+    void *scratch;
+    int e, x, y, t, ri, which, i;
+    long moved = 0;
+    symmetric_scene(&s, &rng);
+    bytes = sbl_stereo_scratch_size(s.w, 3);
+    scratch = malloc(bytes);
+    for (e = 0; e < 2; ++e) {
+        ev[e] = sbt_img_new(s.w, s.h, 1, e);
+        junk[e] = sbt_img_new(s.w, s.h, 1, 1 - e);
+        for (y = 0; y < s.h; ++y)
+            for (x = 0; x < s.w; ++x) {
+                static const float bad[5] = {-1.0f, 0.0f, 2e6f, (float)HUGE_VAL, 0.0f};
+                const double u = sbt_uniform(&rng);
+                *sbt_at(&ev[e], x, y) = u < 0.1 ? bad[(x + y) % 5] : (float)(0.8 + 3.0 * sbt_uniform(&rng));
+                *sbt_at(&junk[e], x, y) = (x + y) % 6 == 5 ? (float)HUGE_VAL - (float)HUGE_VAL : bad[(x + 2 * y) % 5];
+            }
+        *sbt_at(&ev[e], 5, 5) = (float)HUGE_VAL - (float)HUGE_VAL; /* NaN */
+    }
+    for (ri = 0; ri < 3; ++ri)
+        for (t = 0; t < 2; ++t)
+            for (which = 1; which <= 3; ++which) {
+                sbl_stereo_desc d = st_desc(&s, rigs[ri]);
+                sbl_eye te = st_eye(&s, t, rigs[ri]), se = st_eye(&s, !t, rigs[ri]);
+                te.length = view(&s.len[t]);
+                se.length = view(&s.len[!t]);
+                /* without planes first */
+                CHECK_EQ(sbl_stereo_blend(&d, (sbl_eye_index)t, &te, &se, view(&nc), sbl_image_make(NULL, 0, 0, 1), 0, s.h, scratch, bytes), SBL_OK);
+                if (which & 1) te.evidence = view(&ev[t]);
+                if (which & 2) se.evidence = view(&ev[!t]);
+                img_fill(&wc, -3.0f); img_fill(&bc, -4.0f);
+                CHECK_EQ(sbl_stereo_blend(&d, (sbl_eye_index)t, &te, &se, view(&wc), sbl_image_make(NULL, 0, 0, 1), 0, s.h, scratch, bytes), SBL_OK);
+                for (i = 0; i + 1 < (int)(sizeof cuts / sizeof cuts[0]); ++i)
+                    CHECK_EQ(sbl_stereo_blend(&d, (sbl_eye_index)t, &te, &se, view(&bc), sbl_image_make(NULL, 0, 0, 1), cuts[i], cuts[i + 1], scratch, bytes), SBL_OK);
+                CHECK_EQ(memcmp(wc.mem, bc.mem, img_floats(&wc) * sizeof(float)), 0);
+                for (y = 0; y < s.h; ++y)
+                    for (x = 0; x < s.w; ++x) {
+                        for (i = 0; i < 3; ++i) CHECK(isfinite(sbt_at(&wc, x, y)[i]));
+                        moved += sbt_at(&wc, x, y)[0] != sbt_at(&nc, x, y)[0];
+                    }
+                /* planes of non-ratios only: no change anywhere */
+                if (which & 1) te.evidence = view(&junk[t]);
+                if (which & 2) se.evidence = view(&junk[!t]);
+                CHECK_EQ(sbl_stereo_blend(&d, (sbl_eye_index)t, &te, &se, view(&wc), sbl_image_make(NULL, 0, 0, 1), 0, s.h, scratch, bytes), SBL_OK);
+                CHECK_EQ(memcmp(wc.mem, nc.mem, img_floats(&wc) * sizeof(float)), 0);
+            }
+    printf("  evidence planes in bands: 3 rigs x 2 eyes x 3 plane sets bit for bit; %ld pixels moved by the flags\n", moved);
+    CHECK(moved > 3 * 2 * 3 * 20);
+    for (e = 0; e < 2; ++e) { free(ev[e].mem); free(junk[e].mem); }
+    free(scratch);
+    free(wc.mem); free(bc.mem); free(nc.mem);
+    st_free(&s);
+}
+
 /* ---- 8. errors: every code of the stereo and fill entry points -------------------- */
 
 #define EF_MAX 24
@@ -1056,6 +1125,8 @@ static void test_errors(void)
     EXPECT_BRF(SBL_ERROR_INVALID_CHANNELS);
     RESET(); T.length = view(&f.traced);                        /* N needs 1 */
     EXPECT_BRF(SBL_ERROR_INVALID_CHANNELS);
+    RESET(); S.evidence = view(&f.traced);                      /* evidence needs 1 */
+    EXPECT_BRF(SBL_ERROR_INVALID_CHANNELS); EXPECT(BF(), SBL_ERROR_INVALID_CHANNELS);
     RESET(); d.rig = SBL_RIG_DISPARITY; T.disparity = view(&f.traced); S.disparity = view(&f.s.disp[1]);
     EXPECT_BRF(SBL_ERROR_INVALID_CHANNELS);
     RESET(); on = view(&f.out[1]);                               /* out_length needs 1 */
@@ -1092,6 +1163,8 @@ static void test_errors(void)
     EXPECT_BRF(SBL_ERROR_SIZE_MISMATCH);
     RESET(); T.length = view(&f.small1);
     EXPECT_BRF(SBL_ERROR_SIZE_MISMATCH);
+    RESET(); T.evidence = view(&f.small1);
+    EXPECT_BRF(SBL_ERROR_SIZE_MISMATCH); EXPECT(BF(), SBL_ERROR_SIZE_MISMATCH);
     RESET(); d.rig = SBL_RIG_DISPARITY; T.disparity = view(&f.small1); S.disparity = view(&f.s.disp[1]);
     EXPECT_BRF(SBL_ERROR_SIZE_MISMATCH);
     RESET(); oc = view(&f.small);
@@ -1131,6 +1204,10 @@ static void test_errors(void)
     EXPECT(B(), SBL_ERROR_OVERLAP);
     RESET(); S.length = view(&f.s.len[1]); on = S.length;
     EXPECT(B(), SBL_ERROR_OVERLAP);
+    RESET(); S.evidence = view(&f.s.len[1]); on = S.evidence;   /* the source's evidence */
+    EXPECT(B(), SBL_ERROR_OVERLAP);
+    RESET(); T.evidence = view(&f.out[1]); T.evidence.channels = 1; /* in the right output */
+    EXPECT(BF(), SBL_ERROR_OVERLAP);
     RESET(); d.rig = SBL_RIG_DISPARITY; T = st_eye(&f.s, 0, SBL_RIG_DISPARITY); S = st_eye(&f.s, 1, SBL_RIG_DISPARITY);
     on = S.disparity; ov = T.disparity;
     EXPECT(B(), SBL_ERROR_OVERLAP); EXPECT(R(), SBL_ERROR_OVERLAP);
@@ -1295,6 +1372,7 @@ int main(void)
     test_fill();
     test_symmetry();
     test_row_bands();
+    test_evidence_bands();
     test_errors();
     return sbt_finish("test_stereo");
 }
