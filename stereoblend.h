@@ -72,8 +72,11 @@
      after sbl_temporal_filter per eye), set desc.stereo_shared_bias = 1: the blend halves
      each eye's own noise but keeps a bias both eyes share (a light that moved), so the
      temporal weight counts that bias twice (docs/ESTIMATORS.md 4.7), and so does the
-     firefly limit's cut of repeated excesses (6.9). The one-call pipeline
-     sbl_stereo_temporal_frame does this by itself.
+     firefly limit's cut of repeated excesses (6.9). Give each sbl_eye its temporal
+     output's length and evidence planes (eye.length = out.length, eye.evidence =
+     out.evidence): a change either eye's evidence shows is then a change for the stereo
+     weight, so the eye whose history lags it is not trusted for its length (6.15). The
+     one-call pipeline sbl_stereo_temporal_frame does all this by itself.
 
    CONVENTIONS (see also README.md)
      Images     fp32, 1-4 interleaved channels, row 0 = top, pixel (i, j) centred at
@@ -3095,21 +3098,24 @@ static void sbl__rectify(const sbl__weight_params *p, const sbl__moments *m, con
         for (k = 0; k < ch; ++k)
             xs[k] = xs[k] < m->lo[k] ? m->lo[k] : (xs[k] > m->hi[k] ? m->hi[k] : xs[k]);
     } else if (p->rectify == SBL_RECTIFY_VARIANCE_CLIP) {
-        /* shrink the segment mean -> x* until it enters the box (keeps hue) */
-        double t = 1.0;
+        /* shrink the segment mean -> x* until it enters the box (keeps hue). The channel
+           that sets t by y's distance, x* on y's side, lands on y exactly (the pooled
+           lean's E / D must see D = 0 there, not rounding noise; sbl__lanes_rectify) */
+        double t = 1.0, tk[4];
+        int on_y[4];
         for (k = 0; k < ch; ++k) {
             double half = SBL__CAST(double, p->gamma) * sqrt(m->var[k]);
             double d = fabs(SBL__CAST(double, xs[k]) - m->mean[k]);
             double dy = fabs(SBL__CAST(double, y[k]) - m->mean[k]);
+            on_y[k] = !(half > dy) && (SBL__CAST(double, y[k]) - m->mean[k]) * (SBL__CAST(double, xs[k]) - m->mean[k]) > 0.0;
             if (dy > half) half = dy;
-            if (d > half) {
-                double tk = d > 0.0 ? half / d : 1.0;
-                if (tk < t) t = tk;
-            }
+            tk[k] = d > half ? half / d : 1.0;
+            if (tk[k] < t) t = tk[k];
         }
         if (t < 1.0)
             for (k = 0; k < ch; ++k)
-                xs[k] = SBL__CAST(float, m->mean[k] + (SBL__CAST(double, xs[k]) - m->mean[k]) * t);
+                xs[k] = on_y[k] && !(tk[k] > t) ? y[k]
+                        : SBL__CAST(float, m->mean[k] + (SBL__CAST(double, xs[k]) - m->mean[k]) * t);
     }
 }
 
@@ -9431,17 +9437,26 @@ SBL__INLINE void sbl__lanes_rectify(const sbl__kernel *k, sbl__lane_stats *st, s
     if (k->wp.rectify == SBL_RECTIFY_CLAMP) {
         for (c = 0; c < ch; ++c) st->xs[c] = sbl__min(sbl__max(st->xs[c], st->lo[c]), st->hi[c]);
     } else if (k->wp.rectify == SBL_RECTIFY_VARIANCE_CLIP) {
-        sbl__v t = one;
+        sbl__v t = one, tk[4], hs[4];
         for (c = 0; c < ch; ++c) {
-            sbl__v half = sbl__max(sbl__mul(gamma, sbl__sqrt(st->var[c])),
-                                   sbl__abs(sbl__sub(st->yb[c], st->mean[c])));
-            sbl__v dist = sbl__abs(sbl__sub(st->xs[c], st->mean[c]));
-            t = sbl__sel(sbl__gt(dist, half), sbl__min(t, sbl__div(half, sbl__max(dist, tiny))), t);
+            const sbl__v dist = sbl__abs(sbl__sub(st->xs[c], st->mean[c]));
+            sbl__v half;
+            hs[c] = sbl__mul(gamma, sbl__sqrt(st->var[c]));
+            half = sbl__max(hs[c], sbl__abs(sbl__sub(st->yb[c], st->mean[c])));
+            tk[c] = sbl__sel(sbl__gt(dist, half), sbl__div(half, sbl__max(dist, tiny)), one);
+            t = sbl__min(t, tk[c]);
         }
-        for (c = 0; c < ch; ++c)
-            st->xs[c] = sbl__sel(sbl__gt(one, t),
-                                 sbl__add(st->mean[c], sbl__mul(sbl__sub(st->xs[c], st->mean[c]), t)),
-                                 st->xs[c]);
+        for (c = 0; c < ch; ++c) {
+            /* the channel that sets t by y's distance, x* on y's side: x* lands on y
+               exactly, as sbl__rectify (float rounding would leave it ulps off, and the
+               pooled lean's E / D then reads a segment of rounding noise) */
+            const sbl__v dy = sbl__sub(st->yb[c], st->mean[c]), dx = sbl__sub(st->xs[c], st->mean[c]);
+            const sbl__v clip = sbl__add(st->mean[c], sbl__mul(dx, t));
+            sbl__v v = sbl__sel(sbl__gt(sbl__mul(dy, dx), sbl__set1(0.0f)), st->yb[c], clip);
+            v = sbl__sel(sbl__gt(hs[c], sbl__abs(dy)), clip, v);
+            v = sbl__sel(sbl__gt(tk[c], t), clip, v);
+            st->xs[c] = sbl__sel(sbl__gt(one, t), v, st->xs[c]);
+        }
     }
 }
 

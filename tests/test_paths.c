@@ -2823,9 +2823,10 @@ int main(void)
 {
     static float own[PH * PW * 4], own_n[PH * PW], outc[PH * PW * 4], outn[PH * PW], outa[PH * PW];
     static paths_gather G;
+    static float sev[PW + 16]; /* the stereo change flags of the row (k.sev; VW-readable) */
     sbt_rng rng = {77};
     double worst = 0;
-    int it, compared = 0, refused = 0;
+    int it, compared = 0, refused = 0, flag_moved = 0;
     for (it = 0; it < 6000; ++it) { /* 5000 on: temporal cases with stereo_shared_bias */
         sbl__kernel k;
         sbl_image im, imn;
@@ -2848,7 +2849,9 @@ int main(void)
         im.channels = ch;
         imn = sbl_image_make(own_n, PW, PH, 1);
         k.w = PW; k.h = PH; k.ch = ch;
-        k.wp.estimator = (sbl_estimator)(it % SBL_ESTIMATOR_COUNT);
+        /* every estimator, rectification and weight mode, temporal and stereo (it % 6
+           alone gave the stereo cases only the odd estimators) */
+        k.wp.estimator = (sbl_estimator)((it / 2 + it / 12) % SBL_ESTIMATOR_COUNT);
         k.wp.rectify = (sbl_rectify)((it / 4) % SBL_RECTIFY_COUNT);
         k.wp.mode = (sbl_weight_mode)((it / 12) % SBL_WEIGHT_MODE_COUNT);
         k.wp.constant = stereo ? 0.5f : 0.1f;
@@ -2869,6 +2872,12 @@ int main(void)
         k.out_a = sbl_image_make(outa, PW, PH, 1);
         scratch = malloc(sbl__kernel_scratch_size(PW, ch));
         sbl__kernel_bind(&k, scratch);
+        if (stereo && !k.fill && k.wp.estimator == SBL_ESTIMATOR_POOLED && it % 3 != 0) {
+            /* the eyes' change flags (6.15): both paths read k.sev where wp.stereo_ev */
+            for (x = 0; x < PW + 16; ++x) sev[x] = sbt_uniform(&rng) < 0.5 ? 1.0f : 0.0f;
+            k.sev = sev;
+            k.wp.stereo_ev = 1;
+        }
         for (i = 0; i < 3; ++i) sbl__ring_load(&k, &k.ring[i], i, 0, PW);
         R[0] = &k.ring[0]; R[1] = &k.ring[1]; R[2] = &k.ring[2];
         if (R[0]->unsafe_count || R[1]->unsafe_count || R[2]->unsafe_count) {
@@ -2903,11 +2912,22 @@ int main(void)
             if (e > worst) worst = e;
             ++compared;
         }
+        if (k.wp.stereo_ev) { /* the flags move the weight: the reference without them */
+            for (x = 1; x < PW - 1; ++x) lane_a[x] = k.stage_a[x];
+            k.wp.stereo_ev = 0;
+            for (x = 1; x < PW - 1; ++x) {
+                sbl__kernel_pixel_ref(&k, R, x);
+                if (sev[x] > 0.0f && k.stage_a[x] != lane_a[x]) ++flag_moved;
+                if (sev[x] == 0.0f) CHECK(k.stage_a[x] == lane_a[x]); /* unflagged: unchanged */
+            }
+        }
         free(scratch);
     }
     printf("  %s lane kernel vs double reference: %d pixels, worst difference %.3g; %d cases refused (own N = inf)\n",
            SBL_SIMD_NAME, compared, worst, refused);
     CHECK(refused > 0);
+    printf("  stereo change flags: %d flagged pixels' weights moved by them\n", flag_moved);
+    CHECK(flag_moved > 1000);
     test_spans();
     test_moments_precision();
     test_pool_dim();
