@@ -115,6 +115,7 @@ int main(void)
             memset(&eye[e], 0, sizeof eye[e]);
             eye[e].color = out.color;
             eye[e].length = out.length;
+            eye[e].evidence = out.evidence; /* a change either eye saw counts for both */
             eye[e].gbuffer.depth = cur.gbuffer.depth;
             r_in += rmse(rgb[e], ref[e], n * 3) / 2;
             r_t += rmse(hist[e][!ping], ref[e], n * 3) / 2;
