@@ -30,7 +30,8 @@
              output blended with the other's, as bench/perf.c's stereo pipeline runs it;
              ipp.sh divides the blend's count by 2 calls)
    Each case with "-ev" appended (easy-ev, hard-ev, ...) passes the optional evidence
-   plane in and out (sbl_history.evidence / sbl_temporal_output.evidence); with "-tail"
+   plane in and out (sbl_history.evidence / sbl_temporal_output.evidence), and each
+   eye's output plane on to the stereo blend (sbl_eye.evidence); with "-tail"
    appended (easy-tail, ...) the evidence and the tail planes (sbl_history.tail /
    sbl_temporal_output.tail), as the README's recommended setup does.
 

@@ -1174,6 +1174,20 @@ static void test_diagnostics(void)
         CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_OVERLAP);
         EXPECT_DIAG(dg, SBL_ERROR_OVERLAP, "out->length", "source->gbuffer.depth");
         so.length.data = NULL;
+        /* the eyes' evidence planes (6.15): named as the caller spells them */
+        r.eye[0].evidence = view(&o); /* 3 channels */
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_INVALID_CHANNELS);
+        EXPECT_DIAG(dg, SBL_ERROR_INVALID_CHANNELS, "target->evidence.channels", NULL);
+        r.eye[0].evidence = r.eye[0].gbuffer.depth; r.eye[0].evidence.width = 20;
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_SIZE_MISMATCH);
+        EXPECT_DIAG(dg, SBL_ERROR_SIZE_MISMATCH, "target->evidence.width", NULL);
+        r.eye[0].evidence.data = NULL;
+        r.eye[1].evidence = r.eye[1].gbuffer.depth;
+        so.length = r.eye[1].evidence;
+        CHECK_EQ(sbl_stereo_validate(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], &so, &dg), SBL_ERROR_OVERLAP);
+        EXPECT_DIAG(dg, SBL_ERROR_OVERLAP, "out->length", "source->evidence");
+        r.eye[1].evidence.data = NULL;
+        so.length.data = NULL;
         /* the wrong target_eye of the issue: the fill call cannot know, the validation warns */
         CHECK_EQ(sbl_stereo_fill(&r.d, SBL_EYE_LEFT, &r.eye[0], &r.eye[1], view(&o), mask, 40, 0, 24, &need_right), SBL_OK);
         CHECK_EQ(sbl_stereo_fill(&r.d, SBL_EYE_RIGHT, &r.eye[0], &r.eye[1], view(&o), mask, 40, 0, 24, &need_wrong), SBL_OK);

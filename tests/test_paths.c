@@ -2912,13 +2912,14 @@ int main(void)
             if (e > worst) worst = e;
             ++compared;
         }
-        if (k.wp.stereo_ev) { /* the flags move the weight: the reference without them */
-            for (x = 1; x < PW - 1; ++x) lane_a[x] = k.stage_a[x];
+        if (k.wp.stereo_ev) { /* the flags move the weight: the reference with and without */
+            float ref_a[PW];
+            for (x = 1; x < PW - 1; ++x) ref_a[x] = k.stage_a[x];
             k.wp.stereo_ev = 0;
             for (x = 1; x < PW - 1; ++x) {
                 sbl__kernel_pixel_ref(&k, R, x);
-                if (sev[x] > 0.0f && k.stage_a[x] != lane_a[x]) ++flag_moved;
-                if (sev[x] == 0.0f) CHECK(k.stage_a[x] == lane_a[x]); /* unflagged: unchanged */
+                if (sev[x] > 0.0f && k.stage_a[x] != ref_a[x]) ++flag_moved;
+                if (sev[x] == 0.0f) CHECK(k.stage_a[x] == ref_a[x]); /* unflagged: unchanged */
             }
         }
         free(scratch);

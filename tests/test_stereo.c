@@ -952,6 +952,77 @@ static void test_evidence_bands(void)
     st_free(&s);
 }
 
+/* Where the flags read the planes: each pixel's flag must come from the target's plane
+   at the pixel and the source's at the pixel of its match (ESTIMATORS 6.15), not from a
+   neighbour, another row or the target's own position. The source's plane is a
+   checkerboard of 3 x 2 cells, 4 (a change) and 1 (none); the blend's beta with it must
+   equal, pixel by pixel, either the beta of an all-flagged run (the target's plane all 4)
+   or that of the run without planes, as the checkerboard at the known match says.
+   Pixels where the flag moves nothing (beta equal in both runs) say nothing and are
+   skipped; a pixel without a valid match is never flagged by the source. */
+static void test_evidence_at_match(void)
+{
+    stereo s;
+    sbt_rng rng = {4711};
+    static const int rigs[] = {SBL_RIG_PARALLEL, SBL_RIG_DISPARITY, SBL_RIG_MATRICES};
+    int t, x, y, ri, checked = 0, wrong = 0;
+    size_t bytes;
+    void *scratch;
+    symmetric_scene(&s, &rng);
+    bytes = sbl_stereo_scratch_size(s.w, 3);
+    scratch = malloc(bytes);
+    for (ri = 0; ri < 3; ++ri)
+        for (t = 0; t < 2; ++t) {
+            sbt_img all = sbt_img_new(s.w, s.h, 1, 0), chk = sbt_img_new(s.w, s.h, 1, 1);
+            sbt_img oc = sbt_img_new(s.w, s.h, 3, 0), on = sbt_img_new(s.w, s.h, 1, 0);
+            sbt_img b_none = sbt_img_new(s.w, s.h, 1, 0), b_all = sbt_img_new(s.w, s.h, 1, 0);
+            sbt_img b_chk = sbt_img_new(s.w, s.h, 1, 0);
+            sbl_stereo_desc d = st_desc(&s, rigs[ri]);
+            sbl_eye te = st_eye(&s, t, rigs[ri]), se = st_eye(&s, !t, rigs[ri]);
+            sbl_stereo_output o;
+            for (y = 0; y < s.h; ++y)
+                for (x = 0; x < s.w; ++x) {
+                    *sbt_at(&all, x, y) = 4.0f;
+                    *sbt_at(&chk, x, y) = ((x / 3 + y / 2) & 1) ? 4.0f : 1.0f;
+                }
+            te.length = view(&s.len[t]);
+            se.length = view(&s.len[!t]);
+            memset(&o, 0, sizeof o);
+            o.color = view(&oc);
+            o.length = view(&on);
+            o.beta = view(&b_none);
+            CHECK_EQ(sbl_stereo_filter(&d, (sbl_eye_index)t, &te, &se, &o, 0, s.h, scratch, bytes), SBL_OK);
+            te.evidence = view(&all);
+            o.beta = view(&b_all);
+            CHECK_EQ(sbl_stereo_filter(&d, (sbl_eye_index)t, &te, &se, &o, 0, s.h, scratch, bytes), SBL_OK);
+            memset(&te.evidence, 0, sizeof te.evidence);
+            se.evidence = view(&chk);
+            o.beta = view(&b_chk);
+            CHECK_EQ(sbl_stereo_filter(&d, (sbl_eye_index)t, &te, &se, &o, 0, s.h, scratch, bytes), SBL_OK);
+            for (y = 0; y < s.h; ++y)
+                for (x = 0; x < s.w; ++x) {
+                    const float none = *sbt_at(&b_none, x, y), flagged = *sbt_at(&b_all, x, y);
+                    const float got = *sbt_at(&b_chk, x, y);
+                    double bx;
+                    if (none == flagged) continue; /* the flag moves nothing here */
+                    if (!st_expect(&s, t, x, y, &bx)) {
+                        wrong += got != none; /* no valid match: no flag from the source */
+                        continue;
+                    }
+                    ++checked;
+                    wrong += got != (*sbt_at(&chk, (int)floor(bx + 0.5), y) > 2.118f ? flagged : none);
+                }
+            free(all.mem); free(chk.mem); free(oc.mem); free(on.mem);
+            free(b_none.mem); free(b_all.mem); free(b_chk.mem);
+        }
+    printf("  evidence planes read at the match: %d pixels checked on 3 rigs x 2 eyes, %d wrong\n",
+           checked, wrong);
+    CHECK(checked > 1000);
+    CHECK_EQ(wrong, 0);
+    free(scratch);
+    st_free(&s);
+}
+
 /* ---- 8. errors: every code of the stereo and fill entry points -------------------- */
 
 #define EF_MAX 24
@@ -1373,6 +1444,7 @@ int main(void)
     test_symmetry();
     test_row_bands();
     test_evidence_bands();
+    test_evidence_at_match();
     test_errors();
     return sbt_finish("test_stereo");
 }
